@@ -1,0 +1,626 @@
+// mrgi-render: render a built-in MRGI scene or a data file, headless, to PNG
+// and/or OpenEXR, printing GPU time per stage on request.
+//
+// The command line is a contract users script against: options are only ever
+// added, never renamed. Run `mrgi-render --help` for the list.
+
+#include "vtkCamera.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMRGIEGLRenderWindow.h"
+#include "vtkMRGIImageIO.h"
+#include "vtkMRGIPass.h"
+#include "vtkMRGIRenderWindowFactory.h"
+#include "vtkMRGISceneBuilder.h"
+#include "vtkNew.h"
+#include "vtkOutputWindow.h"
+#include "vtkRenderStepsPass.h"
+#include "vtkRenderTimerLog.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderWindowInteractor.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkPointData.h"
+
+#include "mrgi_error.h"
+#include "mrgi_parse.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+#include <strings.h>
+
+#ifndef MRGI_VERSION_STRING
+#define MRGI_VERSION_STRING "unknown"
+#endif
+
+namespace
+{
+const char* const Usage = R"(usage: mrgi-render SCENE -o OUT.png|OUT.exr [options]
+
+Renders SCENE headless (no X server, no GPU needed) and writes the image.
+
+SCENE   a built-in scene: cornell, cornell-spot, cornell-area, scaling
+        or a data file: .vtp .vtu .vti .vts .vtr .vtm .vtk .ply .obj .stl .gltf .glb
+
+Output
+  -o, --output FILE      .png (what the window shows, 8-bit) or .exr (the HDR
+                         float buffer); repeat to write several files
+  --half                 write EXR channels as 16-bit half floats (default 32-bit)
+  --size WxH             image size in pixels (default 512x512)
+  --background R,G,B     background colour (default 0,0,0)
+
+Camera (built-in scenes bring theirs; files are framed automatically)
+  --camera-position X,Y,Z
+  --camera-focal-point X,Y,Z
+  --camera-view-up X,Y,Z
+  --camera-view-angle DEG   vertical field of view, degrees
+  --auto-camera          frame the whole scene (keeps the view direction)
+  --parallel             parallel (orthographic) projection
+
+Lights (replace the scene's lights when given; repeatable)
+  --light positional:X,Y,Z
+  --light spot:X,Y,Z:FX,FY,FZ:CONE      CONE = half angle in degrees
+  --light directional:DX,DY,DZ          direction the light travels
+  --light headlight
+  --light-intensity S    multiply every light's intensity by S
+
+Scaling scene
+  --triangles N          total triangle count (default 100000)
+  --objects N            number of objects (default 64)
+  --seed N               random seed (default 1)
+
+Measurement
+  --timings              print the GPU time of each stage (vtkRenderTimerLog)
+  --frames N             render N frames; timings are medians (default 1)
+
+Other
+  --interactive          open a window to look around (needs DISPLAY)
+  -q, --quiet            no progress lines
+  --version              print the version
+  -h, --help             this text
+)";
+
+struct Options
+{
+  std::string Scene;
+  std::vector<std::string> Outputs;
+  bool Half = false;
+  int Width = 512;
+  int Height = 512;
+  double Background[3] = { 0, 0, 0 };
+  bool HasPosition = false, HasFocal = false, HasUp = false, HasAngle = false;
+  double Position[3], Focal[3], Up[3], Angle = 30;
+  bool AutoCamera = false;
+  bool Parallel = false;
+  std::vector<std::string> Lights;
+  double LightIntensity = 1.0;
+  bool HasLightIntensity = false;
+  long long Triangles = 100000;
+  long long Objects = 64;
+  long long Seed = 1;
+  bool Timings = false;
+  long long Frames = 1;
+  bool Interactive = false;
+  bool Quiet = false;
+};
+
+int Fail(const std::string& message)
+{
+  std::fprintf(stderr, "mrgi-render: error: %s\n", message.c_str());
+  return 2;
+}
+
+bool EndsWith(const std::string& s, const char* extension)
+{
+  const size_t e = std::strlen(extension);
+  return s.size() > e && strcasecmp(s.c_str() + s.size() - e, extension) == 0;
+}
+
+// Splits "a:b:c" on ':'.
+std::vector<std::string> SplitColon(const std::string& text)
+{
+  std::vector<std::string> parts;
+  size_t start = 0;
+  while (true)
+  {
+    const size_t colon = text.find(':', start);
+    parts.push_back(text.substr(start, colon == std::string::npos ? std::string::npos : colon - start));
+    if (colon == std::string::npos)
+    {
+      break;
+    }
+    start = colon + 1;
+  }
+  return parts;
+}
+
+bool ParseVec3(const std::string& option, const char* text, double out[3], std::string& why)
+{
+  mrgi_error err;
+  if (mrgi_parse_vec3(text, out, &err) != MRGI_OK)
+  {
+    why = option + ": " + err.message;
+    return false;
+  }
+  return true;
+}
+
+bool ParseLight(const std::string& spec, vtkSmartPointer<vtkLight>& light, std::string& why)
+{
+  const std::vector<std::string> parts = SplitColon(spec);
+  light = vtkSmartPointer<vtkLight>::New();
+  const std::string option = "--light '" + spec + "'";
+  const std::string& kind = parts[0];
+  if (kind == "headlight" && parts.size() == 1)
+  {
+    light->SetLightTypeToHeadlight();
+    return true;
+  }
+  light->SetLightTypeToSceneLight();
+  double a[3], b[3];
+  if (kind == "positional" && parts.size() == 2)
+  {
+    if (!ParseVec3(option, parts[1].c_str(), a, why))
+    {
+      return false;
+    }
+    light->SetPositional(true);
+    light->SetConeAngle(90.0);
+    light->SetPosition(a);
+    light->SetFocalPoint(a[0], a[1] - 1.0, a[2]);
+    return true;
+  }
+  if (kind == "spot" && parts.size() == 4)
+  {
+    double cone = 0;
+    mrgi_error err;
+    if (!ParseVec3(option, parts[1].c_str(), a, why) || !ParseVec3(option, parts[2].c_str(), b, why))
+    {
+      return false;
+    }
+    if (mrgi_parse_double(parts[3].c_str(), &cone, &err) != MRGI_OK || cone <= 0 || cone >= 90)
+    {
+      why = option + ": the cone half angle must be a number in (0, 90) degrees";
+      return false;
+    }
+    if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
+    {
+      why = option + ": the spot light's position and focal point coincide";
+      return false;
+    }
+    light->SetPositional(true);
+    light->SetPosition(a);
+    light->SetFocalPoint(b);
+    light->SetConeAngle(cone);
+    return true;
+  }
+  if (kind == "directional" && parts.size() == 2)
+  {
+    if (!ParseVec3(option, parts[1].c_str(), a, why))
+    {
+      return false;
+    }
+    if (a[0] == 0 && a[1] == 0 && a[2] == 0)
+    {
+      why = option + ": the direction is the zero vector";
+      return false;
+    }
+    // vtkLight: light travels from Position towards FocalPoint.
+    light->SetPositional(false);
+    light->SetPosition(0, 0, 0);
+    light->SetFocalPoint(a);
+    return true;
+  }
+  why = option + ": expected positional:X,Y,Z | spot:X,Y,Z:FX,FY,FZ:CONE | "
+                 "directional:DX,DY,DZ | headlight";
+  return false;
+}
+
+// Parses argv into `o`; returns -1 to go on, else the exit code.
+int ParseArguments(int argc, char* argv[], Options& o)
+{
+  auto needValue = [&](int& i, const std::string& option, const char*& value) -> bool {
+    if (i + 1 >= argc)
+    {
+      Fail(option + " needs a value");
+      return false;
+    }
+    value = argv[++i];
+    return true;
+  };
+  mrgi_error err;
+  std::string why;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    const char* v = nullptr;
+    if (arg == "-h" || arg == "--help")
+    {
+      std::fputs(Usage, stdout);
+      return 0;
+    }
+    else if (arg == "--version")
+    {
+      std::printf("mrgi-render %s\n", MRGI_VERSION_STRING);
+      return 0;
+    }
+    else if (arg == "-o" || arg == "--output")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      if (!EndsWith(v, ".png") && !EndsWith(v, ".exr"))
+      {
+        return Fail(std::string("output '") + v + "': the file name must end in .png or .exr");
+      }
+      o.Outputs.emplace_back(v);
+    }
+    else if (arg == "--half")
+    {
+      o.Half = true;
+    }
+    else if (arg == "--size")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      int32_t w = 0, h = 0;
+      if (mrgi_parse_size(v, &w, &h, &err) != MRGI_OK)
+      {
+        return Fail(std::string("--size: ") + err.message);
+      }
+      o.Width = w;
+      o.Height = h;
+    }
+    else if (arg == "--background")
+    {
+      if (!needValue(i, arg, v) || !ParseVec3(arg, v, o.Background, why))
+        return why.empty() ? 2 : Fail(why);
+    }
+    else if (arg == "--camera-position")
+    {
+      if (!needValue(i, arg, v) || !ParseVec3(arg, v, o.Position, why))
+        return why.empty() ? 2 : Fail(why);
+      o.HasPosition = true;
+    }
+    else if (arg == "--camera-focal-point")
+    {
+      if (!needValue(i, arg, v) || !ParseVec3(arg, v, o.Focal, why))
+        return why.empty() ? 2 : Fail(why);
+      o.HasFocal = true;
+    }
+    else if (arg == "--camera-view-up")
+    {
+      if (!needValue(i, arg, v) || !ParseVec3(arg, v, o.Up, why))
+        return why.empty() ? 2 : Fail(why);
+      o.HasUp = true;
+    }
+    else if (arg == "--camera-view-angle")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      if (mrgi_parse_double(v, &o.Angle, &err) != MRGI_OK || o.Angle <= 0 || o.Angle >= 180)
+      {
+        return Fail(std::string("--camera-view-angle '") + v + "': expected degrees in (0, 180)");
+      }
+      o.HasAngle = true;
+    }
+    else if (arg == "--auto-camera")
+    {
+      o.AutoCamera = true;
+    }
+    else if (arg == "--parallel")
+    {
+      o.Parallel = true;
+    }
+    else if (arg == "--light")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      o.Lights.emplace_back(v);
+    }
+    else if (arg == "--light-intensity")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      if (mrgi_parse_double(v, &o.LightIntensity, &err) != MRGI_OK || o.LightIntensity < 0)
+      {
+        return Fail(std::string("--light-intensity '") + v + "': expected a finite number >= 0");
+      }
+      o.HasLightIntensity = true;
+    }
+    else if (arg == "--triangles" || arg == "--objects" || arg == "--seed" || arg == "--frames")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      int64_t value = 0;
+      int64_t lo = 1, hi = 1000000;
+      if (arg == "--triangles")
+      {
+        lo = 12;
+        hi = 20000000;
+      }
+      else if (arg == "--objects")
+      {
+        hi = 4096;
+      }
+      else if (arg == "--seed")
+      {
+        lo = 0;
+        hi = INT64_MAX;
+      }
+      if (mrgi_parse_int64(v, lo, hi, &value, &err) != MRGI_OK)
+      {
+        return Fail(arg + ": " + err.message);
+      }
+      (arg == "--triangles" ? o.Triangles
+        : arg == "--objects" ? o.Objects
+        : arg == "--seed"    ? o.Seed
+                             : o.Frames) = value;
+    }
+    else if (arg == "--timings")
+    {
+      o.Timings = true;
+    }
+    else if (arg == "--interactive")
+    {
+      o.Interactive = true;
+    }
+    else if (arg == "-q" || arg == "--quiet")
+    {
+      o.Quiet = true;
+    }
+    else if (!arg.empty() && arg[0] == '-')
+    {
+      return Fail("unknown option '" + arg + "' (see mrgi-render --help)");
+    }
+    else if (o.Scene.empty())
+    {
+      o.Scene = arg;
+    }
+    else
+    {
+      return Fail("more than one scene given ('" + o.Scene + "' and '" + arg + "')");
+    }
+  }
+  if (o.Scene.empty())
+  {
+    return Fail("no scene given (see mrgi-render --help)");
+  }
+  if (o.Outputs.empty() && !o.Interactive && !o.Timings)
+  {
+    return Fail("no output given: use -o OUT.png or -o OUT.exr (or --timings / --interactive)");
+  }
+  return -1;
+}
+
+double Median(std::vector<double> v)
+{
+  if (v.empty())
+  {
+    return 0;
+  }
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+void Progress(const Options& o, const std::string& line)
+{
+  if (!o.Quiet)
+  {
+    std::fprintf(stderr, "mrgi-render: %s\n", line.c_str());
+  }
+}
+}
+
+int main(int argc, char* argv[])
+{
+  Options o;
+  const int parsed = ParseArguments(argc, argv, o);
+  if (parsed >= 0)
+  {
+    return parsed;
+  }
+  using Clock = std::chrono::steady_clock;
+  auto seconds = [](Clock::time_point a) {
+    return std::chrono::duration<double>(Clock::now() - a).count();
+  };
+
+  // Errors are reported once, as one line, by this program; VTK's own error
+  // output would repeat them with file/line noise.
+  vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
+
+  std::string why;
+  vtkSmartPointer<vtkRenderWindow> window = vtkSmartPointer<vtkRenderWindow>::Take(
+    vtkMRGIRenderWindowFactory::CreateRenderWindow(o.Interactive
+        ? vtkMRGIRenderWindowFactory::Interactive
+        : vtkMRGIRenderWindowFactory::Headless,
+      &why));
+  if (!window)
+  {
+    return Fail("no render window: " + why);
+  }
+  window->SetSize(o.Width, o.Height);
+  window->SetMultiSamples(0);
+
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(o.Background);
+  window->AddRenderer(renderer);
+
+  const Clock::time_point buildStart = Clock::now();
+  Progress(o, "building scene '" + o.Scene + "'");
+  vtkNew<vtkMRGISceneBuilder> builder;
+  builder->SetScene(o.Scene.c_str());
+  builder->SetTriangleCount(static_cast<vtkIdType>(o.Triangles));
+  builder->SetObjectCount(static_cast<int>(o.Objects));
+  builder->SetSeed(static_cast<vtkTypeUInt64>(o.Seed));
+  if (!builder->Build(renderer))
+  {
+    return Fail(builder->GetLastErrorMessage());
+  }
+  char line[256];
+  std::snprintf(line, sizeof(line), "scene ready: %lld triangles in %.2f s",
+    static_cast<long long>(builder->GetBuiltTriangleCount()), seconds(buildStart));
+  Progress(o, line);
+
+  if (!o.Lights.empty())
+  {
+    renderer->RemoveAllLights();
+    renderer->AutomaticLightCreationOff();
+    for (const std::string& spec : o.Lights)
+    {
+      vtkSmartPointer<vtkLight> light;
+      if (!ParseLight(spec, light, why))
+      {
+        return Fail(why);
+      }
+      renderer->AddLight(light);
+    }
+  }
+  if (o.HasLightIntensity)
+  {
+    if (renderer->GetLights()->GetNumberOfItems() == 0)
+    {
+      // VTK would make its headlight at first render; make it now to scale it.
+      renderer->CreateLight();
+    }
+    vtkLightCollection* lights = renderer->GetLights();
+    lights->InitTraversal();
+    while (vtkLight* light = lights->GetNextItem())
+    {
+      light->SetIntensity(light->GetIntensity() * o.LightIntensity);
+    }
+  }
+
+  vtkCamera* camera = renderer->GetActiveCamera();
+  if (o.HasPosition)
+    camera->SetPosition(o.Position);
+  if (o.HasFocal)
+    camera->SetFocalPoint(o.Focal);
+  if (o.HasUp)
+    camera->SetViewUp(o.Up);
+  if (o.HasAngle)
+    camera->SetViewAngle(o.Angle);
+  camera->SetParallelProjection(o.Parallel);
+  if (o.AutoCamera)
+  {
+    renderer->ResetCamera();
+  }
+  renderer->ResetCameraClippingRange();
+
+  vtkNew<vtkRenderStepsPass> steps;
+  vtkNew<vtkMRGIPass> mrgi;
+  mrgi->SetDelegatePass(steps);
+  mrgi->SetStageTimingEnabled(o.Timings);
+  if (o.Timings)
+  {
+    // Logging must be on before the window opens the first frame.
+    window->GetRenderTimer()->SetLoggingEnabled(true);
+  }
+  renderer->SetPass(mrgi);
+
+  std::map<std::string, std::vector<double>> stageTimes;
+  std::vector<std::string> stageOrder;
+  std::vector<double> frameTimes;
+  for (long long f = 0; f < o.Frames; ++f)
+  {
+    const Clock::time_point frameStart = Clock::now();
+    window->Render();
+    if (o.Timings)
+    {
+      const int n = mrgi->FetchStageTimings(window, true);
+      for (int s = 0; s < n; ++s)
+      {
+        const std::string name = mrgi->GetStageName(s);
+        if (stageTimes.find(name) == stageTimes.end())
+        {
+          stageOrder.push_back(name);
+        }
+        stageTimes[name].push_back(mrgi->GetStageTimeMilliseconds(s));
+      }
+    }
+    frameTimes.push_back(seconds(frameStart) * 1e3);
+    if (o.Frames > 1 && (f + 1) % 10 == 0)
+    {
+      std::snprintf(line, sizeof(line), "frame %lld/%lld", f + 1, o.Frames);
+      Progress(o, line);
+    }
+  }
+  if (mrgi->GetBufferSize()[0] < 1)
+  {
+    return Fail("nothing was rendered (is the window size valid and an OpenGL context available?)");
+  }
+
+  for (const std::string& path : o.Outputs)
+  {
+    vtkNew<vtkImageData> image;
+    vtkNew<vtkMRGIImageIO> io;
+    io->SetHalfFloat(o.Half);
+    bool ok = false;
+    if (EndsWith(path, ".exr"))
+    {
+      ok = mrgi->GetColorBuffer(window, image) && io->WriteEXR(image, path.c_str());
+    }
+    else
+    {
+      vtkNew<vtkUnsignedCharArray> pixels;
+      window->GetRGBACharPixelData(0, 0, o.Width - 1, o.Height - 1, 0, pixels);
+      pixels->SetNumberOfComponents(4);
+      vtkNew<vtkUnsignedCharArray> rgb;
+      rgb->SetNumberOfComponents(3);
+      rgb->SetNumberOfTuples(pixels->GetNumberOfTuples());
+      for (vtkIdType p = 0; p < pixels->GetNumberOfTuples(); ++p)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          rgb->SetValue(3 * p + c, pixels->GetValue(4 * p + c));
+        }
+      }
+      image->SetDimensions(o.Width, o.Height, 1);
+      image->GetPointData()->SetScalars(rgb);
+      ok = io->WritePNG(image, path.c_str());
+    }
+    if (!ok)
+    {
+      return Fail(std::string("cannot write '") + path + "': " +
+        (io->GetLastErrorMessage()[0] ? io->GetLastErrorMessage() : "reading the image back failed"));
+    }
+    Progress(o, "wrote " + path);
+  }
+
+  if (o.Timings)
+  {
+    std::printf("%-24s %12s\n", "stage", "GPU ms");
+    double total = 0;
+    for (const std::string& name : stageOrder)
+    {
+      const double ms = Median(stageTimes[name]);
+      total += ms;
+      std::printf("%-24s %12.3f\n", name.c_str(), ms);
+    }
+    std::printf("%-24s %12.3f\n", "total (GPU)", total);
+    std::printf("%-24s %12.3f\n", "frame (wall)", Median(frameTimes));
+    if (stageOrder.empty())
+    {
+      std::printf("(this OpenGL offers no timer queries: GPU stage times unavailable)\n");
+    }
+    std::fflush(stdout);
+  }
+
+  if (o.Interactive)
+  {
+    vtkNew<vtkRenderWindowInteractor> interactor;
+    interactor->SetRenderWindow(window);
+    interactor->Initialize();
+    interactor->Start();
+  }
+  renderer->SetPass(nullptr);
+  mrgi->ReleaseGraphicsResources(window);
+  return 0;
+}

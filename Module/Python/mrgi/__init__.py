@@ -1,0 +1,19 @@
+"""MRGI: multiresolution one-bounce indirect light and area lighting for VTK.
+
+Usage (the same three lines as vtkSSAOPass)::
+
+    from vtkmodules.vtkRenderingOpenGL2 import vtkRenderStepsPass
+    import mrgi
+    steps = vtkRenderStepsPass()
+    gi = mrgi.vtkMRGIPass()
+    gi.SetDelegatePass(steps)
+    renderer.SetPass(gi)
+
+Headless rendering without X: ``mrgi.vtkMRGIRenderWindowFactory.CreateHeadlessRenderWindow()``.
+"""
+
+# VTK's OpenGL object factories must be registered before any window exists.
+import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+import vtkmodules.vtkInteractionStyle  # noqa: F401
+
+from .MRGIRendering import *  # noqa: F401,F403

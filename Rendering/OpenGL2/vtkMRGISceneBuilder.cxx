@@ -1,0 +1,497 @@
+#include "vtkMRGISceneBuilder.h"
+
+#include "vtkActor.h"
+#include "vtkActorCollection.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkCompositePolyDataMapper2.h"
+#include "vtkDataSetSurfaceFilter.h"
+#include "vtkFloatArray.h"
+#include "vtkGLTFImporter.h"
+#include "vtkGenericDataObjectReader.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkNew.h"
+#include "vtkOBJReader.h"
+#include "vtkObjectFactory.h"
+#include "vtkPLYReader.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSTLReader.h"
+#include "vtkSmartPointer.h"
+#include "vtkTypeInt32Array.h"
+#include "vtkXMLGenericDataObjectReader.h"
+
+#include "mrgi_error.h"
+#include "mrgi_scene.h"
+#include "mrgi_scene_cornell.h"
+#include "mrgi_scene_scaling.h"
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <strings.h>
+#include <vector>
+
+vtkStandardNewMacro(vtkMRGISceneBuilder);
+
+namespace
+{
+const char* const BuiltInScenes[] = { "cornell", "cornell-spot", "cornell-area", "scaling" };
+
+bool EndsWith(const std::string& path, const char* extension)
+{
+  const size_t e = std::strlen(extension);
+  return path.size() > e && strcasecmp(path.c_str() + path.size() - e, extension) == 0;
+}
+
+// Owns a core scene for the duration of a call.
+struct CoreScene
+{
+  mrgi_scene Scene{};
+  ~CoreScene() { mrgi_scene_destroy(&this->Scene); }
+};
+
+// Collects the text of VTK errors raised by a reader, so that the builder can
+// report them as its own one-line error instead of letting them scroll by.
+class ErrorCatcher
+{
+public:
+  explicit ErrorCatcher(vtkObject* watched)
+    : Watched(watched)
+  {
+    this->Callback->SetClientData(this);
+    this->Callback->SetCallback(&ErrorCatcher::OnError);
+    this->ErrorTag = watched->AddObserver(vtkCommand::ErrorEvent, this->Callback);
+    this->WarningTag = watched->AddObserver(vtkCommand::WarningEvent, this->Callback);
+  }
+  ~ErrorCatcher()
+  {
+    this->Watched->RemoveObserver(this->ErrorTag);
+    this->Watched->RemoveObserver(this->WarningTag);
+  }
+  bool HasError() const { return !this->Message.empty(); }
+  const std::string& GetMessage() const { return this->Message; }
+
+private:
+  static void OnError(vtkObject*, unsigned long, void* clientData, void* callData)
+  {
+    auto* self = static_cast<ErrorCatcher*>(clientData);
+    if (self->Message.empty() && callData)
+    {
+      std::string text = static_cast<const char*>(callData);
+      // VTK prefixes "ERROR: In file, line N\nClass (0x...): "; keep the reason.
+      const size_t colon = text.rfind("): ");
+      if (colon != std::string::npos)
+      {
+        text = text.substr(colon + 3);
+      }
+      while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
+      {
+        text.pop_back();
+      }
+      self->Message = text.empty() ? "the reader failed" : text;
+    }
+  }
+
+  vtkObject* Watched;
+  vtkNew<vtkCallbackCommand> Callback;
+  unsigned long ErrorTag = 0;
+  unsigned long WarningTag = 0;
+  std::string Message;
+};
+
+vtkSmartPointer<vtkLight> MakeLight(const mrgi_light& in)
+{
+  auto light = vtkSmartPointer<vtkLight>::New();
+  light->SetLightTypeToSceneLight();
+  light->SetPosition(in.position[0], in.position[1], in.position[2]);
+  light->SetFocalPoint(in.focal_point[0], in.focal_point[1], in.focal_point[2]);
+  light->SetColor(in.color[0], in.color[1], in.color[2]);
+  light->SetIntensity(in.intensity);
+  switch (in.type)
+  {
+    case MRGI_LIGHT_DIRECTIONAL:
+      light->SetPositional(false);
+      break;
+    case MRGI_LIGHT_SPOT:
+      light->SetPositional(true);
+      light->SetConeAngle(in.cone_angle_deg);
+      light->SetExponent(in.exponent);
+      break;
+    case MRGI_LIGHT_POSITIONAL:
+    default:
+      light->SetPositional(true);
+      light->SetConeAngle(90.0);
+      break;
+  }
+  return light;
+}
+}
+
+//------------------------------------------------------------------------------
+vtkMRGISceneBuilder::vtkMRGISceneBuilder() = default;
+
+//------------------------------------------------------------------------------
+bool vtkMRGISceneBuilder::IsBuiltInScene(const char* name)
+{
+  if (!name)
+  {
+    return false;
+  }
+  return std::any_of(std::begin(BuiltInScenes), std::end(BuiltInScenes),
+    [name](const char* s) { return std::strcmp(s, name) == 0; });
+}
+
+//------------------------------------------------------------------------------
+const char* vtkMRGISceneBuilder::GetBuiltInSceneNames()
+{
+  return "cornell cornell-spot cornell-area scaling";
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISceneBuilder::Fail(const std::string& why)
+{
+  this->LastErrorMessage = why;
+  return false;
+}
+
+//------------------------------------------------------------------------------
+vtkPolyData* vtkMRGISceneBuilder::MeshToPolyData(const mrgi_mesh* mesh)
+{
+  vtkPolyData* poly = vtkPolyData::New();
+  if (!mesh || mesh->vertex_count < 1 || mesh->triangle_count < 1)
+  {
+    return poly;
+  }
+  const vtkIdType nv = static_cast<vtkIdType>(mesh->vertex_count);
+  const vtkIdType nt = static_cast<vtkIdType>(mesh->triangle_count);
+
+  vtkNew<vtkFloatArray> coords;
+  coords->SetNumberOfComponents(3);
+  coords->SetNumberOfTuples(nv);
+  std::memcpy(coords->GetPointer(0), mesh->positions, sizeof(float) * 3 * static_cast<size_t>(nv));
+  vtkNew<vtkPoints> points;
+  points->SetData(coords);
+  poly->SetPoints(points);
+
+  if (mesh->normals)
+  {
+    vtkNew<vtkFloatArray> normals;
+    normals->SetName("Normals");
+    normals->SetNumberOfComponents(3);
+    normals->SetNumberOfTuples(nv);
+    std::memcpy(
+      normals->GetPointer(0), mesh->normals, sizeof(float) * 3 * static_cast<size_t>(nv));
+    poly->GetPointData()->SetNormals(normals);
+  }
+
+  // 32-bit cell storage: half the memory of vtkIdType for 1e7-triangle scenes.
+  vtkNew<vtkTypeInt32Array> offsets;
+  offsets->SetNumberOfTuples(nt + 1);
+  vtkNew<vtkTypeInt32Array> connectivity;
+  connectivity->SetNumberOfTuples(3 * nt);
+  vtkTypeInt32* off = offsets->GetPointer(0);
+  vtkTypeInt32* con = connectivity->GetPointer(0);
+  for (vtkIdType t = 0; t <= nt; ++t)
+  {
+    off[t] = static_cast<vtkTypeInt32>(3 * t);
+  }
+  for (vtkIdType i = 0; i < 3 * nt; ++i)
+  {
+    con[i] = static_cast<vtkTypeInt32>(mesh->indices[i]);
+  }
+  vtkNew<vtkCellArray> triangles;
+  triangles->SetData(offsets, connectivity);
+  poly->SetPolys(triangles);
+  return poly;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISceneBuilder::BuildCoreScene(const mrgi_scene* scene, vtkRenderer* renderer)
+{
+  vtkIdType triangles = 0;
+  std::vector<vtkSmartPointer<vtkActor>> actors;
+  for (int32_t m = 0; m < scene->mesh_count; ++m)
+  {
+    const mrgi_mesh& mesh = scene->meshes[m];
+    vtkSmartPointer<vtkPolyData> poly = vtkSmartPointer<vtkPolyData>::Take(MeshToPolyData(&mesh));
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(poly);
+    mapper->ScalarVisibilityOff();
+    auto actor = vtkSmartPointer<vtkActor>::New();
+    actor->SetMapper(mapper);
+    vtkProperty* property = actor->GetProperty();
+    const bool emitter = mesh.emission[0] > 0.f || mesh.emission[1] > 0.f || mesh.emission[2] > 0.f;
+    if (emitter)
+    {
+      // An emitter shows its radiance whatever the lights: VTK's ambient term
+      // with the (unclamped) radiance as colour; the float buffers keep it HDR.
+      property->SetAmbient(1.0);
+      property->SetDiffuse(0.0);
+      property->SetSpecular(0.0);
+      property->SetAmbientColor(mesh.emission[0], mesh.emission[1], mesh.emission[2]);
+      property->SetColor(mesh.emission[0], mesh.emission[1], mesh.emission[2]);
+    }
+    else
+    {
+      property->SetColor(mesh.albedo[0], mesh.albedo[1], mesh.albedo[2]);
+      property->SetAmbient(0.0);
+      property->SetDiffuse(1.0);
+      property->SetSpecular(0.0);
+    }
+    actors.push_back(actor);
+    triangles += static_cast<vtkIdType>(mesh.triangle_count);
+  }
+
+  for (const auto& actor : actors)
+  {
+    renderer->AddActor(actor);
+  }
+  for (int32_t l = 0; l < scene->light_count; ++l)
+  {
+    renderer->AddLight(MakeLight(scene->lights[l]));
+  }
+  // Built-in scenes carry their own lighting: no automatic headlight.
+  renderer->AutomaticLightCreationOff();
+
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const mrgi_camera& c = scene->camera;
+  camera->SetPosition(c.position[0], c.position[1], c.position[2]);
+  camera->SetFocalPoint(c.focal_point[0], c.focal_point[1], c.focal_point[2]);
+  camera->SetViewUp(c.view_up[0], c.view_up[1], c.view_up[2]);
+  camera->SetViewAngle(c.view_angle_deg);
+  renderer->ResetCameraClippingRange();
+  this->BuiltTriangleCount = triangles;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* renderer)
+{
+  {
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe.good())
+    {
+      return this->Fail("cannot open '" + path + "': no such file or not readable");
+    }
+    if (probe.peek() == std::ifstream::traits_type::eof())
+    {
+      return this->Fail("'" + path + "' is empty");
+    }
+  }
+
+  if (EndsWith(path, ".gltf") || EndsWith(path, ".glb"))
+  {
+    // The importer fills the first renderer of a window: import into a
+    // scratch renderer, then move what it made into ours.
+    vtkNew<vtkRenderWindow> scratchWindow;
+    vtkNew<vtkRenderer> scratch;
+    scratchWindow->AddRenderer(scratch);
+    vtkNew<vtkGLTFImporter> importer;
+    ErrorCatcher errors(importer);
+    importer->SetFileName(path.c_str());
+    importer->SetRenderWindow(scratchWindow);
+    importer->Update();
+    vtkActorCollection* imported = scratch->GetActors();
+    if (errors.HasError() || imported->GetNumberOfItems() == 0)
+    {
+      return this->Fail("cannot read glTF '" + path + "': " +
+        (errors.HasError() ? errors.GetMessage() : std::string("it holds no meshes")));
+    }
+    vtkIdType triangles = 0;
+    imported->InitTraversal();
+    while (vtkActor* actor = imported->GetNextActor())
+    {
+      renderer->AddActor(actor);
+      if (auto* mapper = vtkPolyDataMapper::SafeDownCast(actor->GetMapper()))
+      {
+        if (auto* input = mapper->GetInput())
+        {
+          triangles += input->GetNumberOfPolys();
+        }
+      }
+    }
+    scratch->GetLights()->InitTraversal();
+    while (vtkLight* light = scratch->GetLights()->GetNextItem())
+    {
+      renderer->AddLight(light);
+    }
+    renderer->ResetCamera();
+    this->BuiltTriangleCount = triangles;
+    return true;
+  }
+
+  vtkSmartPointer<vtkAlgorithm> reader;
+  if (EndsWith(path, ".ply"))
+  {
+    auto r = vtkSmartPointer<vtkPLYReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (EndsWith(path, ".obj"))
+  {
+    auto r = vtkSmartPointer<vtkOBJReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (EndsWith(path, ".stl"))
+  {
+    auto r = vtkSmartPointer<vtkSTLReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (EndsWith(path, ".vtk"))
+  {
+    auto r = vtkSmartPointer<vtkGenericDataObjectReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (EndsWith(path, ".vtp") || EndsWith(path, ".vtu") || EndsWith(path, ".vti") ||
+    EndsWith(path, ".vts") || EndsWith(path, ".vtr") || EndsWith(path, ".vtm"))
+  {
+    auto r = vtkSmartPointer<vtkXMLGenericDataObjectReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else
+  {
+    return this->Fail("cannot read '" + path +
+      "': unknown extension (known: .vtp .vtu .vti .vts .vtr .vtm .vtk .ply .obj .stl "
+      ".gltf .glb)");
+  }
+
+  // Data sets that are not polygonal (and multiblocks of them) become their
+  // outer surface, as ParaView's Surface representation shows them.
+  vtkNew<vtkDataSetSurfaceFilter> surface;
+  ErrorCatcher readerErrors(reader);
+  ErrorCatcher surfaceErrors(surface);
+  reader->Update();
+  vtkDataObject* data = reader->GetOutputDataObject(0);
+  if (readerErrors.HasError() || !data)
+  {
+    return this->Fail("cannot read '" + path + "': " +
+      (readerErrors.HasError() ? readerErrors.GetMessage() : std::string("the reader produced nothing")));
+  }
+
+  vtkNew<vtkCompositePolyDataMapper2> mapper;
+  vtkIdType triangles = 0;
+  vtkIdType points = 0;
+  vtkSmartPointer<vtkDataObject> geometry;
+  if (vtkPolyData::SafeDownCast(data))
+  {
+    geometry = data;
+  }
+  else if (vtkCompositeDataSet::SafeDownCast(data) || vtkDataSet::SafeDownCast(data))
+  {
+    surface->SetInputData(data);
+    surface->Update();
+    geometry = surface->GetOutputDataObject(0);
+  }
+  else
+  {
+    return this->Fail("'" + path + "' holds a " + data->GetClassName() + ", which has no surface to draw");
+  }
+  if (auto* poly = vtkPolyData::SafeDownCast(geometry))
+  {
+    triangles = poly->GetNumberOfPolys() + poly->GetNumberOfStrips();
+    points = poly->GetNumberOfPoints();
+  }
+  else if (auto* composite = vtkCompositeDataSet::SafeDownCast(geometry))
+  {
+    points = composite->GetNumberOfPoints();
+    triangles = composite->GetNumberOfCells();
+  }
+  if (points == 0)
+  {
+    return this->Fail("'" + path + "' holds no geometry (0 points)");
+  }
+
+  mapper->SetInputDataObject(geometry);
+  // Active scalars colour through a lookup table over their range (ParaView's
+  // default); unsigned-char RGB(A) scalars are used as colours directly.
+  mapper->SetColorModeToDefault();
+  mapper->SetScalarModeToDefault();
+  if (auto* ds = vtkDataSet::SafeDownCast(geometry))
+  {
+    if (vtkDataArray* scalars = ds->GetPointData()->GetScalars())
+    {
+      double range[2];
+      scalars->GetRange(range, -1);
+      mapper->SetScalarRange(range);
+      mapper->ScalarVisibilityOn();
+    }
+    else
+    {
+      mapper->ScalarVisibilityOff();
+    }
+  }
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(0.8, 0.8, 0.8);
+  actor->GetProperty()->SetPointSize(2.0f);
+  renderer->AddActor(actor);
+  renderer->ResetCamera();
+  this->BuiltTriangleCount = triangles;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISceneBuilder::Build(vtkRenderer* renderer)
+{
+  this->LastErrorMessage.clear();
+  this->BuiltTriangleCount = 0;
+  if (!renderer)
+  {
+    return this->Fail("Build needs a renderer");
+  }
+  if (this->Scene.empty())
+  {
+    return this->Fail("no scene given: name a built-in scene (" +
+      std::string(GetBuiltInSceneNames()) + ") or a data file");
+  }
+  if (!IsBuiltInScene(this->Scene.c_str()))
+  {
+    return this->BuildFile(this->Scene, renderer);
+  }
+
+  CoreScene core;
+  mrgi_error err;
+  mrgi_status status = MRGI_OK;
+  if (this->Scene == "scaling")
+  {
+    status = mrgi_scene_scaling(this->ObjectCount, this->TriangleCount, this->Seed, &core.Scene, &err);
+  }
+  else
+  {
+    mrgi_cornell_variant variant = MRGI_CORNELL_POINT;
+    status = mrgi_cornell_variant_parse(this->Scene.c_str(), &variant, &err);
+    if (status == MRGI_OK)
+    {
+      status = mrgi_scene_cornell_box(variant, &core.Scene, &err);
+    }
+  }
+  if (status != MRGI_OK)
+  {
+    return this->Fail("cannot build scene '" + this->Scene + "': " + err.message);
+  }
+  return this->BuildCoreScene(&core.Scene, renderer);
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGISceneBuilder::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Scene: " << this->Scene << "\n";
+  os << indent << "TriangleCount: " << this->TriangleCount << "\n";
+  os << indent << "ObjectCount: " << this->ObjectCount << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "BuiltTriangleCount: " << this->BuiltTriangleCount << "\n";
+}

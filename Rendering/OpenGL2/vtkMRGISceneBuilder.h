@@ -1,0 +1,120 @@
+/**
+ * @class   vtkMRGISceneBuilder
+ * @brief   Fills a vtkRenderer with a built-in MRGI scene or a data file.
+ *
+ * Built-in scenes come from MRGI's C core (the same triangles the CPU
+ * reference renderer sees):
+ * - "cornell": the published Cornell box (millimetres, published camera) lit
+ *   by a point light just under the emitter;
+ * - "cornell-spot": the same box lit by a wide spot light aimed at the floor;
+ * - "cornell-area": the same box with its published emitter as an area light
+ *   (drawn as an emissive quad; area lighting itself is MRGI's area-light
+ *   pass, no vtkLight stands in for it);
+ * - "scaling": ObjectCount objects with TriangleCount triangles in total,
+ *   laid out so that screen coverage does not depend on the triangle count.
+ *
+ * Files are read with VTK's readers, chosen by extension: .vtp .vtu .vti
+ * .vts .vtr .vtm (XML), .vtk (legacy), .ply, .obj, .stl, .gltf/.glb
+ * (vtkGLTFImporter). Data sets that are not polygonal are reduced to their
+ * outer surface as ParaView's Surface representation does
+ * (vtkDataSetSurfaceFilter); active scalars are coloured through a lookup
+ * table over their range, RGB(A) unsigned-char scalars are used directly.
+ * Files bring no camera (ResetCamera frames them) and no lights (VTK's
+ * headlight lights them unless lights are added).
+ *
+ * Errors (unknown scene, missing/unreadable/corrupt file, a file with no
+ * geometry) leave the renderer unchanged and are reported by a false return
+ * and GetLastErrorMessage().
+ */
+#ifndef vtkMRGISceneBuilder_h
+#define vtkMRGISceneBuilder_h
+
+#include "MRGIRenderingModule.h" // For export macro
+#include "vtkObject.h"
+
+#include <string> // For std::string
+
+class vtkPolyData;
+class vtkRenderer;
+struct mrgi_mesh;
+struct mrgi_scene;
+
+class MRGIRENDERING_EXPORT vtkMRGISceneBuilder : public vtkObject
+{
+public:
+  static vtkMRGISceneBuilder* New();
+  vtkTypeMacro(vtkMRGISceneBuilder, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * What to build: a built-in scene name (see the class documentation) or a
+   * data file path. A name that is a built-in scene wins over a file of that
+   * name in the working directory. Default "cornell".
+   */
+  vtkSetStdStringFromCharMacro(Scene);
+  vtkGetCharFromStdStringMacro(Scene);
+  ///@}
+
+  ///@{
+  /** Scaling scene: total triangle count (1e3 to 1e7 sensible), default 100000. */
+  vtkSetClampMacro(TriangleCount, vtkIdType, 12, 20000000);
+  vtkGetMacro(TriangleCount, vtkIdType);
+  ///@}
+
+  ///@{
+  /** Scaling scene: number of objects, default 64. */
+  vtkSetClampMacro(ObjectCount, int, 1, 4096);
+  vtkGetMacro(ObjectCount, int);
+  ///@}
+
+  ///@{
+  /** Scaling scene: random seed; the same seed gives the same scene. */
+  vtkSetMacro(Seed, vtkTypeUInt64);
+  vtkGetMacro(Seed, vtkTypeUInt64);
+  ///@}
+
+  /**
+   * Add the scene's actors, lights and (for built-in scenes) camera to
+   * `renderer`. Returns false, leaving the renderer as it was, on error.
+   */
+  bool Build(vtkRenderer* renderer);
+
+  /** True when `name` is a built-in scene name. */
+  static bool IsBuiltInScene(const char* name);
+
+  /** Built-in scene names, space separated (for --help texts). */
+  static const char* GetBuiltInSceneNames();
+
+  /** Why the last Build() failed; empty after a success. */
+  const char* GetLastErrorMessage() { return this->LastErrorMessage.c_str(); }
+
+  /** Triangles added by the last successful Build() (0 for point clouds). */
+  vtkGetMacro(BuiltTriangleCount, vtkIdType);
+
+#ifndef __VTK_WRAP__
+  /** A core mesh as vtkPolyData (points, normals, triangles); caller owns it. */
+  static vtkPolyData* MeshToPolyData(const mrgi_mesh* mesh);
+#endif
+
+protected:
+  vtkMRGISceneBuilder();
+  ~vtkMRGISceneBuilder() override = default;
+
+  bool BuildCoreScene(const mrgi_scene* scene, vtkRenderer* renderer);
+  bool BuildFile(const std::string& path, vtkRenderer* renderer);
+  bool Fail(const std::string& why);
+
+  std::string Scene = "cornell";
+  vtkIdType TriangleCount = 100000;
+  int ObjectCount = 64;
+  vtkTypeUInt64 Seed = 1;
+  vtkIdType BuiltTriangleCount = 0;
+  std::string LastErrorMessage;
+
+private:
+  vtkMRGISceneBuilder(const vtkMRGISceneBuilder&) = delete;
+  void operator=(const vtkMRGISceneBuilder&) = delete;
+};
+
+#endif

@@ -1,0 +1,50 @@
+// Renders the built-in Cornell box headless (DISPLAY unset by ctest) through
+// vtkMRGIPass and checks the pixels: the red wall is red, the green wall is
+// green, the floor is lit, the image matches its baseline.
+#include "mrgiTestUtilities.h"
+
+#include "vtkMRGIPass.h"
+#include "vtkMRGISceneBuilder.h"
+#include "vtkRenderStepsPass.h"
+#include "vtkRenderer.h"
+
+#include <cstdlib>
+
+int main()
+{
+  MRGI_TEST_CHECK(std::getenv("DISPLAY") == nullptr || std::getenv("DISPLAY")[0] == '\0');
+  const int size = 256;
+  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(size, size);
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  vtkNew<vtkMRGISceneBuilder> builder;
+  builder->SetScene("cornell");
+  MRGI_TEST_CHECK(builder->Build(renderer));
+  MRGI_TEST_CHECK(builder->GetBuiltTriangleCount() > 20);
+
+  vtkNew<vtkRenderStepsPass> steps;
+  vtkNew<vtkMRGIPass> pass;
+  pass->SetDelegatePass(steps);
+  renderer->SetPass(pass);
+  window->Render();
+
+  vtkSmartPointer<vtkImageData> image = mrgitest::GrabRGB(window);
+  double left[3], right[3], floor[3], background[3];
+  // The camera looks down +z from z = -800: the red wall (x ~ 556) is on the
+  // left of the image, the green wall (x = 0) on the right.
+  mrgitest::MeanColor(image, 20, 100, 35, 160, left);
+  mrgitest::MeanColor(image, 221, 100, 236, 160, right);
+  mrgitest::MeanColor(image, 100, 15, 156, 30, floor);
+  mrgitest::MeanColor(image, 0, 0, 4, 4, background);
+  std::printf("left wall %.0f %.0f %.0f, right wall %.0f %.0f %.0f, floor %.0f %.0f %.0f\n",
+    left[0], left[1], left[2], right[0], right[1], right[2], floor[0], floor[1], floor[2]);
+  MRGI_TEST_CHECK(left[0] > 40 && left[0] > 3 * left[1] && left[0] > 3 * left[2]);
+  MRGI_TEST_CHECK(right[1] > 40 && right[1] > 2 * right[0] && right[1] > 2 * right[2]);
+  MRGI_TEST_CHECK(floor[0] > 30 && floor[1] > 30 && floor[2] > 30);
+
+  MRGI_TEST_CHECK(mrgitest::CompareWithBaseline(image, "TestHeadlessCornell", 0.02));
+
+  renderer->SetPass(nullptr);
+  pass->ReleaseGraphicsResources(window);
+  return 0;
+}

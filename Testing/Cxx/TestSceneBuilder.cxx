@@ -1,0 +1,199 @@
+// vtkMRGISceneBuilder: every built-in scene builds; every supported file
+// format loads (files written here by VTK's writers, a hand-made glTF);
+// volumetric data sets become their surface; bad input is a clear error that
+// leaves the renderer unchanged.
+#include "mrgiTestUtilities.h"
+
+#include "vtkActorCollection.h"
+#include "vtkDataSetSurfaceFilter.h"
+#include "vtkImageData.h"
+#include "vtkLightCollection.h"
+#include "vtkMRGISceneBuilder.h"
+#include "vtkPLYWriter.h"
+#include "vtkPolyData.h"
+#include "vtkRTAnalyticSource.h"
+#include "vtkRenderer.h"
+#include "vtkSTLWriter.h"
+#include "vtkSphereSource.h"
+#include "vtkTriangleFilter.h"
+#include "vtkUnstructuredGrid.h"
+#include "vtkDataSetTriangleFilter.h"
+#include "vtkXMLImageDataWriter.h"
+#include "vtkXMLPolyDataWriter.h"
+#include "vtkXMLUnstructuredGridWriter.h"
+#include "vtkPolyDataWriter.h"
+
+#include <cstring>
+#include <fstream>
+
+namespace
+{
+int ActorCount(vtkRenderer* r)
+{
+  return r->GetActors()->GetNumberOfItems();
+}
+
+// Builds `scene` into a fresh renderer; returns the number of actors (-1 on error).
+int BuildInto(const std::string& scene, vtkIdType* triangles = nullptr, std::string* error = nullptr)
+{
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkMRGISceneBuilder> builder;
+  builder->SetScene(scene);
+  builder->SetTriangleCount(20000);
+  builder->SetObjectCount(9);
+  const bool ok = builder->Build(renderer);
+  if (triangles)
+  {
+    *triangles = builder->GetBuiltTriangleCount();
+  }
+  if (error)
+  {
+    *error = builder->GetLastErrorMessage();
+  }
+  if (!ok)
+  {
+    MRGI_TEST_CHECK(ActorCount(renderer) == 0);
+    MRGI_TEST_CHECK(std::strlen(builder->GetLastErrorMessage()) > 10);
+  }
+  return ok ? ActorCount(renderer) : -1;
+}
+
+void WriteText(const std::string& path, const std::string& text)
+{
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+}
+
+int main()
+{
+  vtkIdType triangles = 0;
+  std::string error;
+
+  // Built-in scenes.
+  MRGI_TEST_CHECK(BuildInto("cornell", &triangles) >= 7);
+  MRGI_TEST_CHECK(triangles >= 30);
+  MRGI_TEST_CHECK(BuildInto("cornell-spot") >= 7);
+  MRGI_TEST_CHECK(BuildInto("cornell-area") >= 8); // the emitter is drawn
+  MRGI_TEST_CHECK(BuildInto("scaling", &triangles) >= 10);
+  std::printf("scaling: %lld triangles for 20000 asked\n", static_cast<long long>(triangles));
+  MRGI_TEST_CHECK(triangles >= 18000 && triangles <= 22000);
+  {
+    vtkNew<vtkRenderer> renderer;
+    vtkNew<vtkMRGISceneBuilder> builder;
+    builder->SetScene("cornell-spot");
+    MRGI_TEST_CHECK(builder->Build(renderer));
+    MRGI_TEST_CHECK(renderer->GetLights()->GetNumberOfItems() == 1);
+    MRGI_TEST_CHECK(!renderer->GetAutomaticLightCreation());
+  }
+
+  // Files written by VTK's writers.
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(16);
+  sphere->SetPhiResolution(8);
+  sphere->Update();
+  const std::string vtp = mrgitest::TempPath("scene.vtp");
+  const std::string stl = mrgitest::TempPath("scene.stl");
+  const std::string ply = mrgitest::TempPath("scene.ply");
+  const std::string vtk = mrgitest::TempPath("scene.vtk");
+  const std::string vti = mrgitest::TempPath("scene.vti");
+  const std::string vtu = mrgitest::TempPath("scene.vtu");
+  {
+    vtkNew<vtkXMLPolyDataWriter> w;
+    w->SetInputConnection(sphere->GetOutputPort());
+    w->SetFileName(vtp.c_str());
+    MRGI_TEST_CHECK(w->Write() == 1);
+    vtkNew<vtkSTLWriter> s;
+    s->SetInputConnection(sphere->GetOutputPort());
+    s->SetFileName(stl.c_str());
+    MRGI_TEST_CHECK(s->Write() == 1);
+    vtkNew<vtkPLYWriter> p;
+    p->SetInputConnection(sphere->GetOutputPort());
+    p->SetFileName(ply.c_str());
+    MRGI_TEST_CHECK(p->Write() == 1);
+    vtkNew<vtkPolyDataWriter> l;
+    l->SetInputConnection(sphere->GetOutputPort());
+    l->SetFileName(vtk.c_str());
+    MRGI_TEST_CHECK(l->Write() == 1);
+  }
+  {
+    vtkNew<vtkRTAnalyticSource> volume; // 21^3 image data with scalars
+    volume->SetWholeExtent(0, 10, 0, 10, 0, 10);
+    vtkNew<vtkXMLImageDataWriter> w;
+    w->SetInputConnection(volume->GetOutputPort());
+    w->SetFileName(vti.c_str());
+    MRGI_TEST_CHECK(w->Write() == 1);
+    vtkNew<vtkDataSetTriangleFilter> tets;
+    tets->SetInputConnection(volume->GetOutputPort());
+    vtkNew<vtkXMLUnstructuredGridWriter> u;
+    u->SetInputConnection(tets->GetOutputPort());
+    u->SetFileName(vtu.c_str());
+    MRGI_TEST_CHECK(u->Write() == 1);
+  }
+  for (const std::string& path : { vtp, stl, ply, vtk })
+  {
+    MRGI_TEST_CHECK(BuildInto(path, &triangles) == 1);
+    std::printf("%s: %lld triangles\n", path.c_str(), static_cast<long long>(triangles));
+    MRGI_TEST_CHECK(triangles == sphere->GetOutput()->GetNumberOfPolys());
+  }
+  // Volumes become their outer surface: 6 faces of 10x10 quads.
+  MRGI_TEST_CHECK(BuildInto(vti, &triangles) == 1);
+  std::printf("vti surface: %lld cells\n", static_cast<long long>(triangles));
+  MRGI_TEST_CHECK(triangles == 600);
+  MRGI_TEST_CHECK(BuildInto(vtu, &triangles) == 1);
+  std::printf("vtu surface: %lld cells\n", static_cast<long long>(triangles));
+  MRGI_TEST_CHECK(triangles >= 600);
+
+  // OBJ and glTF, written by hand.
+  const std::string obj = mrgitest::TempPath("scene.obj");
+  WriteText(obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n");
+  MRGI_TEST_CHECK(BuildInto(obj, &triangles) == 1);
+  MRGI_TEST_CHECK(triangles == 2);
+  // One triangle: 3 float positions (36 bytes), base64 embedded.
+  const std::string gltf = mrgitest::TempPath("scene.gltf");
+  WriteText(gltf,
+    R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+    R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+    R"("buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],)"
+    R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36}],)"
+    R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","max":[1,1,0],"min":[0,0,0]}]})");
+  MRGI_TEST_CHECK(BuildInto(gltf, &triangles, &error) == 1);
+  MRGI_TEST_CHECK(triangles == 1);
+
+  // Real third-party data, when it is beside the checkout.
+  const char* shared = std::getenv("MRGI_SHARED_DATA_DIR");
+  if (shared)
+  {
+    const std::string iron = std::string(shared) + "/ironProt.vtk";
+    std::ifstream probe(iron);
+    if (probe.good())
+    {
+      MRGI_TEST_CHECK(BuildInto(iron, &triangles) == 1);
+      std::printf("ironProt.vtk surface: %lld cells\n", static_cast<long long>(triangles));
+      MRGI_TEST_CHECK(triangles == 6 * 67 * 67);
+    }
+  }
+
+  // Bad input: each a clear error naming the problem.
+  MRGI_TEST_CHECK(BuildInto("", nullptr, &error) == -1);
+  MRGI_TEST_CHECK(error.find("no scene") != std::string::npos);
+  MRGI_TEST_CHECK(BuildInto(mrgitest::TempPath("missing.ply"), nullptr, &error) == -1);
+  MRGI_TEST_CHECK(error.find("cannot open") != std::string::npos);
+  const std::string unknown = mrgitest::TempPath("scene.xyz");
+  WriteText(unknown, "1 2 3\n");
+  MRGI_TEST_CHECK(BuildInto(unknown, nullptr, &error) == -1);
+  MRGI_TEST_CHECK(error.find("unknown extension") != std::string::npos);
+  const std::string empty = mrgitest::TempPath("empty.stl");
+  WriteText(empty, "");
+  MRGI_TEST_CHECK(BuildInto(empty, nullptr, &error) == -1);
+  MRGI_TEST_CHECK(error.find("empty") != std::string::npos);
+  const std::string corrupt = mrgitest::TempPath("corrupt.ply");
+  WriteText(corrupt, "ply\nformat ascii 1.0\nelement vertex 99\nproperty float x\nend_header\n1\n");
+  MRGI_TEST_CHECK(BuildInto(corrupt, nullptr, &error) == -1);
+  std::printf("corrupt ply: %s\n", error.c_str());
+  const std::string badVtp = mrgitest::TempPath("corrupt.vtp");
+  WriteText(badVtp, "<VTKFile type=\"PolyData\"><PolyData><Piece NumberOfPoints=\"5\">");
+  MRGI_TEST_CHECK(BuildInto(badVtp, nullptr, &error) == -1);
+  std::printf("corrupt vtp: %s\n", error.c_str());
+  return 0;
+}

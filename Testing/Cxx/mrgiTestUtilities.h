@@ -1,0 +1,193 @@
+/**
+ * @file mrgiTestUtilities.h
+ * @brief Shared helpers of MRGI's C++ tests: checks, headless windows,
+ *        pixel reads and VTK-style image regression against baselines.
+ *
+ * Regression: a test renders, then compares its image with
+ * Testing/Data/Baseline/<name>.png. It passes when the relative RMS error is
+ * within the stated tolerance. On failure the test image and a difference
+ * image (|test - baseline| x 4) are kept in the test's temporary directory.
+ * Set MRGI_REGENERATE_BASELINES=1 to (re)write the baseline instead of
+ * comparing; see Testing/README.md.
+ */
+#ifndef mrgiTestUtilities_h
+#define mrgiTestUtilities_h
+
+#include "vtkImageData.h"
+#include "vtkMRGIImageIO.h"
+#include "vtkMRGIRenderWindowFactory.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkRenderWindow.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "mrgi_image.h"
+#include "mrgi_metrics.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#define MRGI_TEST_CHECK(cond)                                                                      \
+  do                                                                                               \
+  {                                                                                                \
+    if (!(cond))                                                                                   \
+    {                                                                                              \
+      std::fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond);                \
+      std::exit(1);                                                                                \
+    }                                                                                              \
+  } while (0)
+
+namespace mrgitest
+{
+/** A headless window of the given size, or exit(1) with the reason. */
+inline vtkSmartPointer<vtkRenderWindow> HeadlessWindow(int width, int height)
+{
+  std::string why;
+  vtkSmartPointer<vtkRenderWindow> window = vtkSmartPointer<vtkRenderWindow>::Take(
+    vtkMRGIRenderWindowFactory::CreateRenderWindow(vtkMRGIRenderWindowFactory::Headless, &why));
+  if (!window)
+  {
+    std::fprintf(stderr, "no headless window: %s\n", why.c_str());
+    std::exit(1);
+  }
+  window->SetSize(width, height);
+  window->SetMultiSamples(0);
+  return window;
+}
+
+/** Scratch directory for this test's files ($MRGI_TEST_TMP or /tmp). */
+inline std::string TempPath(const std::string& name)
+{
+  const char* dir = std::getenv("MRGI_TEST_TMP");
+  return std::string(dir && dir[0] ? dir : "/tmp") + "/" + name;
+}
+
+/** The window's RGB pixels as an unsigned-char vtkImageData (bottom-up). */
+inline vtkSmartPointer<vtkImageData> GrabRGB(vtkRenderWindow* window)
+{
+  const int* size = window->GetSize();
+  vtkNew<vtkUnsignedCharArray> rgba;
+  window->GetRGBACharPixelData(0, 0, size[0] - 1, size[1] - 1, 0, rgba);
+  vtkNew<vtkUnsignedCharArray> rgb;
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(static_cast<vtkIdType>(size[0]) * size[1]);
+  for (vtkIdType p = 0; p < rgb->GetNumberOfTuples(); ++p)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      rgb->SetValue(3 * p + c, rgba->GetValue(4 * p + c));
+    }
+  }
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(size[0], size[1], 1);
+  image->GetPointData()->SetScalars(rgb);
+  return image;
+}
+
+/** Mean RGB (0..255) of the window-pixel rectangle [x0,x1) x [y0,y1), y from the bottom. */
+inline void MeanColor(vtkImageData* image, int x0, int y0, int x1, int y1, double rgb[3])
+{
+  rgb[0] = rgb[1] = rgb[2] = 0;
+  int dims[3];
+  image->GetDimensions(dims);
+  vtkDataArray* s = image->GetPointData()->GetScalars();
+  double n = 0;
+  for (int y = y0; y < y1; ++y)
+  {
+    for (int x = x0; x < x1; ++x)
+    {
+      const vtkIdType id = static_cast<vtkIdType>(y) * dims[0] + x;
+      for (int c = 0; c < 3; ++c)
+      {
+        rgb[c] += s->GetComponent(id, c);
+      }
+      n += 1;
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    rgb[c] /= (n > 0 ? n : 1);
+  }
+}
+
+/**
+ * Compare `image` with the baseline `name`.png under MRGI_BASELINE_DIR.
+ * Returns true when the relative RMS error is at most `tolerance`; prints the
+ * metrics either way and keeps test/difference images on failure.
+ */
+inline bool CompareWithBaseline(vtkImageData* image, const std::string& name, double tolerance)
+{
+  const char* baselineDir = std::getenv("MRGI_BASELINE_DIR");
+  if (!baselineDir)
+  {
+    std::fprintf(stderr, "MRGI_BASELINE_DIR is not set\n");
+    return false;
+  }
+  const std::string baseline = std::string(baselineDir) + "/" + name + ".png";
+  vtkNew<vtkMRGIImageIO> io;
+  const char* regenerate = std::getenv("MRGI_REGENERATE_BASELINES");
+  if (regenerate && std::string(regenerate) == "1")
+  {
+    const bool ok = io->WritePNG(image, baseline.c_str());
+    std::printf("regenerated baseline %s: %s\n", baseline.c_str(), ok ? "ok" : io->GetLastErrorMessage());
+    return ok;
+  }
+  vtkNew<vtkImageData> reference;
+  if (!io->Read(baseline.c_str(), reference))
+  {
+    std::fprintf(stderr, "cannot read baseline %s: %s\n", baseline.c_str(), io->GetLastErrorMessage());
+    return false;
+  }
+  mrgi_image test{}, ref{}, diff{};
+  std::string why;
+  bool ok = vtkMRGIImageIO::ToCoreImage(image, &test, why) &&
+    vtkMRGIImageIO::ToCoreImage(reference, &ref, why);
+  mrgi_metrics metrics{};
+  mrgi_error err;
+  if (ok && mrgi_metrics_compare(&test, &ref, nullptr, 1.0, &metrics, &err) != MRGI_OK)
+  {
+    why = err.message;
+    ok = false;
+  }
+  if (!ok)
+  {
+    std::fprintf(stderr, "regression %s: cannot compare: %s\n", name.c_str(), why.c_str());
+  }
+  else
+  {
+    std::printf("regression %s: relative RMS %.5f (tolerance %.5f), max %.4f, PSNR %.2f dB, "
+                "SSIM %.4f\n",
+      name.c_str(), metrics.relative_rms, tolerance, metrics.max_abs_error, metrics.psnr_db,
+      metrics.ssim);
+    ok = metrics.relative_rms <= tolerance;
+  }
+  if (!ok)
+  {
+    io->WritePNG(image, TempPath(name + ".test.png").c_str());
+    if (test.pixels && ref.pixels &&
+      mrgi_metrics_difference_image(&test, &ref, nullptr, &diff, &err) == MRGI_OK)
+    {
+      for (size_t i = 0; i < mrgi_image_value_count(&diff); ++i)
+      {
+        diff.pixels[i] = std::fmin(1.0f, 4.0f * diff.pixels[i]);
+      }
+      vtkNew<vtkImageData> diffImage;
+      if (vtkMRGIImageIO::FromCoreImage(&diff, diffImage, why))
+      {
+        io->WritePNG(diffImage, TempPath(name + ".diff.png").c_str());
+      }
+    }
+    std::fprintf(stderr, "kept %s and %s\n", TempPath(name + ".test.png").c_str(),
+      TempPath(name + ".diff.png").c_str());
+  }
+  mrgi_image_destroy(&test);
+  mrgi_image_destroy(&ref);
+  mrgi_image_destroy(&diff);
+  return ok;
+}
+}
+
+#endif

@@ -1,0 +1,99 @@
+"""mrgi-render's command-line contract: it renders PNG and EXR with stage
+timings, and for bad input it prints a one-line error naming the problem,
+exits non-zero and leaves no output file behind."""
+import os
+import struct
+import subprocess
+import sys
+import zlib
+
+RENDER = os.environ["MRGI_RENDER"]
+TMP = os.environ.get("MRGI_TEST_TMP", "/tmp")
+
+
+def check(condition, what):
+    if not condition:
+        print("check failed:", what, file=sys.stderr)
+        sys.exit(1)
+
+
+def run(*args):
+    env = dict(os.environ)
+    env.pop("DISPLAY", None)
+    p = subprocess.run([RENDER, *args], capture_output=True, text=True, env=env, timeout=600)
+    return p.returncode, p.stdout, p.stderr
+
+
+def png_size(path):
+    with open(path, "rb") as f:
+        data = f.read()
+    check(data[:8] == b"\x89PNG\r\n\x1a\n", "PNG signature in " + path)
+    return struct.unpack(">II", data[16:24])
+
+
+def fresh(name):
+    path = os.path.join(TMP, name)
+    if os.path.exists(path):
+        os.remove(path)
+    return path
+
+
+def main():
+    # --help and --version.
+    code, out, _ = run("--help")
+    check(code == 0 and "usage: mrgi-render SCENE" in out, "--help")
+    for option in ("--size", "--timings", "--light", "--camera-position", "--half"):
+        check(option in out, option + " documented in --help")
+
+    # The main job: PNG + EXR of the Cornell box with stage timings.
+    png, exr = fresh("cli_cornell.png"), fresh("cli_cornell.exr")
+    code, out, err = run("cornell", "-o", png, "-o", exr, "--size", "96x64", "--timings")
+    print(out, err)
+    check(code == 0, "cornell renders")
+    check(png_size(png) == (96, 64), "PNG size")
+    with open(exr, "rb") as f:
+        check(f.read(4) == b"\x76\x2f\x31\x01", "EXR magic")
+    check("scene" in out and "composite" in out and "total (GPU)" in out, "stage table")
+
+    # Scaling scene and a file scene.
+    out_png = fresh("cli_scaling.png")
+    code, _, err = run("scaling", "--triangles", "5000", "--objects", "4", "-o", out_png,
+                       "--size", "64x64", "-q")
+    check(code == 0 and os.path.exists(out_png), "scaling renders: " + err)
+    check(err == "", "--quiet prints nothing")
+
+    # Bad input: one-line error, non-zero exit, no output file.
+    target = fresh("cli_bad.png")
+    bad_cases = [
+        (["cornell", "-o", target, "--size", "0x64"], "width"),
+        (["cornell", "-o", target, "--size", "nanx64"], "size"),
+        (["cornell", "-o", target, "--size", "64"], "size"),
+        (["cornell", "-o", target, "--bogus"], "unknown option"),
+        ([os.path.join(TMP, "does-not-exist.ply"), "-o", target], "cannot open"),
+        (["cornell", "-o", os.path.join(TMP, "x.jpg")], ".png or .exr"),
+        (["cornell"], "no output"),
+        (["cornell", "-o", target, "--light", "spot:1,2,3"], "--light"),
+        (["cornell", "-o", target, "--light-intensity", "nan"], "--light-intensity"),
+        (["cornell", "-o", target, "--camera-position", "1,2"], "--camera-position"),
+        (["cornell", "-o", target, "--frames", "0"], "--frames"),
+        (["cornell", "-o", "/nonexistent-dir/out.png", "--size", "8x8"], "nonexistent-dir"),
+    ]
+    unreadable = os.path.join(TMP, "corrupt.stl")
+    with open(unreadable, "wb") as f:
+        f.write(b"solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0\n")
+    bad_cases.append(([unreadable, "-o", target], "corrupt.stl"))
+    for args, expected in bad_cases:
+        code, out, err = run(*args)
+        lines = [l for l in err.splitlines() if l.startswith("mrgi-render: error:")]
+        print(args, "->", code, err.strip())
+        check(code != 0, "non-zero exit for %s" % args)
+        check(len(lines) == 1, "exactly one error line for %s" % args)
+        check(expected in lines[0], "error for %s names %r" % (args, expected))
+        check(not os.path.exists(target), "no output left for %s" % args)
+    leftovers = [n for n in os.listdir(TMP) if n.startswith("cli_bad.png.tmp")]
+    check(not leftovers, "no temporary files left: %s" % leftovers)
+    print("ok")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,79 @@
+"""The `mrgi` Python package: import it beside Debian's vtkmodules, render the
+Cornell box headless through vtkMRGIPass, check pixels, stage timings, the HDR
+buffer and the EXR writer."""
+import math
+import os
+import sys
+
+from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkRenderingCore import vtkRenderer
+from vtkmodules.vtkRenderingOpenGL2 import vtkRenderStepsPass
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+import mrgi
+
+
+def check(condition, what):
+    if not condition:
+        print("check failed:", what, file=sys.stderr)
+        sys.exit(1)
+
+
+def main():
+    check("DISPLAY" not in os.environ or not os.environ["DISPLAY"], "DISPLAY is unset")
+    window = mrgi.vtkMRGIRenderWindowFactory.CreateHeadlessRenderWindow()
+    check(window is not None, "a headless window")
+    window.SetSize(200, 150)
+    renderer = vtkRenderer()
+    window.AddRenderer(renderer)
+
+    builder = mrgi.vtkMRGISceneBuilder()
+    builder.SetScene("cornell")
+    check(builder.Build(renderer), "the Cornell box builds")
+
+    steps = vtkRenderStepsPass()
+    gi = mrgi.vtkMRGIPass()
+    gi.SetDelegatePass(steps)
+    gi.SetStageTimingEnabled(True)
+    renderer.SetPass(gi)
+    window.Render()
+
+    stages = gi.FetchStageTimings(window, True)
+    check(stages == 2, "two timed stages, got %d" % stages)
+    names = [gi.GetStageName(i) for i in range(stages)]
+    times = [gi.GetStageTimeMilliseconds(i) for i in range(stages)]
+    print("stages:", list(zip(names, times)))
+    check(names == ["scene", "composite"], "stage names")
+    check(all(math.isfinite(t) and t >= 0 for t in times), "finite stage times")
+
+    hdr = vtkImageData()
+    check(gi.GetColorBuffer(window, hdr), "HDR buffer read back")
+    pixels = vtk_to_numpy(hdr.GetPointData().GetScalars()).reshape(150, 200, 4)
+    check(pixels.dtype.kind == "f", "float pixels")
+    check(bool((pixels == pixels).all()), "no NaN")
+    red_wall = pixels[60:100, 15:25, :3].mean(axis=(0, 1))
+    green_wall = pixels[60:100, 175:185, :3].mean(axis=(0, 1))
+    print("red wall", red_wall, "green wall", green_wall)
+    check(red_wall[0] > 2 * red_wall[1], "red wall is red")
+    check(green_wall[1] > 2 * green_wall[0], "green wall is green")
+
+    io = mrgi.vtkMRGIImageIO()
+    path = os.path.join(os.environ.get("MRGI_TEST_TMP", "/tmp"), "python_cornell.exr")
+    if os.path.exists(path):
+        os.remove(path)
+    check(io.Write(hdr, path), "EXR written: " + io.GetLastErrorMessage())
+    back = vtkImageData()
+    check(io.Read(path, back), "EXR read back")
+    again = vtk_to_numpy(back.GetPointData().GetScalars()).reshape(150, 200, 4)
+    check(float(abs(again - pixels).max()) == 0.0, "float EXR round trip is exact")
+    check(not io.Write(hdr, "/nonexistent-dir/x.exr"), "unwritable path fails")
+    check("nonexistent" in io.GetLastErrorMessage() or len(io.GetLastErrorMessage()) > 10,
+          "error names the problem")
+
+    renderer.SetPass(None)
+    gi.ReleaseGraphicsResources(window)
+    print("ok")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package MRGI needs to build, test and run headless.
+# Idempotent: packages already present are skipped; `apt-get update` runs at
+# most once per invocation, and only when something is missing.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config git
+  libvtk9-dev python3-vtk9 vtk9
+  paraview-dev
+  libopenexr-dev libembree-dev libpng-dev zlib1g-dev
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev libglew-dev
+  python3 python3-numpy
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ "${#missing[@]}" -eq 0 ]; then
+  echo "install-deps: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
