@@ -306,6 +306,20 @@ void vtkMRGIEGLRenderWindow::Render()
     vtkErrorMacro(<< this->LastErrorMessage);
     return;
   }
+  // VTK 9.2 code outside Render() (seen while a scene is being set up) can
+  // leave GL_INVALID_OPERATION behind on a context without a default
+  // framebuffer; vtkGenericOpenGLRenderWindow::Render would report it as an
+  // error of the frame. Clear such stale errors; the frame checks its own.
+  this->MakeCurrent();
+  int stale = 0;
+  while (glGetError() != GL_NO_ERROR && stale < 16)
+  {
+    ++stale;
+  }
+  if (stale > 0)
+  {
+    vtkDebugMacro(<< stale << " stale OpenGL error(s) cleared before rendering");
+  }
   this->Superclass::Render();
 }
 
@@ -343,12 +357,6 @@ bool vtkMRGIEGLRenderWindow::IsCurrent()
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIEGLRenderWindow::IsDrawable()
-{
-  return true;
-}
-
-//------------------------------------------------------------------------------
 int vtkMRGIEGLRenderWindow::SupportsOpenGL()
 {
   return (this->EGL->Context != EGL_NO_CONTEXT || this->InitializeHeadlessContext()) ? 1 : 0;
@@ -364,6 +372,20 @@ void* vtkMRGIEGLRenderWindow::GetGenericContext()
 void* vtkMRGIEGLRenderWindow::GetGenericDisplayId()
 {
   return this->EGL->Display;
+}
+
+//------------------------------------------------------------------------------
+int vtkMRGIEGLRenderWindow::GetColorBufferSizes(int* rgba)
+{
+  // VTK 9.2 asks framebuffer 0 for its bit depths, which a surfaceless context
+  // does not have (GL_INVALID_OPERATION). VTK renders into its own RGBA8
+  // framebuffers here, so those are the sizes that matter.
+  if (!rgba)
+  {
+    return 0;
+  }
+  rgba[0] = rgba[1] = rgba[2] = rgba[3] = 8;
+  return 32;
 }
 
 //------------------------------------------------------------------------------

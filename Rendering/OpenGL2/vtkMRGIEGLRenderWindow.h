@@ -72,11 +72,11 @@ public:
   void MakeCurrent() override;
   void ReleaseCurrent() override;
   bool IsCurrent() override;
-  bool IsDrawable() override;
   int SupportsOpenGL() override;
   void OpenGLInitContext() override;
   void* GetGenericContext() override;
   void* GetGenericDisplayId() override;
+  int GetColorBufferSizes(int* rgba) override;
   using Superclass::GetZbufferData;
   ///@}
 

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Configure and build the module, its C core and mrgi-render against ParaView
+# 5.11's VTK 9.2 (package paraview-dev), so that compatibility with the VTK
+# that ParaView users run cannot rot. Run by ctest as compat.ParaViewVTK.
+# Usage: scripts/check-paraview-vtk.sh BUILD_DIR
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${1:?usage: check-paraview-vtk.sh BUILD_DIR}"
+vtk_dir="${MRGI_PARAVIEW_VTK_DIR:-/usr/lib/x86_64-linux-gnu/cmake/paraview-5.11/vtk}"
+if [ ! -f "$vtk_dir/vtk-config.cmake" ]; then
+  echo "check-paraview-vtk: no ParaView VTK at $vtk_dir (install paraview-dev)" >&2
+  exit 1
+fi
+
+# Debian's paraview-dev declares Python targets (vtkmodules/*.so) whose files
+# no Debian package installs, and its vtk-config.cmake aborts on them. MRGI's
+# C++ build needs none of them: configure through a copy of vtk-config.cmake
+# with ParaView's Python wrapping off, which includes everything else from the
+# original directory (so imported paths stay right).
+shim="$build/paraview-vtk-config"
+mkdir -p "$shim"
+sed -e "s|\${CMAKE_CURRENT_LIST_DIR}|$vtk_dir|g" \
+    -e 's|set("\${CMAKE_FIND_PACKAGE_NAME}_WRAP_PYTHON" "ON")|set("${CMAKE_FIND_PACKAGE_NAME}_WRAP_PYTHON" "OFF")|' \
+    "$vtk_dir/vtk-config.cmake" > "$shim/vtk-config.cmake"
+cp "$vtk_dir/vtk-config-version.cmake" "$shim/"
+
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DVTK_DIR="$shim" -DBUILD_TESTING=OFF -DMRGI_WRAP_PYTHON=OFF -DMRGI_BUILD_EXAMPLES=OFF
+fi
+cmake --build "$build" --parallel "${MRGI_JOBS:-2}"
+# The build must really have used VTK 9.2: its libraries carry the pv5.11 suffix.
+if ! ldd "$build/bin/mrgi-render" | grep -q "pv5.11"; then
+  echo "check-paraview-vtk: mrgi-render did not link ParaView's VTK" >&2
+  exit 1
+fi
+echo "check-paraview-vtk: module, core and mrgi-render built against ParaView's VTK"
