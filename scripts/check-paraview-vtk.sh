@@ -35,3 +35,9 @@ if ! ldd "$build/bin/mrgi-render" | grep -q "pv5.11"; then
   exit 1
 fi
 echo "check-paraview-vtk: module, core and mrgi-render built against ParaView's VTK"
+# And it renders headless with VTK 9.2 as well.
+out="$build/paraview-vtk-cornell.png"
+rm -f "$out"
+"$build/bin/mrgi-render" cornell -o "$out" --size 64x64 -q
+test -s "$out"
+echo "check-paraview-vtk: mrgi-render (VTK 9.2) rendered $out"

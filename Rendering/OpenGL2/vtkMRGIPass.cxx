@@ -47,18 +47,10 @@ vtkRenderTimerLog* TimerFor(vtkRenderer* renderer, bool enabled)
 {
   vtkRenderWindow* window = renderer ? renderer->GetRenderWindow() : nullptr;
   vtkRenderTimerLog* timer = window ? window->GetRenderTimer() : nullptr;
-  if (!timer || !enabled || !timer->IsSupported())
-  {
-    return nullptr;
-  }
-  if (!timer->GetLoggingEnabled())
-  {
-    // The window opened this frame (MarkFrame) before logging was on, so
-    // events logged now would have no frame: time from the next frame on.
-    timer->SetLoggingEnabled(true);
-    return nullptr;
-  }
-  return timer;
+  // Logging is switched on between frames only (FetchStageTimings, or the
+  // application): VTK brackets its own rendering with timer events, and
+  // switching mid-frame would leave those unbalanced.
+  return (timer && enabled && timer->GetLoggingEnabled()) ? timer : nullptr;
 }
 
 // Opens a timer event for one stage, or nothing when timing is off.
@@ -280,6 +272,13 @@ int vtkMRGIPass::FetchStageTimings(vtkRenderWindow* window, bool wait)
   vtkRenderTimerLog* timer = window ? window->GetRenderTimer() : nullptr;
   if (!timer || !this->StageTimingEnabled || !timer->IsSupported())
   {
+    return 0;
+  }
+  if (!timer->GetLoggingEnabled())
+  {
+    // Between frames is the safe moment to switch logging on; the next frame
+    // is the first one timed.
+    timer->SetLoggingEnabled(true);
     return 0;
   }
   if (wait)

@@ -22,7 +22,11 @@
  * Stage timings: with StageTimingEnabled on, every stage is bracketed by
  * vtkRenderTimerLog events (GL timer queries) named "MRGI <stage>".
  * FetchStageTimings() collects the latest completed frame; GetStageName() and
- * GetStageTimeMilliseconds() report it.
+ * GetStageTimeMilliseconds() report it. The window's timer log must be
+ * logging when a frame starts: switch it on before the first render
+ * (`window->GetRenderTimer()->SetLoggingEnabled(true)`), or let the first
+ * FetchStageTimings() switch it on, in which case timing starts with the
+ * next frame.
  */
 #ifndef vtkMRGIPass_h
 #define vtkMRGIPass_h

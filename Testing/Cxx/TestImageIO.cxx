@@ -34,7 +34,12 @@ int main()
     {
       const double expected = values->GetValue(i);
       const double tol = half ? 1e-3 * std::fabs(expected) + 1e-3 : 0.0;
-      MRGI_TEST_CHECK(std::fabs(b->GetVariantValue(i).ToDouble() - expected) <= tol);
+      if (!(std::fabs(b->GetVariantValue(i).ToDouble() - expected) <= tol))
+      {
+        std::fprintf(stderr, "value %lld: %g read back, %g written (half %d)\n", static_cast<long long>(i),
+          b->GetVariantValue(i).ToDouble(), expected, half ? 1 : 0);
+        return 1;
+      }
     }
   }
 

@@ -38,7 +38,7 @@ int BuildInto(const std::string& scene, vtkIdType* triangles = nullptr, std::str
 {
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkMRGISceneBuilder> builder;
-  builder->SetScene(scene);
+  builder->SetScene(scene.c_str());
   builder->SetTriangleCount(20000);
   builder->SetObjectCount(9);
   const bool ok = builder->Build(renderer);
