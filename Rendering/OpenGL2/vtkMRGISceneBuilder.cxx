@@ -30,6 +30,7 @@
 #include "vtkXMLGenericDataObjectReader.h"
 
 #include "mrgi_error.h"
+#include "mrgi_ply_check.h"
 #include "mrgi_scene.h"
 #include "mrgi_scene_cornell.h"
 #include "mrgi_scene_scaling.h"
@@ -332,6 +333,13 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
   vtkSmartPointer<vtkAlgorithm> reader;
   if (EndsWith(path, ".ply"))
   {
+    // VTK's PLY reader crashes on some malformed headers and accepts
+    // truncated bodies: check the structure first.
+    mrgi_error err;
+    if (mrgi_ply_check(path.c_str(), nullptr, &err) != MRGI_OK)
+    {
+      return this->Fail(err.message);
+    }
     auto r = vtkSmartPointer<vtkPLYReader>::New();
     r->SetFileName(path.c_str());
     reader = r;

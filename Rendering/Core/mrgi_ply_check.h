@@ -1,0 +1,61 @@
+/**
+ * @file mrgi_ply_check.h
+ * @brief Structural check of a PLY file before a PLY reader parses it.
+ *
+ * VTK 9.1's vtkPLYReader crashes on some malformed headers (a "vertex"
+ * element without y or z dereferences a missing property) and silently
+ * returns partial data for truncated bodies. MRGI checks a file with this
+ * function first and reports what is wrong in one line.
+ *
+ * What is checked:
+ * - the magic line "ply" and a "format ascii|binary_little_endian|
+ *   binary_big_endian 1.0" line;
+ * - every "element NAME COUNT" has a count in [0, 2^31) and every property a
+ *   known type (char uchar short ushort int uint float double and their
+ *   int8..float64 aliases; lists with an integer count type);
+ * - a "vertex" element exists and has x, y and z properties;
+ * - the header ends with "end_header" within MRGI_PLY_MAX_HEADER_BYTES;
+ * - the body is long enough: for binary files at least the bytes that the
+ *   fixed-size properties need (each list counts its count field only, so the
+ *   check is a lower bound); for ASCII files at least one non-empty line per
+ *   element instance.
+ *
+ * It does not validate property values or list indices (the reader does).
+ */
+#ifndef MRGI_PLY_CHECK_H
+#define MRGI_PLY_CHECK_H
+
+#include "mrgi_error.h"
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Largest header the check reads before giving up on "end_header". */
+#define MRGI_PLY_MAX_HEADER_BYTES (1 << 20)
+
+/** What the header declared, for messages and statistics. */
+typedef struct mrgi_ply_info
+{
+  int64_t vertex_count; /**< Instances of the "vertex" element. */
+  int64_t face_count;   /**< Instances of the "face" element, 0 when absent. */
+  int32_t binary;       /**< 0 = ascii, 1 = binary (either byte order). */
+} mrgi_ply_info;
+
+/**
+ * @brief Check that `path` is a structurally sound PLY file.
+ * @param path Path of the file; must not be NULL.
+ * @param info Receives the declared counts; may be NULL.
+ * @return ::MRGI_OK; ::MRGI_ERR_IO when the file cannot be opened or read;
+ *         ::MRGI_ERR_FORMAT naming the first problem found;
+ *         ::MRGI_ERR_INVALID_ARGUMENT for a NULL path.
+ */
+mrgi_status mrgi_ply_check(const char* path, mrgi_ply_info* info, mrgi_error* err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
