@@ -123,23 +123,6 @@ mrgi_status mrgi_cornell_variant_parse(const char* name, mrgi_cornell_variant* o
 
 static const double mrgi_cornell_pi = 3.14159265358979323846;
 
-/* Widest angle (degrees) between straight down from the light and the
- * directions to the four published floor corners. */
-static double mrgi_cornell_widest_floor_angle_deg(void)
-{
-  double widest = 0.0;
-  for (int k = 0; k < 4; ++k)
-  {
-    const float* corner = mrgi_cornell_quads[MRGI_CORNELL_FLOOR_QUAD][k];
-    const double dx = corner[0] - mrgi_cornell_light_position[0];
-    const double dy = corner[1] - mrgi_cornell_light_position[1];
-    const double dz = corner[2] - mrgi_cornell_light_position[2];
-    const double angle = atan2(sqrt(dx * dx + dz * dz), -dy) * 180.0 / mrgi_cornell_pi;
-    widest = angle > widest ? angle : widest;
-  }
-  return widest;
-}
-
 static mrgi_status mrgi_cornell_build_mesh(const mrgi_cornell_surface* surface, mrgi_mesh* mesh,
                                            mrgi_error* err)
 {
@@ -203,9 +186,7 @@ static void mrgi_cornell_point_light(mrgi_light* light, mrgi_light_type type)
   light->color[0] = light->color[1] = light->color[2] = 1.0;
   light->intensity = 1.0;
   light->exponent = 1.0;
-  light->cone_angle_deg = type == MRGI_LIGHT_SPOT
-    ? mrgi_cornell_widest_floor_angle_deg() + MRGI_CORNELL_SPOT_MARGIN_DEG
-    : 90.0;
+  light->cone_angle_deg = type == MRGI_LIGHT_SPOT ? MRGI_CORNELL_SPOT_CONE_DEG : 90.0;
 }
 
 mrgi_status mrgi_scene_cornell_box(mrgi_cornell_variant variant, mrgi_scene* out, mrgi_error* err)

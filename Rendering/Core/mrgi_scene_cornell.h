@@ -44,8 +44,14 @@ extern "C" {
  */
 #define MRGI_CORNELL_EMITTER_DROP_MM 0.5
 
-/** Angle (degrees) added to the widest floor corner when sizing the spot cone. */
-#define MRGI_CORNELL_SPOT_MARGIN_DEG 1.0
+/**
+ * Half-angle (degrees) of the "cornell-spot" cone. Wide enough to light the
+ * whole floor (its corners are 35.74 deg off the axis) and the side walls
+ * directly from the floor up to y = 548 - 278 / tan(65 deg) = 418 mm (three
+ * quarters of their height); narrow enough that the light's perspective
+ * frustum (130 deg field of view) still makes a usable reflective shadow map.
+ */
+#define MRGI_CORNELL_SPOT_CONE_DEG 65.0
 
 /** Which light the box is lit by. */
 typedef enum mrgi_cornell_variant
@@ -59,10 +65,9 @@ typedef enum mrgi_cornell_variant
   /**
    * "cornell-spot": one ::MRGI_LIGHT_SPOT at (278, 548, 279.5) aimed straight
    * down, white, intensity 1, exponent 1 (VTK's falloff pow(cos, 1) is the
-   * cos law of the Lambertian emitter it stands in for). Cone half-angle =
-   * widest angle from the axis to a floor corner (35.74 deg) +
-   * MRGI_CORNELL_SPOT_MARGIN_DEG, so the whole floor is inside the cone and
-   * the light's frustum (as a reflective shadow map needs).
+   * cos law of the Lambertian emitter it stands in for). Cone half-angle
+   * MRGI_CORNELL_SPOT_CONE_DEG: the floor and most of the walls are lit
+   * directly, all inside the light's frustum (as a reflective shadow map needs).
    */
   MRGI_CORNELL_SPOT,
   /**

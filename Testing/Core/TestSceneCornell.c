@@ -257,8 +257,8 @@ static void test_spot_variant(void)
   }
   const double axis_length = sqrt(dot3(axis, axis));
   MRGI_CHECK_NEAR(axis[1] / axis_length, -1.0, 0.0); /* straight down */
-  /* Every floor corner is inside the cone, and the cone is not much wider
-   * than needed (36.74 deg with its 1 degree margin). */
+  /* Every floor corner is inside the cone, and so is the middle of each side
+   * wall (the variant lights walls and floor directly). */
   double widest = 0.0;
   for (int k = 0; k < 4; ++k)
   {
@@ -272,7 +272,17 @@ static void test_spot_variant(void)
     widest = angle > widest ? angle : widest;
   }
   MRGI_CHECK_NEAR(widest, 35.74, 0.01);
-  MRGI_CHECK(light->cone_angle_deg < widest + 2.0);
+  const double wall_middles[2][3] = { { 554.0, 274.4, 279.6 }, { 0.0, 274.4, 279.6 } };
+  for (int k = 0; k < 2; ++k)
+  {
+    const double to_wall[3] = { wall_middles[k][0] - light->position[0],
+                                wall_middles[k][1] - light->position[1],
+                                wall_middles[k][2] - light->position[2] };
+    const double angle = acos(dot3(axis, to_wall) / (axis_length * sqrt(dot3(to_wall, to_wall)))) *
+      180.0 / 3.14159265358979;
+    MRGI_CHECK(angle < light->cone_angle_deg);
+  }
+  MRGI_CHECK(light->cone_angle_deg < 90.0);
   mrgi_scene_destroy(&scene);
 }
 
