@@ -133,17 +133,30 @@ bool vtkMRGIImageIO::Write(vtkImageData* image, const char* path)
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIImageIO::WriteEXR(vtkImageData* image, const char* path)
+bool vtkMRGIImageIO::PrepareWrite(vtkImageData* image, const char* path, mrgi_image* core)
 {
   this->LastErrorMessage.clear();
-  CoreImage core;
-  std::string why;
-  if (!path || !ToCoreImage(image, &core.Image, why))
+  if (!path || !path[0])
   {
-    return this->Fail(path ? "cannot write '" + std::string(path) + "': " + why
-                           : std::string("no output file name given"));
+    return this->Fail("no output file name given");
   }
+  std::string why;
+  if (!ToCoreImage(image, core, why))
+  {
+    return this->Fail("cannot write '" + std::string(path) + "': " + why);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIImageIO::WriteEXR(vtkImageData* image, const char* path)
+{
+  CoreImage core;
   mrgi_error err;
+  if (!this->PrepareWrite(image, path, &core.Image))
+  {
+    return false;
+  }
   if (mrgi_exr_write(path, &core.Image, nullptr, this->HalfFloat ? MRGI_EXR_HALF : MRGI_EXR_FLOAT,
         &err) != MRGI_OK)
   {
@@ -155,15 +168,12 @@ bool vtkMRGIImageIO::WriteEXR(vtkImageData* image, const char* path)
 //------------------------------------------------------------------------------
 bool vtkMRGIImageIO::WritePNG(vtkImageData* image, const char* path)
 {
-  this->LastErrorMessage.clear();
   CoreImage core;
-  std::string why;
-  if (!path || !ToCoreImage(image, &core.Image, why))
-  {
-    return this->Fail(path ? "cannot write '" + std::string(path) + "': " + why
-                           : std::string("no output file name given"));
-  }
   mrgi_error err;
+  if (!this->PrepareWrite(image, path, &core.Image))
+  {
+    return false;
+  }
   if (mrgi_png_write_image(path, &core.Image, 0, 1.0f, &err) != MRGI_OK)
   {
     return this->Fail(err.message);

@@ -66,6 +66,8 @@ protected:
   ~vtkMRGIImageIO() override = default;
 
   bool Fail(const std::string& why);
+  /** Validate the arguments of a write and convert the image; false (with the reason) on error. */
+  bool PrepareWrite(vtkImageData* image, const char* path, mrgi_image* core);
 
   bool HalfFloat = false;
   std::string LastErrorMessage;

@@ -9,12 +9,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-static int file_exists(const char* path)
-{
-  struct stat info;
-  return stat(path, &info) == 0;
-}
-
 /* Number of entries in `dir` whose name starts with `prefix`. */
 static int count_entries_with_prefix(const char* dir, const char* prefix)
 {
@@ -59,14 +53,14 @@ static void test_commit_replaces_atomically(void)
   MRGI_CHECK(mrgi_atomic_file_begin(final_path, temp, sizeof(temp), NULL) == MRGI_OK);
   MRGI_CHECK(strncmp(temp, final_path, strlen(final_path)) == 0);
   MRGI_CHECK(strstr(temp, ".tmp-") != NULL);
-  MRGI_CHECK(file_exists(temp));
+  MRGI_CHECK(mrgi_test_file_exists(temp));
 
   /* A second writer of the same output gets a different temporary. */
   char temp2[MRGI_ATOMIC_FILE_PATH_MAX];
   MRGI_CHECK(mrgi_atomic_file_begin(final_path, temp2, sizeof(temp2), NULL) == MRGI_OK);
   MRGI_CHECK(strcmp(temp, temp2) != 0);
   mrgi_atomic_file_abort(temp2);
-  MRGI_CHECK(!file_exists(temp2));
+  MRGI_CHECK(!mrgi_test_file_exists(temp2));
 
   write_text(temp, "new");
   char buf[16];
@@ -75,7 +69,7 @@ static void test_commit_replaces_atomically(void)
   MRGI_CHECK(mrgi_atomic_file_commit(temp, final_path, NULL) == MRGI_OK);
   read_text(final_path, buf, sizeof(buf));
   MRGI_CHECK(strcmp(buf, "new") == 0);
-  MRGI_CHECK(!file_exists(temp));
+  MRGI_CHECK(!mrgi_test_file_exists(temp));
   MRGI_CHECK(count_entries_with_prefix(dir, "atomic_commit.txt.tmp-") == 0);
   unlink(final_path);
 }
@@ -89,8 +83,8 @@ static void test_abort_removes_temporary(void)
   MRGI_CHECK(mrgi_atomic_file_begin(final_path, temp, sizeof(temp), NULL) == MRGI_OK);
   write_text(temp, "partial");
   mrgi_atomic_file_abort(temp);
-  MRGI_CHECK(!file_exists(temp));
-  MRGI_CHECK(!file_exists(final_path));
+  MRGI_CHECK(!mrgi_test_file_exists(temp));
+  MRGI_CHECK(!mrgi_test_file_exists(final_path));
   mrgi_atomic_file_abort(temp); /* already gone: fine */
   mrgi_atomic_file_abort(NULL);
   mrgi_atomic_file_abort("");
@@ -110,7 +104,7 @@ static void test_missing_directory_fails_cleanly(void)
   MRGI_CHECK(strstr(err.message, "No such file or directory"));
   MRGI_CHECK(strstr(err.message, final_path));
   MRGI_CHECK(temp[0] == '\0');
-  MRGI_CHECK(!file_exists(dir));
+  MRGI_CHECK(!mrgi_test_file_exists(dir));
 }
 
 static void test_commit_failure_removes_temporary(void)
@@ -124,8 +118,8 @@ static void test_commit_failure_removes_temporary(void)
   mrgi_error err;
   MRGI_CHECK(mrgi_atomic_file_commit(temp, bad_target, &err) == MRGI_ERR_IO);
   MRGI_CHECK(strstr(err.message, "cannot move"));
-  MRGI_CHECK(!file_exists(temp));
-  MRGI_CHECK(!file_exists(bad_target));
+  MRGI_CHECK(!mrgi_test_file_exists(temp));
+  MRGI_CHECK(!mrgi_test_file_exists(bad_target));
 }
 
 static void test_bad_arguments(void)

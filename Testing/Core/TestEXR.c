@@ -14,36 +14,6 @@
 
 /* ---- helpers ------------------------------------------------------------- */
 
-static int file_exists(const char* path)
-{
-  struct stat info;
-  return stat(path, &info) == 0;
-}
-
-static uint8_t* read_all(const char* path, size_t* size)
-{
-  FILE* f = fopen(path, "rb");
-  MRGI_CHECK(f != NULL);
-  MRGI_CHECK(fseek(f, 0, SEEK_END) == 0);
-  const long n = ftell(f);
-  MRGI_CHECK(n > 0);
-  MRGI_CHECK(fseek(f, 0, SEEK_SET) == 0);
-  uint8_t* data = (uint8_t*)malloc((size_t)n);
-  MRGI_CHECK(data != NULL);
-  MRGI_CHECK(fread(data, 1, (size_t)n, f) == (size_t)n);
-  fclose(f);
-  *size = (size_t)n;
-  return data;
-}
-
-static void write_all(const char* path, const uint8_t* data, size_t size)
-{
-  FILE* f = fopen(path, "wb");
-  MRGI_CHECK(f != NULL);
-  MRGI_CHECK(size == 0 || fwrite(data, 1, size, f) == size);
-  MRGI_CHECK(fclose(f) == 0);
-}
-
 static long find_bytes(const uint8_t* data, size_t size, const void* pattern, size_t length)
 {
   for (size_t i = 0; i + length <= size; ++i)
@@ -330,7 +300,7 @@ static void test_write_rejects_bad_input(void)
   MRGI_CHECK(mrgi_exr_write(path, &img, long_name, MRGI_EXR_HALF, &err) ==
              MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "longer than 31 characters"));
-  MRGI_CHECK(!file_exists(path));
+  MRGI_CHECK(!mrgi_test_file_exists(path));
   mrgi_image_destroy(&img);
 }
 
@@ -345,8 +315,8 @@ static void test_write_to_missing_directory_leaves_nothing(void)
   mrgi_error err;
   MRGI_CHECK(mrgi_exr_write(path, &img, NULL, MRGI_EXR_HALF, &err) == MRGI_ERR_IO);
   MRGI_CHECK(strstr(err.message, "No such file or directory"));
-  MRGI_CHECK(!file_exists(path));
-  MRGI_CHECK(!file_exists(dir));
+  MRGI_CHECK(!mrgi_test_file_exists(path));
+  MRGI_CHECK(!mrgi_test_file_exists(dir));
   mrgi_image_destroy(&img);
 
   /* A successful write leaves no temporary beside the output either. */
@@ -377,11 +347,11 @@ static void test_read_rejects_missing_and_foreign_files(void)
 
   mrgi_test_tmp_path("exr_not_exr.exr", path, sizeof(path));
   const char* text = "P3\n1 1\n255\n0 0 0\nthis is not an OpenEXR file";
-  write_all(path, (const uint8_t*)text, strlen(text));
+  mrgi_test_write_file(path, (const uint8_t*)text, strlen(text));
   expect_read_fails(path, MRGI_ERR_FORMAT, "not an OpenEXR file");
 
   mrgi_test_tmp_path("exr_empty.exr", path, sizeof(path));
-  write_all(path, NULL, 0);
+  mrgi_test_write_file(path, NULL, 0);
   expect_read_fails(path, MRGI_ERR_FORMAT, "not an OpenEXR file");
 
   mrgi_test_tmp_path("", path, sizeof(path));
@@ -406,7 +376,7 @@ static uint8_t* make_valid_file(const char* path, size_t* size, mrgi_exr_pixel_t
   mrgi_image img = make_pattern(21, 40, 3, 0.5f);
   MRGI_CHECK(mrgi_exr_write(path, &img, NULL, type, NULL) == MRGI_OK);
   mrgi_image_destroy(&img);
-  return read_all(path, size);
+  return mrgi_test_read_file(path, size);
 }
 
 static void test_read_rejects_truncated_files(void)
@@ -419,13 +389,13 @@ static void test_read_rejects_truncated_files(void)
   uint8_t* data = make_valid_file(source, &size, MRGI_EXR_HALF);
 
   /* Cut in half: the header survives, the pixel data does not. */
-  write_all(path, data, size / 2);
+  mrgi_test_write_file(path, data, size / 2);
   expect_read_fails(path, MRGI_ERR_FORMAT, path);
 
   /* Every shorter length must fail cleanly, never crash or succeed. */
   for (size_t length = 0; length < size; ++length)
   {
-    write_all(path, data, length);
+    mrgi_test_write_file(path, data, length);
     mrgi_error err;
     mrgi_image img;
     const mrgi_status s = mrgi_exr_read(path, &img, &err);
@@ -454,7 +424,7 @@ static void test_read_rejects_corrupt_files(void)
   /* Broken magic number. */
   memcpy(copy, data, size);
   copy[0] ^= 0xff;
-  write_all(path, copy, size);
+  mrgi_test_write_file(path, copy, size);
   expect_read_fails(path, MRGI_ERR_FORMAT, "not an OpenEXR file");
 
   /* Garbage over the compressed pixel data (the last quarter of the file). */
@@ -463,7 +433,7 @@ static void test_read_rejects_corrupt_files(void)
   {
     copy[i] = (uint8_t)(i * 7u + 13u);
   }
-  write_all(path, copy, size);
+  mrgi_test_write_file(path, copy, size);
   expect_read_fails(path, MRGI_ERR_FORMAT, "corrupt");
 
   /* Flip each byte in turn: the reader may accept harmless damage (e.g. in
@@ -473,7 +443,7 @@ static void test_read_rejects_corrupt_files(void)
   {
     memcpy(copy, data, size);
     copy[i] ^= 0x5a;
-    write_all(path, copy, size);
+    mrgi_test_write_file(path, copy, size);
     mrgi_error err;
     mrgi_image img;
     const mrgi_status s = mrgi_exr_read(path, &img, &err);
@@ -511,13 +481,13 @@ static void test_read_rejects_absurd_data_windows(void)
   /* Within the per-side limit, but far more chunks than the file can hold. */
   put_le32(box + 8, 999999);
   put_le32(box + 12, 999999);
-  write_all(path, data, size);
+  mrgi_test_write_file(path, data, size);
   expect_read_fails(path, MRGI_ERR_FORMAT, "data window 1000000x1000000");
 
   /* Beyond the per-side limit. */
   put_le32(box + 8, 2000000000);
   put_le32(box + 12, 20);
-  write_all(path, data, size);
+  mrgi_test_write_file(path, data, size);
   mrgi_error err;
   mrgi_image img;
   const mrgi_status s = mrgi_exr_read(path, &img, &err);
@@ -528,7 +498,7 @@ static void test_read_rejects_absurd_data_windows(void)
   /* Inverted window. */
   put_le32(box + 0, 50);
   put_le32(box + 8, 10);
-  write_all(path, data, size);
+  mrgi_test_write_file(path, data, size);
   MRGI_CHECK(mrgi_exr_read(path, &img, &err) == MRGI_ERR_FORMAT);
   MRGI_CHECK(strstr(err.message, "exr_window.exr"));
   MRGI_CHECK(img.pixels == NULL);

@@ -13,36 +13,6 @@
 
 /* ---- file helpers -------------------------------------------------------- */
 
-static int file_exists(const char* path)
-{
-  struct stat info;
-  return stat(path, &info) == 0;
-}
-
-static void write_all(const char* path, const uint8_t* data, size_t size)
-{
-  FILE* f = fopen(path, "wb");
-  MRGI_CHECK(f != NULL);
-  MRGI_CHECK(size == 0 || fwrite(data, 1, size, f) == size);
-  MRGI_CHECK(fclose(f) == 0);
-}
-
-static uint8_t* read_all(const char* path, size_t* size)
-{
-  FILE* f = fopen(path, "rb");
-  MRGI_CHECK(f != NULL);
-  MRGI_CHECK(fseek(f, 0, SEEK_END) == 0);
-  const long n = ftell(f);
-  MRGI_CHECK(n > 0);
-  MRGI_CHECK(fseek(f, 0, SEEK_SET) == 0);
-  uint8_t* data = (uint8_t*)malloc((size_t)n);
-  MRGI_CHECK(data != NULL);
-  MRGI_CHECK(fread(data, 1, (size_t)n, f) == (size_t)n);
-  fclose(f);
-  *size = (size_t)n;
-  return data;
-}
-
 /* ---- a minimal PNG encoder (stored deflate blocks), for files our writer
  *      does not produce: 16-bit, palette, hostile headers --------------------- */
 
@@ -222,7 +192,7 @@ static void test_read_16bit_gray_alpha(void)
                                0, 0xff, 0xff, 0x00, 0x01, 0x00, 0x01, 0xab, 0xcd };
   byte_buffer png;
   build_png(&png, 2, 2, 16, 4, raw, sizeof(raw), NULL, 0, NULL, 0);
-  write_all(path, png.data, png.size);
+  mrgi_test_write_file(path, png.data, png.size);
   mrgi_image img;
   mrgi_error err;
   MRGI_CHECK(mrgi_png_read(path, &img, &err) == MRGI_OK);
@@ -244,7 +214,7 @@ static void test_read_palette_with_transparency(void)
   const uint8_t raw[2] = { 0, 0x40 };                  /* 2x1 at 1 bit: 0, 1 */
   byte_buffer png;
   build_png(&png, 2, 1, 1, 3, raw, sizeof(raw), palette, sizeof(palette), trns, sizeof(trns));
-  write_all(path, png.data, png.size);
+  mrgi_test_write_file(path, png.data, png.size);
   mrgi_image img;
   MRGI_CHECK(mrgi_png_read(path, &img, NULL) == MRGI_OK);
   MRGI_CHECK(img.width == 2 && img.height == 1 && img.channels == 4);
@@ -263,7 +233,7 @@ static void test_read_rejects_oversized_header(void)
   const uint8_t raw[2] = { 0, 0 };
   byte_buffer png;
   build_png(&png, 1u << 30, 1, 8, 0, raw, sizeof(raw), NULL, 0, NULL, 0);
-  write_all(path, png.data, png.size);
+  mrgi_test_write_file(path, png.data, png.size);
   expect_read_fails(path, MRGI_ERR_FORMAT, "width exceeds user limit");
 }
 
@@ -297,7 +267,7 @@ static void test_write_rejects_bad_input(void)
   MRGI_CHECK(strstr(err.message, "exposure"));
   MRGI_CHECK(mrgi_png_write_image(path, NULL, 0, 1.0f, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "image pointer is NULL"));
-  MRGI_CHECK(!file_exists(path));
+  MRGI_CHECK(!mrgi_test_file_exists(path));
   mrgi_image_destroy(&img);
 }
 
@@ -312,8 +282,8 @@ static void test_write_to_missing_directory_leaves_nothing(void)
   mrgi_error err;
   MRGI_CHECK(mrgi_png_write_rgba8(path, pixels, 1, 1, 4, &err) == MRGI_ERR_IO);
   MRGI_CHECK(strstr(err.message, "No such file or directory"));
-  MRGI_CHECK(!file_exists(path));
-  MRGI_CHECK(!file_exists(dir));
+  MRGI_CHECK(!mrgi_test_file_exists(path));
+  MRGI_CHECK(!mrgi_test_file_exists(dir));
 }
 
 /* ---- bad input on read --------------------------------------------------- */
@@ -327,11 +297,11 @@ static void test_read_rejects_missing_and_foreign_files(void)
 
   mrgi_test_tmp_path("png_text.png", path, sizeof(path));
   const char* text = "GIF89a pretending to be a PNG";
-  write_all(path, (const uint8_t*)text, strlen(text));
+  mrgi_test_write_file(path, (const uint8_t*)text, strlen(text));
   expect_read_fails(path, MRGI_ERR_FORMAT, "not a PNG file");
 
   mrgi_test_tmp_path("png_empty.png", path, sizeof(path));
-  write_all(path, NULL, 0);
+  mrgi_test_write_file(path, NULL, 0);
   expect_read_fails(path, MRGI_ERR_FORMAT, "not a PNG file");
 
   mrgi_test_tmp_path("", path, sizeof(path));
@@ -358,14 +328,14 @@ static void test_read_rejects_truncated_files(void)
   }
   MRGI_CHECK(mrgi_png_write_rgba8(source, pixels, 9, 6, 3, NULL) == MRGI_OK);
   size_t size = 0;
-  uint8_t* data = read_all(source, &size);
+  uint8_t* data = mrgi_test_read_file(source, &size);
 
-  write_all(path, data, size / 2);
+  mrgi_test_write_file(path, data, size / 2);
   expect_read_fails(path, MRGI_ERR_FORMAT, "corrupt or truncated");
 
   for (size_t length = 0; length < size; ++length)
   {
-    write_all(path, data, length);
+    mrgi_test_write_file(path, data, length);
     mrgi_error err;
     mrgi_image img;
     const mrgi_status s = mrgi_png_read(path, &img, &err);
@@ -393,7 +363,7 @@ static void test_read_rejects_corrupt_files(void)
   }
   MRGI_CHECK(mrgi_png_write_rgba8(source, pixels, 8, 8, 4, NULL) == MRGI_OK);
   size_t size = 0;
-  uint8_t* data = read_all(source, &size);
+  uint8_t* data = mrgi_test_read_file(source, &size);
   uint8_t* copy = (uint8_t*)malloc(size);
   MRGI_CHECK(copy != NULL);
 
@@ -410,7 +380,7 @@ static void test_read_rejects_corrupt_files(void)
   /* Damaged compressed pixels: zlib's own check fails. */
   memcpy(copy, data, size);
   copy[at + 10] ^= 0x44;
-  write_all(path, copy, size);
+  mrgi_test_write_file(path, copy, size);
   expect_read_fails(path, MRGI_ERR_FORMAT, "IDAT");
 
   /* Intact pixels but a damaged chunk checksum. */
@@ -418,7 +388,7 @@ static void test_read_rejects_corrupt_files(void)
                              ((size_t)data[at - 2] << 8) | (size_t)data[at - 1];
   memcpy(copy, data, size);
   copy[(size_t)at + 4 + idat_length] ^= 0x01;
-  write_all(path, copy, size);
+  mrgi_test_write_file(path, copy, size);
   expect_read_fails(path, MRGI_ERR_FORMAT, "CRC error");
 
   /* Flip each byte in turn: never a crash, a leak or a half-made image. */
@@ -427,7 +397,7 @@ static void test_read_rejects_corrupt_files(void)
   {
     memcpy(copy, data, size);
     copy[i] ^= 0xa5;
-    write_all(path, copy, size);
+    mrgi_test_write_file(path, copy, size);
     mrgi_error err;
     mrgi_image img;
     const mrgi_status s = mrgi_png_read(path, &img, &err);

@@ -9,6 +9,8 @@
 #define MRGI_TEST_H
 
 #include <math.h>
+#include <stdint.h>
+#include <sys/stat.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -36,6 +38,39 @@ static inline const char* mrgi_test_tmp_path(const char* name, char* buf, size_t
   const char* dir = getenv("MRGI_TEST_TMP");
   snprintf(buf, n, "%s/%s", dir && dir[0] ? dir : "/tmp", name);
   return buf;
+}
+
+/* Whether anything exists at `path`. */
+static inline int mrgi_test_file_exists(const char* path)
+{
+  struct stat info;
+  return stat(path, &info) == 0;
+}
+
+/* The whole (non-empty) file at `path`, malloc'ed; its size in *size. */
+static inline uint8_t* mrgi_test_read_file(const char* path, size_t* size)
+{
+  FILE* f = fopen(path, "rb");
+  MRGI_CHECK(f != NULL);
+  MRGI_CHECK(fseek(f, 0, SEEK_END) == 0);
+  const long n = ftell(f);
+  MRGI_CHECK(n > 0);
+  MRGI_CHECK(fseek(f, 0, SEEK_SET) == 0);
+  uint8_t* data = (uint8_t*)malloc((size_t)n);
+  MRGI_CHECK(data != NULL);
+  MRGI_CHECK(fread(data, 1, (size_t)n, f) == (size_t)n);
+  fclose(f);
+  *size = (size_t)n;
+  return data;
+}
+
+/* Write `size` bytes to `path` (size 0 makes an empty file). */
+static inline void mrgi_test_write_file(const char* path, const uint8_t* data, size_t size)
+{
+  FILE* f = fopen(path, "wb");
+  MRGI_CHECK(f != NULL);
+  MRGI_CHECK(size == 0 || fwrite(data, 1, size, f) == size);
+  MRGI_CHECK(fclose(f) == 0);
 }
 
 #endif
