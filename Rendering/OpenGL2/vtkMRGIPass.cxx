@@ -1,27 +1,70 @@
 #include "vtkMRGIPass.h"
 
+#include "vtkCamera.h"
+#include "vtkCameraPass.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkMRGIReflectiveShadowMapPass.h"
+#include "vtkMRGIShaderUtilities.h"
+#include "vtkMRGIVPLSelection.h"
+#include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLPolyDataMapper.h"
 #include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderUtilities.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
 #include "vtkPointData.h"
+#include "vtkProp.h"
+#include "vtkRenderPassCollection.h"
 #include "vtkRenderState.h"
+#include "vtkRenderStepsPass.h"
 #include "vtkRenderTimerLog.h"
 #include "vtkRenderer.h"
+#include "vtkSequencePass.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 
+#include "vtkMRGIAddIndirectFS.h"
 #include "vtkMRGICompositeFS.h"
+#include "vtkMRGIGBufferCapture.h"
+#include "vtkMRGIGatherFS.h"
+
+#include "mrgi_buffers.h"
+#include "mrgi_vpl.h"
 
 #include <cstring>
 
 vtkStandardNewMacro(vtkMRGIPass);
+
+namespace
+{
+// First step of the opaque sequence: VTK's camera pass has just cleared
+// every draw buffer to the background colour; the G-buffer attachments must
+// say "no geometry" (0) instead. Respects the renderer's scissor.
+class vtkMRGIClearGBufferPass : public vtkRenderPass
+{
+public:
+  static vtkMRGIClearGBufferPass* New();
+  vtkTypeMacro(vtkMRGIClearGBufferPass, vtkRenderPass);
+  void Render(const vtkRenderState*) override
+  {
+    const float zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+    for (int a = MRGI_GBUFFER_POSITION; a < MRGI_GBUFFER_ATTACHMENTS; ++a)
+    {
+      glClearBufferfv(GL_COLOR, a, zero);
+    }
+  }
+
+protected:
+  vtkMRGIClearGBufferPass() = default;
+  ~vtkMRGIClearGBufferPass() override = default;
+};
+vtkStandardNewMacro(vtkMRGIClearGBufferPass);
+}
 
 namespace
 {
@@ -68,81 +111,166 @@ public:
 private:
   vtkRenderTimerLog::ScopedEventLogger Logger;
 };
+
+vtkTextureObject* MakeTexture(vtkOpenGLRenderWindow* renWin, int internalFormat, int w, int h)
+{
+  vtkTextureObject* t = vtkTextureObject::New();
+  t->SetContext(renWin);
+  t->SetFormat(GL_RGBA);
+  t->SetInternalFormat(internalFormat);
+  t->SetDataType(GL_FLOAT);
+  t->SetMinificationFilter(vtkTextureObject::Nearest);
+  t->SetMagnificationFilter(vtkTextureObject::Nearest);
+  t->Allocate2D(w, h, 4, VTK_FLOAT);
+  return t;
+}
+
+void Release(vtkTextureObject*& t, vtkWindow* w)
+{
+  if (t)
+  {
+    t->ReleaseGraphicsResources(w);
+    t->Delete();
+    t = nullptr;
+  }
+}
+
+void Release(vtkOpenGLQuadHelper*& q, vtkWindow* w)
+{
+  if (q)
+  {
+    q->ReleaseGraphicsResources(w);
+    delete q;
+    q = nullptr;
+  }
+}
+
+// Builds (once) or readies a full-screen program; nullptr when it fails.
+vtkShaderProgram* ReadyQuad(vtkOpenGLQuadHelper*& quad, vtkOpenGLRenderWindow* renWin, const char* body)
+{
+  if (!quad)
+  {
+    quad = new vtkOpenGLQuadHelper(renWin,
+      vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
+      vtkMRGIShaderUtilities::FullScreenShader(body).c_str(), "");
+  }
+  else
+  {
+    renWin->GetShaderCache()->ReadyShaderProgram(quad->Program);
+  }
+  return (quad->Program && quad->Program->GetCompiled()) ? quad->Program : nullptr;
+}
 }
 
 //------------------------------------------------------------------------------
-vtkMRGIPass::vtkMRGIPass() = default;
+vtkMRGIPass::vtkMRGIPass()
+{
+  this->RSMPass = vtkMRGIReflectiveShadowMapPass::New();
+  this->VPLSelection = vtkMRGIVPLSelection::New();
+  this->OpaqueSequence = vtkSequencePass::New();
+  for (int i = 0; i < 16; ++i)
+  {
+    this->LastViewToWorld[i] = (i % 5 == 0) ? 1.0 : 0.0;
+  }
+}
 
 //------------------------------------------------------------------------------
 vtkMRGIPass::~vtkMRGIPass()
 {
-  if (this->FrameBuffer || this->ColorTexture || this->DepthTexture || this->CompositeQuad)
+  if (this->FrameBuffer || this->ColorTexture || this->OutputQuad)
   {
     vtkErrorMacro("vtkMRGIPass destroyed while it still holds GL resources: call "
                   "ReleaseGraphicsResources() first (the render window does so).");
+  }
+  for (vtkTextureObject* t : { this->ColorTexture, this->PositionTexture, this->NormalTexture,
+         this->AlbedoTexture, this->DepthTexture, this->IrradianceTexture, this->IndirectTexture })
+  {
+    if (t)
+    {
+      t->Delete();
+    }
   }
   if (this->FrameBuffer)
   {
     this->FrameBuffer->Delete();
   }
-  if (this->ColorTexture)
-  {
-    this->ColorTexture->Delete();
-  }
-  if (this->DepthTexture)
-  {
-    this->DepthTexture->Delete();
-  }
-  delete this->CompositeQuad;
+  delete this->GatherQuad;
+  delete this->AddQuad;
+  delete this->OutputQuad;
+  this->RSMPass->Delete();
+  this->VPLSelection->Delete();
+  this->OpaqueSequence->Delete();
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIPass::SetNumberOfVPLs(int count)
+{
+  this->VPLSelection->SetNumberOfVPLs(count);
+  this->Modified();
+}
+int vtkMRGIPass::GetNumberOfVPLs()
+{
+  return this->VPLSelection->GetNumberOfVPLs();
+}
+void vtkMRGIPass::SetVPLSelectionMode(int mode)
+{
+  this->VPLSelection->SetMode(mode);
+  this->Modified();
+}
+int vtkMRGIPass::GetVPLSelectionMode()
+{
+  return this->VPLSelection->GetMode();
+}
+void vtkMRGIPass::SetRSMResolution(int resolution)
+{
+  this->RSMPass->SetResolution(resolution);
+  this->Modified();
+}
+int vtkMRGIPass::GetRSMResolution()
+{
+  return this->RSMPass->GetResolution();
 }
 
 //------------------------------------------------------------------------------
 void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
 {
   this->Superclass::ReleaseGraphicsResources(w);
-  if (this->CompositeQuad)
-  {
-    this->CompositeQuad->ReleaseGraphicsResources(w);
-    delete this->CompositeQuad;
-    this->CompositeQuad = nullptr;
-  }
+  this->RSMPass->ReleaseGraphicsResources(w);
+  this->VPLSelection->ReleaseGraphicsResources(w);
+  Release(this->GatherQuad, w);
+  Release(this->AddQuad, w);
+  Release(this->OutputQuad, w);
   if (this->FrameBuffer)
   {
     this->FrameBuffer->ReleaseGraphicsResources(w);
     this->FrameBuffer->Delete();
     this->FrameBuffer = nullptr;
   }
-  if (this->ColorTexture)
-  {
-    this->ColorTexture->ReleaseGraphicsResources(w);
-    this->ColorTexture->Delete();
-    this->ColorTexture = nullptr;
-  }
-  if (this->DepthTexture)
-  {
-    this->DepthTexture->ReleaseGraphicsResources(w);
-    this->DepthTexture->Delete();
-    this->DepthTexture = nullptr;
-  }
+  Release(this->ColorTexture, w);
+  Release(this->PositionTexture, w);
+  Release(this->NormalTexture, w);
+  Release(this->AlbedoTexture, w);
+  Release(this->DepthTexture, w);
+  Release(this->IrradianceTexture, w);
+  Release(this->IndirectTexture, w);
   this->BufferSize[0] = this->BufferSize[1] = 0;
+  this->IndirectComputed = false;
 }
 
 //------------------------------------------------------------------------------
-void vtkMRGIPass::PrepareBuffers(vtkOpenGLRenderWindow* renWin, int w, int h)
+void vtkMRGIPass::PrepareBuffers(vtkOpenGLRenderWindow* renWin, int w, int h, bool capture)
 {
-  if (!this->ColorTexture)
-  {
-    // Float colour: VTK's lighting is unclamped, and the HDR result is what
-    // EXR output and the later indirect stages read.
-    this->ColorTexture = vtkTextureObject::New();
-    this->ColorTexture->SetContext(renWin);
-    this->ColorTexture->SetFormat(GL_RGBA);
-    this->ColorTexture->SetInternalFormat(GL_RGBA32F);
-    this->ColorTexture->SetDataType(GL_FLOAT);
-    this->ColorTexture->SetMinificationFilter(vtkTextureObject::Nearest);
-    this->ColorTexture->SetMagnificationFilter(vtkTextureObject::Nearest);
-    this->ColorTexture->Allocate2D(w, h, 4, VTK_FLOAT);
-  }
+  // Float colour: VTK's lighting is unclamped and the HDR result is what EXR
+  // output reads. G-buffer positions need float range; normals and albedo
+  // are bounded, half floats suffice.
+  auto ensure = [&](vtkTextureObject*& t, int format) {
+    if (!t)
+    {
+      t = MakeTexture(renWin, format, w, h);
+    }
+    t->Resize(w, h);
+  };
+  ensure(this->ColorTexture, GL_RGBA32F);
   if (!this->DepthTexture)
   {
     this->DepthTexture = vtkTextureObject::New();
@@ -151,70 +279,246 @@ void vtkMRGIPass::PrepareBuffers(vtkOpenGLRenderWindow* renWin, int w, int h)
     this->DepthTexture->SetMagnificationFilter(vtkTextureObject::Nearest);
     this->DepthTexture->AllocateDepth(w, h, vtkTextureObject::Float32);
   }
+  this->DepthTexture->Resize(w, h);
+  if (capture)
+  {
+    ensure(this->PositionTexture, GL_RGBA32F);
+    ensure(this->NormalTexture, GL_RGBA16F);
+    ensure(this->AlbedoTexture, GL_RGBA16F);
+    ensure(this->IrradianceTexture, GL_RGBA32F);
+    ensure(this->IndirectTexture, GL_RGBA32F);
+  }
   if (!this->FrameBuffer)
   {
     this->FrameBuffer = vtkOpenGLFramebufferObject::New();
     this->FrameBuffer->SetContext(renWin);
   }
-  this->ColorTexture->Resize(w, h);
-  this->DepthTexture->Resize(w, h);
-  this->BufferSize[0] = w;
-  this->BufferSize[1] = h;
 }
 
 //------------------------------------------------------------------------------
-void vtkMRGIPass::RenderScene(const vtkRenderState* s, int w, int h)
+void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
 {
-  this->PreRender(s);
-  this->FrameBuffer->SaveCurrentBindingsAndBuffers();
-  this->FrameBuffer->Bind();
-  this->FrameBuffer->AddColorAttachment(0, this->ColorTexture);
-  this->FrameBuffer->ActivateDrawBuffers(1);
-  this->FrameBuffer->AddDepthAttachment(this->DepthTexture);
-  this->FrameBuffer->StartNonOrtho(w, h);
-
-  this->DelegatePass->Render(s);
-  this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
-
-  this->FrameBuffer->UnBind();
-  this->FrameBuffer->RestorePreviousBindingsAndBuffers();
-  this->PostRender(s);
-}
-
-//------------------------------------------------------------------------------
-void vtkMRGIPass::RenderComposite(vtkOpenGLRenderWindow* renWin)
-{
-  if (!this->CompositeQuad)
+  vtkOpenGLFramebufferObject* fbo = this->FrameBuffer;
+  fbo->SaveCurrentBindingsAndBuffers();
+  fbo->Bind();
+  fbo->AddColorAttachment(MRGI_GBUFFER_DIRECT, this->ColorTexture);
+  if (capture)
   {
-    this->CompositeQuad = new vtkOpenGLQuadHelper(renWin,
-      vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(), vtkMRGICompositeFS, "");
+    fbo->AddColorAttachment(MRGI_GBUFFER_POSITION, this->PositionTexture);
+    fbo->AddColorAttachment(MRGI_GBUFFER_NORMAL, this->NormalTexture);
+    fbo->AddColorAttachment(MRGI_GBUFFER_ALBEDO, this->AlbedoTexture);
+    fbo->ActivateDrawBuffers(MRGI_GBUFFER_ATTACHMENTS);
   }
   else
   {
-    renWin->GetShaderCache()->ReadyShaderProgram(this->CompositeQuad->Program);
+    fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
+    fbo->AddColorAttachment(MRGI_GBUFFER_DIRECT, this->ColorTexture);
+    fbo->ActivateDrawBuffers(1);
   }
-  vtkShaderProgram* program = this->CompositeQuad->Program;
-  if (!program || !program->GetCompiled())
+  fbo->AddDepthAttachment(this->DepthTexture);
+
+  // The camera pass sets the renderer's viewport and clears: MRGI's buffers
+  // are as large as the window, so the renderer's tile lands where it does
+  // in the window.
+  if (capture)
   {
-    vtkErrorMacro("could not build the MRGI composite shader program");
+    this->PreRender(s);
+  }
+  if (split)
+  {
+    vtkRenderStepsPass* steps = vtkRenderStepsPass::SafeDownCast(this->DelegatePass);
+    vtkNew<vtkRenderPassCollection> passes;
+    vtkNew<vtkMRGIClearGBufferPass> clear;
+    if (capture)
+    {
+      passes->AddItem(clear);
+    }
+    passes->AddItem(steps->GetLightsPass());
+    passes->AddItem(steps->GetOpaquePass());
+    this->OpaqueSequence->SetPasses(passes);
+    steps->GetCameraPass()->SetDelegatePass(this->OpaqueSequence);
+    steps->GetCameraPass()->Render(s);
+    this->NumberOfRenderedProps += steps->GetCameraPass()->GetNumberOfRenderedProps();
+  }
+  else
+  {
+    // Another delegate clears and draws in one go: the G-buffer is cleared
+    // first, and VTK's clear then writes the background alpha to its w
+    // (valid only if that alpha exceeds MRGI_GBUFFER_VALID_THRESHOLD, which
+    // VTK's default background alpha of 0 does not).
+    const float zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+    for (int a = MRGI_GBUFFER_POSITION; capture && a < MRGI_GBUFFER_ATTACHMENTS; ++a)
+    {
+      glClearBufferfv(GL_COLOR, a, zero);
+    }
+    this->DelegatePass->Render(s);
+    this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
+  }
+  if (capture)
+  {
+    this->PostRender(s);
+  }
+  fbo->UnBind();
+  fbo->RestorePreviousBindingsAndBuffers();
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIPass::RenderForward(const vtkRenderState* s)
+{
+  // Translucent props, volumes and overlays, over the lit opaque scene, into
+  // the colour buffer only (the G-buffer is for opaque surfaces).
+  vtkRenderStepsPass* steps = vtkRenderStepsPass::SafeDownCast(this->DelegatePass);
+  vtkOpenGLFramebufferObject* fbo = this->FrameBuffer;
+  fbo->SaveCurrentBindingsAndBuffers();
+  fbo->Bind();
+  fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
+  fbo->AddColorAttachment(MRGI_GBUFFER_DIRECT, this->ColorTexture);
+  fbo->ActivateDrawBuffers(1);
+  fbo->AddDepthAttachment(this->DepthTexture);
+  vtkOpenGLRenderWindow* renWin =
+    static_cast<vtkOpenGLRenderWindow*>(s->GetRenderer()->GetRenderWindow());
+  vtkOpenGLState* ostate = renWin->GetState();
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  vtkOpenGLState::ScopedglScissor scissor(ostate);
+  ostate->vtkglViewport(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
+  ostate->vtkglScissor(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
+  vtkRenderState forward(s->GetRenderer());
+  forward.SetPropArrayAndCount(s->GetPropArray(), s->GetPropArrayCount());
+  forward.SetFrameBuffer(fbo);
+  for (vtkRenderPass* pass :
+    { steps->GetTranslucentPass(), steps->GetVolumetricPass(), steps->GetOverlayPass() })
+  {
+    if (pass)
+    {
+      pass->Render(&forward);
+      this->NumberOfRenderedProps += pass->GetNumberOfRenderedProps();
+    }
+  }
+  fbo->UnBind();
+  fbo->RestorePreviousBindingsAndBuffers();
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIPass::RenderGather(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, int vplCount)
+{
+  vtkShaderProgram* program = ReadyQuad(this->GatherQuad, renWin, vtkMRGIGatherFS);
+  if (!program)
+  {
+    vtkErrorMacro("could not build the MRGI gather shader");
     return;
   }
+  // Eye -> world: the inverse of the camera's view matrix.
+  vtkNew<vtkMatrix4x4> viewToWorld;
+  vtkMatrix4x4::Invert(renderer->GetActiveCamera()->GetModelViewTransformMatrix(), viewToWorld);
+  float m[16];
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      m[c * 4 + r] = static_cast<float>(viewToWorld->GetElement(r, c));
+      this->LastViewToWorld[c * 4 + r] = viewToWorld->GetElement(r, c);
+    }
+  }
+  vtkTextureObject* vpls = this->VPLSelection->GetVPLTexture();
+  vtkOpenGLFramebufferObject* fbo = this->FrameBuffer;
+  vtkOpenGLState* ostate = renWin->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depth(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  vtkOpenGLState::ScopedglScissor scissor(ostate);
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglDisable(GL_DEPTH_TEST);
+  ostate->vtkglViewport(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
+  ostate->vtkglScissor(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
 
+  fbo->SaveCurrentBindingsAndBuffers();
+  fbo->Bind();
+  fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
+  fbo->AddColorAttachment(0, this->IrradianceTexture);
+  fbo->AddColorAttachment(1, this->IndirectTexture);
+  fbo->ActivateDrawBuffers(2);
+  this->PositionTexture->Activate();
+  this->NormalTexture->Activate();
+  this->AlbedoTexture->Activate();
+  vpls->Activate();
+  program->SetUniformi("mrgiPosition", this->PositionTexture->GetTextureUnit());
+  program->SetUniformi("mrgiNormal", this->NormalTexture->GetTextureUnit());
+  program->SetUniformi("mrgiAlbedo", this->AlbedoTexture->GetTextureUnit());
+  program->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
+  program->SetUniformi("mrgiVPLCount", vplCount);
+  program->SetUniformf("mrgiStrength", static_cast<float>(this->IndirectStrength));
+  program->SetUniformMatrix4x4("mrgiVCToWC", m);
+  this->GatherQuad->Render();
+  vpls->Deactivate();
+  this->AlbedoTexture->Deactivate();
+  this->NormalTexture->Deactivate();
+  this->PositionTexture->Deactivate();
+  fbo->RemoveColorAttachments(2);
+  fbo->UnBind();
+  fbo->RestorePreviousBindingsAndBuffers();
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIPass::RenderAddIndirect(vtkOpenGLRenderWindow* renWin)
+{
+  vtkShaderProgram* program = ReadyQuad(this->AddQuad, renWin, vtkMRGIAddIndirectFS);
+  if (!program)
+  {
+    vtkErrorMacro("could not build the MRGI composite shader");
+    return;
+  }
+  vtkOpenGLFramebufferObject* fbo = this->FrameBuffer;
+  vtkOpenGLState* ostate = renWin->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depth(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  vtkOpenGLState::ScopedglScissor scissor(ostate);
+  ostate->vtkglEnable(GL_BLEND);
+  ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
+  ostate->vtkglDisable(GL_DEPTH_TEST);
+  ostate->vtkglViewport(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
+  ostate->vtkglScissor(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
+  fbo->SaveCurrentBindingsAndBuffers();
+  fbo->Bind();
+  fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
+  fbo->AddColorAttachment(0, this->ColorTexture);
+  fbo->ActivateDrawBuffers(1);
+  this->IndirectTexture->Activate();
+  program->SetUniformi("mrgiIndirect", this->IndirectTexture->GetTextureUnit());
+  this->AddQuad->Render();
+  this->IndirectTexture->Deactivate();
+  fbo->UnBind();
+  fbo->RestorePreviousBindingsAndBuffers();
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIPass::RenderOutput(vtkOpenGLRenderWindow* renWin)
+{
+  vtkShaderProgram* program = ReadyQuad(this->OutputQuad, renWin, vtkMRGICompositeFS);
+  if (!program)
+  {
+    vtkErrorMacro("could not build the MRGI output shader");
+    return;
+  }
   vtkOpenGLState* ostate = renWin->GetState();
   vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
   vtkOpenGLState::ScopedglDepthFunc depthFunc(ostate);
   vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  vtkOpenGLState::ScopedglScissor scissor(ostate);
   ostate->vtkglDisable(GL_BLEND);
   ostate->vtkglEnable(GL_DEPTH_TEST);
   ostate->vtkglDepthFunc(GL_ALWAYS);
   ostate->vtkglDepthMask(GL_TRUE);
-
+  ostate->vtkglViewport(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
+  ostate->vtkglScissor(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
   this->ColorTexture->Activate();
   this->DepthTexture->Activate();
-  program->SetUniformi("mrgiDirect", this->ColorTexture->GetTextureUnit());
+  program->SetUniformi("mrgiColor", this->ColorTexture->GetTextureUnit());
   program->SetUniformi("mrgiDepth", this->DepthTexture->GetTextureUnit());
-  this->CompositeQuad->Render();
+  this->OutputQuad->Render();
   this->DepthTexture->Deactivate();
   this->ColorTexture->Deactivate();
 }
@@ -244,26 +548,97 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   renderer->GetTiledSizeAndOrigin(&w, &h, &x, &y);
   if (w < 1 || h < 1)
   {
-    // A zero-size viewport has nothing to show; it is not an error.
-    return;
+    return; // a zero-size viewport has nothing to show; not an error
   }
+  this->Viewport[0] = x;
+  this->Viewport[1] = y;
+  this->Viewport[2] = w;
+  this->Viewport[3] = h;
 
+  // Model only what the frame requires: no capture, no maps, no gather
+  // when indirect light is off or cannot contribute.
+  const bool capture = this->IndirectMode != IndirectOff && this->GetNumberOfVPLs() > 0;
+  const bool split = vtkRenderStepsPass::SafeDownCast(this->DelegatePass) != nullptr;
   vtkRenderTimerLog* timer = TimerFor(renderer, this->StageTimingEnabled);
-  this->PrepareBuffers(renWin, w, h);
+  this->IndirectComputed = false;
+
+  this->PrepareBuffers(renWin, x + w, y + h, capture);
+  this->BufferSize[0] = w;
+  this->BufferSize[1] = h;
   {
     ScopedStage stage(timer, "scene");
-    this->RenderScene(s, w, h);
+    this->RenderScene(s, capture, split);
+  }
+  if (capture)
+  {
+    int vplCount = 0;
+    {
+      ScopedStage stage(timer, "rsm");
+      this->RSMPass->Render(s);
+    }
+    {
+      ScopedStage stage(timer, "vpl");
+      vplCount = this->VPLSelection->Update(renWin, this->RSMPass);
+    }
+    if (vplCount > 0)
+    {
+      {
+        ScopedStage stage(timer, "gather");
+        this->RenderGather(renWin, renderer, vplCount);
+      }
+      {
+        ScopedStage stage(timer, "add");
+        this->RenderAddIndirect(renWin);
+      }
+      this->IndirectComputed = true;
+    }
+  }
+  if (split)
+  {
+    ScopedStage stage(timer, "forward");
+    this->RenderForward(s);
   }
   {
-    ScopedStage stage(timer, "composite");
-    vtkOpenGLState* ostate = renWin->GetState();
-    vtkOpenGLState::ScopedglViewport viewport(ostate);
-    vtkOpenGLState::ScopedglScissor scissor(ostate);
-    ostate->vtkglViewport(x, y, w, h);
-    ostate->vtkglScissor(x, y, w, h);
-    this->RenderComposite(renWin);
+    ScopedStage stage(timer, "output");
+    this->RenderOutput(renWin);
   }
   vtkOpenGLCheckErrorMacro("failed after vtkMRGIPass::Render");
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIPass::PreReplaceShaderValues(std::string&, std::string&, std::string& fragmentShader,
+  vtkAbstractMapper* mapper, vtkProp*)
+{
+  if (vtkOpenGLPolyDataMapper::SafeDownCast(mapper))
+  {
+    vtkMRGIShaderUtilities::AddCaptureMarkers(fragmentShader);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIPass::PostReplaceShaderValues(std::string&, std::string&, std::string& fragmentShader,
+  vtkAbstractMapper* mapper, vtkProp* prop)
+{
+  if (!vtkOpenGLPolyDataMapper::SafeDownCast(mapper))
+  {
+    return true;
+  }
+  // Translucent props are not lit indirectly and never touch the G-buffer.
+  const bool opaque = !prop || !prop->HasTranslucentPolygonalGeometry();
+  if (opaque && vtkMRGIShaderUtilities::CanCapture(fragmentShader))
+  {
+    vtkMRGIShaderUtilities::InsertCapture(fragmentShader, "", vtkMRGIGBufferCapture);
+  }
+  else
+  {
+    // Unlit or normal-less geometry: the G-buffer says "nothing here".
+    vtkMRGIShaderUtilities::InsertCapture(fragmentShader, "",
+      "  gl_FragData[MRGI_GBUFFER_POSITION] = vec4(0.0);\n"
+      "  gl_FragData[MRGI_GBUFFER_NORMAL] = vec4(0.0);\n"
+      "  gl_FragData[MRGI_GBUFFER_ALBEDO] = vec4(0.0);\n");
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -286,8 +661,7 @@ int vtkMRGIPass::FetchStageTimings(vtkRenderWindow* window, bool wait)
     // Close the frame just rendered and drain the GPU so its queries are done.
     window->MakeCurrent();
     timer->MarkFrame();
-    vtkOpenGLRenderWindow* glWindow = vtkOpenGLRenderWindow::SafeDownCast(window);
-    if (glWindow)
+    if (vtkOpenGLRenderWindow::SafeDownCast(window))
     {
       glFinish();
     }
@@ -340,42 +714,99 @@ double vtkMRGIPass::GetStageTimeMilliseconds(int stage) const
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIPass::GetColorBuffer(vtkRenderWindow* window, vtkImageData* image)
+bool vtkMRGIPass::ReadViewport(vtkRenderWindow* window, vtkTextureObject* texture, int components,
+  vtkImageData* image, const char* what)
 {
   vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
   if (!renWin || !image)
   {
-    vtkErrorMacro("GetColorBuffer needs an OpenGL render window and an output image");
+    vtkErrorMacro("reading the " << what << " buffer needs an OpenGL render window and an image");
     return false;
   }
-  if (!this->FrameBuffer || this->BufferSize[0] < 1 || this->BufferSize[1] < 1)
+  if (!texture || this->BufferSize[0] < 1)
   {
-    vtkErrorMacro("GetColorBuffer: nothing rendered yet");
+    vtkErrorMacro("no " << what << " buffer: nothing rendered yet, or not computed this frame");
     return false;
   }
-  const int w = this->BufferSize[0];
-  const int h = this->BufferSize[1];
-  renWin->MakeCurrent();
-  vtkOpenGLState* ostate = renWin->GetState();
-  ostate->PushReadFramebufferBinding();
-  this->FrameBuffer->Bind(GL_READ_FRAMEBUFFER);
-  this->FrameBuffer->AddColorAttachment(0, this->ColorTexture);
-  this->FrameBuffer->ActivateReadBuffer(0);
-
+  std::vector<float> rgba;
+  if (!vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, texture, rgba))
+  {
+    vtkErrorMacro("reading the " << what << " buffer back failed");
+    return false;
+  }
+  const int fullWidth = static_cast<int>(texture->GetWidth());
+  const int x0 = this->Viewport[0], y0 = this->Viewport[1];
+  const int w = this->Viewport[2], h = this->Viewport[3];
   image->SetDimensions(w, h, 1);
-  image->AllocateScalars(VTK_FLOAT, 4);
-  vtkFloatArray* pixels = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
-  pixels->SetName("HDRColor");
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, pixels->GetPointer(0));
-  ostate->PopReadFramebufferBinding();
-  return glGetError() == GL_NO_ERROR;
+  image->AllocateScalars(VTK_FLOAT, components);
+  float* out = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars())->GetPointer(0);
+  for (int y = 0; y < h; ++y)
+  {
+    for (int x = 0; x < w; ++x)
+    {
+      const float* src = rgba.data() + 4 * (static_cast<size_t>(y + y0) * fullWidth + (x + x0));
+      for (int c = 0; c < components; ++c)
+      {
+        out[(static_cast<size_t>(y) * w + x) * components + c] = src[c];
+      }
+    }
+  }
+  image->GetPointData()->GetScalars()->SetName(what);
+  return true;
+}
+
+bool vtkMRGIPass::GetColorBuffer(vtkRenderWindow* window, vtkImageData* image)
+{
+  return this->ReadViewport(window, this->ColorTexture, 4, image, "HDRColor");
+}
+
+bool vtkMRGIPass::GetIndirectBuffer(vtkRenderWindow* window, vtkImageData* image)
+{
+  return this->ReadViewport(
+    window, this->IndirectComputed ? this->IndirectTexture : nullptr, 3, image, "Indirect");
+}
+
+bool vtkMRGIPass::GetIrradianceBuffer(vtkRenderWindow* window, vtkImageData* image)
+{
+  return this->ReadViewport(
+    window, this->IndirectComputed ? this->IrradianceTexture : nullptr, 3, image, "Irradiance");
+}
+
+bool vtkMRGIPass::GetGBuffer(
+  vtkRenderWindow* window, vtkImageData* position, vtkImageData* normal, vtkImageData* albedo)
+{
+  const bool captured = this->PositionTexture && this->IndirectMode != IndirectOff;
+  return this->ReadViewport(window, captured ? this->PositionTexture : nullptr, 4, position, "Position") &&
+    this->ReadViewport(window, captured ? this->NormalTexture : nullptr, 4, normal, "Normal") &&
+    this->ReadViewport(window, captured ? this->AlbedoTexture : nullptr, 4, albedo, "Albedo");
+}
+
+bool vtkMRGIPass::GetVPLs(vtkRenderWindow* window, vtkFloatArray* vpls)
+{
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  vtkTextureObject* texture = this->VPLSelection->GetVPLTexture();
+  std::vector<float> rgba;
+  if (!renWin || !vpls || !texture || !vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, texture, rgba))
+  {
+    vtkErrorMacro("no VPLs to read back");
+    return false;
+  }
+  vpls->SetNumberOfComponents(MRGI_VPL_FLOATS);
+  vpls->SetNumberOfTuples(this->VPLSelection->GetVPLCount());
+  std::copy(rgba.begin(), rgba.begin() + static_cast<long>(MRGI_VPL_FLOATS) * this->VPLSelection->GetVPLCount(),
+    vpls->GetPointer(0));
+  return true;
 }
 
 //------------------------------------------------------------------------------
 void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "IndirectMode: " << (this->IndirectMode == IndirectOff ? "Off" : "Full") << "\n";
+  os << indent << "IndirectStrength: " << this->IndirectStrength << "\n";
+  os << indent << "NumberOfVPLs: " << this->VPLSelection->GetNumberOfVPLs() << "\n";
+  os << indent << "VPLSelectionMode: " << this->VPLSelection->GetMode() << "\n";
+  os << indent << "RSMResolution: " << this->RSMPass->GetResolution() << "\n";
   os << indent << "StageTimingEnabled: " << (this->StageTimingEnabled ? "On" : "Off") << "\n";
   os << indent << "BufferSize: " << this->BufferSize[0] << " x " << this->BufferSize[1] << "\n";
   for (int i = 0; i < this->GetNumberOfStages(); ++i)

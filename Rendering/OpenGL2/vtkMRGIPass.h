@@ -1,10 +1,10 @@
 /**
  * @class   vtkMRGIPass
- * @brief   The MRGI render pass: renders the scene into float buffers and
- *          composites it, timing every stage on the GPU.
+ * @brief   Adds one-bounce indirect light to a VTK renderer: G-buffer,
+ *          reflective shadow maps, VPLs, gather and composite, with GPU
+ *          time per stage.
  *
- * vtkMRGIPass is what an application installs, the way it installs
- * vtkSSAOPass:
+ * Installed like vtkSSAOPass:
  * @code
  * vtkNew<vtkRenderStepsPass> steps;
  * vtkNew<vtkMRGIPass> gi;
@@ -12,21 +12,31 @@
  * renderer->SetPass(gi);
  * @endcode
  *
- * Each frame it renders the delegate (VTK's own direct lighting) into an
- * RGBA32F colour target and a 32-bit depth texture owned by the pass, then
- * composites that to the framebuffer VTK was drawing into, depth included.
- * The float colour buffer is the HDR image: GetColorBuffer() reads it back
- * unclamped (VTK's window framebuffers are RGBA8, so EXR output must come from
- * here, never from vtkWindowToImageFilter).
+ * Per frame (Documentation/IndirectLight.md has the equations):
+ * 1. "scene": the opaque props are drawn by the delegate into MRGI's float
+ *    buffers; VTK's own shading is the direct light, and shader replacement
+ *    captures the G-buffer (eye-space position, normal, albedo: mrgi_buffers.h).
+ * 2. "rsm": reflective shadow maps of the lights (vtkMRGIReflectiveShadowMapPass),
+ *    re-rendered only when lights or props changed.
+ * 3. "vpl": VPL selection into the VPL cache (vtkMRGIVPLSelection).
+ * 4. "gather": every pixel gathers every VPL (nichols-shopf-wyman-2009
+ *    eq. 1 and 5), giving E and the indirect radiance albedo * E * strength.
+ * 5. "add": the indirect radiance is added to the direct light.
+ * 6. "forward": translucent props, volumes and 2D overlays are drawn on top
+ *    (not lit indirectly, depth peeling as configured on the renderer),
+ *    when the delegate is a vtkRenderStepsPass; other delegates draw
+ *    everything in step 1.
+ * 7. "output": the HDR result, with depth, goes to the framebuffer VTK was
+ *    drawing into.
  *
- * Stage timings: with StageTimingEnabled on, every stage is bracketed by
- * vtkRenderTimerLog events (GL timer queries) named "MRGI <stage>".
- * FetchStageTimings() collects the latest completed frame; GetStageName() and
- * GetStageTimeMilliseconds() report it. The window's timer log must be
- * logging when a frame starts: switch it on before the first render
- * (`window->GetRenderTimer()->SetLoggingEnabled(true)`), or let the first
- * FetchStageTimings() switch it on, in which case timing starts with the
- * next frame.
+ * With IndirectMode Off, or no VPLs, or no light reaching anything, steps 2-5
+ * do not run and nothing is captured: the pass costs one copy.
+ *
+ * Buffers can be read back for inspection, tests and EXR output:
+ * GetColorBuffer() (final HDR), GetIndirectBuffer() (what was added),
+ * GetIrradianceBuffer() (E), GetGBuffer().
+ *
+ * Tone mapping: wrap this pass as the delegate of a vtkToneMappingPass.
  */
 #ifndef vtkMRGIPass_h
 #define vtkMRGIPass_h
@@ -37,12 +47,15 @@
 #include <string> // For std::string
 #include <vector> // For std::vector
 
+class vtkFloatArray;
 class vtkImageData;
+class vtkMRGIReflectiveShadowMapPass;
+class vtkMRGIVPLSelection;
 class vtkOpenGLFramebufferObject;
 class vtkOpenGLQuadHelper;
 class vtkOpenGLRenderWindow;
-class vtkRenderTimerLog;
 class vtkRenderWindow;
+class vtkSequencePass;
 class vtkTextureObject;
 
 class MRGIRENDERING_EXPORT vtkMRGIPass : public vtkImageProcessingPass
@@ -52,16 +65,56 @@ public:
   vtkTypeMacro(vtkMRGIPass, vtkImageProcessingPass);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /** Render the delegate into the pass's buffers and composite the result. */
   void Render(const vtkRenderState* s) override;
-
-  /** Free every GL resource the pass holds. */
   void ReleaseGraphicsResources(vtkWindow* w) override;
+
+  enum IndirectModes
+  {
+    IndirectOff = 0, ///< direct light only
+    IndirectFull = 1 ///< full-resolution gather: every pixel gathers every VPL
+  };
+
+  ///@{
+  /** How indirect light is computed (default IndirectFull). */
+  vtkSetClampMacro(IndirectMode, int, IndirectOff, IndirectFull);
+  vtkGetMacro(IndirectMode, int);
+  ///@}
+
+  ///@{
+  /** Factor on the indirect light added to the direct light (default 1, physically based). */
+  vtkSetClampMacro(IndirectStrength, double, 0.0, 1e6);
+  vtkGetMacro(IndirectStrength, double);
+  ///@}
+
+  ///@{
+  /** VPLs per frame, 0..4096 (default 256 = 16 x 16). Forwarded to the VPL selection. */
+  void SetNumberOfVPLs(int count);
+  int GetNumberOfVPLs();
+  ///@}
+
+  ///@{
+  /** VPL selection: 0 grid (default), 1 flux importance. */
+  void SetVPLSelectionMode(int mode);
+  int GetVPLSelectionMode();
+  ///@}
+
+  ///@{
+  /** Reflective shadow map resolution, 16..2048 (default 256). */
+  void SetRSMResolution(int resolution);
+  int GetRSMResolution();
+  ///@}
+
+  /** The sub-stages, for inspection (statistics, read-backs). */
+  vtkMRGIReflectiveShadowMapPass* GetReflectiveShadowMapPass() { return this->RSMPass; }
+  vtkMRGIVPLSelection* GetVPLSelection() { return this->VPLSelection; }
 
   ///@{
   /**
-   * Bracket each stage with GPU timer queries (vtkRenderTimerLog). Off by
-   * default: the queries are cheap, but they are the application's choice.
+   * Bracket each stage with GPU timer queries (vtkRenderTimerLog). The
+   * window's timer log must be logging when a frame starts: switch it on
+   * before the first render (`window->GetRenderTimer()->SetLoggingEnabled(true)`),
+   * or let the first FetchStageTimings() switch it on (timing then starts
+   * with the next frame).
    */
   vtkSetMacro(StageTimingEnabled, bool);
   vtkGetMacro(StageTimingEnabled, bool);
@@ -70,11 +123,8 @@ public:
 
   /**
    * Collect GPU stage times of the most recent frame whose timer queries have
-   * completed. With wait = true the current frame is closed and the GPU is
-   * drained first, so the frame just rendered is the one reported (for
-   * one-shot renders; interactive applications pass false and get the latest
-   * completed frame without stalling). Returns the number of stages found;
-   * 0 when timing is off, unsupported, or no frame has completed yet.
+   * completed (wait = true: close the frame just rendered and drain the GPU
+   * first). Returns the number of stages found.
    */
   int FetchStageTimings(vtkRenderWindow* window, bool wait);
 
@@ -85,32 +135,80 @@ public:
   double GetStageTimeMilliseconds(int stage) const;
   ///@}
 
+  ///@{
   /**
-   * Copy the last frame's HDR colour buffer (RGBA, float, unclamped, origin
-   * at the bottom-left as VTK images are) into `image`. Needs the render
-   * window's context; returns false (with an error) before the first render.
+   * Read the last frame's buffers back into `image` (float, bottom-up rows,
+   * the renderer's viewport only). Colour: final HDR RGBA. Indirect: the
+   * indirect radiance added to the direct light (RGB). Irradiance: E of the
+   * gather before albedo and strength (RGB). All zero where nothing was
+   * gathered. Return false (with an error) before the first render or when
+   * the buffer was not computed (e.g. indirect light off).
    */
   bool GetColorBuffer(vtkRenderWindow* window, vtkImageData* image);
+  bool GetIndirectBuffer(vtkRenderWindow* window, vtkImageData* image);
+  bool GetIrradianceBuffer(vtkRenderWindow* window, vtkImageData* image);
+  ///@}
 
-  /** Width and height of the buffers of the last frame (0 before the first). */
+  /** The G-buffer of the last frame (RGBA float each; see mrgi_buffers.h). */
+  bool GetGBuffer(vtkRenderWindow* window, vtkImageData* position, vtkImageData* normal,
+    vtkImageData* albedo);
+
+  /** The VPL cache of the last frame: MRGI_VPL_FLOATS floats per VPL. */
+  bool GetVPLs(vtkRenderWindow* window, vtkFloatArray* vpls);
+
+  /** Eye -> world matrix (column-major, 16 values) used by the last gather. */
+  const double* GetLastViewToWorld() const { return this->LastViewToWorld; }
+
+  /** Width and height of the renderer's viewport in the last frame. */
   vtkGetVector2Macro(BufferSize, int);
+
+  /** Whether the last frame computed indirect light. */
+  vtkGetMacro(IndirectComputed, bool);
+
+  ///@{
+  /** Shader hooks: G-buffer capture on opaque polygonal props. */
+  bool PreReplaceShaderValues(std::string& vertexShader, std::string& geometryShader,
+    std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop) override;
+  bool PostReplaceShaderValues(std::string& vertexShader, std::string& geometryShader,
+    std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop) override;
+  ///@}
 
 protected:
   vtkMRGIPass();
   ~vtkMRGIPass() override;
 
-  /** Create or resize the colour/depth targets for a w x h viewport. */
-  void PrepareBuffers(vtkOpenGLRenderWindow* renWin, int w, int h);
-  void RenderScene(const vtkRenderState* s, int w, int h);
-  void RenderComposite(vtkOpenGLRenderWindow* renWin);
+  void PrepareBuffers(vtkOpenGLRenderWindow* renWin, int width, int height, bool capture);
+  void RenderScene(const vtkRenderState* s, bool capture, bool split);
+  void RenderForward(const vtkRenderState* s);
+  void RenderGather(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, int vplCount);
+  void RenderAddIndirect(vtkOpenGLRenderWindow* renWin);
+  void RenderOutput(vtkOpenGLRenderWindow* renWin);
+  bool ReadViewport(vtkRenderWindow* window, vtkTextureObject* texture, int components,
+    vtkImageData* image, const char* what);
 
+  int IndirectMode = IndirectFull;
+  double IndirectStrength = 1.0;
   bool StageTimingEnabled = false;
   int BufferSize[2] = { 0, 0 };
+  int Viewport[4] = { 0, 0, 0, 0 };
+  bool IndirectComputed = false;
+  double LastViewToWorld[16];
+
+  vtkMRGIReflectiveShadowMapPass* RSMPass = nullptr;
+  vtkMRGIVPLSelection* VPLSelection = nullptr;
+  vtkSequencePass* OpaqueSequence = nullptr;
 
   vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
   vtkTextureObject* ColorTexture = nullptr;
+  vtkTextureObject* PositionTexture = nullptr;
+  vtkTextureObject* NormalTexture = nullptr;
+  vtkTextureObject* AlbedoTexture = nullptr;
   vtkTextureObject* DepthTexture = nullptr;
-  vtkOpenGLQuadHelper* CompositeQuad = nullptr;
+  vtkTextureObject* IrradianceTexture = nullptr;
+  vtkTextureObject* IndirectTexture = nullptr;
+  vtkOpenGLQuadHelper* GatherQuad = nullptr;
+  vtkOpenGLQuadHelper* AddQuad = nullptr;
+  vtkOpenGLQuadHelper* OutputQuad = nullptr;
 
   std::vector<std::string> StageNames;
   std::vector<double> StageTimes;

@@ -1,0 +1,65 @@
+/**
+ * @file mrgi_buffers.h
+ * @brief Layouts of the GPU buffers that MRGI's stages exchange, defined once.
+ *
+ * The C++ layer allocates these targets and the GLSL reads and writes them;
+ * both take the numbers from here (GLSL through mrgi_glsl_defines()), so a
+ * layout is never typed twice. The C twins read the same buffers back.
+ *
+ * G-buffer (eye space of the rendered camera, one texel per pixel, rows
+ * bottom-up as OpenGL stores them):
+ * - attachment 0: direct light (VTK's own shading), RGBA32F, unclamped;
+ * - attachment MRGI_GBUFFER_POSITION: eye-space position xyz (VTK "VC"
+ *   coordinates), w = MRGI_GBUFFER_VALID where opaque lit geometry was drawn;
+ * - attachment MRGI_GBUFFER_NORMAL: eye-space unit normal facing the viewer
+ *   (two-sided lighting's flip applied), w = MRGI_GBUFFER_VALID;
+ * - attachment MRGI_GBUFFER_ALBEDO: diffuse albedo rgb (VTK's diffuse colour
+ *   times the Diffuse coefficient: solid colour, scalars through a lookup
+ *   table, texture, or PBR base colour), w = MRGI_GBUFFER_VALID.
+ *
+ * w = 1 marks geometry. VTK draws opaque geometry with blending on
+ * (SRC_ALPHA, ONE_MINUS_SRC_ALPHA), which with alpha exactly 1 stores the
+ * written value unchanged; MRGI clears the G-buffer attachments to 0 after
+ * VTK's own clear (which writes the background colour to every draw buffer).
+ *
+ * Reflective shadow map (one "view" per spot/directional light, six cube
+ * faces per point light; S x S texels, rows bottom-up):
+ * - MRGI_RSM_POSITION: world position xyz, w = MRGI_GBUFFER_VALID or 0;
+ * - MRGI_RSM_NORMAL: world unit normal facing the light, w = 0;
+ * - MRGI_RSM_FLUX: reflected flux rgb, w = surface area of the texel
+ *   (see mrgi_vpl.h for the definitions).
+ */
+#ifndef MRGI_BUFFERS_H
+#define MRGI_BUFFERS_H
+
+/** w of a G-buffer / RSM texel that holds geometry (1: blending-neutral). */
+#define MRGI_GBUFFER_VALID 1.0f
+/** Texels with w above this hold geometry; cleared texels hold 0. */
+#define MRGI_GBUFFER_VALID_THRESHOLD 0.5f
+
+/** Colour attachments of the G-buffer. */
+#define MRGI_GBUFFER_DIRECT 0
+#define MRGI_GBUFFER_POSITION 1
+#define MRGI_GBUFFER_NORMAL 2
+#define MRGI_GBUFFER_ALBEDO 3
+#define MRGI_GBUFFER_ATTACHMENTS 4
+
+/** Colour attachments of a reflective shadow map view. */
+#define MRGI_RSM_POSITION 0
+#define MRGI_RSM_NORMAL 1
+#define MRGI_RSM_FLUX 2
+#define MRGI_RSM_ATTACHMENTS 3
+
+/** Resolutions the RSM pass offers (texels per side; the core accepts up to MRGI_RSM_MAX_SIZE). */
+#define MRGI_RSM_MIN_RESOLUTION 16
+#define MRGI_RSM_MAX_RESOLUTION 2048
+#define MRGI_RSM_DEFAULT_RESOLUTION 256
+
+/**
+ * Spot lights with a half-angle up to this get one perspective view of twice
+ * the angle; wider cones and point lights get the six faces of a cube, since
+ * a perspective frustum degenerates as its field of view nears 180 degrees.
+ */
+#define MRGI_RSM_MAX_SPOT_HALF_ANGLE_DEG 80.0
+
+#endif

@@ -1,0 +1,155 @@
+#include "mrgi_glsl_defines.h"
+
+#include "mrgi_gather.h"
+#include "mrgi_vpl.h"
+
+#include <locale.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* How a constant is written into GLSL. */
+typedef enum mrgi_glsl_kind
+{
+  MRGI_GLSL_INT,    /* decimal int literal */
+  MRGI_GLSL_FLOAT,  /* float literal reading back as the same float */
+  MRGI_GLSL_DOUBLE  /* float literal reading back as the same double */
+} mrgi_glsl_kind;
+
+typedef struct mrgi_glsl_constant
+{
+  const char* name;
+  mrgi_glsl_kind kind;
+  double value;
+} mrgi_glsl_constant;
+
+/* The name is the macro itself, stringized: each constant is typed once. */
+#define MRGI_GLSL_CONSTANT(macro, kind) { #macro, kind, (double)(macro) }
+
+static const mrgi_glsl_constant mrgi_glsl_constants[] = {
+  MRGI_GLSL_CONSTANT(MRGI_VPL_TEXELS, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_VPL_TEXEL_POSITION, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_VPL_TEXEL_NORMAL, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_VPL_TEXEL_FLUX, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_VPL_FLOATS, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_VPL_MIN_COUNT, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_VPL_MAX_COUNT, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_RSM_MIN_COS, MRGI_GLSL_FLOAT),
+  MRGI_GLSL_CONSTANT(MRGI_RSM_MAX_VIEWS, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_VALID_THRESHOLD, MRGI_GLSL_FLOAT),
+  MRGI_GLSL_CONSTANT(MRGI_LUMINANCE_R, MRGI_GLSL_DOUBLE),
+  MRGI_GLSL_CONSTANT(MRGI_LUMINANCE_G, MRGI_GLSL_DOUBLE),
+  MRGI_GLSL_CONSTANT(MRGI_LUMINANCE_B, MRGI_GLSL_DOUBLE),
+  MRGI_GLSL_CONSTANT(MRGI_PI, MRGI_GLSL_DOUBLE),
+  MRGI_GLSL_CONSTANT(MRGI_GBUFFER_VALID, MRGI_GLSL_FLOAT),
+  MRGI_GLSL_CONSTANT(MRGI_GBUFFER_VALID_THRESHOLD, MRGI_GLSL_FLOAT),
+  MRGI_GLSL_CONSTANT(MRGI_GBUFFER_DIRECT, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_GBUFFER_POSITION, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_GBUFFER_NORMAL, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_GBUFFER_ALBEDO, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_RSM_POSITION, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_RSM_NORMAL, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_RSM_FLUX, MRGI_GLSL_INT),
+};
+
+/* Longest VALUE text: sign, 17 digits, point, exponent, ".0" suffix, NUL. */
+#define MRGI_GLSL_VALUE_SIZE 40
+
+/* Shortest "%.*g" text of `value` that strtod reads back exactly (as a float
+ * for MRGI_GLSL_FLOAT), with '.' as decimal point whatever the C locale,
+ * and a '.' or exponent present so that GLSL types it float. */
+static void mrgi_glsl_format_real(double value, mrgi_glsl_kind kind, char text[MRGI_GLSL_VALUE_SIZE])
+{
+  const int max_digits = kind == MRGI_GLSL_FLOAT ? 9 : 17;
+  for (int digits = 1; digits <= max_digits; ++digits)
+  {
+    snprintf(text, MRGI_GLSL_VALUE_SIZE, "%.*g", digits, value);
+    const double parsed = strtod(text, NULL); /* same locale as snprintf */
+    const int exact = kind == MRGI_GLSL_FLOAT ? (float)parsed == (float)value : parsed == value;
+    if (exact)
+    {
+      break;
+    }
+  }
+  /* Swap the locale's decimal point (e.g. "," in de_DE) for GLSL's ".". */
+  const char* point = localeconv()->decimal_point;
+  const size_t point_length = point ? strlen(point) : 0;
+  if (point_length > 0 && strcmp(point, ".") != 0)
+  {
+    char* found = strstr(text, point);
+    if (found)
+    {
+      *found = '.';
+      memmove(found + 1, found + point_length, strlen(found + point_length) + 1);
+    }
+  }
+  if (!strpbrk(text, ".eE"))
+  {
+    strncat(text, ".0", MRGI_GLSL_VALUE_SIZE - strlen(text) - 1);
+  }
+}
+
+/* The whole block into `out` (MRGI_GLSL_DEFINES_MAX_SIZE bytes); its length. */
+static size_t mrgi_glsl_defines_build(char out[MRGI_GLSL_DEFINES_MAX_SIZE])
+{
+  size_t length = 0;
+  out[0] = '\0';
+  const size_t count = sizeof(mrgi_glsl_constants) / sizeof(mrgi_glsl_constants[0]);
+  for (size_t k = 0; k < count; ++k)
+  {
+    const mrgi_glsl_constant* constant = mrgi_glsl_constants + k;
+    char value[MRGI_GLSL_VALUE_SIZE];
+    if (constant->kind == MRGI_GLSL_INT)
+    {
+      snprintf(value, sizeof(value), "%lld", (long long)constant->value);
+    }
+    else
+    {
+      mrgi_glsl_format_real(constant->value, constant->kind, value);
+    }
+    const int line = snprintf(out + length, MRGI_GLSL_DEFINES_MAX_SIZE - length,
+                              "#define %s %s\n", constant->name, value);
+    if (line > 0)
+    {
+      length += (size_t)line;
+    }
+    if (length >= MRGI_GLSL_DEFINES_MAX_SIZE)
+    {
+      /* Unreachable with the table above (TestGLSLDefines checks the size);
+       * keep whole lines only. */
+      length -= (size_t)line;
+      out[length] = '\0';
+      break;
+    }
+  }
+  return length;
+}
+
+size_t mrgi_glsl_defines_size(void)
+{
+  char block[MRGI_GLSL_DEFINES_MAX_SIZE];
+  return mrgi_glsl_defines_build(block) + 1;
+}
+
+mrgi_status mrgi_glsl_defines(char* buffer, size_t size, size_t* written, mrgi_error* err)
+{
+  if (!buffer)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "GLSL defines buffer is NULL");
+  }
+  char block[MRGI_GLSL_DEFINES_MAX_SIZE];
+  const size_t length = mrgi_glsl_defines_build(block);
+  if (size < length + 1)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "GLSL defines buffer holds %zu bytes but the block needs %zu "
+                          "(mrgi_glsl_defines_size())",
+                          size, length + 1);
+  }
+  memcpy(buffer, block, length + 1);
+  if (written)
+  {
+    *written = length;
+  }
+  return MRGI_OK;
+}

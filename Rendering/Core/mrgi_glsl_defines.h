@@ -1,0 +1,60 @@
+/**
+ * @file mrgi_glsl_defines.h
+ * @brief The core's constants as a block of GLSL `#define` lines, so that
+ *        shaders use the values the C headers define (defined once, never
+ *        typed twice; see DESIGN.md "One source of truth for C and GLSL").
+ *
+ * The block is one line per constant, in this exact form:
+ *
+ *     #define NAME VALUE\n
+ *
+ * NAME is the C macro's name ([A-Z_0-9]+). VALUE is a GLSL int literal
+ * (decimal, e.g. `4096`) for integer constants, or a GLSL float literal for
+ * real ones: the shortest decimal that reads back as the same float (float
+ * constants, e.g. MRGI_RSM_MIN_COS -> `0.05`) or the same double (double
+ * constants, e.g. MRGI_PI -> `3.1415926535897931`), always with a '.' or an
+ * exponent so GLSL types it float. strtod() of VALUE gives back the C value
+ * (after rounding to float for float constants).
+ *
+ * Constants emitted (their meaning is documented where they are defined):
+ * from mrgi_vpl.h MRGI_VPL_TEXELS, MRGI_VPL_TEXEL_POSITION,
+ * MRGI_VPL_TEXEL_NORMAL, MRGI_VPL_TEXEL_FLUX, MRGI_VPL_FLOATS,
+ * MRGI_VPL_MIN_COUNT, MRGI_VPL_MAX_COUNT, MRGI_RSM_MIN_COS,
+ * MRGI_RSM_MAX_VIEWS, MRGI_VALID_THRESHOLD, MRGI_LUMINANCE_R,
+ * MRGI_LUMINANCE_G, MRGI_LUMINANCE_B; from mrgi_gather.h MRGI_PI.
+ *
+ * Insert the block after the shader's `#version` line (a `#define` may not
+ * precede it).
+ */
+#ifndef MRGI_GLSL_DEFINES_H
+#define MRGI_GLSL_DEFINES_H
+
+#include "mrgi_error.h"
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** An upper bound of mrgi_glsl_defines_size(): a buffer this large always suffices. */
+#define MRGI_GLSL_DEFINES_MAX_SIZE 2048
+
+/** @brief Bytes the block needs, terminating NUL included (<= MRGI_GLSL_DEFINES_MAX_SIZE). */
+size_t mrgi_glsl_defines_size(void);
+
+/**
+ * @brief Write the `#define` block (see the file comment), NUL-terminated.
+ * @param buffer  Destination.
+ * @param size    Bytes available in `buffer`; at least mrgi_glsl_defines_size().
+ * @param written Receives the block's length without the NUL; may be NULL.
+ * @return ::MRGI_ERR_INVALID_ARGUMENT for a NULL buffer or one too small
+ *         (the message names the size needed); nothing is written then.
+ */
+mrgi_status mrgi_glsl_defines(char* buffer, size_t size, size_t* written, mrgi_error* err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,198 @@
+/**
+ * @file mrgi_reference.h
+ * @brief Ground truth: a CPU ray tracer (Embree 3) for direct light and one
+ *        diffuse bounce, in exactly the lighting model VTK's renderer uses.
+ *
+ * What every fast path of MRGI approximates, computed on the same
+ * triangles (every mesh of an ::mrgi_scene) with exact visibility.
+ *
+ * Lighting model (VTK's, so that the GPU images and these agree):
+ * - Point-like lights (::mrgi_light) have no distance attenuation. A point with
+ *   unit normal n, lit from unit direction l (towards the light), receives the
+ *   "VTK irradiance" X = intensity * color * max(0, n.l) * spot. Positional
+ *   and spot: l = normalize(position - p); directional: the light travels from
+ *   position to focal_point, l = normalize(position - focal_point) everywhere.
+ *   spot = pow(max(0, cos a), exponent) when a <= cone_angle_deg and 0 outside,
+ *   a being the angle between -l and the axis focal_point - position (VTK's
+ *   vtkOpenGLPolyDataMapper light shader); positional and directional: 1.
+ * - Surfaces are Lambertian and two-sided (VTK's default two-sided lighting):
+ *   at a hit the normal is turned towards the side being looked at, i.e.
+ *   towards the ray's origin. Outgoing radiance L = albedo * X (VTK's
+ *   diffuse term; no 1/pi, as in VTK, so X plays the role of pi * E).
+ * - Normals: X uses the shading normal, the barycentric interpolation of the
+ *   mesh's vertex normals (as VTK's fragment shader), turned to the same side
+ *   as the oriented geometric normal; meshes without normals, or with
+ *   ::mrgi_reference_options::shading_normals off, use the geometric normal.
+ *   Bounce directions and ray offsets always use the geometric normal, so no
+ *   ray leaves below the surface it starts on.
+ * - Emitters (a mesh with any emission channel > 0) show their emission in the
+ *   direct image and reflect nothing (indirect 0). They are not light sources
+ *   of this renderer: area lights are ignored, and a bounce ray reaching an
+ *   emitter gathers 0 (emission is direct light, not the one bounce).
+ *
+ * Images (all width x height, row 0 = TOP, box filter over the jittered
+ * primary rays of all passes; a primary ray that misses contributes 0):
+ * - direct: L_direct = albedo * sum over lights of X, with exact shadows
+ *   (an occlusion ray to each positional/spot light, to infinity against a
+ *   directional light's travel direction) or without (VTK's own direct light
+ *   has none): ::mrgi_reference_options::shadows.
+ * - indirect: albedo_p * X_ind(p), X_ind(p) = (1/pi) * integral over the
+ *   hemisphere of p of L_direct_shadowed(q) cos(theta_p) d omega, q being the
+ *   surface seen from p in direction omega and L(q) = albedo_q * X_q
+ *   evaluated with q's normal turned towards p (light arriving on the other
+ *   side of q does not count). q's lighting is ALWAYS shadowed, whatever
+ *   `shadows` says (a reflective shadow map only holds lit surfaces).
+ *   Estimator: cosine-weighted directions (pdf cos/pi), so X_ind = mean L(q)
+ *   (Pharr, Jakob, Humphreys, "Physically Based Rendering" 3rd ed., 13.6.3).
+ *   With secondary_visibility = 0 (what reflective shadow maps assume,
+ *   Dachsbacher and Stamminger 2005) nothing occludes p -> q: every surface
+ *   the bounce ray crosses contributes its L(q) (each still lit with exact
+ *   light visibility and only on its side facing p).
+ * - albedo: the albedo of the surface seen (RGB).
+ * - indirect_stderr: one channel, the standard error of the pixel's indirect
+ *   (mean of its three channels) estimated from the spread of the per-pass
+ *   estimates; 0 after a single pass (unknown) and for background.
+ * - background: one byte per pixel, 1 when none of the pixel's primary rays
+ *   hit a surface (then direct, indirect and albedo are 0).
+ *
+ * Camera: ::mrgi_camera with vtkCamera semantics: view_angle_deg is the full
+ * VERTICAL field of view, aspect = width / height, the image's right is
+ * (focal_point - position) x view_up. With parallel_projection the rays are
+ * parallel to the view direction and start on the plane through the camera
+ * position; parallel_scale is half the view height in world units
+ * (vtkCamera::SetParallelScale).
+ *
+ * Progressive passes: each pass traces pixel_samples jittered primary rays
+ * per pixel and indirect_samples bounce rays per primary hit. After a pass,
+ * the noise is estimated from the per-pixel, per-pass indirect estimates e_k
+ * (mean of the three channels): for a pixel with n passes, mean m and sample
+ * variance s^2, the variance of its mean is s^2 / n. Over the N non-background
+ * pixels:
+ *   relative_error       = sqrt(sum of s^2/n) / sum of m
+ *                          (relative standard error of the image's mean indirect),
+ *   pixel_relative_error = sqrt(N) * relative_error
+ *                          (RMS per-pixel standard error / mean pixel value).
+ * After a single pass the spread is unknown: both are +infinity (never NaN).
+ * With no indirect light at all (sum of m = 0, or indirect_samples = 0) both
+ * are 0, known exactly. Rendering stops after the first pass whose
+ * relative_error is at or below target_relative_error (so after pass 2 at
+ * the earliest, unless it is 0), or at max_passes, or after the pass that
+ * crosses max_seconds.
+ *
+ * Determinism: every pixel of every pass draws from its own splitmix64 stream
+ * seeded by (seed, pass, pixel), so the images depend on the options only,
+ * not on the number of threads or their scheduling (max_seconds aside).
+ *
+ * Geometry: triangles of every mesh go to one Embree scene, built once per
+ * call. Zero-area triangles are left out and counted
+ * (::mrgi_reference_result::skipped_triangles); they cannot poison pixels.
+ * Triangles with a non-finite corner would be too, but the scene is
+ * validated first and mrgi_scene_validate() already refuses them. Rays start offset along the geometric normal by a
+ * scale-relative epsilon (1e-5 of max(|p|, 1 % of the scene's extent)) to
+ * avoid self-intersection.
+ */
+#ifndef MRGI_REFERENCE_H
+#define MRGI_REFERENCE_H
+
+#include "mrgi_error.h"
+#include "mrgi_image.h"
+#include "mrgi_scene.h"
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Largest accepted image width or height, pixels. */
+#define MRGI_REFERENCE_MAX_DIMENSION 16384
+/** Largest accepted pixel_samples. */
+#define MRGI_REFERENCE_MAX_PIXEL_SAMPLES 4096
+/** Largest accepted indirect_samples. */
+#define MRGI_REFERENCE_MAX_INDIRECT_SAMPLES 65536
+/** Largest accepted max_passes. */
+#define MRGI_REFERENCE_MAX_PASSES 1000000
+/** Largest accepted threads. */
+#define MRGI_REFERENCE_MAX_THREADS 1024
+/**
+ * Most distinct surfaces one bounce ray records when secondary_visibility is
+ * 0. Further crossings are ignored and counted in
+ * ::mrgi_reference_result::hit_list_overflows (a scene needing more is a
+ * pathological stack of surfaces; the count says whether it happened).
+ */
+#define MRGI_REFERENCE_MAX_RAY_HITS 256
+
+/** How to render. Start from mrgi_reference_options_default(). */
+typedef struct mrgi_reference_options
+{
+  int32_t width;                /**< Pixels per row, 1..MRGI_REFERENCE_MAX_DIMENSION. Default 256. */
+  int32_t height;               /**< Rows, 1..MRGI_REFERENCE_MAX_DIMENSION. Default 256. */
+  int32_t pixel_samples;        /**< Jittered primary rays per pixel per pass, 1..MRGI_REFERENCE_MAX_PIXEL_SAMPLES. Default 1. */
+  int32_t indirect_samples;     /**< Bounce rays per primary hit per pass, 0..MRGI_REFERENCE_MAX_INDIRECT_SAMPLES; 0 = no indirect. Default 16. */
+  double target_relative_error; /**< Stop once relative_error <= this (finite, >= 0); 0 = run max_passes. Default 0.01. */
+  int32_t max_passes;           /**< Cap on progressive passes, 1..MRGI_REFERENCE_MAX_PASSES. Default 64. */
+  double max_seconds;           /**< Stop after the pass that crosses this wall time (finite, >= 0); 0 = no limit. Default 0. */
+  int32_t shadows;              /**< 0 or 1: shadows in the direct image (the bounce is always shadowed). Default 1. */
+  int32_t secondary_visibility; /**< 1 = exact p -> q visibility; 0 = every surface crossed counts (RSM). Default 1. */
+  int32_t shading_normals;      /**< 0 or 1: interpolated vertex normals for X (VTK) where a mesh has them. Default 1. */
+  int32_t parallel_projection;  /**< 0 = perspective (view_angle_deg), 1 = parallel (parallel_scale). Default 0. */
+  double parallel_scale;        /**< Half the view height in world units; finite, > 0 when parallel_projection. Default 1. */
+  uint64_t seed;                /**< Any value. Default 1. */
+  int32_t threads;              /**< Worker threads, 0..MRGI_REFERENCE_MAX_THREADS; 0 = online CPUs. Default 0. */
+} mrgi_reference_options;
+
+/** @brief Fill `options` with the defaults listed on each field. NULL is a no-op. */
+void mrgi_reference_options_default(mrgi_reference_options* options);
+
+/**
+ * @brief Check options against the documented ranges.
+ * @return ::MRGI_ERR_INVALID_ARGUMENT naming the first bad field and its value.
+ */
+mrgi_status mrgi_reference_options_validate(const mrgi_reference_options* options,
+                                            mrgi_error* err);
+
+/** What mrgi_reference_render() produces. Release with mrgi_reference_result_destroy(). */
+typedef struct mrgi_reference_result
+{
+  mrgi_image direct;          /**< RGB radiance L_direct (scene light units). */
+  mrgi_image indirect;        /**< RGB radiance albedo_p * X_ind(p). */
+  mrgi_image albedo;          /**< RGB albedo of the surface seen. */
+  mrgi_image indirect_stderr; /**< 1 channel: standard error of the pixel's mean indirect (see the file comment). */
+  uint8_t* background;        /**< width*height bytes, row 0 = top; 1 = no surface in the pixel. */
+  double relative_error;       /**< Achieved relative standard error of the mean indirect (file comment). */
+  double pixel_relative_error; /**< RMS per-pixel relative standard error (file comment). */
+  int64_t rays_traced;        /**< Primary + shadow + bounce rays, all passes. */
+  int64_t skipped_triangles;  /**< Zero-area or non-finite triangles left out of the Embree scene. */
+  int64_t hit_list_overflows; /**< Bounce rays that crossed more than MRGI_REFERENCE_MAX_RAY_HITS surfaces (RSM mode). */
+  int32_t passes;             /**< Passes run. */
+  int32_t threads;            /**< Worker threads used. */
+  double seconds;             /**< Wall time of the whole call (Embree build included). */
+  double build_seconds;       /**< Wall time of building the Embree scene. */
+} mrgi_reference_result;
+
+/**
+ * @brief Render ground-truth direct and one-bounce indirect images of `scene`.
+ *
+ * @param scene   A scene that passes mrgi_scene_validate() and has at least
+ *                one non-degenerate triangle. Its lights are used; its
+ *                area lights are ignored (see the file comment).
+ * @param options Valid options (mrgi_reference_options_validate()).
+ * @param out     Receives the images (treated as uninitialized); zeroed on failure.
+ * @return ::MRGI_ERR_INVALID_ARGUMENT for NULL arguments, bad options or a
+ *         scene without usable triangles; ::MRGI_ERR_FORMAT (prefixed
+ *         "mrgi_reference_render: ") for a scene that fails validation;
+ *         ::MRGI_ERR_OUT_OF_MEMORY; ::MRGI_ERR_UNSUPPORTED when Embree cannot
+ *         be started, cannot build the scene or (secondary_visibility = 0)
+ *         was built without filter functions.
+ */
+mrgi_status mrgi_reference_render(const mrgi_scene* scene, const mrgi_reference_options* options,
+                                  mrgi_reference_result* out, mrgi_error* err);
+
+/** @brief Free everything a result owns and zero it. NULL-safe and idempotent. */
+void mrgi_reference_result_destroy(mrgi_reference_result* result);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,7 @@
+// MRGI G-buffer capture: inserted at the end of VTK's polygonal fragment
+// shader for opaque props while the eye view is rendered (see vtkMRGIPass).
+// gl_FragData[0] keeps VTK's own direct lighting; the G-buffer gets the
+// eye-space position, the (two-sided, viewer-facing) normal and the albedo.
+  gl_FragData[MRGI_GBUFFER_POSITION] = vec4(vertexVC.xyz, MRGI_GBUFFER_VALID);
+  gl_FragData[MRGI_GBUFFER_NORMAL] = vec4(normalize(normalVCVSOutput), MRGI_GBUFFER_VALID);
+  gl_FragData[MRGI_GBUFFER_ALBEDO] = vec4(diffuseColor * mrgiTextureFactor, MRGI_GBUFFER_VALID);

@@ -1,0 +1,43 @@
+// MRGI reflective shadow map capture: inserted at the end of VTK's polygonal
+// fragment shader while a light's view is rendered (see
+// vtkMRGIReflectiveShadowMapPass). vertexVC / normalVCVSOutput are in the
+// light view's eye coordinates: the light sits at the origin looking down -z.
+// Definitions: mrgi_vpl.h and Documentation/IndirectLight.md.
+  {
+    vec3 mrgiP = vertexVC.xyz;
+    vec3 mrgiN = normalize(normalVCVSOutput);
+    float mrgiR = length(mrgiP);
+    // Direction to the light, and the solid angle / cross-section of a texel.
+    vec3 mrgiL;
+    float mrgiTexelFootprint; // area of the texel across the light direction at this point
+    float mrgiAttenuation = 1.0;
+    if (mrgiPerspective != 0)
+    {
+      mrgiL = -mrgiP / max(mrgiR, 1e-30);
+      // Solid angle of a texel of a square frustum: (2 tan(fov/2) / S)^2 cos^3(alpha).
+      float mrgiCosAlpha = clamp(-mrgiP.z / max(mrgiR, 1e-30), 0.0, 1.0);
+      mrgiTexelFootprint = mrgiTexelSize * mrgiTexelSize * mrgiCosAlpha * mrgiCosAlpha * mrgiCosAlpha * mrgiR * mrgiR;
+      // VTK's positional attenuation 1 / (a0 + a1 d + a2 d^2) and spot cone.
+      mrgiAttenuation = 1.0 / max(mrgiAttenuationValues.x + mrgiAttenuationValues.y * mrgiR
+        + mrgiAttenuationValues.z * mrgiR * mrgiR, 1e-30);
+      float mrgiConeDot = dot(-mrgiL, mrgiSpotAxisVC);
+      if (mrgiSpotCosCutoff > -1.5)
+      {
+        mrgiAttenuation *= (mrgiConeDot >= mrgiSpotCosCutoff) ? pow(max(mrgiConeDot, 0.0), mrgiSpotExponent) : 0.0;
+      }
+    }
+    else
+    {
+      mrgiL = vec3(0.0, 0.0, 1.0);
+      mrgiTexelFootprint = mrgiTexelSize * mrgiTexelSize;
+    }
+    // Face the light (two-sided surfaces reflect on the side the light sees).
+    if (dot(mrgiN, mrgiL) < 0.0) { mrgiN = -mrgiN; }
+    float mrgiCosTheta = max(dot(mrgiN, mrgiL), 0.0);
+    float mrgiArea = mrgiTexelFootprint / max(mrgiCosTheta, MRGI_RSM_MIN_COS);
+    vec3 mrgiAlbedo = diffuseColor * mrgiTextureFactor;
+    vec3 mrgiX = mrgiLightColor * (mrgiCosTheta * mrgiAttenuation);
+    gl_FragData[MRGI_RSM_POSITION] = vec4((mrgiLightVCToWC * vec4(mrgiP, 1.0)).xyz, MRGI_GBUFFER_VALID);
+    gl_FragData[MRGI_RSM_NORMAL] = vec4(normalize(mat3(mrgiLightVCToWC) * mrgiN), 0.0);
+    gl_FragData[MRGI_RSM_FLUX] = vec4(mrgiAlbedo * mrgiX * mrgiArea, mrgiArea);
+  }

@@ -1,0 +1,131 @@
+#include "vtkMRGIShaderUtilities.h"
+
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLRenderUtilities.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+#include "vtkShaderProgram.h"
+
+#include "mrgi_buffers.h"
+#include "mrgi_glsl_defines.h"
+
+#include <vector>
+
+#include "vtkNew.h"
+
+namespace vtkMRGIShaderUtilities
+{
+//------------------------------------------------------------------------------
+const std::string& Defines()
+{
+  static const std::string block = []() {
+    std::vector<char> buffer(16384);
+    size_t written = 0;
+    mrgi_error err;
+    if (mrgi_glsl_defines(buffer.data(), buffer.size(), &written, &err) != MRGI_OK)
+    {
+      // The buffer is sized for the core's constants; failing here is a
+      // programming error that every shader test would expose.
+      return std::string("#error MRGI constants block: ") + err.message + "\n";
+    }
+    return std::string(buffer.data(), written);
+  }();
+  return block;
+}
+
+//------------------------------------------------------------------------------
+std::string ResolveAttachments(std::string code)
+{
+  static const struct
+  {
+    const char* name;
+    int value;
+  } attachments[] = { { "MRGI_GBUFFER_DIRECT", MRGI_GBUFFER_DIRECT },
+    { "MRGI_GBUFFER_POSITION", MRGI_GBUFFER_POSITION },
+    { "MRGI_GBUFFER_NORMAL", MRGI_GBUFFER_NORMAL }, { "MRGI_GBUFFER_ALBEDO", MRGI_GBUFFER_ALBEDO },
+    { "MRGI_RSM_POSITION", MRGI_RSM_POSITION }, { "MRGI_RSM_NORMAL", MRGI_RSM_NORMAL },
+    { "MRGI_RSM_FLUX", MRGI_RSM_FLUX } };
+  for (const auto& a : attachments)
+  {
+    vtkShaderProgram::Substitute(code, std::string("gl_FragData[") + a.name + "]",
+      "gl_FragData[" + std::to_string(a.value) + "]", true);
+  }
+  return code;
+}
+
+//------------------------------------------------------------------------------
+std::string FullScreenShader(const char* body)
+{
+  std::string code = "//VTK::System::Dec\n" + Defines() + ResolveAttachments(body);
+  // vtkOpenGLQuadHelper binds texCoordIn, which the vertex shader passes on
+  // as texCoord; passes that address texels by gl_FragCoord must still use
+  // it, or the compiler drops the attribute and the helper reports an error.
+  vtkShaderProgram::Substitute(code, "void main()\n{",
+    "void main()\n{\n  if (texCoord.x < -1.0) { discard; } // never true: keeps texCoord alive", false);
+  return code;
+}
+
+//------------------------------------------------------------------------------
+void AddCaptureMarkers(std::string& fragmentShader)
+{
+  vtkShaderProgram::Substitute(
+    fragmentShader, "//VTK::System::Dec", "//VTK::System::Dec\n//MRGI::Dec\n", false);
+  vtkShaderProgram::Substitute(fragmentShader, "//VTK::DepthPeeling::Impl",
+    "//MRGI::Capture::Impl\n  //VTK::DepthPeeling::Impl", false);
+}
+
+//------------------------------------------------------------------------------
+bool CanCapture(const std::string& fs)
+{
+  return fs.find("//MRGI::Capture::Impl") != std::string::npos &&
+    fs.find("vertexVC") != std::string::npos &&
+    fs.find("normalVCVSOutput") != std::string::npos &&
+    fs.find("vec3 diffuseColor") != std::string::npos;
+}
+
+//------------------------------------------------------------------------------
+void InsertCapture(
+  std::string& fs, const std::string& declarations, const std::string& capture)
+{
+  vtkShaderProgram::Substitute(fs, "//MRGI::Dec", Defines() + declarations, false);
+  std::string impl = "  vec3 mrgiTextureFactor = vec3(1.0);\n";
+  // VTK multiplies its lit colour by the texture colour after lighting, on
+  // front faces (or all faces with showTexturesOnBackface): so is the albedo.
+  if (fs.find("vec4 tcolor =") != std::string::npos &&
+    fs.find("showTexturesOnBackface") != std::string::npos)
+  {
+    impl += "  if (gl_FrontFacing == true || showTexturesOnBackface) { mrgiTextureFactor = "
+            "tcolor.rgb; }\n";
+  }
+  impl += ResolveAttachments(capture);
+  vtkShaderProgram::Substitute(fs, "//MRGI::Capture::Impl", impl, false);
+}
+
+//------------------------------------------------------------------------------
+bool ReadTextureRGBA(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, std::vector<float>& rgba)
+{
+  if (!window || !texture || texture->GetHandle() == 0)
+  {
+    return false;
+  }
+  const int w = static_cast<int>(texture->GetWidth());
+  const int h = static_cast<int>(texture->GetHeight());
+  rgba.assign(static_cast<size_t>(w) * static_cast<size_t>(h) * 4, 0.0f);
+  window->MakeCurrent();
+  vtkOpenGLState* ostate = window->GetState();
+  ostate->PushReadFramebufferBinding();
+  vtkNew<vtkOpenGLFramebufferObject> fbo;
+  fbo->SetContext(window);
+  fbo->Bind(GL_READ_FRAMEBUFFER);
+  fbo->AddColorAttachment(0, texture);
+  fbo->ActivateReadBuffer(0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, rgba.data());
+  fbo->RemoveColorAttachments(1);
+  ostate->PopReadFramebufferBinding();
+  fbo->ReleaseGraphicsResources(window);
+  return glGetError() == GL_NO_ERROR;
+}
+}

@@ -1,0 +1,66 @@
+/**
+ * @file vtkMRGIShaderUtilities.h
+ * @brief Internal helpers shared by MRGI's passes to build GLSL: the
+ *        constants block from the C core, and injection into VTK's
+ *        polygonal shaders. Not wrapped, not installed.
+ */
+#ifndef vtkMRGIShaderUtilities_h
+#define vtkMRGIShaderUtilities_h
+
+#include <string>
+#include <vector>
+
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+
+namespace vtkMRGIShaderUtilities
+{
+/**
+ * The `#define` block of every constant the core defines for GLSL
+ * (mrgi_glsl_defines()), generated once per process.
+ */
+const std::string& Defines();
+
+/**
+ * Replace every `gl_FragData[NAME]` whose NAME is a G-buffer/RSM attachment
+ * macro by its number: VTK's shader cache declares fragment outputs only for
+ * literal `gl_FragData[N]` indices.
+ */
+std::string ResolveAttachments(std::string code);
+
+/**
+ * A complete full-screen-quad fragment shader: VTK's version/precision line,
+ * the constants block, then `body` (which declares its own inputs and main()).
+ */
+std::string FullScreenShader(const char* body);
+
+/**
+ * Prepare a VTK polygonal fragment shader for capture code at its end: adds
+ * the `//MRGI::Dec` marker after the system declarations and the
+ * `//MRGI::Capture::Impl` marker before depth peeling (after texturing).
+ * Call from PreReplaceShaderValues.
+ */
+void AddCaptureMarkers(std::string& fragmentShader);
+
+/**
+ * Whether the shader computes what capture needs (eye-space position, normal
+ * and diffuse colour): false for unlit or normal-less geometry.
+ */
+bool CanCapture(const std::string& fragmentShader);
+
+/**
+ * Fill the markers: `declarations` go after the system declarations (with
+ * the constants block), `capture` at the end of main(), preceded by
+ * `vec3 mrgiTextureFactor`, the colour of VTK's texture where VTK applied one.
+ */
+void InsertCapture(
+  std::string& fragmentShader, const std::string& declarations, const std::string& capture);
+
+/**
+ * Read a colour texture back as RGBA floats (rows bottom-up, as OpenGL
+ * stores them). Returns false when the texture or context is missing.
+ */
+bool ReadTextureRGBA(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, std::vector<float>& rgba);
+}
+
+#endif

@@ -1,0 +1,286 @@
+#include "vtkMRGIVPLSelection.h"
+
+#include "vtkMRGIReflectiveShadowMapPass.h"
+#include "vtkMRGIShaderUtilities.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderUtilities.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+
+#include "vtkMRGIVPLGridFS.h"
+
+#include "mrgi_vpl.h"
+
+#include <map>
+#include <vector>
+
+vtkStandardNewMacro(vtkMRGIVPLSelection);
+
+struct vtkMRGIVPLSelection::Internals
+{
+  vtkTextureObject* Texture = nullptr;
+  vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
+  vtkOpenGLQuadHelper* GridQuad = nullptr;
+  int Count = 0;
+  vtkMTimeType SourceTime = 0;
+  vtkMTimeType SettingsTime = 0;
+};
+
+//------------------------------------------------------------------------------
+vtkMRGIVPLSelection::vtkMRGIVPLSelection()
+  : Internal(new Internals)
+{
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIVPLSelection::~vtkMRGIVPLSelection()
+{
+  if (this->Internal->Texture || this->Internal->FrameBuffer || this->Internal->GridQuad)
+  {
+    vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
+  }
+  if (this->Internal->Texture)
+  {
+    this->Internal->Texture->Delete();
+  }
+  if (this->Internal->FrameBuffer)
+  {
+    this->Internal->FrameBuffer->Delete();
+  }
+  delete this->Internal->GridQuad;
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIVPLSelection::ReleaseGraphicsResources(vtkWindow* w)
+{
+  if (this->Internal->GridQuad)
+  {
+    this->Internal->GridQuad->ReleaseGraphicsResources(w);
+    delete this->Internal->GridQuad;
+    this->Internal->GridQuad = nullptr;
+  }
+  if (this->Internal->FrameBuffer)
+  {
+    this->Internal->FrameBuffer->ReleaseGraphicsResources(w);
+    this->Internal->FrameBuffer->Delete();
+    this->Internal->FrameBuffer = nullptr;
+  }
+  if (this->Internal->Texture)
+  {
+    this->Internal->Texture->ReleaseGraphicsResources(w);
+    this->Internal->Texture->Delete();
+    this->Internal->Texture = nullptr;
+  }
+  this->Internal->Count = 0;
+  this->Internal->SourceTime = 0;
+}
+
+//------------------------------------------------------------------------------
+vtkTextureObject* vtkMRGIVPLSelection::GetVPLTexture() const
+{
+  return this->Internal->Count > 0 ? this->Internal->Texture : nullptr;
+}
+
+int vtkMRGIVPLSelection::GetVPLCount() const
+{
+  return this->Internal->Count;
+}
+
+//------------------------------------------------------------------------------
+int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflectiveShadowMapPass* rsm)
+{
+  if (!window || !rsm)
+  {
+    return 0;
+  }
+  const int views = rsm->GetNumberOfViews();
+  if (views == 0 || this->NumberOfVPLs == 0)
+  {
+    this->Internal->Count = 0;
+    return 0;
+  }
+  if (this->Internal->Texture && rsm->GetContentTime() == this->Internal->SourceTime &&
+    this->GetMTime() == this->Internal->SettingsTime)
+  {
+    return this->Internal->Count; // RSMs and settings unchanged
+  }
+
+  // Views per light, in view order (the RSM pass keeps a light's views together).
+  std::map<int, std::vector<int>> lightViews;
+  std::vector<int> lightOrder;
+  for (int v = 0; v < views; ++v)
+  {
+    const int light = rsm->GetViewLight(v);
+    if (lightViews.find(light) == lightViews.end())
+    {
+      lightOrder.push_back(light);
+    }
+    lightViews[light].push_back(v);
+  }
+  const int size = rsm->GetResolution();
+  const int perLight = std::max(MRGI_VPL_MIN_COUNT, this->NumberOfVPLs / static_cast<int>(lightOrder.size()));
+
+  // Rows each light gets.
+  struct Block
+  {
+    int Light;
+    int FirstRow;
+    int Rows;
+    int GridSide;
+  };
+  std::vector<Block> blocks;
+  int rows = 0;
+  for (int light : lightOrder)
+  {
+    const int lightViewCount = static_cast<int>(lightViews[light].size());
+    int side = 0, count = perLight;
+    if (this->Mode == Grid)
+    {
+      mrgi_error err;
+      if (mrgi_vpl_grid_layout(perLight, lightViewCount, size, &side, &count, &err) != MRGI_OK)
+      {
+        vtkErrorMacro(<< "VPL grid: " << err.message);
+        this->Internal->Count = 0;
+        return 0;
+      }
+    }
+    blocks.push_back({ light, rows, count, side });
+    rows += count;
+  }
+
+  vtkTextureObject*& texture = this->Internal->Texture;
+  if (!texture)
+  {
+    texture = vtkTextureObject::New();
+    texture->SetContext(window);
+    texture->SetFormat(GL_RGBA);
+    texture->SetInternalFormat(GL_RGBA32F);
+    texture->SetDataType(GL_FLOAT);
+    texture->SetMinificationFilter(vtkTextureObject::Nearest);
+    texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+    texture->Allocate2D(MRGI_VPL_TEXELS, rows, 4, VTK_FLOAT);
+  }
+  texture->Resize(MRGI_VPL_TEXELS, rows);
+
+  if (this->Mode == FluxImportance)
+  {
+    // Read the maps back and let the C core sample them; upload the records.
+    std::vector<mrgi_vpl> vpls(static_cast<size_t>(rows));
+    for (const Block& block : blocks)
+    {
+      const std::vector<int>& v = lightViews[block.Light];
+      const size_t texels = static_cast<size_t>(size) * static_cast<size_t>(size) * 4;
+      std::vector<float> position(texels * v.size()), normal(texels * v.size()), flux(texels * v.size());
+      std::vector<float> scratch;
+      for (size_t i = 0; i < v.size(); ++i)
+      {
+        if (!vtkMRGIShaderUtilities::ReadTextureRGBA(window, rsm->GetPositionTexture(v[i]), scratch))
+          return this->Internal->Count = 0;
+        std::copy(scratch.begin(), scratch.end(), position.begin() + static_cast<long>(i * texels));
+        if (!vtkMRGIShaderUtilities::ReadTextureRGBA(window, rsm->GetNormalTexture(v[i]), scratch))
+          return this->Internal->Count = 0;
+        std::copy(scratch.begin(), scratch.end(), normal.begin() + static_cast<long>(i * texels));
+        if (!vtkMRGIShaderUtilities::ReadTextureRGBA(window, rsm->GetFluxTexture(v[i]), scratch))
+          return this->Internal->Count = 0;
+        std::copy(scratch.begin(), scratch.end(), flux.begin() + static_cast<long>(i * texels));
+      }
+      const mrgi_rsm map = { size, static_cast<int32_t>(v.size()), position.data(), normal.data(),
+        flux.data() };
+      mrgi_error err;
+      if (mrgi_vpl_select_importance(&map, block.Rows, this->Seed + static_cast<vtkTypeUInt64>(block.Light),
+            nullptr, 0, vpls.data() + block.FirstRow, block.Rows, nullptr, &err) != MRGI_OK)
+      {
+        vtkErrorMacro(<< "VPL importance sampling: " << err.message);
+        return this->Internal->Count = 0;
+      }
+    }
+    texture->Bind();
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, MRGI_VPL_TEXELS, rows, GL_RGBA, GL_FLOAT,
+      mrgi_vpl_texture_data(vpls.data()));
+    texture->Deactivate();
+  }
+  else
+  {
+    if (!this->Internal->GridQuad)
+    {
+      this->Internal->GridQuad = new vtkOpenGLQuadHelper(window,
+        vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
+        vtkMRGIShaderUtilities::FullScreenShader(vtkMRGIVPLGridFS).c_str(), "");
+    }
+    else
+    {
+      window->GetShaderCache()->ReadyShaderProgram(this->Internal->GridQuad->Program);
+    }
+    vtkShaderProgram* program = this->Internal->GridQuad->Program;
+    if (!program || !program->GetCompiled())
+    {
+      vtkErrorMacro("could not build the VPL selection shader");
+      return this->Internal->Count = 0;
+    }
+    if (!this->Internal->FrameBuffer)
+    {
+      this->Internal->FrameBuffer = vtkOpenGLFramebufferObject::New();
+      this->Internal->FrameBuffer->SetContext(window);
+    }
+    vtkOpenGLState* ostate = window->GetState();
+    vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+    vtkOpenGLState::ScopedglEnableDisable depth(ostate, GL_DEPTH_TEST);
+    vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
+    vtkOpenGLState::ScopedglViewport viewport(ostate);
+    ostate->vtkglDisable(GL_BLEND);
+    ostate->vtkglDisable(GL_DEPTH_TEST);
+    ostate->vtkglDisable(GL_SCISSOR_TEST);
+    vtkOpenGLFramebufferObject* fbo = this->Internal->FrameBuffer;
+    fbo->SaveCurrentBindingsAndBuffers();
+    fbo->Bind();
+    fbo->AddColorAttachment(0, texture);
+    fbo->ActivateDrawBuffers(1);
+    program->SetUniformi("mrgiRSMSize", size);
+    for (const Block& block : blocks)
+    {
+      const std::vector<int>& v = lightViews[block.Light];
+      for (size_t i = 0; i < v.size(); ++i)
+      {
+        const int first = block.FirstRow + static_cast<int>(i) * block.GridSide * block.GridSide;
+        rsm->GetPositionTexture(v[i])->Activate();
+        rsm->GetNormalTexture(v[i])->Activate();
+        rsm->GetFluxTexture(v[i])->Activate();
+        program->SetUniformi("mrgiRSMPosition", rsm->GetPositionTexture(v[i])->GetTextureUnit());
+        program->SetUniformi("mrgiRSMNormal", rsm->GetNormalTexture(v[i])->GetTextureUnit());
+        program->SetUniformi("mrgiRSMFlux", rsm->GetFluxTexture(v[i])->GetTextureUnit());
+        program->SetUniformi("mrgiGridSide", block.GridSide);
+        program->SetUniformi("mrgiFirstVPL", first);
+        ostate->vtkglViewport(0, first, MRGI_VPL_TEXELS, block.GridSide * block.GridSide);
+        this->Internal->GridQuad->Render();
+        rsm->GetFluxTexture(v[i])->Deactivate();
+        rsm->GetNormalTexture(v[i])->Deactivate();
+        rsm->GetPositionTexture(v[i])->Deactivate();
+      }
+    }
+    fbo->RemoveColorAttachments(1);
+    fbo->UnBind();
+    fbo->RestorePreviousBindingsAndBuffers();
+  }
+
+  this->Internal->Count = rows;
+  this->Internal->SourceTime = rsm->GetContentTime();
+  this->Internal->SettingsTime = this->GetMTime();
+  ++this->NumberOfSelections;
+  return rows;
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIVPLSelection::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Mode: " << (this->Mode == Grid ? "Grid" : "FluxImportance") << "\n";
+  os << indent << "NumberOfVPLs: " << this->NumberOfVPLs << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "VPLCount: " << this->Internal->Count << "\n";
+  os << indent << "NumberOfSelections: " << this->NumberOfSelections << "\n";
+}

@@ -1,0 +1,730 @@
+/* Tests of the ground-truth renderer (mrgi_reference) against closed forms:
+ * direct light of directional, tilted and spot lights; exact shadows; one
+ * bounce from a uniformly lit parallel rectangle (Hottel's view factor);
+ * secondary visibility on and off; the Cornell box; determinism, convergence
+ * and bad input. Tolerances of noisy quantities come from the standard
+ * errors the renderer reports. The camera math below is written again from
+ * vtkCamera's definition, independently of the renderer's. */
+#include "mrgi_reference.h"
+#include "mrgi_scene_cornell.h"
+#include "mrgi_test.h"
+
+#include <string.h>
+
+static const double pi = 3.14159265358979323846;
+
+static int message_has(const mrgi_error* err, const char* text)
+{
+  if (!strstr(err->message, text))
+  {
+    fprintf(stderr, "message '%s' lacks '%s'\n", err->message, text);
+    return 0;
+  }
+  return 1;
+}
+
+/* A horizontal square at height y, centred on (cx, cz), half-size `half`,
+ * front side up or down, no vertex normals. */
+static void make_square(mrgi_mesh* mesh, const char* name, double cx, double y, double cz,
+                        double half, int facing_up, float albedo)
+{
+  mrgi_error err;
+  MRGI_CHECK(mrgi_mesh_create(mesh, name, 4, 2, 0, &err) == MRGI_OK);
+  const float x0 = (float)(cx - half), x1 = (float)(cx + half);
+  const float z0 = (float)(cz - half), z1 = (float)(cz + half);
+  const float fy = (float)y;
+  /* (x0,z1) (x1,z1) (x1,z0) (x0,z0): counter-clockwise seen from +y. */
+  const float corners[4][3] = { { x0, fy, z1 }, { x1, fy, z1 }, { x1, fy, z0 }, { x0, fy, z0 } };
+  memcpy(mesh->positions, corners, sizeof(corners));
+  const uint32_t up[6] = { 0, 1, 2, 0, 2, 3 };
+  const uint32_t down[6] = { 0, 2, 1, 0, 3, 2 };
+  memcpy(mesh->indices, facing_up ? up : down, sizeof(up));
+  mesh->albedo[0] = mesh->albedo[1] = mesh->albedo[2] = albedo;
+}
+
+/* Camera at height `height` above the origin looking straight down, image
+ * right = +x, image top = -z (view_up -z). */
+static void camera_down(mrgi_scene* scene, double height, double view_angle_deg)
+{
+  memset(&scene->camera, 0, sizeof(scene->camera));
+  scene->camera.position[1] = height;
+  scene->camera.view_up[2] = -1.0;
+  scene->camera.view_angle_deg = view_angle_deg;
+}
+
+static void directional(mrgi_light* light, double dx, double dy, double dz, double intensity)
+{
+  memset(light, 0, sizeof(*light));
+  light->type = MRGI_LIGHT_DIRECTIONAL;
+  /* travels from position to focal point (the origin) */
+  light->position[0] = -dx;
+  light->position[1] = -dy;
+  light->position[2] = -dz;
+  light->color[0] = light->color[1] = light->color[2] = 1.0;
+  light->intensity = intensity;
+  light->cone_angle_deg = 90.0;
+}
+
+/* Ground (y = 0) point under continuous image coordinates (px, py) of the
+ * straight-down camera: vertical field of view, aspect = width / height. */
+static void ground_point(double px, double py, int32_t width, int32_t height, double half_height,
+                         double* x, double* z)
+{
+  const double sx = 2.0 * px / width - 1.0, sy = 1.0 - 2.0 * py / height;
+  const double aspect = (double)width / height;
+  *x = sx * aspect * half_height;
+  *z = -sy * half_height;
+}
+
+static mrgi_reference_options base_options(int32_t width, int32_t height)
+{
+  mrgi_reference_options o;
+  mrgi_reference_options_default(&o);
+  o.width = width;
+  o.height = height;
+  o.indirect_samples = 0;
+  o.max_passes = 1;
+  o.target_relative_error = 0.0;
+  return o;
+}
+
+static void render(const mrgi_scene* scene, const mrgi_reference_options* o,
+                   mrgi_reference_result* r)
+{
+  mrgi_error err;
+  const mrgi_status s = mrgi_reference_render(scene, o, r, &err);
+  if (s)
+  {
+    fprintf(stderr, "render failed: %s\n", err.message);
+  }
+  MRGI_CHECK(s == MRGI_OK);
+  int64_t bad = -1;
+  MRGI_CHECK(mrgi_image_count_nonfinite(&r->direct, &bad, NULL) == MRGI_OK && bad == 0);
+  MRGI_CHECK(mrgi_image_count_nonfinite(&r->indirect, &bad, NULL) == MRGI_OK && bad == 0);
+  MRGI_CHECK(mrgi_image_count_nonfinite(&r->albedo, &bad, NULL) == MRGI_OK && bad == 0);
+  MRGI_CHECK(mrgi_image_count_nonfinite(&r->indirect_stderr, &bad, NULL) == MRGI_OK && bad == 0);
+  const size_t n = mrgi_image_value_count(&r->direct);
+  for (size_t i = 0; i < n; ++i)
+  {
+    MRGI_CHECK(r->direct.pixels[i] >= 0.0f && r->indirect.pixels[i] >= 0.0f);
+  }
+}
+
+/* ---- 1. direct light ---- */
+
+static void test_direct(void)
+{
+  mrgi_scene scene;
+  MRGI_CHECK(mrgi_scene_create(&scene, 1, NULL) == MRGI_OK);
+  /* front side DOWN, away from camera and light: two-sided lighting lights
+   * the side looked at all the same */
+  make_square(&scene.meshes[0], "floor", 0, 0, 0, 10, 0, 0.5f);
+  camera_down(&scene, 10, 60);
+  scene.light_count = 1;
+  mrgi_reference_result r;
+
+  /* straight down, intensity 2, albedo 0.5: exactly 1 everywhere */
+  directional(&scene.lights[0], 0, -1, 0, 2.0);
+  mrgi_reference_options o = base_options(48, 32);
+  render(&scene, &o, &r);
+  for (int64_t i = 0; i < 48 * 32; ++i)
+  {
+    MRGI_CHECK(r.background[i] == 0);
+    MRGI_CHECK_NEAR(r.direct.pixels[3 * i], 1.0, 1e-6);
+    MRGI_CHECK_NEAR(r.direct.pixels[3 * i + 2], 1.0, 1e-6);
+    MRGI_CHECK_NEAR(r.albedo.pixels[3 * i + 1], 0.5, 1e-7);
+    MRGI_CHECK(r.indirect.pixels[3 * i] == 0.0f);
+  }
+  MRGI_CHECK(r.passes == 1 && r.rays_traced == 2 * 48 * 32 && r.skipped_triangles == 0);
+  mrgi_reference_result_destroy(&r);
+
+  /* 60 degrees off the normal: 0.5 * 2 * cos 60 */
+  directional(&scene.lights[0], sin(pi / 3), -cos(pi / 3), 0, 2.0);
+  render(&scene, &o, &r);
+  for (int64_t i = 0; i < 48 * 32; ++i)
+  {
+    MRGI_CHECK_NEAR(r.direct.pixels[3 * i + 1], 0.5 * 2.0 * cos(pi / 3), 1e-6);
+  }
+  mrgi_reference_result_destroy(&r);
+
+  /* vertex normals (VTK shades with them): tilted 60 degrees from the front
+   * normal (down), seen from above, so flipped: n.l = cos 60 with the light
+   * straight down; the geometric normal gives 1 */
+  {
+    mrgi_mesh* floor_mesh = &scene.meshes[0];
+    mrgi_mesh with_normals;
+    MRGI_CHECK(mrgi_mesh_create(&with_normals, "floor", 4, 2, 1, NULL) == MRGI_OK);
+    memcpy(with_normals.positions, floor_mesh->positions, 12 * sizeof(float));
+    memcpy(with_normals.indices, floor_mesh->indices, 6 * sizeof(uint32_t));
+    for (int v = 0; v < 4; ++v)
+    {
+      with_normals.normals[3 * v + 0] = (float)sin(pi / 3);
+      with_normals.normals[3 * v + 1] = (float)-cos(pi / 3);
+      with_normals.normals[3 * v + 2] = 0.0f;
+    }
+    with_normals.albedo[0] = with_normals.albedo[1] = with_normals.albedo[2] = 0.5f;
+    mrgi_mesh_destroy(floor_mesh);
+    *floor_mesh = with_normals;
+    directional(&scene.lights[0], 0, -1, 0, 2.0);
+    for (int shading = 0; shading < 2; ++shading)
+    {
+      o.shading_normals = shading;
+      render(&scene, &o, &r);
+      for (int64_t i = 0; i < 48 * 32; ++i)
+      {
+        MRGI_CHECK_NEAR(r.direct.pixels[3 * i], shading ? cos(pi / 3) : 1.0, 1e-6);
+      }
+      mrgi_reference_result_destroy(&r);
+    }
+    /* from here on: the flat front normal (down), flipped to the side seen */
+    for (int v = 0; v < 4; ++v)
+    {
+      floor_mesh->normals[3 * v + 0] = 0.0f;
+      floor_mesh->normals[3 * v + 1] = -1.0f;
+    }
+  }
+
+  /* spot light 5 above the floor, cone 30 deg, exponent 2, intensity 2:
+   * X = 2 * (5/d) * (5/d)^2 inside r < 5 tan 30, 0 outside. A 2:1 image
+   * checks that the view angle is the vertical one. */
+  mrgi_light* spot = &scene.lights[0];
+  memset(spot, 0, sizeof(*spot));
+  spot->type = MRGI_LIGHT_SPOT;
+  spot->position[1] = 5.0;
+  spot->color[0] = spot->color[1] = spot->color[2] = 1.0;
+  spot->intensity = 2.0;
+  spot->cone_angle_deg = 30.0;
+  spot->exponent = 2.0;
+  o = base_options(96, 48);
+  o.pixel_samples = 4;
+  render(&scene, &o, &r);
+  const double cone_r = 5.0 * tan(pi / 6), half_h = 10.0 * tan(pi / 6);
+  int inside = 0, outside = 0;
+  for (int32_t y = 0; y < 48; ++y)
+  {
+    for (int32_t x = 0; x < 96; ++x)
+    {
+      double x0, z0, x1, z1;
+      ground_point(x, y, 96, 48, half_h, &x0, &z0);
+      ground_point(x + 1, y + 1, 96, 48, half_h, &x1, &z1);
+      /* nearest and farthest points of the pixel's footprint from the axis */
+      const double nx = (x0 < 0 && x1 > 0) ? 0 : fmin(fabs(x0), fabs(x1));
+      const double nz = (z0 > 0 && z1 < 0) ? 0 : fmin(fabs(z0), fabs(z1));
+      const double fx = fmax(fabs(x0), fabs(x1)), fz = fmax(fabs(z0), fabs(z1));
+      const double r_min = sqrt(nx * nx + nz * nz), r_max = sqrt(fx * fx + fz * fz);
+      const double v = mrgi_image_at(&r.direct, x, y)[0];
+      if (r_max < cone_r)
+      {
+        const double lo = 0.5 * 2.0 * pow(5.0 / sqrt(25.0 + r_max * r_max), 3.0);
+        const double hi = 0.5 * 2.0 * pow(5.0 / sqrt(25.0 + r_min * r_min), 3.0);
+        MRGI_CHECK(v >= lo - 1e-6 && v <= hi + 1e-6);
+        ++inside;
+      }
+      else if (r_min > cone_r)
+      {
+        MRGI_CHECK(v == 0.0);
+        ++outside;
+      }
+    }
+  }
+  MRGI_CHECK(inside > 100 && outside > 1000);
+  mrgi_reference_result_destroy(&r);
+  mrgi_scene_destroy(&scene);
+}
+
+/* ---- 2. shadows ---- */
+
+static void test_shadows(void)
+{
+  mrgi_scene scene;
+  MRGI_CHECK(mrgi_scene_create(&scene, 2, NULL) == MRGI_OK);
+  make_square(&scene.meshes[0], "floor", 0, 0, 0, 10, 1, 0.5f);
+  make_square(&scene.meshes[1], "occluder", 0, 2, 0, 1, 1, 0.5f);
+  camera_down(&scene, 10, 60);
+  scene.light_count = 1;
+  /* travels down and towards -x at 45 degrees: the occluder's shadow is
+   * x in [-3, -1], z in [-1, 1] */
+  directional(&scene.lights[0], -1, -1, 0, 2.0);
+  const double lit = 0.5 * 2.0 * cos(pi / 4);
+  const double half_h = 10.0 * tan(pi / 6);
+  for (int shadows = 0; shadows < 2; ++shadows)
+  {
+    mrgi_reference_options o = base_options(64, 64);
+    o.shadows = shadows;
+    mrgi_reference_result r;
+    render(&scene, &o, &r);
+    int in_shadow = 0, on_floor = 0, on_occluder = 0;
+    for (int32_t y = 0; y < 64; ++y)
+    {
+      for (int32_t x = 0; x < 64; ++x)
+      {
+        double x0, z0, x1, z1;
+        ground_point(x, y, 64, 64, half_h, &x0, &z0);
+        ground_point(x + 1, y + 1, 64, 64, half_h, &x1, &z1);
+        const double lo_x = fmin(x0, x1), hi_x = fmax(x0, x1);
+        const double lo_z = fmin(z0, z1), hi_z = fmax(z0, z1);
+        const double v = mrgi_image_at(&r.direct, x, y)[0];
+        /* the camera sees the occluder where the ground point scaled by 0.8 is inside it */
+        const int hides = 0.8 * hi_x > -1.0 && 0.8 * lo_x < 1.0 && 0.8 * hi_z > -1.0 &&
+                          0.8 * lo_z < 1.0;
+        const int occluder = 0.8 * lo_x > -1.0 && 0.8 * hi_x < 1.0 && 0.8 * lo_z > -1.0 &&
+                             0.8 * hi_z < 1.0;
+        const int shadow = lo_x > -3.0 && hi_x < -1.0 && lo_z > -1.0 && hi_z < 1.0;
+        const int shadow_touch = hi_x > -3.0 && lo_x < -1.0 && hi_z > -1.0 && lo_z < 1.0;
+        if (occluder)
+        {
+          MRGI_CHECK_NEAR(v, lit, 1e-6);
+          ++on_occluder;
+        }
+        else if (hides)
+        {
+          continue;
+        }
+        else if (shadow)
+        {
+          MRGI_CHECK_NEAR(v, shadows ? 0.0 : lit, 1e-6);
+          ++in_shadow;
+        }
+        else if (!shadow_touch)
+        {
+          MRGI_CHECK_NEAR(v, lit, 1e-6);
+          ++on_floor;
+        }
+      }
+    }
+    MRGI_CHECK(in_shadow > 40 && on_floor > 1000 && on_occluder > 50);
+    mrgi_reference_result_destroy(&r);
+  }
+  mrgi_scene_destroy(&scene);
+}
+
+/* ---- 3 and 4. one bounce from a parallel rectangle ---- */
+
+/* View factor from a differential area to a parallel rectangle at distance h
+ * whose corner lies on the element's normal, sides a and b: Hottel's formula,
+ * Howell's catalogue of configuration factors, case B-3 ("plane element to
+ * plane parallel rectangle; normal to element passes through corner"). */
+static double view_factor_corner(double a, double b, double h)
+{
+  const double A = a / h, B = b / h;
+  const double sa = sqrt(1.0 + A * A), sb = sqrt(1.0 + B * B);
+  return (A / sa * atan(B / sa) + B / sb * atan(A / sb)) / (2.0 * pi);
+}
+
+/* ...any parallel rectangle [x0, x1] x [z0, z1] (relative to the element),
+ * by signed sums of corner rectangles. */
+static double view_factor_rect(double x0, double x1, double z0, double z1, double h)
+{
+  const double xs[2] = { x0, x1 }, zs[2] = { z0, z1 };
+  double f = 0.0;
+  for (int i = 0; i < 2; ++i)
+  {
+    for (int j = 0; j < 2; ++j)
+    {
+      const double sign = ((i == j) ? 1.0 : -1.0) * (xs[i] < 0 ? -1.0 : 1.0) *
+                          (zs[j] < 0 ? -1.0 : 1.0);
+      f += sign * view_factor_corner(fabs(xs[i]), fabs(zs[j]), h);
+    }
+  }
+  return f;
+}
+
+/* Floor patch (albedo 0.5, half-size 0.2) under a ceiling square (albedo
+ * 0.8, half-size 1, at height 1). A directional light travels UP at 60
+ * degrees from the vertical towards +x: it lights the ceiling's underside
+ * with X = cos 60 and cannot light the floor's upper side (n.l < 0); the
+ * floor's shadow lands at x > 1.5, beside the ceiling. Optionally a black
+ * occluder (half-size 0.15, height 0.25) whose shadow lands at x > 1.14. */
+static void make_bounce_scene(mrgi_scene* scene, int occluder, int duplicate_ceiling)
+{
+  MRGI_CHECK(mrgi_scene_create(scene, 2 + occluder + duplicate_ceiling, NULL) == MRGI_OK);
+  make_square(&scene->meshes[0], "floor", 0, 0, 0, 0.2, 1, 0.5f);
+  /* front side up, away from the floor: two-sided all the same */
+  make_square(&scene->meshes[1], "ceiling", 0, 1, 0, 1, 1, 0.8f);
+  if (occluder)
+  {
+    make_square(&scene->meshes[2], "occluder", 0, 0.25, 0, 0.15, 1, 0.0f);
+  }
+  if (duplicate_ceiling)
+  {
+    make_square(&scene->meshes[2 + occluder], "ceiling_copy", 0, 1, 0, 1, 0, 0.8f);
+  }
+  scene->light_count = 1;
+  directional(&scene->lights[0], sin(pi / 3), cos(pi / 3), 0, 1.0);
+}
+
+/* Expected indirect at floor point (x, z): a_floor * L_ceiling * F, minus
+ * the ceiling hidden behind the occluder, whose shadow from (x, 0, z) on the
+ * plane y = 1 is the square of half-size 0.6 centred on -3 (x, z). */
+static double expected_indirect(double x, double z, int visible_occluder)
+{
+  const double l_ceiling = 0.8 * cos(pi / 3);
+  double f = view_factor_rect(-1.0 - x, 1.0 - x, -1.0 - z, 1.0 - z, 1.0);
+  if (visible_occluder)
+  {
+    const double cx = -3.0 * x - x, cz = -3.0 * z - z; /* centre relative to the element */
+    f -= view_factor_rect(cx - 0.6, cx + 0.6, cz - 0.6, cz + 0.6, 1.0);
+  }
+  return 0.5 * l_ceiling * f;
+}
+
+/* Mean of (indirect - expected) over the image against its standard error. */
+static void check_bounce(const mrgi_reference_result* r, double half_h, int visible_occluder,
+                         const char* what)
+{
+  const int32_t w = r->indirect.width, h = r->indirect.height;
+  double diff = 0.0, expect = 0.0, var = 0.0;
+  for (int32_t y = 0; y < h; ++y)
+  {
+    for (int32_t x = 0; x < w; ++x)
+    {
+      double gx, gz;
+      ground_point(x + 0.5, y + 0.5, w, h, half_h, &gx, &gz);
+      const double e = expected_indirect(gx, gz, visible_occluder);
+      const float* v = mrgi_image_at(&r->indirect, x, y);
+      const double se = mrgi_image_at(&r->indirect_stderr, x, y)[0];
+      MRGI_CHECK(mrgi_image_at(&r->direct, x, y)[0] == 0.0f);
+      MRGI_CHECK(v[0] == v[1] && v[1] == v[2]);
+      /* per pixel: generous, the stderr is itself estimated from few passes */
+      if (!(fabs(v[0] - e) <= 8.0 * se + 2e-3 * e))
+      {
+        fprintf(stderr, "%s: pixel (%d, %d) indirect %g, expected %g, stderr %g\n", what,
+                (int)x, (int)y, v[0], e, se);
+        MRGI_CHECK(0);
+      }
+      diff += v[0] - e;
+      expect += e;
+      var += se * se;
+    }
+  }
+  const double n = (double)w * h;
+  const double tol = 4.0 * sqrt(var) / n + 1e-3 * expect / n;
+  printf("%s: mean indirect %.6f, expected %.6f, tolerance %.2g, %d passes, rel. error %.2g\n",
+         what, (expect + diff) / n, expect / n, tol, (int)r->passes, r->relative_error);
+  MRGI_CHECK(fabs(diff / n) <= tol);
+}
+
+static void test_bounce(void)
+{
+  mrgi_scene scene;
+  /* 3. no occluder, perspective camera inside the gap, looking down */
+  make_bounce_scene(&scene, 0, 0);
+  camera_down(&scene, 0.5, 30);
+  mrgi_reference_options o = base_options(24, 24);
+  o.indirect_samples = 64;
+  o.max_passes = 40;
+  o.target_relative_error = 1e-3;
+  mrgi_reference_result r;
+  render(&scene, &o, &r);
+  MRGI_CHECK(r.relative_error <= 1e-3 && r.passes >= 2);
+  check_bounce(&r, 0.5 * tan(pi / 12), 0, "bounce");
+  /* the whole-image value is the closed form, so the estimate is unbiased:
+   * guard against a factor (pi, 2, cos) slipping in */
+  const double centre = expected_indirect(0, 0, 0);
+  MRGI_CHECK(centre > 0.10 && centre < 0.12);
+  mrgi_reference_result_destroy(&r);
+
+  /* same with the RSM assumption: nothing in the way, same value */
+  o.secondary_visibility = 0;
+  render(&scene, &o, &r);
+  check_bounce(&r, 0.5 * tan(pi / 12), 0, "bounce, no visibility");
+  mrgi_reference_result_destroy(&r);
+  mrgi_scene_destroy(&scene);
+
+  /* coincident copy of the ceiling (front side down): one surface to both modes */
+  make_bounce_scene(&scene, 0, 1);
+  camera_down(&scene, 0.5, 30);
+  for (int vis = 0; vis < 2; ++vis)
+  {
+    o.secondary_visibility = vis;
+    render(&scene, &o, &r);
+    check_bounce(&r, 0.5 * tan(pi / 12), 0, vis ? "duplicate ceiling" : "duplicate ceiling, RSM");
+    mrgi_reference_result_destroy(&r);
+  }
+  mrgi_scene_destroy(&scene);
+
+  /* 4. black occluder; parallel camera between it and the floor */
+  make_bounce_scene(&scene, 1, 0);
+  camera_down(&scene, 0.2, 30);
+  o = base_options(20, 20);
+  o.parallel_projection = 1;
+  o.parallel_scale = 0.1;
+  o.indirect_samples = 64;
+  o.max_passes = 40;
+  o.target_relative_error = 1e-3;
+  mrgi_reference_result visible, rsm;
+  render(&scene, &o, &visible);
+  check_bounce(&visible, 0.1, 1, "occluded bounce");
+  o.secondary_visibility = 0;
+  render(&scene, &o, &rsm);
+  check_bounce(&rsm, 0.1, 0, "occluded bounce, no visibility");
+  double sum_visible = 0.0, sum_rsm = 0.0;
+  for (int64_t i = 0; i < 20 * 20; ++i)
+  {
+    sum_visible += visible.indirect.pixels[3 * i];
+    sum_rsm += rsm.indirect.pixels[3 * i];
+  }
+  MRGI_CHECK(sum_visible < 0.6 * sum_rsm);
+  mrgi_reference_result_destroy(&visible);
+  mrgi_reference_result_destroy(&rsm);
+  mrgi_scene_destroy(&scene);
+}
+
+/* ---- 5. Cornell box ---- */
+
+/* Mean of channel c over a 3x3 block centred on (x, y). */
+static double block(const mrgi_image* img, int32_t x, int32_t y, int c)
+{
+  double s = 0.0;
+  for (int32_t dy = -1; dy <= 1; ++dy)
+  {
+    for (int32_t dx = -1; dx <= 1; ++dx)
+    {
+      s += mrgi_image_at(img, x + dx, y + dy)[c];
+    }
+  }
+  return s / 9.0;
+}
+
+static void test_cornell(void)
+{
+  mrgi_scene scene;
+  MRGI_CHECK(mrgi_scene_cornell_box(MRGI_CORNELL_SPOT, &scene, NULL) == MRGI_OK);
+  mrgi_reference_options o = base_options(64, 64);
+  o.indirect_samples = 32;
+  o.max_passes = 8; /* 7 degrees of freedom for the standard errors */
+  mrgi_reference_result r;
+  render(&scene, &o, &r);
+  printf("cornell-spot 64x64: %d passes, %.3f s, %lld rays, rel. error %.3g (per pixel %.3g)\n",
+         (int)r.passes, r.seconds, (long long)r.rays_traced, r.relative_error,
+         r.pixel_relative_error);
+  /* Ceiling: near the top of the image (rows at sy = 0.92 meet y = 548.8 at
+   * z ~ 60 mm). The spot, aimed down, cannot light it directly. */
+  const int32_t top = 2;
+  double ceiling = 0.0, ceiling_var = 0.0;
+  for (int32_t x = 24; x < 40; ++x)
+  {
+    MRGI_CHECK(r.background[top * 64 + x] == 0);
+    MRGI_CHECK_NEAR(mrgi_image_at(&r.albedo, x, top)[0], 0.725, 1e-6); /* white ceiling */
+    MRGI_CHECK(mrgi_image_at(&r.direct, x, top)[0] == 0.0f);
+    const double se = mrgi_image_at(&r.indirect_stderr, x, top)[0];
+    ceiling += mrgi_image_at(&r.indirect, x, top)[1];
+    ceiling_var += se * se;
+  }
+  printf("cornell ceiling indirect (green) %.4f +- %.4f\n", ceiling / 16, sqrt(ceiling_var) / 16);
+  MRGI_CHECK(ceiling > 5.0 * sqrt(ceiling_var) && ceiling / 16 > 0.01);
+  /* Floor near the red wall (image left, x ~ 505 mm) and near the green one
+   * (image right, x ~ 51 mm), rows at sy = -0.9 (z ~ 50 mm). */
+  const int32_t row = 60, left = 8, right = 56;
+  MRGI_CHECK_NEAR(block(&r.albedo, left, row, 0), 0.725, 1e-6);
+  MRGI_CHECK_NEAR(block(&r.albedo, right, row, 0), 0.725, 1e-6);
+  const double left_rg = block(&r.indirect, left, row, 0) / block(&r.indirect, left, row, 1);
+  const double right_rg = block(&r.indirect, right, row, 0) / block(&r.indirect, right, row, 1);
+  printf("cornell floor indirect red/green: near red wall %.3f, near green wall %.3f\n", left_rg,
+         right_rg);
+  MRGI_CHECK(left_rg > 1.5 * right_rg);
+  MRGI_CHECK(r.background[0] == 1); /* the view's corner is outside the box */
+  mrgi_reference_result_destroy(&r);
+  mrgi_scene_destroy(&scene);
+}
+
+/* ---- 6. determinism, convergence, bad input ---- */
+
+static void test_determinism_and_convergence(void)
+{
+  mrgi_scene scene;
+  MRGI_CHECK(mrgi_scene_cornell_box(MRGI_CORNELL_SPOT, &scene, NULL) == MRGI_OK);
+  mrgi_reference_options o = base_options(24, 16);
+  o.indirect_samples = 8;
+  o.pixel_samples = 2;
+  o.max_passes = 3;
+  o.threads = 2;
+  mrgi_reference_result a, b, c;
+  render(&scene, &o, &a);
+  render(&scene, &o, &b);
+  o.threads = 1;
+  render(&scene, &o, &c);
+  const size_t bytes = mrgi_image_value_count(&a.indirect) * sizeof(float);
+  MRGI_CHECK(memcmp(a.indirect.pixels, b.indirect.pixels, bytes) == 0);
+  MRGI_CHECK(memcmp(a.direct.pixels, b.direct.pixels, bytes) == 0);
+  MRGI_CHECK(memcmp(a.indirect.pixels, c.indirect.pixels, bytes) == 0);
+  MRGI_CHECK(memcmp(a.direct.pixels, c.direct.pixels, bytes) == 0);
+  MRGI_CHECK(a.relative_error == c.relative_error && a.rays_traced == c.rays_traced);
+  mrgi_reference_result_destroy(&c);
+  o.threads = 2;
+  o.seed = 2;
+  render(&scene, &o, &c);
+  MRGI_CHECK(memcmp(a.indirect.pixels, c.indirect.pixels, bytes) != 0);
+  mrgi_reference_result_destroy(&a);
+  mrgi_reference_result_destroy(&b);
+  mrgi_reference_result_destroy(&c);
+
+  /* one pass: error unknown (infinite, not NaN); then it falls as 1/sqrt(passes) */
+  o.max_passes = 1;
+  render(&scene, &o, &a);
+  MRGI_CHECK(isinf(a.relative_error) && a.passes == 1);
+  mrgi_reference_result_destroy(&a);
+  o.max_passes = 2;
+  render(&scene, &o, &a);
+  o.max_passes = 16;
+  render(&scene, &o, &b);
+  printf("convergence: relative error %.4f after 2 passes, %.4f after 16\n", a.relative_error,
+         b.relative_error);
+  MRGI_CHECK(a.relative_error > 0.0 && isfinite(a.relative_error));
+  MRGI_CHECK(b.relative_error < 0.6 * a.relative_error);
+  MRGI_CHECK(b.passes == 16);
+  /* the target stops early */
+  o.target_relative_error = 1.5 * b.relative_error;
+  o.max_passes = 1000;
+  render(&scene, &o, &c);
+  MRGI_CHECK(c.passes >= 2 && c.passes < 1000 && c.relative_error <= o.target_relative_error);
+  mrgi_reference_result_destroy(&a);
+  mrgi_reference_result_destroy(&b);
+  mrgi_reference_result_destroy(&c);
+  mrgi_scene_destroy(&scene);
+}
+
+static void expect_failure(const mrgi_scene* scene, const mrgi_reference_options* o,
+                           mrgi_status status, const char* text)
+{
+  mrgi_error err;
+  mrgi_reference_result r;
+  memset(&r, 0xAB, sizeof(r));
+  MRGI_CHECK(mrgi_reference_render(scene, o, &r, &err) == status);
+  MRGI_CHECK(err.status == status);
+  MRGI_CHECK(message_has(&err, text));
+  MRGI_CHECK(r.direct.pixels == NULL && r.background == NULL); /* zeroed */
+  mrgi_reference_result_destroy(&r);
+}
+
+static void test_bad_input(void)
+{
+  mrgi_scene scene;
+  MRGI_CHECK(mrgi_scene_create(&scene, 1, NULL) == MRGI_OK);
+  make_square(&scene.meshes[0], "floor", 0, 0, 0, 10, 1, 0.5f);
+  camera_down(&scene, 10, 60);
+  scene.light_count = 1;
+  directional(&scene.lights[0], 0, -1, 0, 2.0);
+  const mrgi_reference_options good = base_options(8, 8);
+  mrgi_reference_options o = good;
+  mrgi_error err;
+
+  MRGI_CHECK(mrgi_reference_render(&scene, &o, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(message_has(&err, "out is NULL"));
+  MRGI_CHECK(mrgi_reference_render(&scene, &o, NULL, NULL) == MRGI_ERR_INVALID_ARGUMENT);
+  expect_failure(NULL, &o, MRGI_ERR_INVALID_ARGUMENT, "scene is NULL");
+  expect_failure(&scene, NULL, MRGI_ERR_INVALID_ARGUMENT, "options is NULL");
+  o.width = 0;
+  expect_failure(&scene, &o, MRGI_ERR_INVALID_ARGUMENT, "width = 0");
+  o = good;
+  o.height = 16385;
+  expect_failure(&scene, &o, MRGI_ERR_INVALID_ARGUMENT, "height = 16385");
+  o = good;
+  o.target_relative_error = NAN;
+  expect_failure(&scene, &o, MRGI_ERR_INVALID_ARGUMENT, "target_relative_error");
+  o = good;
+  o.indirect_samples = -1;
+  expect_failure(&scene, &o, MRGI_ERR_INVALID_ARGUMENT, "indirect_samples = -1");
+  o = good;
+  o.pixel_samples = 0;
+  expect_failure(&scene, &o, MRGI_ERR_INVALID_ARGUMENT, "pixel_samples = 0");
+  o = good;
+  o.max_passes = 0;
+  expect_failure(&scene, &o, MRGI_ERR_INVALID_ARGUMENT, "max_passes = 0");
+  o = good;
+  o.parallel_projection = 1;
+  o.parallel_scale = -1.0;
+  expect_failure(&scene, &o, MRGI_ERR_INVALID_ARGUMENT, "parallel_scale");
+  o = good;
+  o.max_seconds = INFINITY;
+  expect_failure(&scene, &o, MRGI_ERR_INVALID_ARGUMENT, "max_seconds");
+  o = good;
+  o.threads = -3;
+  expect_failure(&scene, &o, MRGI_ERR_INVALID_ARGUMENT, "threads = -3");
+  o = good;
+  o.shadows = 2;
+  expect_failure(&scene, &o, MRGI_ERR_INVALID_ARGUMENT, "shadows = 2");
+  MRGI_CHECK(mrgi_reference_options_validate(&good, NULL) == MRGI_OK);
+
+  /* invalid scene: named by mrgi_scene_validate, prefixed with the caller */
+  scene.camera.view_angle_deg = 0.0;
+  expect_failure(&scene, &good, MRGI_ERR_FORMAT, "mrgi_reference_render: ");
+  camera_down(&scene, 10, 60);
+  scene.meshes[0].albedo[0] = NAN;
+  expect_failure(&scene, &good, MRGI_ERR_FORMAT, "albedo");
+  scene.meshes[0].albedo[0] = 0.5f;
+  /* camera looking along its up vector */
+  scene.camera.view_up[2] = 0.0;
+  scene.camera.view_up[1] = 1.0;
+  {
+    mrgi_reference_result r;
+    const mrgi_status s = mrgi_reference_render(&scene, &good, &r, &err);
+    MRGI_CHECK(s != MRGI_OK);
+    mrgi_reference_result_destroy(&r);
+  }
+  camera_down(&scene, 10, 60);
+
+  /* empty scene, and a scene whose only triangles are degenerate */
+  mrgi_scene empty;
+  memset(&empty, 0, sizeof(empty));
+  empty.camera = scene.camera;
+  expect_failure(&empty, &good, MRGI_ERR_INVALID_ARGUMENT, "no triangles");
+  mrgi_scene flat;
+  MRGI_CHECK(mrgi_scene_create(&flat, 1, NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_mesh_create(&flat.meshes[0], "needle", 3, 1, 0, NULL) == MRGI_OK);
+  flat.meshes[0].positions[3] = 1.0f;
+  flat.meshes[0].positions[6] = 2.0f; /* three collinear points */
+  flat.meshes[0].indices[1] = 1;
+  flat.meshes[0].indices[2] = 2;
+  flat.camera = scene.camera;
+  expect_failure(&flat, &good, MRGI_ERR_INVALID_ARGUMENT, "no usable triangles");
+  mrgi_scene_destroy(&flat);
+
+  /* degenerate triangles among good ones are skipped, counted, harmless */
+  mrgi_mesh* m = &scene.meshes[0];
+  mrgi_mesh grown;
+  MRGI_CHECK(mrgi_mesh_create(&grown, "floor", 4, 4, 0, NULL) == MRGI_OK);
+  memcpy(grown.positions, m->positions, 12 * sizeof(float));
+  memcpy(grown.indices, m->indices, 6 * sizeof(uint32_t));
+  const uint32_t degenerate[6] = { 0, 0, 1, 2, 2, 2 };
+  memcpy(grown.indices + 6, degenerate, sizeof(degenerate));
+  grown.albedo[0] = grown.albedo[1] = grown.albedo[2] = 0.5f;
+  mrgi_mesh_destroy(m);
+  *m = grown;
+  mrgi_reference_result r;
+  render(&scene, &good, &r);
+  MRGI_CHECK(r.skipped_triangles == 2);
+  for (int64_t i = 0; i < 64; ++i)
+  {
+    MRGI_CHECK_NEAR(r.direct.pixels[3 * i], 1.0, 1e-6);
+  }
+  mrgi_reference_result_destroy(&r);
+  mrgi_reference_result_destroy(NULL);
+
+  /* background: a camera looking away from everything */
+  scene.camera.position[1] = -1.0;
+  scene.camera.focal_point[1] = -2.0;
+  o = good;
+  o.indirect_samples = 4;
+  o.max_passes = 2;
+  render(&scene, &o, &r);
+  for (int64_t i = 0; i < 64; ++i)
+  {
+    MRGI_CHECK(r.background[i] == 1 && r.direct.pixels[3 * i] == 0.0f);
+  }
+  MRGI_CHECK(r.relative_error == 0.0);
+  mrgi_reference_result_destroy(&r);
+  mrgi_scene_destroy(&scene);
+}
+
+int main(void)
+{
+  test_direct();
+  test_shadows();
+  test_bounce();
+  test_cornell();
+  test_determinism_and_convergence();
+  test_bad_input();
+  printf("TestReference passed\n");
+  return 0;
+}
