@@ -1,6 +1,9 @@
 // Renders the built-in Cornell box headless (DISPLAY unset by ctest) through
-// vtkMRGIPass and checks the pixels: the red wall is red, the green wall is
-// green, the floor is lit, the image matches its baseline.
+// vtkMRGIPass with one-bounce indirect light and checks the pixels: the red
+// wall is red, the green wall is green, the floor is lit, colour bleeds (red
+// onto the tall block's side facing the red wall, green onto the short
+// block's side facing the green wall, both onto the ceiling), and the image
+// matches its baseline.
 #include "mrgiTestUtilities.h"
 
 #include "vtkMRGIPass.h"
@@ -41,6 +44,25 @@ int main()
   MRGI_TEST_CHECK(left[0] > 40 && left[0] > 3 * left[1] && left[0] > 3 * left[2]);
   MRGI_TEST_CHECK(right[1] > 40 && right[1] > 2 * right[0] && right[1] > 2 * right[2]);
   MRGI_TEST_CHECK(floor[0] > 30 && floor[1] > 30 && floor[2] > 30);
+
+  // Colour bleeding, read from the indirect radiance buffer (HDR, bottom-up).
+  vtkNew<vtkImageData> indirect;
+  MRGI_TEST_CHECK(pass->GetIndirectComputed());
+  MRGI_TEST_CHECK(pass->GetIndirectBuffer(window, indirect));
+  double tallLeft[3], shortRight[3], ceilingLeft[3], ceilingRight[3];
+  mrgitest::MeanColor(indirect, 72, 80, 76, 120, tallLeft);     // tall block, side facing the red wall
+  mrgitest::MeanColor(indirect, 190, 40, 194, 70, shortRight);  // short block, side facing the green wall
+  mrgitest::MeanColor(indirect, 40, 235, 60, 245, ceilingLeft); // ceiling near the red wall
+  mrgitest::MeanColor(indirect, 196, 235, 216, 245, ceilingRight);
+  std::printf("indirect: tall block %.3f %.3f %.3f, short block %.3f %.3f %.3f, ceiling left "
+              "%.3f %.3f %.3f, right %.3f %.3f %.3f\n",
+    tallLeft[0], tallLeft[1], tallLeft[2], shortRight[0], shortRight[1], shortRight[2],
+    ceilingLeft[0], ceilingLeft[1], ceilingLeft[2], ceilingRight[0], ceilingRight[1],
+    ceilingRight[2]);
+  MRGI_TEST_CHECK(tallLeft[0] > 1.5 * tallLeft[1]);
+  MRGI_TEST_CHECK(shortRight[1] > 1.2 * shortRight[0]);
+  MRGI_TEST_CHECK(ceilingLeft[0] > 0.01 && ceilingRight[1] > 0.01);
+  MRGI_TEST_CHECK(ceilingLeft[0] / ceilingLeft[1] > ceilingRight[0] / ceilingRight[1]);
 
   MRGI_TEST_CHECK(mrgitest::CompareWithBaseline(image, "TestHeadlessCornell", 0.02));
 

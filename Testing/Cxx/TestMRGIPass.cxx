@@ -9,6 +9,7 @@
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMRGIPass.h"
+#include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGISceneBuilder.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
@@ -46,35 +47,64 @@ int main()
   window->Render();
   vtkSmartPointer<vtkImageData> plain = mrgitest::GrabRGB(window);
 
-  // 2. Through vtkMRGIPass: the same pixels (non-square window on purpose).
+  // 2. Through vtkMRGIPass with indirect light off: the same pixels
+  // (non-square window on purpose), and nothing but the scene and the copy run.
   vtkNew<vtkRenderStepsPass> steps;
   vtkNew<vtkMRGIPass> pass;
   pass->SetDelegatePass(steps);
   pass->SetStageTimingEnabled(true);
+  pass->SetIndirectMode(vtkMRGIPass::IndirectOff);
   renderer->SetPass(pass);
   window->Render();
   vtkSmartPointer<vtkImageData> withPass = mrgitest::GrabRGB(window);
   const double diff = MaxDifference(plain, withPass);
-  std::printf("max difference plain vs pass: %.1f / 255\n", diff);
+  std::printf("max difference plain vs pass (indirect off): %.1f / 255\n", diff);
   MRGI_TEST_CHECK(diff <= 1.0);
   MRGI_TEST_CHECK(pass->GetBufferSize()[0] == 160 && pass->GetBufferSize()[1] == 120);
+  MRGI_TEST_CHECK(!pass->GetIndirectComputed());
+  MRGI_TEST_CHECK(pass->GetReflectiveShadowMapPass()->GetNumberOfRenders() == 0);
 
   // 3. Stage timings from vtkRenderTimerLog: the first fetch switches the
   // window's timer log on (between frames), the next frame is timed.
   MRGI_TEST_CHECK(pass->FetchStageTimings(window, true) == 0);
   window->Render();
-  const int stages = pass->FetchStageTimings(window, true);
-  std::printf("%d stages\n", stages);
-  MRGI_TEST_CHECK(stages == 2);
+  int stages = pass->FetchStageTimings(window, true);
+  std::printf("%d stages (indirect off)\n", stages);
+  MRGI_TEST_CHECK(stages == 3);
   MRGI_TEST_CHECK(std::string(pass->GetStageName(0)) == "scene");
-  MRGI_TEST_CHECK(std::string(pass->GetStageName(1)) == "composite");
+  MRGI_TEST_CHECK(std::string(pass->GetStageName(1)) == "forward");
+  MRGI_TEST_CHECK(std::string(pass->GetStageName(2)) == "output");
+
+  // With indirect light: every stage runs, and the image gets brighter
+  // (indirect light only adds), strictly so somewhere.
+  pass->SetIndirectMode(vtkMRGIPass::IndirectFull);
+  window->Render();
+  MRGI_TEST_CHECK(pass->GetIndirectComputed());
+  vtkSmartPointer<vtkImageData> withGI = mrgitest::GrabRGB(window);
+  double brighter = 0, darker = 0;
+  for (vtkIdType i = 0; i < withGI->GetPointData()->GetScalars()->GetNumberOfValues(); ++i)
+  {
+    const double d = withGI->GetPointData()->GetScalars()->GetVariantValue(i).ToDouble() -
+      plain->GetPointData()->GetScalars()->GetVariantValue(i).ToDouble();
+    brighter = std::fmax(brighter, d);
+    darker = std::fmax(darker, -d);
+  }
+  std::printf("indirect light: brightest gain %.0f, largest loss %.0f (of 255)\n", brighter, darker);
+  MRGI_TEST_CHECK(brighter > 10 && darker <= 1);
+  stages = pass->FetchStageTimings(window, true);
+  const char* expected[] = { "scene", "rsm", "vpl", "gather", "add", "forward", "output" };
+  MRGI_TEST_CHECK(stages == 7);
+  for (int s = 0; s < stages; ++s)
+  {
+    MRGI_TEST_CHECK(std::string(pass->GetStageName(s)) == expected[s]);
+  }
   for (int s = 0; s < stages; ++s)
   {
     const double ms = pass->GetStageTimeMilliseconds(s);
     std::printf("  %s %.3f ms\n", pass->GetStageName(s), ms);
     MRGI_TEST_CHECK(std::isfinite(ms) && ms >= 0.0 && ms < 60000.0);
   }
-  MRGI_TEST_CHECK(pass->GetStageName(2) == nullptr);
+  MRGI_TEST_CHECK(pass->GetStageName(stages) == nullptr);
   MRGI_TEST_CHECK(pass->GetStageTimeMilliseconds(-1) < 0);
 
   // 4. HDR: a light of intensity 4 saturates the window but not the buffer.

@@ -53,7 +53,7 @@ def main():
     check(png_size(png) == (96, 64), "PNG size")
     with open(exr, "rb") as f:
         check(f.read(4) == b"\x76\x2f\x31\x01", "EXR magic")
-    check("scene" in out and "composite" in out and "total (GPU)" in out, "stage table")
+    check("scene" in out and "gather" in out and "output" in out and "total (GPU)" in out, "stage table")
 
     # Scaling scene and a file scene.
     out_png = fresh("cli_scaling.png")

@@ -40,11 +40,16 @@ def main():
     window.Render()
 
     stages = gi.FetchStageTimings(window, True)
-    check(stages == 2, "two timed stages, got %d" % stages)
+    check(stages == 7, "seven timed stages, got %d" % stages)
     names = [gi.GetStageName(i) for i in range(stages)]
     times = [gi.GetStageTimeMilliseconds(i) for i in range(stages)]
     print("stages:", list(zip(names, times)))
-    check(names == ["scene", "composite"], "stage names")
+    check(names == ["scene", "rsm", "vpl", "gather", "add", "forward", "output"], "stage names")
+    check(gi.GetIndirectComputed(), "indirect light computed")
+    indirect = vtkImageData()
+    check(gi.GetIndirectBuffer(window, indirect), "indirect buffer read back")
+    ind = vtk_to_numpy(indirect.GetPointData().GetScalars()).reshape(150, 200, 3)
+    check(float(ind.max()) > 0.0 and bool((ind >= 0).all()), "indirect light is positive somewhere, never negative")
     check(all(math.isfinite(t) and t >= 0 for t in times), "finite stage times")
 
     hdr = vtkImageData()
