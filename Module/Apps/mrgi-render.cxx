@@ -11,11 +11,15 @@
 #include "vtkMRGIEGLRenderWindow.h"
 #include "vtkMRGIImageIO.h"
 #include "vtkMRGIPass.h"
+#include "vtkMRGIReferenceRenderer.h"
+#include "vtkMRGIVPLSelection.h"
 #include "vtkMRGIRenderWindowFactory.h"
 #include "vtkMRGISceneBuilder.h"
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
 #include "vtkRenderStepsPass.h"
+#include "vtkToneMappingPass.h"
+#include "vtkDataArray.h"
 #include "vtkRenderTimerLog.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
@@ -76,6 +80,25 @@ Scaling scene
   --objects N            number of objects (default 64)
   --seed N               random seed (default 1)
 
+Indirect light (one bounce; Documentation/IndirectLight.md)
+  --gi off|full          full (default): every pixel gathers every VPL; off: VTK's direct light only
+  --vpls N               virtual point lights, 0..4096 (default 256 = 16x16)
+  --vpl-selection grid|importance
+                         regular grid over the light's view (default) or flux importance sampling
+  --rsm-size N           reflective shadow map texels per side, 16..2048 (default 256)
+  --indirect-strength S  factor on the indirect light (default 1)
+  --indirect-only        write only the indirect light (EXR: float RGB)
+  --tone-mapping         filmic tone mapping of the result (vtkToneMappingPass)
+
+Ground truth (CPU, Embree: direct light and one bounce with exact visibility)
+  --reference            render the ground truth instead of the GPU image
+  --reference-visibility on|off
+                         exact visibility between bounce points (default on); off = the RSM assumption
+  --reference-shadows on|off
+                         shadows in the direct part (default on; VTK's direct light has none)
+  --reference-error E    stop at this relative standard error of the indirect part (default 0.01)
+  --reference-passes N   at most N passes of 16 bounce rays per pixel (default 64)
+
 Measurement
   --timings              print the GPU time of each stage (vtkRenderTimerLog)
   --frames N             render N frames; timings are medians (default 1)
@@ -109,7 +132,35 @@ struct Options
   long long Frames = 1;
   bool Interactive = false;
   bool Quiet = false;
+  bool GI = true;
+  long long VPLs = 256;
+  bool ImportanceVPLs = false;
+  long long RSMSize = 256;
+  double IndirectStrength = 1.0;
+  bool IndirectOnly = false;
+  bool ToneMapping = false;
+  bool Reference = false;
+  bool ReferenceVisibility = true;
+  bool ReferenceShadows = true;
+  double ReferenceError = 0.01;
+  long long ReferencePasses = 64;
 };
+
+// Parses "on"/"off" (and "full"/"off" for --gi); false for anything else.
+bool ParseSwitch(const char* text, const char* on, bool& value)
+{
+  if (std::strcmp(text, on) == 0)
+  {
+    value = true;
+    return true;
+  }
+  if (std::strcmp(text, "off") == 0)
+  {
+    value = false;
+    return true;
+  }
+  return false;
+}
 
 int Fail(const std::string& message)
 {
@@ -363,6 +414,68 @@ int ParseArguments(int argc, char* argv[], Options& o)
         : arg == "--seed"    ? o.Seed
                              : o.Frames) = value;
     }
+    else if (arg == "--gi")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      if (!ParseSwitch(v, "full", o.GI))
+        return Fail(std::string("--gi '") + v + "': expected off or full");
+    }
+    else if (arg == "--vpls" || arg == "--rsm-size" || arg == "--reference-passes")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      int64_t value = 0;
+      const int64_t lo = arg == "--vpls" ? 0 : arg == "--rsm-size" ? 16 : 1;
+      const int64_t hi = arg == "--vpls" ? 4096 : arg == "--rsm-size" ? 2048 : 100000;
+      if (mrgi_parse_int64(v, lo, hi, &value, &err) != MRGI_OK)
+      {
+        return Fail(arg + ": " + err.message);
+      }
+      (arg == "--vpls" ? o.VPLs : arg == "--rsm-size" ? o.RSMSize : o.ReferencePasses) = value;
+    }
+    else if (arg == "--vpl-selection")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      if (std::strcmp(v, "grid") == 0)
+        o.ImportanceVPLs = false;
+      else if (std::strcmp(v, "importance") == 0)
+        o.ImportanceVPLs = true;
+      else
+        return Fail(std::string("--vpl-selection '") + v + "': expected grid or importance");
+    }
+    else if (arg == "--indirect-strength" || arg == "--reference-error")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      double value = 0;
+      const double hi = arg == "--indirect-strength" ? 1e6 : 1.0;
+      if (mrgi_parse_double(v, &value, &err) != MRGI_OK || value < 0 || value > hi)
+      {
+        return Fail(arg + " '" + v + "': expected a number in [0, " + (hi > 1 ? "1e6" : "1") + "]");
+      }
+      (arg == "--indirect-strength" ? o.IndirectStrength : o.ReferenceError) = value;
+    }
+    else if (arg == "--reference-visibility" || arg == "--reference-shadows")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      if (!ParseSwitch(v, "on", arg == "--reference-visibility" ? o.ReferenceVisibility : o.ReferenceShadows))
+        return Fail(arg + " '" + v + "': expected on or off");
+    }
+    else if (arg == "--indirect-only")
+    {
+      o.IndirectOnly = true;
+    }
+    else if (arg == "--tone-mapping")
+    {
+      o.ToneMapping = true;
+    }
+    else if (arg == "--reference")
+    {
+      o.Reference = true;
+    }
     else if (arg == "--timings")
     {
       o.Timings = true;
@@ -518,12 +631,30 @@ int main(int argc, char* argv[])
   vtkNew<vtkMRGIPass> mrgi;
   mrgi->SetDelegatePass(steps);
   mrgi->SetStageTimingEnabled(o.Timings);
+  mrgi->SetIndirectMode(o.GI ? vtkMRGIPass::IndirectFull : vtkMRGIPass::IndirectOff);
+  mrgi->SetNumberOfVPLs(static_cast<int>(o.VPLs));
+  mrgi->SetVPLSelectionMode(o.ImportanceVPLs ? vtkMRGIVPLSelection::FluxImportance : vtkMRGIVPLSelection::Grid);
+  mrgi->SetRSMResolution(static_cast<int>(o.RSMSize));
+  mrgi->SetIndirectStrength(o.IndirectStrength);
+  if (o.IndirectOnly && !o.GI && !o.Reference)
+  {
+    return Fail("--indirect-only needs indirect light (--gi full) or --reference");
+  }
   if (o.Timings)
   {
     // Logging must be on before the window opens the first frame.
     window->GetRenderTimer()->SetLoggingEnabled(true);
   }
-  renderer->SetPass(mrgi);
+  vtkNew<vtkToneMappingPass> toneMapping;
+  if (o.ToneMapping)
+  {
+    toneMapping->SetDelegatePass(mrgi);
+    renderer->SetPass(toneMapping);
+  }
+  else
+  {
+    renderer->SetPass(mrgi);
+  }
 
   std::map<std::string, std::vector<double>> stageTimes;
   std::vector<std::string> stageOrder;
@@ -557,13 +688,55 @@ int main(int argc, char* argv[])
     return Fail("nothing was rendered (is the window size valid and an OpenGL context available?)");
   }
 
+  // Ground truth: the CPU reference of the same scene (lights as placed by
+  // the frame just rendered), instead of the GPU image.
+  vtkNew<vtkMRGIReferenceRenderer> reference;
+  vtkNew<vtkImageData> referenceImage;
+  if (o.Reference)
+  {
+    reference->SetWidth(o.Width);
+    reference->SetHeight(o.Height);
+    reference->SetSecondaryVisibility(o.ReferenceVisibility);
+    reference->SetShadows(o.ReferenceShadows);
+    reference->SetTargetRelativeError(o.ReferenceError);
+    reference->SetMaxPasses(static_cast<int>(o.ReferencePasses));
+    Progress(o, "rendering the ground truth (CPU)");
+    if (!reference->Render(renderer))
+    {
+      return Fail(std::string("ground truth: ") + reference->GetLastErrorMessage());
+    }
+    std::snprintf(line, sizeof(line),
+      "ground truth: %d passes, relative error %.4f, %.1f s, %lld triangles", reference->GetPasses(),
+      reference->GetRelativeError(), reference->GetSeconds(),
+      static_cast<long long>(reference->GetTriangleCount()));
+    Progress(o, line);
+    referenceImage->DeepCopy(reference->GetIndirectImage());
+    if (!o.IndirectOnly)
+    {
+      vtkDataArray* sum = referenceImage->GetPointData()->GetScalars();
+      vtkDataArray* direct = reference->GetDirectImage()->GetPointData()->GetScalars();
+      for (vtkIdType i = 0; i < sum->GetNumberOfValues(); ++i)
+      {
+        sum->SetVariantValue(i, sum->GetVariantValue(i).ToDouble() + direct->GetVariantValue(i).ToDouble());
+      }
+    }
+  }
+
   for (const std::string& path : o.Outputs)
   {
     vtkNew<vtkImageData> image;
     vtkNew<vtkMRGIImageIO> io;
     io->SetHalfFloat(o.Half);
     bool ok = false;
-    if (EndsWith(path, ".exr"))
+    if (o.Reference)
+    {
+      ok = io->Write(referenceImage, path.c_str());
+    }
+    else if (o.IndirectOnly)
+    {
+      ok = mrgi->GetIndirectBuffer(window, image) && io->Write(image, path.c_str());
+    }
+    else if (EndsWith(path, ".exr"))
     {
       ok = mrgi->GetColorBuffer(window, image) && io->WriteEXR(image, path.c_str());
     }

@@ -1,0 +1,135 @@
+/**
+ * @class   vtkMRGIReferenceRenderer
+ * @brief   Ground truth for a VTK renderer: direct light and one diffuse
+ *          bounce with exact visibility, computed on the CPU (Embree).
+ *
+ * The renderer's visible opaque actors (vtkPolyDataMapper and
+ * vtkCompositePolyDataMapper2 inputs, triangulated, with their actor
+ * transforms), its lights (as placed for the last frame, so camera lights
+ * and headlights work) and its camera are handed to the C core's Monte Carlo
+ * renderer (mrgi_reference.h), which uses VTK's own light model (no distance
+ * attenuation, spot cones and exponents, two-sided Lambertian surfaces).
+ *
+ * Albedo per actor: the property's diffuse colour times Diffuse; actors
+ * coloured by scalars use the mean mapped colour (the ground truth has one
+ * albedo per mesh). An actor with Ambient > 0 emits Ambient x AmbientColor.
+ * Positional-light attenuation other than VTK's default (1, 0, 0) is ignored.
+ *
+ * Images are float RGB vtkImageData with VTK's bottom-up rows, the size of
+ * the renderer's viewport unless Width/Height are set.
+ */
+#ifndef vtkMRGIReferenceRenderer_h
+#define vtkMRGIReferenceRenderer_h
+
+#include "MRGIRenderingModule.h" // For export macro
+#include "vtkObject.h"
+
+#include <string> // For std::string
+
+class vtkImageData;
+class vtkRenderer;
+struct mrgi_scene;
+
+class MRGIRENDERING_EXPORT vtkMRGIReferenceRenderer : public vtkObject
+{
+public:
+  static vtkMRGIReferenceRenderer* New();
+  vtkTypeMacro(vtkMRGIReferenceRenderer, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** Image size; 0 (default) takes the renderer's viewport size. */
+  vtkSetClampMacro(Width, int, 0, 16384);
+  vtkGetMacro(Width, int);
+  vtkSetClampMacro(Height, int, 0, 16384);
+  vtkGetMacro(Height, int);
+  ///@}
+
+  ///@{
+  /** Bounce rays per pixel per pass (default 16). */
+  vtkSetClampMacro(IndirectSamples, int, 0, 4096);
+  vtkGetMacro(IndirectSamples, int);
+  ///@}
+
+  ///@{
+  /** Stop once the relative standard error of the indirect image is below this (default 0.01). */
+  vtkSetClampMacro(TargetRelativeError, double, 0.0, 1.0);
+  vtkGetMacro(TargetRelativeError, double);
+  ///@}
+
+  ///@{
+  /** Most progressive passes (default 64). */
+  vtkSetClampMacro(MaxPasses, int, 1, 100000);
+  vtkGetMacro(MaxPasses, int);
+  ///@}
+
+  ///@{
+  /** Exact visibility between bounce points (default on); off = the RSM assumption. */
+  vtkSetMacro(SecondaryVisibility, bool);
+  vtkGetMacro(SecondaryVisibility, bool);
+  vtkBooleanMacro(SecondaryVisibility, bool);
+  ///@}
+
+  ///@{
+  /** Shadows in the direct image (default on; VTK's own direct light has none). */
+  vtkSetMacro(Shadows, bool);
+  vtkGetMacro(Shadows, bool);
+  vtkBooleanMacro(Shadows, bool);
+  ///@}
+
+  ///@{
+  /** Random seed (default 1) and worker threads (0 = all CPUs). */
+  vtkSetMacro(Seed, vtkTypeUInt64);
+  vtkGetMacro(Seed, vtkTypeUInt64);
+  vtkSetClampMacro(Threads, int, 0, 1024);
+  vtkGetMacro(Threads, int);
+  ///@}
+
+  /** Render the ground truth of `renderer`; false with GetLastErrorMessage() on error. */
+  bool Render(vtkRenderer* renderer);
+
+  /** Results of the last Render(). */
+  vtkImageData* GetDirectImage() { return this->DirectImage; }
+  vtkImageData* GetIndirectImage() { return this->IndirectImage; }
+  vtkGetMacro(RelativeError, double);
+  vtkGetMacro(Passes, int);
+  vtkGetMacro(Seconds, double);
+  vtkGetMacro(TriangleCount, vtkIdType);
+  const char* GetLastErrorMessage() { return this->LastErrorMessage.c_str(); }
+
+#ifndef __VTK_WRAP__
+  /**
+   * The renderer's scene as the core sees it (meshes, lights, camera).
+   * `out` is created by the call and owned by the caller (mrgi_scene_destroy).
+   */
+  static bool ExportScene(vtkRenderer* renderer, mrgi_scene* out, std::string& why);
+#endif
+
+protected:
+  vtkMRGIReferenceRenderer();
+  ~vtkMRGIReferenceRenderer() override;
+
+  int Width = 0;
+  int Height = 0;
+  int IndirectSamples = 16;
+  double TargetRelativeError = 0.01;
+  int MaxPasses = 64;
+  bool SecondaryVisibility = true;
+  bool Shadows = true;
+  vtkTypeUInt64 Seed = 1;
+  int Threads = 0;
+
+  vtkImageData* DirectImage;
+  vtkImageData* IndirectImage;
+  double RelativeError = 0;
+  int Passes = 0;
+  double Seconds = 0;
+  vtkIdType TriangleCount = 0;
+  std::string LastErrorMessage;
+
+private:
+  vtkMRGIReferenceRenderer(const vtkMRGIReferenceRenderer&) = delete;
+  void operator=(const vtkMRGIReferenceRenderer&) = delete;
+};
+
+#endif
