@@ -55,6 +55,24 @@ def main():
         check(f.read(4) == b"\x76\x2f\x31\x01", "EXR magic")
     check("scene" in out and "gather" in out and "output" in out and "total (GPU)" in out, "stage table")
 
+    # Indirect light options: --gi off gives VTK's direct image, darker than
+    # with GI; --indirect-only writes the indirect buffer; the ground truth runs.
+    on_png, off_png, ind_exr, ref_exr = (fresh("cli_gi_on.png"), fresh("cli_gi_off.png"),
+                                         fresh("cli_indirect.exr"), fresh("cli_reference.exr"))
+    code, _, err = run("cornell-spot", "-o", on_png, "--size", "48x48", "-q", "--vpls", "64",
+                       "--rsm-size", "64", "--vpl-selection", "importance")
+    check(code == 0, "GI render: " + err)
+    code, _, err = run("cornell-spot", "-o", off_png, "--size", "48x48", "-q", "--gi", "off")
+    check(code == 0, "direct-only render: " + err)
+    check(os.path.getsize(on_png) != os.path.getsize(off_png) or
+          open(on_png, "rb").read() != open(off_png, "rb").read(), "--gi off changes the image")
+    code, _, err = run("cornell-spot", "-o", ind_exr, "--size", "48x48", "-q", "--indirect-only")
+    check(code == 0 and os.path.getsize(ind_exr) > 0, "--indirect-only: " + err)
+    code, _, err = run("cornell-spot", "-o", ref_exr, "--size", "32x32", "--reference",
+                       "--reference-passes", "2", "--reference-error", "0")
+    check(code == 0 and os.path.getsize(ref_exr) > 0, "--reference: " + err)
+    check("ground truth:" in err, "--reference reports passes and error")
+
     # Scaling scene and a file scene.
     out_png = fresh("cli_scaling.png")
     code, _, err = run("scaling", "--triangles", "5000", "--objects", "4", "-o", out_png,
@@ -76,6 +94,14 @@ def main():
         (["cornell", "-o", target, "--light-intensity", "nan"], "--light-intensity"),
         (["cornell", "-o", target, "--camera-position", "1,2"], "--camera-position"),
         (["cornell", "-o", target, "--frames", "0"], "--frames"),
+        (["cornell", "-o", target, "--gi", "half"], "--gi"),
+        (["cornell", "-o", target, "--vpls", "5000"], "--vpls"),
+        (["cornell", "-o", target, "--vpls", "-1"], "--vpls"),
+        (["cornell", "-o", target, "--rsm-size", "8"], "--rsm-size"),
+        (["cornell", "-o", target, "--vpl-selection", "random"], "--vpl-selection"),
+        (["cornell", "-o", target, "--indirect-strength", "nan"], "--indirect-strength"),
+        (["cornell", "-o", target, "--gi", "off", "--indirect-only"], "--indirect-only"),
+        (["cornell", "-o", target, "--reference-visibility", "maybe"], "--reference-visibility"),
         (["cornell", "-o", "/nonexistent-dir/out.png", "--size", "8x8"], "nonexistent-dir"),
     ]
     unreadable = os.path.join(TMP, "corrupt.stl")

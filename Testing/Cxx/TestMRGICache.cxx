@@ -1,0 +1,121 @@
+// "Model only what a scene requires": reflective shadow maps and the VPL
+// cache are not re-rendered while lights and geometry are unchanged (a
+// camera move does not touch them), and are when a light or a prop changes;
+// lights that are off or cannot reach anything visible get no map at all.
+#include "mrgiTestUtilities.h"
+
+#include "vtkActor.h"
+#include "vtkActorCollection.h"
+#include "vtkCamera.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMRGIPass.h"
+#include "vtkMRGIReflectiveShadowMapPass.h"
+#include "vtkMRGISceneBuilder.h"
+#include "vtkMRGIVPLSelection.h"
+#include "vtkPlaneSource.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkRenderStepsPass.h"
+#include "vtkRenderer.h"
+
+int main()
+{
+  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(96, 96);
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  vtkNew<vtkMRGISceneBuilder> builder;
+  builder->SetScene("cornell-spot");
+  MRGI_TEST_CHECK(builder->Build(renderer));
+  vtkNew<vtkRenderStepsPass> steps;
+  vtkNew<vtkMRGIPass> pass;
+  pass->SetDelegatePass(steps);
+  renderer->SetPass(pass);
+  vtkMRGIReflectiveShadowMapPass* rsm = pass->GetReflectiveShadowMapPass();
+  vtkMRGIVPLSelection* vpls = pass->GetVPLSelection();
+
+  window->Render();
+  MRGI_TEST_CHECK(rsm->GetNumberOfViews() == 1); // one spot light, one view
+  const vtkIdType renders = rsm->GetNumberOfRenders();
+  const vtkIdType selections = vpls->GetNumberOfSelections();
+  MRGI_TEST_CHECK(renders == 1 && selections == 1);
+
+  // Unchanged scene: nothing re-rendered.
+  window->Render();
+  window->Render();
+  MRGI_TEST_CHECK(rsm->GetNumberOfRenders() == renders);
+  MRGI_TEST_CHECK(vpls->GetNumberOfSelections() == selections);
+
+  // The camera moves: the maps are the light's, not the camera's.
+  renderer->GetActiveCamera()->Azimuth(10);
+  window->Render();
+  MRGI_TEST_CHECK(rsm->GetNumberOfRenders() == renders);
+  MRGI_TEST_CHECK(pass->GetIndirectComputed());
+
+  // A light changes: re-rendered once, then stable again.
+  vtkLight* light = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(0));
+  light->SetIntensity(0.5);
+  window->Render();
+  MRGI_TEST_CHECK(rsm->GetNumberOfRenders() == renders + 1);
+  MRGI_TEST_CHECK(vpls->GetNumberOfSelections() == selections + 1);
+  window->Render();
+  MRGI_TEST_CHECK(rsm->GetNumberOfRenders() == renders + 1);
+
+  // A prop moves: re-rendered.
+  vtkActor* actor = renderer->GetActors()->GetLastActor();
+  actor->SetPosition(5, 0, 0);
+  window->Render();
+  MRGI_TEST_CHECK(rsm->GetNumberOfRenders() == renders + 2);
+
+  // A VPL setting changes: the maps stay, the VPL cache is rebuilt.
+  pass->SetNumberOfVPLs(64);
+  window->Render();
+  MRGI_TEST_CHECK(rsm->GetNumberOfRenders() == renders + 2);
+  MRGI_TEST_CHECK(vpls->GetNumberOfSelections() == selections + 3);
+  MRGI_TEST_CHECK(vpls->GetVPLCount() == 64);
+
+  // The light switched off: no views, no indirect light, same image as off.
+  light->SwitchOff();
+  window->Render();
+  MRGI_TEST_CHECK(rsm->GetNumberOfViews() == 0);
+  MRGI_TEST_CHECK(!pass->GetIndirectComputed());
+  light->SwitchOn();
+
+  // A spot aimed away from everything visible: no views either.
+  {
+    vtkSmartPointer<vtkRenderWindow> w2 = mrgitest::HeadlessWindow(64, 64);
+    vtkNew<vtkRenderer> r2;
+    w2->AddRenderer(r2);
+    vtkNew<vtkPlaneSource> plane;
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputConnection(plane->GetOutputPort());
+    vtkNew<vtkActor> floor;
+    floor->SetMapper(mapper);
+    r2->AddActor(floor);
+    vtkNew<vtkLight> away;
+    away->SetLightTypeToSceneLight();
+    away->SetPositional(true);
+    away->SetConeAngle(20);
+    away->SetPosition(0, 0, 5);
+    away->SetFocalPoint(0, 0, 10); // pointing away from the plane at z = 0
+    r2->AddLight(away);
+    r2->ResetCamera();
+    vtkNew<vtkRenderStepsPass> steps2;
+    vtkNew<vtkMRGIPass> pass2;
+    pass2->SetDelegatePass(steps2);
+    r2->SetPass(pass2);
+    w2->Render();
+    MRGI_TEST_CHECK(pass2->GetReflectiveShadowMapPass()->GetNumberOfViews() == 0);
+    MRGI_TEST_CHECK(!pass2->GetIndirectComputed());
+    // Turned towards the plane, the same light gets its view.
+    away->SetFocalPoint(0, 0, 0);
+    w2->Render();
+    MRGI_TEST_CHECK(pass2->GetReflectiveShadowMapPass()->GetNumberOfViews() == 1);
+    MRGI_TEST_CHECK(pass2->GetIndirectComputed());
+    r2->SetPass(nullptr);
+    pass2->ReleaseGraphicsResources(w2);
+  }
+
+  renderer->SetPass(nullptr);
+  pass->ReleaseGraphicsResources(window);
+  return 0;
+}
