@@ -108,15 +108,21 @@ vtkRenderWindow* vtkMRGIRenderWindowFactory::CreateRenderWindow(int kind, std::s
 }
 
 //------------------------------------------------------------------------------
-vtkRenderWindow* vtkMRGIRenderWindowFactory::CreateHeadlessRenderWindow()
+vtkRenderWindow* vtkMRGIRenderWindowFactory::NewRenderWindow(int kind)
 {
   std::string why;
-  vtkRenderWindow* window = CreateRenderWindow(Headless, &why);
+  vtkRenderWindow* window = CreateRenderWindow(kind, &why);
   if (!window)
   {
-    vtkGenericWarningMacro("no headless render window: " << why);
+    vtkGenericWarningMacro("no " << GetWindowKindName(kind) << " render window: " << why);
   }
   return window;
+}
+
+//------------------------------------------------------------------------------
+vtkRenderWindow* vtkMRGIRenderWindowFactory::CreateHeadlessRenderWindow()
+{
+  return NewRenderWindow(Headless);
 }
 
 //------------------------------------------------------------------------------

@@ -41,7 +41,8 @@ public:
    */
   static vtkRenderWindow* CreateRenderWindow(int kind, std::string* why = nullptr);
 
-  /** Python-friendly form: a headless window, or nullptr. */
+  /** Python-friendly forms: a window of `kind` (or a headless one), or nullptr with a warning. */
+  VTK_NEWINSTANCE static vtkRenderWindow* NewRenderWindow(int kind);
   VTK_NEWINSTANCE static vtkRenderWindow* CreateHeadlessRenderWindow();
 
   /** The name of the window kind CreateRenderWindow(kind) would pick. */
