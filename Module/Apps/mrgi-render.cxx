@@ -794,6 +794,14 @@ int main(int argc, char* argv[])
     interactor->Start();
   }
   renderer->SetPass(nullptr);
-  mrgi->ReleaseGraphicsResources(window);
+  // The outermost pass releases its delegates' resources too.
+  if (o.ToneMapping)
+  {
+    toneMapping->ReleaseGraphicsResources(window);
+  }
+  else
+  {
+    mrgi->ReleaseGraphicsResources(window);
+  }
   return 0;
 }

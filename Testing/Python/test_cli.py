@@ -66,6 +66,10 @@ def main():
     check(code == 0, "direct-only render: " + err)
     check(os.path.getsize(on_png) != os.path.getsize(off_png) or
           open(on_png, "rb").read() != open(off_png, "rb").read(), "--gi off changes the image")
+    tm_png = fresh("cli_tone_mapping.png")
+    code, _, err = run("cornell-spot", "-o", tm_png, "--size", "48x48", "-q", "--tone-mapping")
+    check(code == 0 and os.path.exists(tm_png), "--tone-mapping: " + err)
+    check("ERR" not in err and "error" not in err.lower(), "--tone-mapping leaves no errors: " + err)
     code, _, err = run("cornell-spot", "-o", ind_exr, "--size", "48x48", "-q", "--indirect-only")
     check(code == 0 and os.path.getsize(ind_exr) > 0, "--indirect-only: " + err)
     code, _, err = run("cornell-spot", "-o", ref_exr, "--size", "32x32", "--reference",
