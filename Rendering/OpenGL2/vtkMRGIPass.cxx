@@ -3,6 +3,7 @@
 #include "vtkCamera.h"
 #include "vtkCameraPass.h"
 #include "vtkFloatArray.h"
+#include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIShaderUtilities.h"
@@ -10,11 +11,13 @@
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLError.h"
+#include "vtkOpenGLFXAAFilter.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLPolyDataMapper.h"
 #include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderUtilities.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLRenderer.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
 #include "vtkPointData.h"
@@ -26,6 +29,7 @@
 #include "vtkRenderer.h"
 #include "vtkSequencePass.h"
 #include "vtkShaderProgram.h"
+#include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
 
 #include "vtkMRGIAddIndirectFS.h"
@@ -64,6 +68,41 @@ protected:
   ~vtkMRGIClearGBufferPass() override = default;
 };
 vtkStandardNewMacro(vtkMRGIClearGBufferPass);
+
+// Hardware selection (vtkHardwareSelector, vtkPropPicker, vtkRenderer::PickProp)
+// through a vtkRenderStepsPass: VTK 9.1's opaque/translucent passes draw the
+// props without telling the selector which prop is drawn (only the renderer's
+// own UpdateGeometry does), so every pick misses. This step hands the props
+// to the selector as the renderer would.
+class vtkMRGISelectionPass : public vtkRenderPass
+{
+public:
+  static vtkMRGISelectionPass* New();
+  vtkTypeMacro(vtkMRGISelectionPass, vtkRenderPass);
+  void Render(const vtkRenderState* s) override
+  {
+    vtkRenderer* renderer = s->GetRenderer();
+    this->NumberOfRenderedProps = renderer->GetSelector()->Render(
+      renderer, s->GetPropArray(), s->GetPropArrayCount());
+  }
+
+protected:
+  vtkMRGISelectionPass() = default;
+  ~vtkMRGISelectionPass() override = default;
+};
+vtkStandardNewMacro(vtkMRGISelectionPass);
+
+// Runs `camera` (a vtkRenderStepsPass's camera pass) with `delegate` in place
+// of its usual delegate, then puts the usual one back: the same
+// vtkRenderStepsPass may also be installed on its own (a GI on/off switch),
+// and would otherwise keep drawing MRGI's steps only.
+void RenderCameraWith(vtkCameraPass* camera, vtkRenderPass* delegate, const vtkRenderState* s)
+{
+  vtkSmartPointer<vtkRenderPass> usual = camera->GetDelegatePass();
+  camera->SetDelegatePass(delegate);
+  camera->Render(s);
+  camera->SetDelegatePass(usual);
+}
 }
 
 namespace
@@ -277,7 +316,20 @@ void vtkMRGIPass::PrepareBuffers(vtkOpenGLRenderWindow* renWin, int w, int h, bo
     this->DepthTexture->SetContext(renWin);
     this->DepthTexture->SetMinificationFilter(vtkTextureObject::Nearest);
     this->DepthTexture->SetMagnificationFilter(vtkTextureObject::Nearest);
-    this->DepthTexture->AllocateDepth(w, h, vtkTextureObject::Float32);
+    // The depth format of VTK's own framebuffers, chosen as
+    // vtkOrderIndependentTranslucentPass chooses its depth texture (from the
+    // framebuffer bound now: the window's, or an enclosing pass's): that pass
+    // blits MRGI's depth into its texture, and a blit needs identical depth
+    // formats (a float depth here left translucent props without depth test).
+    if (renWin->GetStencilCapable())
+    {
+      this->DepthTexture->AllocateDepthStencil(w, h);
+    }
+    else
+    {
+      this->DepthTexture->AllocateDepth(w, h,
+        renWin->GetDepthBufferSize() == 32 ? vtkTextureObject::Fixed32 : vtkTextureObject::Fixed24);
+    }
   }
   this->DepthTexture->Resize(w, h);
   if (capture)
@@ -336,8 +388,7 @@ void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
     passes->AddItem(steps->GetLightsPass());
     passes->AddItem(steps->GetOpaquePass());
     this->OpaqueSequence->SetPasses(passes);
-    steps->GetCameraPass()->SetDelegatePass(this->OpaqueSequence);
-    steps->GetCameraPass()->Render(s);
+    RenderCameraWith(steps->GetCameraPass(), this->OpaqueSequence, s);
     this->NumberOfRenderedProps += steps->GetCameraPass()->GetNumberOfRenderedProps();
   }
   else
@@ -382,18 +433,74 @@ void vtkMRGIPass::RenderForward(const vtkRenderState* s)
   vtkOpenGLState::ScopedglScissor scissor(ostate);
   ostate->vtkglViewport(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
   ostate->vtkglScissor(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
-  vtkRenderState forward(s->GetRenderer());
+  vtkRenderer* renderer = s->GetRenderer();
+  vtkOpenGLRenderer* glRenderer = vtkOpenGLRenderer::SafeDownCast(renderer);
+  vtkRenderState forward(renderer);
   forward.SetPropArrayAndCount(s->GetPropArray(), s->GetPropArrayCount());
   forward.SetFrameBuffer(fbo);
-  for (vtkRenderPass* pass :
-    { steps->GetTranslucentPass(), steps->GetVolumetricPass(), steps->GetOverlayPass() })
-  {
+  auto render = [&](vtkRenderPass* pass) {
     if (pass)
     {
       pass->Render(&forward);
       this->NumberOfRenderedProps += pass->GetNumberOfRenderedProps();
     }
+  };
+
+  // Translucent polygonal geometry. The stock vtkTranslucentPass of a
+  // vtkRenderStepsPass blends in draw order and ignores the renderer's depth
+  // peeling settings; without passes, vtkOpenGLRenderer draws translucency
+  // order-independently, or with (dual) depth peeling when asked
+  // (SetUseDepthPeeling, also for volumes). MRGI lets the renderer do exactly
+  // that, so translucent props look as they do without MRGI. A translucent
+  // pass the application set on the vtkRenderStepsPass is used as it is.
+  vtkRenderPass* translucent = steps->GetTranslucentPass();
+  bool volumesPeeled = false;
+  if (translucent && glRenderer && std::strcmp(translucent->GetClassName(), "vtkTranslucentPass") == 0)
+  {
+    // The renderer's own test (vtkOpenGLRenderer::UpdateGeometry).
+    bool translucentGeometry =
+      renderer->GetUseDepthPeeling() && renderer->GetUseDepthPeelingForVolumes();
+    for (int i = 0; !translucentGeometry && i < s->GetPropArrayCount(); ++i)
+    {
+      translucentGeometry = s->GetPropArray()[i]->HasTranslucentPolygonalGeometry() != 0;
+    }
+    if (translucentGeometry)
+    {
+      // No framebuffer argument: "the one bound now" (MRGI's), drawn in the
+      // renderer's viewport, as the renderer does without passes.
+      glRenderer->DeviceRenderTranslucentPolygonalGeometry(nullptr);
+      // Dual depth peeling drew the volumes too (the renderer switches this
+      // off when dual depth peeling is unsupported).
+      volumesPeeled = renderer->GetUseDepthPeeling() && renderer->GetUseDepthPeelingForVolumes();
+    }
   }
+  else
+  {
+    render(translucent);
+  }
+
+  // FXAA (renderer->UseFXAAOn()): VTK 9.1 applies it only when a renderer has
+  // no pass, after translucent geometry and before volumes and overlays
+  // (text is antialiased already). MRGI does the same at the same point, on
+  // its colour buffer (FXAA works on 8-bit colour: values above 1 are clamped
+  // there). The filter's shader stays in the window's shader cache; its
+  // buffers are per frame, since this pass has no slot to keep them.
+  if (glRenderer && renderer->GetUseFXAA())
+  {
+    vtkNew<vtkOpenGLFXAAFilter> fxaa;
+    if (renderer->GetFXAAOptions())
+    {
+      fxaa->UpdateConfiguration(renderer->GetFXAAOptions());
+    }
+    fxaa->Execute(glRenderer);
+    fxaa->ReleaseGraphicsResources();
+  }
+
+  if (!volumesPeeled)
+  {
+    render(steps->GetVolumetricPass());
+  }
+  render(steps->GetOverlayPass());
   fbo->UnBind();
   fbo->RestorePreviousBindingsAndBuffers();
 }
@@ -554,6 +661,34 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   this->Viewport[1] = y;
   this->Viewport[2] = w;
   this->Viewport[3] = h;
+
+  // Hardware selection (picking): only the props' selection colours matter,
+  // drawn where the selector reads them (the current framebuffer); no
+  // G-buffer, no indirect light, which would change the colours.
+  if (renderer->GetSelector())
+  {
+    this->IndirectComputed = false;
+    vtkRenderStepsPass* steps = vtkRenderStepsPass::SafeDownCast(this->DelegatePass);
+    if (steps && steps->GetCameraPass())
+    {
+      vtkNew<vtkRenderPassCollection> passes;
+      vtkNew<vtkMRGISelectionPass> select;
+      if (steps->GetLightsPass())
+      {
+        passes->AddItem(steps->GetLightsPass());
+      }
+      passes->AddItem(select);
+      this->OpaqueSequence->SetPasses(passes);
+      RenderCameraWith(steps->GetCameraPass(), this->OpaqueSequence, s);
+      this->NumberOfRenderedProps += steps->GetCameraPass()->GetNumberOfRenderedProps();
+    }
+    else
+    {
+      this->DelegatePass->Render(s);
+      this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
+    }
+    return;
+  }
 
   // Model only what the frame requires: no capture, no maps, no gather
   // when indirect light is off or cannot contribute.

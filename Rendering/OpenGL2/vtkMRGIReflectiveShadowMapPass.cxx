@@ -244,6 +244,7 @@ void vtkMRGIReflectiveShadowMapPass::Render(const vtkRenderState* s)
   // What the maps depend on: the visible opaque props (and their data, via
   // the redraw time), the lights as placed this frame, the resolution.
   std::vector<vtkProp*> props;
+  std::vector<std::array<double, 6>> propBounds;
   double bounds[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
     VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
   std::ostringstream signature;
@@ -269,6 +270,7 @@ void vtkMRGIReflectiveShadowMapPass::Render(const vtkRenderState* s)
       bounds[2 * k + 1] = std::max(bounds[2 * k + 1], b[2 * k + 1]);
     }
     props.push_back(prop);
+    propBounds.push_back({ { b[0], b[1], b[2], b[3], b[4], b[5] } });
     signature << prop << ':' << prop->GetRedrawMTime() << ';';
   }
 
@@ -452,7 +454,10 @@ void vtkMRGIReflectiveShadowMapPass::Render(const vtkRenderState* s)
     vtkNew<vtkMatrix4x4> worldToClip;
     vtkMatrix4x4::Multiply4x4(
       view->Camera->GetProjectionTransformMatrix(1.0, -1, 1), wcvc, worldToClip);
-    if (BoxMayIntersect(worldToClip, bounds))
+    // Prop by prop: the union of the props' bounds holds empty space that
+    // a cube face of a light among the props would always reach.
+    if (std::any_of(propBounds.begin(), propBounds.end(),
+          [&](const std::array<double, 6>& b) { return BoxMayIntersect(worldToClip, b.data()); }))
     {
       kept.push_back(std::move(view));
     }

@@ -99,6 +99,11 @@ void InsertCapture(
     impl += "  if (gl_FrontFacing == true || showTexturesOnBackface) { mrgiTextureFactor = "
             "tcolor.rgb; }\n";
   }
+  // PBR with a base colour texture: VTK's albedo is albedoSample.rgb * diffuseColor.
+  if (fs.find("vec4 albedoSample =") != std::string::npos)
+  {
+    impl += "  mrgiTextureFactor = albedoSample.rgb;\n";
+  }
   impl += ResolveAttachments(capture);
   vtkShaderProgram::Substitute(fs, "//MRGI::Capture::Impl", impl, false);
 }

@@ -26,6 +26,9 @@ struct vtkMRGIVPLSelection::Internals
   vtkTextureObject* Texture = nullptr;
   vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
   vtkOpenGLQuadHelper* GridQuad = nullptr;
+  vtkOpenGLQuadHelper* RowsQuad = nullptr;
+  vtkTextureObject* RowSums = nullptr; // grid stage 0 outputs, G x S
+  vtkTextureObject* RowBest = nullptr;
   int Count = 0;
   vtkMTimeType SourceTime = 0;
   vtkMTimeType SettingsTime = 0;
@@ -40,7 +43,8 @@ vtkMRGIVPLSelection::vtkMRGIVPLSelection()
 //------------------------------------------------------------------------------
 vtkMRGIVPLSelection::~vtkMRGIVPLSelection()
 {
-  if (this->Internal->Texture || this->Internal->FrameBuffer || this->Internal->GridQuad)
+  if (this->Internal->Texture || this->Internal->FrameBuffer || this->Internal->GridQuad ||
+    this->Internal->RowsQuad || this->Internal->RowSums || this->Internal->RowBest)
   {
     vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
   }
@@ -52,7 +56,15 @@ vtkMRGIVPLSelection::~vtkMRGIVPLSelection()
   {
     this->Internal->FrameBuffer->Delete();
   }
+  for (vtkTextureObject* t : { this->Internal->RowSums, this->Internal->RowBest })
+  {
+    if (t)
+    {
+      t->Delete();
+    }
+  }
   delete this->Internal->GridQuad;
+  delete this->Internal->RowsQuad;
 }
 
 //------------------------------------------------------------------------------
@@ -63,6 +75,21 @@ void vtkMRGIVPLSelection::ReleaseGraphicsResources(vtkWindow* w)
     this->Internal->GridQuad->ReleaseGraphicsResources(w);
     delete this->Internal->GridQuad;
     this->Internal->GridQuad = nullptr;
+  }
+  if (this->Internal->RowsQuad)
+  {
+    this->Internal->RowsQuad->ReleaseGraphicsResources(w);
+    delete this->Internal->RowsQuad;
+    this->Internal->RowsQuad = nullptr;
+  }
+  for (vtkTextureObject** t : { &this->Internal->RowSums, &this->Internal->RowBest })
+  {
+    if (*t)
+    {
+      (*t)->ReleaseGraphicsResources(w);
+      (*t)->Delete();
+      *t = nullptr;
+    }
   }
   if (this->Internal->FrameBuffer)
   {
@@ -206,22 +233,50 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
   }
   else
   {
-    if (!this->Internal->GridQuad)
-    {
-      this->Internal->GridQuad = new vtkOpenGLQuadHelper(window,
-        vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
-        vtkMRGIShaderUtilities::FullScreenShader(vtkMRGIVPLGridFS).c_str(), "");
-    }
-    else
-    {
-      window->GetShaderCache()->ReadyShaderProgram(this->Internal->GridQuad->Program);
-    }
-    vtkShaderProgram* program = this->Internal->GridQuad->Program;
-    if (!program || !program->GetCompiled())
+    // Two stages (vtkMRGIVPLGridFS.glsl): rows of each block column, then blocks.
+    auto ready = [&](vtkOpenGLQuadHelper*& quad, const char* stage) -> vtkShaderProgram* {
+      if (!quad)
+      {
+        const std::string body = std::string("#define MRGI_GRID_STAGE ") + stage + "\n" + vtkMRGIVPLGridFS;
+        quad = new vtkOpenGLQuadHelper(window,
+          vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
+          vtkMRGIShaderUtilities::FullScreenShader(body.c_str()).c_str(), "");
+      }
+      else
+      {
+        window->GetShaderCache()->ReadyShaderProgram(quad->Program);
+      }
+      return (quad->Program && quad->Program->GetCompiled()) ? quad->Program : nullptr;
+    };
+    vtkShaderProgram* rowsProgram = ready(this->Internal->RowsQuad, "0");
+    vtkShaderProgram* program = ready(this->Internal->GridQuad, "1");
+    if (!rowsProgram || !program)
     {
       vtkErrorMacro("could not build the VPL selection shader");
       return this->Internal->Count = 0;
     }
+    int maxSide = 1;
+    for (const Block& block : blocks)
+    {
+      maxSide = std::max(maxSide, block.GridSide);
+    }
+    for (vtkTextureObject** t : { &this->Internal->RowSums, &this->Internal->RowBest })
+    {
+      if (!*t)
+      {
+        *t = vtkTextureObject::New();
+        (*t)->SetContext(window);
+        (*t)->SetFormat(GL_RGBA);
+        (*t)->SetInternalFormat(GL_RGBA32F);
+        (*t)->SetDataType(GL_FLOAT);
+        (*t)->SetMinificationFilter(vtkTextureObject::Nearest);
+        (*t)->SetMagnificationFilter(vtkTextureObject::Nearest);
+        (*t)->Allocate2D(maxSide, size, 4, VTK_FLOAT);
+      }
+      (*t)->Resize(maxSide, size);
+    }
+    vtkTextureObject* rowSums = this->Internal->RowSums;
+    vtkTextureObject* rowBest = this->Internal->RowBest;
     if (!this->Internal->FrameBuffer)
     {
       this->Internal->FrameBuffer = vtkOpenGLFramebufferObject::New();
@@ -238,31 +293,56 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
     vtkOpenGLFramebufferObject* fbo = this->Internal->FrameBuffer;
     fbo->SaveCurrentBindingsAndBuffers();
     fbo->Bind();
-    fbo->AddColorAttachment(0, texture);
-    fbo->ActivateDrawBuffers(1);
-    program->SetUniformi("mrgiRSMSize", size);
     for (const Block& block : blocks)
     {
       const std::vector<int>& v = lightViews[block.Light];
       for (size_t i = 0; i < v.size(); ++i)
       {
         const int first = block.FirstRow + static_cast<int>(i) * block.GridSide * block.GridSide;
-        rsm->GetPositionTexture(v[i])->Activate();
-        rsm->GetNormalTexture(v[i])->Activate();
-        rsm->GetFluxTexture(v[i])->Activate();
-        program->SetUniformi("mrgiRSMPosition", rsm->GetPositionTexture(v[i])->GetTextureUnit());
-        program->SetUniformi("mrgiRSMNormal", rsm->GetNormalTexture(v[i])->GetTextureUnit());
-        program->SetUniformi("mrgiRSMFlux", rsm->GetFluxTexture(v[i])->GetTextureUnit());
+        vtkTextureObject* position = rsm->GetPositionTexture(v[i]);
+        vtkTextureObject* normal = rsm->GetNormalTexture(v[i]);
+        vtkTextureObject* flux = rsm->GetFluxTexture(v[i]);
+        position->Activate();
+        normal->Activate();
+        flux->Activate();
+
+        // Stage 0: one fragment per (block column, RSM row).
+        window->GetShaderCache()->ReadyShaderProgram(rowsProgram);
+        fbo->AddColorAttachment(0, rowSums);
+        fbo->AddColorAttachment(1, rowBest);
+        fbo->ActivateDrawBuffers(2);
+        rowsProgram->SetUniformi("mrgiRSMPosition", position->GetTextureUnit());
+        rowsProgram->SetUniformi("mrgiRSMNormal", normal->GetTextureUnit());
+        rowsProgram->SetUniformi("mrgiRSMFlux", flux->GetTextureUnit());
+        rowsProgram->SetUniformi("mrgiRSMSize", size);
+        rowsProgram->SetUniformi("mrgiGridSide", block.GridSide);
+        ostate->vtkglViewport(0, 0, block.GridSide, size);
+        this->Internal->RowsQuad->Render();
+
+        // Stage 1: one fragment per VPL texel.
+        fbo->RemoveColorAttachments(2);
+        fbo->AddColorAttachment(0, texture);
+        fbo->ActivateDrawBuffers(1);
+        window->GetShaderCache()->ReadyShaderProgram(program);
+        rowSums->Activate();
+        rowBest->Activate();
+        program->SetUniformi("mrgiRSMPosition", position->GetTextureUnit());
+        program->SetUniformi("mrgiRSMNormal", normal->GetTextureUnit());
+        program->SetUniformi("mrgiRowSums", rowSums->GetTextureUnit());
+        program->SetUniformi("mrgiRowBest", rowBest->GetTextureUnit());
+        program->SetUniformi("mrgiRSMSize", size);
         program->SetUniformi("mrgiGridSide", block.GridSide);
         program->SetUniformi("mrgiFirstVPL", first);
         ostate->vtkglViewport(0, first, MRGI_VPL_TEXELS, block.GridSide * block.GridSide);
         this->Internal->GridQuad->Render();
-        rsm->GetFluxTexture(v[i])->Deactivate();
-        rsm->GetNormalTexture(v[i])->Deactivate();
-        rsm->GetPositionTexture(v[i])->Deactivate();
+        rowBest->Deactivate();
+        rowSums->Deactivate();
+        fbo->RemoveColorAttachments(1);
+        flux->Deactivate();
+        normal->Deactivate();
+        position->Deactivate();
       }
     }
-    fbo->RemoveColorAttachments(1);
     fbo->UnBind();
     fbo->RestorePreviousBindingsAndBuffers();
   }

@@ -21,8 +21,19 @@ void main()
     gl_FragData[1] = vec4(0.0);
     return;
   }
+  // Malformed receivers (valid flag set, but a non-finite position or normal,
+  // or a zero normal: NaN/Inf or zero normals in the input data) get E = 0,
+  // as in the C twin; one NaN must not spread through the sums.
+  vec3 normalVC = texelFetch(mrgiNormal, pixel, 0).xyz;
+  if (any(isnan(positionVC.xyz)) || any(isinf(positionVC.xyz)) || any(isnan(normalVC)) ||
+    any(isinf(normalVC)) || dot(normalVC, normalVC) == 0.0)
+  {
+    gl_FragData[0] = vec4(0.0, 0.0, 0.0, 1.0);
+    gl_FragData[1] = vec4(0.0, 0.0, 0.0, 1.0);
+    return;
+  }
   vec3 P = (mrgiVCToWC * vec4(positionVC.xyz, 1.0)).xyz;
-  vec3 N = normalize(mat3(mrgiVCToWC) * texelFetch(mrgiNormal, pixel, 0).xyz);
+  vec3 N = normalize(mat3(mrgiVCToWC) * normalVC);
   vec3 E = vec3(0.0);
   for (int j = 0; j < mrgiVPLCount; ++j)
   {

@@ -37,7 +37,22 @@
     float mrgiArea = mrgiTexelFootprint / max(mrgiCosTheta, MRGI_RSM_MIN_COS);
     vec3 mrgiAlbedo = diffuseColor * mrgiTextureFactor;
     vec3 mrgiX = mrgiLightColor * (mrgiCosTheta * mrgiAttenuation);
-    gl_FragData[MRGI_RSM_POSITION] = vec4((mrgiLightVCToWC * vec4(mrgiP, 1.0)).xyz, MRGI_GBUFFER_VALID);
-    gl_FragData[MRGI_RSM_NORMAL] = vec4(normalize(mat3(mrgiLightVCToWC) * mrgiN), 0.0);
-    gl_FragData[MRGI_RSM_FLUX] = vec4(mrgiAlbedo * mrgiX * mrgiArea, mrgiArea);
+    vec3 mrgiPositionWC = (mrgiLightVCToWC * vec4(mrgiP, 1.0)).xyz;
+    vec3 mrgiNormalWC = normalize(mat3(mrgiLightVCToWC) * mrgiN);
+    vec4 mrgiFlux = vec4(mrgiAlbedo * mrgiX * mrgiArea, mrgiArea);
+    // NaN/Inf coordinates or zero/NaN normals in the input data: the texel
+    // reflects nothing (invalid), so no VPL inherits a non-finite value.
+    if (any(isnan(mrgiPositionWC)) || any(isinf(mrgiPositionWC)) || any(isnan(mrgiNormalWC)) ||
+      any(isinf(mrgiNormalWC)) || any(isnan(mrgiFlux)) || any(isinf(mrgiFlux)))
+    {
+      gl_FragData[MRGI_RSM_POSITION] = vec4(0.0);
+      gl_FragData[MRGI_RSM_NORMAL] = vec4(0.0);
+      gl_FragData[MRGI_RSM_FLUX] = vec4(0.0);
+    }
+    else
+    {
+      gl_FragData[MRGI_RSM_POSITION] = vec4(mrgiPositionWC, MRGI_GBUFFER_VALID);
+      gl_FragData[MRGI_RSM_NORMAL] = vec4(mrgiNormalWC, 0.0);
+      gl_FragData[MRGI_RSM_FLUX] = mrgiFlux;
+    }
   }
