@@ -1,9 +1,14 @@
 #include "vtkMRGIReflectiveShadowMapPass.h"
 
+#include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkMapper.h"
+#include "vtkPolyData.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
@@ -31,6 +36,7 @@
 #include "mrgi_buffers.h"
 
 #include <algorithm>
+#include <map>
 #include <array>
 #include <cmath>
 #include <sstream>
@@ -100,6 +106,8 @@ bool BoxMayIntersect(vtkMatrix4x4* worldToClip, const double bounds[6])
 
 struct vtkMRGIReflectiveShadowMapPass::Internals
 {
+  // Data time of each prop's input when it was last checked for NaN/Inf.
+  std::map<vtkProp*, vtkMTimeType> CheckedInput;
   std::vector<std::unique_ptr<View>> Views;
   vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
   std::string Signature;
@@ -271,6 +279,7 @@ void vtkMRGIReflectiveShadowMapPass::Render(const vtkRenderState* s)
     }
     props.push_back(prop);
     propBounds.push_back({ { b[0], b[1], b[2], b[3], b[4], b[5] } });
+    this->CheckInput(prop);
     signature << prop << ':' << prop->GetRedrawMTime() << ';';
   }
 
@@ -627,6 +636,55 @@ bool vtkMRGIReflectiveShadowMapPass::SetShaderParameters(
   program->SetUniformf("mrgiSpotCosCutoff", static_cast<float>(view->SpotCosCutoff));
   program->SetUniformf("mrgiSpotExponent", static_cast<float>(view->SpotExponent));
   return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIReflectiveShadowMapPass::CheckInput(vtkProp* prop)
+{
+  // NaN/Inf coordinates or normals: the GPU skips what they touch (the
+  // captures write "nothing here"), and the user hears of it once per change
+  // of the data, not once per frame.
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  vtkPolyData* poly = actor && actor->GetMapper()
+    ? vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0))
+    : nullptr;
+  if (!poly)
+  {
+    return;
+  }
+  vtkMTimeType& checked = this->Internal->CheckedInput[prop];
+  if (checked == poly->GetMTime())
+  {
+    return;
+  }
+  checked = poly->GetMTime();
+  auto countNonFinite = [](vtkDataArray* array) {
+    vtkIdType bad = 0;
+    if (array)
+    {
+      const int nc = array->GetNumberOfComponents();
+      for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+      {
+        for (int c = 0; c < nc; ++c)
+        {
+          if (!std::isfinite(array->GetComponent(i, c)))
+          {
+            ++bad;
+            break;
+          }
+        }
+      }
+    }
+    return bad;
+  };
+  const vtkIdType badPoints = poly->GetPoints() ? countNonFinite(poly->GetPoints()->GetData()) : 0;
+  const vtkIdType badNormals = countNonFinite(poly->GetPointData()->GetNormals());
+  if (badPoints > 0 || badNormals > 0)
+  {
+    vtkWarningMacro("an actor's data has " << badPoints << " points with NaN/Inf coordinates and "
+                    << badNormals << " NaN/Inf normals: the surfaces they touch are skipped by "
+                    << "indirect lighting");
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -102,6 +102,9 @@ protected:
   vtkMRGIReflectiveShadowMapPass();
   ~vtkMRGIReflectiveShadowMapPass() override;
 
+  /** Warn once per data change when a prop's points or normals hold NaN/Inf. */
+  void CheckInput(vtkProp* prop);
+
   int Resolution = 256;
   vtkIdType NumberOfRenders = 0;
 

@@ -6,6 +6,9 @@
 
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
+#include "vtkCallbackCommand.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
 #include "vtkCamera.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
@@ -17,6 +20,8 @@
 #include "vtkPolyDataMapper.h"
 #include "vtkRenderStepsPass.h"
 #include "vtkRenderer.h"
+
+#include <cmath>
 
 int main()
 {
@@ -113,6 +118,44 @@ int main()
     MRGI_TEST_CHECK(pass2->GetIndirectComputed());
     r2->SetPass(nullptr);
     pass2->ReleaseGraphicsResources(w2);
+  }
+
+  // NaN coordinates in an actor's data: one warning per change of the data,
+  // not one per frame, and no NaN in the image.
+  {
+    vtkNew<vtkPlaneSource> plane;
+    plane->SetResolution(4, 4);
+    plane->SetOrigin(100, 1, 100);
+    plane->SetPoint1(400, 1, 100);
+    plane->SetPoint2(100, 1, 400);
+    plane->Update();
+    vtkNew<vtkPolyData> poisoned;
+    poisoned->DeepCopy(plane->GetOutput());
+    poisoned->GetPoints()->SetPoint(3, std::nan(""), 0, 0);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(poisoned);
+    vtkNew<vtkActor> bad;
+    bad->SetMapper(mapper);
+    renderer->AddActor(bad);
+    int warnings = 0;
+    vtkNew<vtkCallbackCommand> counter;
+    counter->SetClientData(&warnings);
+    counter->SetCallback([](vtkObject*, unsigned long, void* data, void*) { ++*static_cast<int*>(data); });
+    rsm->AddObserver(vtkCommand::WarningEvent, counter);
+    window->Render();
+    window->Render();
+    MRGI_TEST_CHECK(warnings == 1);
+    poisoned->Modified();
+    window->Render();
+    MRGI_TEST_CHECK(warnings == 2);
+    vtkNew<vtkImageData> color;
+    MRGI_TEST_CHECK(pass->GetColorBuffer(window, color));
+    vtkDataArray* values = color->GetPointData()->GetScalars();
+    for (vtkIdType i = 0; i < values->GetNumberOfValues(); ++i)
+    {
+      MRGI_TEST_CHECK(std::isfinite(values->GetVariantValue(i).ToDouble()));
+    }
+    rsm->RemoveObserver(counter);
   }
 
   renderer->SetPass(nullptr);
