@@ -239,23 +239,8 @@ double CompareWithC(vtkMRGIPass* pass, const Frame& frame, const char* what)
     return 0;
   }
   const double* m = pass->GetLastViewToWorld();
-  vtkNew<vtkMatrix4x4> viewToWorld, worldToView;
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      viewToWorld->SetElement(r, c, m[c * 4 + r]);
-    }
-  }
-  vtkMatrix4x4::Invert(viewToWorld, worldToView);
   float w2r[16];
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      w2r[c * 4 + r] = static_cast<float>(worldToView->GetElement(r, c));
-    }
-  }
+  mrgitest::WorldToViewColumnMajor(m, w2r);
   mrgi_gather_receivers receivers = { frame.Width, frame.Height, Floats(frame.Position),
     Floats(frame.Normal) };
   mrgi_image c{};

@@ -518,23 +518,8 @@ void CheckGather(vtkMRGIParityPass* pass, vtkRenderWindow* window, const std::ve
   MRGI_TEST_CHECK(info.receivers_gathered == static_cast<int64_t>(valid));
 
   // (b) receivers in eye space, VPLs brought over by inverse(view -> world).
-  vtkNew<vtkMatrix4x4> viewToWorld, worldToView;
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      viewToWorld->SetElement(r, c, m[c * 4 + r]);
-    }
-  }
-  vtkMatrix4x4::Invert(viewToWorld, worldToView);
   float w2r[16];
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      w2r[c * 4 + r] = static_cast<float>(worldToView->GetElement(r, c));
-    }
-  }
+  mrgitest::WorldToViewColumnMajor(m, w2r);
   mrgi_gather_receivers eye = { dims[0], dims[1], P, N };
   MRGI_TEST_CHECK(mrgi_gather_full(&eye, vpls.data(), count, w2r, &cEye, &info, &err) == MRGI_OK);
 

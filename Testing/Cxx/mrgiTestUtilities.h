@@ -14,6 +14,7 @@
 #define mrgiTestUtilities_h
 
 #include "vtkImageData.h"
+#include "vtkMatrix4x4.h"
 #include "vtkMRGIImageIO.h"
 #include "vtkMRGIRenderWindowFactory.h"
 #include "vtkNew.h"
@@ -56,6 +57,30 @@ inline vtkSmartPointer<vtkRenderWindow> HeadlessWindow(int width, int height)
   window->SetSize(width, height);
   window->SetMultiSamples(0);
   return window;
+}
+
+/**
+ * The world -> eye matrix the C gather twin takes (column-major floats, as
+ * OpenGL), from vtkMRGIPass::GetLastViewToWorld() (column-major doubles).
+ */
+inline void WorldToViewColumnMajor(const double viewToWorld[16], float worldToView[16])
+{
+  vtkNew<vtkMatrix4x4> forward, inverse;
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      forward->SetElement(r, c, viewToWorld[c * 4 + r]);
+    }
+  }
+  vtkMatrix4x4::Invert(forward, inverse);
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      worldToView[c * 4 + r] = static_cast<float>(inverse->GetElement(r, c));
+    }
+  }
 }
 
 /** Scratch directory for this test's files ($MRGI_TEST_TMP or /tmp). */
