@@ -184,6 +184,28 @@ void Release(vtkOpenGLQuadHelper*& q, vtkWindow* w)
   }
 }
 
+// GL state of a full-screen step over the renderer's viewport: blending
+// and depth test off (steps turn on what they need), viewport and scissor on
+// the renderer's tile; everything restored when the step ends.
+struct ViewportQuadState
+{
+  ViewportQuadState(vtkOpenGLState* ostate, const int viewport[4])
+    : Blend(ostate, GL_BLEND)
+    , DepthTest(ostate, GL_DEPTH_TEST)
+    , Viewport(ostate)
+    , Scissor(ostate)
+  {
+    ostate->vtkglDisable(GL_BLEND);
+    ostate->vtkglDisable(GL_DEPTH_TEST);
+    ostate->vtkglViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    ostate->vtkglScissor(viewport[0], viewport[1], viewport[2], viewport[3]);
+  }
+  vtkOpenGLState::ScopedglEnableDisable Blend;
+  vtkOpenGLState::ScopedglEnableDisable DepthTest;
+  vtkOpenGLState::ScopedglViewport Viewport;
+  vtkOpenGLState::ScopedglScissor Scissor;
+};
+
 // Builds (once) or readies a full-screen program; nullptr when it fails.
 vtkShaderProgram* ReadyQuad(vtkOpenGLQuadHelper*& quad, vtkOpenGLRenderWindow* renWin, const char* body)
 {
@@ -236,6 +258,10 @@ vtkMRGIPass::~vtkMRGIPass()
   delete this->GatherQuad;
   delete this->AddQuad;
   delete this->OutputQuad;
+  if (this->FXAAFilter)
+  {
+    this->FXAAFilter->Delete();
+  }
   this->RSMPass->Delete();
   this->VPLSelection->Delete();
   this->OpaqueSequence->Delete();
@@ -279,6 +305,12 @@ void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
   Release(this->GatherQuad, w);
   Release(this->AddQuad, w);
   Release(this->OutputQuad, w);
+  if (this->FXAAFilter)
+  {
+    this->FXAAFilter->ReleaseGraphicsResources();
+    this->FXAAFilter->Delete();
+    this->FXAAFilter = nullptr;
+  }
   if (this->FrameBuffer)
   {
     this->FrameBuffer->ReleaseGraphicsResources(w);
@@ -483,17 +515,18 @@ void vtkMRGIPass::RenderForward(const vtkRenderState* s)
   // no pass, after translucent geometry and before volumes and overlays
   // (text is antialiased already). MRGI does the same at the same point, on
   // its colour buffer (FXAA works on 8-bit colour: values above 1 are clamped
-  // there). The filter's shader stays in the window's shader cache; its
-  // buffers are per frame, since this pass has no slot to keep them.
+  // there). The filter and its buffers live as long as the pass's resources.
   if (glRenderer && renderer->GetUseFXAA())
   {
-    vtkNew<vtkOpenGLFXAAFilter> fxaa;
+    if (!this->FXAAFilter)
+    {
+      this->FXAAFilter = vtkOpenGLFXAAFilter::New();
+    }
     if (renderer->GetFXAAOptions())
     {
-      fxaa->UpdateConfiguration(renderer->GetFXAAOptions());
+      this->FXAAFilter->UpdateConfiguration(renderer->GetFXAAOptions());
     }
-    fxaa->Execute(glRenderer);
-    fxaa->ReleaseGraphicsResources();
+    this->FXAAFilter->Execute(glRenderer);
   }
 
   if (!volumesPeeled)
@@ -528,16 +561,7 @@ void vtkMRGIPass::RenderGather(vtkOpenGLRenderWindow* renWin, vtkRenderer* rende
   }
   vtkTextureObject* vpls = this->VPLSelection->GetVPLTexture();
   vtkOpenGLFramebufferObject* fbo = this->FrameBuffer;
-  vtkOpenGLState* ostate = renWin->GetState();
-  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable depth(ostate, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglViewport viewport(ostate);
-  vtkOpenGLState::ScopedglScissor scissor(ostate);
-  ostate->vtkglDisable(GL_BLEND);
-  ostate->vtkglDisable(GL_DEPTH_TEST);
-  ostate->vtkglViewport(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
-  ostate->vtkglScissor(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
-
+  ViewportQuadState state(renWin->GetState(), this->Viewport);
   fbo->SaveCurrentBindingsAndBuffers();
   fbo->Bind();
   fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
@@ -576,16 +600,10 @@ void vtkMRGIPass::RenderAddIndirect(vtkOpenGLRenderWindow* renWin)
   }
   vtkOpenGLFramebufferObject* fbo = this->FrameBuffer;
   vtkOpenGLState* ostate = renWin->GetState();
-  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable depth(ostate, GL_DEPTH_TEST);
+  ViewportQuadState state(ostate, this->Viewport);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
-  vtkOpenGLState::ScopedglViewport viewport(ostate);
-  vtkOpenGLState::ScopedglScissor scissor(ostate);
   ostate->vtkglEnable(GL_BLEND);
   ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
-  ostate->vtkglDisable(GL_DEPTH_TEST);
-  ostate->vtkglViewport(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
-  ostate->vtkglScissor(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
   fbo->SaveCurrentBindingsAndBuffers();
   fbo->Bind();
   fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
@@ -609,18 +627,12 @@ void vtkMRGIPass::RenderOutput(vtkOpenGLRenderWindow* renWin)
     return;
   }
   vtkOpenGLState* ostate = renWin->GetState();
-  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  ViewportQuadState state(ostate, this->Viewport);
   vtkOpenGLState::ScopedglDepthFunc depthFunc(ostate);
   vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
-  vtkOpenGLState::ScopedglViewport viewport(ostate);
-  vtkOpenGLState::ScopedglScissor scissor(ostate);
-  ostate->vtkglDisable(GL_BLEND);
-  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglEnable(GL_DEPTH_TEST); // writes the scene's depth (GL_ALWAYS)
   ostate->vtkglDepthFunc(GL_ALWAYS);
   ostate->vtkglDepthMask(GL_TRUE);
-  ostate->vtkglViewport(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
-  ostate->vtkglScissor(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
   this->ColorTexture->Activate();
   this->DepthTexture->Activate();
   program->SetUniformi("mrgiColor", this->ColorTexture->GetTextureUnit());

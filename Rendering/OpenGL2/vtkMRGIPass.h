@@ -51,6 +51,7 @@ class vtkFloatArray;
 class vtkImageData;
 class vtkMRGIReflectiveShadowMapPass;
 class vtkMRGIVPLSelection;
+class vtkOpenGLFXAAFilter;
 class vtkOpenGLFramebufferObject;
 class vtkOpenGLQuadHelper;
 class vtkOpenGLRenderWindow;
@@ -209,6 +210,7 @@ protected:
   vtkOpenGLQuadHelper* GatherQuad = nullptr;
   vtkOpenGLQuadHelper* AddQuad = nullptr;
   vtkOpenGLQuadHelper* OutputQuad = nullptr;
+  vtkOpenGLFXAAFilter* FXAAFilter = nullptr;
 
   std::vector<std::string> StageNames;
   std::vector<double> StageTimes;
