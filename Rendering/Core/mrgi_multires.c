@@ -160,8 +160,7 @@ void mrgi_multires_mipmap_destroy(mrgi_multires_mipmap* mipmap)
   memset(mipmap, 0, sizeof(*mipmap));
 }
 
-/* Whether a layout came from mrgi_multires_layout_init (cheap consistency check). */
-static mrgi_status mrgi_multires_check_layout(const mrgi_multires_layout* layout, mrgi_error* err)
+mrgi_status mrgi_multires_layout_check(const mrgi_multires_layout* layout, mrgi_error* err)
 {
   if (!layout)
   {
@@ -206,7 +205,7 @@ mrgi_status mrgi_multires_mipmap_build(const mrgi_multires_layout* layout,
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "output mipmap is NULL");
   }
   memset(out, 0, sizeof(*out));
-  mrgi_status status = mrgi_multires_check_layout(layout, err);
+  mrgi_status status = mrgi_multires_layout_check(layout, err);
   if (status != MRGI_OK)
   {
     return status;
@@ -517,7 +516,7 @@ mrgi_status mrgi_multires_flags_compute(const mrgi_multires_mipmap* mipmap,
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "mipmap is NULL");
   }
   const mrgi_multires_layout* layout = &mipmap->layout;
-  mrgi_status status = mrgi_multires_check_layout(layout, err);
+  mrgi_status status = mrgi_multires_layout_check(layout, err);
   if (status != MRGI_OK)
   {
     return status;
@@ -609,7 +608,7 @@ static mrgi_status mrgi_multires_check_select(const mrgi_multires_layout* layout
                                               int32_t finest_level, uint8_t* mask,
                                               size_t mask_size, mrgi_error* err)
 {
-  mrgi_status status = mrgi_multires_check_layout(layout, err);
+  mrgi_status status = mrgi_multires_layout_check(layout, err);
   if (status == MRGI_OK)
   {
     status = mrgi_multires_check_buffer(layout, flags, flags_size, "flags", err);
@@ -759,7 +758,7 @@ mrgi_status mrgi_multires_stats_compute(const mrgi_multires_layout* layout, cons
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "statistics pointer is NULL");
   }
   memset(stats, 0, sizeof(*stats));
-  mrgi_status status = mrgi_multires_check_layout(layout, err);
+  mrgi_status status = mrgi_multires_layout_check(layout, err);
   if (status == MRGI_OK)
   {
     status = mrgi_multires_check_buffer(layout, flags, flags_size, "flags", err);

@@ -221,6 +221,14 @@ typedef struct mrgi_multires_layout
 mrgi_status mrgi_multires_layout_init(mrgi_multires_layout* layout, int32_t width,
                                       int32_t height, int32_t coarsest_side, mrgi_error* err);
 
+/**
+ * @brief Check that `layout` is what mrgi_multires_layout_init() makes for its
+ *        own width, height and coarsest side (a cheap consistency check every
+ *        function taking a layout runs).
+ * @return ::MRGI_ERR_INVALID_ARGUMENT for NULL or a modified layout.
+ */
+mrgi_status mrgi_multires_layout_check(const mrgi_multires_layout* layout, mrgi_error* err);
+
 /** @brief total_width * total_height: texels (bytes of a mask, RGBA texels of a texture). */
 int64_t mrgi_multires_texel_count(const mrgi_multires_layout* layout);
 

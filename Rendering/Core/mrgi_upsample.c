@@ -20,18 +20,10 @@ static mrgi_status mrgi_upsample_check(const mrgi_multires_layout* layout, const
                                        int32_t channels, const mrgi_upsample_params* params,
                                        mrgi_error* err)
 {
-  if (!layout)
+  const mrgi_status layout_status = mrgi_multires_layout_check(layout, err);
+  if (layout_status != MRGI_OK)
   {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "multires layout is NULL");
-  }
-  mrgi_multires_layout expected;
-  if (mrgi_multires_layout_init(&expected, layout->width, layout->height, layout->coarsest_side,
-                                NULL) != MRGI_OK ||
-      memcmp(&expected, layout, sizeof(expected)) != 0)
-  {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "multires layout was not made by mrgi_multires_layout_init() "
-                          "(or was modified)");
+    return layout_status;
   }
   const uint64_t texels = (uint64_t)mrgi_multires_texel_count(layout);
   if (!flags || !mask || !illumination)
