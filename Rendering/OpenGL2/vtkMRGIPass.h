@@ -163,6 +163,16 @@ public:
   /** Width and height of the renderer's viewport in the last frame. */
   vtkGetVector2Macro(BufferSize, int);
 
+  /** The renderer's viewport (x, y, width, height) in MRGI's window-sized buffers, last frame. */
+  vtkGetVector4Macro(Viewport, int);
+
+  ///@{
+  /** The G-buffer textures (window-sized; the viewport is where the renderer drew). */
+  vtkTextureObject* GetPositionTexture() { return this->PositionTexture; }
+  vtkTextureObject* GetNormalTexture() { return this->NormalTexture; }
+  vtkTextureObject* GetAlbedoTexture() { return this->AlbedoTexture; }
+  ///@}
+
   /** Whether the last frame computed indirect light. */
   vtkGetMacro(IndirectComputed, bool);
 

@@ -1,0 +1,124 @@
+/**
+ * @class   vtkMRGIMultiresolutionSelection
+ * @brief   GPU selection of the multiresolution texels that gather indirect
+ *          light: min-max mipmaps of the G-buffer, discontinuity and
+ *          refinement flags (with the balance rule), and the one-pass
+ *          stencil selection of nichols-shopf-wyman-2009 section 3.2.1.
+ *
+ * The layout, the metrics, the thresholds and the rules are those of the C
+ * core (mrgi_multires.h), which this class mirrors pass for pass: one pass
+ * for level 0 of the mipmaps, one per coarser level (2x2 reduction), one per
+ * level for the flags (fine to coarse, since refinement and the balance rule
+ * look at the finer level), a copy of each level's flags into the flattened
+ * layout, and one full-screen pass over the flattened layout that sets the
+ * stencil of the selected texels. Mipmap and flag levels live in separate
+ * textures: reading and writing one texture is a feedback loop in OpenGL 3.2.
+ *
+ * The stencil lives in a depth-stencil texture attached at
+ * GL_DEPTH_STENCIL_ATTACHMENT by hand (VTK 9.1's framebuffer object attaches
+ * depth-stencil textures at GL_DEPTH_ATTACHMENT only).
+ *
+ * This is the selection stage only: the stenciled gather and the upsampling
+ * that use it are the next steps (Documentation/Status.md).
+ */
+#ifndef vtkMRGIMultiresolutionSelection_h
+#define vtkMRGIMultiresolutionSelection_h
+
+#include "MRGIRenderingModule.h" // For export macro
+#include "vtkObject.h"
+
+#include <memory> // For std::unique_ptr
+
+class vtkOpenGLRenderWindow;
+class vtkRenderWindow;
+class vtkTextureObject;
+class vtkUnsignedCharArray;
+class vtkWindow;
+
+class MRGIRENDERING_EXPORT vtkMRGIMultiresolutionSelection : public vtkObject
+{
+public:
+  static vtkMRGIMultiresolutionSelection* New();
+  vtkTypeMacro(vtkMRGIMultiresolutionSelection, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Thresholds (mrgi_multires.h section 3; +inf or a negative value: off).
+   * Depth: depth change per pixel width in a texel's 3x3 window (default 4);
+   * normal: spread of a unit-normal component (default 0.25).
+   */
+  vtkSetMacro(DepthThreshold, double);
+  vtkGetMacro(DepthThreshold, double);
+  vtkSetMacro(NormalThreshold, double);
+  vtkGetMacro(NormalThreshold, double);
+  ///@}
+
+  ///@{
+  /** Finest level that gathers (0 = full resolution). Clamped to the levels there are. */
+  vtkSetClampMacro(FinestLevel, int, 0, 23);
+  vtkGetMacro(FinestLevel, int);
+  ///@}
+
+  ///@{
+  /** Neighbouring selected texels differ by at most one level (default on). */
+  vtkSetMacro(Balance, bool);
+  vtkGetMacro(Balance, bool);
+  vtkBooleanMacro(Balance, bool);
+  ///@}
+
+  ///@{
+  /** Side of the coarsest level: levels stop when both sides are <= this (default 16). */
+  vtkSetClampMacro(CoarsestSide, int, 1, 4096);
+  vtkGetMacro(CoarsestSide, int);
+  ///@}
+
+  /**
+   * Select from a G-buffer (eye-space position and normal textures, as
+   * vtkMRGIPass captures them) whose pixel (0, 0) is texel (x0, y0); the
+   * image is width x height. Pixel size at depth d is max(a |d| + b, tiny)
+   * (mrgi_multires_pixel_size_coefficients). False on error.
+   */
+  bool Update(vtkOpenGLRenderWindow* window, vtkTextureObject* position,
+    vtkTextureObject* normal, int x0, int y0, int width, int height, double a, double b);
+
+  /** Flattened layout size of the last Update(). */
+  int GetFlattenedWidth() const;
+  int GetFlattenedHeight() const;
+  int GetNumberOfLevels() const;
+
+  /**
+   * Read the selection back: one byte per flattened texel, 1 where the
+   * stencil is set. `fromStencil` reads the stencil itself, otherwise the
+   * colour the selection pass wrote with it.
+   */
+  bool ReadSelection(vtkRenderWindow* window, vtkUnsignedCharArray* mask, bool fromStencil);
+
+  /** Read the flags (MRGI_MULTIRES_FLAG_* bits) in the flattened layout. */
+  bool ReadFlags(vtkRenderWindow* window, vtkUnsignedCharArray* flags);
+
+  /** The depth-stencil texture holding the selection (flattened layout). */
+  vtkTextureObject* GetStencilTexture() const;
+
+  /** Free every GL resource. */
+  void ReleaseGraphicsResources(vtkWindow* w);
+
+protected:
+  vtkMRGIMultiresolutionSelection();
+  ~vtkMRGIMultiresolutionSelection() override;
+
+  double DepthThreshold = 4.0;
+  double NormalThreshold = 0.25;
+  int FinestLevel = 0;
+  bool Balance = true;
+  int CoarsestSide = 16;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+
+private:
+  vtkMRGIMultiresolutionSelection(const vtkMRGIMultiresolutionSelection&) = delete;
+  void operator=(const vtkMRGIMultiresolutionSelection&) = delete;
+};
+
+#endif

@@ -1,0 +1,141 @@
+// The GPU's multiresolution selection (vtkMRGIMultiresolutionSelection)
+// against its C twins (mrgi_multires.h) on real G-buffers: the flags and the
+// stencil must select exactly the same texels, for several scenes, NPOT
+// windows, perspective and parallel cameras, thresholds 0 / default / off,
+// finest levels 0 and 1, with and without the balance rule.
+#include "mrgiTestUtilities.h"
+
+#include "vtkCamera.h"
+#include "vtkMRGIMultiresolutionSelection.h"
+#include "vtkMRGIPass.h"
+#include "vtkMRGISceneBuilder.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkRenderStepsPass.h"
+#include "vtkRenderer.h"
+
+#include "mrgi_gather.h"
+#include "mrgi_multires.h"
+
+#include <cmath>
+#include <vector>
+
+namespace
+{
+struct Case
+{
+  const char* Scene;
+  int Width, Height;
+  bool Parallel;
+  double DepthThreshold, NormalThreshold;
+  int Finest;
+  bool Balance;
+};
+
+int RunCase(const Case& c)
+{
+  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(c.Width, c.Height);
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  vtkNew<vtkMRGISceneBuilder> builder;
+  builder->SetScene(c.Scene);
+  builder->SetTriangleCount(20000);
+  builder->SetObjectCount(16);
+  MRGI_TEST_CHECK(builder->Build(renderer));
+  vtkCamera* camera = renderer->GetActiveCamera();
+  if (c.Parallel)
+  {
+    camera->ParallelProjectionOn();
+    renderer->ResetCamera();
+  }
+  vtkNew<vtkRenderStepsPass> steps;
+  vtkNew<vtkMRGIPass> pass;
+  pass->SetDelegatePass(steps);
+  pass->SetNumberOfVPLs(16);
+  renderer->SetPass(pass);
+  window->Render();
+
+  // The C twin on the read-back G-buffer.
+  vtkNew<vtkImageData> position, normal, albedo;
+  MRGI_TEST_CHECK(pass->GetGBuffer(window, position, normal, albedo));
+  const int* vp = pass->GetViewport();
+  const int W = vp[2], H = vp[3];
+  mrgi_gather_receivers gbuffer = { W, H,
+    static_cast<float*>(position->GetScalarPointer()), static_cast<float*>(normal->GetScalarPointer()) };
+  mrgi_multires_projection projection = { c.Parallel ? 1 : 0, camera->GetViewAngle(),
+    camera->GetParallelScale() };
+  float ab[2];
+  mrgi_error err;
+  MRGI_TEST_CHECK(mrgi_multires_pixel_size_coefficients(&projection, H, ab, &err) == MRGI_OK);
+  mrgi_multires_layout layout;
+  MRGI_TEST_CHECK(mrgi_multires_layout_init(&layout, W, H, 16, &err) == MRGI_OK);
+  mrgi_multires_mipmap mipmap;
+  MRGI_TEST_CHECK(mrgi_multires_mipmap_build(&layout, &gbuffer, ab, &mipmap, &err) == MRGI_OK);
+  mrgi_multires_params params;
+  mrgi_multires_params_default(&params);
+  params.depth_threshold = c.DepthThreshold;
+  params.normal_threshold = c.NormalThreshold;
+  params.finest_level = std::min(c.Finest, layout.level_count - 1);
+  params.balance = c.Balance ? 1 : 0;
+  const size_t texels = static_cast<size_t>(mrgi_multires_texel_count(&layout));
+  std::vector<uint8_t> flags(texels), mask(texels);
+  MRGI_TEST_CHECK(mrgi_multires_flags_compute(&mipmap, &params, flags.data(), texels, &err) == MRGI_OK);
+  MRGI_TEST_CHECK(mrgi_multires_select_one_pass(&layout, flags.data(), texels,
+                    params.finest_level, mask.data(), texels, &err) == MRGI_OK);
+  mrgi_multires_mipmap_destroy(&mipmap);
+
+  // The GPU.
+  vtkNew<vtkMRGIMultiresolutionSelection> gpu;
+  gpu->SetDepthThreshold(std::isinf(c.DepthThreshold) ? -1.0 : c.DepthThreshold);
+  gpu->SetNormalThreshold(std::isinf(c.NormalThreshold) ? -1.0 : c.NormalThreshold);
+  gpu->SetFinestLevel(c.Finest);
+  gpu->SetBalance(c.Balance);
+  vtkOpenGLRenderWindow* glWindow = vtkOpenGLRenderWindow::SafeDownCast(window);
+  MRGI_TEST_CHECK(gpu->Update(glWindow, pass->GetPositionTexture(), pass->GetNormalTexture(), vp[0],
+    vp[1], W, H, ab[0], ab[1]));
+  MRGI_TEST_CHECK(gpu->GetFlattenedWidth() == layout.total_width);
+  MRGI_TEST_CHECK(gpu->GetNumberOfLevels() == layout.level_count);
+  vtkNew<vtkUnsignedCharArray> gpuFlags, gpuColorMask, gpuStencil;
+  MRGI_TEST_CHECK(gpu->ReadFlags(window, gpuFlags));
+  MRGI_TEST_CHECK(gpu->ReadSelection(window, gpuColorMask, false));
+  MRGI_TEST_CHECK(gpu->ReadSelection(window, gpuStencil, true));
+  size_t flagDiff = 0, maskDiff = 0, stencilDiff = 0, selected = 0;
+  for (size_t t = 0; t < texels; ++t)
+  {
+    flagDiff += gpuFlags->GetValue(static_cast<vtkIdType>(t)) != flags[t];
+    maskDiff += gpuColorMask->GetValue(static_cast<vtkIdType>(t)) != mask[t];
+    stencilDiff += gpuStencil->GetValue(static_cast<vtkIdType>(t)) != mask[t];
+    selected += mask[t];
+  }
+  std::printf("%s %dx%d %s Td=%g Tn=%g f=%d balance=%d: %d levels, %zu selected texels; "
+              "differences: flags %zu, mask %zu, stencil %zu\n",
+    c.Scene, c.Width, c.Height, c.Parallel ? "parallel" : "perspective", c.DepthThreshold,
+    c.NormalThreshold, c.Finest, c.Balance ? 1 : 0, layout.level_count, selected, flagDiff,
+    maskDiff, stencilDiff);
+  MRGI_TEST_CHECK(selected > 0);
+  MRGI_TEST_CHECK(flagDiff == 0 && maskDiff == 0 && stencilDiff == 0);
+  gpu->ReleaseGraphicsResources(window);
+  renderer->SetPass(nullptr);
+  pass->ReleaseGraphicsResources(window);
+  return 0;
+}
+}
+
+int main()
+{
+  const double off = INFINITY;
+  const Case cases[] = {
+    { "cornell-spot", 97, 61, false, 4.0, 0.25, 0, true },
+    { "cornell", 128, 128, false, 4.0, 0.25, 0, false },
+    { "scaling", 131, 89, false, 4.0, 0.25, 1, true },
+    { "scaling", 80, 120, true, 2.0, 0.1, 0, true },
+    { "cornell-spot", 64, 48, false, 0.0, 0.0, 0, true },  // every texel refines: full resolution
+    { "cornell-spot", 64, 48, false, off, off, 0, true },  // nothing refines: coarsest level
+    { "cornell-spot", 33, 17, true, 4.0, 0.25, 0, true },
+    { "cornell-spot", 1, 1, false, 4.0, 0.25, 0, true },
+  };
+  for (const Case& c : cases)
+  {
+    RunCase(c);
+  }
+  return 0;
+}
