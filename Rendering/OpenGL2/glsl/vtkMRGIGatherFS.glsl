@@ -18,7 +18,9 @@ void main()
   if (positionVC.w <= MRGI_VALID_THRESHOLD)
   {
     gl_FragData[0] = vec4(0.0);
+#ifndef MRGI_GATHER_IRRADIANCE_ONLY
     gl_FragData[1] = vec4(0.0);
+#endif
     return;
   }
   // Malformed receivers (valid flag set, but a non-finite position or normal,
@@ -29,7 +31,9 @@ void main()
     any(isinf(normalVC)) || dot(normalVC, normalVC) == 0.0)
   {
     gl_FragData[0] = vec4(0.0, 0.0, 0.0, 1.0);
+#ifndef MRGI_GATHER_IRRADIANCE_ONLY
     gl_FragData[1] = vec4(0.0, 0.0, 0.0, 1.0);
+#endif
     return;
   }
   vec3 P = (mrgiVCToWC * vec4(positionVC.xyz, 1.0)).xyz;
@@ -49,7 +53,9 @@ void main()
     if (cosIr <= 0.0 || cosJr <= 0.0) { continue; }
     E += flux.rgb * ((cosIr * cosJr / r2) / (MRGI_PI * r2 + position.w));
   }
-  vec3 albedo = texelFetch(mrgiAlbedo, pixel, 0).rgb;
   gl_FragData[0] = vec4(E, 1.0);           // E_i, compared with the C twin
+#ifndef MRGI_GATHER_IRRADIANCE_ONLY
+  vec3 albedo = texelFetch(mrgiAlbedo, pixel, 0).rgb;
   gl_FragData[1] = vec4(mrgiStrength * albedo * E, 1.0);  // indirect radiance added to the direct light
+#endif
 }

@@ -1,9 +1,10 @@
 /**
- * @class   vtkMRGIMultiresolutionSelection
- * @brief   GPU selection of the multiresolution texels that gather indirect
- *          light: min-max mipmaps of the G-buffer, discontinuity and
- *          refinement flags (with the balance rule), and the one-pass
- *          stencil selection of nichols-shopf-wyman-2009 section 3.2.1.
+ * @class   vtkMRGIMultiresolution
+ * @brief   The multiresolution gather on the GPU: selection of the texels
+ *          that gather indirect light (min-max mipmaps of the G-buffer,
+ *          discontinuity and refinement flags with the balance rule, the
+ *          one-pass stencil selection of nichols-shopf-wyman-2009 section
+ *          3.2.1), their receivers, and the stenciled gather.
  *
  * The layout, the metrics, the thresholds and the rules are those of the C
  * core (mrgi_multires.h), which this class mirrors pass for pass: one pass
@@ -18,28 +19,36 @@
  * GL_DEPTH_STENCIL_ATTACHMENT by hand (VTK 9.1's framebuffer object attaches
  * depth-stencil textures at GL_DEPTH_ATTACHMENT only).
  *
- * This is the selection stage only: the stenciled gather and the upsampling
- * that use it are the next steps (Documentation/Status.md).
+ * Gather(): the receivers of every texel (mean position and normal of its
+ * pixels, mrgi_multires_receivers.h) are built level by level and
+ * flattened, then one full-screen quad over the flattened layout gathers
+ * every VPL at the texels whose stencil is set (early stencil culling skips
+ * the rest); the gather is vtkMRGIGatherFS.glsl, whose C twin is
+ * mrgi_gather_full() on the same receivers.
+ *
+ * Upsampling the result to full resolution is the next step
+ * (Documentation/Status.md).
  */
-#ifndef vtkMRGIMultiresolutionSelection_h
-#define vtkMRGIMultiresolutionSelection_h
+#ifndef vtkMRGIMultiresolution_h
+#define vtkMRGIMultiresolution_h
 
 #include "MRGIRenderingModule.h" // For export macro
 #include "vtkObject.h"
 
 #include <memory> // For std::unique_ptr
 
+class vtkFloatArray;
 class vtkOpenGLRenderWindow;
 class vtkRenderWindow;
 class vtkTextureObject;
 class vtkUnsignedCharArray;
 class vtkWindow;
 
-class MRGIRENDERING_EXPORT vtkMRGIMultiresolutionSelection : public vtkObject
+class MRGIRENDERING_EXPORT vtkMRGIMultiresolution : public vtkObject
 {
 public:
-  static vtkMRGIMultiresolutionSelection* New();
-  vtkTypeMacro(vtkMRGIMultiresolutionSelection, vtkObject);
+  static vtkMRGIMultiresolution* New();
+  vtkTypeMacro(vtkMRGIMultiresolution, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -94,6 +103,21 @@ public:
    */
   bool ReadSelection(vtkRenderWindow* window, vtkUnsignedCharArray* mask, bool fromStencil);
 
+  /**
+   * After Update(): gather `vplCount` VPLs (the VPL cache texture) at the
+   * selected texels into the flattened irradiance buffer (E, RGB; 0 where
+   * nothing was selected). `viewToWorld` is the column-major eye -> world
+   * matrix. False on error.
+   */
+  bool Gather(vtkOpenGLRenderWindow* window, vtkTextureObject* position, vtkTextureObject* normal,
+    int x0, int y0, vtkTextureObject* vpls, int vplCount, const float viewToWorld[16]);
+
+  /** Read the flattened receivers (position: mean xyz + pixel count; normal) back. */
+  bool ReadReceivers(vtkRenderWindow* window, vtkFloatArray* position, vtkFloatArray* normal);
+
+  /** Read the flattened irradiance E of the last Gather() back (RGBA floats). */
+  bool ReadIrradiance(vtkRenderWindow* window, vtkFloatArray* irradiance);
+
   /** Read the flags (MRGI_MULTIRES_FLAG_* bits) in the flattened layout. */
   bool ReadFlags(vtkRenderWindow* window, vtkUnsignedCharArray* flags);
 
@@ -104,8 +128,8 @@ public:
   void ReleaseGraphicsResources(vtkWindow* w);
 
 protected:
-  vtkMRGIMultiresolutionSelection();
-  ~vtkMRGIMultiresolutionSelection() override;
+  vtkMRGIMultiresolution();
+  ~vtkMRGIMultiresolution() override;
 
   double DepthThreshold = 4.0;
   double NormalThreshold = 0.25;
@@ -117,8 +141,8 @@ protected:
   std::unique_ptr<Internals> Internal;
 
 private:
-  vtkMRGIMultiresolutionSelection(const vtkMRGIMultiresolutionSelection&) = delete;
-  void operator=(const vtkMRGIMultiresolutionSelection&) = delete;
+  vtkMRGIMultiresolution(const vtkMRGIMultiresolution&) = delete;
+  void operator=(const vtkMRGIMultiresolution&) = delete;
 };
 
 #endif

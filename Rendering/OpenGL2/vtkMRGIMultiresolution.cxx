@@ -1,6 +1,6 @@
 #include "vtk_glew.h"
 
-#include "vtkMRGIMultiresolutionSelection.h"
+#include "vtkMRGIMultiresolution.h"
 
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkObjectFactory.h"
@@ -15,7 +15,10 @@
 #include "vtkTextureObject.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "vtkMRGIGatherFS.h"
+#include "vtkMRGIMultiresReceiversFS.h"
 #include "vtkMRGIMultiresSelectFS.h"
+#include "vtkFloatArray.h"
 
 #include "mrgi_multires.h"
 
@@ -24,7 +27,7 @@
 #include <string>
 #include <vector>
 
-vtkStandardNewMacro(vtkMRGIMultiresolutionSelection);
+vtkStandardNewMacro(vtkMRGIMultiresolution);
 
 namespace
 {
@@ -65,13 +68,19 @@ void ReleaseTexture(vtkTextureObject*& t, vtkWindow* w)
 }
 }
 
-struct vtkMRGIMultiresolutionSelection::Internals
+struct vtkMRGIMultiresolution::Internals
 {
   mrgi_multires_layout Layout{};
   bool HasLayout = false;
   // Per level: mipmap (MRGI_MULTIRES_TEX_*) and flags.
   std::vector<std::array<vtkTextureObject*, MRGI_MULTIRES_TEX_COUNT + 1>> Levels;
   vtkTextureObject* FlatFlags = nullptr;
+  // Receivers: per level (position, normal) and flattened; the gather's output.
+  std::vector<std::array<vtkTextureObject*, 2>> Receivers;
+  vtkTextureObject* FlatReceivers[2] = { nullptr, nullptr };
+  vtkTextureObject* FlatIrradiance = nullptr;
+  vtkOpenGLQuadHelper* ReceiverQuads[3] = { nullptr, nullptr, nullptr };
+  vtkOpenGLQuadHelper* GatherQuad = nullptr;
   vtkTextureObject* FlatSelection = nullptr;
   vtkTextureObject* DepthStencil = nullptr;
   vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
@@ -87,6 +96,17 @@ struct vtkMRGIMultiresolutionSelection::Internals
       }
     }
     this->Levels.clear();
+    for (auto& level : this->Receivers)
+    {
+      for (auto*& t : level)
+      {
+        ReleaseTexture(t, w);
+      }
+    }
+    this->Receivers.clear();
+    ReleaseTexture(this->FlatReceivers[0], w);
+    ReleaseTexture(this->FlatReceivers[1], w);
+    ReleaseTexture(this->FlatIrradiance, w);
     ReleaseTexture(this->FlatFlags, w);
     ReleaseTexture(this->FlatSelection, w);
     ReleaseTexture(this->DepthStencil, w);
@@ -95,13 +115,13 @@ struct vtkMRGIMultiresolutionSelection::Internals
 };
 
 //------------------------------------------------------------------------------
-vtkMRGIMultiresolutionSelection::vtkMRGIMultiresolutionSelection()
+vtkMRGIMultiresolution::vtkMRGIMultiresolution()
   : Internal(new Internals)
 {
 }
 
 //------------------------------------------------------------------------------
-vtkMRGIMultiresolutionSelection::~vtkMRGIMultiresolutionSelection()
+vtkMRGIMultiresolution::~vtkMRGIMultiresolution()
 {
   if (this->Internal->FrameBuffer || this->Internal->DepthStencil)
   {
@@ -116,21 +136,34 @@ vtkMRGIMultiresolutionSelection::~vtkMRGIMultiresolutionSelection()
   {
     delete q;
   }
+  for (auto*& q : this->Internal->ReceiverQuads)
+  {
+    delete q;
+  }
+  delete this->Internal->GatherQuad;
 }
 
 //------------------------------------------------------------------------------
-void vtkMRGIMultiresolutionSelection::ReleaseGraphicsResources(vtkWindow* w)
+void vtkMRGIMultiresolution::ReleaseGraphicsResources(vtkWindow* w)
 {
   this->Internal->ReleaseTextures(w);
-  for (auto*& q : this->Internal->Quads)
-  {
+  auto releaseQuad = [w](vtkOpenGLQuadHelper*& q) {
     if (q)
     {
       q->ReleaseGraphicsResources(w);
       delete q;
       q = nullptr;
     }
+  };
+  for (auto*& q : this->Internal->Quads)
+  {
+    releaseQuad(q);
   }
+  for (auto*& q : this->Internal->ReceiverQuads)
+  {
+    releaseQuad(q);
+  }
+  releaseQuad(this->Internal->GatherQuad);
   if (this->Internal->FrameBuffer)
   {
     this->Internal->FrameBuffer->ReleaseGraphicsResources(w);
@@ -139,25 +172,25 @@ void vtkMRGIMultiresolutionSelection::ReleaseGraphicsResources(vtkWindow* w)
   }
 }
 
-int vtkMRGIMultiresolutionSelection::GetFlattenedWidth() const
+int vtkMRGIMultiresolution::GetFlattenedWidth() const
 {
   return this->Internal->HasLayout ? this->Internal->Layout.total_width : 0;
 }
-int vtkMRGIMultiresolutionSelection::GetFlattenedHeight() const
+int vtkMRGIMultiresolution::GetFlattenedHeight() const
 {
   return this->Internal->HasLayout ? this->Internal->Layout.total_height : 0;
 }
-int vtkMRGIMultiresolutionSelection::GetNumberOfLevels() const
+int vtkMRGIMultiresolution::GetNumberOfLevels() const
 {
   return this->Internal->HasLayout ? this->Internal->Layout.level_count : 0;
 }
-vtkTextureObject* vtkMRGIMultiresolutionSelection::GetStencilTexture() const
+vtkTextureObject* vtkMRGIMultiresolution::GetStencilTexture() const
 {
   return this->Internal->DepthStencil;
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIMultiresolutionSelection::Update(vtkOpenGLRenderWindow* window,
+bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
   vtkTextureObject* position, vtkTextureObject* normal, int x0, int y0, int width, int height,
   double a, double b)
 {
@@ -196,6 +229,19 @@ bool vtkMRGIMultiresolutionSelection::Update(vtkOpenGLRenderWindow* window,
       }
     }
     in.FlatFlags = MakeFloatTexture(window, layout.total_width, layout.total_height);
+    in.Receivers.resize(static_cast<size_t>(levels));
+    for (int i = 0; i < levels; ++i)
+    {
+      for (auto*& t : in.Receivers[i])
+      {
+        t = MakeFloatTexture(window, layout.level_width[i], layout.level_height[i]);
+      }
+    }
+    for (auto*& t : in.FlatReceivers)
+    {
+      t = MakeFloatTexture(window, layout.total_width, layout.total_height);
+    }
+    in.FlatIrradiance = MakeFloatTexture(window, layout.total_width, layout.total_height);
     in.FlatSelection = MakeFloatTexture(window, layout.total_width, layout.total_height);
     in.DepthStencil = vtkTextureObject::New();
     in.DepthStencil->SetContext(window);
@@ -399,7 +445,194 @@ bool vtkMRGIMultiresolutionSelection::Update(vtkOpenGLRenderWindow* window,
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIMultiresolutionSelection::ReadSelection(
+bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObject* position,
+  vtkTextureObject* normal, int x0, int y0, vtkTextureObject* vpls, int vplCount,
+  const float viewToWorld[16])
+{
+  Internals& in = *this->Internal;
+  if (!window || !position || !normal || !vpls || vplCount < 1 || !in.HasLayout)
+  {
+    vtkErrorMacro("Gather needs Update() first, the G-buffer and at least one VPL");
+    return false;
+  }
+  const mrgi_multires_layout& layout = in.Layout;
+  const int levels = layout.level_count;
+  auto ready = [&](vtkOpenGLQuadHelper*& quad, const std::string& body) -> vtkShaderProgram* {
+    if (!quad)
+    {
+      quad = new vtkOpenGLQuadHelper(window,
+        vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
+        vtkMRGIShaderUtilities::FullScreenShader(body.c_str()).c_str(), "");
+    }
+    window->GetShaderCache()->ReadyShaderProgram(quad->Program);
+    return (quad->Program && quad->Program->GetCompiled()) ? quad->Program : nullptr;
+  };
+
+  vtkOpenGLState* ostate = window->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglEnableDisable stencilTest(ostate, GL_STENCIL_TEST);
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  vtkOpenGLState::ScopedglClearColor clearColor(ostate);
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglDisable(GL_DEPTH_TEST);
+  ostate->vtkglDisable(GL_SCISSOR_TEST);
+  ostate->vtkglDisable(GL_STENCIL_TEST);
+  vtkOpenGLFramebufferObject* fbo = in.FrameBuffer;
+  fbo->SaveCurrentBindingsAndBuffers();
+  fbo->Bind();
+  auto target = [&](vtkTextureObject* a, vtkTextureObject* b, int w, int h) {
+    fbo->RemoveColorAttachments(MRGI_MULTIRES_TEX_COUNT + 1);
+    fbo->AddColorAttachment(0, a);
+    if (b)
+    {
+      fbo->AddColorAttachment(1, b);
+    }
+    fbo->ActivateDrawBuffers(b ? 2 : 1);
+    ostate->vtkglViewport(0, 0, w, h);
+  };
+  auto inputs = [&](vtkShaderProgram* p, vtkTextureObject* a, vtkTextureObject* b) {
+    a->Activate();
+    b->Activate();
+    p->SetUniformi("mrgiInput0", a->GetTextureUnit());
+    p->SetUniformi("mrgiInput1", b->GetTextureUnit());
+  };
+  bool ok = true;
+  // 1. Receivers, level by level, then flattened.
+  for (int i = 0; i < levels && ok; ++i)
+  {
+    const int stage = i == 0 ? 0 : 1;
+    vtkShaderProgram* p = ready(in.ReceiverQuads[stage],
+      "#define MRGI_MR_STAGE " + std::to_string(stage) + "\n" + vtkMRGIMultiresReceiversFS);
+    if (!p)
+    {
+      ok = false;
+      break;
+    }
+    target(in.Receivers[i][0], in.Receivers[i][1], layout.level_width[i], layout.level_height[i]);
+    vtkTextureObject* srcP = i == 0 ? position : in.Receivers[i - 1][0];
+    vtkTextureObject* srcN = i == 0 ? normal : in.Receivers[i - 1][1];
+    inputs(p, srcP, srcN);
+    const int offset[2] = { x0, y0 };
+    const int size[2] = { i == 0 ? 0 : layout.level_width[i - 1], i == 0 ? 0 : layout.level_height[i - 1] };
+    p->SetUniform2i("mrgiOffset", offset);
+    p->SetUniform2i("mrgiSize", size);
+    in.ReceiverQuads[stage]->Render();
+    srcP->Deactivate();
+    srcN->Deactivate();
+  }
+  vtkShaderProgram* flatten =
+    ok ? ready(in.ReceiverQuads[2], std::string("#define MRGI_MR_STAGE 2\n") + vtkMRGIMultiresReceiversFS) : nullptr;
+  ok = ok && flatten;
+  if (ok)
+  {
+    target(in.FlatReceivers[0], in.FlatReceivers[1], layout.total_width, layout.total_height);
+    ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+    ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
+    for (int i = 0; i < levels; ++i)
+    {
+      ostate->vtkglViewport(layout.level_offset[i], 0, layout.level_width[i], layout.level_height[i]);
+      inputs(flatten, in.Receivers[i][0], in.Receivers[i][1]);
+      const int offset[2] = { layout.level_offset[i], 0 };
+      flatten->SetUniform2i("mrgiOffset", offset);
+      in.ReceiverQuads[2]->Render();
+      in.Receivers[i][0]->Deactivate();
+      in.Receivers[i][1]->Deactivate();
+    }
+  }
+  // 2. The stenciled gather over the flattened layout.
+  vtkShaderProgram* gather = ok
+    ? ready(in.GatherQuad, std::string("#define MRGI_GATHER_IRRADIANCE_ONLY 1\n") + vtkMRGIGatherFS)
+    : nullptr;
+  ok = ok && gather;
+  if (ok)
+  {
+    target(in.FlatIrradiance, nullptr, layout.total_width, layout.total_height);
+    glFramebufferTexture2D(
+      GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, in.DepthStencil->GetHandle(), 0);
+    ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+    ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
+    ostate->vtkglEnable(GL_STENCIL_TEST);
+    ostate->vtkglStencilMask(0x00);
+    ostate->vtkglStencilFunc(GL_EQUAL, 1, 0xFF);
+    ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    in.FlatReceivers[0]->Activate();
+    in.FlatReceivers[1]->Activate();
+    vpls->Activate();
+    gather->SetUniformi("mrgiPosition", in.FlatReceivers[0]->GetTextureUnit());
+    gather->SetUniformi("mrgiNormal", in.FlatReceivers[1]->GetTextureUnit());
+    gather->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
+    gather->SetUniformi("mrgiVPLCount", vplCount);
+    gather->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(viewToWorld));
+    in.GatherQuad->Render();
+    vpls->Deactivate();
+    in.FlatReceivers[1]->Deactivate();
+    in.FlatReceivers[0]->Deactivate();
+    ostate->vtkglStencilMask(0xFF);
+    ostate->vtkglStencilFunc(GL_ALWAYS, 0, 0xFF);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+  }
+  fbo->RemoveColorAttachments(MRGI_MULTIRES_TEX_COUNT + 1);
+  fbo->UnBind();
+  fbo->RestorePreviousBindingsAndBuffers();
+  if (!ok)
+  {
+    vtkErrorMacro("could not build the multiresolution gather shaders");
+    return false;
+  }
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("OpenGL error " << error << " in the multiresolution gather");
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::ReadReceivers(
+  vtkRenderWindow* window, vtkFloatArray* position, vtkFloatArray* normal)
+{
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  Internals& in = *this->Internal;
+  vtkFloatArray* out[2] = { position, normal };
+  for (int k = 0; k < 2; ++k)
+  {
+    std::vector<float> rgba;
+    if (!renWin || !out[k] || !in.HasLayout ||
+      !vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.FlatReceivers[k], rgba))
+    {
+      vtkErrorMacro("ReadReceivers: nothing gathered yet");
+      return false;
+    }
+    out[k]->SetNumberOfComponents(4);
+    out[k]->SetNumberOfTuples(static_cast<vtkIdType>(rgba.size() / 4));
+    std::copy(rgba.begin(), rgba.end(), out[k]->GetPointer(0));
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::ReadIrradiance(vtkRenderWindow* window, vtkFloatArray* irradiance)
+{
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  Internals& in = *this->Internal;
+  std::vector<float> rgba;
+  if (!renWin || !irradiance || !in.HasLayout ||
+    !vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.FlatIrradiance, rgba))
+  {
+    vtkErrorMacro("ReadIrradiance: nothing gathered yet");
+    return false;
+  }
+  irradiance->SetNumberOfComponents(4);
+  irradiance->SetNumberOfTuples(static_cast<vtkIdType>(rgba.size() / 4));
+  std::copy(rgba.begin(), rgba.end(), irradiance->GetPointer(0));
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::ReadSelection(
   vtkRenderWindow* window, vtkUnsignedCharArray* mask, bool fromStencil)
 {
   vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
@@ -439,7 +672,7 @@ bool vtkMRGIMultiresolutionSelection::ReadSelection(
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIMultiresolutionSelection::ReadFlags(vtkRenderWindow* window, vtkUnsignedCharArray* flags)
+bool vtkMRGIMultiresolution::ReadFlags(vtkRenderWindow* window, vtkUnsignedCharArray* flags)
 {
   vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
   Internals& in = *this->Internal;
@@ -460,7 +693,7 @@ bool vtkMRGIMultiresolutionSelection::ReadFlags(vtkRenderWindow* window, vtkUnsi
 }
 
 //------------------------------------------------------------------------------
-void vtkMRGIMultiresolutionSelection::PrintSelf(ostream& os, vtkIndent indent)
+void vtkMRGIMultiresolution::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "DepthThreshold: " << this->DepthThreshold << "\n";
