@@ -17,6 +17,7 @@
 
 #include "vtkMRGIGatherFS.h"
 #include "vtkMRGIMultiresReceiversFS.h"
+#include "vtkMRGIMultiresUpsampleFS.h"
 #include "vtkMRGIMultiresSelectFS.h"
 #include "vtkFloatArray.h"
 
@@ -81,6 +82,9 @@ struct vtkMRGIMultiresolution::Internals
   vtkTextureObject* FlatIrradiance = nullptr;
   vtkOpenGLQuadHelper* ReceiverQuads[3] = { nullptr, nullptr, nullptr };
   vtkOpenGLQuadHelper* GatherQuad = nullptr;
+  // Upsampling: per level (state/value, filtered).
+  std::vector<std::array<vtkTextureObject*, 2>> Upsampled;
+  vtkOpenGLQuadHelper* UpsampleQuads[3] = { nullptr, nullptr, nullptr };
   vtkTextureObject* FlatSelection = nullptr;
   vtkTextureObject* DepthStencil = nullptr;
   vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
@@ -104,6 +108,14 @@ struct vtkMRGIMultiresolution::Internals
       }
     }
     this->Receivers.clear();
+    for (auto& level : this->Upsampled)
+    {
+      for (auto*& t : level)
+      {
+        ReleaseTexture(t, w);
+      }
+    }
+    this->Upsampled.clear();
     ReleaseTexture(this->FlatReceivers[0], w);
     ReleaseTexture(this->FlatReceivers[1], w);
     ReleaseTexture(this->FlatIrradiance, w);
@@ -140,6 +152,10 @@ vtkMRGIMultiresolution::~vtkMRGIMultiresolution()
   {
     delete q;
   }
+  for (auto*& q : this->Internal->UpsampleQuads)
+  {
+    delete q;
+  }
   delete this->Internal->GatherQuad;
 }
 
@@ -160,6 +176,10 @@ void vtkMRGIMultiresolution::ReleaseGraphicsResources(vtkWindow* w)
     releaseQuad(q);
   }
   for (auto*& q : this->Internal->ReceiverQuads)
+  {
+    releaseQuad(q);
+  }
+  for (auto*& q : this->Internal->UpsampleQuads)
   {
     releaseQuad(q);
   }
@@ -242,6 +262,14 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
       t = MakeFloatTexture(window, layout.total_width, layout.total_height);
     }
     in.FlatIrradiance = MakeFloatTexture(window, layout.total_width, layout.total_height);
+    in.Upsampled.resize(static_cast<size_t>(levels));
+    for (int i = 0; i < levels; ++i)
+    {
+      for (auto*& t : in.Upsampled[i])
+      {
+        t = MakeFloatTexture(window, layout.level_width[i], layout.level_height[i]);
+      }
+    }
     in.FlatSelection = MakeFloatTexture(window, layout.total_width, layout.total_height);
     in.DepthStencil = vtkTextureObject::New();
     in.DepthStencil->SetContext(window);
@@ -587,6 +615,187 @@ bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObj
     vtkErrorMacro("OpenGL error " << error << " in the multiresolution gather");
     return false;
   }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+// Shared GL state of the upsampling and resolve steps.
+struct QuadSteps
+{
+  QuadSteps(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* fbo)
+    : State(window->GetState())
+    , Blend(State, GL_BLEND)
+    , DepthTest(State, GL_DEPTH_TEST)
+    , Scissor(State, GL_SCISSOR_TEST)
+    , StencilTest(State, GL_STENCIL_TEST)
+    , Viewport(State)
+    , Fbo(fbo)
+  {
+    this->State->vtkglDisable(GL_BLEND);
+    this->State->vtkglDisable(GL_DEPTH_TEST);
+    this->State->vtkglDisable(GL_SCISSOR_TEST);
+    this->State->vtkglDisable(GL_STENCIL_TEST);
+    fbo->SaveCurrentBindingsAndBuffers();
+    fbo->Bind();
+  }
+  ~QuadSteps()
+  {
+    this->Fbo->RemoveColorAttachments(MRGI_MULTIRES_TEX_COUNT + 1);
+    this->Fbo->UnBind();
+    this->Fbo->RestorePreviousBindingsAndBuffers();
+  }
+  void Target(vtkTextureObject* a, vtkTextureObject* b, int x, int y, int w, int h)
+  {
+    this->Fbo->RemoveColorAttachments(MRGI_MULTIRES_TEX_COUNT + 1);
+    this->Fbo->AddColorAttachment(0, a);
+    if (b)
+    {
+      this->Fbo->AddColorAttachment(1, b);
+    }
+    this->Fbo->ActivateDrawBuffers(b ? 2 : 1);
+    this->State->vtkglViewport(x, y, w, h);
+  }
+  vtkOpenGLState* State;
+  vtkOpenGLState::ScopedglEnableDisable Blend, DepthTest, Scissor, StencilTest;
+  vtkOpenGLState::ScopedglViewport Viewport;
+  vtkOpenGLFramebufferObject* Fbo;
+};
+
+vtkShaderProgram* ReadyStage(vtkOpenGLQuadHelper*& quad, vtkOpenGLRenderWindow* window,
+  const char* source, int stage)
+{
+  if (!quad)
+  {
+    const std::string body = "#define MRGI_MR_STAGE " + std::to_string(stage) + "\n" + source;
+    quad = new vtkOpenGLQuadHelper(window,
+      vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
+      vtkMRGIShaderUtilities::FullScreenShader(body.c_str()).c_str(), "");
+  }
+  window->GetShaderCache()->ReadyShaderProgram(quad->Program);
+  return (quad->Program && quad->Program->GetCompiled()) ? quad->Program : nullptr;
+}
+
+void BindInputs(vtkShaderProgram* p, std::initializer_list<vtkTextureObject*> textures)
+{
+  int k = 0;
+  for (vtkTextureObject* t : textures)
+  {
+    t->Activate();
+    p->SetUniformi(("mrgiInput" + std::to_string(k++)).c_str(), t->GetTextureUnit());
+  }
+}
+
+void UnbindInputs(std::initializer_list<vtkTextureObject*> textures)
+{
+  for (vtkTextureObject* t : textures)
+  {
+    t->Deactivate();
+  }
+}
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::Upsample(vtkOpenGLRenderWindow* window, int mode, double maskWeight)
+{
+  Internals& in = *this->Internal;
+  if (!window || !in.HasLayout)
+  {
+    vtkErrorMacro("Upsample needs Update() and Gather() first");
+    return false;
+  }
+  vtkShaderProgram* state = ReadyStage(in.UpsampleQuads[0], window, vtkMRGIMultiresUpsampleFS, 0);
+  vtkShaderProgram* filter = ReadyStage(in.UpsampleQuads[1], window, vtkMRGIMultiresUpsampleFS, 1);
+  if (!state || !filter)
+  {
+    vtkErrorMacro("could not build the multiresolution upsampling shaders");
+    return false;
+  }
+  const mrgi_multires_layout& layout = in.Layout;
+  const int coarsest = layout.level_count - 1;
+  QuadSteps steps(window, in.FrameBuffer);
+  for (int i = coarsest; i >= 0; --i)
+  {
+    const int w = layout.level_width[i], h = layout.level_height[i];
+    vtkTextureObject* value = in.Upsampled[i][0];
+    vtkTextureObject* filtered = in.Upsampled[i][1];
+    // The coarsest level has no parent: its own flags stand in, unread.
+    vtkTextureObject* parent = in.Upsampled[std::min(i + 1, coarsest)][1];
+    if (i == coarsest)
+    {
+      parent = in.Levels[i][MRGI_MULTIRES_TEX_DEPTH];
+    }
+    vtkTextureObject* flags = in.Levels[i][MRGI_MULTIRES_TEX_COUNT];
+    window->GetShaderCache()->ReadyShaderProgram(state);
+    steps.Target(value, nullptr, 0, 0, w, h);
+    BindInputs(state, { in.FlatSelection, flags, in.FlatIrradiance, parent });
+    const int offset[2] = { layout.level_offset[i], 0 };
+    state->SetUniform2i("mrgiOffset", offset);
+    state->SetUniformi("mrgiCoarsest", i == coarsest ? 1 : 0);
+    in.UpsampleQuads[0]->Render();
+    UnbindInputs({ in.FlatSelection, flags, in.FlatIrradiance, parent });
+
+    window->GetShaderCache()->ReadyShaderProgram(filter);
+    steps.Target(filtered, nullptr, 0, 0, w, h);
+    BindInputs(filter, { value });
+    const int size[2] = { w, h };
+    filter->SetUniform2i("mrgiSize", size);
+    filter->SetUniformi("mrgiMode", mode == UpsampleMaskWeighted ? 1 : 0);
+    filter->SetUniformf("mrgiMaskWeight", static_cast<float>(maskWeight));
+    in.UpsampleQuads[1]->Render();
+    UnbindInputs({ value });
+  }
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("OpenGL error " << error << " in the multiresolution upsampling");
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::Resolve(vtkOpenGLRenderWindow* window, vtkTextureObject* albedo,
+  vtkTextureObject* irradiance, vtkTextureObject* indirect, int x0, int y0, double strength)
+{
+  Internals& in = *this->Internal;
+  vtkShaderProgram* resolve =
+    window ? ReadyStage(in.UpsampleQuads[2], window, vtkMRGIMultiresUpsampleFS, 2) : nullptr;
+  if (!resolve || !in.HasLayout || !albedo || !irradiance || !indirect)
+  {
+    vtkErrorMacro("Resolve needs Upsample() first, the albedo and both targets");
+    return false;
+  }
+  {
+    QuadSteps steps(window, in.FrameBuffer);
+    steps.Target(irradiance, indirect, x0, y0, in.Layout.width, in.Layout.height);
+    vtkTextureObject* flags = in.Levels[0][MRGI_MULTIRES_TEX_COUNT];
+    BindInputs(resolve, { in.Upsampled[0][1], flags, albedo });
+    const int offset[2] = { x0, y0 };
+    resolve->SetUniform2i("mrgiOffset", offset);
+    resolve->SetUniformf("mrgiStrength", static_cast<float>(strength));
+    in.UpsampleQuads[2]->Render();
+    UnbindInputs({ in.Upsampled[0][1], flags, albedo });
+  }
+  return glGetError() == GL_NO_ERROR;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::ReadUpsampled(vtkRenderWindow* window, vtkFloatArray* upsampled)
+{
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  Internals& in = *this->Internal;
+  std::vector<float> rgba;
+  if (!renWin || !upsampled || !in.HasLayout || in.Upsampled.empty() ||
+    !vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.Upsampled[0][1], rgba))
+  {
+    vtkErrorMacro("ReadUpsampled: nothing upsampled yet");
+    return false;
+  }
+  upsampled->SetNumberOfComponents(4);
+  upsampled->SetNumberOfTuples(static_cast<vtkIdType>(rgba.size() / 4));
+  std::copy(rgba.begin(), rgba.end(), upsampled->GetPointer(0));
   return true;
 }
 

@@ -26,8 +26,10 @@
  * the rest); the gather is vtkMRGIGatherFS.glsl, whose C twin is
  * mrgi_gather_full() on the same receivers.
  *
- * Upsampling the result to full resolution is the next step
- * (Documentation/Status.md).
+ * Upsample(): coarse to fine, one pass per level for the state and value of
+ * each texel and one for the tent (or mask-weighted) filter
+ * (mrgi_upsample.h); Resolve() writes the full-resolution E and
+ * strength x albedo x E where vtkMRGIPass composites them.
  */
 #ifndef vtkMRGIMultiresolution_h
 #define vtkMRGIMultiresolution_h
@@ -111,6 +113,26 @@ public:
    */
   bool Gather(vtkOpenGLRenderWindow* window, vtkTextureObject* position, vtkTextureObject* normal,
     int x0, int y0, vtkTextureObject* vpls, int vplCount, const float viewToWorld[16]);
+
+  enum UpsampleModes
+  {
+    UpsampleTent = 0,        ///< nichols-wyman-2009 3.5 (default)
+    UpsampleMaskWeighted = 1 ///< besenthal et al. eq. 1
+  };
+
+  /** After Gather(): upsample and combine the levels (mode: UpsampleTent or UpsampleMaskWeighted). */
+  bool Upsample(vtkOpenGLRenderWindow* window, int mode, double maskWeight);
+
+  /**
+   * After Upsample(): write the full-resolution irradiance E and the indirect
+   * radiance strength x albedo x E into `irradiance` and `indirect` (window-
+   * sized textures, like the albedo) over the viewport at (x0, y0).
+   */
+  bool Resolve(vtkOpenGLRenderWindow* window, vtkTextureObject* albedo,
+    vtkTextureObject* irradiance, vtkTextureObject* indirect, int x0, int y0, double strength);
+
+  /** Read the upsampled level 0 (RGB = E, A = 1 where it holds data) back, W x H RGBA. */
+  bool ReadUpsampled(vtkRenderWindow* window, vtkFloatArray* upsampled);
 
   /** Read the flattened receivers (position: mean xyz + pixel count; normal) back. */
   bool ReadReceivers(vtkRenderWindow* window, vtkFloatArray* position, vtkFloatArray* normal);

@@ -16,6 +16,7 @@
 #include "mrgi_gather.h"
 #include "mrgi_multires.h"
 #include "mrgi_multires_receivers.h"
+#include "mrgi_upsample.h"
 #include "vtkFloatArray.h"
 #include "vtkMRGIVPLSelection.h"
 
@@ -175,6 +176,45 @@ int RunCase(const Case& c)
   MRGI_TEST_CHECK(receiverError <= 1e-5 * std::fmax(1.0, receiverScale));
   MRGI_TEST_CHECK(gatherError < 1e-4);
   MRGI_TEST_CHECK(leaks == 0);
+
+  // Upsampling, both modes, on the GPU's own gathered values.
+  for (int mode : { vtkMRGIMultiresolution::UpsampleTent, vtkMRGIMultiresolution::UpsampleMaskWeighted })
+  {
+    const double weight = 100.0;
+    MRGI_TEST_CHECK(gpu->Upsample(glWindow, mode, weight));
+    vtkNew<vtkFloatArray> gpuU;
+    MRGI_TEST_CHECK(gpu->ReadUpsampled(window, gpuU));
+    MRGI_TEST_CHECK(gpuU->GetNumberOfTuples() == static_cast<vtkIdType>(W) * H);
+    mrgi_upsample_params up;
+    mrgi_upsample_params_default(&up);
+    up.mode = mode == vtkMRGIMultiresolution::UpsampleTent ? MRGI_UPSAMPLE_TENT : MRGI_UPSAMPLE_MASK_WEIGHTED;
+    up.mask_weight = static_cast<float>(weight);
+    mrgi_image cU{};
+    MRGI_TEST_CHECK(mrgi_upsample(&layout, flags.data(), texels, mask.data(), texels,
+                      gpuE->GetPointer(0), 4 * texels, 4, &up, &cU, &err) == MRGI_OK);
+    double unum = 0, uden = 0;
+    for (int y = 0; y < H; ++y)
+    {
+      for (int x = 0; x < W; ++x)
+      {
+        if (!(flags[mrgi_multires_index(&layout, 0, x, y)] & MRGI_MULTIRES_FLAG_NONEMPTY))
+        {
+          continue;
+        }
+        for (int k = 0; k < 3; ++k)
+        {
+          const double g = gpuU->GetValue(4 * (static_cast<vtkIdType>(y) * W + x) + k);
+          const double e = mrgi_image_at(&cU, x, y)[k];
+          unum += (g - e) * (g - e);
+          uden += e * e;
+        }
+      }
+    }
+    mrgi_image_destroy(&cU);
+    const double upError = uden > 0 ? std::sqrt(unum / uden) : std::sqrt(unum);
+    std::printf("  upsampling (%s): relative RMS %.3g\n", mode ? "mask-weighted" : "tent", upError);
+    MRGI_TEST_CHECK(uden > 0 && upError < 1e-4);
+  }
   gpu->ReleaseGraphicsResources(window);
   renderer->SetPass(nullptr);
   pass->ReleaseGraphicsResources(window);
