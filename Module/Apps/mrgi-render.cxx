@@ -10,6 +10,7 @@
 #include "vtkLightCollection.h"
 #include "vtkMRGIEGLRenderWindow.h"
 #include "vtkMRGIImageIO.h"
+#include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGIReferenceRenderer.h"
 #include "vtkMRGIVPLSelection.h"
@@ -81,7 +82,12 @@ Scaling scene
   --seed N               random seed (default 1)
 
 Indirect light (one bounce; Documentation/IndirectLight.md)
-  --gi off|full          full (default): every pixel gathers every VPL; off: VTK's direct light only
+  --gi off|full|multires full (default): every pixel gathers every VPL; multires: the
+                         stencil-selected multiresolution gather; off: VTK's direct light only
+  --depth-threshold T    multires: depth change per pixel width that refines (default 4; inf: never)
+  --normal-threshold T   multires: normal-component spread that refines (default 0.25; inf: never)
+  --finest-level N       multires: finest level that gathers (default 0 = full resolution)
+  --upsample tent|mask   multires: tent (default) or mask-weighted (Besenthal) upsampling
   --vpls N               virtual point lights, 0..4096 (default 256 = 16x16)
   --vpl-selection grid|importance
                          regular grid over the light's view (default) or flux importance sampling
@@ -133,6 +139,11 @@ struct Options
   bool Interactive = false;
   bool Quiet = false;
   bool GI = true;
+  bool Multires = false;
+  double DepthThreshold = 4.0;
+  double NormalThreshold = 0.25;
+  long long FinestLevel = 0;
+  bool MaskUpsampling = false;
   long long VPLs = 256;
   bool ImportanceVPLs = false;
   long long RSMSize = 256;
@@ -418,8 +429,42 @@ int ParseArguments(int argc, char* argv[], Options& o)
     {
       if (!needValue(i, arg, v))
         return 2;
-      if (!ParseSwitch(v, "full", o.GI))
-        return Fail(std::string("--gi '") + v + "': expected off or full");
+      o.Multires = std::strcmp(v, "multires") == 0;
+      if (!o.Multires && !ParseSwitch(v, "full", o.GI))
+        return Fail(std::string("--gi '") + v + "': expected off, full or multires");
+      if (o.Multires)
+        o.GI = true;
+    }
+    else if (arg == "--depth-threshold" || arg == "--normal-threshold")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      double value = 0;
+      if (std::strcmp(v, "inf") == 0)
+        value = -1.0; // off
+      else if (mrgi_parse_double(v, &value, &err) != MRGI_OK || value < 0)
+        return Fail(arg + " '" + v + "': expected a number >= 0 or inf");
+      (arg == "--depth-threshold" ? o.DepthThreshold : o.NormalThreshold) = value;
+    }
+    else if (arg == "--finest-level")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      int64_t value = 0;
+      if (mrgi_parse_int64(v, 0, 23, &value, &err) != MRGI_OK)
+        return Fail(arg + ": " + err.message);
+      o.FinestLevel = value;
+    }
+    else if (arg == "--upsample")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      if (std::strcmp(v, "tent") == 0)
+        o.MaskUpsampling = false;
+      else if (std::strcmp(v, "mask") == 0)
+        o.MaskUpsampling = true;
+      else
+        return Fail(std::string("--upsample '") + v + "': expected tent or mask");
     }
     else if (arg == "--vpls" || arg == "--rsm-size" || arg == "--reference-passes")
     {
@@ -631,7 +676,14 @@ int main(int argc, char* argv[])
   vtkNew<vtkMRGIPass> mrgi;
   mrgi->SetDelegatePass(steps);
   mrgi->SetStageTimingEnabled(o.Timings);
-  mrgi->SetIndirectMode(o.GI ? vtkMRGIPass::IndirectFull : vtkMRGIPass::IndirectOff);
+  mrgi->SetIndirectMode(!o.GI ? vtkMRGIPass::IndirectOff
+      : o.Multires             ? vtkMRGIPass::IndirectMultires
+                               : vtkMRGIPass::IndirectFull);
+  mrgi->GetMultiresolution()->SetDepthThreshold(o.DepthThreshold);
+  mrgi->GetMultiresolution()->SetNormalThreshold(o.NormalThreshold);
+  mrgi->GetMultiresolution()->SetFinestLevel(static_cast<int>(o.FinestLevel));
+  mrgi->SetUpsampleMode(o.MaskUpsampling ? vtkMRGIMultiresolution::UpsampleMaskWeighted
+                                         : vtkMRGIMultiresolution::UpsampleTent);
   mrgi->SetNumberOfVPLs(static_cast<int>(o.VPLs));
   mrgi->SetVPLSelectionMode(o.ImportanceVPLs ? vtkMRGIVPLSelection::FluxImportance : vtkMRGIVPLSelection::Grid);
   mrgi->SetRSMResolution(static_cast<int>(o.RSMSize));

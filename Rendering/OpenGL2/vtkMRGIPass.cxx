@@ -5,6 +5,7 @@
 #include "vtkFloatArray.h"
 #include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
+#include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIVPLSelection.h"
@@ -38,6 +39,7 @@
 #include "vtkMRGIGatherFS.h"
 
 #include "mrgi_buffers.h"
+#include "mrgi_multires.h"
 #include "mrgi_vpl.h"
 
 #include <cstring>
@@ -228,6 +230,7 @@ vtkMRGIPass::vtkMRGIPass()
 {
   this->RSMPass = vtkMRGIReflectiveShadowMapPass::New();
   this->VPLSelection = vtkMRGIVPLSelection::New();
+  this->Multiresolution = vtkMRGIMultiresolution::New();
   this->OpaqueSequence = vtkSequencePass::New();
   for (int i = 0; i < 16; ++i)
   {
@@ -264,6 +267,7 @@ vtkMRGIPass::~vtkMRGIPass()
   }
   this->RSMPass->Delete();
   this->VPLSelection->Delete();
+  this->Multiresolution->Delete();
   this->OpaqueSequence->Delete();
 }
 
@@ -302,6 +306,7 @@ void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
   this->Superclass::ReleaseGraphicsResources(w);
   this->RSMPass->ReleaseGraphicsResources(w);
   this->VPLSelection->ReleaseGraphicsResources(w);
+  this->Multiresolution->ReleaseGraphicsResources(w);
   Release(this->GatherQuad, w);
   Release(this->AddQuad, w);
   Release(this->OutputQuad, w);
@@ -590,6 +595,55 @@ void vtkMRGIPass::RenderGather(vtkOpenGLRenderWindow* renWin, vtkRenderer* rende
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIPass::RenderMultiresolution(
+  vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, int vplCount, vtkRenderTimerLog* timer)
+{
+  // Pixel size at depth d for the scale-invariant thresholds (mrgi_multires.h).
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const mrgi_multires_projection projection = { camera->GetParallelProjection() ? 1 : 0,
+    camera->GetViewAngle(), camera->GetParallelScale() };
+  float ab[2];
+  mrgi_error err;
+  if (mrgi_multires_pixel_size_coefficients(&projection, this->Viewport[3], ab, &err) != MRGI_OK)
+  {
+    vtkErrorMacro(<< "multiresolution: " << err.message);
+    return false;
+  }
+  vtkNew<vtkMatrix4x4> viewToWorld;
+  vtkMatrix4x4::Invert(camera->GetModelViewTransformMatrix(), viewToWorld);
+  float m[16];
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      m[c * 4 + r] = static_cast<float>(viewToWorld->GetElement(r, c));
+      this->LastViewToWorld[c * 4 + r] = viewToWorld->GetElement(r, c);
+    }
+  }
+  vtkMRGIMultiresolution* mr = this->Multiresolution;
+  {
+    ScopedStage stage(timer, "select");
+    if (!mr->Update(renWin, this->PositionTexture, this->NormalTexture, this->Viewport[0],
+          this->Viewport[1], this->Viewport[2], this->Viewport[3], ab[0], ab[1]))
+    {
+      return false;
+    }
+  }
+  {
+    ScopedStage stage(timer, "gather");
+    if (!mr->Gather(renWin, this->PositionTexture, this->NormalTexture, this->Viewport[0],
+          this->Viewport[1], this->VPLSelection->GetVPLTexture(), vplCount, m))
+    {
+      return false;
+    }
+  }
+  ScopedStage stage(timer, "upsample");
+  return mr->Upsample(renWin, this->UpsampleMode, this->UpsampleMaskWeight) &&
+    mr->Resolve(renWin, this->AlbedoTexture, this->IrradianceTexture, this->IndirectTexture,
+      this->Viewport[0], this->Viewport[1], this->IndirectStrength);
+}
+
+//------------------------------------------------------------------------------
 void vtkMRGIPass::RenderAddIndirect(vtkOpenGLRenderWindow* renWin)
 {
   vtkShaderProgram* program = ReadyQuad(this->AddQuad, renWin, vtkMRGIAddIndirectFS);
@@ -729,15 +783,22 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
     }
     if (vplCount > 0)
     {
+      bool gathered = true;
+      if (this->IndirectMode == IndirectMultires)
+      {
+        gathered = this->RenderMultiresolution(renWin, renderer, vplCount, timer);
+      }
+      else
       {
         ScopedStage stage(timer, "gather");
         this->RenderGather(renWin, renderer, vplCount);
       }
+      if (gathered)
       {
         ScopedStage stage(timer, "add");
         this->RenderAddIndirect(renWin);
+        this->IndirectComputed = true;
       }
-      this->IndirectComputed = true;
     }
   }
   if (split)
@@ -949,7 +1010,11 @@ bool vtkMRGIPass::GetVPLs(vtkRenderWindow* window, vtkFloatArray* vpls)
 void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "IndirectMode: " << (this->IndirectMode == IndirectOff ? "Off" : "Full") << "\n";
+  os << indent << "IndirectMode: "
+     << (this->IndirectMode == IndirectOff ? "Off" : this->IndirectMode == IndirectFull ? "Full" : "Multires")
+     << "\n";
+  os << indent << "UpsampleMode: " << this->UpsampleMode << "\n";
+  os << indent << "UpsampleMaskWeight: " << this->UpsampleMaskWeight << "\n";
   os << indent << "IndirectStrength: " << this->IndirectStrength << "\n";
   os << indent << "NumberOfVPLs: " << this->VPLSelection->GetNumberOfVPLs() << "\n";
   os << indent << "VPLSelectionMode: " << this->VPLSelection->GetMode() << "\n";

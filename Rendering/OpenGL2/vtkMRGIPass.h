@@ -49,12 +49,14 @@
 
 class vtkFloatArray;
 class vtkImageData;
+class vtkMRGIMultiresolution;
 class vtkMRGIReflectiveShadowMapPass;
 class vtkMRGIVPLSelection;
 class vtkOpenGLFXAAFilter;
 class vtkOpenGLFramebufferObject;
 class vtkOpenGLQuadHelper;
 class vtkOpenGLRenderWindow;
+class vtkRenderTimerLog;
 class vtkRenderWindow;
 class vtkSequencePass;
 class vtkTextureObject;
@@ -72,12 +74,13 @@ public:
   enum IndirectModes
   {
     IndirectOff = 0, ///< direct light only
-    IndirectFull = 1 ///< full-resolution gather: every pixel gathers every VPL
+    IndirectFull = 1,    ///< full-resolution gather: every pixel gathers every VPL
+    IndirectMultires = 2 ///< stencil-selected multiresolution gather, upsampled (vtkMRGIMultiresolution)
   };
 
   ///@{
   /** How indirect light is computed (default IndirectFull). */
-  vtkSetClampMacro(IndirectMode, int, IndirectOff, IndirectFull);
+  vtkSetClampMacro(IndirectMode, int, IndirectOff, IndirectMultires);
   vtkGetMacro(IndirectMode, int);
   ///@}
 
@@ -103,6 +106,20 @@ public:
   /** Reflective shadow map resolution, 16..2048 (default 256). */
   void SetRSMResolution(int resolution);
   int GetRSMResolution();
+  ///@}
+
+  /**
+   * The multiresolution gather (IndirectMultires): its thresholds, finest
+   * level, balance rule, coarsest side and upsampling are set on it.
+   */
+  vtkMRGIMultiresolution* GetMultiresolution() { return this->Multiresolution; }
+
+  ///@{
+  /** Upsampling of the multiresolution gather: vtkMRGIMultiresolution::UpsampleTent (default) or UpsampleMaskWeighted, and the mask weight (default 100). */
+  vtkSetClampMacro(UpsampleMode, int, 0, 1);
+  vtkGetMacro(UpsampleMode, int);
+  vtkSetClampMacro(UpsampleMaskWeight, double, 1.0, 1e6);
+  vtkGetMacro(UpsampleMaskWeight, double);
   ///@}
 
   /** The sub-stages, for inspection (statistics, read-backs). */
@@ -193,6 +210,8 @@ protected:
   void RenderForward(const vtkRenderState* s);
   void RenderGather(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, int vplCount);
   void RenderAddIndirect(vtkOpenGLRenderWindow* renWin);
+  bool RenderMultiresolution(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, int vplCount,
+    vtkRenderTimerLog* timer);
   void RenderOutput(vtkOpenGLRenderWindow* renWin);
   bool ReadViewport(vtkRenderWindow* window, vtkTextureObject* texture, int components,
     vtkImageData* image, const char* what);
@@ -207,6 +226,9 @@ protected:
 
   vtkMRGIReflectiveShadowMapPass* RSMPass = nullptr;
   vtkMRGIVPLSelection* VPLSelection = nullptr;
+  vtkMRGIMultiresolution* Multiresolution = nullptr;
+  int UpsampleMode = 0;
+  double UpsampleMaskWeight = 100.0;
   vtkSequencePass* OpaqueSequence = nullptr;
 
   vtkOpenGLFramebufferObject* FrameBuffer = nullptr;

@@ -66,6 +66,12 @@ def main():
     check(code == 0, "direct-only render: " + err)
     check(os.path.getsize(on_png) != os.path.getsize(off_png) or
           open(on_png, "rb").read() != open(off_png, "rb").read(), "--gi off changes the image")
+    mr_exr = fresh("cli_multires.exr")
+    code, out, err = run("cornell-spot", "-o", mr_exr, "--size", "48x48", "-q", "--gi", "multires",
+                         "--depth-threshold", "8", "--normal-threshold", "inf", "--upsample", "mask",
+                         "--timings")
+    check(code == 0 and os.path.getsize(mr_exr) > 0, "--gi multires: " + err)
+    check("select" in out and "upsample" in out, "multires stages in the timing table")
     tm_png = fresh("cli_tone_mapping.png")
     code, _, err = run("cornell-spot", "-o", tm_png, "--size", "48x48", "-q", "--tone-mapping")
     check(code == 0 and os.path.exists(tm_png), "--tone-mapping: " + err)
@@ -99,6 +105,9 @@ def main():
         (["cornell", "-o", target, "--camera-position", "1,2"], "--camera-position"),
         (["cornell", "-o", target, "--frames", "0"], "--frames"),
         (["cornell", "-o", target, "--gi", "half"], "--gi"),
+        (["cornell", "-o", target, "--depth-threshold", "-3"], "--depth-threshold"),
+        (["cornell", "-o", target, "--finest-level", "40"], "--finest-level"),
+        (["cornell", "-o", target, "--upsample", "cubic"], "--upsample"),
         (["cornell", "-o", target, "--vpls", "5000"], "--vpls"),
         (["cornell", "-o", target, "--vpls", "-1"], "--vpls"),
         (["cornell", "-o", target, "--rsm-size", "8"], "--rsm-size"),
