@@ -69,6 +69,87 @@ void ReleaseTexture(vtkTextureObject*& t, vtkWindow* w)
 }
 }
 
+namespace
+{
+// GL state of the multiresolution steps: blending, depth, scissor and
+// stencil tests off, viewport and clear colour restored, MRGI's framebuffer
+// bound for the duration.
+struct QuadSteps
+{
+  QuadSteps(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* fbo)
+    : State(window->GetState())
+    , Blend(State, GL_BLEND)
+    , DepthTest(State, GL_DEPTH_TEST)
+    , Scissor(State, GL_SCISSOR_TEST)
+    , StencilTest(State, GL_STENCIL_TEST)
+    , Viewport(State)
+    , ClearColor(State)
+    , Fbo(fbo)
+  {
+    this->State->vtkglDisable(GL_BLEND);
+    this->State->vtkglDisable(GL_DEPTH_TEST);
+    this->State->vtkglDisable(GL_SCISSOR_TEST);
+    this->State->vtkglDisable(GL_STENCIL_TEST);
+    fbo->SaveCurrentBindingsAndBuffers();
+    fbo->Bind();
+  }
+  ~QuadSteps()
+  {
+    this->Fbo->RemoveColorAttachments(MRGI_MULTIRES_TEX_COUNT + 1);
+    this->Fbo->UnBind();
+    this->Fbo->RestorePreviousBindingsAndBuffers();
+  }
+  void Target(vtkTextureObject* a, vtkTextureObject* b, int x, int y, int w, int h)
+  {
+    this->Fbo->RemoveColorAttachments(MRGI_MULTIRES_TEX_COUNT + 1);
+    this->Fbo->AddColorAttachment(0, a);
+    if (b)
+    {
+      this->Fbo->AddColorAttachment(1, b);
+    }
+    this->Fbo->ActivateDrawBuffers(b ? 2 : 1);
+    this->State->vtkglViewport(x, y, w, h);
+  }
+  vtkOpenGLState* State;
+  vtkOpenGLState::ScopedglEnableDisable Blend, DepthTest, Scissor, StencilTest;
+  vtkOpenGLState::ScopedglViewport Viewport;
+  vtkOpenGLState::ScopedglClearColor ClearColor;
+  vtkOpenGLFramebufferObject* Fbo;
+};
+
+vtkShaderProgram* ReadyStage(vtkOpenGLQuadHelper*& quad, vtkOpenGLRenderWindow* window,
+  const char* source, int stage)
+{
+  if (!quad)
+  {
+    const std::string body = "#define MRGI_MR_STAGE " + std::to_string(stage) + "\n" + source;
+    quad = new vtkOpenGLQuadHelper(window,
+      vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
+      vtkMRGIShaderUtilities::FullScreenShader(body.c_str()).c_str(), "");
+  }
+  window->GetShaderCache()->ReadyShaderProgram(quad->Program);
+  return (quad->Program && quad->Program->GetCompiled()) ? quad->Program : nullptr;
+}
+
+void BindInputs(vtkShaderProgram* p, std::initializer_list<vtkTextureObject*> textures)
+{
+  int k = 0;
+  for (vtkTextureObject* t : textures)
+  {
+    t->Activate();
+    p->SetUniformi(("mrgiInput" + std::to_string(k++)).c_str(), t->GetTextureUnit());
+  }
+}
+
+void UnbindInputs(std::initializer_list<vtkTextureObject*> textures)
+{
+  for (vtkTextureObject* t : textures)
+  {
+    t->Deactivate();
+  }
+}
+}
+
 struct vtkMRGIMultiresolution::Internals
 {
   mrgi_multires_layout Layout{};
@@ -309,21 +390,9 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     }
   }
 
-  vtkOpenGLState* ostate = window->GetState();
-  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
-  vtkOpenGLState::ScopedglEnableDisable stencilTest(ostate, GL_STENCIL_TEST);
-  vtkOpenGLState::ScopedglViewport viewport(ostate);
-  vtkOpenGLState::ScopedglClearColor clearColor(ostate);
-  ostate->vtkglDisable(GL_BLEND);
-  ostate->vtkglDisable(GL_DEPTH_TEST);
-  ostate->vtkglDisable(GL_SCISSOR_TEST);
-  ostate->vtkglDisable(GL_STENCIL_TEST);
-
+  QuadSteps steps(window, in.FrameBuffer);
+  vtkOpenGLState* ostate = steps.State;
   vtkOpenGLFramebufferObject* fbo = in.FrameBuffer;
-  fbo->SaveCurrentBindingsAndBuffers();
-  fbo->Bind();
   auto target = [&](std::initializer_list<vtkTextureObject*> textures, int w, int h) {
     fbo->RemoveColorAttachments(MRGI_MULTIRES_TEX_COUNT + 1);
     unsigned int k = 0;
@@ -460,9 +529,6 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
   ostate->vtkglStencilFunc(GL_ALWAYS, 0, 0xFF);
   ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
-  fbo->RemoveColorAttachments(MRGI_MULTIRES_TEX_COUNT + 1);
-  fbo->UnBind();
-  fbo->RestorePreviousBindingsAndBuffers();
   const GLenum error = glGetError();
   if (error != GL_NO_ERROR)
   {
@@ -496,29 +562,11 @@ bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObj
     return (quad->Program && quad->Program->GetCompiled()) ? quad->Program : nullptr;
   };
 
-  vtkOpenGLState* ostate = window->GetState();
-  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
-  vtkOpenGLState::ScopedglEnableDisable stencilTest(ostate, GL_STENCIL_TEST);
-  vtkOpenGLState::ScopedglViewport viewport(ostate);
-  vtkOpenGLState::ScopedglClearColor clearColor(ostate);
-  ostate->vtkglDisable(GL_BLEND);
-  ostate->vtkglDisable(GL_DEPTH_TEST);
-  ostate->vtkglDisable(GL_SCISSOR_TEST);
-  ostate->vtkglDisable(GL_STENCIL_TEST);
+  QuadSteps steps(window, in.FrameBuffer);
+  vtkOpenGLState* ostate = steps.State;
   vtkOpenGLFramebufferObject* fbo = in.FrameBuffer;
-  fbo->SaveCurrentBindingsAndBuffers();
-  fbo->Bind();
   auto target = [&](vtkTextureObject* a, vtkTextureObject* b, int w, int h) {
-    fbo->RemoveColorAttachments(MRGI_MULTIRES_TEX_COUNT + 1);
-    fbo->AddColorAttachment(0, a);
-    if (b)
-    {
-      fbo->AddColorAttachment(1, b);
-    }
-    fbo->ActivateDrawBuffers(b ? 2 : 1);
-    ostate->vtkglViewport(0, 0, w, h);
+    steps.Target(a, b, 0, 0, w, h);
   };
   auto inputs = [&](vtkShaderProgram* p, vtkTextureObject* a, vtkTextureObject* b) {
     a->Activate();
@@ -601,9 +649,6 @@ bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObj
     ostate->vtkglStencilFunc(GL_ALWAYS, 0, 0xFF);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
   }
-  fbo->RemoveColorAttachments(MRGI_MULTIRES_TEX_COUNT + 1);
-  fbo->UnBind();
-  fbo->RestorePreviousBindingsAndBuffers();
   if (!ok)
   {
     vtkErrorMacro("could not build the multiresolution gather shaders");
@@ -616,84 +661,6 @@ bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObj
     return false;
   }
   return true;
-}
-
-//------------------------------------------------------------------------------
-namespace
-{
-// Shared GL state of the upsampling and resolve steps.
-struct QuadSteps
-{
-  QuadSteps(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* fbo)
-    : State(window->GetState())
-    , Blend(State, GL_BLEND)
-    , DepthTest(State, GL_DEPTH_TEST)
-    , Scissor(State, GL_SCISSOR_TEST)
-    , StencilTest(State, GL_STENCIL_TEST)
-    , Viewport(State)
-    , Fbo(fbo)
-  {
-    this->State->vtkglDisable(GL_BLEND);
-    this->State->vtkglDisable(GL_DEPTH_TEST);
-    this->State->vtkglDisable(GL_SCISSOR_TEST);
-    this->State->vtkglDisable(GL_STENCIL_TEST);
-    fbo->SaveCurrentBindingsAndBuffers();
-    fbo->Bind();
-  }
-  ~QuadSteps()
-  {
-    this->Fbo->RemoveColorAttachments(MRGI_MULTIRES_TEX_COUNT + 1);
-    this->Fbo->UnBind();
-    this->Fbo->RestorePreviousBindingsAndBuffers();
-  }
-  void Target(vtkTextureObject* a, vtkTextureObject* b, int x, int y, int w, int h)
-  {
-    this->Fbo->RemoveColorAttachments(MRGI_MULTIRES_TEX_COUNT + 1);
-    this->Fbo->AddColorAttachment(0, a);
-    if (b)
-    {
-      this->Fbo->AddColorAttachment(1, b);
-    }
-    this->Fbo->ActivateDrawBuffers(b ? 2 : 1);
-    this->State->vtkglViewport(x, y, w, h);
-  }
-  vtkOpenGLState* State;
-  vtkOpenGLState::ScopedglEnableDisable Blend, DepthTest, Scissor, StencilTest;
-  vtkOpenGLState::ScopedglViewport Viewport;
-  vtkOpenGLFramebufferObject* Fbo;
-};
-
-vtkShaderProgram* ReadyStage(vtkOpenGLQuadHelper*& quad, vtkOpenGLRenderWindow* window,
-  const char* source, int stage)
-{
-  if (!quad)
-  {
-    const std::string body = "#define MRGI_MR_STAGE " + std::to_string(stage) + "\n" + source;
-    quad = new vtkOpenGLQuadHelper(window,
-      vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
-      vtkMRGIShaderUtilities::FullScreenShader(body.c_str()).c_str(), "");
-  }
-  window->GetShaderCache()->ReadyShaderProgram(quad->Program);
-  return (quad->Program && quad->Program->GetCompiled()) ? quad->Program : nullptr;
-}
-
-void BindInputs(vtkShaderProgram* p, std::initializer_list<vtkTextureObject*> textures)
-{
-  int k = 0;
-  for (vtkTextureObject* t : textures)
-  {
-    t->Activate();
-    p->SetUniformi(("mrgiInput" + std::to_string(k++)).c_str(), t->GetTextureUnit());
-  }
-}
-
-void UnbindInputs(std::initializer_list<vtkTextureObject*> textures)
-{
-  for (vtkTextureObject* t : textures)
-  {
-    t->Deactivate();
-  }
-}
 }
 
 //------------------------------------------------------------------------------
