@@ -676,6 +676,8 @@ int main(int argc, char* argv[])
   vtkNew<vtkMRGIPass> mrgi;
   mrgi->SetDelegatePass(steps);
   mrgi->SetStageTimingEnabled(o.Timings);
+  // Per-level statistics wait for the GPU once per frame: with --timings only.
+  mrgi->GetMultiresolution()->SetCollectStatistics(o.Timings);
   mrgi->SetIndirectMode(!o.GI ? vtkMRGIPass::IndirectOff
       : o.Multires             ? vtkMRGIPass::IndirectMultires
                                : vtkMRGIPass::IndirectFull);
@@ -826,10 +828,28 @@ int main(int argc, char* argv[])
     for (const std::string& name : stageOrder)
     {
       const double ms = Median(stageTimes[name]);
-      total += ms;
-      std::printf("%-24s %12.3f\n", name.c_str(), ms);
+      // "stage.step" names are parts of their stage, indented, not added again.
+      const bool step = name.find('.') != std::string::npos;
+      total += step ? 0.0 : ms;
+      std::printf("%s%-*s %12.3f\n", step ? "  " : "", step ? 22 : 24, name.c_str(), ms);
     }
     std::printf("%-24s %12.3f\n", "total (GPU)", total);
+    vtkMRGIMultiresolution* mr = mrgi->GetMultiresolution();
+    if (o.GI && o.Multires && mr->GetGatherWorkFraction() >= 0)
+    {
+      // nichols-shopf-wyman-2009 table 1: where the gather's work went (last frame).
+      std::printf("%-6s %-11s %16s\n", "level", "size", "texels gathered");
+      for (int i = 0; i < mr->GetNumberOfLevels(); ++i)
+      {
+        int size[2] = { 0, 0 };
+        mr->GetLevelSize(i, size);
+        std::snprintf(line, sizeof(line), "%dx%d", size[0], size[1]);
+        std::printf("%-6d %-11s %16lld\n", i, line,
+          static_cast<long long>(mr->GetNumberOfGatheredTexels(i)));
+      }
+      std::printf("gathered / valid pixels: %.4f (of %lld valid pixels)\n",
+        mr->GetGatherWorkFraction(), static_cast<long long>(mr->GetNumberOfValidPixels()));
+    }
     std::printf("%-24s %12.3f\n", "frame (wall)", Median(frameTimes));
     if (stageOrder.empty())
     {

@@ -298,7 +298,7 @@ mrgi_status mrgi_multires_mipmap_build(const mrgi_multires_layout* layout,
       }
     }
   }
-  /* Level 0, pass 2: depth derivative g over the valid 8-neighbours (NPW10 3.2). */
+  /* Level 0, pass 2: depth derivative g over the depth-valid 8-neighbours (NPW10 3.2). */
   for (int32_t y = 0; y < H; ++y)
   {
     for (int32_t x = 0; x < W; ++x)
@@ -316,12 +316,15 @@ mrgi_status mrgi_multires_mipmap_build(const mrgi_multires_layout* layout,
         {
           const int32_t qx = mrgi_clamp_i32(x + dx, 0, W - 1);
           const int32_t qy = mrgi_clamp_i32(y + dy, 0, H - 1);
-          const size_t q = 4 * mrgi_multires_index(layout, 0, qx, qy);
-          if (depth[q + 3] != (float)MRGI_MULTIRES_VALID_BIT)
+          /* The neighbour's depth straight from the G-buffer: its flag and
+           * depth decide, not its normal (one texture read per neighbour on
+           * the GPU instead of two). */
+          const float* Q = gbuffer->position + 4 * ((size_t)qy * (size_t)W + (size_t)qx);
+          if (!(Q[3] > MRGI_GBUFFER_VALID_THRESHOLD && mrgi_is_finite_float(Q[2])))
           {
             continue;
           }
-          const float dq = depth[q];
+          const float dq = -Q[2];
           const float s = mrgi_pixel_size(ab, fminf(fabsf(dp), fabsf(dq)));
           float slope = fabsf(dq - dp) / s;
           if (!(slope <= MRGI_MULTIRES_FLT_MAX))

@@ -61,9 +61,11 @@
  *   (0, 2 parallel_scale / H) for parallel projection (VTK's camera
  *   ViewAngle in degrees and ParallelScale): mrgi_multires_pixel_size_coefficients();
  * - depth derivative (NPW10 3.2, made dimensionless):
- *     g_p = max over the valid 8-neighbours q of p (clamped at the image
- *           edge) of min(|d_q - d_p| / s(min(|d_p|, |d_q|)), FLT_MAX),
- *   0 when p has no valid neighbour. g is "depth change per pixel width":
+ *     g_p = max over the depth-valid 8-neighbours q of p (clamped at the
+ *           image edge) of min(|d_q - d_p| / s(min(|d_p|, |d_q|)), FLT_MAX),
+ *   0 when p has no such neighbour. A neighbour is depth-valid when its
+ *   flag is set and its depth finite (its normal does not matter: one
+ *   G-buffer read per neighbour on the GPU). g is "depth change per pixel width":
  *   tan(tilt) on a plane tilted away from the viewer, step / pixel width at
  *   a depth step, identical at any scene scale and for both projections;
  * - valid pixel:   (d_p, d_p, g_p, MRGI_MULTIRES_VALID_BIT), normals (n_p, 0), (n_p, 0);

@@ -37,9 +37,8 @@ enum Stage
   MipmapBase = 0,
   MipmapReduce = 1,
   Flags = 2,
-  FlattenFlags = 3,
-  Select = 4,
-  StageCount = 5
+  Select = 3,
+  StageCount = 4
 };
 
 vtkTextureObject* MakeFloatTexture(vtkOpenGLRenderWindow* window, int w, int h)
@@ -148,6 +147,38 @@ void UnbindInputs(std::initializer_list<vtkTextureObject*> textures)
     t->Deactivate();
   }
 }
+
+// Read every level's texture back into the flattened layout (rows bottom-up,
+// `components` of each texel's RGBA kept; 0 outside the levels).
+template <typename LevelTexture>
+bool ReadFlattened(vtkOpenGLRenderWindow* window, const mrgi_multires_layout& layout,
+  int components, LevelTexture levelTexture, std::vector<float>& flat)
+{
+  const size_t W = static_cast<size_t>(layout.total_width);
+  flat.assign(W * static_cast<size_t>(layout.total_height) * static_cast<size_t>(components), 0.0f);
+  for (int i = 0; i < layout.level_count; ++i)
+  {
+    std::vector<float> rgba;
+    if (!vtkMRGIShaderUtilities::ReadTextureRGBA(window, levelTexture(i), rgba))
+    {
+      return false;
+    }
+    const size_t w = static_cast<size_t>(layout.level_width[i]);
+    for (size_t y = 0; y < static_cast<size_t>(layout.level_height[i]); ++y)
+    {
+      for (size_t x = 0; x < w; ++x)
+      {
+        const size_t to = (y * W + static_cast<size_t>(layout.level_offset[i]) + x) *
+          static_cast<size_t>(components);
+        for (int c = 0; c < components; ++c)
+        {
+          flat[to + static_cast<size_t>(c)] = rgba[(y * w + x) * 4 + static_cast<size_t>(c)];
+        }
+      }
+    }
+  }
+  return true;
+}
 }
 
 struct vtkMRGIMultiresolution::Internals
@@ -156,12 +187,20 @@ struct vtkMRGIMultiresolution::Internals
   bool HasLayout = false;
   // Per level: mipmap (MRGI_MULTIRES_TEX_*) and flags.
   std::vector<std::array<vtkTextureObject*, MRGI_MULTIRES_TEX_COUNT + 1>> Levels;
-  vtkTextureObject* FlatFlags = nullptr;
-  // Receivers: per level (position, normal) and flattened; the gather's output.
+  // Receivers: per level (position, normal); level 0 is the G-buffer itself
+  // and its textures are filled only when read back. The gather's output is
+  // flattened.
   std::vector<std::array<vtkTextureObject*, 2>> Receivers;
-  vtkTextureObject* FlatReceivers[2] = { nullptr, nullptr };
   vtkTextureObject* FlatIrradiance = nullptr;
   vtkOpenGLQuadHelper* ReceiverQuads[3] = { nullptr, nullptr, nullptr };
+  // The G-buffer of the last Gather(), for ReadReceivers() (not owned).
+  vtkTextureObject* LastPosition = nullptr;
+  vtkTextureObject* LastNormal = nullptr;
+  int LastOffset[2] = { 0, 0 };
+  // Statistics of the last Gather() (occlusion queries, one per level).
+  std::vector<unsigned int> Queries;
+  std::vector<long long> GatheredTexels;
+  long long ValidPixels = -1;
   vtkOpenGLQuadHelper* GatherQuad = nullptr;
   // Upsampling: per level (state/value, filtered).
   std::vector<std::array<vtkTextureObject*, 2>> Upsampled;
@@ -169,7 +208,7 @@ struct vtkMRGIMultiresolution::Internals
   vtkTextureObject* FlatSelection = nullptr;
   vtkTextureObject* DepthStencil = nullptr;
   vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
-  vtkOpenGLQuadHelper* Quads[StageCount] = { nullptr, nullptr, nullptr, nullptr, nullptr };
+  vtkOpenGLQuadHelper* Quads[StageCount] = { nullptr, nullptr, nullptr, nullptr };
 
   void ReleaseTextures(vtkWindow* w)
   {
@@ -197,13 +236,23 @@ struct vtkMRGIMultiresolution::Internals
       }
     }
     this->Upsampled.clear();
-    ReleaseTexture(this->FlatReceivers[0], w);
-    ReleaseTexture(this->FlatReceivers[1], w);
     ReleaseTexture(this->FlatIrradiance, w);
-    ReleaseTexture(this->FlatFlags, w);
     ReleaseTexture(this->FlatSelection, w);
     ReleaseTexture(this->DepthStencil, w);
     this->HasLayout = false;
+    this->LastPosition = this->LastNormal = nullptr;
+    this->GatheredTexels.clear();
+    this->ValidPixels = -1;
+  }
+
+  // Occlusion queries need the context: only with a window.
+  void ReleaseQueries(vtkWindow* w)
+  {
+    if (w && !this->Queries.empty())
+    {
+      glDeleteQueries(static_cast<GLsizei>(this->Queries.size()), this->Queries.data());
+    }
+    this->Queries.clear();
   }
 };
 
@@ -243,6 +292,7 @@ vtkMRGIMultiresolution::~vtkMRGIMultiresolution()
 //------------------------------------------------------------------------------
 void vtkMRGIMultiresolution::ReleaseGraphicsResources(vtkWindow* w)
 {
+  this->Internal->ReleaseQueries(w);
   this->Internal->ReleaseTextures(w);
   auto releaseQuad = [w](vtkOpenGLQuadHelper*& q) {
     if (q)
@@ -284,6 +334,17 @@ int vtkMRGIMultiresolution::GetFlattenedHeight() const
 int vtkMRGIMultiresolution::GetNumberOfLevels() const
 {
   return this->Internal->HasLayout ? this->Internal->Layout.level_count : 0;
+}
+bool vtkMRGIMultiresolution::GetLevelSize(int level, int size[2]) const
+{
+  const Internals& in = *this->Internal;
+  if (!in.HasLayout || level < 0 || level >= in.Layout.level_count)
+  {
+    return false;
+  }
+  size[0] = in.Layout.level_width[level];
+  size[1] = in.Layout.level_height[level];
+  return true;
 }
 vtkTextureObject* vtkMRGIMultiresolution::GetStencilTexture() const
 {
@@ -329,7 +390,6 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
         t = MakeFloatTexture(window, layout.level_width[i], layout.level_height[i]);
       }
     }
-    in.FlatFlags = MakeFloatTexture(window, layout.total_width, layout.total_height);
     in.Receivers.resize(static_cast<size_t>(levels));
     for (int i = 0; i < levels; ++i)
     {
@@ -337,10 +397,6 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
       {
         t = MakeFloatTexture(window, layout.level_width[i], layout.level_height[i]);
       }
-    }
-    for (auto*& t : in.FlatReceivers)
-    {
-      t = MakeFloatTexture(window, layout.total_width, layout.total_height);
     }
     in.FlatIrradiance = MakeFloatTexture(window, layout.total_width, layout.total_height);
     in.Upsampled.resize(static_cast<size_t>(levels));
@@ -421,8 +477,10 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
   };
   const float pixelSize[2] = { static_cast<float>(a), static_cast<float>(b) };
 
+  using vtkMRGIShaderUtilities::ScopedStage;
   // 1. Level 0 of the mipmaps, from the G-buffer.
   {
+    ScopedStage step(this->StageTimer, "select.mipmap0");
     auto& level = in.Levels[0];
     target({ level[MRGI_MULTIRES_TEX_DEPTH], level[MRGI_MULTIRES_TEX_NORMAL_MIN],
              level[MRGI_MULTIRES_TEX_NORMAL_MAX] },
@@ -440,6 +498,7 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
   // 2. Coarser levels: 2x2 reduction of the finer one.
   for (int i = 1; i < levels; ++i)
   {
+    ScopedStage step(this->StageTimer, "select.mipmaps");
     auto& fine = in.Levels[i - 1];
     auto& level = in.Levels[i];
     target({ level[MRGI_MULTIRES_TEX_DEPTH], level[MRGI_MULTIRES_TEX_NORMAL_MIN],
@@ -461,6 +520,7 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     this->NormalThreshold < 0 ? INFINITY : this->NormalThreshold);
   for (int i = 0; i < levels; ++i)
   {
+    ScopedStage step(this->StageTimer, i == 0 ? "select.flags0" : "select.flags");
     auto& level = in.Levels[i];
     const int flagsSlot = MRGI_MULTIRES_TEX_COUNT;
     target({ level[flagsSlot] }, layout.level_width[i], layout.level_height[i]);
@@ -488,23 +548,10 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     unbind({ level[MRGI_MULTIRES_TEX_DEPTH], level[MRGI_MULTIRES_TEX_NORMAL_MIN],
       level[MRGI_MULTIRES_TEX_NORMAL_MAX], finer });
   }
-  // 4. The flags of every level into the flattened layout.
-  target({ in.FlatFlags }, layout.total_width, layout.total_height);
-  ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
-  ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
-  for (int i = 0; i < levels; ++i)
-  {
-    ostate->vtkglViewport(
-      layout.level_offset[i], 0, layout.level_width[i], layout.level_height[i]);
-    vtkTextureObject* flags = in.Levels[i][MRGI_MULTIRES_TEX_COUNT];
-    vtkShaderProgram* p = programs[FlattenFlags];
-    bind(p, { flags });
-    const int offset[2] = { layout.level_offset[i], 0 };
-    p->SetUniform2i("mrgiOffset", offset);
-    in.Quads[FlattenFlags]->Render();
-    unbind({ flags });
-  }
-  // 5. One pass over the flattened layout: selected texels set the stencil.
+  // 4. Selection (nichols-shopf-wyman-2009 3.2.1): one draw per level from
+  // the finest that gathers, into that level's rectangle of the flattened
+  // layout; the texels that survive set the stencil.
+  ScopedStage stencilStep(this->StageTimer, "select.stencil");
   target({ in.FlatSelection }, layout.total_width, layout.total_height);
   glFramebufferTexture2D(
     GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, in.DepthStencil->GetHandle(), 0);
@@ -515,16 +562,21 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
   ostate->vtkglEnable(GL_STENCIL_TEST);
   ostate->vtkglStencilFunc(GL_ALWAYS, 1, 0xFF);
   ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  for (int i = finest; i < levels; ++i)
   {
     vtkShaderProgram* p = programs[Select];
-    bind(p, { in.FlatFlags });
-    p->SetUniformi("mrgiLevelCount", levels);
+    vtkTextureObject* flags = in.Levels[i][MRGI_MULTIRES_TEX_COUNT];
+    // The coarsest level has no parent: its own flags stand in, unread.
+    vtkTextureObject* parent = in.Levels[std::min(i + 1, levels - 1)][MRGI_MULTIRES_TEX_COUNT];
+    ostate->vtkglViewport(layout.level_offset[i], 0, layout.level_width[i], layout.level_height[i]);
+    bind(p, { flags, parent });
+    const int offset[2] = { layout.level_offset[i], 0 };
+    p->SetUniform2i("mrgiOffset", offset);
+    p->SetUniformi("mrgiLevel", i);
     p->SetUniformi("mrgiFinestLevel", finest);
-    p->SetUniform1iv("mrgiLevelOffset", levels, layout.level_offset);
-    p->SetUniform1iv("mrgiLevelWidth", levels, layout.level_width);
-    p->SetUniform1iv("mrgiLevelHeight", levels, layout.level_height);
+    p->SetUniformi("mrgiCoarsest", i == levels - 1 ? 1 : 0);
     in.Quads[Select]->Render();
-    unbind({ in.FlatFlags });
+    unbind({ flags, parent });
   }
   ostate->vtkglStencilFunc(GL_ALWAYS, 0, 0xFF);
   ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
@@ -575,53 +627,56 @@ bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObj
     p->SetUniformi("mrgiInput1", b->GetTextureUnit());
   };
   bool ok = true;
-  // 1. Receivers, level by level, then flattened.
-  for (int i = 0; i < levels && ok; ++i)
+  using vtkMRGIShaderUtilities::ScopedStage;
+  in.LastPosition = position;
+  in.LastNormal = normal;
+  in.LastOffset[0] = x0;
+  in.LastOffset[1] = y0;
+  const int finest = std::min(this->FinestLevel, levels - 1);
+  // 1. Receivers, level by level from level 1 (level 1 straight from the
+  // G-buffer; the gather reads level 0 from the G-buffer itself).
   {
-    const int stage = i == 0 ? 0 : 1;
-    vtkShaderProgram* p = ready(in.ReceiverQuads[stage],
-      "#define MRGI_MR_STAGE " + std::to_string(stage) + "\n" + vtkMRGIMultiresReceiversFS);
-    if (!p)
+    ScopedStage receiverStep(this->StageTimer, "gather.receivers");
+    for (int i = 1; i < levels && ok; ++i)
     {
-      ok = false;
-      break;
-    }
-    target(in.Receivers[i][0], in.Receivers[i][1], layout.level_width[i], layout.level_height[i]);
-    vtkTextureObject* srcP = i == 0 ? position : in.Receivers[i - 1][0];
-    vtkTextureObject* srcN = i == 0 ? normal : in.Receivers[i - 1][1];
-    inputs(p, srcP, srcN);
-    const int offset[2] = { x0, y0 };
-    const int size[2] = { i == 0 ? 0 : layout.level_width[i - 1], i == 0 ? 0 : layout.level_height[i - 1] };
-    p->SetUniform2i("mrgiOffset", offset);
-    p->SetUniform2i("mrgiSize", size);
-    in.ReceiverQuads[stage]->Render();
-    srcP->Deactivate();
-    srcN->Deactivate();
-  }
-  vtkShaderProgram* flatten =
-    ok ? ready(in.ReceiverQuads[2], std::string("#define MRGI_MR_STAGE 2\n") + vtkMRGIMultiresReceiversFS) : nullptr;
-  ok = ok && flatten;
-  if (ok)
-  {
-    target(in.FlatReceivers[0], in.FlatReceivers[1], layout.total_width, layout.total_height);
-    ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
-    ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
-    for (int i = 0; i < levels; ++i)
-    {
-      ostate->vtkglViewport(layout.level_offset[i], 0, layout.level_width[i], layout.level_height[i]);
-      inputs(flatten, in.Receivers[i][0], in.Receivers[i][1]);
-      const int offset[2] = { layout.level_offset[i], 0 };
-      flatten->SetUniform2i("mrgiOffset", offset);
-      in.ReceiverQuads[2]->Render();
-      in.Receivers[i][0]->Deactivate();
-      in.Receivers[i][1]->Deactivate();
+      const int stage = i == 1 ? 2 : 1;
+      vtkShaderProgram* p = ready(in.ReceiverQuads[stage],
+        "#define MRGI_MR_STAGE " + std::to_string(stage) + "\n" + vtkMRGIMultiresReceiversFS);
+      if (!p)
+      {
+        ok = false;
+        break;
+      }
+      target(in.Receivers[i][0], in.Receivers[i][1], layout.level_width[i], layout.level_height[i]);
+      vtkTextureObject* srcP = i == 1 ? position : in.Receivers[i - 1][0];
+      vtkTextureObject* srcN = i == 1 ? normal : in.Receivers[i - 1][1];
+      inputs(p, srcP, srcN);
+      const int offset[2] = { x0, y0 };
+      const int size[2] = { layout.level_width[i - 1], layout.level_height[i - 1] };
+      p->SetUniform2i("mrgiOffset", offset);
+      p->SetUniform2i("mrgiSize", size);
+      in.ReceiverQuads[stage]->Render();
+      srcP->Deactivate();
+      srcN->Deactivate();
     }
   }
-  // 2. The stenciled gather over the flattened layout.
+  // 2. The stenciled gather, one draw per level into its rectangle of the
+  // flattened layout (early stencil culling skips the texels not selected).
+  // With statistics on, an occlusion query per level counts the texels that
+  // passed the stencil, i.e. the texels gathered.
+  ScopedStage gatherStep(this->StageTimer, "gather.vpls");
   vtkShaderProgram* gather = ok
     ? ready(in.GatherQuad, std::string("#define MRGI_GATHER_IRRADIANCE_ONLY 1\n") + vtkMRGIGatherFS)
     : nullptr;
   ok = ok && gather;
+  in.GatheredTexels.assign(static_cast<size_t>(levels), -1);
+  in.ValidPixels = -1;
+  if (ok && this->CollectStatistics && in.Queries.size() != static_cast<size_t>(levels))
+  {
+    in.ReleaseQueries(window);
+    in.Queries.resize(static_cast<size_t>(levels));
+    glGenQueries(levels, in.Queries.data());
+  }
   if (ok)
   {
     target(in.FlatIrradiance, nullptr, layout.total_width, layout.total_height);
@@ -633,21 +688,72 @@ bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObj
     ostate->vtkglStencilMask(0x00);
     ostate->vtkglStencilFunc(GL_EQUAL, 1, 0xFF);
     ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    in.FlatReceivers[0]->Activate();
-    in.FlatReceivers[1]->Activate();
     vpls->Activate();
-    gather->SetUniformi("mrgiPosition", in.FlatReceivers[0]->GetTextureUnit());
-    gather->SetUniformi("mrgiNormal", in.FlatReceivers[1]->GetTextureUnit());
     gather->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
     gather->SetUniformi("mrgiVPLCount", vplCount);
     gather->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(viewToWorld));
-    in.GatherQuad->Render();
+    for (int i = finest; i < levels; ++i)
+    {
+      vtkTextureObject* receiverP = i == 0 ? position : in.Receivers[i][0];
+      vtkTextureObject* receiverN = i == 0 ? normal : in.Receivers[i][1];
+      const int receiverOffset[2] = { i == 0 ? x0 : -layout.level_offset[i], i == 0 ? y0 : 0 };
+      receiverP->Activate();
+      receiverN->Activate();
+      gather->SetUniformi("mrgiPosition", receiverP->GetTextureUnit());
+      gather->SetUniformi("mrgiNormal", receiverN->GetTextureUnit());
+      gather->SetUniform2i("mrgiReceiverOffset", receiverOffset);
+      ostate->vtkglViewport(layout.level_offset[i], 0, layout.level_width[i], layout.level_height[i]);
+      if (this->CollectStatistics)
+      {
+        glBeginQuery(GL_SAMPLES_PASSED, in.Queries[static_cast<size_t>(i)]);
+      }
+      in.GatherQuad->Render();
+      if (this->CollectStatistics)
+      {
+        glEndQuery(GL_SAMPLES_PASSED);
+      }
+      receiverN->Deactivate();
+      receiverP->Deactivate();
+    }
     vpls->Deactivate();
-    in.FlatReceivers[1]->Deactivate();
-    in.FlatReceivers[0]->Deactivate();
     ostate->vtkglStencilMask(0xFF);
     ostate->vtkglStencilFunc(GL_ALWAYS, 0, 0xFF);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+  }
+  if (ok && this->CollectStatistics)
+  {
+    // Blocking reads, which is why statistics are opt-in.
+    for (int i = 0; i < levels; ++i)
+    {
+      GLuint passed = 0;
+      if (i >= finest)
+      {
+        glGetQueryObjectuiv(in.Queries[static_cast<size_t>(i)], GL_QUERY_RESULT, &passed);
+      }
+      in.GatheredTexels[static_cast<size_t>(i)] = static_cast<long long>(passed);
+    }
+    // The coarsest receivers carry their pixel counts: their sum is the
+    // number of valid pixels, the work of the full-resolution gather.
+    // With one level, the validity bits of the level-0 mipmap count them.
+    std::vector<float> coarsest;
+    if (levels > 1 && vtkMRGIShaderUtilities::ReadTextureRGBA(window, in.Receivers[levels - 1][0], coarsest))
+    {
+      double sum = 0.0;
+      for (size_t k = 3; k < coarsest.size(); k += 4)
+      {
+        sum += coarsest[k];
+      }
+      in.ValidPixels = static_cast<long long>(sum + 0.5);
+    }
+    else if (levels == 1 &&
+      vtkMRGIShaderUtilities::ReadTextureRGBA(window, in.Levels[0][MRGI_MULTIRES_TEX_DEPTH], coarsest))
+    {
+      in.ValidPixels = 0;
+      for (size_t k = 3; k < coarsest.size(); k += 4)
+      {
+        in.ValidPixels += (static_cast<int>(coarsest[k]) & MRGI_MULTIRES_VALID_BIT) ? 1 : 0;
+      }
+    }
   }
   if (!ok)
   {
@@ -681,6 +787,7 @@ bool vtkMRGIMultiresolution::Upsample(vtkOpenGLRenderWindow* window, int mode, d
   }
   const mrgi_multires_layout& layout = in.Layout;
   const int coarsest = layout.level_count - 1;
+  vtkMRGIShaderUtilities::ScopedStage step(this->StageTimer, "upsample.levels");
   QuadSteps steps(window, in.FrameBuffer);
   for (int i = coarsest; i >= 0; --i)
   {
@@ -735,6 +842,7 @@ bool vtkMRGIMultiresolution::Resolve(vtkOpenGLRenderWindow* window, vtkTextureOb
     return false;
   }
   {
+    vtkMRGIShaderUtilities::ScopedStage step(this->StageTimer, "upsample.resolve");
     QuadSteps steps(window, in.FrameBuffer);
     steps.Target(irradiance, indirect, x0, y0, in.Layout.width, in.Layout.height);
     vtkTextureObject* flags = in.Levels[0][MRGI_MULTIRES_TEX_COUNT];
@@ -772,19 +880,41 @@ bool vtkMRGIMultiresolution::ReadReceivers(
 {
   vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
   Internals& in = *this->Internal;
+  if (!renWin || !position || !normal || !in.HasLayout || !in.LastPosition || !in.LastNormal)
+  {
+    vtkErrorMacro("ReadReceivers: nothing gathered yet");
+    return false;
+  }
+  // Level 0 is the G-buffer of the last Gather(), turned into receivers here
+  // (the gather itself never writes it).
+  renWin->MakeCurrent();
+  vtkShaderProgram* p = ReadyStage(in.ReceiverQuads[0], renWin, vtkMRGIMultiresReceiversFS, 0);
+  if (!p)
+  {
+    vtkErrorMacro("could not build the multiresolution receivers shader");
+    return false;
+  }
+  {
+    QuadSteps steps(renWin, in.FrameBuffer);
+    steps.Target(in.Receivers[0][0], in.Receivers[0][1], 0, 0, in.Layout.width, in.Layout.height);
+    BindInputs(p, { in.LastPosition, in.LastNormal });
+    p->SetUniform2i("mrgiOffset", in.LastOffset);
+    in.ReceiverQuads[0]->Render();
+    UnbindInputs({ in.LastPosition, in.LastNormal });
+  }
   vtkFloatArray* out[2] = { position, normal };
   for (int k = 0; k < 2; ++k)
   {
-    std::vector<float> rgba;
-    if (!renWin || !out[k] || !in.HasLayout ||
-      !vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.FlatReceivers[k], rgba))
+    std::vector<float> flat;
+    if (!ReadFlattened(renWin, in.Layout, 4,
+          [&](int level) { return in.Receivers[static_cast<size_t>(level)][static_cast<size_t>(k)]; }, flat))
     {
-      vtkErrorMacro("ReadReceivers: nothing gathered yet");
+      vtkErrorMacro("ReadReceivers: could not read the receivers back");
       return false;
     }
     out[k]->SetNumberOfComponents(4);
-    out[k]->SetNumberOfTuples(static_cast<vtkIdType>(rgba.size() / 4));
-    std::copy(rgba.begin(), rgba.end(), out[k]->GetPointer(0));
+    out[k]->SetNumberOfTuples(static_cast<vtkIdType>(flat.size() / 4));
+    std::copy(flat.begin(), flat.end(), out[k]->GetPointer(0));
   }
   return true;
 }
@@ -852,20 +982,58 @@ bool vtkMRGIMultiresolution::ReadFlags(vtkRenderWindow* window, vtkUnsignedCharA
 {
   vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
   Internals& in = *this->Internal;
-  std::vector<float> rgba;
+  std::vector<float> flat;
   if (!renWin || !flags || !in.HasLayout ||
-    !vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.FlatFlags, rgba))
+    !ReadFlattened(renWin, in.Layout, 1,
+      [&](int level) { return in.Levels[static_cast<size_t>(level)][MRGI_MULTIRES_TEX_COUNT]; }, flat))
   {
     vtkErrorMacro("ReadFlags: nothing selected yet");
     return false;
   }
   flags->SetNumberOfComponents(1);
-  flags->SetNumberOfTuples(static_cast<vtkIdType>(rgba.size() / 4));
+  flags->SetNumberOfTuples(static_cast<vtkIdType>(flat.size()));
   for (vtkIdType i = 0; i < flags->GetNumberOfTuples(); ++i)
   {
-    flags->SetValue(i, static_cast<unsigned char>(rgba[4 * static_cast<size_t>(i)]));
+    flags->SetValue(i, static_cast<unsigned char>(flat[static_cast<size_t>(i)]));
   }
   return true;
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkMRGIMultiresolution::GetNumberOfGatheredTexels(int level) const
+{
+  const Internals& in = *this->Internal;
+  if (level < 0 || static_cast<size_t>(level) >= in.GatheredTexels.size())
+  {
+    return -1;
+  }
+  return static_cast<vtkIdType>(in.GatheredTexels[static_cast<size_t>(level)]);
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkMRGIMultiresolution::GetNumberOfValidPixels() const
+{
+  return static_cast<vtkIdType>(this->Internal->ValidPixels);
+}
+
+//------------------------------------------------------------------------------
+double vtkMRGIMultiresolution::GetGatherWorkFraction() const
+{
+  const Internals& in = *this->Internal;
+  long long total = 0;
+  for (long long n : in.GatheredTexels)
+  {
+    if (n < 0)
+    {
+      return -1.0;
+    }
+    total += n;
+  }
+  if (in.GatheredTexels.empty() || in.ValidPixels < 0)
+  {
+    return -1.0;
+  }
+  return in.ValidPixels > 0 ? static_cast<double>(total) / static_cast<double>(in.ValidPixels) : 0.0;
 }
 
 //------------------------------------------------------------------------------

@@ -10,21 +10,24 @@
  * core (mrgi_multires.h), which this class mirrors pass for pass: one pass
  * for level 0 of the mipmaps, one per coarser level (2x2 reduction), one per
  * level for the flags (fine to coarse, since refinement and the balance rule
- * look at the finer level), a copy of each level's flags into the flattened
- * layout, and one full-screen pass over the flattened layout that sets the
- * stencil of the selected texels. Mipmap and flag levels live in separate
- * textures: reading and writing one texture is a feedback loop in OpenGL 3.2.
+ * look at the finer level), and the one-pass stencil selection, drawn once
+ * per level into that level's rectangle of the flattened layout (no search
+ * for the level per fragment, nothing drawn where no level lies). Mipmap and
+ * flag levels live in separate textures: reading and writing one texture is
+ * a feedback loop in OpenGL 3.2.
  *
  * The stencil lives in a depth-stencil texture attached at
  * GL_DEPTH_STENCIL_ATTACHMENT by hand (VTK 9.1's framebuffer object attaches
  * depth-stencil textures at GL_DEPTH_ATTACHMENT only).
  *
  * Gather(): the receivers of every texel (mean position and normal of its
- * pixels, mrgi_multires_receivers.h) are built level by level and
- * flattened, then one full-screen quad over the flattened layout gathers
- * every VPL at the texels whose stencil is set (early stencil culling skips
- * the rest); the gather is vtkMRGIGatherFS.glsl, whose C twin is
- * mrgi_gather_full() on the same receivers.
+ * pixels, mrgi_multires_receivers.h) are built level by level (level 1
+ * straight from the G-buffer; level 0 is the G-buffer), then the gather is
+ * drawn once per level into the flattened irradiance buffer, reading that
+ * level's receivers; early stencil culling skips the texels not selected.
+ * The gather is vtkMRGIGatherFS.glsl, whose C twin is mrgi_gather_full() on
+ * the same receivers. With CollectStatistics on, an occlusion query per
+ * level counts the texels gathered.
  *
  * Upsample(): coarse to fine, one pass per level for the state and value of
  * each texel and one for the tent (or mask-weighted) filter
@@ -41,6 +44,7 @@
 
 class vtkFloatArray;
 class vtkOpenGLRenderWindow;
+class vtkRenderTimerLog;
 class vtkRenderWindow;
 class vtkTextureObject;
 class vtkUnsignedCharArray;
@@ -98,6 +102,9 @@ public:
   int GetFlattenedHeight() const;
   int GetNumberOfLevels() const;
 
+  /** Size of `level` in the last Update(); false (size untouched) when there is no such level. */
+  bool GetLevelSize(int level, int size[2]) const;
+
   /**
    * Read the selection back: one byte per flattened texel, 1 where the
    * stencil is set. `fromStencil` reads the stencil itself, otherwise the
@@ -143,8 +150,41 @@ public:
   /** Read the flags (MRGI_MULTIRES_FLAG_* bits) in the flattened layout. */
   bool ReadFlags(vtkRenderWindow* window, vtkUnsignedCharArray* flags);
 
+  ///@{
+  /**
+   * Per-frame statistics (nichols-shopf-wyman-2009 table 1): with
+   * CollectStatistics on, Gather() counts the texels it gathers at each
+   * level with occlusion queries and the valid pixels (the full-resolution
+   * gather's work) from the coarsest receivers. Reading them waits for the
+   * GPU, hence off by default.
+   */
+  vtkSetMacro(CollectStatistics, bool);
+  vtkGetMacro(CollectStatistics, bool);
+  vtkBooleanMacro(CollectStatistics, bool);
+  ///@}
+
+  /** Texels gathered at `level` by the last Gather(); -1 when not counted. */
+  vtkIdType GetNumberOfGatheredTexels(int level) const;
+
+  /** Valid (non-background) pixels of the last Gather(); -1 when not counted. */
+  vtkIdType GetNumberOfValidPixels() const;
+
+  /**
+   * Texels gathered at all levels over the valid pixels: the share of the
+   * full-resolution gather's work done (each texel gathers every VPL once,
+   * as each pixel does at full resolution); -1 when not counted.
+   */
+  double GetGatherWorkFraction() const;
+
   /** The depth-stencil texture holding the selection (flattened layout). */
   vtkTextureObject* GetStencilTexture() const;
+
+  /**
+   * Log each step as a nested GPU timer event ("select.mipmaps",
+   * "gather.vpls", ...) on this timer; null (the default) logs nothing. Not
+   * reference counted: the caller keeps the timer alive while it is set.
+   */
+  void SetStageTimer(vtkRenderTimerLog* timer) { this->StageTimer = timer; }
 
   /** Free every GL resource. */
   void ReleaseGraphicsResources(vtkWindow* w);
@@ -158,6 +198,8 @@ protected:
   int FinestLevel = 0;
   bool Balance = true;
   int CoarsestSide = 16;
+  bool CollectStatistics = false;
+  vtkRenderTimerLog* StageTimer = nullptr;
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

@@ -42,6 +42,7 @@
 #include "mrgi_multires.h"
 #include "mrgi_vpl.h"
 
+#include <algorithm>
 #include <cstring>
 
 vtkStandardNewMacro(vtkMRGIPass);
@@ -109,17 +110,27 @@ void RenderCameraWith(vtkCameraPass* camera, vtkRenderPass* delegate, const vtkR
 
 namespace
 {
-// Every MRGI timer event carries this prefix so that FetchStageTimings() can
-// find MRGI's stages among the events other passes log on the same window.
-const char* const StagePrefix = "MRGI ";
+using vtkMRGIShaderUtilities::ScopedStage;
+using vtkMRGIShaderUtilities::StagePrefix;
 
 void CollectStages(const vtkRenderTimerLog::Event& event, std::vector<std::string>& names,
   std::vector<double>& times)
 {
   if (event.Name.compare(0, std::strlen(StagePrefix), StagePrefix) == 0)
   {
-    names.push_back(event.Name.substr(std::strlen(StagePrefix)));
-    times.push_back(static_cast<double>(event.ElapsedTimeNanoseconds()) * 1e-6);
+    // A step drawn once per level logs one event per level: their sum.
+    const std::string name = event.Name.substr(std::strlen(StagePrefix));
+    const double ms = static_cast<double>(event.ElapsedTimeNanoseconds()) * 1e-6;
+    const auto found = std::find(names.begin(), names.end(), name);
+    if (found != names.end())
+    {
+      times[static_cast<size_t>(found - names.begin())] += ms;
+    }
+    else
+    {
+      names.push_back(name);
+      times.push_back(ms);
+    }
   }
   for (const auto& child : event.Events)
   {
@@ -136,22 +147,6 @@ vtkRenderTimerLog* TimerFor(vtkRenderer* renderer, bool enabled)
   // switching mid-frame would leave those unbalanced.
   return (timer && enabled && timer->GetLoggingEnabled()) ? timer : nullptr;
 }
-
-// Opens a timer event for one stage, or nothing when timing is off.
-class ScopedStage
-{
-public:
-  ScopedStage(vtkRenderTimerLog* timer, const char* stage)
-  {
-    if (timer)
-    {
-      this->Logger = timer->StartScopedEvent(std::string(StagePrefix) + stage);
-    }
-  }
-
-private:
-  vtkRenderTimerLog::ScopedEventLogger Logger;
-};
 
 vtkTextureObject* MakeTexture(vtkOpenGLRenderWindow* renWin, int internalFormat, int w, int h)
 {
@@ -621,6 +616,12 @@ bool vtkMRGIPass::RenderMultiresolution(
     }
   }
   vtkMRGIMultiresolution* mr = this->Multiresolution;
+  mr->SetStageTimer(timer);
+  struct ClearTimer
+  {
+    vtkMRGIMultiresolution* Target;
+    ~ClearTimer() { this->Target->SetStageTimer(nullptr); }
+  } clearTimer{ mr };
   {
     ScopedStage stage(timer, "select");
     if (!mr->Update(renWin, this->PositionTexture, this->NormalTexture, this->Viewport[0],

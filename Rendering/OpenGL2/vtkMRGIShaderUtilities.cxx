@@ -134,3 +134,15 @@ bool ReadTextureRGBA(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, s
   return glGetError() == GL_NO_ERROR;
 }
 }
+
+//------------------------------------------------------------------------------
+const char* const vtkMRGIShaderUtilities::StagePrefix = "MRGI ";
+
+//------------------------------------------------------------------------------
+vtkMRGIShaderUtilities::ScopedStage::ScopedStage(vtkRenderTimerLog* timer, const char* stage)
+{
+  if (timer)
+  {
+    this->Logger = timer->StartScopedEvent(std::string(StagePrefix) + stage);
+  }
+}

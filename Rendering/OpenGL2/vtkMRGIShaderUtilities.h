@@ -7,6 +7,8 @@
 #ifndef vtkMRGIShaderUtilities_h
 #define vtkMRGIShaderUtilities_h
 
+#include "vtkRenderTimerLog.h" // For vtkRenderTimerLog::ScopedEventLogger
+
 #include <string>
 #include <vector>
 
@@ -61,6 +63,26 @@ void InsertCapture(
  * stores them). Returns false when the texture or context is missing.
  */
 bool ReadTextureRGBA(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, std::vector<float>& rgba);
+
+/**
+ * Every MRGI timer event carries this prefix so that
+ * vtkMRGIPass::FetchStageTimings() finds MRGI's stages among the events
+ * other passes log on the same window.
+ */
+extern const char* const StagePrefix;
+
+/**
+ * Opens a GPU timer event for one stage (nested events are sub-stages,
+ * named "stage.step"), or nothing when `timer` is null (timing off).
+ */
+class ScopedStage
+{
+public:
+  ScopedStage(vtkRenderTimerLog* timer, const char* stage);
+
+private:
+  vtkRenderTimerLog::ScopedEventLogger Logger;
+};
 }
 
 #endif

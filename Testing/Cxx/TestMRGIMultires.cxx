@@ -5,10 +5,13 @@
 // its stages are timed; the image is finite.
 #include "mrgiTestUtilities.h"
 
+#include "vtkDataArray.h"
 #include "vtkFloatArray.h"
+#include "vtkImageData.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGISceneBuilder.h"
+#include "vtkPointData.h"
 #include "vtkRenderStepsPass.h"
 #include "vtkRenderTimerLog.h"
 #include "vtkRenderer.h"
@@ -16,6 +19,7 @@
 #include "mrgi_multires.h"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace
@@ -100,6 +104,44 @@ int main()
   std::printf("thresholds off: %d texels at the coarsest level, %d elsewhere\n", coarse, finer);
   MRGI_TEST_CHECK(coarse > 0 && finer == 0);
 
+  // Statistics: the occlusion-query counts per level equal the stencil's
+  // selected texels per level, and the valid pixels those of the G-buffer.
+  mr->SetCollectStatistics(true);
+  MRGI_TEST_CHECK(mr->GetNumberOfGatheredTexels(0) == -1 || mr->GetGatherWorkFraction() < 0);
+  mr->SetDepthThreshold(4.0);
+  mr->SetNormalThreshold(0.25);
+  window->Render();
+  MRGI_TEST_CHECK(mr->ReadSelection(window, mask, true));
+  vtkNew<vtkImageData> gPosition, gNormal, gAlbedo;
+  MRGI_TEST_CHECK(pass->GetGBuffer(window, gPosition, gNormal, gAlbedo));
+  long long validPixels = 0;
+  for (vtkIdType i = 0; i < gPosition->GetNumberOfPoints(); ++i)
+  {
+    validPixels += gPosition->GetPointData()->GetScalars()->GetComponent(i, 3) > 0.5 ? 1 : 0;
+  }
+  long long gathered = 0;
+  for (int level = 0; level < layout.level_count; ++level)
+  {
+    long long selected = 0;
+    for (int y = 0; y < layout.level_height[level]; ++y)
+    {
+      for (int x = 0; x < layout.level_width[level]; ++x)
+      {
+        selected += mask->GetValue(static_cast<vtkIdType>(y) * flatWidth + layout.level_offset[level] + x);
+      }
+    }
+    std::printf("level %d: %lld texels selected, %lld counted by the query\n", level, selected,
+      static_cast<long long>(mr->GetNumberOfGatheredTexels(level)));
+    MRGI_TEST_CHECK(mr->GetNumberOfGatheredTexels(level) == selected);
+    gathered += selected;
+  }
+  std::printf("valid pixels %lld (queried %lld), work fraction %.4f\n", validPixels,
+    static_cast<long long>(mr->GetNumberOfValidPixels()), mr->GetGatherWorkFraction());
+  MRGI_TEST_CHECK(mr->GetNumberOfValidPixels() == validPixels);
+  MRGI_TEST_CHECK(std::fabs(mr->GetGatherWorkFraction() - double(gathered) / double(validPixels)) < 1e-12);
+  MRGI_TEST_CHECK(gathered > 0 && gathered < validPixels);
+  mr->SetCollectStatistics(false);
+
   // The stages of a multiresolution frame.
   pass->FetchStageTimings(window, true);
   window->Render();
@@ -110,7 +152,27 @@ int main()
     names += std::string(pass->GetStageName(s)) + " ";
   }
   std::printf("stages: %s\n", names.c_str());
-  MRGI_TEST_CHECK(names == "scene rsm vpl select gather upsample add forward output ");
+  // Top-level stages in order; "stage.step" parts right after their stage.
+  std::string top;
+  std::string last;
+  for (int s = 0; s < stages; ++s)
+  {
+    const std::string name = pass->GetStageName(s);
+    const size_t dot = name.find('.');
+    if (dot == std::string::npos)
+    {
+      top += name + " ";
+      last = name;
+    }
+    else
+    {
+      MRGI_TEST_CHECK(name.substr(0, dot) == last);
+      MRGI_TEST_CHECK(pass->GetStageTimeMilliseconds(s) >= 0.0);
+    }
+  }
+  MRGI_TEST_CHECK(top == "scene rsm vpl select gather upsample add forward output ");
+  MRGI_TEST_CHECK(names.find("select.stencil") != std::string::npos &&
+    names.find("gather.vpls") != std::string::npos);
 
   renderer->SetPass(nullptr);
   pass->ReleaseGraphicsResources(window);

@@ -1,7 +1,9 @@
 // MRGI full-resolution gather (nichols-shopf-wyman-2009 section 3.2.2,
 // equations 1 and 5, no visibility): every pixel sums every VPL. C twin:
 // mrgi_gather_full() (mrgi_gather.h), whose formula this mirrors term by term.
-// MRGI's buffers are as large as the window: gl_FragCoord addresses them directly.
+// MRGI's buffers are as large as the window: gl_FragCoord addresses them
+// directly; the multiresolution gather, drawn level by level into the
+// flattened layout, reads each level's receivers at gl_FragCoord + mrgiReceiverOffset.
 in vec2 texCoord; // bound by vtkOpenGLQuadHelper; these passes address texels by gl_FragCoord
 uniform sampler2D mrgiPosition;  // G-buffer, eye space
 uniform sampler2D mrgiNormal;
@@ -10,10 +12,11 @@ uniform sampler2D mrgiVPLs;      // MRGI_VPL_TEXELS x count
 uniform int mrgiVPLCount;
 uniform mat4 mrgiVCToWC;         // eye -> world (rigid)
 uniform float mrgiStrength;      // IndirectStrength
+uniform ivec2 mrgiReceiverOffset; // receiver texel of fragment (0, 0); 0 for the full gather
 //VTK::Output::Dec
 void main()
 {
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  ivec2 pixel = ivec2(gl_FragCoord.xy) + mrgiReceiverOffset;
   vec4 positionVC = texelFetch(mrgiPosition, pixel, 0);
   if (positionVC.w <= MRGI_VALID_THRESHOLD)
   {

@@ -1,19 +1,20 @@
 // MRGI multiresolution selection, the GPU side of mrgi_multires.h (C twins:
 // mrgi_multires_mipmap_build, mrgi_multires_flags_compute,
-// mrgi_multires_select_one_pass). One shader, five stages chosen by
+// mrgi_multires_select_one_pass). One shader, four stages chosen by
 // MRGI_MR_STAGE; every rule and its float order mirror the C code:
 // 0: level-0 mipmap from the G-buffer (validity, depth, unit normal, depth derivative g);
 // 1: level i mipmap, 2x2 min/max/OR of level i-1 (children clamped to the level);
 // 2: flags of level i (3x3 window, refinement from level i-1's flags, balance);
-// 3: copy level i's flags into the flattened layout;
-// 4: the one-pass selection of nichols-shopf-wyman-2009 3.2.1 over the
-//    flattened layout: fragments that survive set the stencil.
+// 3: the one-pass selection of nichols-shopf-wyman-2009 3.2.1, drawn once
+//    per level into that level's rectangle of the flattened layout (no
+//    per-fragment search for the level, nothing drawn outside the levels):
+//    fragments that survive set the stencil.
 in vec2 texCoord; // bound by vtkOpenGLQuadHelper; texels are addressed by gl_FragCoord
 uniform sampler2D mrgiInput0;
 uniform sampler2D mrgiInput1;
 uniform sampler2D mrgiInput2;
 uniform sampler2D mrgiInput3;
-uniform ivec2 mrgiOffset;      // stage 0: G-buffer texel of pixel (0, 0); stage 3: level offset
+uniform ivec2 mrgiOffset;      // stage 0: G-buffer texel of pixel (0, 0); stage 3: level offset in the flattened layout
 uniform ivec2 mrgiSize;        // size of the level read (stages 0-2: level i-1 or i, see below)
 uniform ivec2 mrgiChildSize;   // stage 2: size of level i-1
 uniform vec2 mrgiPixelSize;    // (a, b): s(d) = max(a |d| + b, MRGI_MULTIRES_MIN_PIXEL_SIZE)
@@ -22,10 +23,7 @@ uniform float mrgiNormalThreshold;
 uniform int mrgiLevel;         // stage 2: i
 uniform int mrgiFinestLevel;   // f
 uniform int mrgiBalance;
-uniform int mrgiLevelCount;
-uniform int mrgiLevelOffset[MRGI_MULTIRES_MAX_LEVELS];
-uniform int mrgiLevelWidth[MRGI_MULTIRES_MAX_LEVELS];
-uniform int mrgiLevelHeight[MRGI_MULTIRES_MAX_LEVELS];
+uniform int mrgiCoarsest;      // stage 3: whether level i is the coarsest (no parent)
 //VTK::Output::Dec
 
 #if MRGI_MR_STAGE == 0
@@ -37,6 +35,13 @@ bool mrgiValid(ivec2 p, out float d, out vec3 n)
   n = N;
   return P.w > MRGI_GBUFFER_VALID_THRESHOLD && !isnan(P.z) && !isinf(P.z) &&
     !any(isnan(N)) && !any(isinf(N));
+}
+// Depth of a neighbour for the derivative: flag and finite depth suffice.
+bool mrgiDepthValid(ivec2 p, out float d)
+{
+  vec4 P = texelFetch(mrgiInput0, p + mrgiOffset, 0);
+  d = -P.z;
+  return P.w > MRGI_GBUFFER_VALID_THRESHOLD && !isnan(P.z) && !isinf(P.z);
 }
 float mrgiPixelSizeAt(float d)
 {
@@ -68,12 +73,13 @@ void main()
     {
       ivec2 q = clamp(t + ivec2(dx, dy), ivec2(0), mrgiSize - 1);
       float dq;
-      vec3 unused;
-      if (!mrgiValid(q, dq, unused)) { continue; }
+      // Straight-line code (llvmpipe pays for divergent branches): invalid
+      // neighbours contribute 0, which leaves the max unchanged as in the C twin.
+      bool valid = mrgiDepthValid(q, dq);
       float s = mrgiPixelSizeAt(min(abs(dp), abs(dq)));
       float slope = abs(dq - dp) / s;
-      if (!(slope <= MRGI_MULTIRES_FLT_MAX)) { slope = MRGI_MULTIRES_FLT_MAX; }
-      g = max(g, slope);
+      slope = slope <= MRGI_MULTIRES_FLT_MAX ? slope : MRGI_MULTIRES_FLT_MAX;
+      g = max(g, valid ? slope : 0.0);
     }
   }
   gl_FragData[0] = vec4(dp, dp, g, float(MRGI_MULTIRES_VALID_BIT));
@@ -140,42 +146,29 @@ void main()
       refine = discontinuous;
       int reachLo = mrgiBalance != 0 ? -1 : 0;
       int reachHi = mrgiBalance != 0 ? 2 : 1;
-      for (int b = reachLo; b <= reachHi && !refine; ++b)
+      for (int b = reachLo; b <= reachHi; ++b)
       {
-        for (int c = reachLo; c <= reachHi && !refine; ++c)
+        for (int c = reachLo; c <= reachHi; ++c)
         {
           ivec2 s = clamp(2 * t + ivec2(c, b), ivec2(0), mrgiChildSize - 1);
-          refine = (int(texelFetch(mrgiInput3, s, 0).r) & MRGI_MULTIRES_FLAG_REFINE) != 0;
+          refine = refine || (int(texelFetch(mrgiInput3, s, 0).r) & MRGI_MULTIRES_FLAG_REFINE) != 0;
         }
       }
     }
     if (refine) { flag |= MRGI_MULTIRES_FLAG_REFINE; }
   }
   gl_FragData[0] = vec4(float(flag), 0.0, 0.0, 0.0);
-#elif MRGI_MR_STAGE == 3
-  gl_FragData[0] = texelFetch(mrgiInput0, t - mrgiOffset, 0);
 #else
-  // Locate the level of this flattened texel.
-  int level = -1;
-  for (int i = 0; i < mrgiLevelCount; ++i)
-  {
-    if (t.x >= mrgiLevelOffset[i] && t.x < mrgiLevelOffset[i] + mrgiLevelWidth[i] &&
-      t.y < mrgiLevelHeight[i])
-    {
-      level = i;
-    }
-  }
-  if (level < mrgiFinestLevel) { discard; } // outside every level, or finer than f
-  ivec2 p = ivec2(t.x - mrgiLevelOffset[level], t.y);
-  int flag = int(texelFetch(mrgiInput0, t, 0).r);
+  ivec2 p = t - mrgiOffset;
+  int flag = int(texelFetch(mrgiInput0, p, 0).r);
   bool selected = (flag & MRGI_MULTIRES_FLAG_NONEMPTY) != 0 &&
-    (level == mrgiFinestLevel || (flag & MRGI_MULTIRES_FLAG_REFINE) == 0);
-  if (selected && level < mrgiLevelCount - 1)
+    (mrgiLevel == mrgiFinestLevel || (flag & MRGI_MULTIRES_FLAG_REFINE) == 0);
+  if (selected && mrgiCoarsest == 0)
   {
-    int parent = int(texelFetch(mrgiInput0, ivec2(mrgiLevelOffset[level + 1] + p.x / 2, p.y / 2), 0).r);
+    int parent = int(texelFetch(mrgiInput1, p / 2, 0).r);
     selected = (parent & MRGI_MULTIRES_FLAG_REFINE) != 0;
   }
   if (!selected) { discard; }
-  gl_FragData[0] = vec4(1.0, float(level), 0.0, 0.0);
+  gl_FragData[0] = vec4(1.0, float(mrgiLevel), 0.0, 0.0);
 #endif
 }
