@@ -66,17 +66,20 @@ void main()
     for (int dx = -1; dx <= 1; ++dx)
     {
       ivec2 n = t + ivec2(dx, dy);
-      if (n.x < 0 || n.y < 0 || n.x >= mrgiSize.x || n.y >= mrgiSize.y) { continue; }
-      vec4 v = texelFetch(mrgiInput0, n, 0);
-      int s = int(v.a);
-      if ((s & MRGI_UP_BLEND) == 0) { continue; }
-      float k = float((2 - abs(dx)) * (2 - abs(dy)));
-      bool selected = (s & MRGI_UP_SELECTED) != 0;
+      bool inside = n.x >= 0 && n.y >= 0 && n.x < mrgiSize.x && n.y < mrgiSize.y;
+      vec4 v = texelFetch(mrgiInput0, clamp(n, ivec2(0), mrgiSize - 1), 0);
+      int s = inside ? int(v.a) : 0;
+      v.rgb = (s & MRGI_UP_BLEND) != 0 ? v.rgb : vec3(0.0); // no 0 * inf
+      // Straight-line code (llvmpipe pays for divergent branches): texels
+      // that may not be blended weigh 0, and adding exact zeros leaves every
+      // sum as the C twin's, which skips them.
+      float k = (s & MRGI_UP_BLEND) != 0 ? float((2 - abs(dx)) * (2 - abs(dy))) : 0.0;
+      float ks = (s & MRGI_UP_SELECTED) != 0 ? k : 0.0;
       weightAll += k;
-      if (selected) { weightSelected += k; }
-      vec3 kv = k * v.rgb;
-      sumAll += kv;
-      if (selected) { sumSelected += kv; } else { sumUpsampled += kv; }
+      weightSelected += ks;
+      sumAll += k * v.rgb;
+      sumSelected += ks * v.rgb;
+      sumUpsampled += (k - ks) * v.rgb;
     }
   }
   vec3 result;
