@@ -284,3 +284,42 @@ mrgi_status mrgi_upsample(const mrgi_multires_layout* layout, const uint8_t* fla
   free(state);
   return MRGI_OK;
 }
+
+/* v / |v| computed on v / max|v_i| so that neither tiny nor huge scene
+ * scales underflow or overflow; 0 when v is zero or not finite. */
+static int mrgi_unit(const float v[3], float out[3])
+{
+  const float m = fmaxf(fmaxf(fabsf(v[0]), fabsf(v[1])), fabsf(v[2]));
+  if (!(m > 0.0f && m <= MRGI_MULTIRES_FLT_MAX))
+  {
+    return 0;
+  }
+  const float x = v[0] / m, y = v[1] / m, z = v[2] / m;
+  const float inverse = 1.0f / sqrtf(x * x + y * y + z * z);
+  out[0] = x * inverse;
+  out[1] = y * inverse;
+  out[2] = z * inverse;
+  return 1;
+}
+
+float mrgi_surface_detail_factor(const float position_eye[3], const float normal_eye[3],
+                                 int32_t parallel, float alpha)
+{
+  /* Same operations, same order as the GLSL twin (resolve stage). */
+  float v[3] = { 0.0f, 0.0f, 1.0f };
+  float to_point[3];
+  if (!parallel && mrgi_unit(position_eye, to_point))
+  {
+    v[0] = -to_point[0];
+    v[1] = -to_point[1];
+    v[2] = -to_point[2];
+  }
+  float n[3];
+  float facing = 0.0f;
+  if (mrgi_unit(normal_eye, n))
+  {
+    facing = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+  }
+  facing = facing > 0.0f ? facing : 0.0f; /* also NaN -> 0 */
+  return alpha * facing + (1.0f - alpha);
+}

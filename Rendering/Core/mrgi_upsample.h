@@ -126,6 +126,27 @@ mrgi_status mrgi_upsample(const mrgi_multires_layout* layout, const uint8_t* fla
                           int32_t channels, const mrgi_upsample_params* params, mrgi_image* out,
                           mrgi_error* err);
 
+/**
+ * @brief Surface-detail modulation, nichols-wyman-2009 section 4.2, eq. 2:
+ *        c_out = c * (alpha * max(V . N, 0) + (1 - alpha)).
+ *
+ * Brings back shading detail that coarse texels blur out (high normal
+ * thresholds) by darkening the indirect light where the surface turns away
+ * from the viewer. Applied per full-resolution pixel after upsampling.
+ *
+ * @param position_eye Eye-space position of the pixel (the G-buffer's).
+ * @param normal_eye   Eye-space normal (any length; normalised here).
+ * @param parallel     Non-zero for a parallel projection (V = +z in eye space).
+ * @param alpha        Strength in [0, 1]; 0 leaves c unchanged (factor 1).
+ * @return The factor multiplying c: in [1 - alpha, 1] for alpha in [0, 1].
+ *         V = -position / |position| (perspective; +z when the position is
+ *         the eye itself); a zero or non-finite normal or position gives the
+ *         factor of a surface seen edge-on, 1 - alpha; never NaN.
+ *         The GLSL twin is in vtkMRGIMultiresUpsampleFS.glsl (resolve).
+ */
+float mrgi_surface_detail_factor(const float position_eye[3], const float normal_eye[3],
+                                 int32_t parallel, float alpha);
+
 #ifdef __cplusplus
 }
 #endif

@@ -831,14 +831,15 @@ bool vtkMRGIMultiresolution::Upsample(vtkOpenGLRenderWindow* window, int mode, d
 
 //------------------------------------------------------------------------------
 bool vtkMRGIMultiresolution::Resolve(vtkOpenGLRenderWindow* window, vtkTextureObject* albedo,
+  vtkTextureObject* position, vtkTextureObject* normal, bool parallel,
   vtkTextureObject* irradiance, vtkTextureObject* indirect, int x0, int y0, double strength)
 {
   Internals& in = *this->Internal;
   vtkShaderProgram* resolve =
     window ? ReadyStage(in.UpsampleQuads[2], window, vtkMRGIMultiresUpsampleFS, 2) : nullptr;
-  if (!resolve || !in.HasLayout || !albedo || !irradiance || !indirect)
+  if (!resolve || !in.HasLayout || !albedo || !position || !normal || !irradiance || !indirect)
   {
-    vtkErrorMacro("Resolve needs Upsample() first, the albedo and both targets");
+    vtkErrorMacro("Resolve needs Upsample() first, the G-buffer and both targets");
     return false;
   }
   {
@@ -846,12 +847,14 @@ bool vtkMRGIMultiresolution::Resolve(vtkOpenGLRenderWindow* window, vtkTextureOb
     QuadSteps steps(window, in.FrameBuffer);
     steps.Target(irradiance, indirect, x0, y0, in.Layout.width, in.Layout.height);
     vtkTextureObject* flags = in.Levels[0][MRGI_MULTIRES_TEX_COUNT];
-    BindInputs(resolve, { in.Upsampled[0][1], flags, albedo });
+    BindInputs(resolve, { in.Upsampled[0][1], flags, albedo, position, normal });
     const int offset[2] = { x0, y0 };
     resolve->SetUniform2i("mrgiOffset", offset);
     resolve->SetUniformf("mrgiStrength", static_cast<float>(strength));
+    resolve->SetUniformf("mrgiSurfaceDetail", static_cast<float>(this->SurfaceDetail));
+    resolve->SetUniformi("mrgiParallel", parallel ? 1 : 0);
     in.UpsampleQuads[2]->Render();
-    UnbindInputs({ in.Upsampled[0][1], flags, albedo });
+    UnbindInputs({ in.Upsampled[0][1], flags, albedo, position, normal });
   }
   return glGetError() == GL_NO_ERROR;
 }
@@ -1045,5 +1048,7 @@ void vtkMRGIMultiresolution::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FinestLevel: " << this->FinestLevel << "\n";
   os << indent << "Balance: " << (this->Balance ? "On" : "Off") << "\n";
   os << indent << "CoarsestSide: " << this->CoarsestSide << "\n";
+  os << indent << "SurfaceDetail: " << this->SurfaceDetail << "\n";
+  os << indent << "CollectStatistics: " << (this->CollectStatistics ? "On" : "Off") << "\n";
   os << indent << "Levels: " << this->GetNumberOfLevels() << "\n";
 }

@@ -130,12 +130,25 @@ public:
   /** After Gather(): upsample and combine the levels (mode: UpsampleTent or UpsampleMaskWeighted). */
   bool Upsample(vtkOpenGLRenderWindow* window, int mode, double maskWeight);
 
+  ///@{
+  /**
+   * Surface-detail modulation (nichols-wyman-2009 section 4.2, eq. 2): the
+   * resolved E is multiplied by alpha max(V.N, 0) + 1 - alpha, bringing back
+   * the shading detail coarse texels blur out. 0 (default) is off.
+   */
+  vtkSetClampMacro(SurfaceDetail, double, 0.0, 1.0);
+  vtkGetMacro(SurfaceDetail, double);
+  ///@}
+
   /**
    * After Upsample(): write the full-resolution irradiance E and the indirect
    * radiance strength x albedo x E into `irradiance` and `indirect` (window-
-   * sized textures, like the albedo) over the viewport at (x0, y0).
+   * sized textures, like the albedo and the G-buffer `position` and `normal`)
+   * over the viewport at (x0, y0). `parallel`: the camera's projection, for
+   * the view vector of the surface-detail modulation.
    */
   bool Resolve(vtkOpenGLRenderWindow* window, vtkTextureObject* albedo,
+    vtkTextureObject* position, vtkTextureObject* normal, bool parallel,
     vtkTextureObject* irradiance, vtkTextureObject* indirect, int x0, int y0, double strength);
 
   /** Read the upsampled level 0 (RGB = E, A = 1 where it holds data) back, W x H RGBA. */
@@ -199,6 +212,7 @@ protected:
   bool Balance = true;
   int CoarsestSide = 16;
   bool CollectStatistics = false;
+  double SurfaceDetail = 0.0;
   vtkRenderTimerLog* StageTimer = nullptr;
 
   struct Internals;

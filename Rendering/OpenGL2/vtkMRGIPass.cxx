@@ -640,7 +640,8 @@ bool vtkMRGIPass::RenderMultiresolution(
   }
   ScopedStage stage(timer, "upsample");
   return mr->Upsample(renWin, this->UpsampleMode, this->UpsampleMaskWeight) &&
-    mr->Resolve(renWin, this->AlbedoTexture, this->IrradianceTexture, this->IndirectTexture,
+    mr->Resolve(renWin, this->AlbedoTexture, this->PositionTexture, this->NormalTexture,
+      projection.parallel != 0, this->IrradianceTexture, this->IndirectTexture,
       this->Viewport[0], this->Viewport[1], this->IndirectStrength);
 }
 

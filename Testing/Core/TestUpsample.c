@@ -504,8 +504,42 @@ static void test_bad_input(void)
   scene_free(&s);
 }
 
+/* nichols-wyman-2009 eq. 2: factor alpha max(V.N, 0) + 1 - alpha, never NaN. */
+static void test_surface_detail(void)
+{
+  const float facing[3] = { 0.0f, 0.0f, 1.0f };
+  const float away[3] = { 0.0f, 0.0f, -1.0f };
+  const float p[3] = { 0.0f, 0.0f, -10.0f };
+  const float off_axis[3] = { 10.0f, 0.0f, -10.0f };
+  MRGI_CHECK(mrgi_surface_detail_factor(p, facing, 0, 0.5f) == 1.0f);
+  MRGI_CHECK(mrgi_surface_detail_factor(p, away, 0, 0.5f) == 0.5f);
+  MRGI_CHECK(mrgi_surface_detail_factor(p, away, 0, 0.0f) == 1.0f);
+  /* 45 degrees off axis: V.N = cos 45 under perspective, 1 under parallel. */
+  const float f = mrgi_surface_detail_factor(off_axis, facing, 0, 1.0f);
+  MRGI_CHECK(fabsf(f - 0.70710678f) < 1e-6f);
+  MRGI_CHECK(mrgi_surface_detail_factor(off_axis, facing, 1, 1.0f) == 1.0f);
+  /* Unnormalised normals are normalised. */
+  const float long_normal[3] = { 0.0f, 0.0f, 1e38f };
+  MRGI_CHECK(mrgi_surface_detail_factor(p, long_normal, 0, 1.0f) == 1.0f);
+  /* Degenerate input: the edge-on factor 1 - alpha, or V = +z at the eye. */
+  const float zero[3] = { 0.0f, 0.0f, 0.0f };
+  const float nan3[3] = { NAN, NAN, NAN };
+  const float inf3[3] = { INFINITY, 0.0f, 0.0f };
+  MRGI_CHECK(mrgi_surface_detail_factor(p, zero, 0, 0.25f) == 0.75f);
+  MRGI_CHECK(mrgi_surface_detail_factor(p, nan3, 0, 0.25f) == 0.75f);
+  MRGI_CHECK(mrgi_surface_detail_factor(p, inf3, 0, 0.25f) == 0.75f);
+  MRGI_CHECK(mrgi_surface_detail_factor(zero, facing, 0, 0.25f) == 1.0f);
+  MRGI_CHECK(mrgi_surface_detail_factor(nan3, facing, 0, 0.25f) == 1.0f);
+  /* Tiny and huge scene scales give the same factor. */
+  const float tiny[3] = { 1e-30f, 0.0f, -1e-30f };
+  const float huge[3] = { 1e30f, 0.0f, -1e30f };
+  MRGI_CHECK(fabsf(mrgi_surface_detail_factor(tiny, facing, 0, 1.0f) - f) < 1e-6f);
+  MRGI_CHECK(fabsf(mrgi_surface_detail_factor(huge, facing, 0, 1.0f) - f) < 1e-6f);
+}
+
 int main(void)
 {
+  test_surface_detail();
   test_constant();
   test_weights_and_empty_neighbours();
   test_no_leak();

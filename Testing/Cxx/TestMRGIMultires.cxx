@@ -17,7 +17,9 @@
 #include "vtkRenderer.h"
 
 #include "mrgi_multires.h"
+#include "mrgi_upsample.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -141,6 +143,47 @@ int main()
   MRGI_TEST_CHECK(std::fabs(mr->GetGatherWorkFraction() - double(gathered) / double(validPixels)) < 1e-12);
   MRGI_TEST_CHECK(gathered > 0 && gathered < validPixels);
   mr->SetCollectStatistics(false);
+
+  // Surface-detail modulation (nichols-wyman-2009 eq. 2): the resolved E is
+  // the upsampled E times the C twin's factor, pixel by pixel.
+  for (const double alpha : { 0.0, 0.5, 1.0 })
+  {
+    mr->SetSurfaceDetail(alpha);
+    window->Render();
+    vtkNew<vtkFloatArray> upsampled;
+    vtkNew<vtkImageData> irradiance;
+    MRGI_TEST_CHECK(mr->ReadUpsampled(window, upsampled));
+    MRGI_TEST_CHECK(pass->GetIrradianceBuffer(window, irradiance));
+    MRGI_TEST_CHECK(pass->GetGBuffer(window, gPosition, gNormal, gAlbedo));
+    vtkDataArray* E = irradiance->GetPointData()->GetScalars();
+    vtkDataArray* P = gPosition->GetPointData()->GetScalars();
+    vtkDataArray* N = gNormal->GetPointData()->GetScalars();
+    double worst = 0.0, darkest = 1.0;
+    for (vtkIdType i = 0; i < E->GetNumberOfTuples(); ++i)
+    {
+      if (P->GetComponent(i, 3) < 0.5 || upsampled->GetComponent(i, 3) < 0.5)
+      {
+        continue;
+      }
+      const float position[3] = { float(P->GetComponent(i, 0)), float(P->GetComponent(i, 1)),
+        float(P->GetComponent(i, 2)) };
+      const float normal[3] = { float(N->GetComponent(i, 0)), float(N->GetComponent(i, 1)),
+        float(N->GetComponent(i, 2)) };
+      const float factor = mrgi_surface_detail_factor(position, normal, 0, float(alpha));
+      darkest = std::min(darkest, double(factor));
+      for (int c = 0; c < 3; ++c)
+      {
+        const double expected = upsampled->GetComponent(i, c) * factor;
+        const double got = E->GetComponent(i, c);
+        worst = std::max(worst, std::fabs(got - expected) / std::max(std::fabs(expected), 1e-12));
+      }
+    }
+    std::printf("surface detail %.1f: darkest factor %.3f, worst relative difference %.3g\n",
+      alpha, darkest, worst);
+    MRGI_TEST_CHECK(worst < 1e-5);
+    MRGI_TEST_CHECK(alpha == 0.0 ? darkest == 1.0 : (darkest < 1.0 && darkest >= 1.0 - alpha));
+  }
+  mr->SetSurfaceDetail(0.0);
 
   // The stages of a multiresolution frame.
   pass->FetchStageTimings(window, true);

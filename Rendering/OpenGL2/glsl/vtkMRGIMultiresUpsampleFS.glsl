@@ -4,12 +4,17 @@
 // 0: state and value of level i (selected: gathered value; else, non-empty
 //    under a parent holding data: the parent's filtered value), RGB + state;
 // 1: filter level i over the 3x3 tent of neighbours that may be blended;
-// 2: resolve: full-resolution E and strength x albedo x E for the composite.
+// 2: resolve: full-resolution E and strength x albedo x E for the composite,
+//    E modulated by the surface-detail factor (nichols-wyman-2009 eq. 2; C
+//    twin mrgi_surface_detail_factor, same operations in the same order).
 in vec2 texCoord; // bound by vtkOpenGLQuadHelper; texels are addressed by gl_FragCoord
 uniform sampler2D mrgiInput0; // 0: flattened selection; 1: state/value of level i; 2: filtered level 0
 uniform sampler2D mrgiInput1; // 0: flags of level i; 2: flags of level 0
 uniform sampler2D mrgiInput2; // 0: flattened irradiance; 2: albedo (G-buffer)
-uniform sampler2D mrgiInput3; // 0: filtered level i+1
+uniform sampler2D mrgiInput3; // 0: filtered level i+1; 2: position (G-buffer)
+uniform sampler2D mrgiInput4; // 2: normal (G-buffer)
+uniform float mrgiSurfaceDetail; // 2: alpha of nichols-wyman-2009 eq. 2 (0: off)
+uniform int mrgiParallel;        // 2: parallel projection
 uniform ivec2 mrgiOffset;     // 0: level offset in the flattened layout; 2: viewport origin
 uniform ivec2 mrgiSize;       // 1: size of level i
 uniform int mrgiCoarsest;     // 0: whether level i is the coarsest
@@ -21,6 +26,18 @@ uniform float mrgiStrength;
 #define MRGI_UP_HAS 1
 #define MRGI_UP_SELECTED 2
 #define MRGI_UP_BLEND 4
+// v / |v| computed on v / max|v_i| (no underflow or overflow at any scene
+// scale); false when v is zero or not finite. As mrgi_unit in mrgi_upsample.c.
+bool mrgiUnit(vec3 v, out vec3 u)
+{
+  float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+  u = vec3(0.0);
+  if (!(m > 0.0 && m <= MRGI_MULTIRES_FLT_MAX)) { return false; }
+  float x = v.x / m, y = v.y / m, z = v.z / m;
+  float inverse = 1.0 / sqrt(x * x + y * y + z * z);
+  u = vec3(x * inverse, y * inverse, z * inverse);
+  return true;
+}
 void main()
 {
   ivec2 t = ivec2(gl_FragCoord.xy);
@@ -108,6 +125,19 @@ void main()
   if ((int(texelFetch(mrgiInput1, p, 0).r) & MRGI_MULTIRES_FLAG_NONEMPTY) != 0)
   {
     E = texelFetch(mrgiInput0, p, 0).rgb;
+  }
+  if (mrgiSurfaceDetail > 0.0)
+  {
+    vec3 P = texelFetch(mrgiInput3, t, 0).xyz;
+    vec3 N = texelFetch(mrgiInput4, t, 0).xyz;
+    vec3 V = vec3(0.0, 0.0, 1.0);
+    vec3 toPoint;
+    if (mrgiParallel == 0 && mrgiUnit(P, toPoint)) { V = -toPoint; }
+    vec3 n;
+    float facing = 0.0;
+    if (mrgiUnit(N, n)) { facing = V.x * n.x + V.y * n.y + V.z * n.z; }
+    facing = facing > 0.0 ? facing : 0.0;
+    E *= mrgiSurfaceDetail * facing + (1.0 - mrgiSurfaceDetail);
   }
   vec3 albedo = texelFetch(mrgiInput2, t, 0).rgb;
   gl_FragData[0] = vec4(E, 1.0);
