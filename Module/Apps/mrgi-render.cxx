@@ -30,10 +30,12 @@
 #include "vtkPointData.h"
 
 #include "mrgi_error.h"
+#include "mrgi_multires.h"
 #include "mrgi_parse.h"
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <map>
@@ -82,12 +84,18 @@ Scaling scene
   --seed N               random seed (default 1)
 
 Indirect light (one bounce; Documentation/IndirectLight.md)
-  --gi off|full|multires full (default): every pixel gathers every VPL; multires: the
-                         stencil-selected multiresolution gather; off: VTK's direct light only
-  --depth-threshold T    multires: depth change per pixel width that refines (default 4; inf: never)
-  --normal-threshold T   multires: normal-component spread that refines (default 0.25; inf: never)
-  --finest-level N       multires: finest level that gathers (default 0 = full resolution)
+  --gi on|multires|full|off
+                         on = multires (default): the stencil-selected multiresolution gather;
+                         full: every pixel gathers every VPL; off: VTK's direct light only
+  --preset fast|balanced|accurate
+                         multires settings from the measured speed/accuracy frontier
+                         (default balanced; Documentation/Multiresolution.md); the options
+                         below override single knobs
+  --depth-threshold T    multires: depth change per pixel width that refines (inf: never)
+  --normal-threshold T   multires: normal-component spread that refines (inf: never)
+  --finest-level N       multires: finest level that gathers (0 = full resolution)
   --upsample tent|mask   multires: tent (default) or mask-weighted (Besenthal) upsampling
+  --surface-detail A     multires: modulate by the view angle, nichols-wyman-2009 eq. 2 (0..1, default 0)
   --vpls N               virtual point lights, 0..4096 (default 256 = 16x16)
   --vpl-selection grid|importance
                          regular grid over the light's view (default) or flux importance sampling
@@ -139,10 +147,13 @@ struct Options
   bool Interactive = false;
   bool Quiet = false;
   bool GI = true;
-  bool Multires = false;
-  double DepthThreshold = 4.0;
-  double NormalThreshold = 0.25;
-  long long FinestLevel = 0;
+  bool Multires = true; // Balanced whenever indirect light is on
+  long long Preset = 1;
+  double SurfaceDetail = 0.0;
+  // NaN / -1: not given, the preset's value stands.
+  double DepthThreshold = std::nan("");
+  double NormalThreshold = std::nan("");
+  long long FinestLevel = -1;
   bool MaskUpsampling = false;
   long long VPLs = 256;
   bool ImportanceVPLs = false;
@@ -429,11 +440,32 @@ int ParseArguments(int argc, char* argv[], Options& o)
     {
       if (!needValue(i, arg, v))
         return 2;
-      o.Multires = std::strcmp(v, "multires") == 0;
+      o.Multires = std::strcmp(v, "multires") == 0 || std::strcmp(v, "on") == 0;
       if (!o.Multires && !ParseSwitch(v, "full", o.GI))
-        return Fail(std::string("--gi '") + v + "': expected off, full or multires");
+        return Fail(std::string("--gi '") + v + "': expected off, on, multires or full");
       if (o.Multires)
         o.GI = true;
+    }
+    else if (arg == "--preset")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      o.Preset = -1;
+      for (int p = 0; p < MRGI_MULTIRES_PRESET_COUNT; ++p)
+      {
+        if (std::strcmp(v, mrgi_multires_preset_name(p)) == 0)
+          o.Preset = p;
+      }
+      if (o.Preset < 0)
+        return Fail(std::string("--preset '") + v + "': expected fast, balanced or accurate");
+    }
+    else if (arg == "--surface-detail")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      if (mrgi_parse_double(v, &o.SurfaceDetail, &err) != MRGI_OK || o.SurfaceDetail < 0 ||
+        o.SurfaceDetail > 1)
+        return Fail(arg + " '" + v + "': expected a number in [0, 1]");
     }
     else if (arg == "--depth-threshold" || arg == "--normal-threshold")
     {
@@ -681,9 +713,15 @@ int main(int argc, char* argv[])
   mrgi->SetIndirectMode(!o.GI ? vtkMRGIPass::IndirectOff
       : o.Multires             ? vtkMRGIPass::IndirectMultires
                                : vtkMRGIPass::IndirectFull);
-  mrgi->GetMultiresolution()->SetDepthThreshold(o.DepthThreshold);
-  mrgi->GetMultiresolution()->SetNormalThreshold(o.NormalThreshold);
-  mrgi->GetMultiresolution()->SetFinestLevel(static_cast<int>(o.FinestLevel));
+  // The preset first, then every knob given explicitly.
+  mrgi->GetMultiresolution()->SetPreset(static_cast<int>(o.Preset));
+  if (!std::isnan(o.DepthThreshold))
+    mrgi->GetMultiresolution()->SetDepthThreshold(o.DepthThreshold);
+  if (!std::isnan(o.NormalThreshold))
+    mrgi->GetMultiresolution()->SetNormalThreshold(o.NormalThreshold);
+  if (o.FinestLevel >= 0)
+    mrgi->GetMultiresolution()->SetFinestLevel(static_cast<int>(o.FinestLevel));
+  mrgi->GetMultiresolution()->SetSurfaceDetail(o.SurfaceDetail);
   mrgi->SetUpsampleMode(o.MaskUpsampling ? vtkMRGIMultiresolution::UpsampleMaskWeighted
                                          : vtkMRGIMultiresolution::UpsampleTent);
   mrgi->SetNumberOfVPLs(static_cast<int>(o.VPLs));

@@ -797,3 +797,43 @@ mrgi_status mrgi_multires_stats_compute(const mrgi_multires_layout* layout, cons
     stats->valid_pixels > 0 ? (double)stats->selected_total / (double)stats->valid_pixels : 0.0;
   return MRGI_OK;
 }
+
+/* Chosen from the frontier measured by Testing/Benchmarks/multires_sweep.py
+ * on the Cornell box at 1024 x 1024, 256 VPLs (Documentation/Multiresolution.md):
+ * Accurate: the fastest setting within 1% relative RMS of the full gather;
+ * Balanced: the fastest within 3% (the papers' 2-3%); Fast: the fastest
+ * within 6%, for interaction. */
+static const struct
+{
+  const char* name;
+  double depth_threshold;
+  double normal_threshold;
+  int32_t finest_level;
+} mrgi_multires_presets[MRGI_MULTIRES_PRESET_COUNT] = {
+  { "fast", 64.0, 1.0, 1 },
+  { "balanced", 16.0, 0.5, 0 },
+  { "accurate", 4.0, 0.25, 0 },
+};
+
+mrgi_status mrgi_multires_preset_params(int32_t preset, mrgi_multires_params* params, mrgi_error* err)
+{
+  if (!params)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "multires preset: params is NULL");
+  }
+  if (preset < 0 || preset >= MRGI_MULTIRES_PRESET_COUNT)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "multires preset: unknown preset %d (0 fast, 1 balanced, 2 accurate)", (int)preset);
+  }
+  mrgi_multires_params_default(params);
+  params->depth_threshold = mrgi_multires_presets[preset].depth_threshold;
+  params->normal_threshold = mrgi_multires_presets[preset].normal_threshold;
+  params->finest_level = mrgi_multires_presets[preset].finest_level;
+  return MRGI_OK;
+}
+
+const char* mrgi_multires_preset_name(int32_t preset)
+{
+  return (preset >= 0 && preset < MRGI_MULTIRES_PRESET_COUNT) ? mrgi_multires_presets[preset].name : NULL;
+}

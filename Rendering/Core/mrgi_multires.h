@@ -313,6 +313,31 @@ typedef struct mrgi_multires_params
 void mrgi_multires_params_default(mrgi_multires_params* params);
 
 /**
+ * Presets: points on the measured speed/accuracy frontier
+ * (Testing/Benchmarks/multires_sweep.py, Documentation/Multiresolution.md),
+ * not guesses. Balanced is what MRGI uses whenever indirect light is on and
+ * nothing else is asked for.
+ */
+typedef enum mrgi_multires_preset
+{
+  MRGI_MULTIRES_PRESET_FAST = 0,
+  MRGI_MULTIRES_PRESET_BALANCED = 1,
+  MRGI_MULTIRES_PRESET_ACCURATE = 2
+} mrgi_multires_preset;
+
+#define MRGI_MULTIRES_PRESET_COUNT 3
+
+/**
+ * @brief The settings of a preset (thresholds, finest level; balance on).
+ * @return ::MRGI_ERR_INVALID_ARGUMENT for NULL `params` or an unknown preset
+ *         (params untouched).
+ */
+mrgi_status mrgi_multires_preset_params(int32_t preset, mrgi_multires_params* params, mrgi_error* err);
+
+/** @brief "fast", "balanced", "accurate"; NULL for an unknown preset. */
+const char* mrgi_multires_preset_name(int32_t preset);
+
+/**
  * @brief The threshold as the shader receives it: the value as a float, or
  *        MRGI_MULTIRES_THRESHOLD_OFF for +infinity. The caller validates first
  *        (mrgi_multires_params_validate); other input maps to OFF too.

@@ -260,6 +260,43 @@ struct vtkMRGIMultiresolution::Internals
 vtkMRGIMultiresolution::vtkMRGIMultiresolution()
   : Internal(new Internals)
 {
+  this->SetPreset(PresetBalanced);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::GetPresetSettings(int preset, double settings[3])
+{
+  mrgi_multires_params params;
+  if (!settings || mrgi_multires_preset_params(preset, &params, nullptr) != MRGI_OK)
+  {
+    return false;
+  }
+  settings[0] = std::isinf(params.depth_threshold) ? -1.0 : params.depth_threshold;
+  settings[1] = std::isinf(params.normal_threshold) ? -1.0 : params.normal_threshold;
+  settings[2] = params.finest_level;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+const char* vtkMRGIMultiresolution::GetPresetName(int preset)
+{
+  return mrgi_multires_preset_name(preset);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::SetPreset(int preset)
+{
+  double settings[3];
+  if (!GetPresetSettings(preset, settings))
+  {
+    vtkErrorMacro("unknown multiresolution preset " << preset << " (0 fast, 1 balanced, 2 accurate)");
+    return false;
+  }
+  this->SetDepthThreshold(settings[0]);
+  this->SetNormalThreshold(settings[1]);
+  this->SetFinestLevel(static_cast<int>(settings[2]));
+  this->SetBalance(true);
+  return true;
 }
 
 //------------------------------------------------------------------------------

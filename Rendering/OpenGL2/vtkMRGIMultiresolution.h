@@ -57,11 +57,35 @@ public:
   vtkTypeMacro(vtkMRGIMultiresolution, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  enum Presets
+  {
+    PresetFast = 0,     ///< the fastest setting within ~6% of the full gather
+    PresetBalanced = 1, ///< the fastest within 3% (default)
+    PresetAccurate = 2  ///< the fastest within 1%
+  };
+
+  /**
+   * Apply a preset (mrgi_multires_preset_params: thresholds and finest level
+   * chosen from the measured frontier, Documentation/Multiresolution.md;
+   * balance on). A new object starts with Balanced. False (nothing changed)
+   * for an unknown preset.
+   */
+  bool SetPreset(int preset);
+
+  /**
+   * A preset's settings without applying it: depth threshold, normal
+   * threshold (-1: off) and finest level. False for an unknown preset.
+   */
+  static bool GetPresetSettings(int preset, double settings[3]);
+
+  /** "fast", "balanced", "accurate"; nullptr for an unknown preset. */
+  static const char* GetPresetName(int preset);
+
   ///@{
   /**
    * Thresholds (mrgi_multires.h section 3; +inf or a negative value: off).
-   * Depth: depth change per pixel width in a texel's 3x3 window (default 4);
-   * normal: spread of a unit-normal component (default 0.25).
+   * Depth: depth change per pixel width in a texel's 3x3 window; normal:
+   * spread of a unit-normal component. Defaults: the Balanced preset.
    */
   vtkSetMacro(DepthThreshold, double);
   vtkGetMacro(DepthThreshold, double);
@@ -206,7 +230,7 @@ protected:
   vtkMRGIMultiresolution();
   ~vtkMRGIMultiresolution() override;
 
-  double DepthThreshold = 4.0;
+  double DepthThreshold = 4.0; // the constructor applies PresetBalanced
   double NormalThreshold = 0.25;
   int FinestLevel = 0;
   bool Balance = true;

@@ -79,7 +79,11 @@ public:
   };
 
   ///@{
-  /** How indirect light is computed (default IndirectFull). */
+  /**
+   * How indirect light is computed (default IndirectMultires with the
+   * Balanced preset of vtkMRGIMultiresolution; IndirectFull is the
+   * reference it approximates).
+   */
   vtkSetClampMacro(IndirectMode, int, IndirectOff, IndirectMultires);
   vtkGetMacro(IndirectMode, int);
   ///@}
@@ -216,7 +220,7 @@ protected:
   bool ReadViewport(vtkRenderWindow* window, vtkTextureObject* texture, int components,
     vtkImageData* image, const char* what);
 
-  int IndirectMode = IndirectFull;
+  int IndirectMode = IndirectMultires;
   double IndirectStrength = 1.0;
   bool StageTimingEnabled = false;
   int BufferSize[2] = { 0, 0 };

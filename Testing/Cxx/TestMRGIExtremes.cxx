@@ -379,6 +379,8 @@ struct Setup
     this->Window->AddRenderer(this->Renderer);
     this->Renderer->AutomaticLightCreationOff();
     this->Pass->SetDelegatePass(this->Steps);
+    // These cases check the full gather against its C twin at the extremes.
+    this->Pass->SetIndirectMode(vtkMRGIPass::IndirectFull);
     this->Renderer->SetPass(this->Pass);
   }
   ~Setup()

@@ -58,7 +58,11 @@ int main()
   pass->SetStageTimingEnabled(true);
   renderer->SetPass(pass);
   window->GetRenderTimer()->SetLoggingEnabled(true);
+  MRGI_TEST_CHECK(pass->GetIndirectMode() == vtkMRGIPass::IndirectMultires); // the default
+  MRGI_TEST_CHECK(pass->GetMultiresolution()->GetDepthThreshold() ==
+    [] { double s[3]; vtkMRGIMultiresolution::GetPresetSettings(vtkMRGIMultiresolution::PresetBalanced, s); return s[0]; }());
 
+  pass->SetIndirectMode(vtkMRGIPass::IndirectFull);
   window->Render();
   vtkNew<vtkImageData> full;
   MRGI_TEST_CHECK(pass->GetIndirectBuffer(window, full));

@@ -35,6 +35,7 @@ def main():
     gi = mrgi.vtkMRGIPass()
     gi.SetDelegatePass(steps)
     gi.SetStageTimingEnabled(True)
+    gi.SetIndirectMode(mrgi.vtkMRGIPass.IndirectFull)  # its seven stages are checked below
     renderer.SetPass(gi)
     window.GetRenderTimer().SetLoggingEnabled(True)  # time from the first frame on
     window.Render()
