@@ -175,14 +175,21 @@ def main():
     parser.add_argument("--scaling", default="10000,1000000", help="triangle counts of the scaling scene")
     parser.add_argument("--truth-passes", type=int, default=16, help="ground-truth passes (16 rays each)")
     parser.add_argument("--no-doc", action="store_true", help="do not rewrite Documentation/Multiresolution.md")
+    parser.add_argument("--previous", help="CSV of an earlier run: its settings not measured again are kept "
+                                           "(the page and the plot then combine both runs)")
+    parser.add_argument("--scaling-scene", action="store_true", default=None,
+                        help=argparse.SUPPRESS)
     args = parser.parse_args()
     compare_tool = os.path.join(args.build, "bin", "mrgi-compare")
     scratch = os.path.join(args.build, "Testing", "Temporary", "sweep")
     images = os.path.join(args.doc, "images")
     os.makedirs(scratch, exist_ok=True)
     os.makedirs(images, exist_ok=True)
-    presets = {name: mrgi.vtkMRGIMultiresolution.GetPresetSettings(index)
-               for index, name in enumerate(("fast", "balanced", "accurate"))}
+    presets = {}
+    for index in range(3):
+        settings = [0.0, 0.0, 0.0]
+        assert mrgi.vtkMRGIMultiresolution.GetPresetSettings(index, settings)
+        presets[mrgi.vtkMRGIMultiresolution.GetPresetName(index)] = settings
 
     rows = []
     notes = {}
@@ -288,7 +295,7 @@ def main():
 
     # Cost against triangles (fixed screen coverage), Balanced preset.
     scaling = []
-    for triangles in parse_list(args.scaling, int):
+    for triangles in (parse_list(args.scaling, int) if args.scaling else []):
         bench = Bench(args, "scaling", triangles)
         p = presets["balanced"]
         results = {}
@@ -316,6 +323,25 @@ def main():
                                                           results["gi"][1].get("rsm", 0.0)))
         bench.release()
 
+    if args.previous:
+        def key(r):
+            return tuple(str(r[k]) for k in ("scene", "vpls", "mode", "depth", "normal", "finest", "balance"))
+        measured = {key(r) for r in rows}
+        with open(args.previous, newline="") as f:
+            for r in csv.DictReader(f):
+                for k, v in r.items():
+                    if k in ("scene", "mode") or v == "":
+                        continue
+                    r[k] = int(v) if k in ("vpls", "finest", "balance") else float(v)
+                if key(r) not in measured:
+                    rows.append(r)
+        if not scaling:
+            previous_scaling = os.path.join(os.path.dirname(args.previous), "multires-scaling.csv")
+            if os.path.exists(previous_scaling):
+                with open(previous_scaling, newline="") as f:
+                    scaling = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+                for r in scaling:
+                    r["triangles"] = int(r["triangles"])
     csv_path = os.path.join(scratch, "multires-sweep.csv")
     keys = []
     for r in rows:
@@ -330,6 +356,11 @@ def main():
         writer = csv.DictWriter(f, fieldnames=keys)
         writer.writeheader()
         writer.writerows(rows)
+    if scaling:
+        with open(os.path.join(doc_csv, "multires-scaling.csv"), "w", newline="") as f:
+            writer = csv.DictWriter(f, fieldnames=list(scaling[0].keys()))
+            writer.writeheader()
+            writer.writerows(scaling)
     print("wrote %s" % csv_path)
 
     plot(rows, presets, os.path.join(images, "multires-tradeoff.png"))
