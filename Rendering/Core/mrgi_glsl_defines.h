@@ -25,7 +25,17 @@
  * mrgi_multires.h MRGI_MULTIRES_MAX_LEVELS, the MRGI_MULTIRES_TEX_*, _*_BIT and
  * _FLAG_* numbers, MRGI_MULTIRES_FLT_MAX, MRGI_MULTIRES_MIN_PIXEL_SIZE,
  * MRGI_MULTIRES_THRESHOLD_OFF; from mrgi_upsample.h MRGI_UPSAMPLE_TENT and
- * MRGI_UPSAMPLE_MASK_WEIGHTED.
+ * MRGI_UPSAMPLE_MASK_WEIGHTED; from mrgi_voxel.h, mrgi_voxel_march.h and
+ * mrgi_voxel_incremental.h the voxel layout and visibility numbers
+ * MRGI_VOXEL_SLICES, _CHANNELS, _CHANNEL_BITS, _MAX_SIZE, _MAX_STEPS,
+ * _MAX_SAMPLES, _MAX_MASK_WORDS, _INTERLEAVE_PHASES, _ALL_PHASES,
+ * _NEIGHBOURS, _METRIC_DISAGREE, _METRIC_COUNT_SPREAD, _VSM_QUERIES,
+ * _VSM_TARGETS, _INTERLEAVE_MIN_COS, _INTERLEAVE_MAX_SLOPE; from
+ * mrgi_area_light.h the light-sample record
+ * and lobe numbers MRGI_AREA_LIGHT_MIN_SAMPLES, _MAX_SAMPLES, _SAMPLE_TEXELS,
+ * _SAMPLE_TEXEL_POSITION, _SAMPLE_TEXEL_NORMAL, _SAMPLE_TEXEL_RADIANCE,
+ * _SAMPLE_FLOATS, _LOBE_GRID, _LOBE_MIN_SAMPLES, _LOBE_CUTOFF, _LOBE_DISCARD,
+ * _MIN_COS.
  *
  * Insert the block after the shader's `#version` line (a `#define` may not
  * precede it).
@@ -42,7 +52,7 @@ extern "C" {
 #endif
 
 /** An upper bound of mrgi_glsl_defines_size(): a buffer this large always suffices. */
-#define MRGI_GLSL_DEFINES_MAX_SIZE 2048
+#define MRGI_GLSL_DEFINES_MAX_SIZE 4096
 
 /** @brief Bytes the block needs, terminating NUL included (<= MRGI_GLSL_DEFINES_MAX_SIZE). */
 size_t mrgi_glsl_defines_size(void);

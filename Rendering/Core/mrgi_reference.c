@@ -101,6 +101,7 @@ void mrgi_reference_options_default(mrgi_reference_options* options)
   options->parallel_scale = 1.0;
   options->seed = 1;
   options->threads = 0;
+  options->area_light_samples = 16;
 }
 
 static mrgi_status ref_check_int(const char* name, int32_t value, int32_t lo, int32_t hi,
@@ -141,6 +142,9 @@ mrgi_status mrgi_reference_options_validate(const mrgi_reference_options* o, mrg
     s = ref_check_int("parallel_projection", o->parallel_projection, 0, 1, err);
   if (!s)
     s = ref_check_int("threads", o->threads, 0, MRGI_REFERENCE_MAX_THREADS, err);
+  if (!s)
+    s = ref_check_int("area_light_samples", o->area_light_samples, 0,
+                      MRGI_REFERENCE_MAX_AREA_LIGHT_SAMPLES, err);
   if (s)
   {
     return s;
@@ -190,12 +194,25 @@ typedef struct ref_light
   double rgb[3]; /* intensity * color */
 } ref_light;
 
+/* An area light reduced to what the kernel needs. */
+typedef struct ref_area_light
+{
+  const mrgi_area_light* light; /* borrowed: mrgi_area_light_emitted() */
+  double center[3], edge_u[3], edge_v[3];
+  double normal[3]; /* unit, edge_u x edge_v */
+  double weight;    /* area / (pi * cells): one cell's share of (1/pi) int dA */
+  int32_t cells_u, cells_v;
+  int two_sided;
+} ref_area_light;
+
 typedef struct ref_shared
 {
   RTCScene rtc;
   const ref_geometry* geometries;
   ref_light lights[MRGI_SCENE_MAX_LIGHTS];
   int32_t light_count;
+  ref_area_light area_lights[MRGI_REFERENCE_MAX_AREA_LIGHTS];
+  int32_t area_light_count;
   mrgi_reference_options options;
   /* camera frame */
   double eye[3], forward[3], right[3], up[3];
@@ -206,6 +223,8 @@ typedef struct ref_shared
   double* sums;       /* 9 per pixel: direct rgb, indirect rgb, albedo rgb */
   double* est_mean;   /* Welford running mean of the per-pass indirect estimate */
   double* est_m2;     /* Welford sum of squared deviations */
+  double* dir_mean;   /* the same for the per-pass direct estimate (area lights only) */
+  double* dir_m2;
   uint8_t* hit;       /* 1 once any primary ray of the pixel hit a surface */
   int32_t pass;
   atomic_int next_row;
@@ -407,6 +426,93 @@ static void ref_irradiance(ref_worker* w, const ref_surface* s, int shadowed, do
   }
 }
 
+/* VTK irradiance X_area at s from the area lights (mrgi_reference.h):
+ * stratified points, one per cell of each light's grid, each tested with a
+ * shadow ray when `shadowed`. */
+static void ref_area_irradiance(ref_worker* w, const ref_surface* s, int shadowed, uint64_t* rng,
+                                double x[3])
+{
+  const ref_shared* shared = w->shared;
+  x[0] = x[1] = x[2] = 0.0;
+  for (int32_t i = 0; i < shared->area_light_count; ++i)
+  {
+    const ref_area_light* a = &shared->area_lights[i];
+    for (int32_t cv = 0; cv < a->cells_v; ++cv)
+    {
+      for (int32_t cu = 0; cu < a->cells_u; ++cu)
+      {
+        const double su = ((double)cu + ref_rng_unit(rng)) / (double)a->cells_u;
+        const double tv = ((double)cv + ref_rng_unit(rng)) / (double)a->cells_v;
+        double y[3], l[3];
+        for (int k = 0; k < 3; ++k)
+        {
+          y[k] = a->center[k] + (su - 0.5) * a->edge_u[k] + (tv - 0.5) * a->edge_v[k];
+          l[k] = y[k] - s->p[k];
+        }
+        const double distance = ref_normalize(l);
+        if (!(distance > 0.0))
+        {
+          continue; /* the point lies on the surface: no direction */
+        }
+        const double cos_p = ref_dot(s->ns, l);
+        double cos_y = -ref_dot(a->normal, l);
+        if (a->two_sided)
+        {
+          cos_y = fabs(cos_y);
+        }
+        if (!(cos_p > 0.0) || !(cos_y > 0.0))
+        {
+          continue;
+        }
+        double radiance[3];
+        mrgi_area_light_emitted(a->light, su, tv, radiance);
+        if (!(radiance[0] > 0.0 || radiance[1] > 0.0 || radiance[2] > 0.0))
+        {
+          continue; /* black texel: no shadow ray needed */
+        }
+        if (shadowed)
+        {
+          if (!(ref_dot(s->ng, l) > 0.0))
+          {
+            continue; /* behind the geometric surface (shading normals) */
+          }
+          double org[3], dir[3];
+          for (int k = 0; k < 3; ++k)
+          {
+            org[k] = s->p[k] + s->epsilon * s->ng[k];
+            dir[k] = y[k] - org[k];
+          }
+          const double reach = ref_normalize(dir);
+          /* Stop short of y, so that a surface in the light's plane (its
+           * emitter quad) does not hide it. */
+          double margin = ref_epsilon(shared, y);
+          margin = s->epsilon > margin ? s->epsilon : margin;
+          margin = 1e-5 * reach > margin ? 1e-5 * reach : margin;
+          struct RTCIntersectContext context;
+          rtcInitIntersectContext(&context);
+          struct RTCRay ray;
+          ref_ray_init(&ray, org, dir, reach - 2.0 * margin);
+          if (!(ray.tfar > 0.0f))
+          {
+            ray.tfar = 0.0f;
+          }
+          rtcOccluded1(shared->rtc, &context, &ray);
+          ++w->rays;
+          if (ray.tfar < 0.0f)
+          {
+            continue; /* occluded */
+          }
+        }
+        const double f = a->weight * cos_p * cos_y / (distance * distance);
+        for (int k = 0; k < 3; ++k)
+        {
+          x[k] += radiance[k] * f;
+        }
+      }
+    }
+  }
+}
+
 /* Outgoing radiance of q towards the ray's origin, shadowed: albedo_q * X_q;
  * 0 for emitters (their emission is not part of the one bounce). */
 static void ref_bounce_radiance(ref_worker* w, const ref_surface* q, double out[3])
@@ -602,6 +708,9 @@ static void ref_render_pixel(ref_worker* w, int32_t x, int32_t y)
                                                (uint64_t)pixel));
   double* sums = shared->sums + 9 * pixel;
   double estimate = 0.0;
+  /* Area-light points draw from a stream of their own (indirect unchanged). */
+  uint64_t area_rng = ref_mix64(rng ^ 0xA5EA1167A5EA1167ULL);
+  double direct_estimate = 0.0;
   for (int32_t sample = 0; sample < o->pixel_samples; ++sample)
   {
     const double jx = ref_rng_unit(&rng), jy = ref_rng_unit(&rng);
@@ -637,14 +746,25 @@ static void ref_render_pixel(ref_worker* w, int32_t x, int32_t y)
       for (int k = 0; k < 3; ++k)
       {
         sums[k] += (double)mesh->emission[k];
+        direct_estimate += (double)mesh->emission[k] / 3.0;
       }
       continue;
     }
     double x_direct[3];
     ref_irradiance(w, &s, o->shadows, x_direct);
+    if (shared->area_light_count > 0)
+    {
+      double x_area[3];
+      ref_area_irradiance(w, &s, o->shadows, &area_rng, x_area);
+      for (int k = 0; k < 3; ++k)
+      {
+        x_direct[k] += x_area[k];
+      }
+    }
     for (int k = 0; k < 3; ++k)
     {
       sums[k] += (double)mesh->albedo[k] * x_direct[k];
+      direct_estimate += (double)mesh->albedo[k] * x_direct[k] / 3.0;
     }
     if (o->indirect_samples == 0)
     {
@@ -683,6 +803,13 @@ static void ref_render_pixel(ref_worker* w, int32_t x, int32_t y)
   const double delta = estimate - shared->est_mean[pixel];
   shared->est_mean[pixel] += delta / n;
   shared->est_m2[pixel] += delta * (estimate - shared->est_mean[pixel]);
+  if (shared->dir_mean)
+  {
+    direct_estimate /= (double)o->pixel_samples;
+    const double direct_delta = direct_estimate - shared->dir_mean[pixel];
+    shared->dir_mean[pixel] += direct_delta / n;
+    shared->dir_m2[pixel] += direct_delta * (direct_estimate - shared->dir_mean[pixel]);
+  }
 }
 
 static void* ref_worker_run(void* arg)
@@ -912,13 +1039,15 @@ void mrgi_reference_result_destroy(mrgi_reference_result* result)
   mrgi_image_destroy(&result->indirect);
   mrgi_image_destroy(&result->albedo);
   mrgi_image_destroy(&result->indirect_stderr);
+  mrgi_image_destroy(&result->direct_stderr);
   free(result->background);
   memset(result, 0, sizeof(*result));
 }
 
-/* Noise of the indirect after `passes` passes (definitions in the header). */
-static void ref_noise(const ref_shared* shared, int32_t passes, double* relative,
-                      double* per_pixel)
+/* Noise of the per-pass estimates (mean, m2) after `passes` passes
+ * (definitions in the header); `enabled` = 0: known exactly. */
+static void ref_noise_of(const ref_shared* shared, const double* est_mean, const double* est_m2,
+                         int enabled, int32_t passes, double* relative, double* per_pixel)
 {
   const size_t count = (size_t)shared->options.width * (size_t)shared->options.height;
   double sum_mean = 0.0, sum_var = 0.0;
@@ -930,13 +1059,13 @@ static void ref_noise(const ref_shared* shared, int32_t passes, double* relative
       continue;
     }
     ++lit;
-    sum_mean += shared->est_mean[i];
+    sum_mean += est_mean[i];
     if (passes > 1)
     {
-      sum_var += shared->est_m2[i] / ((double)(passes - 1) * (double)passes);
+      sum_var += est_m2[i] / ((double)(passes - 1) * (double)passes);
     }
   }
-  if (shared->options.indirect_samples == 0 || !(sum_mean > 0.0))
+  if (!enabled || !(sum_mean > 0.0))
   {
     *relative = 0.0;
     *per_pixel = 0.0;
@@ -950,6 +1079,25 @@ static void ref_noise(const ref_shared* shared, int32_t passes, double* relative
   }
   *relative = sqrt(sum_var) / sum_mean;
   *per_pixel = *relative * sqrt((double)lit);
+}
+
+/* Noise of the indirect (relative_error, pixel_relative_error). */
+static void ref_noise(const ref_shared* shared, int32_t passes, double* relative,
+                      double* per_pixel)
+{
+  ref_noise_of(shared, shared->est_mean, shared->est_m2, shared->options.indirect_samples != 0,
+               passes, relative, per_pixel);
+}
+
+/* Noise of the direct image: area lights only (direct_relative_error). */
+static double ref_direct_noise(const ref_shared* shared, int32_t passes)
+{
+  double relative = 0.0, per_pixel = 0.0;
+  if (shared->dir_mean)
+  {
+    ref_noise_of(shared, shared->dir_mean, shared->dir_m2, 1, passes, &relative, &per_pixel);
+  }
+  return relative;
 }
 
 static int32_t ref_thread_count(const mrgi_reference_options* o)
@@ -1005,6 +1153,8 @@ static void ref_call_release(ref_call* c)
   free(c->shared.sums);
   free(c->shared.est_mean);
   free(c->shared.est_m2);
+  free(c->shared.dir_mean);
+  free(c->shared.dir_m2);
   free(c->shared.hit);
 }
 
@@ -1039,6 +1189,8 @@ static mrgi_status ref_write_images(const ref_call* c, int32_t passes, mrgi_refe
     s = mrgi_image_create(&out->albedo, o->width, o->height, 3, err);
   if (!s)
     s = mrgi_image_create(&out->indirect_stderr, o->width, o->height, 1, err);
+  if (!s)
+    s = mrgi_image_create(&out->direct_stderr, o->width, o->height, 1, err);
   if (s)
   {
     return s;
@@ -1064,12 +1216,52 @@ static mrgi_status ref_write_images(const ref_call* c, int32_t passes, mrgi_refe
     const double var_of_mean =
       passes > 1 ? c->shared.est_m2[i] / ((double)(passes - 1) * (double)passes) : 0.0;
     out->indirect_stderr.pixels[i] = (float)sqrt(var_of_mean > 0.0 ? var_of_mean : 0.0);
+    if (c->shared.dir_mean && passes > 1)
+    {
+      const double direct_var = c->shared.dir_m2[i] / ((double)(passes - 1) * (double)passes);
+      out->direct_stderr.pixels[i] = (float)sqrt(direct_var > 0.0 ? direct_var : 0.0);
+    }
   }
   return MRGI_OK;
 }
 
+/* Reduce the (checked) area lights to ref_area_light records. */
+static void ref_setup_area_lights(const mrgi_area_light* lights, int32_t count,
+                                  int32_t samples, ref_shared* shared)
+{
+  shared->area_light_count = count;
+  for (int32_t i = 0; i < count; ++i)
+  {
+    const mrgi_area_light* in = &lights[i];
+    ref_area_light* a = &shared->area_lights[i];
+    memset(a, 0, sizeof(*a));
+    a->light = in;
+    memcpy(a->center, in->center, sizeof(a->center));
+    memcpy(a->edge_u, in->edge_u, sizeof(a->edge_u));
+    memcpy(a->edge_v, in->edge_v, sizeof(a->edge_v));
+    ref_cross(in->edge_u, in->edge_v, a->normal);
+    const double area = ref_normalize(a->normal);
+    int32_t cells_u = 1, cells_v = 1;
+    /* cannot fail: light and count were checked by the caller */
+    mrgi_area_light_sample_layout(in, samples, &cells_u, &cells_v, NULL, NULL);
+    a->cells_u = cells_u;
+    a->cells_v = cells_v;
+    a->weight = area / (REF_PI * (double)cells_u * (double)cells_v);
+    a->two_sided = in->two_sided != 0;
+  }
+}
+
 mrgi_status mrgi_reference_render(const mrgi_scene* scene, const mrgi_reference_options* options,
                                   mrgi_reference_result* out, mrgi_error* err)
+{
+  return mrgi_reference_render_area_lights(scene, options, NULL, 0, out, err);
+}
+
+mrgi_status mrgi_reference_render_area_lights(const mrgi_scene* scene,
+                                              const mrgi_reference_options* options,
+                                              const mrgi_area_light* area_lights,
+                                              int32_t area_light_count,
+                                              mrgi_reference_result* out, mrgi_error* err)
 {
   static const char* caller = "mrgi_reference_render";
   const double start = ref_seconds_now();
@@ -1098,6 +1290,30 @@ mrgi_status mrgi_reference_render(const mrgi_scene* scene, const mrgi_reference_
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "%s: the scene has no triangles",
                           caller);
   }
+  if (area_light_count < 0 || area_light_count > MRGI_REFERENCE_MAX_AREA_LIGHTS ||
+      (area_light_count > 0 && !area_lights))
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "%s: area_light_count %d is outside 0..%d or the area lights are NULL",
+                          caller, (int)area_light_count, MRGI_REFERENCE_MAX_AREA_LIGHTS);
+  }
+  for (int32_t i = 0; i < area_light_count; ++i)
+  {
+    status = mrgi_area_light_check(&area_lights[i], err);
+    if (status)
+    {
+      mrgi_error_prefix(err, "%s: area light %d: ", caller, (int)i);
+      return status;
+    }
+  }
+  if (area_light_count > 0 && options->area_light_samples < 1)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "%s: option area_light_samples = %d, but %d area lights are to be "
+                          "rendered (1..%d needed)",
+                          caller, (int)options->area_light_samples, (int)area_light_count,
+                          MRGI_REFERENCE_MAX_AREA_LIGHT_SAMPLES);
+  }
 
   ref_call c;
   memset(&c, 0, sizeof(c));
@@ -1108,6 +1324,7 @@ mrgi_status mrgi_reference_render(const mrgi_scene* scene, const mrgi_reference_
     return status;
   }
   ref_setup_lights(scene, &c.shared);
+  ref_setup_area_lights(area_lights, area_light_count, options->area_light_samples, &c.shared);
   double bounds[6];
   status = mrgi_scene_bounds(scene, bounds, err);
   if (status)
@@ -1135,8 +1352,14 @@ mrgi_status mrgi_reference_render(const mrgi_scene* scene, const mrgi_reference_
   c.shared.est_mean = calloc(count, sizeof(double));
   c.shared.est_m2 = calloc(count, sizeof(double));
   c.shared.hit = calloc(count, 1);
+  if (area_light_count > 0)
+  {
+    c.shared.dir_mean = calloc(count, sizeof(double));
+    c.shared.dir_m2 = calloc(count, sizeof(double));
+  }
   if (!c.geometries || !c.workers || !c.thread_ids || !c.hit_storage || !c.shared.sums ||
-      !c.shared.est_mean || !c.shared.est_m2 || !c.shared.hit)
+      !c.shared.est_mean || !c.shared.est_m2 || !c.shared.hit ||
+      (area_light_count > 0 && (!c.shared.dir_mean || !c.shared.dir_m2)))
   {
     ref_call_release(&c);
     return mrgi_error_set(err, MRGI_ERR_OUT_OF_MEMORY,
@@ -1181,15 +1404,17 @@ mrgi_status mrgi_reference_render(const mrgi_scene* scene, const mrgi_reference_
   }
 
   int32_t passes = 0;
-  double relative = INFINITY, per_pixel = INFINITY;
+  double relative = INFINITY, per_pixel = INFINITY, direct_relative = INFINITY;
   while (passes < options->max_passes)
   {
     c.shared.pass = passes;
     ref_run_pass(&c, thread_count);
     ++passes;
     ref_noise(&c.shared, passes, &relative, &per_pixel);
-    if (options->target_relative_error > 0.0 && relative <= options->target_relative_error &&
-        (passes >= 2 || relative == 0.0))
+    direct_relative = ref_direct_noise(&c.shared, passes); /* 0 without area lights */
+    const double worst = direct_relative > relative ? direct_relative : relative;
+    if (options->target_relative_error > 0.0 && worst <= options->target_relative_error &&
+        (passes >= 2 || worst == 0.0))
     {
       break;
     }
@@ -1219,6 +1444,7 @@ mrgi_status mrgi_reference_render(const mrgi_scene* scene, const mrgi_reference_
   out->hit_list_overflows = overflows;
   out->relative_error = relative;
   out->pixel_relative_error = per_pixel;
+  out->direct_relative_error = direct_relative;
   out->passes = passes;
   out->threads = thread_count;
   out->seconds = ref_seconds_now() - start;

@@ -27,14 +27,37 @@
  *   ray leaves below the surface it starts on.
  * - Emitters (a mesh with any emission channel > 0) show their emission in the
  *   direct image and reflect nothing (indirect 0). They are not light sources
- *   of this renderer: area lights are ignored, and a bounce ray reaching an
- *   emitter gathers 0 (emission is direct light, not the one bounce).
+ *   of this renderer, and a bounce ray reaching an emitter gathers 0
+ *   (emission is direct light, not the one bounce). Light from rectangles
+ *   comes from area lights (next item), which mrgi_reference_render() does
+ *   not use: a scene's ::mrgi_scene::area_lights light nothing unless passed
+ *   to mrgi_reference_render_area_lights().
+ * - Area lights (::mrgi_area_light, units and texture mapping in
+ *   mrgi_area_light.h) given to mrgi_reference_render_area_lights() add to
+ *   the direct image, diffuse only (meshes carry no specular data), the VTK
+ *   irradiance
+ *       X_area(p) = (1/pi) * integral over the light of L(y) V(p, y) cos_p cos_y / |y - p|^2 dA_y
+ *   (cos_p with the shading normal, cos_y with the light's normal, |cos_y| for
+ *   two-sided lights, L(y) = intensity * color * the texel containing y,
+ *   mrgi_area_light_emitted()), estimated per primary hit and pass from
+ *   area_light_samples points per light: one uniform point in each cell of
+ *   the light's mrgi_area_light_sample_layout() grid (stratified), weight
+ *   A / (pi * cells). V is exact when `shadows` is 1: a shadow ray from p
+ *   (offset as for point lights) that stops just short of y, so a mesh in
+ *   the light's plane (the emitter quad drawn for it, as in the Cornell box)
+ *   does not hide it; V = 1 when `shadows` is 0, the no-visibility gather
+ *   of mrgi_area_light_diffuse() to compare with. Area lights are invisible
+ *   to primary rays (draw an emitter mesh to see one) and light only the
+ *   direct image: the one bounce comes from the point-like lights, as before.
+ *   Their samples come from a stream of their own, so adding area lights
+ *   leaves the indirect image bit for bit unchanged.
  *
  * Images (all width x height, row 0 = TOP, box filter over the jittered
  * primary rays of all passes; a primary ray that misses contributes 0):
- * - direct: L_direct = albedo * sum over lights of X, with exact shadows
- *   (an occlusion ray to each positional/spot light, to infinity against a
- *   directional light's travel direction) or without (VTK's own direct light
+ * - direct: L_direct = albedo * sum over lights of X (and of X_area of the
+ *   area lights), with exact shadows (an occlusion ray to each
+ *   positional/spot light, to infinity against a directional light's travel
+ *   direction, to each area-light point) or without (VTK's own direct light
  *   has none): ::mrgi_reference_options::shadows.
  * - indirect: albedo_p * X_ind(p), X_ind(p) = (1/pi) * integral over the
  *   hemisphere of p of L_direct_shadowed(q) cos(theta_p) d omega, q being the
@@ -74,10 +97,14 @@
  *                          (RMS per-pixel standard error / mean pixel value).
  * After a single pass the spread is unknown: both are +infinity (never NaN).
  * With no indirect light at all (sum of m = 0, or indirect_samples = 0) both
- * are 0, known exactly. Rendering stops after the first pass whose
- * relative_error is at or below target_relative_error (so after pass 2 at
- * the earliest, unless it is 0), or at max_passes, or after the pass that
- * crosses max_seconds.
+ * are 0, known exactly. With area lights, the direct image is noisy too:
+ * direct_relative_error and direct_stderr are the same statistics of the
+ * per-pass direct estimates (mean of the three channels); without area
+ * lights the direct image is exact up to pixel jitter and both are 0.
+ * Rendering stops after the first pass whose relative_error and
+ * direct_relative_error are both at or below target_relative_error (so
+ * after pass 2 at the earliest, unless both are 0), or at max_passes, or
+ * after the pass that crosses max_seconds.
  *
  * Determinism: every pixel of every pass draws from its own splitmix64 stream
  * seeded by (seed, pass, pixel), so the images depend on the options only,
@@ -94,6 +121,7 @@
 #ifndef MRGI_REFERENCE_H
 #define MRGI_REFERENCE_H
 
+#include "mrgi_area_light.h"
 #include "mrgi_error.h"
 #include "mrgi_image.h"
 #include "mrgi_scene.h"
@@ -114,6 +142,10 @@ extern "C" {
 #define MRGI_REFERENCE_MAX_PASSES 1000000
 /** Largest accepted threads. */
 #define MRGI_REFERENCE_MAX_THREADS 1024
+/** Largest accepted area_light_samples (the largest light-sample grid). */
+#define MRGI_REFERENCE_MAX_AREA_LIGHT_SAMPLES MRGI_AREA_LIGHT_MAX_SAMPLES
+/** Most area lights one mrgi_reference_render_area_lights() call takes. */
+#define MRGI_REFERENCE_MAX_AREA_LIGHTS 64
 /**
  * Most distinct surfaces one bounce ray records when secondary_visibility is
  * 0. Further crossings are ignored and counted in
@@ -132,13 +164,14 @@ typedef struct mrgi_reference_options
   double target_relative_error; /**< Stop once relative_error <= this (finite, >= 0); 0 = run max_passes. Default 0.01. */
   int32_t max_passes;           /**< Cap on progressive passes, 1..MRGI_REFERENCE_MAX_PASSES. Default 64. */
   double max_seconds;           /**< Stop after the pass that crosses this wall time (finite, >= 0); 0 = no limit. Default 0. */
-  int32_t shadows;              /**< 0 or 1: shadows in the direct image (the bounce is always shadowed). Default 1. */
+  int32_t shadows;              /**< 0 or 1: shadows in the direct image, of point-like and area lights (the bounce is always shadowed). Default 1. */
   int32_t secondary_visibility; /**< 1 = exact p -> q visibility; 0 = every surface crossed counts (RSM). Default 1. */
   int32_t shading_normals;      /**< 0 or 1: interpolated vertex normals for X (VTK) where a mesh has them. Default 1. */
   int32_t parallel_projection;  /**< 0 = perspective (view_angle_deg), 1 = parallel (parallel_scale). Default 0. */
   double parallel_scale;        /**< Half the view height in world units; finite, > 0 when parallel_projection. Default 1. */
   uint64_t seed;                /**< Any value. Default 1. */
   int32_t threads;              /**< Worker threads, 0..MRGI_REFERENCE_MAX_THREADS; 0 = online CPUs. Default 0. */
+  int32_t area_light_samples;   /**< Points (shadow rays) per area light per primary hit per pass, 0..MRGI_REFERENCE_MAX_AREA_LIGHT_SAMPLES; at least 1 when area lights are rendered (0 suits point-light renders only). The light's sample grid for this count is used (<= this many). Default 16. */
 } mrgi_reference_options;
 
 /** @brief Fill `options` with the defaults listed on each field. NULL is a no-op. */
@@ -158,9 +191,11 @@ typedef struct mrgi_reference_result
   mrgi_image indirect;        /**< RGB radiance albedo_p * X_ind(p). */
   mrgi_image albedo;          /**< RGB albedo of the surface seen. */
   mrgi_image indirect_stderr; /**< 1 channel: standard error of the pixel's mean indirect (see the file comment). */
+  mrgi_image direct_stderr;   /**< 1 channel: standard error of the pixel's mean direct (area lights; 0 without). */
   uint8_t* background;        /**< width*height bytes, row 0 = top; 1 = no surface in the pixel. */
   double relative_error;       /**< Achieved relative standard error of the mean indirect (file comment). */
   double pixel_relative_error; /**< RMS per-pixel relative standard error (file comment). */
+  double direct_relative_error; /**< Relative standard error of the mean direct (area lights; 0 without). */
   int64_t rays_traced;        /**< Primary + shadow + bounce rays, all passes. */
   int64_t skipped_triangles;  /**< Zero-area or non-finite triangles left out of the Embree scene. */
   int64_t hit_list_overflows; /**< Bounce rays that crossed more than MRGI_REFERENCE_MAX_RAY_HITS surfaces (RSM mode). */
@@ -172,6 +207,8 @@ typedef struct mrgi_reference_result
 
 /**
  * @brief Render ground-truth direct and one-bounce indirect images of `scene`.
+ *
+ * Same as mrgi_reference_render_area_lights() without area lights.
  *
  * @param scene   A scene that passes mrgi_scene_validate() and has at least
  *                one non-degenerate triangle. Its lights are used; its
@@ -187,6 +224,29 @@ typedef struct mrgi_reference_result
  */
 mrgi_status mrgi_reference_render(const mrgi_scene* scene, const mrgi_reference_options* options,
                                   mrgi_reference_result* out, mrgi_error* err);
+
+/**
+ * @brief Render ground truth with area lights as well: the images of
+ *        mrgi_reference_render() plus, in the direct image, the light of
+ *        `area_lights` (diffuse, with exact visibility when options->shadows
+ *        is 1, none when 0; see the file comment).
+ *
+ * @param area_lights      Lights that pass mrgi_area_light_check() (borrowed,
+ *                         textures too, for the call only); may be NULL when
+ *                         area_light_count is 0. Pass scene->area_lights to
+ *                         render a scene's own.
+ * @param area_light_count 0..MRGI_REFERENCE_MAX_AREA_LIGHTS.
+ * @return As mrgi_reference_render(), and ::MRGI_ERR_INVALID_ARGUMENT for a
+ *         count out of range, NULL lights, a light failing
+ *         mrgi_area_light_check() (its message, prefixed
+ *         "mrgi_reference_render: area light <i>: ") or area_light_samples = 0
+ *         with lights to render.
+ */
+mrgi_status mrgi_reference_render_area_lights(const mrgi_scene* scene,
+                                              const mrgi_reference_options* options,
+                                              const mrgi_area_light* area_lights,
+                                              int32_t area_light_count,
+                                              mrgi_reference_result* out, mrgi_error* err);
 
 /** @brief Free everything a result owns and zero it. NULL-safe and idempotent. */
 void mrgi_reference_result_destroy(mrgi_reference_result* result);

@@ -155,35 +155,17 @@ static mrgi_status mrgi_scene_validate_light(const mrgi_light* light, int32_t in
 static mrgi_status mrgi_scene_validate_area_light(const mrgi_area_light* light, int32_t index,
                                                   mrgi_error* err)
 {
-  static const char* caller = "mrgi_scene_validate";
-  if (!mrgi_scene_finite3(light->center) || !mrgi_scene_finite3(light->edge_u) ||
-      !mrgi_scene_finite3(light->edge_v))
+  /* One set of rules for every area light: mrgi_area_light_check()'s
+   * (finite, perpendicular non-zero edges, colour and intensity >= 0, a
+   * well-formed texture); a scene reports them as a format error. */
+  if (mrgi_area_light_check(light, err) != MRGI_OK)
   {
-    return mrgi_error_set(err, MRGI_ERR_FORMAT, "%s: area light %d has a non-finite vector", caller,
-                          (int)index);
-  }
-  for (int c = 0; c < 3; ++c)
-  {
-    if (!(light->radiance[c] >= 0.0 && isfinite(light->radiance[c])))
+    mrgi_error_prefix(err, "mrgi_scene_validate: area light %d: ", (int)index);
+    if (err)
     {
-      return mrgi_error_set(err, MRGI_ERR_FORMAT,
-                            "%s: area light %d radiance[%d] = %g is not finite and >= 0", caller,
-                            (int)index, c, light->radiance[c]);
+      err->status = MRGI_ERR_FORMAT;
     }
-  }
-  const double uu = mrgi_scene_dot(light->edge_u, light->edge_u);
-  const double vv = mrgi_scene_dot(light->edge_v, light->edge_v);
-  if (!(uu > 0.0 && vv > 0.0))
-  {
-    return mrgi_error_set(err, MRGI_ERR_FORMAT, "%s: area light %d has a zero-length edge", caller,
-                          (int)index);
-  }
-  /* A rectangle, not a parallelogram: samplers and the corner formula assume it. */
-  const double uv = mrgi_scene_dot(light->edge_u, light->edge_v);
-  if (fabs(uv) > 1e-6 * sqrt(uu * vv))
-  {
-    return mrgi_error_set(err, MRGI_ERR_FORMAT, "%s: area light %d edges are not perpendicular",
-                          caller, (int)index);
+    return MRGI_ERR_FORMAT;
   }
   return MRGI_OK;
 }

@@ -16,6 +16,7 @@
 #ifndef MRGI_SCENE_H
 #define MRGI_SCENE_H
 
+#include "mrgi_area_light.h"
 #include "mrgi_error.h"
 #include "mrgi_mesh.h"
 
@@ -69,19 +70,7 @@ typedef struct mrgi_light
   double exponent;       /**< Spot falloff exponent (vtkLight::SetExponent), >= 0. */
 } mrgi_light;
 
-/**
- * A one- or two-sided rectangular emitter of uniform radiance.
- * Corners: center +- edge_u/2 +- edge_v/2. It emits on the side of
- * `edge_u x edge_v` (and the other side too when two_sided).
- */
-typedef struct mrgi_area_light
-{
-  double center[3];   /**< Centre of the rectangle. */
-  double edge_u[3];   /**< Full first edge (not half). */
-  double edge_v[3];   /**< Full second edge, perpendicular to edge_u. */
-  double radiance[3]; /**< Emitted radiance, linear RGB, each >= 0, in the scene's relative units. */
-  int two_sided;      /**< Non-zero: emits on both sides. */
-} mrgi_area_light;
+/* ::mrgi_area_light (a textured rectangular emitter) is defined in mrgi_area_light.h. */
 
 /** Everything a frame needs. See the file comment for ownership. */
 typedef struct mrgi_scene
@@ -111,8 +100,8 @@ void mrgi_scene_destroy(mrgi_scene* scene);
  * @brief Check a whole scene: counts in range, every mesh valid
  *        (mrgi_mesh_validate()), camera and lights finite and well-formed
  *        (view angle in (0, 180), spot cone in (0, 90), non-degenerate
- *        directions, non-negative colours), area lights with perpendicular,
- *        non-zero edges.
+ *        directions, non-negative colours), area lights that pass
+ *        mrgi_area_light_check() (its message, prefixed "area light <i>: ").
  * @return ::MRGI_ERR_INVALID_ARGUMENT for NULL; ::MRGI_ERR_FORMAT naming the
  *         first offence.
  */

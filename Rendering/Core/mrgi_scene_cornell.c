@@ -170,9 +170,11 @@ static void mrgi_cornell_area_light(mrgi_area_light* light)
     light->edge_u[axis] = (double)q[1][axis] - (double)q[0][axis];
     light->edge_v[axis] = (double)q[3][axis] - (double)q[0][axis];
     light->center[axis] = 0.25 * ((double)q[0][axis] + q[1][axis] + q[2][axis] + q[3][axis]);
-    light->radiance[axis] = mrgi_cornell_emitter_radiance[axis];
+    light->color[axis] = mrgi_cornell_emitter_radiance[axis];
   }
   light->center[1] -= MRGI_CORNELL_EMITTER_DROP_MM;
+  light->intensity = 1.0; /* radiance = intensity * color = the emitter's (mrgi_area_light.h) */
+  light->texture = NULL;
   light->two_sided = 0;
 }
 

@@ -49,7 +49,8 @@ static void make_scene(mrgi_scene* scene)
   area->center[1] = 2.0;
   area->edge_u[2] = 1.0; /* (0,0,1) x (2,0,0) = (0,2,0): faces up */
   area->edge_v[0] = 2.0;
-  area->radiance[0] = area->radiance[1] = area->radiance[2] = 4.0;
+  area->color[0] = area->color[1] = area->color[2] = 4.0;
+  area->intensity = 1.0;
   scene->area_light_count = 1;
 }
 
@@ -143,7 +144,7 @@ static void test_validation(void)
 
   EXPECT_REJECTED(scene->area_lights[0].edge_v[0] = 0.0, "zero-length edge");
   EXPECT_REJECTED(scene->area_lights[0].edge_v[2] = 0.5, "not perpendicular");
-  EXPECT_REJECTED(scene->area_lights[0].radiance[2] = -1.0, "radiance[2]");
+  EXPECT_REJECTED(scene->area_lights[0].color[2] = -1.0, "color[2]");
   EXPECT_REJECTED(scene->area_lights[0].center[0] = NAN, "non-finite");
 
   /* The valid variants of the fields above pass. */

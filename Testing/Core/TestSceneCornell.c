@@ -299,7 +299,8 @@ static void test_area_variant(void)
   MRGI_CHECK(mrgi_area_light_normal(light, normal, &err) == MRGI_OK);
   MRGI_CHECK_NEAR(normal[1], -1.0, 0.0);
   MRGI_CHECK(light->two_sided == 0);
-  MRGI_CHECK(light->radiance[0] == 17.0 && light->radiance[1] == 12.0 && light->radiance[2] == 4.0);
+  MRGI_CHECK(light->color[0] == 17.0 && light->color[1] == 12.0 && light->color[2] == 4.0);
+  MRGI_CHECK(light->intensity == 1.0 && light->texture == NULL);
   MRGI_CHECK_NEAR(light->center[0], 278.0, 1e-9);
   MRGI_CHECK_NEAR(light->center[2], 279.5, 1e-9);
   MRGI_CHECK_NEAR(light->center[1], 548.8 - MRGI_CORNELL_EMITTER_DROP_MM, 1e-4);

@@ -1,0 +1,607 @@
+#include "mrgi_voxel_incremental.h"
+
+#include "mrgi_buffers.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+mrgi_status mrgi_voxel_samples_check(const mrgi_voxel_samples* samples, mrgi_error* err)
+{
+  if (!samples)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "light samples are NULL");
+  }
+  if (samples->count < 1 || samples->count > MRGI_VOXEL_MAX_SAMPLES)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "light sample count %d is outside 1..%d", samples->count,
+                          MRGI_VOXEL_MAX_SAMPLES);
+  }
+  if (!samples->position)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "light sample positions are NULL");
+  }
+  for (int32_t j = 0; j < samples->count; ++j)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      if (!isfinite(samples->position[3 * j + c]) ||
+          (samples->normal && !isfinite(samples->normal[3 * j + c])))
+      {
+        return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                              "light sample %d has a non-finite %s", j,
+                              isfinite(samples->position[3 * j + c]) ? "normal" : "position");
+      }
+    }
+  }
+  return MRGI_OK;
+}
+
+uint32_t mrgi_voxel_phase_word_mask(uint32_t phase_set)
+{
+  return (phase_set & 15u) * 0x11111111u;
+}
+
+uint32_t mrgi_voxel_popcount(uint32_t v)
+{
+  v = v - ((v >> 1) & 0x55555555u);
+  v = (v & 0x33333333u) + ((v >> 2) & 0x33333333u);
+  v = (v + (v >> 4)) & 0x0F0F0F0Fu;
+  return (v * 0x01010101u) >> 24;
+}
+
+/* Bits of word w that hold samples (bits >= N of the last word are 0). */
+static uint32_t mrgi_voxel_valid_bits(int32_t count, int32_t w)
+{
+  const int32_t rest = count - 32 * w;
+  return rest >= 32 ? 0xFFFFFFFFu : ((1u << (uint32_t)rest) - 1u);
+}
+
+int64_t mrgi_voxel_visibility(const mrgi_voxel_view* view, const mrgi_voxel_samples* samples,
+                              const float receiver[3], const float* normal,
+                              const uint32_t* const* coarse, uint32_t phase_set, uint32_t* mask)
+{
+  const int32_t words = mrgi_voxel_mask_words(samples->count);
+  const uint32_t phase_bits = mrgi_voxel_phase_word_mask(phase_set);
+  int64_t rays = 0;
+  for (int32_t w = 0; w < words; ++w)
+  {
+    const uint32_t wanted = phase_bits & mrgi_voxel_valid_bits(samples->count, w);
+    uint32_t all = 0xFFFFFFFFu; /* AND */
+    uint32_t any = 0u;          /* OR */
+    int have = 0;
+    if (coarse)
+    {
+      for (int k = 0; k < MRGI_VOXEL_NEIGHBOURS; ++k)
+      {
+        if (coarse[k])
+        {
+          all &= coarse[k][w];
+          any |= coarse[k][w];
+          have = 1;
+        }
+      }
+    }
+    const uint32_t agree = have ? wanted & ~(all ^ any) : 0u;
+    uint32_t result = all & agree;
+    const uint32_t todo = wanted & ~agree;
+    for (int32_t b = 0; b < 32; ++b)
+    {
+      if ((todo >> (uint32_t)b) & 1u)
+      {
+        const int32_t j = 32 * w + b;
+        const float* n = samples->normal ? samples->normal + 3 * j : NULL;
+        if (mrgi_voxel_march(view, receiver, normal, samples->position + 3 * j, n))
+        {
+          result |= 1u << (uint32_t)b;
+        }
+        ++rays;
+      }
+    }
+    mask[w] = result;
+  }
+  return rays;
+}
+
+void mrgi_voxel_neighbourhood_metric(const uint32_t* const* masks, int32_t words,
+                                     mrgi_voxel_metric* metric)
+{
+  mrgi_voxel_metric m = { 0, 0, 0, 0 };
+  int32_t counts[MRGI_VOXEL_NEIGHBOURS];
+  for (int k = 0; k < MRGI_VOXEL_NEIGHBOURS; ++k)
+  {
+    counts[k] = 0;
+  }
+  for (int32_t w = 0; w < words; ++w)
+  {
+    uint32_t all = 0xFFFFFFFFu;
+    uint32_t any = 0u;
+    for (int k = 0; k < MRGI_VOXEL_NEIGHBOURS; ++k)
+    {
+      if (masks[k])
+      {
+        all &= masks[k][w];
+        any |= masks[k][w];
+        counts[k] += (int32_t)mrgi_voxel_popcount(masks[k][w]);
+      }
+    }
+    m.disagree += (int32_t)mrgi_voxel_popcount(any & ~all);
+  }
+  int first = 1;
+  for (int k = 0; k < MRGI_VOXEL_NEIGHBOURS; ++k)
+  {
+    if (masks[k])
+    {
+      ++m.masks;
+      if (first || counts[k] < m.count_min)
+      {
+        m.count_min = counts[k];
+      }
+      if (first || counts[k] > m.count_max)
+      {
+        m.count_max = counts[k];
+      }
+      first = 0;
+    }
+  }
+  if (m.masks == 0)
+  {
+    m.disagree = 0;
+  }
+  *metric = m;
+}
+
+int mrgi_voxel_needs_refinement(const mrgi_voxel_metric* metric, int32_t metric_kind,
+                                int32_t threshold)
+{
+  const int32_t value = metric_kind == MRGI_VOXEL_METRIC_COUNT_SPREAD
+                          ? metric->count_max - metric->count_min
+                          : metric->disagree;
+  return value >= threshold;
+}
+
+void mrgi_voxel_interleave_combine(const uint32_t* const quarter[MRGI_VOXEL_INTERLEAVE_PHASES],
+                                   int32_t words, uint32_t* out)
+{
+  for (int32_t w = 0; w < words; ++w)
+  {
+    uint32_t v = 0u;
+    for (int q = 0; q < MRGI_VOXEL_INTERLEAVE_PHASES; ++q)
+    {
+      if (quarter[q])
+      {
+        v |= quarter[q][w] & mrgi_voxel_phase_word_mask(1u << (uint32_t)q);
+      }
+    }
+    out[w] = v;
+  }
+}
+
+void mrgi_voxel_incremental_params_default(mrgi_voxel_incremental_params* params)
+{
+  if (!params)
+  {
+    return;
+  }
+  params->interleave = 1;
+  params->metric = MRGI_VOXEL_METRIC_DISAGREE;
+  params->refine_fraction = MRGI_VOXEL_DEFAULT_REFINE_FRACTION;
+}
+
+int32_t mrgi_voxel_refine_threshold(float refine_fraction, int32_t count)
+{
+  if (!(refine_fraction >= 0.0f && refine_fraction <= 1.0f) || count < 1 ||
+      count > MRGI_VOXEL_MAX_SAMPLES)
+  {
+    return -1;
+  }
+  const int32_t t = (int32_t)ceil((double)refine_fraction * (double)count);
+  return refine_fraction > 0.0f && t < 1 ? 1 : t;
+}
+
+/* Receiver of flattened texel t: 1 when valid; *normal NULL without a usable normal. */
+static int mrgi_voxel_receiver(const float* position, const float* normal, size_t t,
+                               const float** p, const float** n)
+{
+  const float* P = position + 4 * t;
+  if (!(P[3] > MRGI_GBUFFER_VALID_THRESHOLD) || !isfinite(P[0]) || !isfinite(P[1]) ||
+      !isfinite(P[2]))
+  {
+    return 0;
+  }
+  const float* N = normal + 4 * t;
+  *p = P;
+  *n = (isfinite(N[0]) && isfinite(N[1]) && isfinite(N[2]) &&
+        (N[0] != 0.0f || N[1] != 0.0f || N[2] != 0.0f))
+         ? N
+         : NULL;
+  return 1;
+}
+
+int mrgi_voxel_same_surface(const float p[3], const float n[3], const float q[3],
+                            const float m[3])
+{
+  if (!n || !m)
+  {
+    return 0;
+  }
+  const float nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+  const float mm = m[0] * m[0] + m[1] * m[1] + m[2] * m[2];
+  const float nm = n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
+  /* cos(n, m) >= MIN_COS, as nm >= MIN_COS sqrt(nn mm) without a division */
+  if (!(nm > 0.0f && nm * nm >= MRGI_VOXEL_INTERLEAVE_MIN_COS * MRGI_VOXEL_INTERLEAVE_MIN_COS * nn * mm))
+  {
+    return 0;
+  }
+  const float d[3] = { q[0] - p[0], q[1] - p[1], q[2] - p[2] };
+  const float dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  const float nd = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+  const float md = m[0] * d[0] + m[1] * d[1] + m[2] * d[2];
+  const float s2 = MRGI_VOXEL_INTERLEAVE_MAX_SLOPE * MRGI_VOXEL_INTERLEAVE_MAX_SLOPE;
+  return nd * nd <= s2 * dd * nn && md * md <= s2 * dd * mm;
+}
+
+/* The 3x3 level-`level` texels around (cx, cy), clamped; non-receivers NULL. */
+static void mrgi_voxel_gather_neighbours(const mrgi_multires_layout* layout, int32_t level,
+                                         int32_t cx, int32_t cy, const float* position,
+                                         const uint32_t* masks, int32_t words,
+                                         const uint32_t* out[MRGI_VOXEL_NEIGHBOURS])
+{
+  int k = 0;
+  for (int32_t dy = -1; dy <= 1; ++dy)
+  {
+    for (int32_t dx = -1; dx <= 1; ++dx)
+    {
+      int32_t x = cx + dx;
+      int32_t y = cy + dy;
+      x = x < 0 ? 0 : (x >= layout->level_width[level] ? layout->level_width[level] - 1 : x);
+      y = y < 0 ? 0 : (y >= layout->level_height[level] ? layout->level_height[level] - 1 : y);
+      const size_t t = mrgi_multires_index(layout, level, x, y);
+      out[k++] = position[4 * t + 3] > MRGI_GBUFFER_VALID_THRESHOLD
+                   ? masks + t * (size_t)words
+                   : NULL;
+    }
+  }
+}
+
+mrgi_status mrgi_voxel_visibility_pyramid(
+  const mrgi_multires_layout* layout, const float* receiver_position,
+  const float* receiver_normal, size_t receiver_floats, const mrgi_voxel_view* view,
+  const mrgi_voxel_samples* samples, const uint8_t* refine, size_t refine_size,
+  const mrgi_voxel_incremental_params* params, uint32_t* masks, size_t mask_words,
+  mrgi_voxel_incremental_stats* stats, mrgi_error* err)
+{
+  mrgi_status status = mrgi_multires_layout_check(layout, err);
+  if (status == MRGI_OK)
+  {
+    status = mrgi_voxel_view_check(view, err);
+  }
+  if (status == MRGI_OK)
+  {
+    status = mrgi_voxel_samples_check(samples, err);
+  }
+  if (status != MRGI_OK)
+  {
+    return status;
+  }
+  mrgi_voxel_incremental_params knobs;
+  mrgi_voxel_incremental_params_default(&knobs);
+  if (params)
+  {
+    knobs = *params;
+  }
+  if (knobs.interleave != 0 && knobs.interleave != 1)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "'interleave' is %d, not 0 or 1",
+                          knobs.interleave);
+  }
+  if (knobs.metric != MRGI_VOXEL_METRIC_DISAGREE && knobs.metric != MRGI_VOXEL_METRIC_COUNT_SPREAD)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "unknown refinement metric %d",
+                          knobs.metric);
+  }
+  const int32_t threshold = mrgi_voxel_refine_threshold(knobs.refine_fraction, samples->count);
+  if (threshold < 0)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "refine fraction %g is outside [0, 1]", (double)knobs.refine_fraction);
+  }
+  const size_t texels = (size_t)mrgi_multires_texel_count(layout);
+  const int32_t words = mrgi_voxel_mask_words(samples->count);
+  if (!receiver_position || !receiver_normal || receiver_floats < 4 * texels)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "receiver arrays are NULL or hold %zu floats; the layout needs %zu",
+                          receiver_floats, 4 * texels);
+  }
+  if (!masks || mask_words < texels * (size_t)words)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "mask array is NULL or holds %zu words; %zu texels x %d words needed",
+                          mask_words, texels, words);
+  }
+  if (refine && refine_size < texels)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "refine mask holds %zu bytes; the layout needs %zu", refine_size,
+                          texels);
+  }
+  size_t largest = 0;
+  for (int32_t i = 0; i < layout->level_count; ++i)
+  {
+    const size_t n = (size_t)layout->level_width[i] * (size_t)layout->level_height[i];
+    largest = n > largest ? n : largest;
+  }
+  uint8_t* computed = (uint8_t*)calloc(texels, 1);
+  uint32_t* combined = (uint32_t*)malloc(largest * (size_t)words * sizeof(uint32_t));
+  if (!computed || !combined)
+  {
+    free(computed);
+    free(combined);
+    return mrgi_error_set(err, MRGI_ERR_OUT_OF_MEMORY,
+                          "cannot allocate visibility scratch (%zu texels x %d words)", largest,
+                          words);
+  }
+  mrgi_voxel_incremental_stats s;
+  memset(&s, 0, sizeof(s));
+  memset(masks, 0, texels * (size_t)words * sizeof(uint32_t));
+  const int32_t coarsest = layout->level_count - 1;
+
+  for (int32_t i = coarsest; i >= 0; --i)
+  {
+    const int32_t lw = layout->level_width[i];
+    const int32_t lh = layout->level_height[i];
+    /* Pass 1: decide, then compute the own phase (or all) or inherit. */
+    for (int32_t y = 0; y < lh; ++y)
+    {
+      for (int32_t x = 0; x < lw; ++x)
+      {
+        const size_t t = mrgi_multires_index(layout, i, x, y);
+        const float* P;
+        const float* N;
+        if (!mrgi_voxel_receiver(receiver_position, receiver_normal, t, &P, &N))
+        {
+          continue;
+        }
+        uint32_t* mask = masks + t * (size_t)words;
+        const uint32_t* neighbours[MRGI_VOXEL_NEIGHBOURS];
+        int compute = i == coarsest;
+        if (!compute)
+        {
+          mrgi_voxel_gather_neighbours(layout, i + 1, x / 2, y / 2, receiver_position, masks,
+                                       words, neighbours);
+          mrgi_voxel_metric metric;
+          mrgi_voxel_neighbourhood_metric(neighbours, words, &metric);
+          compute = (refine && refine[t]) ||
+                    mrgi_voxel_needs_refinement(&metric, knobs.metric, threshold);
+        }
+        if (!compute)
+        {
+          const uint32_t* parent =
+            masks + mrgi_multires_index(layout, i + 1, x / 2, y / 2) * (size_t)words;
+          memcpy(mask, parent, (size_t)words * sizeof(uint32_t));
+          ++s.inherited[i];
+          continue;
+        }
+        computed[t] = 1;
+        ++s.computed[i];
+        const uint32_t phases =
+          knobs.interleave ? 1u << (uint32_t)mrgi_voxel_interleave_phase(x, y)
+                           : (uint32_t)MRGI_VOXEL_ALL_PHASES;
+        s.rays[i] += mrgi_voxel_visibility(view, samples, P, N, i == coarsest ? NULL : neighbours,
+                                           phases, mask);
+      }
+    }
+    if (!knobs.interleave)
+    {
+      continue;
+    }
+    /* Pass 2: combine the quarters of each computed texel's 2x2 block. */
+    for (int32_t y = 0; y < lh; ++y)
+    {
+      for (int32_t x = 0; x < lw; ++x)
+      {
+        const size_t t = mrgi_multires_index(layout, i, x, y);
+        if (!computed[t])
+        {
+          continue;
+        }
+        const float* P;
+        const float* N;
+        mrgi_voxel_receiver(receiver_position, receiver_normal, t, &P, &N);
+        const uint32_t* neighbours[MRGI_VOXEL_NEIGHBOURS];
+        if (i != coarsest)
+        {
+          mrgi_voxel_gather_neighbours(layout, i + 1, x / 2, y / 2, receiver_position, masks,
+                                       words, neighbours);
+        }
+        uint32_t* out = combined + ((size_t)y * (size_t)lw + (size_t)x) * (size_t)words;
+        memset(out, 0, (size_t)words * sizeof(uint32_t));
+        for (int32_t q = 0; q < MRGI_VOXEL_INTERLEAVE_PHASES; ++q)
+        {
+          const int32_t bx = (x & ~1) | (q & 1);
+          const int32_t by = (y & ~1) | (q >> 1);
+          const uint32_t phase_bits = mrgi_voxel_phase_word_mask(1u << (uint32_t)q);
+          const size_t source = bx < lw && by < lh ? mrgi_multires_index(layout, i, bx, by) : 0;
+          const float* Q;
+          const float* M;
+          if (bx < lw && by < lh && computed[source] &&
+              (source == t ||
+               (mrgi_voxel_receiver(receiver_position, receiver_normal, source, &Q, &M) &&
+                mrgi_voxel_same_surface(P, N, Q, M))))
+          {
+            const uint32_t* from = masks + source * (size_t)words;
+            for (int32_t w = 0; w < words; ++w)
+            {
+              out[w] |= from[w] & phase_bits;
+            }
+          }
+          else
+          {
+            uint32_t own[MRGI_VOXEL_MAX_MASK_WORDS];
+            s.rays[i] += mrgi_voxel_visibility(view, samples, P, N,
+                                               i == coarsest ? NULL : neighbours,
+                                               1u << (uint32_t)q, own);
+            for (int32_t w = 0; w < words; ++w)
+            {
+              out[w] |= own[w];
+            }
+          }
+        }
+      }
+    }
+    for (int32_t y = 0; y < lh; ++y)
+    {
+      for (int32_t x = 0; x < lw; ++x)
+      {
+        const size_t t = mrgi_multires_index(layout, i, x, y);
+        if (computed[t])
+        {
+          memcpy(masks + t * (size_t)words,
+                 combined + ((size_t)y * (size_t)lw + (size_t)x) * (size_t)words,
+                 (size_t)words * sizeof(uint32_t));
+        }
+      }
+    }
+  }
+  for (int32_t i = 0; i < layout->level_count; ++i)
+  {
+    s.rays_total += s.rays[i];
+  }
+  for (int32_t y = 0; y < layout->level_height[0]; ++y)
+  {
+    for (int32_t x = 0; x < layout->level_width[0]; ++x)
+    {
+      const float* P;
+      const float* N;
+      if (mrgi_voxel_receiver(receiver_position, receiver_normal,
+                              mrgi_multires_index(layout, 0, x, y), &P, &N))
+      {
+        s.rays_naive += samples->count;
+      }
+    }
+  }
+  free(computed);
+  free(combined);
+  if (stats)
+  {
+    *stats = s;
+  }
+  return MRGI_OK;
+}
+
+void mrgi_voxel_vsm_query_cell(int32_t query, int32_t* cell_x, int32_t* cell_y)
+{
+  *cell_x = query % MRGI_AREA_LIGHT_LOBE_GRID - MRGI_AREA_LIGHT_LOBE_GRID / 2;
+  *cell_y = query / MRGI_AREA_LIGHT_LOBE_GRID - MRGI_AREA_LIGHT_LOBE_GRID / 2;
+}
+
+void mrgi_voxel_vsm_moments(const mrgi_voxel_view* view, const mrgi_voxel_samples* queries,
+                            const float receiver[3], const float* normal, uint32_t phase_set,
+                            float* moments)
+{
+  for (int32_t j = 0; j < queries->count; ++j)
+  {
+    if (!((phase_set >> (uint32_t)(j & 3)) & 1u))
+    {
+      moments[2 * j] = 0.0f;
+      moments[2 * j + 1] = 0.0f;
+      continue;
+    }
+    const float* n = queries->normal ? queries->normal + 3 * j : NULL;
+    const float z =
+      mrgi_voxel_march_occluder_fraction(view, receiver, normal, queries->position + 3 * j, n);
+    moments[2 * j] = z;
+    moments[2 * j + 1] = z * z;
+  }
+}
+
+float mrgi_voxel_vsm_chebyshev(float mean, float mean_sq, float min_variance)
+{
+  if (mean >= 1.0f)
+  {
+    return 1.0f;
+  }
+  const float variance = fmaxf(mean_sq - mean * mean, min_variance);
+  const float d = 1.0f - mean;
+  const float p = variance / (variance + d * d);
+  return fminf(fmaxf(p, 0.0f), 1.0f); /* 0/0 (variance 0, mean < 1) -> 0 */
+}
+
+mrgi_status mrgi_voxel_vsm_resolve(int32_t width, int32_t height, int32_t query_count,
+                                   const float* moments, const uint8_t* phase_sets,
+                                   int32_t radius, float min_variance, float* visibility,
+                                   mrgi_error* err)
+{
+  if (!moments || !phase_sets || !visibility)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "%s is NULL",
+                          !moments ? "moments" : (!phase_sets ? "phase sets" : "visibility"));
+  }
+  if (width < 1 || width > MRGI_VOXEL_MAX_SIZE || height < 1 || height > MRGI_VOXEL_MAX_SIZE)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "VSM image size %d x %d is outside 1..%d per side", width, height,
+                          MRGI_VOXEL_MAX_SIZE);
+  }
+  if (query_count < 1 || query_count > MRGI_VOXEL_MAX_SAMPLES)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "VSM query count %d is outside 1..%d",
+                          query_count, MRGI_VOXEL_MAX_SAMPLES);
+  }
+  if (radius < 0 || radius > 16)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "VSM blur radius %d is outside 0..16",
+                          radius);
+  }
+  if (!(min_variance >= 0.0f) || !isfinite(min_variance))
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "VSM minimum variance %g must be finite and >= 0",
+                          (double)min_variance);
+  }
+  const size_t q = (size_t)query_count;
+  for (int32_t y = 0; y < height; ++y)
+  {
+    for (int32_t x = 0; x < width; ++x)
+    {
+      const size_t p = (size_t)y * (size_t)width + (size_t)x;
+      float* out = visibility + p * q;
+      if (!phase_sets[p])
+      {
+        memset(out, 0, q * sizeof(float));
+        continue;
+      }
+      for (int32_t j = 0; j < query_count; ++j)
+      {
+        float m1 = 0.0f;
+        float m2 = 0.0f;
+        int32_t n = 0;
+        for (int32_t dy = -radius; dy <= radius; ++dy)
+        {
+          for (int32_t dx = -radius; dx <= radius; ++dx)
+          {
+            const int32_t sx = x + dx;
+            const int32_t sy = y + dy;
+            if (sx < 0 || sy < 0 || sx >= width || sy >= height)
+            {
+              continue;
+            }
+            const size_t s = (size_t)sy * (size_t)width + (size_t)sx;
+            if (!((phase_sets[s] >> (j & 3)) & 1))
+            {
+              continue;
+            }
+            m1 += moments[(s * q + (size_t)j) * 2];
+            m2 += moments[(s * q + (size_t)j) * 2 + 1];
+            ++n;
+          }
+        }
+        out[j] = n == 0 ? 1.0f
+                        : mrgi_voxel_vsm_chebyshev(m1 / (float)n, m2 / (float)n, min_variance);
+      }
+    }
+  }
+  return MRGI_OK;
+}
