@@ -177,8 +177,6 @@ def main():
     parser.add_argument("--no-doc", action="store_true", help="do not rewrite Documentation/Multiresolution.md")
     parser.add_argument("--previous", help="CSV of an earlier run: its settings not measured again are kept "
                                            "(the page and the plot then combine both runs)")
-    parser.add_argument("--scaling-scene", action="store_true", default=None,
-                        help=argparse.SUPPRESS)
     args = parser.parse_args()
     compare_tool = os.path.join(args.build, "bin", "mrgi-compare")
     scratch = os.path.join(args.build, "Testing", "Temporary", "sweep")
@@ -206,7 +204,6 @@ def main():
             full = bench.indirect()
             full_path = save(full, os.path.join(scratch, "%s-%d-full.exr" % (scene, vpls)))
             peak = float(full.max())
-            full_light = (full, None)
             bench.move_light(+1)
             bench.window.Render()
             full_light = (full, bench.indirect())
