@@ -95,6 +95,8 @@ Indirect light (one bounce; Documentation/IndirectLight.md)
   --normal-threshold T   multires: normal-component spread that refines (inf: never)
   --finest-level N       multires: finest level that gathers (0 = full resolution)
   --upsample tent|mask   multires: tent (default) or mask-weighted (Besenthal) upsampling
+  --gather stencil|splat multires: stenciled gather (default) or multiresolution splatting
+                         (nichols-wyman-2009; same image, slower: for comparisons)
   --surface-detail A     multires: modulate by the view angle, nichols-wyman-2009 eq. 2 (0..1, default 0)
   --vpls N               virtual point lights, 0..4096 (default 256 = 16x16)
   --vpl-selection grid|importance
@@ -155,6 +157,7 @@ struct Options
   double NormalThreshold = std::nan("");
   long long FinestLevel = -1;
   bool MaskUpsampling = false;
+  bool Splatting = false;
   long long VPLs = 256;
   bool ImportanceVPLs = false;
   long long RSMSize = 256;
@@ -459,6 +462,14 @@ int ParseArguments(int argc, char* argv[], Options& o)
       if (o.Preset < 0)
         return Fail(std::string("--preset '") + v + "': expected fast, balanced or accurate");
     }
+    else if (arg == "--gather")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      if (std::strcmp(v, "stencil") != 0 && std::strcmp(v, "splat") != 0)
+        return Fail(std::string("--gather '") + v + "': expected stencil or splat");
+      o.Splatting = std::strcmp(v, "splat") == 0;
+    }
     else if (arg == "--surface-detail")
     {
       if (!needValue(i, arg, v))
@@ -722,6 +733,8 @@ int main(int argc, char* argv[])
   if (o.FinestLevel >= 0)
     mrgi->GetMultiresolution()->SetFinestLevel(static_cast<int>(o.FinestLevel));
   mrgi->GetMultiresolution()->SetSurfaceDetail(o.SurfaceDetail);
+  mrgi->GetMultiresolution()->SetGatherMode(o.Splatting ? vtkMRGIMultiresolution::GatherSplatting
+                                                        : vtkMRGIMultiresolution::GatherStenciled);
   mrgi->SetUpsampleMode(o.MaskUpsampling ? vtkMRGIMultiresolution::UpsampleMaskWeighted
                                          : vtkMRGIMultiresolution::UpsampleTent);
   mrgi->SetNumberOfVPLs(static_cast<int>(o.VPLs));

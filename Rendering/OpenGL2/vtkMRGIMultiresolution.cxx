@@ -16,6 +16,9 @@
 #include "vtkUnsignedCharArray.h"
 
 #include "vtkMRGIGatherFS.h"
+#include "vtkMRGIVPLIrradiance.h"
+#include "vtkMRGIMultiresSplatFS.h"
+#include "vtkMRGIMultiresSplatVS.h"
 #include "vtkMRGIMultiresReceiversFS.h"
 #include "vtkMRGIMultiresUpsampleFS.h"
 #include "vtkMRGIMultiresSelectFS.h"
@@ -202,6 +205,14 @@ struct vtkMRGIMultiresolution::Internals
   std::vector<long long> GatheredTexels;
   long long ValidPixels = -1;
   vtkOpenGLQuadHelper* GatherQuad = nullptr;
+  // Multiresolution splatting: the subsplat list (the selected texels,
+  // sorted by level; host copy kept so that its capacity is reused from
+  // frame to frame) in a vertex buffer with its vertex array.
+  std::vector<int> SplatTexels;
+  std::vector<long long> SplatFirst;
+  std::vector<long long> SplatCount;
+  unsigned int SplatArray = 0;
+  unsigned int SplatBuffer = 0;
   // Upsampling: per level (state/value, filtered).
   std::vector<std::array<vtkTextureObject*, 2>> Upsampled;
   vtkOpenGLQuadHelper* UpsampleQuads[3] = { nullptr, nullptr, nullptr };
@@ -253,6 +264,20 @@ struct vtkMRGIMultiresolution::Internals
       glDeleteQueries(static_cast<GLsizei>(this->Queries.size()), this->Queries.data());
     }
     this->Queries.clear();
+  }
+
+  // Vertex array and buffer need the context: only with a window.
+  void ReleaseSplats(vtkWindow* w)
+  {
+    if (w && this->SplatArray)
+    {
+      glDeleteVertexArrays(1, &this->SplatArray);
+    }
+    if (w && this->SplatBuffer)
+    {
+      glDeleteBuffers(1, &this->SplatBuffer);
+    }
+    this->SplatArray = this->SplatBuffer = 0;
   }
 };
 
@@ -330,6 +355,7 @@ vtkMRGIMultiresolution::~vtkMRGIMultiresolution()
 void vtkMRGIMultiresolution::ReleaseGraphicsResources(vtkWindow* w)
 {
   this->Internal->ReleaseQueries(w);
+  this->Internal->ReleaseSplats(w);
   this->Internal->ReleaseTextures(w);
   auto releaseQuad = [w](vtkOpenGLQuadHelper*& q) {
     if (q)
@@ -651,29 +677,26 @@ bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObj
     return (quad->Program && quad->Program->GetCompiled()) ? quad->Program : nullptr;
   };
 
-  QuadSteps steps(window, in.FrameBuffer);
-  vtkOpenGLState* ostate = steps.State;
-  vtkOpenGLFramebufferObject* fbo = in.FrameBuffer;
-  auto target = [&](vtkTextureObject* a, vtkTextureObject* b, int w, int h) {
-    steps.Target(a, b, 0, 0, w, h);
-  };
-  auto inputs = [&](vtkShaderProgram* p, vtkTextureObject* a, vtkTextureObject* b) {
-    a->Activate();
-    b->Activate();
-    p->SetUniformi("mrgiInput0", a->GetTextureUnit());
-    p->SetUniformi("mrgiInput1", b->GetTextureUnit());
-  };
   bool ok = true;
   using vtkMRGIShaderUtilities::ScopedStage;
   in.LastPosition = position;
   in.LastNormal = normal;
   in.LastOffset[0] = x0;
   in.LastOffset[1] = y0;
-  const int finest = std::min(this->FinestLevel, levels - 1);
   // 1. Receivers, level by level from level 1 (level 1 straight from the
   // G-buffer; the gather reads level 0 from the G-buffer itself).
   {
     ScopedStage receiverStep(this->StageTimer, "gather.receivers");
+    QuadSteps steps(window, in.FrameBuffer);
+    auto target = [&](vtkTextureObject* a, vtkTextureObject* b, int w, int h) {
+      steps.Target(a, b, 0, 0, w, h);
+    };
+    auto inputs = [&](vtkShaderProgram* p, vtkTextureObject* a, vtkTextureObject* b) {
+      a->Activate();
+      b->Activate();
+      p->SetUniformi("mrgiInput0", a->GetTextureUnit());
+      p->SetUniformi("mrgiInput1", b->GetTextureUnit());
+    };
     for (int i = 1; i < levels && ok; ++i)
     {
       const int stage = i == 1 ? 2 : 1;
@@ -697,78 +720,18 @@ bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObj
       srcN->Deactivate();
     }
   }
-  // 2. The stenciled gather, one draw per level into its rectangle of the
-  // flattened layout (early stencil culling skips the texels not selected).
-  // With statistics on, an occlusion query per level counts the texels that
-  // passed the stencil, i.e. the texels gathered.
-  ScopedStage gatherStep(this->StageTimer, "gather.vpls");
-  vtkShaderProgram* gather = ok
-    ? ready(in.GatherQuad, std::string("#define MRGI_GATHER_IRRADIANCE_ONLY 1\n") + vtkMRGIGatherFS)
-    : nullptr;
-  ok = ok && gather;
   in.GatheredTexels.assign(static_cast<size_t>(levels), -1);
   in.ValidPixels = -1;
-  if (ok && this->CollectStatistics && in.Queries.size() != static_cast<size_t>(levels))
+  if (ok && this->GatherMode == GatherSplatting)
   {
-    in.ReleaseQueries(window);
-    in.Queries.resize(static_cast<size_t>(levels));
-    glGenQueries(levels, in.Queries.data());
+    ok = this->RunSplatting(window, position, normal, x0, y0, vpls, vplCount, viewToWorld);
   }
-  if (ok)
+  else if (ok)
   {
-    target(in.FlatIrradiance, nullptr, layout.total_width, layout.total_height);
-    glFramebufferTexture2D(
-      GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, in.DepthStencil->GetHandle(), 0);
-    ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
-    ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
-    ostate->vtkglEnable(GL_STENCIL_TEST);
-    ostate->vtkglStencilMask(0x00);
-    ostate->vtkglStencilFunc(GL_EQUAL, 1, 0xFF);
-    ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    vpls->Activate();
-    gather->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
-    gather->SetUniformi("mrgiVPLCount", vplCount);
-    gather->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(viewToWorld));
-    for (int i = finest; i < levels; ++i)
-    {
-      vtkTextureObject* receiverP = i == 0 ? position : in.Receivers[i][0];
-      vtkTextureObject* receiverN = i == 0 ? normal : in.Receivers[i][1];
-      const int receiverOffset[2] = { i == 0 ? x0 : -layout.level_offset[i], i == 0 ? y0 : 0 };
-      receiverP->Activate();
-      receiverN->Activate();
-      gather->SetUniformi("mrgiPosition", receiverP->GetTextureUnit());
-      gather->SetUniformi("mrgiNormal", receiverN->GetTextureUnit());
-      gather->SetUniform2i("mrgiReceiverOffset", receiverOffset);
-      ostate->vtkglViewport(layout.level_offset[i], 0, layout.level_width[i], layout.level_height[i]);
-      if (this->CollectStatistics)
-      {
-        glBeginQuery(GL_SAMPLES_PASSED, in.Queries[static_cast<size_t>(i)]);
-      }
-      in.GatherQuad->Render();
-      if (this->CollectStatistics)
-      {
-        glEndQuery(GL_SAMPLES_PASSED);
-      }
-      receiverN->Deactivate();
-      receiverP->Deactivate();
-    }
-    vpls->Deactivate();
-    ostate->vtkglStencilMask(0xFF);
-    ostate->vtkglStencilFunc(GL_ALWAYS, 0, 0xFF);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+    ok = this->RunStenciledGather(window, position, normal, x0, y0, vpls, vplCount, viewToWorld);
   }
   if (ok && this->CollectStatistics)
   {
-    // Blocking reads, which is why statistics are opt-in.
-    for (int i = 0; i < levels; ++i)
-    {
-      GLuint passed = 0;
-      if (i >= finest)
-      {
-        glGetQueryObjectuiv(in.Queries[static_cast<size_t>(i)], GL_QUERY_RESULT, &passed);
-      }
-      in.GatheredTexels[static_cast<size_t>(i)] = static_cast<long long>(passed);
-    }
     // The coarsest receivers carry their pixel counts: their sum is the
     // number of valid pixels, the work of the full-resolution gather.
     // With one level, the validity bits of the level-0 mipmap count them.
@@ -794,7 +757,7 @@ bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObj
   }
   if (!ok)
   {
-    vtkErrorMacro("could not build the multiresolution gather shaders");
+    vtkErrorMacro("could not build or run the multiresolution gather");
     return false;
   }
   const GLenum error = glGetError();
@@ -803,6 +766,223 @@ bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObj
     vtkErrorMacro("OpenGL error " << error << " in the multiresolution gather");
     return false;
   }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
+  vtkTextureObject* position, vtkTextureObject* normal, int x0, int y0, vtkTextureObject* vpls,
+  int vplCount, const float viewToWorld[16])
+{
+  // The stenciled gather, one draw per level into its rectangle of the
+  // flattened layout (early stencil culling skips the texels not selected).
+  // With statistics on, an occlusion query per level counts the texels that
+  // passed the stencil, i.e. the texels gathered.
+  Internals& in = *this->Internal;
+  const mrgi_multires_layout& layout = in.Layout;
+  const int levels = layout.level_count;
+  const int finest = std::min(this->FinestLevel, levels - 1);
+  using vtkMRGIShaderUtilities::ScopedStage;
+  ScopedStage gatherStep(this->StageTimer, "gather.vpls");
+  if (!in.GatherQuad)
+  {
+    const std::string body =
+      std::string("#define MRGI_GATHER_IRRADIANCE_ONLY 1\n") + vtkMRGIVPLIrradiance + vtkMRGIGatherFS;
+    in.GatherQuad = new vtkOpenGLQuadHelper(window,
+      vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
+      vtkMRGIShaderUtilities::FullScreenShader(body.c_str()).c_str(), "");
+  }
+  window->GetShaderCache()->ReadyShaderProgram(in.GatherQuad->Program);
+  vtkShaderProgram* gather =
+    (in.GatherQuad->Program && in.GatherQuad->Program->GetCompiled()) ? in.GatherQuad->Program : nullptr;
+  if (!gather)
+  {
+    return false;
+  }
+  if (this->CollectStatistics && in.Queries.size() != static_cast<size_t>(levels))
+  {
+    in.ReleaseQueries(window);
+    in.Queries.resize(static_cast<size_t>(levels));
+    glGenQueries(levels, in.Queries.data());
+  }
+  QuadSteps steps(window, in.FrameBuffer);
+  vtkOpenGLState* ostate = steps.State;
+  steps.Target(in.FlatIrradiance, nullptr, 0, 0, layout.total_width, layout.total_height);
+  glFramebufferTexture2D(
+    GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, in.DepthStencil->GetHandle(), 0);
+  ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+  ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
+  ostate->vtkglEnable(GL_STENCIL_TEST);
+  ostate->vtkglStencilMask(0x00);
+  ostate->vtkglStencilFunc(GL_EQUAL, 1, 0xFF);
+  ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  vpls->Activate();
+  gather->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
+  gather->SetUniformi("mrgiVPLCount", vplCount);
+  gather->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(viewToWorld));
+  for (int i = finest; i < levels; ++i)
+  {
+    vtkTextureObject* receiverP = i == 0 ? position : in.Receivers[i][0];
+    vtkTextureObject* receiverN = i == 0 ? normal : in.Receivers[i][1];
+    const int receiverOffset[2] = { i == 0 ? x0 : -layout.level_offset[i], i == 0 ? y0 : 0 };
+    receiverP->Activate();
+    receiverN->Activate();
+    gather->SetUniformi("mrgiPosition", receiverP->GetTextureUnit());
+    gather->SetUniformi("mrgiNormal", receiverN->GetTextureUnit());
+    gather->SetUniform2i("mrgiReceiverOffset", receiverOffset);
+    ostate->vtkglViewport(layout.level_offset[i], 0, layout.level_width[i], layout.level_height[i]);
+    if (this->CollectStatistics)
+    {
+      glBeginQuery(GL_SAMPLES_PASSED, in.Queries[static_cast<size_t>(i)]);
+    }
+    in.GatherQuad->Render();
+    if (this->CollectStatistics)
+    {
+      glEndQuery(GL_SAMPLES_PASSED);
+    }
+    receiverN->Deactivate();
+    receiverP->Deactivate();
+  }
+  vpls->Deactivate();
+  ostate->vtkglStencilMask(0xFF);
+  ostate->vtkglStencilFunc(GL_ALWAYS, 0, 0xFF);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+  if (this->CollectStatistics)
+  {
+    // Blocking reads, which is why statistics are opt-in.
+    for (int i = 0; i < levels; ++i)
+    {
+      GLuint passed = 0;
+      if (i >= finest)
+      {
+        glGetQueryObjectuiv(in.Queries[static_cast<size_t>(i)], GL_QUERY_RESULT, &passed);
+      }
+      in.GatheredTexels[static_cast<size_t>(i)] = static_cast<long long>(passed);
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::RunSplatting(vtkOpenGLRenderWindow* window,
+  vtkTextureObject* position, vtkTextureObject* normal, int x0, int y0, vtkTextureObject* vpls,
+  int vplCount, const float viewToWorld[16])
+{
+  // Multiresolution splatting (nichols-wyman-2009 section 3.4), the method
+  // the stenciled gather replaced (nichols-shopf-wyman-2009 section 3.2.2,
+  // table 1): every VPL draws one point per selected texel ("subsplat"),
+  // additive blending sums them.
+  Internals& in = *this->Internal;
+  const mrgi_multires_layout& layout = in.Layout;
+  const int levels = layout.level_count;
+  const int finest = std::min(this->FinestLevel, levels - 1);
+  using vtkMRGIShaderUtilities::ScopedStage;
+  // 1. The subsplat list: the selected texels, level by level. The paper
+  // streams it out on the GPU; here the selection is read back, which is
+  // its own timed step ("gather.subsplats") so that the splatting itself
+  // ("gather.vpls") compares with the stenciled gather's step of that name.
+  {
+    ScopedStage listStep(this->StageTimer, "gather.subsplats");
+    std::vector<float> selection;
+    if (!vtkMRGIShaderUtilities::ReadTextureRGBA(window, in.FlatSelection, selection))
+    {
+      return false;
+    }
+    const size_t width = static_cast<size_t>(layout.total_width);
+    in.SplatTexels.clear();
+    in.SplatFirst.assign(static_cast<size_t>(levels), 0);
+    in.SplatCount.assign(static_cast<size_t>(levels), 0);
+    for (int i = finest; i < levels; ++i)
+    {
+      in.SplatFirst[static_cast<size_t>(i)] = static_cast<long long>(in.SplatTexels.size() / 2);
+      for (int y = 0; y < layout.level_height[i]; ++y)
+      {
+        for (int x = layout.level_offset[i]; x < layout.level_offset[i] + layout.level_width[i]; ++x)
+        {
+          if (selection[4 * (static_cast<size_t>(y) * width + static_cast<size_t>(x))] > 0.5f)
+          {
+            in.SplatTexels.push_back(x);
+            in.SplatTexels.push_back(y);
+          }
+        }
+      }
+      in.SplatCount[static_cast<size_t>(i)] =
+        static_cast<long long>(in.SplatTexels.size() / 2) - in.SplatFirst[static_cast<size_t>(i)];
+    }
+    if (!in.SplatArray)
+    {
+      glGenVertexArrays(1, &in.SplatArray);
+      glGenBuffers(1, &in.SplatBuffer);
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, in.SplatBuffer);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(in.SplatTexels.size() * sizeof(int)),
+      in.SplatTexels.empty() ? nullptr : in.SplatTexels.data(), GL_STREAM_DRAW);
+  }
+  // 2. The splats.
+  ScopedStage splatStep(this->StageTimer, "gather.vpls");
+  static const std::string vertexShader =
+    "//VTK::System::Dec\n" + vtkMRGIShaderUtilities::Defines() + vtkMRGIVPLIrradiance + vtkMRGIMultiresSplatVS;
+  vtkShaderProgram* splat =
+    window->GetShaderCache()->ReadyShaderProgram(vertexShader.c_str(), vtkMRGIMultiresSplatFS, "");
+  if (!splat || !splat->GetCompiled())
+  {
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    return false;
+  }
+  const GLint texelAttribute = glGetAttribLocation(splat->GetHandle(), "mrgiTexel");
+  if (texelAttribute < 0)
+  {
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    return false;
+  }
+  glBindVertexArray(in.SplatArray);
+  glEnableVertexAttribArray(static_cast<GLuint>(texelAttribute));
+  glVertexAttribIPointer(static_cast<GLuint>(texelAttribute), 2, GL_INT, 0, nullptr);
+  QuadSteps steps(window, in.FrameBuffer);
+  vtkOpenGLState* ostate = steps.State;
+  steps.Target(in.FlatIrradiance, nullptr, 0, 0, layout.total_width, layout.total_height);
+  ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+  ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
+  ostate->vtkglEnable(GL_BLEND);
+  ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+  // RGB sums the VPLs; alpha stays 1 where a texel got subsplats.
+  ostate->vtkglBlendEquationSeparate(GL_FUNC_ADD, GL_MAX);
+  vpls->Activate();
+  splat->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
+  splat->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(viewToWorld));
+  const float targetSize[2] = { static_cast<float>(layout.total_width),
+    static_cast<float>(layout.total_height) };
+  splat->SetUniform2f("mrgiTargetSize", targetSize);
+  for (int i = finest; i < levels; ++i)
+  {
+    const long long count = in.SplatCount[static_cast<size_t>(i)];
+    in.GatheredTexels[static_cast<size_t>(i)] = count;
+    if (count == 0)
+    {
+      continue;
+    }
+    vtkTextureObject* receiverP = i == 0 ? position : in.Receivers[i][0];
+    vtkTextureObject* receiverN = i == 0 ? normal : in.Receivers[i][1];
+    const int receiverOffset[2] = { i == 0 ? x0 : -layout.level_offset[i], i == 0 ? y0 : 0 };
+    receiverP->Activate();
+    receiverN->Activate();
+    splat->SetUniformi("mrgiPosition", receiverP->GetTextureUnit());
+    splat->SetUniformi("mrgiNormal", receiverN->GetTextureUnit());
+    splat->SetUniform2i("mrgiReceiverOffset", receiverOffset);
+    glDrawArraysInstanced(GL_POINTS, static_cast<GLint>(in.SplatFirst[static_cast<size_t>(i)]),
+      static_cast<GLsizei>(count), vplCount);
+    receiverN->Deactivate();
+    receiverP->Deactivate();
+  }
+  for (int i = 0; i < finest; ++i)
+  {
+    in.GatheredTexels[static_cast<size_t>(i)] = 0;
+  }
+  vpls->Deactivate();
+  ostate->vtkglBlendEquationSeparate(GL_FUNC_ADD, GL_FUNC_ADD);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
   return true;
 }
 
@@ -1086,6 +1266,7 @@ void vtkMRGIMultiresolution::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Balance: " << (this->Balance ? "On" : "Off") << "\n";
   os << indent << "CoarsestSide: " << this->CoarsestSide << "\n";
   os << indent << "SurfaceDetail: " << this->SurfaceDetail << "\n";
+  os << indent << "GatherMode: " << (this->GatherMode == GatherSplatting ? "Splatting" : "Stenciled") << "\n";
   os << indent << "CollectStatistics: " << (this->CollectStatistics ? "On" : "Off") << "\n";
   os << indent << "Levels: " << this->GetNumberOfLevels() << "\n";
 }

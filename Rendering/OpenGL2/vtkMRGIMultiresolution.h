@@ -145,6 +145,30 @@ public:
   bool Gather(vtkOpenGLRenderWindow* window, vtkTextureObject* position, vtkTextureObject* normal,
     int x0, int y0, vtkTextureObject* vpls, int vplCount, const float viewToWorld[16]);
 
+  enum GatherModes
+  {
+    GatherStenciled = 0, ///< one draw per level, early stencil culling (default)
+    GatherSplatting = 1  ///< multiresolution splatting, nichols-wyman-2009 3.4
+  };
+
+  ///@{
+  /**
+   * How Gather() computes the selected texels (the same numbers either
+   * way): the stenciled gather of nichols-shopf-wyman-2009 section 3.2.2
+   * (default), or the multiresolution splatting it replaced
+   * (nichols-wyman-2009 section 3.4: every VPL draws one point per selected
+   * texel, additive blending), kept so that the papers' comparison can be
+   * repeated (Documentation/Multiresolution.md). Splatting reads the
+   * selection back to build its subsplat list (timer step
+   * "gather.subsplats"); the splats themselves are "gather.vpls", as the
+   * stenciled gather's draws.
+   */
+  vtkSetClampMacro(GatherMode, int, GatherStenciled, GatherSplatting);
+  vtkGetMacro(GatherMode, int);
+  void SetGatherModeToStenciled() { this->SetGatherMode(GatherStenciled); }
+  void SetGatherModeToSplatting() { this->SetGatherMode(GatherSplatting); }
+  ///@}
+
   enum UpsampleModes
   {
     UpsampleTent = 0,        ///< nichols-wyman-2009 3.5 (default)
@@ -237,7 +261,16 @@ protected:
   int CoarsestSide = 16;
   bool CollectStatistics = false;
   double SurfaceDetail = 0.0;
+  int GatherMode = GatherStenciled;
   vtkRenderTimerLog* StageTimer = nullptr;
+
+  // The two ways of Gather() (after the receivers are built).
+  bool RunStenciledGather(vtkOpenGLRenderWindow* window, vtkTextureObject* position,
+    vtkTextureObject* normal, int x0, int y0, vtkTextureObject* vpls, int vplCount,
+    const float viewToWorld[16]);
+  bool RunSplatting(vtkOpenGLRenderWindow* window, vtkTextureObject* position,
+    vtkTextureObject* normal, int x0, int y0, vtkTextureObject* vpls, int vplCount,
+    const float viewToWorld[16]);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

@@ -37,6 +37,7 @@
 #include "vtkMRGICompositeFS.h"
 #include "vtkMRGIGBufferCapture.h"
 #include "vtkMRGIGatherFS.h"
+#include "vtkMRGIVPLIrradiance.h"
 
 #include "mrgi_buffers.h"
 #include "mrgi_multires.h"
@@ -541,7 +542,8 @@ void vtkMRGIPass::RenderForward(const vtkRenderState* s)
 //------------------------------------------------------------------------------
 void vtkMRGIPass::RenderGather(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, int vplCount)
 {
-  vtkShaderProgram* program = ReadyQuad(this->GatherQuad, renWin, vtkMRGIGatherFS);
+  static const std::string body = std::string(vtkMRGIVPLIrradiance) + vtkMRGIGatherFS;
+  vtkShaderProgram* program = ReadyQuad(this->GatherQuad, renWin, body.c_str());
   if (!program)
   {
     vtkErrorMacro("could not build the MRGI gather shader");

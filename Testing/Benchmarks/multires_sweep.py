@@ -30,7 +30,7 @@ sys.path.insert(0, os.path.dirname(__file__))
 import mrgi_bench as mb  # noqa: E402
 
 import mrgi  # noqa: E402
-from vtkmodules.vtkCommonCore import vtkUnsignedCharArray  # noqa: E402
+from vtkmodules.vtkCommonCore import vtkFloatArray, vtkUnsignedCharArray  # noqa: E402
 from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
 from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
 
@@ -175,6 +175,12 @@ def main():
     parser.add_argument("--scaling", default="10000,1000000", help="triangle counts of the scaling scene")
     parser.add_argument("--truth-passes", type=int, default=16, help="ground-truth passes (16 rays each)")
     parser.add_argument("--no-doc", action="store_true", help="do not rewrite Documentation/Multiresolution.md")
+    parser.add_argument("--splat-vpls", default="64,256",
+                        help="VPL counts of the stenciled gather vs multiresolution splatting comparison "
+                             "(empty: skip it)")
+    parser.add_argument("--skip-sweep", action="store_true",
+                        help="measure only the splatting comparison; with --previous, the page keeps the "
+                             "earlier sweep")
     parser.add_argument("--previous", help="CSV of an earlier run: its settings not measured again are kept "
                                            "(the page and the plot then combine both runs)")
     args = parser.parse_args()
@@ -190,6 +196,7 @@ def main():
         presets[mrgi.vtkMRGIMultiresolution.GetPresetName(index)] = settings
 
     rows = []
+    splats = []
     notes = {}
     for scene in args.scenes.split(","):
         bench = Bench(args, scene)
@@ -197,7 +204,9 @@ def main():
             print("skipping %s: its data is not in %s" % (scene, mb.SHARED_DATA))
             continue
         notes[scene] = bench.description
-        for vpls in parse_list(args.vpls, int):
+        for vpls in (parse_list(args.splat_vpls, int) if args.splat_vpls else []):
+            splats += splat_compare(bench, scene, vpls, presets, args.repeats)
+        for vpls in ([] if args.skip_sweep else parse_list(args.vpls, int)):
             # The full-resolution gather: the reference for speed and error.
             configure(bench, mrgi.vtkMRGIPass.IndirectFull, vpls=vpls)
             full_t = bench.frames(args.repeats)
@@ -320,6 +329,17 @@ def main():
                                                           results["gi"][1].get("rsm", 0.0)))
         bench.release()
 
+    splat_csv = os.path.join(args.doc, "data", "multires-splatting.csv")
+    if splats:
+        os.makedirs(os.path.dirname(splat_csv), exist_ok=True)
+        with open(splat_csv, "w", newline="") as f:
+            writer = csv.DictWriter(f, fieldnames=list(splats[0].keys()))
+            writer.writeheader()
+            writer.writerows(splats)
+    elif os.path.exists(splat_csv):
+        with open(splat_csv, newline="") as f:
+            splats = [{k: (v if k in ("scene", "preset") else float(v)) for k, v in r.items()}
+                      for r in csv.DictReader(f)]
     if args.previous:
         def key(r):
             return tuple(str(r[k]) for k in ("scene", "vpls", "mode", "depth", "normal", "finest", "balance"))
@@ -362,7 +382,49 @@ def main():
 
     plot(rows, presets, os.path.join(images, "multires-tradeoff.png"))
     if not args.no_doc:
-        write_page(args, rows, scaling, presets, notes, os.path.join(args.doc, "Multiresolution.md"))
+        write_page(args, rows, scaling, splats, presets, notes, os.path.join(args.doc, "Multiresolution.md"))
+
+
+def splat_compare(bench, scene, vpls, presets, repeats):
+    """Stenciled gather against multiresolution splatting at each preset: the same texels, the same numbers
+    (checked), GPU time of the gathering step ("gather.vpls") in both, frames interleaved so that load on
+    the machine hits both alike."""
+    out = []
+    stenciled, splatting = mrgi.vtkMRGIMultiresolution.GatherStenciled, mrgi.vtkMRGIMultiresolution.GatherSplatting
+    for name, p in presets.items():
+        configure(bench, mrgi.vtkMRGIPass.IndirectMultires, p[0] if p[0] >= 0 else math.inf,
+                  p[1] if p[1] >= 0 else math.inf, int(p[2]), vpls)
+        flat = {}
+        for mode in (stenciled, splatting):  # warm-up (shader builds) and the outputs
+            bench.mr.SetGatherMode(mode)
+            bench.mr.SetCollectStatistics(True)
+            bench.window.Render()
+            bench.mr.SetCollectStatistics(False)
+            array = vtkFloatArray()
+            assert bench.mr.ReadIrradiance(bench.window, array)
+            flat[mode] = vtk_to_numpy(array).copy()
+        work = bench.mr.GetGatherWorkFraction()
+        peak = float(np.abs(flat[stenciled][:, :3]).max())
+        difference = float(np.abs(flat[splatting] - flat[stenciled]).max()) / max(peak, 1e-30)
+        times = {stenciled: [], splatting: []}
+        lists = []
+        for _ in range(repeats):
+            for mode in (stenciled, splatting):
+                bench.mr.SetGatherMode(mode)
+                t = bench.frames(1)
+                times[mode].append(t.get("gather.vpls", 0.0))
+                if mode == splatting:
+                    lists.append(t.get("gather.subsplats", 0.0))
+        bench.mr.SetGatherMode(stenciled)
+        a, b = float(np.median(times[stenciled])), float(np.median(times[splatting]))
+        row = dict(scene=scene, vpls=vpls, preset=name, work=work, stenciled_ms=a, splatting_ms=b,
+                   speedup=b / max(a, 1e-9), subsplat_list_ms=float(np.median(lists)),
+                   max_difference=difference)
+        print("  %s, %d VPLs, %s: stenciled gather %.1f ms, splatting %.1f ms (x%.1f; list %.1f ms), "
+              "max |difference| %.2g of the peak" % (scene, vpls, name, a, b, row["speedup"],
+                                                     row["subsplat_list_ms"], difference))
+        out.append(row)
+    return out
 
 
 def matches(row, preset, balance=1):
@@ -413,7 +475,7 @@ def fmt(v, spec=".3f"):
     return format(v, spec) if isinstance(v, float) else str(v)
 
 
-def write_page(args, rows, scaling, presets, notes, path):
+def write_page(args, rows, scaling, splats, presets, notes, path):
     lines = ["# Multiresolution gather: the speed/accuracy trade", "",
              "Generated by `Testing/Benchmarks/multires_sweep.py` (%dx%d, medians of %d frames, "
              "Mesa llvmpipe on this project's 2-core machines; speed as ratios within one run). "
@@ -462,6 +524,28 @@ def write_page(args, rows, scaling, presets, notes, path):
                      % (a["triangles"], b["triangles"], a["overhead_static"], b["overhead_static"],
                         b["overhead_static"] / max(a["overhead_static"], 1e-9), a["overhead_moving"],
                         b["overhead_moving"], b["overhead_moving"] / max(a["overhead_moving"], 1e-9)))
+    for r in splats:
+        if r["scene"] == "cornell-spot" and r["preset"] == "balanced" and int(r["vpls"]) == 256:
+            lines.append("- Stenciled gather against multiresolution splatting, Balanced, 256 VPLs, same texels and "
+                         "the same output (largest difference %.1g of the peak): **%.1fx** faster (target 4x; "
+                         "nichols-shopf-wyman-2009 measured 6.4x). %s"
+                         % (r["max_difference"], r["speedup"], "Met." if r["speedup"] >= 4 else "**Not met.**"))
+    if splats:
+        lines += ["", "## Stenciled gather against multiresolution splatting", "",
+                  "`--gather splat` (vtkMRGIMultiresolution::GatherSplatting) draws, per VPL, one point per selected "
+                  "texel with additive blending (nichols-wyman-2009 3.4); the stenciled gather draws one quad per "
+                  "level and lets early stencil culling skip the unselected texels (nichols-shopf-wyman-2009 "
+                  "3.2.2). Both compute the same numbers (shared GLSL, vtkMRGIVPLIrradiance.glsl); the table "
+                  "gives the GPU time of the gathering step alone, medians of %d interleaved frames. Splatting's "
+                  "subsplat list is read back from the selection here (the paper streams it out on the GPU); "
+                  "its time is listed apart and not counted." % args.repeats, "",
+                  "| scene | VPLs | preset | work | stenciled gather ms | splatting ms | stenciled faster | "
+                  "subsplat list ms | max difference / peak |", "|---|---|---|---|---|---|---|---|---|"]
+        for r in splats:
+            lines.append("| %s | %d | %s | %.3f | %.1f | %.1f | **%.1fx** | %.1f | %.1g |" % (
+                r["scene"], int(r["vpls"]), r["preset"], r["work"], r["stenciled_ms"], r["splatting_ms"],
+                r["speedup"], r["subsplat_list_ms"], r["max_difference"]))
+        lines += ["", "CSV: [data/multires-splatting.csv](data/multires-splatting.csv).", ""]
     lines += ["", "## Flicker and the balance rule", "",
               "Flicker: rms((M2 - M1) - (F2 - F1)) / rms(F1), the change of the multiresolution error between "
               "two frames (M: multiresolution, F: full gather), with the light moved by 0.2% of the scene or "

@@ -1,0 +1,47 @@
+// MRGI: the irradiance one VPL gives one receiver (nichols-shopf-wyman-2009
+// section 3.2.2, equations 1 and 5, no visibility), and the test that sorts
+// receivers into background, malformed and valid ones. Shared by the gather
+// (vtkMRGIGatherFS.glsl) and the multiresolution splatting
+// (vtkMRGIMultiresSplatVS.glsl), so that both compute the same numbers in
+// the same order. C twin: mrgi_gather_full() (mrgi_gather.c), whose formula
+// this mirrors term by term.
+
+// 0: background (no data: alpha 0, nothing gathered); 1: malformed (valid
+// flag set, but a non-finite position or normal, or a zero normal: E = 0,
+// as in the C twin, so one NaN cannot spread through the sums); 2: valid,
+// with P and N the world-space receiver.
+int mrgiClassifyReceiver(vec4 positionVC, vec3 normalVC, mat4 viewToWorld, out vec3 P, out vec3 N)
+{
+  P = vec3(0.0);
+  N = vec3(0.0);
+  if (positionVC.w <= MRGI_VALID_THRESHOLD)
+  {
+    return 0;
+  }
+  if (any(isnan(positionVC.xyz)) || any(isinf(positionVC.xyz)) || any(isnan(normalVC)) ||
+    any(isinf(normalVC)) || dot(normalVC, normalVC) == 0.0)
+  {
+    return 1;
+  }
+  P = (viewToWorld * vec4(positionVC.xyz, 1.0)).xyz;
+  N = normalize(mat3(viewToWorld) * normalVC);
+  return 2;
+}
+
+// E_ij: VPL j of the cache (MRGI_VPL_TEXELS texels per VPL) at receiver
+// (P, N), world space. Zero-flux VPLs, coincident points and back-facing
+// pairs give 0.
+vec3 mrgiVPLIrradiance(sampler2D vpls, int j, vec3 P, vec3 N)
+{
+  vec4 flux = texelFetch(vpls, ivec2(MRGI_VPL_TEXEL_FLUX, j), 0);
+  if (flux.r == 0.0 && flux.g == 0.0 && flux.b == 0.0) { return vec3(0.0); }
+  vec4 position = texelFetch(vpls, ivec2(MRGI_VPL_TEXEL_POSITION, j), 0);
+  vec3 d = position.xyz - P;
+  float r2 = dot(d, d);
+  if (r2 == 0.0) { return vec3(0.0); }
+  vec3 Nj = normalize(texelFetch(vpls, ivec2(MRGI_VPL_TEXEL_NORMAL, j), 0).xyz);
+  float cosIr = dot(N, d);
+  float cosJr = -dot(Nj, d);
+  if (cosIr <= 0.0 || cosJr <= 0.0) { return vec3(0.0); }
+  return flux.rgb * ((cosIr * cosJr / r2) / (MRGI_PI * r2 + position.w));
+}
