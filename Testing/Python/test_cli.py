@@ -72,6 +72,13 @@ def main():
                          "--timings")
     check(code == 0 and os.path.getsize(mr_exr) > 0, "--gi multires: " + err)
     check("select" in out and "upsample" in out, "multires stages in the timing table")
+    splat_exr = fresh("cli_splat.exr")
+    code, out, err = run("cornell-spot", "-o", splat_exr, "--size", "48x48", "-q", "--gi", "multires",
+                         "--depth-threshold", "8", "--normal-threshold", "inf", "--upsample", "mask",
+                         "--gather", "splat", "--timings")
+    check(code == 0 and "gather.subsplats" in out, "--gather splat times its subsplat list: " + err)
+    check(open(splat_exr, "rb").read() == open(mr_exr, "rb").read(),
+          "--gather splat writes the stenciled gather's image")
     tm_png = fresh("cli_tone_mapping.png")
     code, _, err = run("cornell-spot", "-o", tm_png, "--size", "48x48", "-q", "--tone-mapping")
     check(code == 0 and os.path.exists(tm_png), "--tone-mapping: " + err)
@@ -108,6 +115,7 @@ def main():
         (["cornell", "-o", target, "--depth-threshold", "-3"], "--depth-threshold"),
         (["cornell", "-o", target, "--finest-level", "40"], "--finest-level"),
         (["cornell", "-o", target, "--upsample", "cubic"], "--upsample"),
+        (["cornell", "-o", target, "--gather", "scatter"], "--gather"),
         (["cornell", "-o", target, "--vpls", "5000"], "--vpls"),
         (["cornell", "-o", target, "--vpls", "-1"], "--vpls"),
         (["cornell", "-o", target, "--rsm-size", "8"], "--rsm-size"),
