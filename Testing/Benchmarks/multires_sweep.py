@@ -167,10 +167,13 @@ def main():
     parser.add_argument("--doc", default=os.path.join(mb.ROOT, "Documentation"))
     parser.add_argument("--size", type=int, default=1024)
     parser.add_argument("--repeats", type=int, default=3)
-    parser.add_argument("--depth", default="4,16,64,inf")
+    parser.add_argument("--depth", default="4,8,16,64,inf")
     parser.add_argument("--normal", default="0.25,0.5,1,inf")
     parser.add_argument("--finest", default="0,1")
-    parser.add_argument("--vpls", default="256")
+    parser.add_argument("--vpls", default="64,256,1024")
+    parser.add_argument("--grid-vpls", default="256",
+                        help="VPL counts at which the whole threshold grid runs; at the other counts of --vpls, "
+                             "only the presets")
     parser.add_argument("--scenes", default="cornell-spot,bunny-cornell")
     parser.add_argument("--scaling", default="10000,1000000", help="triangle counts of the scaling scene")
     parser.add_argument("--truth-passes", type=int, default=16, help="ground-truth passes (16 rays each)")
@@ -245,8 +248,9 @@ def main():
                              rel_rms_truth=full_truth[0] if truth_path else "",
                              rel_max_truth=full_truth[1] if truth_path else "",
                              flicker_light=0.0, flicker_camera=0.0, gather_speedup=1.0, indirect_speedup=1.0))
+            grid = vpls in parse_list(args.grid_vpls, int)
             settings = [(d, n, f, True) for d in parse_list(args.depth) for n in parse_list(args.normal)
-                        for f in parse_list(args.finest, int)]
+                        for f in parse_list(args.finest, int)] if grid else []
             for name, p in presets.items():
                 settings.append((p[0] if p[0] >= 0 else math.inf, p[1] if p[1] >= 0 else math.inf, int(p[2]), True))
                 settings.append((p[0] if p[0] >= 0 else math.inf, p[1] if p[1] >= 0 else math.inf, int(p[2]), False))
