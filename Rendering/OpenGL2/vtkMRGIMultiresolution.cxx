@@ -17,6 +17,8 @@
 
 #include "vtkMRGIGatherFS.h"
 #include "vtkMRGIVPLIrradiance.h"
+#include "vtkMRGIAreaLightDiffuse.h"
+#include "mrgi_area_light.h"
 #include "vtkMRGIMultiresSplatFS.h"
 #include "vtkMRGIMultiresSplatVS.h"
 #include "vtkMRGIMultiresReceiversFS.h"
@@ -205,6 +207,10 @@ struct vtkMRGIMultiresolution::Internals
   std::vector<long long> GatheredTexels;
   long long ValidPixels = -1;
   vtkOpenGLQuadHelper* GatherQuad = nullptr;
+  // The area-light gather (same pass, MRGI_GATHER_AREA_LIGHT), and the light
+  // of the GatherAreaLight() call in progress (not owned; null otherwise).
+  vtkOpenGLQuadHelper* AreaGatherQuad = nullptr;
+  const mrgi_area_light_uniforms* AreaLight = nullptr;
   // Multiresolution splatting: the subsplat list (the selected texels,
   // sorted by level; host copy kept so that its capacity is reused from
   // frame to frame) in a vertex buffer with its vertex array.
@@ -349,6 +355,7 @@ vtkMRGIMultiresolution::~vtkMRGIMultiresolution()
     delete q;
   }
   delete this->Internal->GatherQuad;
+  delete this->Internal->AreaGatherQuad;
 }
 
 //------------------------------------------------------------------------------
@@ -378,6 +385,7 @@ void vtkMRGIMultiresolution::ReleaseGraphicsResources(vtkWindow* w)
     releaseQuad(q);
   }
   releaseQuad(this->Internal->GatherQuad);
+  releaseQuad(this->Internal->AreaGatherQuad);
   if (this->Internal->FrameBuffer)
   {
     this->Internal->FrameBuffer->ReleaseGraphicsResources(w);
@@ -722,7 +730,7 @@ bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObj
   }
   in.GatheredTexels.assign(static_cast<size_t>(levels), -1);
   in.ValidPixels = -1;
-  if (ok && this->GatherMode == GatherSplatting)
+  if (ok && this->GatherMode == GatherSplatting && !in.AreaLight)
   {
     ok = this->RunSplatting(window, position, normal, x0, y0, vpls, vplCount, viewToWorld);
   }
@@ -770,6 +778,23 @@ bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObj
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::GatherAreaLight(vtkOpenGLRenderWindow* window,
+  vtkTextureObject* position, vtkTextureObject* normal, int x0, int y0, vtkTextureObject* samples,
+  int sampleCount, const mrgi_area_light_uniforms& light, const float viewToWorld[16])
+{
+  // The same receivers, selection and stenciled gather as the VPLs', with
+  // the area-light term (nichols-penmatsa-wyman-2010 3.2: "we use the same
+  // multiresolution framework").
+  struct Clear
+  {
+    const mrgi_area_light_uniforms*& Light;
+    ~Clear() { this->Light = nullptr; }
+  } clear{ this->Internal->AreaLight };
+  this->Internal->AreaLight = &light;
+  return this->Gather(window, position, normal, x0, y0, samples, sampleCount, viewToWorld);
+}
+
+//------------------------------------------------------------------------------
 bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
   vtkTextureObject* position, vtkTextureObject* normal, int x0, int y0, vtkTextureObject* vpls,
   int vplCount, const float viewToWorld[16])
@@ -783,18 +808,20 @@ bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
   const int levels = layout.level_count;
   const int finest = std::min(this->FinestLevel, levels - 1);
   using vtkMRGIShaderUtilities::ScopedStage;
-  ScopedStage gatherStep(this->StageTimer, "gather.vpls");
-  if (!in.GatherQuad)
+  const bool area = in.AreaLight != nullptr;
+  ScopedStage gatherStep(this->StageTimer, area ? "gather.samples" : "gather.vpls");
+  vtkOpenGLQuadHelper*& quad = area ? in.AreaGatherQuad : in.GatherQuad;
+  if (!quad)
   {
-    const std::string body =
-      std::string("#define MRGI_GATHER_IRRADIANCE_ONLY 1\n") + vtkMRGIVPLIrradiance + vtkMRGIGatherFS;
-    in.GatherQuad = new vtkOpenGLQuadHelper(window,
+    const std::string body = std::string("#define MRGI_GATHER_IRRADIANCE_ONLY 1\n") +
+      (area ? std::string("#define MRGI_GATHER_AREA_LIGHT 1\n") + vtkMRGIAreaLightDiffuse : std::string()) +
+      vtkMRGIVPLIrradiance + vtkMRGIGatherFS;
+    quad = new vtkOpenGLQuadHelper(window,
       vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
       vtkMRGIShaderUtilities::FullScreenShader(body.c_str()).c_str(), "");
   }
-  window->GetShaderCache()->ReadyShaderProgram(in.GatherQuad->Program);
-  vtkShaderProgram* gather =
-    (in.GatherQuad->Program && in.GatherQuad->Program->GetCompiled()) ? in.GatherQuad->Program : nullptr;
+  window->GetShaderCache()->ReadyShaderProgram(quad->Program);
+  vtkShaderProgram* gather = (quad->Program && quad->Program->GetCompiled()) ? quad->Program : nullptr;
   if (!gather)
   {
     return false;
@@ -817,8 +844,21 @@ bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
   ostate->vtkglStencilFunc(GL_EQUAL, 1, 0xFF);
   ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   vpls->Activate();
-  gather->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
-  gather->SetUniformi("mrgiVPLCount", vplCount);
+  if (area)
+  {
+    const mrgi_area_light_uniforms& light = *in.AreaLight;
+    gather->SetUniformi("mrgiAreaSamples", vpls->GetTextureUnit());
+    gather->SetUniformi("mrgiAreaSampleCount", vplCount);
+    gather->SetUniform3f("mrgiAreaCenter", light.center);
+    gather->SetUniform3f("mrgiAreaNormal", light.normal);
+    gather->SetUniform3fv("mrgiAreaCorners", 4, light.corners);
+    gather->SetUniformi("mrgiAreaTwoSided", light.two_sided);
+  }
+  else
+  {
+    gather->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
+    gather->SetUniformi("mrgiVPLCount", vplCount);
+  }
   gather->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(viewToWorld));
   for (int i = finest; i < levels; ++i)
   {
@@ -835,7 +875,7 @@ bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
     {
       glBeginQuery(GL_SAMPLES_PASSED, in.Queries[static_cast<size_t>(i)]);
     }
-    in.GatherQuad->Render();
+    quad->Render();
     if (this->CollectStatistics)
     {
       glEndQuery(GL_SAMPLES_PASSED);

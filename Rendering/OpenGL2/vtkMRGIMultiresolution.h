@@ -42,6 +42,7 @@
 
 #include <memory> // For std::unique_ptr
 
+struct mrgi_area_light_uniforms;
 class vtkFloatArray;
 class vtkOpenGLRenderWindow;
 class vtkRenderTimerLog;
@@ -144,6 +145,22 @@ public:
    */
   bool Gather(vtkOpenGLRenderWindow* window, vtkTextureObject* position, vtkTextureObject* normal,
     int x0, int y0, vtkTextureObject* vpls, int vplCount, const float viewToWorld[16]);
+
+#ifndef __VTK_WRAP__
+  /**
+   * After Update(): gather the direct light of one area light instead of
+   * the VPLs (nichols-penmatsa-wyman-2010 section 3.2, no visibility): its
+   * samples texture (MRGI_AREA_LIGHT_SAMPLE_TEXELS x sampleCount RGBA32F,
+   * the core's mrgi_area_light_sample records) and its uniforms
+   * (mrgi_area_light_uniforms_init(), world space). The same receivers and
+   * selection; always the stenciled gather (timer step "gather.samples").
+   * Upsample() and Resolve() then work as after Gather(). C twin:
+   * mrgi_area_light_diffuse().
+   */
+  bool GatherAreaLight(vtkOpenGLRenderWindow* window, vtkTextureObject* position,
+    vtkTextureObject* normal, int x0, int y0, vtkTextureObject* samples, int sampleCount,
+    const mrgi_area_light_uniforms& light, const float viewToWorld[16]);
+#endif
 
   enum GatherModes
   {

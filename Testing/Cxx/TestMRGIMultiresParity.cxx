@@ -13,12 +13,14 @@
 #include "vtkRenderStepsPass.h"
 #include "vtkRenderer.h"
 
+#include "mrgi_area_light.h"
 #include "mrgi_gather.h"
 #include "mrgi_multires.h"
 #include "mrgi_multires_receivers.h"
 #include "mrgi_upsample.h"
 #include "vtkFloatArray.h"
 #include "vtkMRGIVPLSelection.h"
+#include "vtkTextureObject.h"
 
 #include <cmath>
 #include <vector>
@@ -215,6 +217,104 @@ int RunCase(const Case& c)
     std::printf("  upsampling (%s): relative RMS %.3g\n", mode ? "mask-weighted" : "tent", upError);
     MRGI_TEST_CHECK(uden > 0 && upError < 1e-4);
   }
+  // The area-light gather (nichols-penmatsa-wyman-2010 3.2, no visibility)
+  // on the same receivers and selection against mrgi_area_light_diffuse():
+  // a textured, one-sided light under the top of the scene's bounds, facing
+  // down, and the same light two-sided.
+  double bounds[6];
+  renderer->ComputeVisiblePropBounds(bounds);
+  const double ext[3] = { bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4] };
+  mrgi_image lightTexture{};
+  MRGI_TEST_CHECK(mrgi_image_create(&lightTexture, 4, 3, 3, &err) == MRGI_OK);
+  for (int y = 0; y < 3; ++y)
+  {
+    for (int x = 0; x < 4; ++x)
+    {
+      float* t = lightTexture.pixels + 3 * (y * 4 + x);
+      t[0] = 0.25f * static_cast<float>(x + 1);
+      t[1] = 0.3f * static_cast<float>(y + 1);
+      t[2] = (x + y) % 2 ? 1.0f : 0.1f;
+    }
+  }
+  for (const int twoSided : { 0, 1 })
+  {
+    mrgi_area_light light{};
+    light.center[0] = bounds[0] + 0.45 * ext[0];
+    light.center[1] = bounds[2] + 0.97 * ext[1];
+    light.center[2] = bounds[4] + 0.55 * ext[2];
+    light.edge_u[0] = 0.3 * ext[0];
+    light.edge_v[2] = 0.25 * std::fmax(ext[2], 1e-3 * ext[0]);
+    light.color[0] = light.color[1] = light.color[2] = 1.0;
+    light.intensity = 3.0;
+    light.texture = &lightTexture;
+    light.two_sided = twoSided;
+    MRGI_TEST_CHECK(mrgi_area_light_check(&light, &err) == MRGI_OK);
+    mrgi_area_light_texture_pyramid pyramid{};
+    MRGI_TEST_CHECK(mrgi_area_light_texture_pyramid_create(&pyramid, &lightTexture, &err) == MRGI_OK);
+    std::vector<mrgi_area_light_sample> samples(64);
+    int32_t sampleCount = 0;
+    MRGI_TEST_CHECK(mrgi_area_light_make_samples(&light, &pyramid, 64, 1, 7u, samples.data(), 64,
+                      &sampleCount, &err) == MRGI_OK);
+    mrgi_area_light_uniforms uniforms;
+    MRGI_TEST_CHECK(mrgi_area_light_uniforms_init(&light, &pyramid, &uniforms, &err) == MRGI_OK);
+    mrgi_area_light_texture_pyramid_destroy(&pyramid);
+    vtkNew<vtkTextureObject> sampleTexture;
+    sampleTexture->SetContext(glWindow);
+    MRGI_TEST_CHECK(sampleTexture->Create2DFromRaw(MRGI_AREA_LIGHT_SAMPLE_TEXELS,
+      static_cast<unsigned int>(sampleCount), 4, VTK_FLOAT,
+      const_cast<float*>(mrgi_area_light_sample_texture_data(samples.data()))));
+    MRGI_TEST_CHECK(gpu->GatherAreaLight(glWindow, pass->GetPositionTexture(),
+      pass->GetNormalTexture(), vp[0], vp[1], sampleTexture, sampleCount, uniforms, viewToWorld));
+    vtkNew<vtkFloatArray> gpuX;
+    MRGI_TEST_CHECK(gpu->ReadIrradiance(window, gpuX));
+    double xnum = 0, xden = 0;
+    size_t xleaks = 0, lit = 0;
+    for (size_t t = 0; t < texels; ++t)
+    {
+      if (!mask[t])
+      {
+        for (int k = 0; k < 3; ++k)
+        {
+          xleaks += gpuX->GetValue(4 * t + k) != 0.0;
+        }
+        continue;
+      }
+      // The shader's transform: P = M p, N = normalize(mat3(M) n), in float.
+      float P[3], N[3];
+      for (int r = 0; r < 3; ++r)
+      {
+        P[r] = viewToWorld[12 + r];
+        N[r] = 0.0f;
+        for (int k = 0; k < 3; ++k)
+        {
+          P[r] += viewToWorld[4 * k + r] * receiverP[4 * t + k];
+          N[r] += viewToWorld[4 * k + r] * receiverN[4 * t + k];
+        }
+      }
+      float X[3] = { 0.0f, 0.0f, 0.0f };
+      if (receiverP[4 * t + 3] > 0.0f)
+      {
+        mrgi_area_light_diffuse(&uniforms, samples.data(), sampleCount, P, N, X);
+      }
+      lit += X[0] + X[1] + X[2] > 0.0f;
+      for (int k = 0; k < 3; ++k)
+      {
+        const double g = gpuX->GetValue(4 * t + k);
+        MRGI_TEST_CHECK(std::isfinite(g));
+        xnum += (g - X[k]) * (g - X[k]);
+        xden += double(X[k]) * X[k];
+      }
+    }
+    const double areaError = xden > 0 ? std::sqrt(xnum / xden) : std::sqrt(xnum);
+    std::printf("  area light (%s, %d samples): %zu lit texels, relative RMS %.3g against the C twin; "
+                "unselected texels written: %zu\n",
+      twoSided ? "two-sided" : "one-sided", sampleCount, lit, areaError, xleaks);
+    MRGI_TEST_CHECK(areaError < 1e-4 && xleaks == 0);
+    MRGI_TEST_CHECK(W * H < 16 || lit > 0);
+    sampleTexture->ReleaseGraphicsResources(window);
+  }
+  mrgi_image_destroy(&lightTexture);
+
   gpu->ReleaseGraphicsResources(window);
   renderer->SetPass(nullptr);
   pass->ReleaseGraphicsResources(window);

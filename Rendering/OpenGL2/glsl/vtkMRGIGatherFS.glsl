@@ -1,7 +1,10 @@
 // MRGI full-resolution gather (nichols-shopf-wyman-2009 section 3.2.2,
 // equations 1 and 5, no visibility): every pixel sums every VPL. C twin:
 // mrgi_gather_full() (mrgi_gather.h). The per-VPL term and the receiver test
-// are vtkMRGIVPLIrradiance.glsl, prepended by the C++ side.
+// are vtkMRGIVPLIrradiance.glsl, prepended by the C++ side. With
+// MRGI_GATHER_AREA_LIGHT defined (and vtkMRGIAreaLightDiffuse.glsl prepended) the
+// same pass gathers an area light's samples instead of the VPLs
+// (nichols-penmatsa-wyman-2010 3.2): same receivers, same selection.
 // MRGI's buffers are as large as the window: gl_FragCoord addresses them
 // directly; the multiresolution gather, drawn level by level into the
 // flattened layout, reads each level's receivers at gl_FragCoord + mrgiReceiverOffset.
@@ -37,11 +40,16 @@ void main()
 #endif
     return;
   }
+#ifdef MRGI_GATHER_AREA_LIGHT
+  // Direct light of one area light (vtkMRGIAreaLightDiffuse.glsl, prepended).
+  vec3 E = mrgiAreaLightDiffuse(P, N);
+#else
   vec3 E = vec3(0.0);
   for (int j = 0; j < mrgiVPLCount; ++j)
   {
     E += mrgiVPLIrradiance(mrgiVPLs, j, P, N);
   }
+#endif
   gl_FragData[0] = vec4(E, 1.0);           // E_i, compared with the C twin
 #ifndef MRGI_GATHER_IRRADIANCE_ONLY
   vec3 albedo = texelFetch(mrgiAlbedo, pixel, 0).rgb;

@@ -1,0 +1,55 @@
+// MRGI area light, diffuse direct light without visibility
+// (nichols-penmatsa-wyman-2010 section 3.2, eq. 2; the disk-to-point form
+// factor of nichols-shopf-wyman-2009 eq. 1). C twin:
+// mrgi_area_light_diffuse() (mrgi_area_light.h, "Direct light without
+// visibility"), which this translates line by line, in float, in the same
+// order; world space throughout. The samples texture is the core's
+// ::mrgi_area_light_sample records (MRGI_AREA_LIGHT_SAMPLE_TEXELS RGBA32F
+// texels per sample, one row per sample); the uniforms are
+// ::mrgi_area_light_uniforms.
+uniform sampler2D mrgiAreaSamples;
+uniform int mrgiAreaSampleCount;
+uniform vec3 mrgiAreaCenter;
+uniform vec3 mrgiAreaNormal;
+uniform vec3 mrgiAreaCorners[4];
+uniform int mrgiAreaTwoSided;
+
+// The VTK irradiance X at receiver (P, N): the receiver shows albedo * X.
+vec3 mrgiAreaLightDiffuse(vec3 P, vec3 N)
+{
+  // Early-out 1: behind a one-sided light or in its plane (two-sided: in
+  // its plane). "for one-sided lights ... we also discard fragments behind
+  // the source" (3.2); it also keeps the emitter's own pixels dark.
+  float side = dot(mrgiAreaNormal, P - mrgiAreaCenter);
+  if (mrgiAreaTwoSided != 0 ? side == 0.0 : !(side > 0.0))
+  {
+    return vec3(0.0);
+  }
+  // Early-out 2: facing away from every corner ("If N.L_j < 0 for all j,
+  // we trivially discard the fragment").
+  bool facing = false;
+  for (int k = 0; k < 4; ++k)
+  {
+    facing = facing || dot(N, mrgiAreaCorners[k] - P) > 0.0;
+  }
+  if (!facing)
+  {
+    return vec3(0.0);
+  }
+  vec3 X = vec3(0.0);
+  for (int j = 0; j < mrgiAreaSampleCount; ++j)
+  {
+    vec4 position = texelFetch(mrgiAreaSamples, ivec2(MRGI_AREA_LIGHT_SAMPLE_TEXEL_POSITION, j), 0);
+    vec3 d = position.xyz - P;
+    float r2 = dot(d, d);
+    if (!(r2 > 0.0)) { continue; } // on the sample: direction undefined
+    vec3 sampleNormal = texelFetch(mrgiAreaSamples, ivec2(MRGI_AREA_LIGHT_SAMPLE_TEXEL_NORMAL, j), 0).xyz;
+    float cosIr = dot(N, d);
+    float cosJr = -dot(sampleNormal, d);
+    if (mrgiAreaTwoSided != 0) { cosJr = abs(cosJr); }
+    if (!(cosIr > 0.0) || !(cosJr > 0.0)) { continue; }
+    vec3 radiance = texelFetch(mrgiAreaSamples, ivec2(MRGI_AREA_LIGHT_SAMPLE_TEXEL_RADIANCE, j), 0).rgb;
+    X += radiance * (position.w * (cosIr * cosJr / r2) / (MRGI_PI * r2 + position.w));
+  }
+  return X;
+}
