@@ -1,0 +1,946 @@
+#include "vtkMRGIAreaLight.h"
+
+#include "vtkAOSDataArrayTemplate.h"
+#include "vtkActor.h"
+#include "vtkCellArray.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageAlgorithm.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataAlgorithm.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTexture.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkWeakPointer.h"
+
+#include "mrgi_area_light.h"
+#include "mrgi_error.h"
+#include "mrgi_image.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+// The clamp range and default of NumberOfSamples are the core's (the header
+// spells them out so that it needs no C header).
+static_assert(MRGI_AREA_LIGHT_MIN_SAMPLES == 1, "NumberOfSamples clamp range");
+static_assert(MRGI_AREA_LIGHT_MAX_SAMPLES == 4096, "NumberOfSamples clamp range");
+static_assert(MRGI_AREA_LIGHT_DEFAULT_SAMPLES == 256, "NumberOfSamples default");
+static_assert(sizeof(mrgi_area_light_sample) == MRGI_AREA_LIGHT_SAMPLE_FLOATS * sizeof(float),
+  "a sample record is its texels");
+
+namespace
+{
+// Everything a sample set depends on, compared bit for bit: a request with
+// the same values reuses the samples (setting a property to its current
+// value, or changing one the samples ignore such as Visible, rebuilds
+// nothing).
+struct SampleKey
+{
+  double Values[13];
+  vtkTypeUInt64 Seed;
+  vtkTypeUInt64 TextureGeneration;
+  int NumberOfSamples;
+  int Flags;
+};
+
+bool IsWordCharacter(char c)
+{
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
+
+// Core messages name the C fields; a VTK user knows the properties.
+std::string WithPropertyNames(std::string message)
+{
+  static const char* const names[][2] = { { "center", "Center" }, { "edge_u", "EdgeU" },
+    { "edge_v", "EdgeV" }, { "color", "Color" }, { "intensity", "Intensity" } };
+  for (const auto& name : names)
+  {
+    const size_t length = std::strlen(name[0]);
+    for (size_t at = message.find(name[0]); at != std::string::npos;
+         at = message.find(name[0], at + length))
+    {
+      const size_t end = at + length;
+      if ((at == 0 || !IsWordCharacter(message[at - 1])) &&
+        (end == message.size() || !IsWordCharacter(message[end])))
+      {
+        message.replace(at, length, name[1]);
+      }
+    }
+  }
+  return message;
+}
+
+// A value, or 0 when it is not finite and >= 0 (for display only: requests
+// report such values as errors).
+double Sanitized(double value)
+{
+  return std::isfinite(value) && value > 0.0 ? value : 0.0;
+}
+
+// Linear [0, 1] -> 8-bit sRGB, tabulated: the emission texture is encoded
+// per texel per video frame, and powf per channel would dominate that.
+unsigned char EncodeSRGB8(float linear)
+{
+  static const std::vector<unsigned char> table = [] {
+    std::vector<unsigned char> t(65536);
+    for (size_t i = 0; i < t.size(); ++i)
+    {
+      const float encoded = mrgi_srgb_encode(static_cast<float>(i) / 65535.0f);
+      t[i] = static_cast<unsigned char>(std::lround(encoded * 255.0f));
+    }
+    return t;
+  }();
+  const float x = linear > 0.0f ? (linear < 1.0f ? linear : 1.0f) : 0.0f; // NaN -> 0
+  return table[static_cast<size_t>(x * 65535.0f + 0.5f)];
+}
+
+// Copy the colour of a W x H image with `components` components of type T
+// into the core's 3-channel float image (rows flipped: VTK's row 0 is the
+// bottom, the core's the top). `lut` maps unsigned char values; float
+// values are checked to be finite and >= 0.
+template <typename T>
+bool FillTexture(vtkDataArray* scalars, int width, int height, int components, const float* lut,
+  mrgi_image* out, std::string& why)
+{
+  // Direct reads for the usual (array-of-structs) arrays; any other layout
+  // goes through the generic, slower accessor.
+  auto* aos = vtkArrayDownCast<vtkAOSDataArrayTemplate<T>>(scalars);
+  const T* data = aos ? aos->GetPointer(0) : nullptr;
+  // Gray (1 or 2 components) is replicated into RGB; alpha is ignored.
+  const int colorComponents = components < 3 ? 1 : 3;
+  for (int y = 0; y < height; ++y)
+  {
+    float* row = mrgi_image_at(out, 0, height - 1 - y);
+    for (int x = 0; x < width; ++x)
+    {
+      const vtkIdType id = static_cast<vtkIdType>(y) * width + x;
+      float rgb[3];
+      for (int c = 0; c < colorComponents; ++c)
+      {
+        const double raw = data ? static_cast<double>(data[id * components + c])
+                                : scalars->GetComponent(id, c);
+        float value;
+        if (lut)
+        {
+          value = lut[static_cast<unsigned char>(raw)];
+        }
+        else
+        {
+          value = static_cast<float>(raw);
+          if (!(std::isfinite(value) && value >= 0.0f))
+          {
+            why = "texture pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+              ") component " + std::to_string(c) + " = " + std::to_string(raw) +
+              " is not finite and >= 0 (float texels are radiances)";
+            return false;
+          }
+        }
+        rgb[c] = value;
+      }
+      if (colorComponents == 1)
+      {
+        rgb[1] = rgb[2] = rgb[0];
+      }
+      std::memcpy(row + 3 * x, rgb, sizeof(rgb));
+    }
+  }
+  return true;
+}
+
+// The core's float RGB image of a VTK texture image, or false with the reason.
+bool ConvertTexture(vtkImageData* image, bool srgb, mrgi_image* out, std::string& why)
+{
+  int dims[3];
+  image->GetDimensions(dims);
+  if (image->GetNumberOfPoints() <= 0 || dims[0] < 1 || dims[1] < 1 || dims[2] < 1)
+  {
+    why = "the texture image is empty (no points)";
+    return false;
+  }
+  if (dims[2] != 1)
+  {
+    why = "the texture image is 3D (" + std::to_string(dims[0]) + " x " +
+      std::to_string(dims[1]) + " x " + std::to_string(dims[2]) +
+      "); a 2D image (W x H x 1) is needed";
+    return false;
+  }
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (!scalars)
+  {
+    why = "the texture image has no point scalars";
+    return false;
+  }
+  const int type = scalars->GetDataType();
+  if (type != VTK_UNSIGNED_CHAR && type != VTK_FLOAT)
+  {
+    why = std::string("the texture image has scalars of type ") + scalars->GetDataTypeAsString() +
+      "; unsigned char or float is needed";
+    return false;
+  }
+  const int components = scalars->GetNumberOfComponents();
+  if (components < 1 || components > 4)
+  {
+    why = "the texture image has " + std::to_string(components) +
+      " components; 1 (gray), 2 (gray + alpha), 3 (RGB) or 4 (RGBA) are accepted";
+    return false;
+  }
+  const vtkIdType points = static_cast<vtkIdType>(dims[0]) * dims[1];
+  if (scalars->GetNumberOfTuples() != points)
+  {
+    why = "the texture image has " + std::to_string(scalars->GetNumberOfTuples()) +
+      " scalar tuples for its " + std::to_string(points) + " points";
+    return false;
+  }
+  mrgi_error err;
+  if (mrgi_image_create(out, dims[0], dims[1], 3, &err) != MRGI_OK)
+  {
+    why = std::string("texture: ") + err.message;
+    return false;
+  }
+  bool ok;
+  if (type == VTK_UNSIGNED_CHAR)
+  {
+    float lut[256];
+    for (int v = 0; v < 256; ++v)
+    {
+      const float linear = static_cast<float>(v) / 255.0f;
+      lut[v] = srgb ? mrgi_srgb_decode(linear) : linear;
+    }
+    ok = FillTexture<unsigned char>(scalars, dims[0], dims[1], components, lut, out, why);
+  }
+  else
+  {
+    ok = FillTexture<float>(scalars, dims[0], dims[1], components, nullptr, out, why);
+  }
+  if (!ok)
+  {
+    mrgi_image_destroy(out);
+  }
+  return ok;
+}
+}
+
+//------------------------------------------------------------------------------
+struct vtkMRGIAreaLight::vtkInternals
+{
+  // Texture cache: the converted image and its pyramid, for the image
+  // (pointer, MTime, sRGB reading) they were built from.
+  mrgi_image Image{};
+  mrgi_area_light_texture_pyramid Pyramid{};
+  bool HasTexture = false; // Image and Pyramid hold a texture
+  bool TextureKeyValid = false;
+  vtkImageData* TextureKeyImage = nullptr; // compared, never dereferenced
+  vtkMTimeType TextureKeyMTime = 0;
+  bool TextureKeySRGB = false;
+  bool TextureOK = false;
+  std::string TextureError;
+  vtkTypeUInt64 TextureGeneration = 0;
+
+  // Sample cache.
+  bool SampleKeyValid = false;
+  SampleKey Key{};
+  bool SamplesOK = false;
+  std::string SampleError;
+  std::vector<mrgi_area_light_sample> Samples;
+  int SampleCount = 0;
+
+  // The emitter's actor and what feeds it (created on first request).
+  vtkSmartPointer<vtkActor> Actor;
+  vtkSmartPointer<vtkTexture> EmissionTexture;
+  vtkSmartPointer<vtkProperty> BackProperty;
+
+  ~vtkInternals()
+  {
+    mrgi_area_light_texture_pyramid_destroy(&this->Pyramid);
+    mrgi_image_destroy(&this->Image);
+  }
+};
+
+//------------------------------------------------------------------------------
+// The emitter quad, regenerated whenever the light's own properties change
+// (not when only its texture image does).
+class vtkMRGIAreaLightGeometrySource : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkMRGIAreaLightGeometrySource* New();
+  vtkTypeMacro(vtkMRGIAreaLightGeometrySource, vtkPolyDataAlgorithm);
+
+  // Weak: the light owns this source (through its actor), while a renderer
+  // may keep the actor after the light is gone.
+  vtkWeakPointer<vtkMRGIAreaLight> Light;
+
+  vtkMTimeType GetMTime() override
+  {
+    vtkMTimeType mtime = this->Superclass::GetMTime();
+    if (this->Light)
+    {
+      mtime = std::max(mtime, this->Light->vtkObject::GetMTime());
+    }
+    return mtime;
+  }
+
+protected:
+  vtkMRGIAreaLightGeometrySource() { this->SetNumberOfInputPorts(0); }
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
+  {
+    vtkPolyData* output = vtkPolyData::GetData(out);
+    if (!this->Light || !this->Light->MakeGeometry(output))
+    {
+      output->Initialize(); // an invalid light draws nothing
+    }
+    return 1;
+  }
+
+private:
+  vtkMRGIAreaLightGeometrySource(const vtkMRGIAreaLightGeometrySource&) = delete;
+  void operator=(const vtkMRGIAreaLightGeometrySource&) = delete;
+};
+vtkStandardNewMacro(vtkMRGIAreaLightGeometrySource);
+
+//------------------------------------------------------------------------------
+// The emitter's picture: clamp(Intensity * Color * T) as 8-bit sRGB RGB, the
+// input of the actor's texture; regenerated when the light or its texture
+// image changes (the next video frame).
+class vtkMRGIAreaLightEmissionSource : public vtkImageAlgorithm
+{
+public:
+  static vtkMRGIAreaLightEmissionSource* New();
+  vtkTypeMacro(vtkMRGIAreaLightEmissionSource, vtkImageAlgorithm);
+
+  vtkWeakPointer<vtkMRGIAreaLight> Light;
+
+  vtkMTimeType GetMTime() override
+  {
+    vtkMTimeType mtime = this->Superclass::GetMTime();
+    if (this->Light)
+    {
+      mtime = std::max(mtime, this->Light->GetMTime());
+    }
+    return mtime;
+  }
+
+protected:
+  vtkMRGIAreaLightEmissionSource() { this->SetNumberOfInputPorts(0); }
+
+  // The picture of the cached texture, or nullptr (then 1 x 1 black).
+  const mrgi_image* Picture()
+  {
+    if (!this->Light || !this->Light->UpdateTexture())
+    {
+      return nullptr;
+    }
+    const auto& internals = *this->Light->Internals;
+    return internals.HasTexture ? &internals.Image : nullptr;
+  }
+
+  int RequestInformation(
+    vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
+  {
+    const mrgi_image* picture = this->Picture();
+    const int width = picture ? picture->width : 1;
+    const int height = picture ? picture->height : 1;
+    vtkInformation* info = out->GetInformationObject(0);
+    int extent[6] = { 0, width - 1, 0, height - 1, 0, 0 };
+    info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+    vtkDataObject::SetPointDataActiveScalarInfo(info, VTK_UNSIGNED_CHAR, 3);
+    return 1;
+  }
+
+  void ExecuteDataWithInformation(vtkDataObject* data, vtkInformation* info) override
+  {
+    vtkImageData* image = this->AllocateOutputData(data, info);
+    auto* rgb = vtkArrayDownCast<vtkUnsignedCharArray>(image->GetPointData()->GetScalars());
+    const mrgi_image* picture = this->Picture();
+    int dims[3];
+    image->GetDimensions(dims);
+    if (!rgb || !picture || picture->width != dims[0] || picture->height != dims[1])
+    {
+      if (rgb)
+      {
+        rgb->FillValue(0);
+      }
+      return;
+    }
+    float scale[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      scale[c] = static_cast<float>(
+        Sanitized(this->Light->GetIntensity()) * Sanitized(this->Light->GetColor()[c]));
+    }
+    unsigned char* dst = rgb->GetPointer(0);
+    for (int y = 0; y < dims[1]; ++y)
+    {
+      const float* row = mrgi_image_at(picture, 0, dims[1] - 1 - y); // core rows run top-down
+      for (int x = 0; x < dims[0]; ++x)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          *dst++ = EncodeSRGB8(scale[c] * row[3 * x + c]);
+        }
+      }
+    }
+  }
+
+private:
+  vtkMRGIAreaLightEmissionSource(const vtkMRGIAreaLightEmissionSource&) = delete;
+  void operator=(const vtkMRGIAreaLightEmissionSource&) = delete;
+};
+vtkStandardNewMacro(vtkMRGIAreaLightEmissionSource);
+
+//------------------------------------------------------------------------------
+vtkStandardNewMacro(vtkMRGIAreaLight);
+
+//------------------------------------------------------------------------------
+vtkMRGIAreaLight::vtkMRGIAreaLight()
+  : Internals(new vtkInternals)
+{
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIAreaLight::~vtkMRGIAreaLight()
+{
+  if (this->Texture)
+  {
+    this->Texture->UnRegister(this);
+  }
+  if (this->TextureData)
+  {
+    this->TextureData->UnRegister(this);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIAreaLight::SetTexture(vtkTexture* texture)
+{
+  if (texture == this->Texture)
+  {
+    return;
+  }
+  vtkTexture* old = this->Texture;
+  this->Texture = texture;
+  if (texture)
+  {
+    texture->Register(this);
+    this->SetTextureData(nullptr); // the last one set wins
+  }
+  if (old)
+  {
+    old->UnRegister(this);
+  }
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIAreaLight::SetTextureData(vtkImageData* image)
+{
+  if (image == this->TextureData)
+  {
+    return;
+  }
+  vtkImageData* old = this->TextureData;
+  this->TextureData = image;
+  if (image)
+  {
+    image->Register(this);
+    this->SetTexture(nullptr);
+  }
+  if (old)
+  {
+    old->UnRegister(this);
+  }
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkMRGIAreaLight::GetMTime()
+{
+  vtkMTimeType mtime = this->Superclass::GetMTime();
+  if (this->Texture)
+  {
+    mtime = std::max(mtime, this->Texture->GetMTime());
+    if (vtkImageData* input = this->Texture->GetInput())
+    {
+      mtime = std::max(mtime, input->GetMTime());
+    }
+  }
+  if (this->TextureData)
+  {
+    mtime = std::max(mtime, this->TextureData->GetMTime());
+  }
+  return mtime;
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIAreaLight::Modified()
+{
+  this->Superclass::Modified();
+  this->UpdateGeometryActor();
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIAreaLight::Fail(const std::string& why)
+{
+  this->LastErrorMessage = why;
+  vtkErrorMacro(<< why);
+  return false;
+}
+
+//------------------------------------------------------------------------------
+vtkImageData* vtkMRGIAreaLight::ResolveTextureImage(bool updatePipeline)
+{
+  if (this->TextureData)
+  {
+    return this->TextureData;
+  }
+  if (!this->Texture)
+  {
+    return nullptr;
+  }
+  // A texture fed by a pipeline (a reader, a video source) is brought up to
+  // date here, as vtkTexture::Render() does before it loads.
+  if (updatePipeline && this->Texture->GetNumberOfInputConnections(0) > 0)
+  {
+    if (vtkAlgorithm* source = this->Texture->GetInputAlgorithm())
+    {
+      source->Update();
+    }
+  }
+  return this->Texture->GetInput();
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIAreaLight::UpdateTexture()
+{
+  vtkInternals& internals = *this->Internals;
+  vtkImageData* image = this->ResolveTextureImage(true);
+  if ((this->Texture || this->TextureData) && !image)
+  {
+    return this->Fail("the area light's vtkTexture has no input image");
+  }
+  const bool srgb = image && this->Texture && this->Texture->GetUseSRGBColorSpace();
+  const vtkMTimeType mtime = image ? image->GetMTime() : 0;
+  if (internals.TextureKeyValid && internals.TextureKeyImage == image &&
+    internals.TextureKeyMTime == mtime && internals.TextureKeySRGB == srgb)
+  {
+    return internals.TextureOK ? true : this->Fail(internals.TextureError);
+  }
+  internals.TextureKeyValid = true;
+  internals.TextureKeyImage = image;
+  internals.TextureKeyMTime = mtime;
+  internals.TextureKeySRGB = srgb;
+  ++internals.TextureGeneration;
+  if (!image)
+  {
+    mrgi_area_light_texture_pyramid_destroy(&internals.Pyramid);
+    mrgi_image_destroy(&internals.Image);
+    internals.HasTexture = false;
+    internals.TextureOK = true;
+    return true;
+  }
+  // Build into temporaries: a bad image leaves the last good pyramid alone.
+  mrgi_image converted{};
+  mrgi_area_light_texture_pyramid pyramid{};
+  std::string why;
+  mrgi_error err;
+  bool ok = ConvertTexture(image, srgb, &converted, why);
+  if (ok && mrgi_area_light_texture_pyramid_create(&pyramid, &converted, &err) != MRGI_OK)
+  {
+    why = std::string("texture: ") + err.message;
+    mrgi_image_destroy(&converted);
+    ok = false;
+  }
+  if (!ok)
+  {
+    internals.TextureOK = false;
+    internals.TextureError = "bad area light texture: " + why;
+    return this->Fail(internals.TextureError);
+  }
+  mrgi_area_light_texture_pyramid_destroy(&internals.Pyramid);
+  mrgi_image_destroy(&internals.Image);
+  internals.Image = converted;
+  internals.Pyramid = pyramid;
+  internals.HasTexture = true;
+  internals.TextureOK = true;
+  ++this->NumberOfTextureBuilds;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIAreaLight::BuildCoreLight(mrgi_area_light* light, bool withTexture)
+{
+  mrgi_area_light core{};
+  for (int c = 0; c < 3; ++c)
+  {
+    core.center[c] = this->Center[c];
+    core.edge_u[c] = this->EdgeU[c];
+    core.edge_v[c] = this->EdgeV[c];
+    core.color[c] = this->Color[c];
+  }
+  core.intensity = this->Intensity;
+  core.two_sided = this->TwoSided ? 1 : 0;
+  // The texture was checked when it was converted and its pyramid built;
+  // checking the rest without it keeps this O(1) per request.
+  mrgi_error err;
+  if (mrgi_area_light_check(&core, &err) != MRGI_OK)
+  {
+    return this->Fail("invalid area light: " + WithPropertyNames(err.message));
+  }
+  if (withTexture && this->Internals->HasTexture)
+  {
+    core.texture = &this->Internals->Image;
+  }
+  *light = core;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIAreaLight::UpdateSamples()
+{
+  if (!this->UpdateTexture())
+  {
+    return false;
+  }
+  vtkInternals& internals = *this->Internals;
+  SampleKey key;
+  std::memset(&key, 0, sizeof(key)); // padding too: keys are compared with memcmp
+  for (int c = 0; c < 3; ++c)
+  {
+    key.Values[c] = this->Center[c];
+    key.Values[3 + c] = this->EdgeU[c];
+    key.Values[6 + c] = this->EdgeV[c];
+    key.Values[9 + c] = this->Color[c];
+  }
+  key.Values[12] = this->Intensity;
+  key.Seed = this->Seed;
+  key.TextureGeneration = internals.TextureGeneration;
+  key.NumberOfSamples = this->NumberOfSamples;
+  key.Flags = (this->TwoSided ? 1 : 0) | (this->Jitter ? 2 : 0);
+  if (internals.SampleKeyValid && std::memcmp(&key, &internals.Key, sizeof(key)) == 0)
+  {
+    return internals.SamplesOK ? true : this->Fail(internals.SampleError);
+  }
+  internals.SampleKeyValid = true;
+  internals.Key = key;
+  internals.SamplesOK = false;
+
+  mrgi_area_light light;
+  if (!this->BuildCoreLight(&light, true))
+  {
+    internals.SampleError = this->LastErrorMessage;
+    return false;
+  }
+  const mrgi_area_light_texture_pyramid* pyramid =
+    internals.HasTexture ? &internals.Pyramid : nullptr;
+  mrgi_error err;
+  int32_t count = 0;
+  if (mrgi_area_light_sample_layout(&light, this->NumberOfSamples, nullptr, nullptr, &count,
+        &err) != MRGI_OK)
+  {
+    internals.SampleError = "area light samples: " + WithPropertyNames(err.message);
+    return this->Fail(internals.SampleError);
+  }
+  std::vector<mrgi_area_light_sample> samples(static_cast<size_t>(count));
+  if (mrgi_area_light_make_samples(&light, pyramid, this->NumberOfSamples, this->Jitter ? 1 : 0,
+        this->Seed, samples.data(), count, &count, &err) != MRGI_OK)
+  {
+    internals.SampleError = "area light samples: " + WithPropertyNames(err.message);
+    return this->Fail(internals.SampleError);
+  }
+  // Finite inputs can still overflow: a float texel near FLT_MAX times a
+  // large Intensity * Color. Never hand out an infinite radiance.
+  for (const mrgi_area_light_sample& sample : samples)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      if (!std::isfinite(sample.radiance[c]))
+      {
+        internals.SampleError = "area light radiance Intensity * Color * texture exceeds the "
+                                "float range";
+        return this->Fail(internals.SampleError);
+      }
+    }
+  }
+  internals.Samples.swap(samples);
+  internals.SampleCount = count;
+  internals.SamplesOK = true;
+  ++this->NumberOfSampleBuilds;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIAreaLight::GetSamples(vtkFloatArray* samples)
+{
+  if (!samples)
+  {
+    return this->Fail("GetSamples: no output array given");
+  }
+  if (!this->UpdateSamples())
+  {
+    return false;
+  }
+  const vtkInternals& internals = *this->Internals;
+  samples->SetNumberOfComponents(4);
+  samples->SetNumberOfTuples(
+    static_cast<vtkIdType>(internals.SampleCount) * MRGI_AREA_LIGHT_SAMPLE_TEXELS);
+  std::memcpy(samples->GetPointer(0), mrgi_area_light_sample_texture_data(internals.Samples.data()),
+    sizeof(mrgi_area_light_sample) * static_cast<size_t>(internals.SampleCount));
+  samples->Modified();
+  this->LastErrorMessage.clear();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIAreaLight::GetCoreLight(mrgi_area_light* light)
+{
+  if (!light)
+  {
+    return this->Fail("GetCoreLight: no output given");
+  }
+  mrgi_area_light core;
+  if (!this->UpdateTexture() || !this->BuildCoreLight(&core, true))
+  {
+    return false;
+  }
+  *light = core;
+  this->LastErrorMessage.clear();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIAreaLight::GetCoreUniforms(mrgi_area_light_uniforms* uniforms)
+{
+  if (!uniforms)
+  {
+    return this->Fail("GetCoreUniforms: no output given");
+  }
+  mrgi_area_light core;
+  if (!this->UpdateTexture() || !this->BuildCoreLight(&core, true))
+  {
+    return false;
+  }
+  mrgi_area_light_uniforms out;
+  mrgi_error err;
+  if (mrgi_area_light_uniforms_init(&core,
+        this->Internals->HasTexture ? &this->Internals->Pyramid : nullptr, &out,
+        &err) != MRGI_OK)
+  {
+    return this->Fail("area light uniforms: " + WithPropertyNames(err.message));
+  }
+  *uniforms = out;
+  this->LastErrorMessage.clear();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIAreaLight::GetCorePyramid(const mrgi_area_light_texture_pyramid** pyramid)
+{
+  if (!pyramid)
+  {
+    return this->Fail("GetCorePyramid: no output given");
+  }
+  if (!this->UpdateTexture())
+  {
+    return false;
+  }
+  *pyramid = this->Internals->HasTexture ? &this->Internals->Pyramid : nullptr;
+  this->LastErrorMessage.clear();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+const mrgi_area_light_sample* vtkMRGIAreaLight::GetCoreSamples(int* count)
+{
+  if (!this->UpdateSamples())
+  {
+    if (count)
+    {
+      *count = 0;
+    }
+    return nullptr;
+  }
+  if (count)
+  {
+    *count = this->Internals->SampleCount;
+  }
+  this->LastErrorMessage.clear();
+  return this->Internals->Samples.data();
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIAreaLight::MakeGeometry(vtkPolyData* quad)
+{
+  if (!quad)
+  {
+    return this->Fail("MakeGeometry: no output given");
+  }
+  // The geometry needs no texture: check the light without it.
+  mrgi_area_light light;
+  if (!this->BuildCoreLight(&light, false))
+  {
+    return false;
+  }
+  // Corners in the order of mrgi_area_light_uniforms::corners (counter-
+  // clockwise seen from the emitting side, so VTK's front face is the
+  // emitting one), with texture coordinates (s, t) of the core's mapping.
+  static const double signs[4][2] = { { -0.5, -0.5 }, { 0.5, -0.5 }, { 0.5, 0.5 }, { -0.5, 0.5 } };
+  double normal[3];
+  vtkMath::Cross(this->EdgeU, this->EdgeV, normal);
+  vtkMath::Normalize(normal);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  vtkNew<vtkFloatArray> tcoords;
+  tcoords->SetName("TCoords");
+  tcoords->SetNumberOfComponents(2);
+  for (const auto& sign : signs)
+  {
+    double corner[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      corner[c] = this->Center[c] + sign[0] * this->EdgeU[c] + sign[1] * this->EdgeV[c];
+    }
+    points->InsertNextPoint(corner);
+    normals->InsertNextTuple(normal);
+    const double st[2] = { sign[0] + 0.5, sign[1] + 0.5 };
+    tcoords->InsertNextTuple(st);
+  }
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType ids[4] = { 0, 1, 2, 3 };
+  polys->InsertNextCell(4, ids);
+  quad->Initialize();
+  quad->SetPoints(points);
+  quad->SetPolys(polys);
+  quad->GetPointData()->SetNormals(normals);
+  quad->GetPointData()->SetTCoords(tcoords);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+vtkActor* vtkMRGIAreaLight::GetGeometryActor()
+{
+  vtkInternals& internals = *this->Internals;
+  if (!internals.Actor)
+  {
+    vtkNew<vtkMRGIAreaLightGeometrySource> geometry;
+    geometry->Light = this;
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputConnection(geometry->GetOutputPort());
+    mapper->ScalarVisibilityOff();
+    internals.Actor = vtkSmartPointer<vtkActor>::New();
+    internals.Actor->SetMapper(mapper);
+
+    vtkNew<vtkMRGIAreaLightEmissionSource> emission;
+    emission->Light = this;
+    internals.EmissionTexture = vtkSmartPointer<vtkTexture>::New();
+    internals.EmissionTexture->SetInputConnection(emission->GetOutputPort());
+    // 8 bits sRGB-encoded keep dark radiances; GL decodes back to linear.
+    internals.EmissionTexture->UseSRGBColorSpaceOn();
+    internals.EmissionTexture->InterpolateOn();
+    internals.EmissionTexture->MipmapOn(); // a video frame seen small must not alias
+    // Mesa llvmpipe's anisotropic filtering (VTK's default 4x) blends coarser
+    // levels in even where the texture is magnified (measured: a 2 x 2
+    // picture drawn 64 pixels wide mixed all four texels where bilinear
+    // filtering gives one texel's colour): plain trilinear filtering.
+    internals.EmissionTexture->SetMaximumAnisotropicFiltering(1.0f);
+    internals.EmissionTexture->RepeatOff();
+    internals.EmissionTexture->EdgeClampOn();
+
+    // The back of a one-sided emitter emits nothing: black, not see-through.
+    internals.BackProperty = vtkSmartPointer<vtkProperty>::New();
+    internals.BackProperty->LightingOff();
+    internals.BackProperty->SetAmbient(1.0);
+    internals.BackProperty->SetDiffuse(0.0);
+    internals.BackProperty->SetSpecular(0.0);
+    this->UpdateGeometryActor();
+  }
+  return internals.Actor;
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIAreaLight::UpdateGeometryActor()
+{
+  if (!this->Internals || !this->Internals->Actor)
+  {
+    return;
+  }
+  vtkInternals& internals = *this->Internals;
+  vtkActor* actor = internals.Actor;
+  actor->SetVisibility(this->Visible ? 1 : 0);
+  vtkProperty* property = actor->GetProperty();
+  // An emitter shows its radiance whatever the lights (as the emitters of
+  // vtkMRGISceneBuilder): VTK's ambient term only.
+  property->LightingOff();
+  property->SetAmbient(1.0);
+  property->SetDiffuse(0.0);
+  property->SetSpecular(0.0);
+  const bool textured = this->Texture || this->TextureData;
+  double front[3] = { 1.0, 1.0, 1.0 };
+  if (!textured)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      front[c] = Sanitized(this->Intensity) * Sanitized(this->Color[c]);
+    }
+  }
+  actor->SetTexture(textured ? internals.EmissionTexture.Get() : nullptr);
+  // With a texture, VTK clamps the colour to [0, 1] before it modulates
+  // the texture: the radiance scale is in the emission picture and the
+  // colour is white. Without one, the colour is the radiance.
+  property->SetAmbientColor(front);
+  property->SetColor(front);
+  // The backface property stays set (VTK 9.1's mapper keeps reading it
+  // once its shader was built with it, even after it is removed): black
+  // for a one-sided light, the front's look for a two-sided one.
+  double back[3];
+  for (int c = 0; c < 3; ++c)
+  {
+    back[c] = this->TwoSided ? front[c] : 0.0;
+  }
+  internals.BackProperty->SetAmbientColor(back);
+  internals.BackProperty->SetColor(back);
+  actor->SetBackfaceProperty(internals.BackProperty);
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIAreaLight::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Center: (" << this->Center[0] << ", " << this->Center[1] << ", "
+     << this->Center[2] << ")\n";
+  os << indent << "EdgeU: (" << this->EdgeU[0] << ", " << this->EdgeU[1] << ", "
+     << this->EdgeU[2] << ")\n";
+  os << indent << "EdgeV: (" << this->EdgeV[0] << ", " << this->EdgeV[1] << ", "
+     << this->EdgeV[2] << ")\n";
+  os << indent << "Color: (" << this->Color[0] << ", " << this->Color[1] << ", "
+     << this->Color[2] << ")\n";
+  os << indent << "Intensity: " << this->Intensity << "\n";
+  os << indent << "TwoSided: " << (this->TwoSided ? "On" : "Off") << "\n";
+  os << indent << "NumberOfSamples: " << this->NumberOfSamples << "\n";
+  os << indent << "Jitter: " << (this->Jitter ? "On" : "Off") << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "Visible: " << (this->Visible ? "On" : "Off") << "\n";
+  os << indent << "Texture: " << static_cast<void*>(this->Texture) << "\n";
+  os << indent << "TextureData: " << static_cast<void*>(this->TextureData) << "\n";
+  os << indent << "NumberOfTextureBuilds: " << this->NumberOfTextureBuilds << "\n";
+  os << indent << "NumberOfSampleBuilds: " << this->NumberOfSampleBuilds << "\n";
+  os << indent << "LastErrorMessage: "
+     << (this->LastErrorMessage.empty() ? "(none)" : this->LastErrorMessage) << "\n";
+}

@@ -1,0 +1,837 @@
+#include "vtk_glew.h"
+
+#include "vtkMRGIVoxelization.h"
+
+#include "vtkActor.h"
+#include "vtkAssemblyNode.h"
+#include "vtkAssemblyPath.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkMRGIShaderUtilities.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLError.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProp.h"
+#include "vtkPropCollection.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+#include "vtkTriangleFilter.h"
+#include "vtkTypeUInt32Array.h"
+#include "vtkWeakPointer.h"
+
+#include "vtkMRGIVoxelizeFS.h"
+#include "vtkMRGIVoxelizeGS.h"
+#include "vtkMRGIVoxelizeVS.h"
+
+#include "mrgi_voxel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkMRGIVoxelization);
+
+namespace
+{
+// One polydata's triangles in a vertex buffer: three float vertices per
+// triangle (no index buffer: GL_TRIANGLES over the whole buffer), each the
+// point minus `Centre` so that data far from the origin keeps float precision.
+struct Geometry
+{
+  vtkMTimeType DataTime = 0;
+  GLuint Buffer = 0;
+  GLsizei Vertices = 0;
+  double Centre[3] = { 0, 0, 0 };
+  bool Seen = false;
+};
+
+// What one Voxelize() draws: a geometry with its object -> world matrix.
+struct DrawItem
+{
+  Geometry* Geom;
+  double ObjectToWorld[16]; // row-major (vtkMatrix4x4 order)
+};
+
+// The triangles of `data` (polygons and strips; vtkTriangleFilter where they
+// are not all triangles already), as float xyz relative to `centre`.
+void Triangulate(vtkPolyData* data, std::vector<float>& xyz, double centre[3])
+{
+  xyz.clear();
+  vtkSmartPointer<vtkPolyData> tri = data;
+  bool allTriangles = data->GetNumberOfStrips() == 0;
+  if (allTriangles)
+  {
+    vtkCellArray* polys = data->GetPolys();
+    allTriangles = polys->GetNumberOfCells() == 0 || polys->IsHomogeneous() == 3;
+  }
+  if (!allTriangles)
+  {
+    vtkNew<vtkTriangleFilter> filter;
+    filter->SetInputData(data);
+    filter->PassVertsOff();
+    filter->PassLinesOff();
+    filter->Update();
+    tri = filter->GetOutput();
+  }
+  vtkPoints* points = tri->GetPoints();
+  vtkCellArray* polys = tri->GetPolys();
+  if (!points || polys->GetNumberOfCells() == 0)
+  {
+    centre[0] = centre[1] = centre[2] = 0;
+    return;
+  }
+  double bounds[6];
+  points->GetBounds(bounds);
+  for (int k = 0; k < 3; ++k)
+  {
+    centre[k] = 0.5 * (bounds[2 * k] + bounds[2 * k + 1]);
+    if (!std::isfinite(centre[k]))
+    {
+      centre[k] = 0;
+    }
+  }
+  xyz.reserve(static_cast<size_t>(polys->GetNumberOfCells()) * 9);
+  vtkIdType n = 0;
+  const vtkIdType* ids = nullptr;
+  for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
+  {
+    if (n != 3)
+    {
+      continue; // vtkTriangleFilter leaves only triangles; degenerate input cells
+    }
+    for (vtkIdType k = 0; k < 3; ++k)
+    {
+      double p[3];
+      points->GetPoint(ids[k], p);
+      for (int c = 0; c < 3; ++c)
+      {
+        xyz.push_back(static_cast<float>(p[c] - centre[c]));
+      }
+    }
+  }
+}
+
+// The assembly path's world matrix: a lone actor's own matrix (its path's
+// node holds none, or a snapshot), an assembly part's concatenated one.
+void PathMatrix(vtkAssemblyPath* path, vtkActor* actor, double m[16])
+{
+  vtkAssemblyNode* last = path->GetLastNode();
+  vtkMatrix4x4* matrix = (path->GetNumberOfItems() > 1 && last->GetMatrix())
+    ? last->GetMatrix()
+    : actor->GetMatrix();
+  std::copy(matrix->GetData(), matrix->GetData() + 16, m);
+}
+
+// Errors left by earlier GL calls are not ours (vtkOpenGLClearErrorMacro is
+// compiled out in release builds of VTK).
+void ClearGLErrors()
+{
+  for (int k = 0; k < 16 && glGetError() != GL_NO_ERROR; ++k)
+  {
+  }
+}
+
+// a * b for row-major 4x4 matrices.
+void Multiply(const double a[16], const double b[16], double out[16])
+{
+  double r[16];
+  for (int i = 0; i < 4; ++i)
+  {
+    for (int j = 0; j < 4; ++j)
+    {
+      double s = 0;
+      for (int k = 0; k < 4; ++k)
+      {
+        s += a[4 * i + k] * b[4 * k + j];
+      }
+      r[4 * i + j] = s;
+    }
+  }
+  std::copy(r, r + 16, out);
+}
+
+// Restores what vtkOpenGLState does not track: logic op, depth clamp,
+// polygon mode, rasterizer discard.
+struct RawState
+{
+  RawState()
+  {
+    this->LogicOp = glIsEnabled(GL_COLOR_LOGIC_OP) == GL_TRUE;
+    glGetIntegerv(GL_LOGIC_OP_MODE, &this->LogicOpMode);
+    this->DepthClamp = glIsEnabled(GL_DEPTH_CLAMP) == GL_TRUE;
+    this->Discard = glIsEnabled(GL_RASTERIZER_DISCARD) == GL_TRUE;
+    GLint modes[2] = { GL_FILL, GL_FILL };
+    glGetIntegerv(GL_POLYGON_MODE, modes);
+    this->PolygonMode = modes[0];
+  }
+  ~RawState()
+  {
+    Set(GL_COLOR_LOGIC_OP, this->LogicOp);
+    glLogicOp(static_cast<GLenum>(this->LogicOpMode));
+    Set(GL_DEPTH_CLAMP, this->DepthClamp);
+    Set(GL_RASTERIZER_DISCARD, this->Discard);
+    glPolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(this->PolygonMode));
+  }
+  static void Set(GLenum cap, bool on)
+  {
+    if (on)
+    {
+      glEnable(cap);
+    }
+    else
+    {
+      glDisable(cap);
+    }
+  }
+  bool LogicOp, DepthClamp, Discard;
+  GLint LogicOpMode = GL_COPY;
+  GLint PolygonMode = GL_FILL;
+};
+}
+
+struct vtkMRGIVoxelization::Internals
+{
+  // The window whose context holds the resources below (weak: a window that
+  // goes away takes its context, and the GL objects, with it).
+  vtkWeakPointer<vtkOpenGLRenderWindow> Window;
+  vtkTextureObject* Voxels = nullptr;
+  vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
+  GLuint VertexArray = 0;
+  std::map<vtkPolyData*, Geometry> Geometries;
+  // The last successful voxelization.
+  bool HasGrid = false;
+  mrgi_voxel_grid Grid{};
+  mrgi_voxel_projection Projection{};
+  double WorldToView[16] = { 0 }; // column-major
+  vtkIdType Triangles = 0;
+  int DrawnProps = 0;
+  int SkippedProps = 0;
+
+  bool HasResources() const
+  {
+    return this->Voxels || this->FrameBuffer || this->VertexArray || !this->Geometries.empty();
+  }
+
+  void ReleaseBuffers(bool haveContext)
+  {
+    for (auto& entry : this->Geometries)
+    {
+      if (haveContext && entry.second.Buffer)
+      {
+        glDeleteBuffers(1, &entry.second.Buffer);
+      }
+    }
+    this->Geometries.clear();
+    if (haveContext && this->VertexArray)
+    {
+      glDeleteVertexArrays(1, &this->VertexArray);
+    }
+    this->VertexArray = 0;
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkMRGIVoxelization::vtkMRGIVoxelization()
+  : Internal(new Internals)
+{
+  this->VoxelSize[0] = MRGI_VOXEL_DEFAULT_SIZE;
+  this->VoxelSize[1] = MRGI_VOXEL_DEFAULT_SIZE;
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIVoxelization::~vtkMRGIVoxelization()
+{
+  Internals& in = *this->Internal;
+  if (in.HasResources())
+  {
+    vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
+  }
+  in.ReleaseBuffers(false);
+  if (in.Voxels)
+  {
+    in.Voxels->Delete();
+  }
+  if (in.FrameBuffer)
+  {
+    in.FrameBuffer->Delete();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIVoxelization::ReleaseGraphicsResources(vtkWindow* w)
+{
+  Internals& in = *this->Internal;
+  in.ReleaseBuffers(w != nullptr);
+  if (in.Voxels)
+  {
+    if (w)
+    {
+      in.Voxels->ReleaseGraphicsResources(w);
+    }
+    in.Voxels->Delete();
+    in.Voxels = nullptr;
+  }
+  if (in.FrameBuffer)
+  {
+    if (w)
+    {
+      in.FrameBuffer->ReleaseGraphicsResources(w);
+    }
+    in.FrameBuffer->Delete();
+    in.FrameBuffer = nullptr;
+  }
+  in.HasGrid = false;
+  in.Window = nullptr;
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIVoxelization::SetVoxelSize(int width, int height)
+{
+  // Clamped like vtkSetClampMacro: the core's limits (mrgi_voxel.h section 3).
+  width = std::min(std::max(width, 1), MRGI_VOXEL_MAX_SIZE);
+  height = std::min(std::max(height, 1), MRGI_VOXEL_MAX_SIZE);
+  if (this->VoxelSize[0] != width || this->VoxelSize[1] != height)
+  {
+    this->VoxelSize[0] = width;
+    this->VoxelSize[1] = height;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkTextureObject* vtkMRGIVoxelization::GetVoxelTexture() const
+{
+  return this->Internal->HasGrid ? this->Internal->Voxels : nullptr;
+}
+
+void vtkMRGIVoxelization::GetLastVoxelSize(int size[2]) const
+{
+  const Internals& in = *this->Internal;
+  size[0] = in.HasGrid ? in.Grid.width : 0;
+  size[1] = in.HasGrid ? in.Grid.height : 0;
+}
+
+void vtkMRGIVoxelization::GetLastDepthRange(double range[2]) const
+{
+  const Internals& in = *this->Internal;
+  range[0] = in.HasGrid ? in.Grid.near_depth : 0.0;
+  range[1] = in.HasGrid ? in.Grid.far_depth : 0.0;
+}
+
+bool vtkMRGIVoxelization::GetLastParallelProjection() const
+{
+  return this->Internal->HasGrid && this->Internal->Projection.parallel != 0;
+}
+
+bool vtkMRGIVoxelization::GetLastWorldToView(double worldToView[16]) const
+{
+  if (!this->Internal->HasGrid)
+  {
+    return false;
+  }
+  std::copy(this->Internal->WorldToView, this->Internal->WorldToView + 16, worldToView);
+  return true;
+}
+
+vtkIdType vtkMRGIVoxelization::GetNumberOfTriangles() const
+{
+  return this->Internal->Triangles;
+}
+
+int vtkMRGIVoxelization::GetNumberOfDrawnProps() const
+{
+  return this->Internal->DrawnProps;
+}
+
+int vtkMRGIVoxelization::GetNumberOfSkippedProps() const
+{
+  return this->Internal->SkippedProps;
+}
+
+bool vtkMRGIVoxelization::GetGrid(mrgi_voxel_grid* grid, mrgi_voxel_projection* projection) const
+{
+  const Internals& in = *this->Internal;
+  if (!in.HasGrid)
+  {
+    return false;
+  }
+  if (grid)
+  {
+    *grid = in.Grid;
+  }
+  if (projection)
+  {
+    *projection = in.Projection;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIVoxelization::Voxelize(vtkRenderer* ren, double nearDepth, double farDepth)
+{
+  Internals& in = *this->Internal;
+  // ---- arguments (nothing touched on error: the previous buffer stays) ----
+  if (!ren)
+  {
+    vtkErrorMacro("Voxelize: no renderer");
+    return false;
+  }
+  vtkOpenGLRenderWindow* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!window)
+  {
+    vtkErrorMacro("Voxelize: the renderer is not in an OpenGL render window");
+    return false;
+  }
+  if (window->GetNeverRendered())
+  {
+    vtkErrorMacro("Voxelize: the window has never rendered (no OpenGL context yet); render once first");
+    return false;
+  }
+  if (!ren->IsActiveCameraCreated())
+  {
+    vtkErrorMacro("Voxelize: the renderer has no active camera");
+    return false;
+  }
+  if (!std::isfinite(nearDepth) || !std::isfinite(farDepth))
+  {
+    vtkErrorMacro("Voxelize: depth range [" << nearDepth << ", " << farDepth
+                                            << "] is not finite (NaN or infinite)");
+    return false;
+  }
+  if (!(nearDepth < farDepth))
+  {
+    vtkErrorMacro("Voxelize: near depth " << nearDepth << " must be less than far depth "
+                                          << farDepth);
+    return false;
+  }
+  int viewW = 0, viewH = 0, viewX = 0, viewY = 0;
+  ren->GetTiledSizeAndOrigin(&viewW, &viewH, &viewX, &viewY);
+  if (viewW < 1 || viewH < 1)
+  {
+    vtkErrorMacro("Voxelize: the renderer's viewport has zero size (" << viewW << " x " << viewH
+                                                                      << " pixels)");
+    return false;
+  }
+  // Slicing (mrgi_voxel.h section 2): the core rounds near/far and the scale to
+  // float exactly as the shader's uniforms, and rejects ranges too small for floats.
+  mrgi_voxel_grid grid;
+  mrgi_error err;
+  if (mrgi_voxel_grid_init(&grid, this->VoxelSize[0], this->VoxelSize[1], nearDepth, farDepth,
+        &err) != MRGI_OK)
+  {
+    vtkErrorMacro("Voxelize: " << err.message);
+    return false;
+  }
+  // Projection (section 4): the window's own (same aspect, so the voxel
+  // buffer covers exactly the renderer's frustum), as VTK's camera builds it.
+  vtkCamera* camera = ren->GetActiveCamera();
+  const double aspect = static_cast<double>(viewW) / static_cast<double>(viewH);
+  vtkMatrix4x4* P = camera->GetProjectionTransformMatrix(aspect, -1, 1);
+  double columnMajor[16];
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      columnMajor[4 * c + r] = P->GetElement(r, c);
+    }
+  }
+  mrgi_voxel_projection projection;
+  if (mrgi_voxel_projection_from_matrix(&projection, columnMajor, &err) != MRGI_OK)
+  {
+    vtkErrorMacro("Voxelize: the camera's projection cannot be voxelized: " << err.message);
+    return false;
+  }
+  // Terms the voxel projection (a scale and an offset per axis) cannot hold.
+  const bool parallel = projection.parallel != 0;
+  if (P->GetElement(0, 1) != 0.0 || P->GetElement(1, 0) != 0.0 ||
+    (parallel ? (P->GetElement(0, 2) != 0.0 || P->GetElement(1, 2) != 0.0)
+              : (P->GetElement(0, 3) != 0.0 || P->GetElement(1, 3) != 0.0)))
+  {
+    vtkErrorMacro("Voxelize: the camera's projection is sheared or off-axis, which the voxel "
+                  "projection (scale and offset per axis, mrgi_voxel.h section 4) cannot express");
+    return false;
+  }
+  if (!parallel && !(grid.near_depth > 0.0f))
+  {
+    vtkErrorMacro("Voxelize: near depth " << nearDepth
+                                          << " must be > 0 with a perspective camera");
+    return false;
+  }
+
+  // Resources live in one context: moving to another window frees them in
+  // the old one (or forgets them when that window, and its context, is gone).
+  if (in.Window != window && in.HasResources())
+  {
+    vtkOpenGLRenderWindow* old = in.Window;
+    if (old)
+    {
+      old->MakeCurrent();
+    }
+    this->ReleaseGraphicsResources(old);
+  }
+  in.Window = window;
+
+  // ---- what to draw ----
+  // Matrices in double; one model-view per item (view x actor x centre shift).
+  vtkMatrix4x4* view = camera->GetModelViewTransformMatrix();
+  double worldToView[16];
+  std::copy(view->GetData(), view->GetData() + 16, worldToView);
+  window->MakeCurrent();
+  ClearGLErrors();
+  for (auto& entry : in.Geometries)
+  {
+    entry.second.Seen = false;
+  }
+  std::vector<DrawItem> items;
+  int skipped = 0;
+  std::vector<float> xyz;
+  vtkPropCollection* props = ren->GetViewProps();
+  vtkCollectionSimpleIterator pit;
+  props->InitTraversal(pit);
+  while (vtkProp* prop = props->GetNextProp(pit))
+  {
+    if (!prop->GetVisibility())
+    {
+      continue;
+    }
+    prop->InitPathTraversal();
+    while (vtkAssemblyPath* path = prop->GetNextPath())
+    {
+      vtkActor* actor = vtkActor::SafeDownCast(path->GetLastNode()->GetViewProp());
+      if (!actor)
+      {
+        ++skipped; // volumes, 2D props, ...
+        continue;
+      }
+      if (!actor->GetVisibility())
+      {
+        continue;
+      }
+      vtkPolyDataMapper* mapper = vtkPolyDataMapper::SafeDownCast(actor->GetMapper());
+      // Translucent actors do not block the light in MRGI's opaque passes:
+      // left out so that visibility agrees with what is shaded.
+      if (!mapper || !actor->HasOpaqueGeometry())
+      {
+        ++skipped;
+        continue;
+      }
+      if (mapper->GetNumberOfInputConnections(0) > 0)
+      {
+        mapper->Update();
+      }
+      vtkPolyData* data = vtkPolyData::SafeDownCast(mapper->GetInputDataObject(0, 0));
+      if (!data)
+      {
+        ++skipped; // composite data and other non-polydata inputs
+        continue;
+      }
+      Geometry& geom = in.Geometries[data];
+      const vtkMTimeType dataTime = data->GetMTime();
+      if (geom.Buffer == 0 || geom.DataTime != dataTime)
+      {
+        Triangulate(data, xyz, geom.Centre);
+        if (geom.Buffer == 0)
+        {
+          glGenBuffers(1, &geom.Buffer);
+        }
+        glBindBuffer(GL_ARRAY_BUFFER, geom.Buffer);
+        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(xyz.size() * sizeof(float)),
+          xyz.empty() ? nullptr : xyz.data(), GL_STATIC_DRAW);
+        glBindBuffer(GL_ARRAY_BUFFER, 0);
+        geom.Vertices = static_cast<GLsizei>(xyz.size() / 3);
+        geom.DataTime = dataTime;
+      }
+      geom.Seen = true;
+      if (geom.Vertices == 0)
+      {
+        continue;
+      }
+      DrawItem item;
+      item.Geom = &geom;
+      PathMatrix(path, actor, item.ObjectToWorld);
+      items.push_back(item);
+    }
+  }
+  // Data no longer in the scene: free its buffers.
+  for (auto it = in.Geometries.begin(); it != in.Geometries.end();)
+  {
+    if (!it->second.Seen)
+    {
+      if (it->second.Buffer)
+      {
+        glDeleteBuffers(1, &it->second.Buffer);
+      }
+      it = in.Geometries.erase(it);
+    }
+    else
+    {
+      ++it;
+    }
+  }
+
+  // ---- resources ----
+  if (!in.Voxels || static_cast<int>(in.Voxels->GetWidth()) != grid.width ||
+    static_cast<int>(in.Voxels->GetHeight()) != grid.height)
+  {
+    if (in.Voxels)
+    {
+      in.Voxels->ReleaseGraphicsResources(window);
+      in.Voxels->Delete();
+    }
+    // RGBA32UI: 128 one-bit voxels per pixel (NPW10 4.2, mrgi_voxel.h section 1).
+    in.Voxels = vtkTextureObject::New();
+    in.Voxels->SetContext(window);
+    in.Voxels->SetInternalFormat(GL_RGBA32UI);
+    in.Voxels->SetFormat(GL_RGBA_INTEGER);
+    in.Voxels->SetDataType(GL_UNSIGNED_INT);
+    in.Voxels->SetMinificationFilter(vtkTextureObject::Nearest);
+    in.Voxels->SetMagnificationFilter(vtkTextureObject::Nearest);
+    in.Voxels->SetWrapS(vtkTextureObject::ClampToEdge);
+    in.Voxels->SetWrapT(vtkTextureObject::ClampToEdge);
+    if (!in.Voxels->Allocate2D(static_cast<unsigned int>(grid.width),
+          static_cast<unsigned int>(grid.height), 4, VTK_UNSIGNED_INT))
+    {
+      vtkErrorMacro("Voxelize: could not allocate the " << grid.width << " x " << grid.height
+                                                        << " RGBA32UI voxel texture");
+      in.Voxels->Delete();
+      in.Voxels = nullptr;
+      in.HasGrid = false;
+      return false;
+    }
+    in.HasGrid = false;
+  }
+  if (!in.FrameBuffer)
+  {
+    in.FrameBuffer = vtkOpenGLFramebufferObject::New();
+    in.FrameBuffer->SetContext(window);
+  }
+  if (!in.VertexArray)
+  {
+    glGenVertexArrays(1, &in.VertexArray);
+  }
+  const std::string header = "//VTK::System::Dec\n" + vtkMRGIShaderUtilities::Defines();
+  const std::string vs = header + vtkMRGIVoxelizeVS;
+  const std::string gs = header + vtkMRGIVoxelizeGS;
+  const std::string fs = header + vtkMRGIVoxelizeFS;
+  vtkShaderProgram* program =
+    window->GetShaderCache()->ReadyShaderProgram(vs.c_str(), fs.c_str(), gs.c_str());
+  if (!program || !program->GetCompiled())
+  {
+    vtkErrorMacro("Voxelize: could not build the voxelization shader"
+      << (program ? ": " + program->GetError() : std::string()));
+    return false;
+  }
+  const GLint vertexLocation = glGetAttribLocation(program->GetHandle(), "vertexMC");
+
+  // ---- the pass ----
+  vtkMRGIShaderUtilities::ScopedStage stage(this->StageTimer, "voxelize");
+  vtkOpenGLState* ostate = window->GetState();
+  bool ok = true;
+  {
+    // Every surface counts, hidden or back-facing (no depth test, no
+    // culling); fragments combine by OR (logic ops apply to integer targets,
+    // blending does not), all four channels written.
+    vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+    vtkOpenGLState::ScopedglEnableDisable depth(ostate, GL_DEPTH_TEST);
+    vtkOpenGLState::ScopedglEnableDisable cull(ostate, GL_CULL_FACE);
+    vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
+    vtkOpenGLState::ScopedglEnableDisable stencil(ostate, GL_STENCIL_TEST);
+    vtkOpenGLState::ScopedglViewport viewport(ostate);
+    vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+    RawState raw;
+    ostate->vtkglDisable(GL_BLEND);
+    ostate->vtkglDisable(GL_DEPTH_TEST);
+    ostate->vtkglDisable(GL_CULL_FACE);
+    ostate->vtkglDisable(GL_SCISSOR_TEST);
+    ostate->vtkglDisable(GL_STENCIL_TEST);
+    ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    // Depth clamp would keep what lies beyond near/far: clipping must drop it.
+    glDisable(GL_DEPTH_CLAMP);
+    glDisable(GL_RASTERIZER_DISCARD);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+
+    vtkOpenGLFramebufferObject* fbo = in.FrameBuffer;
+    fbo->SaveCurrentBindingsAndBuffers();
+    fbo->Bind();
+    fbo->AddColorAttachment(0, in.Voxels);
+    fbo->ActivateDrawBuffers(1);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    {
+      vtkErrorMacro("Voxelize: the RGBA32UI voxel framebuffer is incomplete");
+      ok = false;
+    }
+    if (ok)
+    {
+      // Explicit viewport: the voxel buffer, whatever the window's size.
+      ostate->vtkglViewport(0, 0, grid.width, grid.height);
+      const GLuint zero[4] = { 0u, 0u, 0u, 0u };
+      glClearBufferuiv(GL_COLOR, 0, zero);
+      glEnable(GL_COLOR_LOGIC_OP);
+      glLogicOp(GL_OR);
+
+      // Eye -> clip from the voxel projection (so GPU and C twin use the same
+      // float numbers) with near/far as clip planes (section 2: fragments
+      // outside [near, far] are dropped). Column-major.
+      const double n = grid.near_depth, f = grid.far_depth;
+      float clip[16] = { 0 };
+      clip[0] = projection.scale_x;
+      clip[5] = projection.scale_y;
+      if (parallel)
+      {
+        clip[10] = static_cast<float>(-2.0 / (f - n));
+        clip[12] = projection.offset_x;
+        clip[13] = projection.offset_y;
+        clip[14] = static_cast<float>(-(f + n) / (f - n));
+        clip[15] = 1.0f;
+      }
+      else
+      {
+        clip[8] = -projection.offset_x;
+        clip[9] = -projection.offset_y;
+        clip[10] = static_cast<float>(-(f + n) / (f - n));
+        clip[11] = -1.0f;
+        clip[14] = static_cast<float>(-2.0 * f * n / (f - n));
+      }
+      program->SetUniformMatrix4x4("mrgiProjection", clip);
+      program->SetUniformf("mrgiNear", grid.near_depth);
+      program->SetUniformf("mrgiFar", grid.far_depth);
+      program->SetUniformf("mrgiSliceScale", grid.slice_scale);
+
+      glBindVertexArray(in.VertexArray);
+      vtkIdType triangles = 0;
+      for (const DrawItem& item : items)
+      {
+        // model-view = view x object->world x translate(centre), in double.
+        double shift[16] = { 1, 0, 0, item.Geom->Centre[0], 0, 1, 0, item.Geom->Centre[1], 0, 0,
+          1, item.Geom->Centre[2], 0, 0, 0, 1 };
+        double mv[16];
+        Multiply(item.ObjectToWorld, shift, mv);
+        Multiply(worldToView, mv, mv);
+        float mvColumns[16];
+        for (int r = 0; r < 4; ++r)
+        {
+          for (int c = 0; c < 4; ++c)
+          {
+            mvColumns[4 * c + r] = static_cast<float>(mv[4 * r + c]);
+          }
+        }
+        program->SetUniformMatrix4x4("mrgiModelView", mvColumns);
+        glBindBuffer(GL_ARRAY_BUFFER, item.Geom->Buffer);
+        if (vertexLocation >= 0)
+        {
+          glEnableVertexAttribArray(static_cast<GLuint>(vertexLocation));
+          glVertexAttribPointer(
+            static_cast<GLuint>(vertexLocation), 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+        }
+        glDrawArrays(GL_TRIANGLES, 0, item.Geom->Vertices);
+        triangles += item.Geom->Vertices / 3;
+      }
+      glBindBuffer(GL_ARRAY_BUFFER, 0);
+      glBindVertexArray(0);
+      in.Triangles = triangles;
+    }
+    fbo->RemoveColorAttachments(1);
+    fbo->UnBind();
+    fbo->RestorePreviousBindingsAndBuffers();
+  }
+  const GLenum error = glGetError();
+  if (ok && error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("Voxelize: OpenGL error 0x" << std::hex << error << std::dec);
+    ok = false;
+  }
+  in.HasGrid = ok;
+  if (!ok)
+  {
+    return false;
+  }
+  in.Grid = grid;
+  in.Projection = projection;
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      in.WorldToView[4 * c + r] = worldToView[4 * r + c];
+    }
+  }
+  in.DrawnProps = static_cast<int>(items.size());
+  in.SkippedProps = skipped;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIVoxelization::ReadVoxels(vtkRenderWindow* window, vtkTypeUInt32Array* voxels)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  if (!renWin || !voxels)
+  {
+    vtkErrorMacro("ReadVoxels: needs an OpenGL render window and an array");
+    return false;
+  }
+  if (!in.HasGrid || !in.Voxels)
+  {
+    vtkErrorMacro("ReadVoxels: nothing voxelized yet (no successful Voxelize())");
+    return false;
+  }
+  if (renWin != in.Window)
+  {
+    vtkErrorMacro("ReadVoxels: the voxels were made in another window");
+    return false;
+  }
+  const int w = in.Grid.width, h = in.Grid.height;
+  std::vector<GLuint> words(mrgi_voxel_buffer_words(&in.Grid));
+  renWin->MakeCurrent();
+  ClearGLErrors();
+  vtkOpenGLState* ostate = renWin->GetState();
+  ostate->PushReadFramebufferBinding();
+  in.FrameBuffer->Bind(GL_READ_FRAMEBUFFER);
+  in.FrameBuffer->AddColorAttachment(0, in.Voxels);
+  in.FrameBuffer->ActivateReadBuffer(0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_INT, words.data());
+  in.FrameBuffer->RemoveColorAttachments(1);
+  ostate->PopReadFramebufferBinding();
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("ReadVoxels: OpenGL error 0x" << std::hex << error << std::dec);
+    return false;
+  }
+  voxels->SetNumberOfComponents(MRGI_VOXEL_CHANNELS);
+  voxels->SetNumberOfTuples(static_cast<vtkIdType>(w) * h);
+  std::copy(words.begin(), words.end(), voxels->GetPointer(0));
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIVoxelization::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  const Internals& in = *this->Internal;
+  os << indent << "VoxelSize: " << this->VoxelSize[0] << " x " << this->VoxelSize[1] << "\n";
+  os << indent << "Voxelized: " << (in.HasGrid ? "yes" : "no") << "\n";
+  if (in.HasGrid)
+  {
+    os << indent << "LastGrid: " << in.Grid.width << " x " << in.Grid.height << " over ["
+       << in.Grid.near_depth << ", " << in.Grid.far_depth << "]\n";
+    os << indent << "LastProjection: " << (in.Projection.parallel ? "parallel" : "perspective")
+       << "\n";
+  }
+  os << indent << "Triangles: " << in.Triangles << "\n";
+  os << indent << "DrawnProps: " << in.DrawnProps << "\n";
+  os << indent << "SkippedProps: " << in.SkippedProps << "\n";
+  os << indent << "CachedGeometries: " << in.Geometries.size() << "\n";
+}

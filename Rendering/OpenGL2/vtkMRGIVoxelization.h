@@ -1,0 +1,182 @@
+/**
+ * @class   vtkMRGIVoxelization
+ * @brief   Screen-space voxelization on the GPU (nichols-penmatsa-wyman-2010
+ *          section 3.3): every opaque surface of a renderer rasterized into a
+ *          VW x VH RGBA32UI texture of 128 one-bit depth slices per pixel.
+ *
+ * The bit layout, the depth slicing, the projection and the per-fragment rule
+ * are the contract of the C core (mrgi_voxel.h sections 1-5), whose C twin is
+ * mrgi_voxel_voxelize(); this class is the GPU side of that contract:
+ *
+ * - the buffer is VoxelSize (VW x VH, independent of the window) and covers
+ *   the same view frustum as the renderer (same camera, same aspect: the
+ *   renderer's viewport), so window pixel (x, y) maps to voxel pixel
+ *   (floor((x + 0.5) VW / W), floor((y + 0.5) VH / H));
+ * - slices are uniform in linear eye depth d = -z_eye over the caller's
+ *   [near, far] (the depth range of what the visibility queries need, e.g.
+ *   the G-buffer's range widened to the area light), not the camera's
+ *   clipping range; near and far are the clip planes of the pass, so
+ *   surfaces outside [near, far] write nothing;
+ * - every triangle is drawn, hidden ones too (no depth test, no culling),
+ *   and each fragment ORs (glLogicOp(GL_OR)) the slices of
+ *   [d - h, d + h] clamped to the triangle's depth range [dmin, dmax], with
+ *   h = 0.5 fwidth(d); a geometry shader passes [dmin, dmax] as flat varyings.
+ *
+ * What is drawn: the polygons and triangle strips (triangulated with
+ * vtkTriangleFilter where they are not triangles already) of the vtkPolyData
+ * input of every visible, opaque vtkActor whose mapper is a
+ * vtkPolyDataMapper, assemblies included, with the actor's matrix, whatever
+ * the actor's representation (the voxels hold surfaces). Not drawn, and
+ * counted in GetNumberOfSkippedProps(): translucent actors (they do not
+ * block light in the opaque passes either), volumes, composite data sets,
+ * glyph and other non-polydata mappers, 2D props. Lines and vertices have no
+ * surface and are ignored.
+ *
+ * Geometry goes through the pass's own shader program (not the mappers'):
+ * the triangulated points are uploaded once per polydata (cached on its
+ * MTime, shared by actors that share data) relative to their centre, and the
+ * actor matrix and the camera's view matrix reach the shader as one
+ * model-view matrix computed in double, so moving an actor or the camera
+ * uploads nothing.
+ *
+ * Use: call Voxelize() with the renderer's window current and rendered at
+ * least once (e.g. from a render pass, or after Render()); then
+ * GetVoxelTexture() for the ray march (usampler2D, texelFetch; slice s in
+ * channel s >> 5, bit s & 31) and, from C++, GetGrid() for the slicing and
+ * projection the march needs. ReadVoxels() reads the buffer back in the
+ * layout of mrgi_voxel.h.
+ */
+#ifndef vtkMRGIVoxelization_h
+#define vtkMRGIVoxelization_h
+
+#include "MRGIRenderingModule.h" // For export macro
+#include "vtkObject.h"
+
+#include <memory> // For std::unique_ptr
+
+class vtkRenderTimerLog;
+class vtkRenderWindow;
+class vtkRenderer;
+class vtkTextureObject;
+class vtkTypeUInt32Array;
+class vtkWindow;
+#ifndef __VTK_WRAP__
+struct mrgi_voxel_grid;
+struct mrgi_voxel_projection;
+#endif
+
+class MRGIRENDERING_EXPORT vtkMRGIVoxelization : public vtkObject
+{
+public:
+  static vtkMRGIVoxelization* New();
+  vtkTypeMacro(vtkMRGIVoxelization, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Voxel buffer size VW x VH, each side clamped to 1..MRGI_VOXEL_MAX_SIZE
+   * (16384). Default MRGI_VOXEL_DEFAULT_SIZE (128) per side: the paper finds
+   * 128^2 x 128 "almost indistinguishable" from 1024^2 x 128 (section 4.2).
+   * SetVoxelSide(n) sets n x n. Takes effect at the next Voxelize().
+   */
+  virtual void SetVoxelSize(int width, int height);
+  void SetVoxelSize(const int size[2]) { this->SetVoxelSize(size[0], size[1]); }
+  void SetVoxelSide(int side) { this->SetVoxelSize(side, side); }
+  vtkGetVector2Macro(VoxelSize, int);
+  ///@}
+
+  /**
+   * Voxelize the renderer's opaque polygonal props with its active camera
+   * into the voxel texture, slicing [nearDepth, farDepth] (linear eye
+   * depths). The renderer must belong to an OpenGL window that has rendered
+   * at least once. False, with an error naming the problem and the previous
+   * buffer kept, for: no renderer/window, a window never rendered, no active
+   * camera, a renderer of zero size, NaN or infinite depths, nearDepth >=
+   * farDepth (also after rounding to float), nearDepth <= 0 with a
+   * perspective camera, a camera projection the voxel projection cannot
+   * express (mirrored, sheared or off-axis), or an OpenGL failure.
+   */
+  bool Voxelize(vtkRenderer* ren, double nearDepth, double farDepth);
+
+  /**
+   * Read the last voxel buffer back: 4 unsigned 32-bit words per voxel pixel
+   * (channels R, G, B, A = slices 0-31, 32-63, 64-95, 96-127), rows bottom
+   * up, texel (x, y) at tuple y VW + x: the storage of mrgi_voxel.h. The
+   * array gets 4 components and VW VH tuples. False (array untouched) before
+   * a successful Voxelize(), without a window, or with a window other than
+   * the one voxelized in.
+   */
+  bool ReadVoxels(vtkRenderWindow* window, vtkTypeUInt32Array* voxels);
+
+  /**
+   * The voxel buffer (GL_RGBA32UI, nearest filtering) of the last
+   * successful Voxelize(), for later passes (usampler2D + texelFetch);
+   * nullptr before. Owned by this object.
+   */
+  vtkTextureObject* GetVoxelTexture() const;
+
+  /** Size of the last voxel buffer (0 x 0 before a successful Voxelize()). */
+  void GetLastVoxelSize(int size[2]) const;
+
+  /** Depth range [near, far] of the last voxel buffer, as the floats the shader used. */
+  void GetLastDepthRange(double range[2]) const;
+
+  /** Whether the last voxel buffer was made with a parallel projection. */
+  bool GetLastParallelProjection() const;
+
+  /**
+   * The world -> eye matrix of the last voxelization (the camera's
+   * model-view matrix), column-major (OpenGL order). False before.
+   */
+  bool GetLastWorldToView(double worldToView[16]) const;
+
+  /** Triangles drawn by the last Voxelize(). */
+  vtkIdType GetNumberOfTriangles() const;
+
+  /** Actors (assembly parts count one each) drawn by the last Voxelize(). */
+  int GetNumberOfDrawnProps() const;
+
+  /** Visible props the last Voxelize() did not draw (translucent, not polygonal: see the class notes). */
+  int GetNumberOfSkippedProps() const;
+
+#ifndef __VTK_WRAP__
+  /**
+   * The slicing and projection of the last voxel buffer, for the ray march
+   * and the C twins (mrgi_voxel_march.h): `grid` as mrgi_voxel_grid_init()
+   * makes it (size, near, far, slice scale), `projection` the camera's
+   * (section 4). Either pointer may be null. False (nothing written) before
+   * a successful Voxelize().
+   */
+  bool GetGrid(mrgi_voxel_grid* grid, mrgi_voxel_projection* projection) const;
+#endif
+
+  /**
+   * Log the pass as a GPU timer event ("voxelize") on this timer; null (the
+   * default) logs nothing. Not reference counted.
+   */
+  void SetStageTimer(vtkRenderTimerLog* timer) { this->StageTimer = timer; }
+
+  /**
+   * Free every GL resource (texture, framebuffer, vertex buffers, vertex
+   * array) in `w`'s context (the window last voxelized in). Voxelizing in
+   * another window frees them in the old one first (or forgets them when
+   * that window is gone).
+   */
+  void ReleaseGraphicsResources(vtkWindow* w);
+
+protected:
+  vtkMRGIVoxelization();
+  ~vtkMRGIVoxelization() override;
+
+  int VoxelSize[2];
+  vtkRenderTimerLog* StageTimer = nullptr;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+
+private:
+  vtkMRGIVoxelization(const vtkMRGIVoxelization&) = delete;
+  void operator=(const vtkMRGIVoxelization&) = delete;
+};
+
+#endif
