@@ -10,6 +10,7 @@
 #include "vtkLightCollection.h"
 #include "vtkMRGIEGLRenderWindow.h"
 #include "vtkMRGIImageIO.h"
+#include "vtkMRGIAreaLight.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGIReferenceRenderer.h"
@@ -30,6 +31,7 @@
 #include "vtkPointData.h"
 
 #include "mrgi_error.h"
+#include "mrgi_area_light.h"
 #include "mrgi_multires.h"
 #include "mrgi_parse.h"
 
@@ -77,6 +79,17 @@ Lights (replace the scene's lights when given; repeatable)
   --light directional:DX,DY,DZ          direction the light travels
   --light headlight
   --light-intensity S    multiply every light's intensity by S
+
+Area lights (direct light from textured rectangles, nichols-penmatsa-wyman-2010;
+Documentation/AreaLights.md; drawn whatever --gi says)
+  --area-light CX,CY,CZ:UX,UY,UZ:VX,VY,VZ[:R,G,B[:I]]
+                         add a rectangle: centre, full edge vectors u and v
+                         (perpendicular; it emits towards u x v), colour, intensity
+                         (radiance = I x colour; default 1,1,1 and 1); repeatable;
+                         cornell-area brings the Cornell box's emitter
+  --area-light-two-sided emit on both sides (every area light)
+  --area-light-samples N light samples per area light, 1..4096 (default 256)
+  --area-lights off      ignore the scene's and the command line's area lights
 
 Scaling scene
   --triangles N          total triangle count (default 100000)
@@ -158,6 +171,10 @@ struct Options
   long long FinestLevel = -1;
   bool MaskUpsampling = false;
   bool Splatting = false;
+  std::vector<std::string> AreaLights;
+  bool AreaLightsOn = true;
+  bool AreaLightTwoSided = false;
+  long long AreaLightSamples = 256;
   long long VPLs = 256;
   bool ImportanceVPLs = false;
   long long RSMSize = 256;
@@ -225,6 +242,52 @@ bool ParseVec3(const std::string& option, const char* text, double out[3], std::
     why = option + ": " + err.message;
     return false;
   }
+  return true;
+}
+
+// --area-light CX,CY,CZ:UX,UY,UZ:VX,VY,VZ[:R,G,B[:I]]; the light checks the
+// geometry itself (perpendicular, non-zero edges) when it is used.
+bool ParseAreaLight(const std::string& spec, vtkMRGIAreaLight* light, std::string& why)
+{
+  const std::vector<std::string> parts = SplitColon(spec);
+  const std::string option = "--area-light '" + spec + "'";
+  if (parts.size() < 3 || parts.size() > 5)
+  {
+    why = option + ": expected CX,CY,CZ:UX,UY,UZ:VX,VY,VZ[:R,G,B[:I]]";
+    return false;
+  }
+  double c[3], u[3], v[3], rgb[3] = { 1.0, 1.0, 1.0 }, intensity = 1.0;
+  if (!ParseVec3(option + " centre", parts[0].c_str(), c, why) ||
+    !ParseVec3(option + " edge u", parts[1].c_str(), u, why) ||
+    !ParseVec3(option + " edge v", parts[2].c_str(), v, why) ||
+    (parts.size() > 3 && !ParseVec3(option + " colour", parts[3].c_str(), rgb, why)))
+  {
+    return false;
+  }
+  mrgi_error err;
+  if (parts.size() > 4 &&
+    (mrgi_parse_double(parts[4].c_str(), &intensity, &err) != MRGI_OK || intensity < 0))
+  {
+    why = option + ": the intensity must be a number >= 0";
+    return false;
+  }
+  const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  const double uv = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+  if (!(uu > 0) || !(vv > 0) || std::fabs(uv) > MRGI_AREA_LIGHT_PERPENDICULAR_TOLERANCE * std::sqrt(uu * vv))
+  {
+    why = option + ": the edges must be non-zero and perpendicular";
+    return false;
+  }
+  if (rgb[0] < 0 || rgb[1] < 0 || rgb[2] < 0)
+  {
+    why = option + ": the colour must be >= 0";
+    return false;
+  }
+  light->SetCenter(c);
+  light->SetEdgeU(u);
+  light->SetEdgeV(v);
+  light->SetColor(rgb);
+  light->SetIntensity(intensity);
   return true;
 }
 
@@ -461,6 +524,32 @@ int ParseArguments(int argc, char* argv[], Options& o)
       }
       if (o.Preset < 0)
         return Fail(std::string("--preset '") + v + "': expected fast, balanced or accurate");
+    }
+    else if (arg == "--area-light")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      o.AreaLights.emplace_back(v);
+    }
+    else if (arg == "--area-light-two-sided")
+    {
+      o.AreaLightTwoSided = true;
+    }
+    else if (arg == "--area-lights")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      if (!ParseSwitch(v, "on", o.AreaLightsOn))
+        return Fail(std::string("--area-lights '") + v + "': expected on or off");
+    }
+    else if (arg == "--area-light-samples")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      int64_t value = 0;
+      if (mrgi_parse_int64(v, MRGI_AREA_LIGHT_MIN_SAMPLES, MRGI_AREA_LIGHT_MAX_SAMPLES, &value, &err) != MRGI_OK)
+        return Fail(arg + ": " + err.message);
+      o.AreaLightSamples = value;
     }
     else if (arg == "--gather")
     {
@@ -733,6 +822,28 @@ int main(int argc, char* argv[])
   if (o.FinestLevel >= 0)
     mrgi->GetMultiresolution()->SetFinestLevel(static_cast<int>(o.FinestLevel));
   mrgi->GetMultiresolution()->SetSurfaceDetail(o.SurfaceDetail);
+  if (o.AreaLightsOn)
+  {
+    for (int l = 0; l < builder->GetNumberOfAreaLights(); ++l)
+    {
+      mrgi->AddAreaLight(builder->GetAreaLight(l));
+    }
+    for (const std::string& spec : o.AreaLights)
+    {
+      vtkNew<vtkMRGIAreaLight> light;
+      if (!ParseAreaLight(spec, light, why))
+      {
+        return Fail(why);
+      }
+      renderer->AddActor(light->GetGeometryActor());
+      mrgi->AddAreaLight(light);
+    }
+    for (int l = 0; l < mrgi->GetNumberOfAreaLights(); ++l)
+    {
+      mrgi->GetAreaLight(l)->SetNumberOfSamples(static_cast<int>(o.AreaLightSamples));
+      mrgi->GetAreaLight(l)->SetTwoSided(mrgi->GetAreaLight(l)->GetTwoSided() || o.AreaLightTwoSided);
+    }
+  }
   mrgi->GetMultiresolution()->SetGatherMode(o.Splatting ? vtkMRGIMultiresolution::GatherSplatting
                                                         : vtkMRGIMultiresolution::GatherStenciled);
   mrgi->SetUpsampleMode(o.MaskUpsampling ? vtkMRGIMultiresolution::UpsampleMaskWeighted

@@ -5,6 +5,7 @@
 #include "vtkFloatArray.h"
 #include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
+#include "vtkMRGIAreaLight.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIShaderUtilities.h"
@@ -40,6 +41,7 @@
 #include "vtkMRGIVPLIrradiance.h"
 
 #include "mrgi_buffers.h"
+#include "mrgi_area_light.h"
 #include "mrgi_multires.h"
 #include "mrgi_vpl.h"
 
@@ -265,6 +267,61 @@ vtkMRGIPass::~vtkMRGIPass()
   this->VPLSelection->Delete();
   this->Multiresolution->Delete();
   this->OpaqueSequence->Delete();
+  this->RemoveAllAreaLights();
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIPass::AddAreaLight(vtkMRGIAreaLight* light)
+{
+  if (!light || std::find(this->AreaLights.begin(), this->AreaLights.end(), light) != this->AreaLights.end())
+  {
+    return;
+  }
+  light->Register(this);
+  this->AreaLights.push_back(light);
+  this->AreaLightSamples.push_back(nullptr);
+  this->AreaLightSampleBuilds.push_back(-1);
+  this->Modified();
+}
+
+void vtkMRGIPass::RemoveAreaLight(vtkMRGIAreaLight* light)
+{
+  auto it = std::find(this->AreaLights.begin(), this->AreaLights.end(), light);
+  if (it == this->AreaLights.end())
+  {
+    return;
+  }
+  const size_t i = static_cast<size_t>(it - this->AreaLights.begin());
+  // A texture of a light removed while the context is gone is freed by
+  // vtkTextureObject's destructor without GL calls.
+  if (this->AreaLightSamples[i])
+  {
+    this->AreaLightSamples[i]->Delete();
+  }
+  this->AreaLightSamples.erase(this->AreaLightSamples.begin() + static_cast<std::ptrdiff_t>(i));
+  this->AreaLightSampleBuilds.erase(this->AreaLightSampleBuilds.begin() + static_cast<std::ptrdiff_t>(i));
+  this->AreaLights.erase(it);
+  light->UnRegister(this);
+  this->Modified();
+}
+
+void vtkMRGIPass::RemoveAllAreaLights()
+{
+  while (!this->AreaLights.empty())
+  {
+    this->RemoveAreaLight(this->AreaLights.back());
+  }
+}
+
+int vtkMRGIPass::GetNumberOfAreaLights() const
+{
+  return static_cast<int>(this->AreaLights.size());
+}
+
+vtkMRGIAreaLight* vtkMRGIPass::GetAreaLight(int index) const
+{
+  return index >= 0 && index < this->GetNumberOfAreaLights() ? this->AreaLights[static_cast<size_t>(index)]
+                                                             : nullptr;
 }
 
 //------------------------------------------------------------------------------
@@ -325,8 +382,17 @@ void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
   Release(this->DepthTexture, w);
   Release(this->IrradianceTexture, w);
   Release(this->IndirectTexture, w);
+  Release(this->AreaIrradianceTexture, w);
+  Release(this->AreaDirectTexture, w);
+  Release(this->AreaSumTexture, w);
+  for (size_t i = 0; i < this->AreaLightSamples.size(); ++i)
+  {
+    Release(this->AreaLightSamples[i], w);
+    this->AreaLightSampleBuilds[i] = -1;
+  }
   this->BufferSize[0] = this->BufferSize[1] = 0;
   this->IndirectComputed = false;
+  this->AreaLightsComputed = false;
 }
 
 //------------------------------------------------------------------------------
@@ -592,13 +658,14 @@ void vtkMRGIPass::RenderGather(vtkOpenGLRenderWindow* renWin, vtkRenderer* rende
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIPass::RenderMultiresolution(
-  vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, int vplCount, vtkRenderTimerLog* timer)
+bool vtkMRGIPass::SelectMultiresolution(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer,
+  vtkRenderTimerLog* timer, float viewToWorld[16], bool& parallel)
 {
   // Pixel size at depth d for the scale-invariant thresholds (mrgi_multires.h).
   vtkCamera* camera = renderer->GetActiveCamera();
   const mrgi_multires_projection projection = { camera->GetParallelProjection() ? 1 : 0,
     camera->GetViewAngle(), camera->GetParallelScale() };
+  parallel = projection.parallel != 0;
   float ab[2];
   mrgi_error err;
   if (mrgi_multires_pixel_size_coefficients(&projection, this->Viewport[3], ab, &err) != MRGI_OK)
@@ -606,16 +673,33 @@ bool vtkMRGIPass::RenderMultiresolution(
     vtkErrorMacro(<< "multiresolution: " << err.message);
     return false;
   }
-  vtkNew<vtkMatrix4x4> viewToWorld;
-  vtkMatrix4x4::Invert(camera->GetModelViewTransformMatrix(), viewToWorld);
-  float m[16];
+  vtkNew<vtkMatrix4x4> inverse;
+  vtkMatrix4x4::Invert(camera->GetModelViewTransformMatrix(), inverse);
   for (int r = 0; r < 4; ++r)
   {
     for (int c = 0; c < 4; ++c)
     {
-      m[c * 4 + r] = static_cast<float>(viewToWorld->GetElement(r, c));
-      this->LastViewToWorld[c * 4 + r] = viewToWorld->GetElement(r, c);
+      viewToWorld[c * 4 + r] = static_cast<float>(inverse->GetElement(r, c));
+      this->LastViewToWorld[c * 4 + r] = inverse->GetElement(r, c);
     }
+  }
+  vtkMRGIMultiresolution* mr = this->Multiresolution;
+  mr->SetStageTimer(timer);
+  ScopedStage stage(timer, "select");
+  const bool ok = mr->Update(renWin, this->PositionTexture, this->NormalTexture, this->Viewport[0],
+    this->Viewport[1], this->Viewport[2], this->Viewport[3], ab[0], ab[1]);
+  mr->SetStageTimer(nullptr);
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIPass::RenderMultiresolution(
+  vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, int vplCount, vtkRenderTimerLog* timer)
+{
+  float* m = this->LastViewToWorldFloat;
+  if (!this->SelectMultiresolution(renWin, renderer, timer, m, this->LastParallel))
+  {
+    return false;
   }
   vtkMRGIMultiresolution* mr = this->Multiresolution;
   mr->SetStageTimer(timer);
@@ -624,14 +708,6 @@ bool vtkMRGIPass::RenderMultiresolution(
     vtkMRGIMultiresolution* Target;
     ~ClearTimer() { this->Target->SetStageTimer(nullptr); }
   } clearTimer{ mr };
-  {
-    ScopedStage stage(timer, "select");
-    if (!mr->Update(renWin, this->PositionTexture, this->NormalTexture, this->Viewport[0],
-          this->Viewport[1], this->Viewport[2], this->Viewport[3], ab[0], ab[1]))
-    {
-      return false;
-    }
-  }
   {
     ScopedStage stage(timer, "gather");
     if (!mr->Gather(renWin, this->PositionTexture, this->NormalTexture, this->Viewport[0],
@@ -643,12 +719,110 @@ bool vtkMRGIPass::RenderMultiresolution(
   ScopedStage stage(timer, "upsample");
   return mr->Upsample(renWin, this->UpsampleMode, this->UpsampleMaskWeight) &&
     mr->Resolve(renWin, this->AlbedoTexture, this->PositionTexture, this->NormalTexture,
-      projection.parallel != 0, this->IrradianceTexture, this->IndirectTexture,
+      this->LastParallel, this->IrradianceTexture, this->IndirectTexture,
       this->Viewport[0], this->Viewport[1], this->IndirectStrength);
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIPass::RenderAreaLights(
+  vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, bool selected, vtkRenderTimerLog* timer)
+{
+  // nichols-penmatsa-wyman-2010 3.2: the area light's direct light at the
+  // multiresolution texels, upsampled like the indirect light. One gather,
+  // upsampling and resolve per light, each added to the colour; the sum is
+  // kept for GetAreaLightBuffer(). The steps are timed as one stage, "area"
+  // (the multiresolution object's step names belong to the indirect light).
+  if (!selected &&
+    !this->SelectMultiresolution(renWin, renderer, timer, this->LastViewToWorldFloat, this->LastParallel))
+  {
+    return false;
+  }
+  ScopedStage stage(timer, "area");
+  const int w = this->ColorTexture->GetWidth(), h = this->ColorTexture->GetHeight();
+  auto ensure = [&](vtkTextureObject*& t) {
+    if (!t)
+    {
+      t = MakeTexture(renWin, GL_RGBA32F, w, h);
+    }
+    t->Resize(w, h);
+  };
+  ensure(this->AreaIrradianceTexture);
+  ensure(this->AreaDirectTexture);
+  ensure(this->AreaSumTexture);
+  {
+    // Clear the sum over the viewport.
+    vtkOpenGLState* ostate = renWin->GetState();
+    ViewportQuadState state(ostate, this->Viewport);
+    vtkOpenGLFramebufferObject* fbo = this->FrameBuffer;
+    fbo->SaveCurrentBindingsAndBuffers();
+    fbo->Bind();
+    fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
+    fbo->AddColorAttachment(0, this->AreaSumTexture);
+    fbo->ActivateDrawBuffers(1);
+    vtkOpenGLState::ScopedglClearColor clearColor(ostate);
+    ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+    ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
+    fbo->UnBind();
+    fbo->RestorePreviousBindingsAndBuffers();
+  }
+  // Surface-detail modulation (nichols-wyman-2009 eq. 2) is for indirect
+  // light; direct light is resolved without it.
+  vtkMRGIMultiresolution* mr = this->Multiresolution;
+  const double surfaceDetail = mr->GetSurfaceDetail();
+  mr->SetSurfaceDetail(0.0);
+  bool drawn = false;
+  for (size_t i = 0; i < this->AreaLights.size(); ++i)
+  {
+    vtkMRGIAreaLight* light = this->AreaLights[i];
+    int count = 0;
+    const mrgi_area_light_sample* samples = light->GetCoreSamples(&count);
+    mrgi_area_light_uniforms uniforms;
+    if (!samples || count < 1 || !light->GetCoreUniforms(&uniforms))
+    {
+      continue; // the light reported why
+    }
+    vtkTextureObject*& texture = this->AreaLightSamples[i];
+    if (!texture || this->AreaLightSampleBuilds[i] != light->GetNumberOfSampleBuilds() ||
+      texture->GetHeight() != static_cast<unsigned int>(count))
+    {
+      if (!texture)
+      {
+        texture = vtkTextureObject::New();
+        texture->SetContext(renWin);
+      }
+      if (!texture->Create2DFromRaw(MRGI_AREA_LIGHT_SAMPLE_TEXELS, static_cast<unsigned int>(count), 4,
+            VTK_FLOAT, const_cast<float*>(mrgi_area_light_sample_texture_data(samples))))
+      {
+        vtkErrorMacro("could not upload the samples of area light " << i);
+        continue;
+      }
+      this->AreaLightSampleBuilds[i] = light->GetNumberOfSampleBuilds();
+    }
+    if (!mr->GatherAreaLight(renWin, this->PositionTexture, this->NormalTexture, this->Viewport[0],
+          this->Viewport[1], texture, count, uniforms, this->LastViewToWorldFloat) ||
+      !mr->Upsample(renWin, this->UpsampleMode, this->UpsampleMaskWeight) ||
+      !mr->Resolve(renWin, this->AlbedoTexture, this->PositionTexture, this->NormalTexture,
+        this->LastParallel, this->AreaIrradianceTexture, this->AreaDirectTexture, this->Viewport[0],
+        this->Viewport[1], 1.0))
+    {
+      break;
+    }
+    this->RenderAdd(renWin, this->AreaDirectTexture, this->ColorTexture);
+    this->RenderAdd(renWin, this->AreaDirectTexture, this->AreaSumTexture);
+    drawn = true;
+  }
+  mr->SetSurfaceDetail(surfaceDetail);
+  return drawn;
+}
+
+//------------------------------------------------------------------------------
 void vtkMRGIPass::RenderAddIndirect(vtkOpenGLRenderWindow* renWin)
+{
+  this->RenderAdd(renWin, this->IndirectTexture, this->ColorTexture);
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIPass::RenderAdd(vtkOpenGLRenderWindow* renWin, vtkTextureObject* source, vtkTextureObject* target)
 {
   vtkShaderProgram* program = ReadyQuad(this->AddQuad, renWin, vtkMRGIAddIndirectFS);
   if (!program)
@@ -665,12 +839,12 @@ void vtkMRGIPass::RenderAddIndirect(vtkOpenGLRenderWindow* renWin)
   fbo->SaveCurrentBindingsAndBuffers();
   fbo->Bind();
   fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
-  fbo->AddColorAttachment(0, this->ColorTexture);
+  fbo->AddColorAttachment(0, target);
   fbo->ActivateDrawBuffers(1);
-  this->IndirectTexture->Activate();
-  program->SetUniformi("mrgiIndirect", this->IndirectTexture->GetTextureUnit());
+  source->Activate();
+  program->SetUniformi("mrgiIndirect", source->GetTextureUnit());
   this->AddQuad->Render();
-  this->IndirectTexture->Deactivate();
+  source->Deactivate();
   fbo->UnBind();
   fbo->RestorePreviousBindingsAndBuffers();
 }
@@ -762,10 +936,13 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
 
   // Model only what the frame requires: no capture, no maps, no gather
   // when indirect light is off or cannot contribute.
-  const bool capture = this->IndirectMode != IndirectOff && this->GetNumberOfVPLs() > 0;
+  const bool indirect = this->IndirectMode != IndirectOff && this->GetNumberOfVPLs() > 0;
+  const bool capture = indirect || !this->AreaLights.empty();
   const bool split = vtkRenderStepsPass::SafeDownCast(this->DelegatePass) != nullptr;
   vtkRenderTimerLog* timer = TimerFor(renderer, this->StageTimingEnabled);
   this->IndirectComputed = false;
+  this->AreaLightsComputed = false;
+  this->Captured = capture;
 
   this->PrepareBuffers(renWin, x + w, y + h, capture);
   this->BufferSize[0] = w;
@@ -774,7 +951,8 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
     ScopedStage stage(timer, "scene");
     this->RenderScene(s, capture, split);
   }
-  if (capture)
+  bool selected = false; // this frame's multiresolution selection exists
+  if (indirect)
   {
     int vplCount = 0;
     {
@@ -791,6 +969,7 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
       if (this->IndirectMode == IndirectMultires)
       {
         gathered = this->RenderMultiresolution(renWin, renderer, vplCount, timer);
+        selected = gathered;
       }
       else
       {
@@ -804,6 +983,10 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
         this->IndirectComputed = true;
       }
     }
+  }
+  if (!this->AreaLights.empty())
+  {
+    this->AreaLightsComputed = this->RenderAreaLights(renWin, renderer, selected, timer);
   }
   if (split)
   {
@@ -978,6 +1161,12 @@ bool vtkMRGIPass::GetIndirectBuffer(vtkRenderWindow* window, vtkImageData* image
     window, this->IndirectComputed ? this->IndirectTexture : nullptr, 3, image, "Indirect");
 }
 
+bool vtkMRGIPass::GetAreaLightBuffer(vtkRenderWindow* window, vtkImageData* image)
+{
+  return this->ReadViewport(
+    window, this->AreaLightsComputed ? this->AreaSumTexture : nullptr, 3, image, "Area light");
+}
+
 bool vtkMRGIPass::GetIrradianceBuffer(vtkRenderWindow* window, vtkImageData* image)
 {
   return this->ReadViewport(
@@ -987,7 +1176,7 @@ bool vtkMRGIPass::GetIrradianceBuffer(vtkRenderWindow* window, vtkImageData* ima
 bool vtkMRGIPass::GetGBuffer(
   vtkRenderWindow* window, vtkImageData* position, vtkImageData* normal, vtkImageData* albedo)
 {
-  const bool captured = this->PositionTexture && this->IndirectMode != IndirectOff;
+  const bool captured = this->PositionTexture && this->Captured;
   return this->ReadViewport(window, captured ? this->PositionTexture : nullptr, 4, position, "Position") &&
     this->ReadViewport(window, captured ? this->NormalTexture : nullptr, 4, normal, "Normal") &&
     this->ReadViewport(window, captured ? this->AlbedoTexture : nullptr, 4, albedo, "Albedo");
@@ -1024,6 +1213,7 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "VPLSelectionMode: " << this->VPLSelection->GetMode() << "\n";
   os << indent << "RSMResolution: " << this->RSMPass->GetResolution() << "\n";
   os << indent << "StageTimingEnabled: " << (this->StageTimingEnabled ? "On" : "Off") << "\n";
+  os << indent << "AreaLights: " << this->AreaLights.size() << "\n";
   os << indent << "BufferSize: " << this->BufferSize[0] << " x " << this->BufferSize[1] << "\n";
   for (int i = 0; i < this->GetNumberOfStages(); ++i)
   {

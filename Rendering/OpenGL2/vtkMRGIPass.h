@@ -49,6 +49,7 @@
 
 class vtkFloatArray;
 class vtkImageData;
+class vtkMRGIAreaLight;
 class vtkMRGIMultiresolution;
 class vtkMRGIReflectiveShadowMapPass;
 class vtkMRGIVPLSelection;
@@ -125,6 +126,34 @@ public:
   vtkSetClampMacro(UpsampleMaskWeight, double, 1.0, 1e6);
   vtkGetMacro(UpsampleMaskWeight, double);
   ///@}
+
+  ///@{
+  /**
+   * Area lights (vtkMRGIAreaLight: textured rectangles, direct light;
+   * nichols-penmatsa-wyman-2010). Each adds albedo x X to the image, X its
+   * irradiance gathered from its light samples at the multiresolution
+   * texels (the selection of GetMultiresolution(), shared with the indirect
+   * light), upsampled, without visibility (no shadows yet). They are drawn
+   * whatever IndirectMode is; a light's emitter geometry is the caller's
+   * (vtkMRGIAreaLight::GetGeometryActor()). A light whose parameters are
+   * invalid is skipped with its error.
+   */
+  void AddAreaLight(vtkMRGIAreaLight* light);
+  void RemoveAreaLight(vtkMRGIAreaLight* light);
+  void RemoveAllAreaLights();
+  int GetNumberOfAreaLights() const;
+  vtkMRGIAreaLight* GetAreaLight(int index) const;
+  ///@}
+
+  /**
+   * The direct light of the area lights in the last frame (albedo x X,
+   * summed over the lights; RGB float, the viewport only). False when no
+   * area light was drawn.
+   */
+  bool GetAreaLightBuffer(vtkRenderWindow* window, vtkImageData* image);
+
+  /** Whether the last frame drew area lights. */
+  vtkGetMacro(AreaLightsComputed, bool);
 
   /** The sub-stages, for inspection (statistics, read-backs). */
   vtkMRGIReflectiveShadowMapPass* GetReflectiveShadowMapPass() { return this->RSMPass; }
@@ -214,7 +243,16 @@ protected:
   void RenderForward(const vtkRenderState* s);
   void RenderGather(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, int vplCount);
   void RenderAddIndirect(vtkOpenGLRenderWindow* renWin);
+  // Adds `source`'s RGB to `target`'s (additive blending, target alpha kept).
+  void RenderAdd(vtkOpenGLRenderWindow* renWin, vtkTextureObject* source, vtkTextureObject* target);
+  // The multiresolution selection of this frame (camera terms, eye -> world).
+  bool SelectMultiresolution(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer,
+    vtkRenderTimerLog* timer, float viewToWorld[16], bool& parallel);
   bool RenderMultiresolution(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, int vplCount,
+    vtkRenderTimerLog* timer);
+  // Every area light's direct light, added to the colour; `selected`: this
+  // frame's selection exists (the indirect light made it).
+  bool RenderAreaLights(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, bool selected,
     vtkRenderTimerLog* timer);
   void RenderOutput(vtkOpenGLRenderWindow* renWin);
   bool ReadViewport(vtkRenderWindow* window, vtkTextureObject* texture, int components,
@@ -226,7 +264,20 @@ protected:
   int BufferSize[2] = { 0, 0 };
   int Viewport[4] = { 0, 0, 0, 0 };
   bool IndirectComputed = false;
+  bool AreaLightsComputed = false;
+  bool Captured = false; // the last frame captured the G-buffer
   double LastViewToWorld[16];
+  float LastViewToWorldFloat[16];
+  bool LastParallel = false;
+
+  // Area lights (registered), their sample textures and the sample build
+  // each texture holds (re-uploaded only when the light rebuilt them).
+  std::vector<vtkMRGIAreaLight*> AreaLights;
+  std::vector<vtkTextureObject*> AreaLightSamples;
+  std::vector<int> AreaLightSampleBuilds;
+  vtkTextureObject* AreaIrradianceTexture = nullptr;
+  vtkTextureObject* AreaDirectTexture = nullptr;
+  vtkTextureObject* AreaSumTexture = nullptr;
 
   vtkMRGIReflectiveShadowMapPass* RSMPass = nullptr;
   vtkMRGIVPLSelection* VPLSelection = nullptr;

@@ -1,5 +1,8 @@
 #include "vtkMRGISceneBuilder.h"
 
+#include "vtkMRGIAreaLight.h"
+#include "vtkImageData.h"
+
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
 #include "vtkCallbackCommand.h"
@@ -260,6 +263,50 @@ bool vtkMRGISceneBuilder::BuildCoreScene(const mrgi_scene* scene, vtkRenderer* r
   {
     renderer->AddLight(MakeLight(scene->lights[l]));
   }
+  for (int32_t l = 0; l < scene->area_light_count; ++l)
+  {
+    const mrgi_area_light& core = scene->area_lights[l];
+    auto light = vtkSmartPointer<vtkMRGIAreaLight>::New();
+    light->SetCenter(const_cast<double*>(core.center));
+    light->SetEdgeU(const_cast<double*>(core.edge_u));
+    light->SetEdgeV(const_cast<double*>(core.edge_v));
+    light->SetColor(const_cast<double*>(core.color));
+    light->SetIntensity(core.intensity);
+    light->SetTwoSided(core.two_sided != 0);
+    light->SetVisible(false); // the scene's emitter mesh shows it
+    if (core.texture && core.texture->pixels && core.texture->channels >= 3)
+    {
+      // Core images run top-down; VTK's bottom-up.
+      const mrgi_image& t = *core.texture;
+      vtkNew<vtkImageData> image;
+      image->SetDimensions(t.width, t.height, 1);
+      image->AllocateScalars(VTK_FLOAT, 3);
+      auto* out = static_cast<float*>(image->GetScalarPointer());
+      for (int32_t y = 0; y < t.height; ++y)
+      {
+        for (int32_t x = 0; x < t.width; ++x)
+        {
+          const float* in = t.pixels + (static_cast<size_t>(t.height - 1 - y) * t.width + x) * t.channels;
+          float* o = out + 3 * (static_cast<size_t>(y) * t.width + x);
+          o[0] = in[0];
+          o[1] = in[1];
+          o[2] = in[2];
+        }
+      }
+      light->SetTextureData(image);
+    }
+    this->AreaLights.push_back(light);
+  }
+  if (scene->light_count == 0 && scene->area_light_count > 0)
+  {
+    // Lit by area lights only (vtkMRGIPass adds their light). Without any
+    // vtkLight, VTK would draw every surface unlit, at its full colour; a
+    // switched-on light of intensity 0 keeps VTK's lighting on, and black.
+    vtkNew<vtkLight> dark;
+    dark->SetLightTypeToSceneLight();
+    dark->SetIntensity(0.0);
+    renderer->AddLight(dark);
+  }
   // Built-in scenes carry their own lighting: no automatic headlight.
   renderer->AutomaticLightCreationOff();
 
@@ -452,9 +499,17 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
 }
 
 //------------------------------------------------------------------------------
+vtkMRGIAreaLight* vtkMRGISceneBuilder::GetAreaLight(int index) const
+{
+  return index >= 0 && index < this->GetNumberOfAreaLights() ? this->AreaLights[static_cast<size_t>(index)].Get()
+                                                             : nullptr;
+}
+
+//------------------------------------------------------------------------------
 bool vtkMRGISceneBuilder::Build(vtkRenderer* renderer)
 {
   this->LastErrorMessage.clear();
+  this->AreaLights.clear();
   this->BuiltTriangleCount = 0;
   if (!renderer)
   {

@@ -32,8 +32,11 @@
 #include "MRGIRenderingModule.h" // For export macro
 #include "vtkObject.h"
 
-#include <string> // For std::string
+#include "vtkSmartPointer.h" // For vtkSmartPointer
+#include <string>             // For std::string
+#include <vector>             // For std::vector
 
+class vtkMRGIAreaLight;
 class vtkPolyData;
 class vtkRenderer;
 struct mrgi_mesh;
@@ -92,6 +95,17 @@ public:
   /** Triangles added by the last successful Build() (0 for point clouds). */
   vtkGetMacro(BuiltTriangleCount, vtkIdType);
 
+  ///@{
+  /**
+   * The area lights of the last built scene (cornell-area: the published
+   * emitter of the Cornell box as a vtkMRGIAreaLight). They are not added
+   * anywhere: give them to vtkMRGIPass::AddAreaLight(). The scene already
+   * draws their emitters, so their own geometry is hidden (Visible off).
+   */
+  int GetNumberOfAreaLights() const { return static_cast<int>(this->AreaLights.size()); }
+  vtkMRGIAreaLight* GetAreaLight(int index) const;
+  ///@}
+
 #ifndef __VTK_WRAP__
   /** A core mesh as vtkPolyData (points, normals, triangles); caller owns it. */
   static vtkPolyData* MeshToPolyData(const mrgi_mesh* mesh);
@@ -111,6 +125,7 @@ protected:
   vtkTypeUInt64 Seed = 1;
   vtkIdType BuiltTriangleCount = 0;
   std::string LastErrorMessage;
+  std::vector<vtkSmartPointer<vtkMRGIAreaLight>> AreaLights;
 
 private:
   vtkMRGISceneBuilder(const vtkMRGISceneBuilder&) = delete;

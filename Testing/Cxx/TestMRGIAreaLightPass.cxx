@@ -1,0 +1,234 @@
+// Area lights in vtkMRGIPass (nichols-penmatsa-wyman-2010 3.2, no
+// visibility): with thresholds 0 the pass's area-light buffer is, pixel by
+// pixel, albedo x mrgi_area_light_diffuse() of the G-buffer (the C twin);
+// it is drawn with indirect light off; two lights add up; samples are
+// re-uploaded only when the light changes, and a changed texture image
+// shows on the next render; an invalid light draws nothing, with an error,
+// and leaves the image finite.
+#include "mrgiTestUtilities.h"
+
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkMRGIAreaLight.h"
+#include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIPass.h"
+#include "vtkMRGISceneBuilder.h"
+#include "vtkPointData.h"
+#include "vtkRenderStepsPass.h"
+#include "vtkRenderer.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "mrgi_area_light.h"
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace
+{
+class ErrorCounter : public vtkCommand
+{
+public:
+  static ErrorCounter* New() { return new ErrorCounter; }
+  void Execute(vtkObject*, unsigned long, void* data) override
+  {
+    ++this->Count;
+    this->Last = data ? static_cast<const char*>(data) : "";
+  }
+  int Count = 0;
+  std::string Last;
+};
+
+vtkSmartPointer<vtkImageData> AreaBuffer(vtkMRGIPass* pass, vtkRenderWindow* window)
+{
+  vtkNew<vtkImageData> image;
+  MRGI_TEST_CHECK(pass->GetAreaLightBuffer(window, image));
+  return vtkSmartPointer<vtkImageData>(image.GetPointer());
+}
+
+double Sum(vtkImageData* image)
+{
+  vtkDataArray* a = image->GetPointData()->GetScalars();
+  double sum = 0.0;
+  for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i)
+  {
+    const double v = a->GetVariantValue(i).ToDouble();
+    MRGI_TEST_CHECK(std::isfinite(v) && v >= 0.0);
+    sum += v;
+  }
+  return sum;
+}
+}
+
+int main()
+{
+  const int W = 96, H = 80;
+  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(W, H);
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  vtkNew<vtkMRGISceneBuilder> builder;
+  builder->SetScene("cornell-spot");
+  MRGI_TEST_CHECK(builder->Build(renderer));
+  double b[6];
+  renderer->ComputeVisiblePropBounds(b);
+  vtkNew<vtkRenderStepsPass> steps;
+  vtkNew<vtkMRGIPass> pass;
+  pass->SetDelegatePass(steps);
+  pass->SetIndirectMode(vtkMRGIPass::IndirectOff);
+  renderer->SetPass(pass);
+
+  // A textured light just under the ceiling, facing down (u x v = -y).
+  vtkNew<vtkImageData> picture;
+  picture->SetDimensions(4, 4, 1);
+  picture->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  auto paint = [&](int phase) {
+    auto* p = static_cast<unsigned char*>(picture->GetScalarPointer());
+    for (int i = 0; i < 16; ++i)
+    {
+      p[3 * i + 0] = static_cast<unsigned char>(((i + phase) % 4) * 80);
+      p[3 * i + 1] = static_cast<unsigned char>(255 - 40 * (i % 5));
+      p[3 * i + 2] = static_cast<unsigned char>(phase ? 30 : 200);
+    }
+    picture->Modified();
+  };
+  paint(0);
+  vtkNew<vtkMRGIAreaLight> light;
+  light->SetCenter(0.5 * (b[0] + b[1]), b[2] + 0.95 * (b[3] - b[2]), 0.5 * (b[4] + b[5]));
+  light->SetEdgeU(0.35 * (b[1] - b[0]), 0.0, 0.0);
+  light->SetEdgeV(0.0, 0.0, 0.3 * (b[5] - b[4]));
+  light->SetIntensity(2.0);
+  light->SetNumberOfSamples(64);
+  light->SetTextureData(picture);
+  pass->AddAreaLight(light);
+  pass->AddAreaLight(light); // once only
+  MRGI_TEST_CHECK(pass->GetNumberOfAreaLights() == 1 && pass->GetAreaLight(0) == light);
+
+  // 1. Thresholds 0: every pixel gathers at full resolution, so the buffer
+  // is albedo x X(G-buffer) exactly (C twin, float, the shader's transform).
+  vtkMRGIMultiresolution* mr = pass->GetMultiresolution();
+  mr->SetDepthThreshold(0.0);
+  mr->SetNormalThreshold(0.0);
+  window->Render();
+  MRGI_TEST_CHECK(pass->GetAreaLightsComputed() && !pass->GetIndirectComputed());
+  vtkSmartPointer<vtkImageData> gpu = AreaBuffer(pass, window);
+  vtkNew<vtkImageData> gP, gN, gA;
+  MRGI_TEST_CHECK(pass->GetGBuffer(window, gP, gN, gA));
+  int count = 0;
+  const mrgi_area_light_sample* samples = light->GetCoreSamples(&count);
+  mrgi_area_light_uniforms uniforms;
+  MRGI_TEST_CHECK(samples && count > 0 && light->GetCoreUniforms(&uniforms));
+  const double* v2w = pass->GetLastViewToWorld();
+  float m[16];
+  for (int k = 0; k < 16; ++k)
+  {
+    m[k] = static_cast<float>(v2w[k]);
+  }
+  vtkDataArray* P = gP->GetPointData()->GetScalars();
+  vtkDataArray* N = gN->GetPointData()->GetScalars();
+  vtkDataArray* A = gA->GetPointData()->GetScalars();
+  vtkDataArray* G = gpu->GetPointData()->GetScalars();
+  double num = 0, den = 0;
+  int lit = 0;
+  for (vtkIdType i = 0; i < P->GetNumberOfTuples(); ++i)
+  {
+    float X[3] = { 0.0f, 0.0f, 0.0f };
+    if (P->GetComponent(i, 3) > 0.5)
+    {
+      float p[3], n[3];
+      for (int r = 0; r < 3; ++r)
+      {
+        p[r] = m[12 + r];
+        n[r] = 0.0f;
+        for (int k = 0; k < 3; ++k)
+        {
+          p[r] += m[4 * k + r] * static_cast<float>(P->GetComponent(i, k));
+          n[r] += m[4 * k + r] * static_cast<float>(N->GetComponent(i, k));
+        }
+      }
+      mrgi_area_light_diffuse(&uniforms, samples, count, p, n, X);
+    }
+    lit += X[0] + X[1] + X[2] > 0.0f;
+    for (int k = 0; k < 3; ++k)
+    {
+      const double expected = A->GetComponent(i, k) * X[k];
+      const double got = G->GetComponent(i, k);
+      MRGI_TEST_CHECK(std::isfinite(got));
+      num += (got - expected) * (got - expected);
+      den += expected * expected;
+    }
+  }
+  const double error = std::sqrt(num / (den > 0 ? den : 1.0));
+  std::printf("full resolution: %d lit pixels of %d, relative RMS against albedo x C twin %.3g\n", lit,
+    W * H, error);
+  MRGI_TEST_CHECK(lit > W * H / 4 && error < 1e-4);
+
+  // 2. Multiresolution (Balanced): close to the full-resolution buffer.
+  mr->SetPreset(vtkMRGIMultiresolution::PresetBalanced);
+  window->Render();
+  vtkSmartPointer<vtkImageData> balanced = AreaBuffer(pass, window);
+  vtkDataArray* B = balanced->GetPointData()->GetScalars();
+  num = den = 0;
+  for (vtkIdType i = 0; i < B->GetNumberOfValues(); ++i)
+  {
+    const double d = B->GetVariantValue(i).ToDouble() - G->GetVariantValue(i).ToDouble();
+    num += d * d;
+    den += G->GetVariantValue(i).ToDouble() * G->GetVariantValue(i).ToDouble();
+  }
+  const double mrError = std::sqrt(num / den);
+  std::printf("balanced preset: relative RMS against full resolution %.3g\n", mrError);
+  MRGI_TEST_CHECK(mrError > 0.0 && mrError < 0.1);
+
+  // 3. Caching: no rebuild while nothing changes; a new frame of the
+  // picture rebuilds and changes the light.
+  const int builds = light->GetNumberOfSampleBuilds();
+  window->Render();
+  MRGI_TEST_CHECK(light->GetNumberOfSampleBuilds() == builds);
+  const double before = Sum(AreaBuffer(pass, window));
+  paint(1);
+  window->Render();
+  const double after = Sum(AreaBuffer(pass, window));
+  std::printf("sample builds %d -> %d; buffer sum %.4g -> %.4g after the picture changed\n", builds,
+    light->GetNumberOfSampleBuilds(), before, after);
+  MRGI_TEST_CHECK(light->GetNumberOfSampleBuilds() == builds + 1);
+  MRGI_TEST_CHECK(std::fabs(after - before) > 1e-3 * before);
+
+  // 4. Two lights add up.
+  vtkNew<vtkMRGIAreaLight> second;
+  second->SetCenter(b[0] + 0.05 * (b[1] - b[0]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]));
+  second->SetEdgeU(0.0, 0.0, 0.3 * (b[5] - b[4])); // u x v = +x: faces into the box
+  second->SetEdgeV(0.0, 0.3 * (b[3] - b[2]), 0.0);
+  second->SetColor(0.2, 0.4, 1.0);
+  second->SetNumberOfSamples(16);
+  pass->RemoveAreaLight(light);
+  pass->AddAreaLight(second);
+  window->Render();
+  const double secondSum = Sum(AreaBuffer(pass, window));
+  pass->AddAreaLight(light);
+  window->Render();
+  const double both = Sum(AreaBuffer(pass, window));
+  std::printf("first %.4g + second %.4g vs both %.4g\n", after, secondSum, both);
+  MRGI_TEST_CHECK(secondSum > 0.0 && std::fabs(both - (after + secondSum)) <= 1e-4 * both);
+
+  // 5. An invalid light (zero edge) draws nothing, says why, and the image
+  // stays finite; removing all lights turns the area light off.
+  vtkNew<ErrorCounter> errors;
+  vtkNew<vtkMRGIAreaLight> broken;
+  broken->AddObserver(vtkCommand::ErrorEvent, errors);
+  broken->SetEdgeU(0.0, 0.0, 0.0);
+  pass->RemoveAllAreaLights();
+  pass->AddAreaLight(broken);
+  window->Render();
+  std::printf("invalid light: %d error(s), last: %s\n", errors->Count, errors->Last.c_str());
+  MRGI_TEST_CHECK(errors->Count > 0 && !pass->GetAreaLightsComputed());
+  vtkNew<vtkImageData> color;
+  MRGI_TEST_CHECK(pass->GetColorBuffer(window, color));
+  Sum(color);
+  pass->RemoveAllAreaLights();
+  window->Render();
+  MRGI_TEST_CHECK(!pass->GetAreaLightsComputed() && pass->GetNumberOfAreaLights() == 0);
+
+  renderer->SetPass(nullptr);
+  pass->ReleaseGraphicsResources(window);
+  return 0;
+}
