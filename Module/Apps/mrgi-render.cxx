@@ -916,6 +916,11 @@ int main(int argc, char* argv[])
     reference->SetShadows(o.ReferenceShadows);
     reference->SetTargetRelativeError(o.ReferenceError);
     reference->SetMaxPasses(static_cast<int>(o.ReferencePasses));
+    for (int l = 0; l < mrgi->GetNumberOfAreaLights(); ++l)
+    {
+      reference->AddAreaLight(mrgi->GetAreaLight(l));
+    }
+    reference->SetAreaLightSamples(static_cast<int>(std::min<long long>(o.AreaLightSamples, 64)));
     Progress(o, "rendering the ground truth (CPU)");
     if (!reference->Render(renderer))
     {

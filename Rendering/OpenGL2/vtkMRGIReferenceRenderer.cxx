@@ -26,6 +26,7 @@
 
 #include "mrgi_reference.h"
 #include "mrgi_scene.h"
+#include "vtkMRGIAreaLight.h"
 
 #include <cmath>
 #include <cstring>
@@ -294,6 +295,7 @@ bool vtkMRGIReferenceRenderer::Render(vtkRenderer* renderer)
   options.max_passes = this->MaxPasses;
   options.secondary_visibility = this->SecondaryVisibility ? 1 : 0;
   options.shadows = this->Shadows ? 1 : 0;
+  options.area_light_samples = this->AreaLightSamples;
   options.seed = this->Seed;
   options.threads = this->Threads;
   vtkCamera* camera = renderer->GetActiveCamera();
@@ -304,7 +306,20 @@ bool vtkMRGIReferenceRenderer::Render(vtkRenderer* renderer)
   }
   mrgi_reference_result result;
   mrgi_error err;
-  const mrgi_status status = mrgi_reference_render(&scene, &options, &result, &err);
+  std::vector<mrgi_area_light> areaLights;
+  for (const auto& light : this->AreaLights)
+  {
+    mrgi_area_light core;
+    if (!light->GetCoreLight(&core))
+    {
+      mrgi_scene_destroy(&scene);
+      this->LastErrorMessage = std::string("area light: ") + light->GetLastErrorMessage();
+      return false;
+    }
+    areaLights.push_back(core);
+  }
+  const mrgi_status status = mrgi_reference_render_area_lights(&scene, &options,
+    areaLights.empty() ? nullptr : areaLights.data(), static_cast<int32_t>(areaLights.size()), &result, &err);
   mrgi_scene_destroy(&scene);
   if (status != MRGI_OK)
   {
@@ -322,6 +337,22 @@ bool vtkMRGIReferenceRenderer::Render(vtkRenderer* renderer)
 }
 
 //------------------------------------------------------------------------------
+void vtkMRGIReferenceRenderer::AddAreaLight(vtkMRGIAreaLight* light)
+{
+  if (light)
+  {
+    this->AreaLights.emplace_back(light);
+    this->Modified();
+  }
+}
+
+void vtkMRGIReferenceRenderer::RemoveAllAreaLights()
+{
+  this->AreaLights.clear();
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
 void vtkMRGIReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -332,6 +363,8 @@ void vtkMRGIReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SecondaryVisibility: " << (this->SecondaryVisibility ? "On" : "Off") << "\n";
   os << indent << "Shadows: " << (this->Shadows ? "On" : "Off") << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "AreaLights: " << this->AreaLights.size() << "\n";
+  os << indent << "AreaLightSamples: " << this->AreaLightSamples << "\n";
   os << indent << "Threads: " << this->Threads << "\n";
   os << indent << "RelativeError: " << this->RelativeError << "\n";
   os << indent << "Passes: " << this->Passes << "\n";

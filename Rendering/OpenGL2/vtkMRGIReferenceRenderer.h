@@ -24,9 +24,12 @@
 #include "MRGIRenderingModule.h" // For export macro
 #include "vtkObject.h"
 
-#include <string> // For std::string
+#include "vtkSmartPointer.h" // For vtkSmartPointer
+#include <string>             // For std::string
+#include <vector>             // For std::vector
 
 class vtkImageData;
+class vtkMRGIAreaLight;
 class vtkRenderer;
 struct mrgi_scene;
 
@@ -88,6 +91,24 @@ public:
   /** Render the ground truth of `renderer`; false with GetLastErrorMessage() on error. */
   bool Render(vtkRenderer* renderer);
 
+  ///@{
+  /**
+   * Area lights (vtkMRGIAreaLight) lighting the direct image, diffuse, with
+   * exact visibility when Shadows is on (mrgi_reference_render_area_lights):
+   * the ground truth of vtkMRGIPass's area lights. They light nothing
+   * unless added here (they are not VTK lights).
+   */
+  void AddAreaLight(vtkMRGIAreaLight* light);
+  void RemoveAllAreaLights();
+  int GetNumberOfAreaLights() const { return static_cast<int>(this->AreaLights.size()); }
+  ///@}
+
+  ///@{
+  /** Shadow rays per area light per pixel per pass (default 16). */
+  vtkSetClampMacro(AreaLightSamples, int, 1, 4096);
+  vtkGetMacro(AreaLightSamples, int);
+  ///@}
+
   /** Results of the last Render(). */
   vtkImageData* GetDirectImage() { return this->DirectImage; }
   vtkImageData* GetIndirectImage() { return this->IndirectImage; }
@@ -126,6 +147,8 @@ protected:
   double Seconds = 0;
   vtkIdType TriangleCount = 0;
   std::string LastErrorMessage;
+  std::vector<vtkSmartPointer<vtkMRGIAreaLight>> AreaLights;
+  int AreaLightSamples = 16;
 
 private:
   vtkMRGIReferenceRenderer(const vtkMRGIReferenceRenderer&) = delete;
