@@ -45,6 +45,33 @@ mrgi_status mrgi_scene_create(mrgi_scene* out, int32_t mesh_count, mrgi_error* e
   return MRGI_OK;
 }
 
+mrgi_status mrgi_scene_create_images(mrgi_scene* scene, int32_t image_count, mrgi_error* err)
+{
+  if (!scene)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "mrgi_scene_create_images: scene is NULL");
+  }
+  if (image_count < 1 || image_count > MRGI_SCENE_MAX_IMAGES)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "mrgi_scene_create_images: image_count %d is outside 1..%d",
+                          (int)image_count, MRGI_SCENE_MAX_IMAGES);
+  }
+  if (scene->images || scene->image_count != 0)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "mrgi_scene_create_images: the scene already has images");
+  }
+  scene->images = calloc((size_t)image_count, sizeof(mrgi_image));
+  if (!scene->images)
+  {
+    return mrgi_error_set(err, MRGI_ERR_OUT_OF_MEMORY,
+                          "mrgi_scene_create_images: cannot allocate %d images", (int)image_count);
+  }
+  scene->image_count = image_count;
+  return MRGI_OK;
+}
+
 void mrgi_scene_destroy(mrgi_scene* scene)
 {
   if (!scene)
@@ -58,6 +85,14 @@ void mrgi_scene_destroy(mrgi_scene* scene)
       mrgi_mesh_destroy(&scene->meshes[i]);
     }
     free(scene->meshes);
+  }
+  if (scene->images)
+  {
+    for (int32_t i = 0; i < scene->image_count; ++i)
+    {
+      mrgi_image_destroy(&scene->images[i]);
+    }
+    free(scene->images);
   }
   memset(scene, 0, sizeof(*scene));
 }
@@ -192,6 +227,24 @@ mrgi_status mrgi_scene_validate(const mrgi_scene* scene, mrgi_error* err)
   {
     return mrgi_error_set(err, MRGI_ERR_FORMAT, "%s: area_light_count %d is outside 0..%d", caller,
                           (int)scene->area_light_count, MRGI_SCENE_MAX_AREA_LIGHTS);
+  }
+  if (scene->image_count < 0 || scene->image_count > MRGI_SCENE_MAX_IMAGES ||
+      (scene->image_count > 0 && !scene->images))
+  {
+    return mrgi_error_set(err, MRGI_ERR_FORMAT, "%s: image_count %d is outside 0..%d or images is NULL",
+                          caller, (int)scene->image_count, MRGI_SCENE_MAX_IMAGES);
+  }
+  for (int32_t i = 0; i < scene->image_count; ++i)
+  {
+    if (mrgi_image_validate(&scene->images[i], err) != MRGI_OK)
+    {
+      mrgi_error_prefix(err, "%s: image %d: ", caller, (int)i);
+      if (err)
+      {
+        err->status = MRGI_ERR_FORMAT;
+      }
+      return MRGI_ERR_FORMAT;
+    }
   }
   for (int32_t i = 0; i < scene->mesh_count; ++i)
   {

@@ -10,14 +10,18 @@
  *
  * Units are the builder's (documented there); angles are degrees as in VTK.
  *
- * Ownership: a scene owns its meshes; release it with mrgi_scene_destroy().
- * Output parameters are treated as uninitialized.
+ * Ownership: a scene owns its meshes and its images (::mrgi_scene::images,
+ * e.g. the textures of its area lights, which only borrow them); release it
+ * with mrgi_scene_destroy(). The images live in one heap array, so moving the
+ * struct (a shallow copy that replaces the original) keeps the area lights'
+ * texture pointers valid. Output parameters are treated as uninitialized.
  */
 #ifndef MRGI_SCENE_H
 #define MRGI_SCENE_H
 
 #include "mrgi_area_light.h"
 #include "mrgi_error.h"
+#include "mrgi_image.h"
 #include "mrgi_mesh.h"
 
 #include <stdint.h>
@@ -32,6 +36,8 @@ extern "C" {
 #define MRGI_SCENE_MAX_AREA_LIGHTS 4
 /** Largest accepted ::mrgi_scene::mesh_count. */
 #define MRGI_SCENE_MAX_MESHES (1 << 20)
+/** Largest accepted ::mrgi_scene::image_count (room for the frames of a video texture). */
+#define MRGI_SCENE_MAX_IMAGES 4096
 
 /** A perspective camera, as vtkCamera. */
 typedef struct mrgi_camera
@@ -82,6 +88,12 @@ typedef struct mrgi_scene
   int32_t light_count; /**< 0..MRGI_SCENE_MAX_LIGHTS. */
   mrgi_area_light area_lights[MRGI_SCENE_MAX_AREA_LIGHTS];
   int32_t area_light_count; /**< 0..MRGI_SCENE_MAX_AREA_LIGHTS. */
+  /**
+   * image_count images the scene owns (mrgi_scene_create_images()), NULL when
+   * none: storage for what its area lights' `texture` fields point at.
+   */
+  mrgi_image* images;
+  int32_t image_count; /**< 0..MRGI_SCENE_MAX_IMAGES. */
 } mrgi_scene;
 
 /**
@@ -93,7 +105,22 @@ typedef struct mrgi_scene
  */
 mrgi_status mrgi_scene_create(mrgi_scene* out, int32_t mesh_count, mrgi_error* err);
 
-/** @brief Destroy every mesh, free the array and zero the struct. NULL-safe and idempotent. */
+/**
+ * @brief Give a scene `image_count` empty (zeroed) images for a builder to
+ *        create in place (mrgi_image_create() on each), e.g. the textures its
+ *        area lights borrow. The scene owns them; mrgi_scene_destroy() frees them.
+ * @param scene       A scene without images (image_count 0, images NULL).
+ * @param image_count 1..MRGI_SCENE_MAX_IMAGES.
+ * @return ::MRGI_ERR_INVALID_ARGUMENT for NULL, a count out of range or a
+ *         scene that already has images (nothing changes);
+ *         ::MRGI_ERR_OUT_OF_MEMORY.
+ */
+mrgi_status mrgi_scene_create_images(mrgi_scene* scene, int32_t image_count, mrgi_error* err);
+
+/**
+ * @brief Destroy every mesh and image, free the arrays and zero the struct.
+ *        NULL-safe and idempotent.
+ */
 void mrgi_scene_destroy(mrgi_scene* scene);
 
 /**
@@ -101,7 +128,9 @@ void mrgi_scene_destroy(mrgi_scene* scene);
  *        (mrgi_mesh_validate()), camera and lights finite and well-formed
  *        (view angle in (0, 180), spot cone in (0, 90), non-degenerate
  *        directions, non-negative colours), area lights that pass
- *        mrgi_area_light_check() (its message, prefixed "area light <i>: ").
+ *        mrgi_area_light_check() (its message, prefixed "area light <i>: "),
+ *        owned images consistent (count in range, array present) and each
+ *        valid (mrgi_image_validate(), prefixed "image <i>: ").
  * @return ::MRGI_ERR_INVALID_ARGUMENT for NULL; ::MRGI_ERR_FORMAT naming the
  *         first offence.
  */

@@ -36,6 +36,7 @@
 #include "mrgi_ply_check.h"
 #include "mrgi_scene.h"
 #include "mrgi_scene_cornell.h"
+#include "mrgi_scene_living_room.h"
 #include "mrgi_scene_scaling.h"
 
 #include <algorithm>
@@ -48,7 +49,8 @@ vtkStandardNewMacro(vtkMRGISceneBuilder);
 
 namespace
 {
-const char* const BuiltInScenes[] = { "cornell", "cornell-spot", "cornell-area", "scaling" };
+const char* const BuiltInScenes[] = { "cornell", "cornell-spot", "cornell-area", "living-room",
+  "scaling" };
 
 bool EndsWith(const std::string& path, const char* extension)
 {
@@ -157,7 +159,7 @@ bool vtkMRGISceneBuilder::IsBuiltInScene(const char* name)
 //------------------------------------------------------------------------------
 const char* vtkMRGISceneBuilder::GetBuiltInSceneNames()
 {
-  return "cornell cornell-spot cornell-area scaling";
+  return "cornell cornell-spot cornell-area living-room scaling";
 }
 
 //------------------------------------------------------------------------------
@@ -531,6 +533,10 @@ bool vtkMRGISceneBuilder::Build(vtkRenderer* renderer)
   if (this->Scene == "scaling")
   {
     status = mrgi_scene_scaling(this->ObjectCount, this->TriangleCount, this->Seed, &core.Scene, &err);
+  }
+  else if (this->Scene == "living-room")
+  {
+    status = mrgi_scene_living_room(&core.Scene, &err);
   }
   else
   {

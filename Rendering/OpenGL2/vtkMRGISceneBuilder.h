@@ -10,6 +10,10 @@
  * - "cornell-area": the same box with its published emitter as an area light
  *   (drawn as an emissive quad; area lighting itself is MRGI's area-light
  *   pass, no vtkLight stands in for it);
+ * - "living-room": a room (metres) with a sofa, a coffee table and a
+ *   bookshelf, lit only by a TV screen: one one-sided textured area light
+ *   (a 64 x 36 test card, 1.2 x 0.7 m; the emitter quad shows its mean
+ *   radiance), nichols-penmatsa-wyman-2010's living room (mrgi_scene_living_room.h);
  * - "scaling": ObjectCount objects with TriangleCount triangles in total,
  *   laid out so that screen coverage does not depend on the triangle count.
  *
@@ -98,7 +102,8 @@ public:
   ///@{
   /**
    * The area lights of the last built scene (cornell-area: the published
-   * emitter of the Cornell box as a vtkMRGIAreaLight). They are not added
+   * emitter of the Cornell box; living-room: the textured TV screen; each
+   * a vtkMRGIAreaLight). They are not added
    * anywhere: give them to vtkMRGIPass::AddAreaLight(). The scene already
    * draws their emitters, so their own geometry is hidden (Visible off).
    */

@@ -210,11 +210,55 @@ static void test_area_light_helpers(void)
   MRGI_CHECK(message_has(&err, "zero"));
 }
 
+/* Owned images (area-light textures): creation, validation, destruction. */
+static void test_images(void)
+{
+  mrgi_error err;
+  mrgi_scene scene;
+  static const mrgi_scene zero;
+  make_scene(&scene);
+  MRGI_CHECK(scene.images == NULL && scene.image_count == 0);
+  MRGI_CHECK(mrgi_scene_create_images(NULL, 1, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  const int32_t bad_counts[] = { 0, -1, MRGI_SCENE_MAX_IMAGES + 1 };
+  for (size_t i = 0; i < sizeof(bad_counts) / sizeof(bad_counts[0]); ++i)
+  {
+    MRGI_CHECK(mrgi_scene_create_images(&scene, bad_counts[i], &err) == MRGI_ERR_INVALID_ARGUMENT);
+    MRGI_CHECK(message_has(&err, "image_count"));
+    MRGI_CHECK(scene.images == NULL && scene.image_count == 0);
+  }
+  MRGI_CHECK(mrgi_scene_create_images(&scene, 2, &err) == MRGI_OK);
+  MRGI_CHECK(scene.image_count == 2 && scene.images != NULL);
+  MRGI_CHECK(mrgi_scene_create_images(&scene, 1, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(message_has(&err, "already has images"));
+  /* Images not made yet are not valid. */
+  MRGI_CHECK(mrgi_scene_validate(&scene, &err) == MRGI_ERR_FORMAT);
+  MRGI_CHECK(message_has(&err, "image 0: "));
+  MRGI_CHECK(mrgi_image_create(&scene.images[0], 4, 2, 3, &err) == MRGI_OK);
+  MRGI_CHECK(mrgi_scene_validate(&scene, &err) == MRGI_ERR_FORMAT);
+  MRGI_CHECK(message_has(&err, "image 1: "));
+  MRGI_CHECK(mrgi_image_create(&scene.images[1], 1, 1, 4, &err) == MRGI_OK);
+  /* An area light borrows one as its texture. */
+  for (size_t i = 0; i < mrgi_image_value_count(&scene.images[0]); ++i)
+  {
+    scene.images[0].pixels[i] = 0.25f * (float)(i % 5);
+  }
+  scene.area_lights[0].texture = &scene.images[0];
+  MRGI_CHECK(mrgi_scene_validate(&scene, &err) == MRGI_OK);
+  const int32_t count = scene.image_count;
+  scene.image_count = MRGI_SCENE_MAX_IMAGES + 1;
+  MRGI_CHECK(mrgi_scene_validate(&scene, &err) == MRGI_ERR_FORMAT);
+  MRGI_CHECK(message_has(&err, "image_count"));
+  scene.image_count = count;
+  mrgi_scene_destroy(&scene); /* frees both images (valgrind: no leak) */
+  MRGI_CHECK(memcmp(&scene, &zero, sizeof(zero)) == 0);
+}
+
 int main(void)
 {
   test_lifetime();
   test_validation();
   test_area_light_helpers();
+  test_images();
   printf("TestScene: all checks passed\n");
   return 0;
 }

@@ -1,17 +1,23 @@
 // vtkMRGISceneBuilder: every built-in scene builds; every supported file
 // format loads (files written here by VTK's writers, a hand-made glTF);
 // volumetric data sets become their surface; bad input is a clear error that
-// leaves the renderer unchanged.
+// leaves the renderer unchanged. The living room brings its textured TV
+// screen as an area light, which vtkMRGIPass renders headless.
 #include "mrgiTestUtilities.h"
 
 #include "vtkActorCollection.h"
+#include "vtkDataArray.h"
 #include "vtkDataSetSurfaceFilter.h"
 #include "vtkImageData.h"
+#include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkMRGIAreaLight.h"
+#include "vtkMRGIPass.h"
 #include "vtkMRGISceneBuilder.h"
 #include "vtkPLYWriter.h"
 #include "vtkPolyData.h"
 #include "vtkRTAnalyticSource.h"
+#include "vtkRenderStepsPass.h"
 #include "vtkRenderer.h"
 #include "vtkSTLWriter.h"
 #include "vtkSphereSource.h"
@@ -20,6 +26,8 @@
 #include "vtkDataSetTriangleFilter.h"
 #include "vtkXMLImageDataWriter.h"
 #include "vtkXMLPolyDataWriter.h"
+
+#include "mrgi_area_light.h"
 #include "vtkXMLUnstructuredGridWriter.h"
 #include "vtkPolyDataWriter.h"
 
@@ -63,6 +71,103 @@ void WriteText(const std::string& path, const std::string& text)
   std::ofstream out(path, std::ios::binary);
   out << text;
 }
+
+// Finite values of `image` (all components), their sum (RGB) and how many
+// pixels have any RGB above `floor`.
+void Survey(vtkImageData* image, double floor, double* sum, vtkIdType* bright)
+{
+  vtkDataArray* a = image->GetPointData()->GetScalars();
+  MRGI_TEST_CHECK(a && a->GetNumberOfComponents() >= 3);
+  *sum = 0.0;
+  *bright = 0;
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    bool lit = false;
+    for (int c = 0; c < a->GetNumberOfComponents(); ++c)
+    {
+      const double v = a->GetComponent(i, c);
+      MRGI_TEST_CHECK(std::isfinite(v) && v >= 0.0);
+      if (c < 3)
+      {
+        *sum += v;
+        lit = lit || v > floor;
+      }
+    }
+    *bright += lit ? 1 : 0;
+  }
+}
+
+// "living-room": the meshes, one textured area light from the core scene
+// (rows flipped to VTK's bottom-up order), the dark vtkLight that keeps
+// VTK's lighting on, and a headless frame of vtkMRGIPass lit by the screen.
+void TestLivingRoom()
+{
+  const int W = 96, H = 64;
+  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(W, H);
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  vtkNew<vtkMRGISceneBuilder> builder;
+  builder->SetScene("living-room");
+  MRGI_TEST_CHECK(vtkMRGISceneBuilder::IsBuiltInScene("living-room"));
+  MRGI_TEST_CHECK(std::strstr(vtkMRGISceneBuilder::GetBuiltInSceneNames(), "living-room"));
+  MRGI_TEST_CHECK(builder->Build(renderer));
+  MRGI_TEST_CHECK(ActorCount(renderer) == 13); // 6 walls, 6 furniture meshes, the screen
+  std::printf("living-room: %lld triangles\n", static_cast<long long>(builder->GetBuiltTriangleCount()));
+  MRGI_TEST_CHECK(builder->GetBuiltTriangleCount() > 100);
+  MRGI_TEST_CHECK(renderer->GetLights()->GetNumberOfItems() == 1);
+  auto* dark = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(0));
+  MRGI_TEST_CHECK(dark && dark->GetIntensity() == 0.0);
+
+  MRGI_TEST_CHECK(builder->GetNumberOfAreaLights() == 1);
+  vtkMRGIAreaLight* screen = builder->GetAreaLight(0);
+  MRGI_TEST_CHECK(screen && !screen->GetTwoSided() && !screen->GetVisible());
+  MRGI_TEST_CHECK(screen->GetIntensity() == 40.0);
+  MRGI_TEST_CHECK(std::fabs(screen->GetEdgeU()[0] - 1.2) < 1e-12 && std::fabs(screen->GetEdgeV()[1] - 0.7) < 1e-12);
+  vtkImageData* texture = screen->GetTextureData();
+  MRGI_TEST_CHECK(texture);
+  int dims[3];
+  texture->GetDimensions(dims);
+  MRGI_TEST_CHECK(dims[0] == 64 && dims[1] == 36 && texture->GetNumberOfScalarComponents() == 3);
+  // Bottom-up: the top-left texel (the white colour bar) is VTK's row 35,
+  // the bottom-left (the ramp's darkest step) row 0.
+  const float topLeft = texture->GetScalarComponentAsFloat(0, 35, 0, 0);
+  const float bottomLeft = texture->GetScalarComponentAsFloat(0, 0, 0, 0);
+  MRGI_TEST_CHECK(topLeft == 0.75f && bottomLeft < 0.05f);
+  mrgi_area_light core;
+  MRGI_TEST_CHECK(screen->GetCoreLight(&core));
+
+  vtkNew<vtkRenderStepsPass> steps;
+  vtkNew<vtkMRGIPass> pass;
+  pass->SetDelegatePass(steps);
+  pass->AddAreaLight(screen);
+  renderer->SetPass(pass);
+  window->Render();
+  MRGI_TEST_CHECK(pass->GetAreaLightsComputed());
+
+  vtkNew<vtkImageData> color, area;
+  MRGI_TEST_CHECK(pass->GetColorBuffer(window, color));
+  MRGI_TEST_CHECK(pass->GetAreaLightBuffer(window, area));
+  double colorSum = 0.0, areaSum = 0.0;
+  vtkIdType colorLit = 0, areaLit = 0;
+  Survey(color, 1e-3, &colorSum, &colorLit);
+  Survey(area, 1e-3, &areaSum, &areaLit);
+  std::printf("living-room frame %dx%d: %lld pixels lit by the screen (mean %.4f), %lld non-black "
+              "(mean %.4f)\n",
+    W, H, static_cast<long long>(areaLit), areaSum / (3.0 * W * H), static_cast<long long>(colorLit),
+    colorSum / (3.0 * W * H));
+  // The emitter quad alone covers far less than a tenth of the frame; the
+  // screen lights most of the room.
+  MRGI_TEST_CHECK(areaLit > W * H / 2);
+  MRGI_TEST_CHECK(colorLit > W * H / 2);
+  vtkNew<vtkMRGIImageIO> io;
+  const std::string exr = mrgitest::TempPath("living-room.exr");
+  const std::string png = mrgitest::TempPath("living-room.png");
+  MRGI_TEST_CHECK(io->Write(color, exr.c_str()));
+  MRGI_TEST_CHECK(io->WritePNG(mrgitest::GrabRGB(window), png.c_str()));
+  std::printf("wrote %s and %s\n", exr.c_str(), png.c_str());
+  renderer->SetPass(nullptr);
+  pass->ReleaseGraphicsResources(window);
+}
 }
 
 int main()
@@ -75,6 +180,7 @@ int main()
   MRGI_TEST_CHECK(triangles >= 30);
   MRGI_TEST_CHECK(BuildInto("cornell-spot") >= 7);
   MRGI_TEST_CHECK(BuildInto("cornell-area") >= 8); // the emitter is drawn
+  MRGI_TEST_CHECK(BuildInto("living-room", &triangles) == 13);
   MRGI_TEST_CHECK(BuildInto("scaling", &triangles) >= 10);
   std::printf("scaling: %lld triangles for 20000 asked\n", static_cast<long long>(triangles));
   MRGI_TEST_CHECK(triangles >= 18000 && triangles <= 22000);
@@ -86,6 +192,7 @@ int main()
     MRGI_TEST_CHECK(renderer->GetLights()->GetNumberOfItems() == 1);
     MRGI_TEST_CHECK(!renderer->GetAutomaticLightCreation());
   }
+  TestLivingRoom();
 
   // Files written by VTK's writers.
   vtkNew<vtkSphereSource> sphere;
