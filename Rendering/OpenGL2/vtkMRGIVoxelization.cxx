@@ -29,11 +29,13 @@
 #include "vtkTypeUInt32Array.h"
 #include "vtkWeakPointer.h"
 
+#include "vtkMRGIVoxelMarch.h"
 #include "vtkMRGIVoxelizeFS.h"
 #include "vtkMRGIVoxelizeGS.h"
 #include "vtkMRGIVoxelizeVS.h"
 
 #include "mrgi_voxel.h"
+#include "mrgi_voxel_march.h"
 
 #include <algorithm>
 #include <cmath>
@@ -248,6 +250,11 @@ vtkMRGIVoxelization::vtkMRGIVoxelization()
 {
   this->VoxelSize[0] = MRGI_VOXEL_DEFAULT_SIZE;
   this->VoxelSize[1] = MRGI_VOXEL_DEFAULT_SIZE;
+  mrgi_voxel_march_params params;
+  mrgi_voxel_march_params_default(&params);
+  this->MaxSteps = params.max_steps;
+  this->NormalOffset = params.normal_offset;
+  this->SkipRadius = params.skip_radius;
 }
 
 //------------------------------------------------------------------------------
@@ -374,6 +381,147 @@ bool vtkMRGIVoxelization::GetGrid(mrgi_voxel_grid* grid, mrgi_voxel_projection* 
   if (projection)
   {
     *projection = in.Projection;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIVoxelization::SetMaxSteps(int steps)
+{
+  steps = std::min(std::max(steps, 1), MRGI_VOXEL_MAX_STEPS);
+  if (steps != this->MaxSteps)
+  {
+    this->MaxSteps = steps;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIVoxelization::SetNormalOffset(double offset)
+{
+  if (std::isnan(offset))
+  {
+    vtkErrorMacro("SetNormalOffset: NaN ignored (the offset stays " << this->NormalOffset << ")");
+    return;
+  }
+  offset = std::min(std::max(offset, 0.0), static_cast<double>(MRGI_VOXEL_MAX_NORMAL_OFFSET));
+  if (offset != this->NormalOffset)
+  {
+    this->NormalOffset = offset;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIVoxelization::SetSkipRadius(int radius)
+{
+  radius = std::min(std::max(radius, 0), MRGI_VOXEL_MAX_SKIP_RADIUS);
+  if (radius != this->SkipRadius)
+  {
+    this->SkipRadius = radius;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIVoxelization::GetMarchParams(mrgi_voxel_march_params* params) const
+{
+  if (params)
+  {
+    params->max_steps = this->MaxSteps;
+    params->normal_offset = static_cast<float>(this->NormalOffset);
+    params->skip_radius = this->SkipRadius;
+  }
+}
+
+//------------------------------------------------------------------------------
+const char* vtkMRGIVoxelization::GetMarchShaderSource()
+{
+  return vtkMRGIVoxelMarch;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIVoxelization::SetMarchUniforms(vtkShaderProgram* program)
+{
+  mrgi_voxel_march_params params;
+  this->GetMarchParams(&params);
+  return this->SetMarchUniforms(program, params);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIVoxelization::SetMarchUniforms(
+  vtkShaderProgram* program, const mrgi_voxel_march_params& params)
+{
+  Internals& in = *this->Internal;
+  if (!program)
+  {
+    vtkErrorMacro("SetMarchUniforms: no shader program");
+    return false;
+  }
+  if (!in.HasGrid || !in.Voxels)
+  {
+    vtkErrorMacro("SetMarchUniforms: nothing voxelized yet (no successful Voxelize())");
+    return false;
+  }
+  mrgi_error err;
+  if (mrgi_voxel_march_params_validate(&params, &err) != MRGI_OK)
+  {
+    vtkErrorMacro("SetMarchUniforms: " << err.message);
+    return false;
+  }
+  // The same numbers the C twin reads (mrgi_voxel_view: grid, projection,
+  // params), so that GPU and twin march the same steps (nichols-penmatsa-
+  // wyman-2010 3.3.1; parity in TestMRGIVoxelMarch).
+  const mrgi_voxel_grid& g = in.Grid;
+  const mrgi_voxel_projection& p = in.Projection;
+  const int size[2] = { g.width, g.height };
+  const float scale[2] = { p.scale_x, p.scale_y };
+  const float offset[2] = { p.offset_x, p.offset_y };
+  auto used = [program](const char* name) { return program->IsUniformUsed(name); };
+  if (used("mrgiVoxelTexture"))
+  {
+    in.Voxels->Activate();
+    program->SetUniformi("mrgiVoxelTexture", in.Voxels->GetTextureUnit());
+  }
+  if (used("mrgiVoxelGridSize"))
+  {
+    program->SetUniform2i("mrgiVoxelGridSize", size);
+  }
+  if (used("mrgiVoxelNear"))
+  {
+    program->SetUniformf("mrgiVoxelNear", g.near_depth);
+  }
+  if (used("mrgiVoxelFar"))
+  {
+    program->SetUniformf("mrgiVoxelFar", g.far_depth);
+  }
+  if (used("mrgiVoxelSliceScale"))
+  {
+    program->SetUniformf("mrgiVoxelSliceScale", g.slice_scale);
+  }
+  if (used("mrgiVoxelProjectionScale"))
+  {
+    program->SetUniform2f("mrgiVoxelProjectionScale", scale);
+  }
+  if (used("mrgiVoxelProjectionOffset"))
+  {
+    program->SetUniform2f("mrgiVoxelProjectionOffset", offset);
+  }
+  if (used("mrgiVoxelParallel"))
+  {
+    program->SetUniformi("mrgiVoxelParallel", p.parallel ? 1 : 0);
+  }
+  if (used("mrgiVoxelMaxSteps"))
+  {
+    program->SetUniformi("mrgiVoxelMaxSteps", params.max_steps);
+  }
+  if (used("mrgiVoxelNormalOffset"))
+  {
+    program->SetUniformf("mrgiVoxelNormalOffset", params.normal_offset);
+  }
+  if (used("mrgiVoxelSkipRadius"))
+  {
+    program->SetUniformi("mrgiVoxelSkipRadius", params.skip_radius);
   }
   return true;
 }
@@ -822,6 +970,9 @@ void vtkMRGIVoxelization::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   const Internals& in = *this->Internal;
   os << indent << "VoxelSize: " << this->VoxelSize[0] << " x " << this->VoxelSize[1] << "\n";
+  os << indent << "MaxSteps: " << this->MaxSteps << "\n";
+  os << indent << "NormalOffset: " << this->NormalOffset << "\n";
+  os << indent << "SkipRadius: " << this->SkipRadius << "\n";
   os << indent << "Voxelized: " << (in.HasGrid ? "yes" : "no") << "\n";
   if (in.HasGrid)
   {

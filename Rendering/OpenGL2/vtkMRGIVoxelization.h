@@ -45,6 +45,13 @@
  * channel s >> 5, bit s & 31) and, from C++, GetGrid() for the slicing and
  * projection the march needs. ReadVoxels() reads the buffer back in the
  * layout of mrgi_voxel.h.
+ *
+ * The ray march (naive voxel-space visibility, NPW10 section 3.3.1) is the
+ * GLSL library GetMarchShaderSource() (vtkMRGIVoxelMarch.glsl: functions
+ * mrgiVoxelVisible() and mrgiVoxelOccluderFraction(), twins of
+ * mrgi_voxel_march() and mrgi_voxel_march_occluder_fraction()); a shader that
+ * includes it gets its uniforms and voxel texture from SetMarchUniforms(),
+ * with the knobs MaxSteps, NormalOffset and SkipRadius below.
  */
 #ifndef vtkMRGIVoxelization_h
 #define vtkMRGIVoxelization_h
@@ -57,11 +64,13 @@
 class vtkRenderTimerLog;
 class vtkRenderWindow;
 class vtkRenderer;
+class vtkShaderProgram;
 class vtkTextureObject;
 class vtkTypeUInt32Array;
 class vtkWindow;
 #ifndef __VTK_WRAP__
 struct mrgi_voxel_grid;
+struct mrgi_voxel_march_params;
 struct mrgi_voxel_projection;
 #endif
 
@@ -150,6 +159,65 @@ public:
   bool GetGrid(mrgi_voxel_grid* grid, mrgi_voxel_projection* projection) const;
 #endif
 
+  ///@{
+  /**
+   * Knobs of the ray march (mrgi_voxel_march_params, mrgi_voxel_march.h),
+   * used by SetMarchUniforms(program) and GetMarchParams(); defaults and
+   * ranges are the core's, out-of-range values are clamped (NaN is ignored):
+   * - MaxSteps: step cap, 1..MRGI_VOXEL_MAX_STEPS (4096), default
+   *   MRGI_VOXEL_DEFAULT_MAX_STEPS (256, one step per voxel pixel along the
+   *   diagonal of a 181^2 buffer). Longer rays take longer steps (NPW10
+   *   3.3.1 samples the ray uniformly; a sparse sampling may miss thin
+   *   occluders).
+   * - NormalOffset: bias pushing both ends off their surfaces along their
+   *   normals, in voxel sizes, 0..MRGI_VOXEL_MAX_NORMAL_OFFSET (16), default
+   *   MRGI_VOXEL_DEFAULT_NORMAL_OFFSET (1.5): below 1.25 receivers shadow
+   *   themselves (NPW10 4.3 "shadow acne"), larger values miss more contact
+   *   shadows.
+   * - SkipRadius: the (2r+1)^3 voxels around each end never occlude,
+   *   0..MRGI_VOXEL_MAX_SKIP_RADIUS (8), default
+   *   MRGI_VOXEL_DEFAULT_SKIP_RADIUS (1).
+   */
+  virtual void SetMaxSteps(int steps);
+  vtkGetMacro(MaxSteps, int);
+  virtual void SetNormalOffset(double offset);
+  vtkGetMacro(NormalOffset, double);
+  virtual void SetSkipRadius(int radius);
+  vtkGetMacro(SkipRadius, int);
+  ///@}
+
+#ifndef __VTK_WRAP__
+  /** MaxSteps, NormalOffset (as float) and SkipRadius as the core's struct. */
+  void GetMarchParams(mrgi_voxel_march_params* params) const;
+
+  /**
+   * Set every uniform of the march library (GetMarchShaderSource()) in
+   * `program` for the last Voxelize() and `params`: the grid (mrgiVoxelGridSize,
+   * mrgiVoxelNear, mrgiVoxelFar, mrgiVoxelSliceScale), the projection
+   * (mrgiVoxelProjectionScale, mrgiVoxelProjectionOffset, mrgiVoxelParallel),
+   * the knobs (mrgiVoxelMaxSteps, mrgiVoxelNormalOffset, mrgiVoxelSkipRadius),
+   * all as the same floats and ints the C twin reads from GetGrid() and
+   * `params`; and activates the voxel texture on a texture unit bound to
+   * mrgiVoxelTexture. Uniforms the program does not use are skipped. The
+   * program must be bound (as after vtkOpenGLShaderCache::ReadyShaderProgram()
+   * or a vtkOpenGLQuadHelper's construction) in the window voxelized in;
+   * call GetVoxelTexture()->Deactivate() after drawing to free the unit.
+   * False, with an error and nothing set, for a null program, no successful
+   * Voxelize() yet, or `params` out of range (mrgi_voxel_march_params_validate()).
+   */
+  bool SetMarchUniforms(vtkShaderProgram* program, const mrgi_voxel_march_params& params);
+
+  /** SetMarchUniforms() with this object's MaxSteps, NormalOffset and SkipRadius. */
+  bool SetMarchUniforms(vtkShaderProgram* program);
+
+  /**
+   * The GLSL of the ray march (vtkMRGIVoxelMarch.glsl): uniforms and
+   * functions, no main() and no #version. Put it in a fragment shader after
+   * //VTK::System::Dec and the core's constants block (mrgi_glsl_defines()).
+   */
+  static const char* GetMarchShaderSource();
+#endif
+
   /**
    * Log the pass as a GPU timer event ("voxelize") on this timer; null (the
    * default) logs nothing. Not reference counted.
@@ -169,6 +237,9 @@ protected:
   ~vtkMRGIVoxelization() override;
 
   int VoxelSize[2];
+  int MaxSteps;
+  double NormalOffset;
+  int SkipRadius;
   vtkRenderTimerLog* StageTimer = nullptr;
 
   struct Internals;
