@@ -12,6 +12,7 @@
 #include "vtkMRGIImageIO.h"
 #include "vtkMRGIAreaLight.h"
 #include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIVoxelization.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGIReferenceRenderer.h"
 #include "vtkMRGIVPLSelection.h"
@@ -32,6 +33,7 @@
 
 #include "mrgi_error.h"
 #include "mrgi_area_light.h"
+#include "mrgi_voxel.h"
 #include "mrgi_multires.h"
 #include "mrgi_parse.h"
 
@@ -55,7 +57,7 @@ const char* const Usage = R"(usage: mrgi-render SCENE -o OUT.png|OUT.exr [option
 
 Renders SCENE headless (no X server, no GPU needed) and writes the image.
 
-SCENE   a built-in scene: cornell, cornell-spot, cornell-area, scaling
+SCENE   a built-in scene: cornell, cornell-spot, cornell-area, living-room, scaling
         or a data file: .vtp .vtu .vti .vts .vtr .vtm .vtk .ply .obj .stl .gltf .glb
 
 Output
@@ -90,6 +92,10 @@ Documentation/AreaLights.md; drawn whatever --gi says)
   --area-light-two-sided emit on both sides (every area light)
   --area-light-samples N light samples per area light, 1..4096 (default 256)
   --area-lights off      ignore the scene's and the command line's area lights
+  --area-light-visibility off|naive
+                         shadows: none, or a march through screen-space voxels per texel
+                         and light sample (default naive; nichols-penmatsa-wyman-2010 3.3)
+  --voxel-size N         voxel buffer side for the visibility, 1..4096 (default 128)
 
 Scaling scene
   --triangles N          total triangle count (default 100000)
@@ -175,6 +181,8 @@ struct Options
   bool AreaLightsOn = true;
   bool AreaLightTwoSided = false;
   long long AreaLightSamples = 256;
+  bool AreaLightVisibility = true;
+  long long VoxelSize = 128;
   long long VPLs = 256;
   bool ImportanceVPLs = false;
   long long RSMSize = 256;
@@ -542,6 +550,23 @@ int ParseArguments(int argc, char* argv[], Options& o)
       if (!ParseSwitch(v, "on", o.AreaLightsOn))
         return Fail(std::string("--area-lights '") + v + "': expected on or off");
     }
+    else if (arg == "--area-light-visibility")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      if (std::strcmp(v, "off") != 0 && std::strcmp(v, "naive") != 0)
+        return Fail(std::string("--area-light-visibility '") + v + "': expected off or naive");
+      o.AreaLightVisibility = std::strcmp(v, "naive") == 0;
+    }
+    else if (arg == "--voxel-size")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      int64_t value = 0;
+      if (mrgi_parse_int64(v, 1, MRGI_VOXEL_MAX_SIZE, &value, &err) != MRGI_OK)
+        return Fail(arg + ": " + err.message);
+      o.VoxelSize = value;
+    }
     else if (arg == "--area-light-samples")
     {
       if (!needValue(i, arg, v))
@@ -822,6 +847,8 @@ int main(int argc, char* argv[])
   if (o.FinestLevel >= 0)
     mrgi->GetMultiresolution()->SetFinestLevel(static_cast<int>(o.FinestLevel));
   mrgi->GetMultiresolution()->SetSurfaceDetail(o.SurfaceDetail);
+  mrgi->SetAreaLightVisibility(o.AreaLightVisibility ? vtkMRGIPass::VisibilityNaive : vtkMRGIPass::VisibilityOff);
+  mrgi->GetVoxelization()->SetVoxelSide(static_cast<int>(o.VoxelSize));
   if (o.AreaLightsOn)
   {
     for (int l = 0; l < builder->GetNumberOfAreaLights(); ++l)

@@ -19,6 +19,7 @@
 #include "vtkMRGIVPLIrradiance.h"
 #include "vtkMRGIAreaLightDiffuse.h"
 #include "mrgi_area_light.h"
+#include "vtkMRGIVoxelization.h"
 #include "vtkMRGIMultiresSplatFS.h"
 #include "vtkMRGIMultiresSplatVS.h"
 #include "vtkMRGIMultiresReceiversFS.h"
@@ -28,6 +29,7 @@
 
 #include "mrgi_multires.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -210,7 +212,9 @@ struct vtkMRGIMultiresolution::Internals
   // The area-light gather (same pass, MRGI_GATHER_AREA_LIGHT), and the light
   // of the GatherAreaLight() call in progress (not owned; null otherwise).
   vtkOpenGLQuadHelper* AreaGatherQuad = nullptr;
+  vtkOpenGLQuadHelper* AreaVisibleGatherQuad = nullptr; // with the voxel march
   const mrgi_area_light_uniforms* AreaLight = nullptr;
+  vtkMRGIVoxelization* AreaVoxels = nullptr;
   // Multiresolution splatting: the subsplat list (the selected texels,
   // sorted by level; host copy kept so that its capacity is reused from
   // frame to frame) in a vertex buffer with its vertex array.
@@ -356,6 +360,7 @@ vtkMRGIMultiresolution::~vtkMRGIMultiresolution()
   }
   delete this->Internal->GatherQuad;
   delete this->Internal->AreaGatherQuad;
+  delete this->Internal->AreaVisibleGatherQuad;
 }
 
 //------------------------------------------------------------------------------
@@ -386,6 +391,7 @@ void vtkMRGIMultiresolution::ReleaseGraphicsResources(vtkWindow* w)
   }
   releaseQuad(this->Internal->GatherQuad);
   releaseQuad(this->Internal->AreaGatherQuad);
+  releaseQuad(this->Internal->AreaVisibleGatherQuad);
   if (this->Internal->FrameBuffer)
   {
     this->Internal->FrameBuffer->ReleaseGraphicsResources(w);
@@ -780,17 +786,23 @@ bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObj
 //------------------------------------------------------------------------------
 bool vtkMRGIMultiresolution::GatherAreaLight(vtkOpenGLRenderWindow* window,
   vtkTextureObject* position, vtkTextureObject* normal, int x0, int y0, vtkTextureObject* samples,
-  int sampleCount, const mrgi_area_light_uniforms& light, const float viewToWorld[16])
+  int sampleCount, const mrgi_area_light_uniforms& light, const float viewToWorld[16],
+  vtkMRGIVoxelization* visibility)
 {
   // The same receivers, selection and stenciled gather as the VPLs', with
   // the area-light term (nichols-penmatsa-wyman-2010 3.2: "we use the same
   // multiresolution framework").
   struct Clear
   {
-    const mrgi_area_light_uniforms*& Light;
-    ~Clear() { this->Light = nullptr; }
-  } clear{ this->Internal->AreaLight };
+    Internals& In;
+    ~Clear()
+    {
+      this->In.AreaLight = nullptr;
+      this->In.AreaVoxels = nullptr;
+    }
+  } clear{ *this->Internal };
   this->Internal->AreaLight = &light;
+  this->Internal->AreaVoxels = visibility;
   return this->Gather(window, position, normal, x0, y0, samples, sampleCount, viewToWorld);
 }
 
@@ -809,11 +821,14 @@ bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
   const int finest = std::min(this->FinestLevel, levels - 1);
   using vtkMRGIShaderUtilities::ScopedStage;
   const bool area = in.AreaLight != nullptr;
+  const bool visibility = area && in.AreaVoxels != nullptr;
   ScopedStage gatherStep(this->StageTimer, area ? "gather.samples" : "gather.vpls");
-  vtkOpenGLQuadHelper*& quad = area ? in.AreaGatherQuad : in.GatherQuad;
+  vtkOpenGLQuadHelper*& quad = visibility ? in.AreaVisibleGatherQuad : area ? in.AreaGatherQuad : in.GatherQuad;
   if (!quad)
   {
     const std::string body = std::string("#define MRGI_GATHER_IRRADIANCE_ONLY 1\n") +
+      (visibility ? std::string("#define MRGI_AREA_VISIBILITY 1\n") + vtkMRGIVoxelization::GetMarchShaderSource()
+                  : std::string()) +
       (area ? std::string("#define MRGI_GATHER_AREA_LIGHT 1\n") + vtkMRGIAreaLightDiffuse : std::string()) +
       vtkMRGIVPLIrradiance + vtkMRGIGatherFS;
     quad = new vtkOpenGLQuadHelper(window,
@@ -853,6 +868,18 @@ bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
     gather->SetUniform3f("mrgiAreaNormal", light.normal);
     gather->SetUniform3fv("mrgiAreaCorners", 4, light.corners);
     gather->SetUniformi("mrgiAreaTwoSided", light.two_sided);
+    if (visibility)
+    {
+      double worldToView[16];
+      if (!in.AreaVoxels->GetLastWorldToView(worldToView) || !in.AreaVoxels->SetMarchUniforms(gather))
+      {
+        vpls->Deactivate();
+        return false;
+      }
+      float m[16];
+      std::copy(worldToView, worldToView + 16, m);
+      gather->SetUniformMatrix4x4("mrgiWCToVC", m);
+    }
   }
   else
   {
@@ -884,6 +911,10 @@ bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
     receiverP->Deactivate();
   }
   vpls->Deactivate();
+  if (visibility)
+  {
+    in.AreaVoxels->GetVoxelTexture()->Deactivate();
+  }
   ostate->vtkglStencilMask(0xFF);
   ostate->vtkglStencilFunc(GL_ALWAYS, 0, 0xFF);
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);

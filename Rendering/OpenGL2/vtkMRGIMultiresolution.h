@@ -43,6 +43,7 @@
 #include <memory> // For std::unique_ptr
 
 struct mrgi_area_light_uniforms;
+class vtkMRGIVoxelization;
 class vtkFloatArray;
 class vtkOpenGLRenderWindow;
 class vtkRenderTimerLog;
@@ -155,11 +156,15 @@ public:
    * (mrgi_area_light_uniforms_init(), world space). The same receivers and
    * selection; always the stenciled gather (timer step "gather.samples").
    * Upsample() and Resolve() then work as after Gather(). C twin:
-   * mrgi_area_light_diffuse().
+   * mrgi_area_light_diffuse(). With `visibility` (voxelized this frame),
+   * each sample counts only where the voxel march (3.3.1, the naive query:
+   * one march per texel and sample; vtkMRGIVoxelMarch.glsl, C twin
+   * mrgi_voxel_march()) finds it visible.
    */
   bool GatherAreaLight(vtkOpenGLRenderWindow* window, vtkTextureObject* position,
     vtkTextureObject* normal, int x0, int y0, vtkTextureObject* samples, int sampleCount,
-    const mrgi_area_light_uniforms& light, const float viewToWorld[16]);
+    const mrgi_area_light_uniforms& light, const float viewToWorld[16],
+    vtkMRGIVoxelization* visibility = nullptr);
 #endif
 
   enum GatherModes

@@ -7,6 +7,7 @@
 #include "vtkImageData.h"
 #include "vtkMRGIAreaLight.h"
 #include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIVoxelization.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIVPLSelection.h"
@@ -229,6 +230,7 @@ vtkMRGIPass::vtkMRGIPass()
   this->RSMPass = vtkMRGIReflectiveShadowMapPass::New();
   this->VPLSelection = vtkMRGIVPLSelection::New();
   this->Multiresolution = vtkMRGIMultiresolution::New();
+  this->Voxelization = vtkMRGIVoxelization::New();
   this->OpaqueSequence = vtkSequencePass::New();
   for (int i = 0; i < 16; ++i)
   {
@@ -267,6 +269,7 @@ vtkMRGIPass::~vtkMRGIPass()
   this->VPLSelection->Delete();
   this->Multiresolution->Delete();
   this->OpaqueSequence->Delete();
+  this->Voxelization->Delete();
   this->RemoveAllAreaLights();
 }
 
@@ -360,6 +363,7 @@ void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
   this->RSMPass->ReleaseGraphicsResources(w);
   this->VPLSelection->ReleaseGraphicsResources(w);
   this->Multiresolution->ReleaseGraphicsResources(w);
+  this->Voxelization->ReleaseGraphicsResources(w);
   Release(this->GatherQuad, w);
   Release(this->AddQuad, w);
   Release(this->OutputQuad, w);
@@ -767,6 +771,23 @@ bool vtkMRGIPass::RenderAreaLights(
   }
   // Surface-detail modulation (nichols-wyman-2009 eq. 2) is for indirect
   // light; direct light is resolved without it.
+  // Visibility: one voxelization per frame for every light, over the
+  // camera's clipping range (VTK fits it to the visible props' bounds: the
+  // visible scene's depth range, mrgi_voxel.h section 2).
+  vtkMRGIVoxelization* voxels = nullptr;
+  if (this->AreaLightVisibility == VisibilityNaive)
+  {
+    double range[2];
+    renderer->GetActiveCamera()->GetClippingRange(range);
+    if (this->Voxelization->Voxelize(renderer, range[0], range[1]))
+    {
+      voxels = this->Voxelization;
+    }
+    else
+    {
+      vtkErrorMacro("area lights: could not voxelize the scene; drawing them without shadows");
+    }
+  }
   vtkMRGIMultiresolution* mr = this->Multiresolution;
   const double surfaceDetail = mr->GetSurfaceDetail();
   mr->SetSurfaceDetail(0.0);
@@ -799,7 +820,7 @@ bool vtkMRGIPass::RenderAreaLights(
       this->AreaLightSampleBuilds[i] = light->GetNumberOfSampleBuilds();
     }
     if (!mr->GatherAreaLight(renWin, this->PositionTexture, this->NormalTexture, this->Viewport[0],
-          this->Viewport[1], texture, count, uniforms, this->LastViewToWorldFloat) ||
+          this->Viewport[1], texture, count, uniforms, this->LastViewToWorldFloat, voxels) ||
       !mr->Upsample(renWin, this->UpsampleMode, this->UpsampleMaskWeight) ||
       !mr->Resolve(renWin, this->AlbedoTexture, this->PositionTexture, this->NormalTexture,
         this->LastParallel, this->AreaIrradianceTexture, this->AreaDirectTexture, this->Viewport[0],
@@ -1214,6 +1235,8 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RSMResolution: " << this->RSMPass->GetResolution() << "\n";
   os << indent << "StageTimingEnabled: " << (this->StageTimingEnabled ? "On" : "Off") << "\n";
   os << indent << "AreaLights: " << this->AreaLights.size() << "\n";
+  os << indent << "AreaLightVisibility: " << (this->AreaLightVisibility == VisibilityNaive ? "Naive" : "Off")
+     << "\n";
   os << indent << "BufferSize: " << this->BufferSize[0] << " x " << this->BufferSize[1] << "\n";
   for (int i = 0; i < this->GetNumberOfStages(); ++i)
   {

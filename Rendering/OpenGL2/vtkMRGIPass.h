@@ -51,6 +51,7 @@ class vtkFloatArray;
 class vtkImageData;
 class vtkMRGIAreaLight;
 class vtkMRGIMultiresolution;
+class vtkMRGIVoxelization;
 class vtkMRGIReflectiveShadowMapPass;
 class vtkMRGIVPLSelection;
 class vtkOpenGLFXAAFilter;
@@ -144,6 +145,28 @@ public:
   int GetNumberOfAreaLights() const;
   vtkMRGIAreaLight* GetAreaLight(int index) const;
   ///@}
+
+  enum AreaLightVisibilityModes
+  {
+    VisibilityOff = 0,  ///< no shadows from area lights (NPW10 3.2)
+    VisibilityNaive = 1 ///< a voxel march per texel and light sample (NPW10 3.3.1; default)
+  };
+
+  ///@{
+  /**
+   * Shadows of the area lights: none, or the naive voxel visibility
+   * (nichols-penmatsa-wyman-2010 3.3: the visible scene is voxelized into
+   * 128 depth slices per pixel of a voxel buffer, GetVoxelization() holds
+   * its size and march knobs, and each light sample is tested by marching
+   * from each gathering texel). Occluders outside the view are unknown to a
+   * screen-space method.
+   */
+  vtkSetClampMacro(AreaLightVisibility, int, VisibilityOff, VisibilityNaive);
+  vtkGetMacro(AreaLightVisibility, int);
+  ///@}
+
+  /** The screen-space voxelization of the area-light visibility (voxel buffer size, march knobs). */
+  vtkMRGIVoxelization* GetVoxelization() { return this->Voxelization; }
 
   /**
    * The direct light of the area lights in the last frame (albedo x X,
@@ -278,6 +301,8 @@ protected:
   vtkTextureObject* AreaIrradianceTexture = nullptr;
   vtkTextureObject* AreaDirectTexture = nullptr;
   vtkTextureObject* AreaSumTexture = nullptr;
+  int AreaLightVisibility = VisibilityNaive;
+  vtkMRGIVoxelization* Voxelization = nullptr;
 
   vtkMRGIReflectiveShadowMapPass* RSMPass = nullptr;
   vtkMRGIVPLSelection* VPLSelection = nullptr;

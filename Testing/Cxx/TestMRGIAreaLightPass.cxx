@@ -20,6 +20,9 @@
 #include "vtkUnsignedCharArray.h"
 
 #include "mrgi_area_light.h"
+#include "mrgi_voxel_march.h"
+#include "vtkMRGIVoxelization.h"
+#include "vtkTypeUInt32Array.h"
 
 #include <cmath>
 #include <cstdio>
@@ -109,6 +112,8 @@ int main()
   vtkMRGIMultiresolution* mr = pass->GetMultiresolution();
   mr->SetDepthThreshold(0.0);
   mr->SetNormalThreshold(0.0);
+  MRGI_TEST_CHECK(pass->GetAreaLightVisibility() == vtkMRGIPass::VisibilityNaive); // the default
+  pass->SetAreaLightVisibility(vtkMRGIPass::VisibilityOff);
   window->Render();
   MRGI_TEST_CHECK(pass->GetAreaLightsComputed() && !pass->GetIndirectComputed());
   vtkSmartPointer<vtkImageData> gpu = AreaBuffer(pass, window);
@@ -162,6 +167,92 @@ int main()
   std::printf("full resolution: %d lit pixels of %d, relative RMS against albedo x C twin %.3g\n", lit,
     W * H, error);
   MRGI_TEST_CHECK(lit > W * H / 4 && error < 1e-4);
+
+  // 1b. Naive voxel visibility (NPW10 3.3.1), still at full resolution:
+  // each sample's term counts where mrgi_voxel_march() on the read-back
+  // voxel buffer, in eye space, finds it visible.
+  pass->SetAreaLightVisibility(vtkMRGIPass::VisibilityNaive);
+  window->Render();
+  vtkSmartPointer<vtkImageData> shadowed = AreaBuffer(pass, window);
+  vtkMRGIVoxelization* voxelization = pass->GetVoxelization();
+  vtkNew<vtkTypeUInt32Array> voxelWords;
+  mrgi_voxel_view view{};
+  MRGI_TEST_CHECK(voxelization->ReadVoxels(window, voxelWords));
+  MRGI_TEST_CHECK(voxelization->GetGrid(&view.grid, &view.projection));
+  voxelization->GetMarchParams(&view.params);
+  view.voxels = voxelWords->GetPointer(0);
+  view.voxel_words = static_cast<size_t>(voxelWords->GetNumberOfValues());
+  mrgi_error err;
+  MRGI_TEST_CHECK(mrgi_voxel_view_check(&view, &err) == MRGI_OK);
+  double w2v[16];
+  MRGI_TEST_CHECK(voxelization->GetLastWorldToView(w2v));
+  vtkDataArray* S = shadowed->GetPointData()->GetScalars();
+  num = den = 0;
+  double unshadowedSum = 0, shadowedSum = 0;
+  for (vtkIdType i = 0; i < P->GetNumberOfTuples(); ++i)
+  {
+    double X[3] = { 0.0, 0.0, 0.0 };
+    if (P->GetComponent(i, 3) > 0.5)
+    {
+      float p[3], n[3], pv[3], nv[3];
+      for (int r = 0; r < 3; ++r)
+      {
+        pv[r] = static_cast<float>(P->GetComponent(i, r));
+        nv[r] = static_cast<float>(N->GetComponent(i, r));
+        p[r] = m[12 + r];
+        n[r] = 0.0f;
+        for (int k = 0; k < 3; ++k)
+        {
+          p[r] += m[4 * k + r] * pv[k];
+          n[r] += m[4 * k + r] * nv[k];
+        }
+      }
+      for (int j = 0; j < count; ++j)
+      {
+        float Xj[3];
+        mrgi_area_light_diffuse(&uniforms, samples + j, 1, p, n, Xj);
+        if (Xj[0] + Xj[1] + Xj[2] == 0.0f)
+        {
+          continue;
+        }
+        float L[3], NL[3];
+        for (int r = 0; r < 3; ++r)
+        {
+          L[r] = static_cast<float>(w2v[12 + r]);
+          NL[r] = 0.0f;
+          for (int k = 0; k < 3; ++k)
+          {
+            L[r] += static_cast<float>(w2v[4 * k + r]) * samples[j].position[k];
+            NL[r] += static_cast<float>(w2v[4 * k + r]) * samples[j].normal[k];
+          }
+        }
+        if (mrgi_voxel_march(&view, pv, nv, L, NL))
+        {
+          for (int k = 0; k < 3; ++k)
+          {
+            X[k] += Xj[k];
+          }
+        }
+      }
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      const double expected = A->GetComponent(i, k) * X[k];
+      const double got = S->GetComponent(i, k);
+      MRGI_TEST_CHECK(std::isfinite(got));
+      num += (got - expected) * (got - expected);
+      den += expected * expected;
+      shadowedSum += got;
+      unshadowedSum += G->GetComponent(i, k);
+    }
+  }
+  const double visibilityError = std::sqrt(num / (den > 0 ? den : 1.0));
+  std::printf("naive visibility: %.1f%% of the unshadowed light arrives; relative RMS against the C twins "
+              "(mrgi_area_light_diffuse x mrgi_voxel_march) %.3g\n",
+    100.0 * shadowedSum / unshadowedSum, visibilityError);
+  MRGI_TEST_CHECK(shadowedSum < 0.97 * unshadowedSum && shadowedSum > 0.2 * unshadowedSum);
+  MRGI_TEST_CHECK(visibilityError < 1e-3);
+  pass->SetAreaLightVisibility(vtkMRGIPass::VisibilityOff);
 
   // 2. Multiresolution (Balanced): close to the full-resolution buffer.
   mr->SetPreset(vtkMRGIMultiresolution::PresetBalanced);

@@ -13,9 +13,17 @@ uniform vec3 mrgiAreaCenter;
 uniform vec3 mrgiAreaNormal;
 uniform vec3 mrgiAreaCorners[4];
 uniform int mrgiAreaTwoSided;
+#ifdef MRGI_AREA_VISIBILITY
+// Visibility of each sample by a march through the screen-space voxels
+// (nichols-penmatsa-wyman-2010 3.3.1, vtkMRGIVoxelMarch.glsl, prepended,
+// with its uniforms), in eye space: the voxels' space.
+uniform mat4 mrgiWCToVC;
+#endif
 
-// The VTK irradiance X at receiver (P, N): the receiver shows albedo * X.
-vec3 mrgiAreaLightDiffuse(vec3 P, vec3 N)
+// The VTK irradiance X at receiver (P, N) (world space; Pvc, Nvc the same
+// receiver in eye space, for the visibility march): the receiver shows
+// albedo * X.
+vec3 mrgiAreaLightDiffuse(vec3 P, vec3 N, vec3 Pvc, vec3 Nvc)
 {
   // Early-out 1: behind a one-sided light or in its plane (two-sided: in
   // its plane). "for one-sided lights ... we also discard fragments behind
@@ -48,6 +56,15 @@ vec3 mrgiAreaLightDiffuse(vec3 P, vec3 N)
     float cosJr = -dot(sampleNormal, d);
     if (mrgiAreaTwoSided != 0) { cosJr = abs(cosJr); }
     if (!(cosIr > 0.0) || !(cosJr > 0.0)) { continue; }
+#ifdef MRGI_AREA_VISIBILITY
+    // The naive query (3.3.1): one march per receiver and sample.
+    vec3 Lvc = (mrgiWCToVC * vec4(position.xyz, 1.0)).xyz;
+    vec3 NLvc = mat3(mrgiWCToVC) * sampleNormal;
+    // A two-sided light emits from the side facing the receiver: that
+    // side's normal (the horizon test and the bias at the light end).
+    if (mrgiAreaTwoSided != 0 && dot(NLvc, Pvc - Lvc) < 0.0) { NLvc = -NLvc; }
+    if (!mrgiVoxelVisible(Pvc, Nvc, Lvc, NLvc)) { continue; }
+#endif
     vec3 radiance = texelFetch(mrgiAreaSamples, ivec2(MRGI_AREA_LIGHT_SAMPLE_TEXEL_RADIANCE, j), 0).rgb;
     X += radiance * (position.w * (cosIr * cosJr / r2) / (MRGI_PI * r2 + position.w));
   }

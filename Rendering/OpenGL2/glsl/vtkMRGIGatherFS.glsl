@@ -32,7 +32,8 @@ void main()
   }
   vec3 P;
   vec3 N;
-  if (mrgiClassifyReceiver(positionVC, texelFetch(mrgiNormal, pixel, 0).xyz, mrgiVCToWC, P, N) == 1)
+  vec3 normalVC = texelFetch(mrgiNormal, pixel, 0).xyz;
+  if (mrgiClassifyReceiver(positionVC, normalVC, mrgiVCToWC, P, N) == 1)
   {
     gl_FragData[0] = vec4(0.0, 0.0, 0.0, 1.0);
 #ifndef MRGI_GATHER_IRRADIANCE_ONLY
@@ -42,7 +43,7 @@ void main()
   }
 #ifdef MRGI_GATHER_AREA_LIGHT
   // Direct light of one area light (vtkMRGIAreaLightDiffuse.glsl, prepended).
-  vec3 E = mrgiAreaLightDiffuse(P, N);
+  vec3 E = mrgiAreaLightDiffuse(P, N, positionVC.xyz, normalVC);
 #else
   vec3 E = vec3(0.0);
   for (int j = 0; j < mrgiVPLCount; ++j)
