@@ -333,3 +333,11 @@ float mrgi_voxel_march_occluder_fraction(const mrgi_voxel_view* view, const floa
   }
   return outcome == MRGI_VOXEL_HIT ? fraction : 1.0f;
 }
+
+int32_t mrgi_voxel_samples_per_batch(int32_t max_steps)
+{
+  const int64_t steps = max_steps > 0 ? max_steps : 1;
+  const int64_t per_march = steps * MRGI_VOXEL_ITERATIONS_PER_STEP + MRGI_VOXEL_ITERATIONS_PER_MARCH;
+  const int64_t batch = MRGI_VOXEL_ITERATION_BUDGET / per_march;
+  return (int32_t)(batch > 1 ? batch : 1);
+}

@@ -161,6 +161,20 @@ extern "C" {
 /** Largest accepted skip box radius, in voxels. */
 #define MRGI_VOXEL_MAX_SKIP_RADIUS 8
 
+/**
+ * Loop iterations one shader invocation may spend marching. Mesa's
+ * llvmpipe ends every loop of an invocation once 65535 iterations have run
+ * in all (gallivm's loop limiter), silently: a gather that marched 256
+ * samples x 256 steps in one fragment lost half its samples (measured).
+ * Shaders that march many samples per fragment take them in batches of
+ * mrgi_voxel_samples_per_batch().
+ */
+#define MRGI_VOXEL_ITERATION_BUDGET 60000
+/** Loop iterations charged per march step: the step and its 4-channel mask loop (about 5 measured on llvmpipe). */
+#define MRGI_VOXEL_ITERATIONS_PER_STEP 8
+/** Loop iterations charged per march besides its steps (clipping planes, the sample loop). */
+#define MRGI_VOXEL_ITERATIONS_PER_MARCH 32
+
 /** Knobs of the march. */
 typedef struct mrgi_voxel_march_params
 {
@@ -171,6 +185,14 @@ typedef struct mrgi_voxel_march_params
 
 /** @brief Defaults: the MRGI_VOXEL_DEFAULT_* values. NULL-safe. */
 void mrgi_voxel_march_params_default(mrgi_voxel_march_params* params);
+
+/**
+ * @brief Light samples one shader invocation may march within
+ *        ::MRGI_VOXEL_ITERATION_BUDGET at this step cap:
+ *        max(1, budget / (max_steps * MRGI_VOXEL_ITERATIONS_PER_STEP + MRGI_VOXEL_ITERATIONS_PER_MARCH)).
+ *        (28 at the default 256 steps.) Non-positive max_steps count as 1.
+ */
+int32_t mrgi_voxel_samples_per_batch(int32_t max_steps);
 
 /** @brief Check the knobs' ranges. ::MRGI_ERR_INVALID_ARGUMENT naming the bad field. */
 mrgi_status mrgi_voxel_march_params_validate(const mrgi_voxel_march_params* params,

@@ -20,6 +20,7 @@
 #include "vtkMRGIAreaLightDiffuse.h"
 #include "mrgi_area_light.h"
 #include "vtkMRGIVoxelization.h"
+#include "mrgi_voxel_march.h"
 #include "vtkMRGIMultiresSplatFS.h"
 #include "vtkMRGIMultiresSplatVS.h"
 #include "vtkMRGIMultiresReceiversFS.h"
@@ -863,7 +864,7 @@ bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
   {
     const mrgi_area_light_uniforms& light = *in.AreaLight;
     gather->SetUniformi("mrgiAreaSamples", vpls->GetTextureUnit());
-    gather->SetUniformi("mrgiAreaSampleCount", vplCount);
+    // mrgiAreaSampleFirst/Count: set per draw below.
     gather->SetUniform3f("mrgiAreaCenter", light.center);
     gather->SetUniform3f("mrgiAreaNormal", light.normal);
     gather->SetUniform3fv("mrgiAreaCorners", 4, light.corners);
@@ -887,6 +888,28 @@ bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
     gather->SetUniformi("mrgiVPLCount", vplCount);
   }
   gather->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(viewToWorld));
+  // Marching every sample in one fragment can run past the total loop
+  // iterations a fragment may take on llvmpipe (gallivm stops every loop of
+  // an invocation after 65535 iterations in all, silently: samples went
+  // missing, measured), and long draws trip GPU watchdogs elsewhere: with
+  // visibility, the samples are gathered in batches whose marches fit the
+  // budget, each batch one draw added to the previous ones (RGB summed,
+  // alpha kept at 1). The sums change order only by batch.
+  const int batch = visibility
+    ? mrgi_voxel_samples_per_batch(in.AreaVoxels->GetMaxSteps())
+    : std::max(vplCount, 1);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
+  if (area)
+  {
+    gather->SetUniformi("mrgiAreaSampleFirst", 0);
+    gather->SetUniformi("mrgiAreaSampleCount", std::min(batch, vplCount));
+  }
+  if (vplCount > batch)
+  {
+    ostate->vtkglEnable(GL_BLEND);
+    ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+    ostate->vtkglBlendEquationSeparate(GL_FUNC_ADD, GL_MAX);
+  }
   for (int i = finest; i < levels; ++i)
   {
     vtkTextureObject* receiverP = i == 0 ? position : in.Receivers[i][0];
@@ -907,10 +930,25 @@ bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
     {
       glEndQuery(GL_SAMPLES_PASSED);
     }
+    for (int first = batch; first < vplCount; first += batch)
+    {
+      gather->SetUniformi("mrgiAreaSampleFirst", first);
+      gather->SetUniformi("mrgiAreaSampleCount", std::min(batch, vplCount - first));
+      quad->Render();
+    }
+    if (area && vplCount > batch)
+    {
+      gather->SetUniformi("mrgiAreaSampleFirst", 0);
+      gather->SetUniformi("mrgiAreaSampleCount", batch);
+    }
     receiverN->Deactivate();
     receiverP->Deactivate();
   }
   vpls->Deactivate();
+  if (vplCount > batch)
+  {
+    ostate->vtkglBlendEquationSeparate(GL_FUNC_ADD, GL_FUNC_ADD);
+  }
   if (visibility)
   {
     in.AreaVoxels->GetVoxelTexture()->Deactivate();

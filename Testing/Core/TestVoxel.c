@@ -1722,8 +1722,25 @@ static void test_random_scenes(void)
    * changes little; each resolution stays within 5%. */
 }
 
+/* Batches of marched samples stay within the loop budget of one shader
+ * invocation, at every step cap, and never drop to 0. */
+static void test_samples_per_batch(void)
+{
+  for (int32_t steps = -1; steps <= MRGI_VOXEL_MAX_STEPS; steps += (steps < 64 ? 1 : 61))
+  {
+    const int32_t batch = mrgi_voxel_samples_per_batch(steps);
+    const int64_t used = (int64_t)batch * ((steps > 0 ? steps : 1) * (int64_t)MRGI_VOXEL_ITERATIONS_PER_STEP +
+                                           MRGI_VOXEL_ITERATIONS_PER_MARCH);
+    MRGI_CHECK(batch >= 1);
+    MRGI_CHECK(batch == 1 || used <= MRGI_VOXEL_ITERATION_BUDGET);
+  }
+  MRGI_CHECK(mrgi_voxel_samples_per_batch(MRGI_VOXEL_DEFAULT_MAX_STEPS) == 28);
+  MRGI_CHECK(mrgi_voxel_samples_per_batch(1) > mrgi_voxel_samples_per_batch(2));
+}
+
 int main(void)
 {
+  test_samples_per_batch();
   test_layout();
   test_grid_errors();
   test_voxelize();

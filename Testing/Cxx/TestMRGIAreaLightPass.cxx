@@ -101,7 +101,7 @@ int main()
   light->SetEdgeU(0.35 * (b[1] - b[0]), 0.0, 0.0);
   light->SetEdgeV(0.0, 0.0, 0.3 * (b[5] - b[4]));
   light->SetIntensity(2.0);
-  light->SetNumberOfSamples(64);
+  light->SetNumberOfSamples(256);
   light->SetTextureData(picture);
   pass->AddAreaLight(light);
   pass->AddAreaLight(light); // once only
@@ -171,7 +171,10 @@ int main()
   // 1b. Naive voxel visibility (NPW10 3.3.1), still at full resolution:
   // each sample's term counts where mrgi_voxel_march() on the read-back
   // voxel buffer, in eye space, finds it visible.
+  // 256 samples x up to 256 steps per texel: more loop iterations than
+  // llvmpipe runs in one invocation, so this also covers the batching.
   pass->SetAreaLightVisibility(vtkMRGIPass::VisibilityNaive);
+  pass->GetVoxelization()->SetVoxelSide(256);
   window->Render();
   vtkSmartPointer<vtkImageData> shadowed = AreaBuffer(pass, window);
   vtkMRGIVoxelization* voxelization = pass->GetVoxelization();

@@ -8,6 +8,7 @@
 // texels per sample, one row per sample); the uniforms are
 // ::mrgi_area_light_uniforms.
 uniform sampler2D mrgiAreaSamples;
+uniform int mrgiAreaSampleFirst; // this draw's samples: first .. first + count - 1
 uniform int mrgiAreaSampleCount;
 uniform vec3 mrgiAreaCenter;
 uniform vec3 mrgiAreaNormal;
@@ -45,7 +46,7 @@ vec3 mrgiAreaLightDiffuse(vec3 P, vec3 N, vec3 Pvc, vec3 Nvc)
     return vec3(0.0);
   }
   vec3 X = vec3(0.0);
-  for (int j = 0; j < mrgiAreaSampleCount; ++j)
+  for (int j = mrgiAreaSampleFirst; j < mrgiAreaSampleFirst + mrgiAreaSampleCount; ++j)
   {
     vec4 position = texelFetch(mrgiAreaSamples, ivec2(MRGI_AREA_LIGHT_SAMPLE_TEXEL_POSITION, j), 0);
     vec3 d = position.xyz - P;
