@@ -216,6 +216,8 @@ struct vtkMRGIMultiresolution::Internals
   vtkOpenGLQuadHelper* AreaVisibleGatherQuad = nullptr; // with the voxel march
   const mrgi_area_light_uniforms* AreaLight = nullptr;
   vtkMRGIVoxelization* AreaVoxels = nullptr;
+  // Receivers built for the current selection (Update() clears it).
+  bool ReceiversValid = false;
   // Multiresolution splatting: the subsplat list (the selected texels,
   // sorted by level; host copy kept so that its capacity is reused from
   // frame to frame) in a vertex buffer with its vertex array.
@@ -263,6 +265,7 @@ struct vtkMRGIMultiresolution::Internals
     ReleaseTexture(this->DepthStencil, w);
     this->HasLayout = false;
     this->LastPosition = this->LastNormal = nullptr;
+    this->ReceiversValid = false;
     this->GatheredTexels.clear();
     this->ValidPixels = -1;
   }
@@ -439,6 +442,7 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     vtkErrorMacro("Update needs a window and the G-buffer position and normal textures");
     return false;
   }
+  this->Internal->ReceiversValid = false; // a new selection: its receivers come with the next gather
   mrgi_multires_layout layout;
   mrgi_error err;
   if (mrgi_multires_layout_init(&layout, width, height, this->CoarsestSide, &err) != MRGI_OK)
@@ -669,14 +673,13 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObject* position,
-  vtkTextureObject* normal, int x0, int y0, vtkTextureObject* vpls, int vplCount,
-  const float viewToWorld[16])
+bool vtkMRGIMultiresolution::BuildReceivers(
+  vtkOpenGLRenderWindow* window, vtkTextureObject* position, vtkTextureObject* normal, int x0, int y0)
 {
   Internals& in = *this->Internal;
-  if (!window || !position || !normal || !vpls || vplCount < 1 || !in.HasLayout)
+  if (!window || !position || !normal || !in.HasLayout)
   {
-    vtkErrorMacro("Gather needs Update() first, the G-buffer and at least one VPL");
+    vtkErrorMacro("BuildReceivers needs Update() first and the G-buffer");
     return false;
   }
   const mrgi_multires_layout& layout = in.Layout;
@@ -691,7 +694,6 @@ bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObj
     window->GetShaderCache()->ReadyShaderProgram(quad->Program);
     return (quad->Program && quad->Program->GetCompiled()) ? quad->Program : nullptr;
   };
-
   bool ok = true;
   using vtkMRGIShaderUtilities::ScopedStage;
   in.LastPosition = position;
@@ -735,6 +737,27 @@ bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObj
       srcN->Deactivate();
     }
   }
+  in.ReceiversValid = ok;
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObject* position,
+  vtkTextureObject* normal, int x0, int y0, vtkTextureObject* vpls, int vplCount,
+  const float viewToWorld[16])
+{
+  Internals& in = *this->Internal;
+  if (!window || !position || !normal || !vpls || vplCount < 1 || !in.HasLayout)
+  {
+    vtkErrorMacro("Gather needs Update() first, the G-buffer and at least one VPL");
+    return false;
+  }
+  const mrgi_multires_layout& layout = in.Layout;
+  const int levels = layout.level_count;
+  bool ok = in.ReceiversValid && in.LastPosition == position && in.LastNormal == normal &&
+      in.LastOffset[0] == x0 && in.LastOffset[1] == y0
+    ? true
+    : this->BuildReceivers(window, position, normal, x0, y0);
   in.GatheredTexels.assign(static_cast<size_t>(levels), -1);
   in.ValidPixels = -1;
   if (ok && this->GatherMode == GatherSplatting && !in.AreaLight)
@@ -1363,6 +1386,56 @@ double vtkMRGIMultiresolution::GetGatherWorkFraction() const
     return -1.0;
   }
   return in.ValidPixels > 0 ? static_cast<double>(total) / static_cast<double>(in.ValidPixels) : 0.0;
+}
+
+//------------------------------------------------------------------------------
+vtkTextureObject* vtkMRGIMultiresolution::GetReceiverTexture(int level, int which) const
+{
+  const Internals& in = *this->Internal;
+  if (!in.ReceiversValid || level < 0 || level >= in.Layout.level_count || which < 0 || which > 1)
+  {
+    return nullptr;
+  }
+  if (level == 0)
+  {
+    return which == 0 ? in.LastPosition : in.LastNormal;
+  }
+  return in.Receivers[static_cast<size_t>(level)][static_cast<size_t>(which)];
+}
+
+bool vtkMRGIMultiresolution::GetReceiverOffset(int level, int offset[2]) const
+{
+  const Internals& in = *this->Internal;
+  if (!in.ReceiversValid || level < 0 || level >= in.Layout.level_count)
+  {
+    return false;
+  }
+  offset[0] = level == 0 ? in.LastOffset[0] : -in.Layout.level_offset[level];
+  offset[1] = level == 0 ? in.LastOffset[1] : 0;
+  return true;
+}
+
+vtkTextureObject* vtkMRGIMultiresolution::GetFlagsTexture(int level) const
+{
+  const Internals& in = *this->Internal;
+  return in.HasLayout && level >= 0 && level < in.Layout.level_count
+    ? in.Levels[static_cast<size_t>(level)][MRGI_MULTIRES_TEX_COUNT]
+    : nullptr;
+}
+
+vtkTextureObject* vtkMRGIMultiresolution::GetSelectionTexture() const
+{
+  return this->Internal->HasLayout ? this->Internal->FlatSelection : nullptr;
+}
+
+bool vtkMRGIMultiresolution::GetLayout(mrgi_multires_layout* layout) const
+{
+  if (!this->Internal->HasLayout || !layout)
+  {
+    return false;
+  }
+  *layout = this->Internal->Layout;
+  return true;
 }
 
 //------------------------------------------------------------------------------

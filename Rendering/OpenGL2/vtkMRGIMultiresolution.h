@@ -43,6 +43,7 @@
 #include <memory> // For std::unique_ptr
 
 struct mrgi_area_light_uniforms;
+struct mrgi_multires_layout;
 class vtkMRGIVoxelization;
 class vtkFloatArray;
 class vtkOpenGLRenderWindow;
@@ -258,6 +259,36 @@ public:
    * as each pixel does at full resolution); -1 when not counted.
    */
   double GetGatherWorkFraction() const;
+
+  /**
+   * After Update(): build the receivers of every level (mean position and
+   * normal of each texel's pixels, mrgi_multires_receivers.h; level 0 is the
+   * G-buffer itself). Gather() builds them when this frame's are missing;
+   * passes that need them before the gather (the incremental area-light
+   * visibility) call this first. False on error.
+   */
+  bool BuildReceivers(vtkOpenGLRenderWindow* window, vtkTextureObject* position,
+    vtkTextureObject* normal, int x0, int y0);
+
+  /**
+   * The receivers of `level` (which: 0 position = eye-space mean xyz +
+   * pixel count, 1 normal) after BuildReceivers() or Gather(); level 0 is
+   * the G-buffer. Texel t of the level's part of the flattened layout is
+   * texel t + GetReceiverOffset(level) of this texture. Null when not built.
+   */
+  vtkTextureObject* GetReceiverTexture(int level, int which) const;
+  bool GetReceiverOffset(int level, int offset[2]) const;
+
+  /** The flags (MRGI_MULTIRES_FLAG_* bits, red channel) of `level` after Update(); null otherwise. */
+  vtkTextureObject* GetFlagsTexture(int level) const;
+
+  /** The selection as colour (flattened layout; 1 where the stencil is set) after Update(). */
+  vtkTextureObject* GetSelectionTexture() const;
+
+#ifndef __VTK_WRAP__
+  /** The flattened layout of the last Update(); false before. */
+  bool GetLayout(mrgi_multires_layout* layout) const;
+#endif
 
   /** The depth-stencil texture holding the selection (flattened layout). */
   vtkTextureObject* GetStencilTexture() const;
