@@ -12,6 +12,10 @@ PACKAGES=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev libglew-dev
   python3 python3-numpy
 )
+# `install-deps.sh --benchmarks` adds what Testing/Benchmarks needs (plots).
+if [ "${1:-}" = "--benchmarks" ]; then
+  PACKAGES+=(python3-matplotlib)
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do

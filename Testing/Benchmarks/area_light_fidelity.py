@@ -12,6 +12,7 @@ relative RMS error of the direct image against both ground truths (C core
 metrics through mrgi-compare). Writes CSV, images (GPU, truth, difference)
 and Documentation/AreaLights.md.
 
+    bash scripts/install-deps.sh --benchmarks   # matplotlib, for the plots
     PYTHONPATH=build/lib/python3/dist-packages /usr/bin/python3 \\
         Testing/Benchmarks/area_light_fidelity.py --build build
 
@@ -104,7 +105,9 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build", default=os.path.join(mb.ROOT, "build"))
     parser.add_argument("--doc", default=os.path.join(mb.ROOT, "Documentation"))
-    parser.add_argument("--size", type=int, default=512)
+    parser.add_argument("--size", type=int, default=256)
+    parser.add_argument("--voxel-sizes", default="128,256,512,1024",
+                        help="voxel buffer sides of the resolution sweep (naive visibility, balanced preset)")
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--scenes", default="cornell-area,living-room")
     parser.add_argument("--truth-passes", type=int, default=32, help="ground-truth passes")
@@ -132,10 +135,19 @@ def main():
         mb.write_display(truth, os.path.join(images, "area-%s-truth.png" % name), scale)
         notes[name] = "ground truth: %d passes x %d shadow rays per pixel, relative standard error %.4f" % (
             args.truth_passes, args.truth_samples, truth_error)
+        settings = []
         for visibility, value in visibility_modes(scene.gi):
+            for preset, index in list(presets.items()) + [("full", None)]:
+                settings.append((visibility, value, preset, index, 128))
+            if visibility == "naive":
+                for side in [int(v) for v in args.voxel_sizes.split(",") if v]:
+                    if side != 128:
+                        settings.append((visibility, value, "balanced", presets["balanced"], side))
+        for visibility, value, preset, index, side in settings:
             if value is not None:
                 scene.gi.SetAreaLightVisibility(value)
-            for preset, index in list(presets.items()) + [("full", None)]:
+                scene.gi.GetVoxelization().SetVoxelSide(side)
+            if True:
                 if index is None:
                     scene.mr.SetDepthThreshold(0.0)
                     scene.mr.SetNormalThreshold(0.0)
@@ -149,23 +161,25 @@ def main():
                 work = scene.mr.GetGatherWorkFraction()
                 scene.mr.SetCollectStatistics(False)
                 image = scene.color()
-                path = os.path.join(scratch, "%s-%s-%s.exr" % (name, visibility, preset))
+                path = os.path.join(scratch, "%s-%s-%s-%d.exr" % (name, visibility, preset, side))
                 mb.write(image, path)
                 vs_truth = mb.compare(compare_tool, path, truth_path)
                 vs_unshadowed = mb.compare(compare_tool, path, unshadowed_path)
                 tag = "%s-%s-%s" % (name, visibility, preset)
-                if preset in ("balanced", "full"):
+                if preset in ("balanced", "full") and side == 128:
                     mb.write_display(image, os.path.join(images, "area-%s.png" % tag), scale)
                     mb.compare(compare_tool, path, truth_path, os.path.join(images, "area-%s-diff.png" % tag),
                                diff_scale=4.0 * scale)
-                row = dict(scene=name, visibility=visibility, preset=preset, area_ms=t.get("area", 0.0),
+                row = dict(scene=name, visibility=visibility, preset=preset,
+                           voxels=side if visibility != "off" else 0, area_ms=t.get("area", 0.0),
                            select_ms=t.get("select", 0.0), frame_ms=t["frame"], work=work,
                            rel_rms_truth=vs_truth["relative_rms"],
                            rel_rms_unshadowed=vs_unshadowed["relative_rms"])
                 rows.append(row)
-                print("%s, visibility %s, %s: area %.1f ms (select %.1f), work %.3f, rel. RMS vs truth %.4f, "
-                      "vs unshadowed truth %.4f" % (name, visibility, preset, row["area_ms"], row["select_ms"],
-                                                    work, row["rel_rms_truth"], row["rel_rms_unshadowed"]))
+                print("%s, visibility %s (voxels %d), %s: area %.1f ms (select %.1f), work %.3f, rel. RMS vs truth "
+                      "%.4f, vs unshadowed truth %.4f" % (name, visibility, row["voxels"], preset, row["area_ms"],
+                                                         row["select_ms"], work, row["rel_rms_truth"],
+                                                         row["rel_rms_unshadowed"]))
         scene.renderer.SetPass(None)
         scene.gi.ReleaseGraphicsResources(scene.window)
 
@@ -175,7 +189,36 @@ def main():
         writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         writer.writeheader()
         writer.writerows(rows)
+    plot(rows, os.path.join(images, "area-voxel-sweep.png"))
     write_page(args, rows, notes, os.path.join(args.doc, "AreaLights.md"))
+
+
+def plot(rows, path):
+    """Error against the voxel buffer's side (NPW10 figure 11), naive visibility, balanced preset."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for name in sorted({r["scene"] for r in rows}):
+        sweep = sorted((r for r in rows if r["scene"] == name and r["visibility"] == "naive"
+                        and r["preset"] == "balanced"), key=lambda r: r["voxels"])
+        if sweep:
+            ax.plot([r["voxels"] for r in sweep], [100 * r["rel_rms_truth"] for r in sweep], "o-",
+                    label="%s, naive visibility" % name)
+        off = [r for r in rows if r["scene"] == name and r["visibility"] == "off" and r["preset"] == "balanced"]
+        for r in off:
+            ax.axhline(100 * r["rel_rms_truth"], ls=":", lw=1, color="grey")
+            ax.text(128, 100 * r["rel_rms_truth"], " %s, no visibility" % name, fontsize=8, color="grey",
+                    va="bottom")
+    ax.set_xscale("log", base=2)
+    ax.set_xlabel("voxel buffer side (pixels; 128 depth slices)")
+    ax.set_ylabel("relative RMS error vs ground truth (%)")
+    ax.set_title("Voxel resolution (balanced preset)")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+    print("wrote %s" % path)
 
 
 def write_page(args, rows, notes, path):
@@ -203,12 +246,13 @@ def write_page(args, rows, notes, path):
     lines += ["", "Direct image (the area lights' light; emitter meshes hidden in both renders) against the ground truth with exact visibility "
               "(\"truth\") and against the ground truth without visibility (what the gather without "
               "visibility computes, up to its sampling and upsampling).", "",
-              "| scene | visibility | preset | area-light GPU ms | selection ms | work | rel. RMS vs truth | "
-              "rel. RMS vs unshadowed truth |", "|---|---|---|---|---|---|---|---|"]
+              "| scene | visibility | voxels | preset | area-light GPU ms | selection ms | work | rel. RMS vs truth | "
+              "rel. RMS vs unshadowed truth |", "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        lines.append("| %s | %s | %s | %.1f | %.1f | %.3f | %.4f | %.4f |" % (
-            r["scene"], r["visibility"], r["preset"], r["area_ms"], r["select_ms"], r["work"], r["rel_rms_truth"],
-            r["rel_rms_unshadowed"]))
+        lines.append("| %s | %s | %s | %s | %.1f | %.1f | %.3f | %.4f | %.4f |" % (
+            r["scene"], r["visibility"], "%d^2" % r["voxels"] if r["voxels"] else "-", r["preset"], r["area_ms"],
+            r["select_ms"], r["work"], r["rel_rms_truth"], r["rel_rms_unshadowed"]))
+    lines += ["", "![error against voxel resolution](images/area-voxel-sweep.png)"]
     lines += ["", "`work`: texels gathered over valid pixels (the full-resolution gather's work; NPW10 reports "
               "10-15% of pixels needing per-pixel work). `full`: thresholds 0, every pixel gathers.", "",
               "## Images", "", "| scene | ground truth | MRGI (balanced) | difference x4 |", "|---|---|---|---|"]

@@ -12,6 +12,7 @@ moved camera). Writes CSV, a PNG plot of error against time with the Pareto
 frontier, images of the levels and difference images, and regenerates
 Documentation/Multiresolution.md.
 
+    bash scripts/install-deps.sh --benchmarks   # matplotlib, for the plots
     PYTHONPATH=build/lib/python3/dist-packages /usr/bin/python3 \\
         Testing/Benchmarks/multires_sweep.py --build build
 
