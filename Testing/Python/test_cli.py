@@ -79,6 +79,26 @@ def main():
     check(code == 0 and "gather.subsplats" in out, "--gather splat times its subsplat list: " + err)
     check(open(splat_exr, "rb").read() == open(mr_exr, "rb").read(),
           "--gather splat writes the stenciled gather's image")
+    # Area lights: cornell-area is lit by its emitter alone (with and without
+    # voxel shadows), a command-line rectangle lights any scene.
+    area = {}
+    for visibility in ("off", "naive"):
+        area[visibility] = fresh("cli_area_%s.exr" % visibility)
+        code, out, err = run("cornell-area", "-o", area[visibility], "--size", "48x48", "-q",
+                             "--area-light-samples", "16", "--area-light-visibility", visibility,
+                             "--voxel-size", "64", "--timings")
+        check(code == 0 and "area" in out, "cornell-area, visibility %s: %s" % (visibility, err))
+    dark = fresh("cli_area_dark.exr")
+    code, _, err = run("cornell-area", "-o", dark, "--size", "48x48", "-q", "--area-lights", "off")
+    check(code == 0, "--area-lights off: " + err)
+    sizes = [os.path.getsize(p) for p in (area["off"], area["naive"], dark)]
+    check(open(area["off"], "rb").read() != open(area["naive"], "rb").read(), "voxel shadows change the image")
+    check(open(area["off"], "rb").read() != open(dark, "rb").read(), "the area light lights the box")
+    check(min(sizes) > 0, "area-light outputs written")
+    lit = fresh("cli_area_rect.png")
+    code, _, err = run("cornell-spot", "-o", lit, "--size", "32x32", "-q", "--gi", "off",
+                       "--area-light", "278,540,280:100,0,0:0,0,-80:1,1,1:5", "--area-light-two-sided")
+    check(code == 0 and os.path.exists(lit), "--area-light on cornell-spot: " + err)
     tm_png = fresh("cli_tone_mapping.png")
     code, _, err = run("cornell-spot", "-o", tm_png, "--size", "48x48", "-q", "--tone-mapping")
     check(code == 0 and os.path.exists(tm_png), "--tone-mapping: " + err)
@@ -116,6 +136,14 @@ def main():
         (["cornell", "-o", target, "--finest-level", "40"], "--finest-level"),
         (["cornell", "-o", target, "--upsample", "cubic"], "--upsample"),
         (["cornell", "-o", target, "--gather", "scatter"], "--gather"),
+        (["cornell", "-o", target, "--area-light", "0,0,0:1,0,0"], "--area-light"),
+        (["cornell", "-o", target, "--area-light", "0,0,0:1,0,0:1,1,0"], "perpendicular"),
+        (["cornell", "-o", target, "--area-light", "0,0,0:1,0,0:0,1,0:1,1,1:-2"], "intensity"),
+        (["cornell", "-o", target, "--area-light", "0,0,0:1,0,0:0,1,0:-1,1,1"], "colour"),
+        (["cornell", "-o", target, "--area-light-samples", "0"], "--area-light-samples"),
+        (["cornell", "-o", target, "--area-light-visibility", "exact"], "--area-light-visibility"),
+        (["cornell", "-o", target, "--voxel-size", "0"], "--voxel-size"),
+        (["cornell", "-o", target, "--area-lights", "maybe"], "--area-lights"),
         (["cornell", "-o", target, "--vpls", "5000"], "--vpls"),
         (["cornell", "-o", target, "--vpls", "-1"], "--vpls"),
         (["cornell", "-o", target, "--rsm-size", "8"], "--rsm-size"),
