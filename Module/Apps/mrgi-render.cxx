@@ -92,9 +92,10 @@ Documentation/AreaLights.md; drawn whatever --gi says)
   --area-light-two-sided emit on both sides (every area light)
   --area-light-samples N light samples per area light, 1..4096 (default 256)
   --area-lights off      ignore the scene's and the command line's area lights
-  --area-light-visibility off|naive
-                         shadows: none, or a march through screen-space voxels per texel
-                         and light sample (default naive; nichols-penmatsa-wyman-2010 3.3)
+  --area-light-visibility off|naive|incremental
+                         shadows: none; a march through screen-space voxels per texel and
+                         light sample; or coarse to fine, reusing agreeing coarse samples
+                         (default incremental; nichols-penmatsa-wyman-2010 3.3)
   --voxel-size N         voxel buffer side for the visibility, 1..4096 (default 128)
 
 Scaling scene
@@ -181,7 +182,7 @@ struct Options
   bool AreaLightsOn = true;
   bool AreaLightTwoSided = false;
   long long AreaLightSamples = 256;
-  bool AreaLightVisibility = true;
+  int AreaLightVisibility = vtkMRGIPass::VisibilityIncremental;
   long long VoxelSize = 128;
   long long VPLs = 256;
   bool ImportanceVPLs = false;
@@ -554,9 +555,14 @@ int ParseArguments(int argc, char* argv[], Options& o)
     {
       if (!needValue(i, arg, v))
         return 2;
-      if (std::strcmp(v, "off") != 0 && std::strcmp(v, "naive") != 0)
-        return Fail(std::string("--area-light-visibility '") + v + "': expected off or naive");
-      o.AreaLightVisibility = std::strcmp(v, "naive") == 0;
+      if (std::strcmp(v, "off") == 0)
+        o.AreaLightVisibility = vtkMRGIPass::VisibilityOff;
+      else if (std::strcmp(v, "naive") == 0)
+        o.AreaLightVisibility = vtkMRGIPass::VisibilityNaive;
+      else if (std::strcmp(v, "incremental") == 0)
+        o.AreaLightVisibility = vtkMRGIPass::VisibilityIncremental;
+      else
+        return Fail(std::string("--area-light-visibility '") + v + "': expected off, naive or incremental");
     }
     else if (arg == "--voxel-size")
     {
@@ -847,7 +853,7 @@ int main(int argc, char* argv[])
   if (o.FinestLevel >= 0)
     mrgi->GetMultiresolution()->SetFinestLevel(static_cast<int>(o.FinestLevel));
   mrgi->GetMultiresolution()->SetSurfaceDetail(o.SurfaceDetail);
-  mrgi->SetAreaLightVisibility(o.AreaLightVisibility ? vtkMRGIPass::VisibilityNaive : vtkMRGIPass::VisibilityOff);
+  mrgi->SetAreaLightVisibility(o.AreaLightVisibility);
   mrgi->GetVoxelization()->SetVoxelSide(static_cast<int>(o.VoxelSize));
   if (o.AreaLightsOn)
   {

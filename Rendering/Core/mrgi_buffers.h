@@ -15,7 +15,13 @@
  *   (two-sided lighting's flip applied), w = MRGI_GBUFFER_VALID;
  * - attachment MRGI_GBUFFER_ALBEDO: diffuse albedo rgb (VTK's diffuse colour
  *   times the Diffuse coefficient: solid colour, scalars through a lookup
- *   table, texture, or PBR base colour), w = MRGI_GBUFFER_VALID.
+ *   table, texture, or PBR base colour), w = MRGI_GBUFFER_VALID;
+ * - attachment MRGI_GBUFFER_SPECULAR (only while area lights reflect
+ *   specularly): VTK's specular colour k_s c_s (vtkProperty Specular x
+ *   SpecularColor; 0 for materials without it, e.g. PBR), w = MRGI_GBUFFER_VALID;
+ * - attachment MRGI_GBUFFER_SHININESS (with MRGI_GBUFFER_SPECULAR): r = the
+ *   Phong exponent (vtkProperty SpecularPower), w = MRGI_GBUFFER_VALID. Two
+ *   attachments because every w must stay 1 (the blending note below).
  *
  * w = 1 marks geometry. VTK draws opaque geometry with blending on
  * (SRC_ALPHA, ONE_MINUS_SRC_ALPHA), which with alpha exactly 1 stores the
@@ -42,7 +48,10 @@
 #define MRGI_GBUFFER_POSITION 1
 #define MRGI_GBUFFER_NORMAL 2
 #define MRGI_GBUFFER_ALBEDO 3
-#define MRGI_GBUFFER_ATTACHMENTS 4
+#define MRGI_GBUFFER_SPECULAR 4
+#define MRGI_GBUFFER_SHININESS 5
+/** All G-buffer attachments; without specular data the first MRGI_GBUFFER_SPECULAR. */
+#define MRGI_GBUFFER_ATTACHMENTS 6
 
 /** Colour attachments of a reflective shadow map view. */
 #define MRGI_RSM_POSITION 0

@@ -19,6 +19,7 @@
 #include "vtkMRGIVPLIrradiance.h"
 #include "vtkMRGIAreaLightDiffuse.h"
 #include "mrgi_area_light.h"
+#include "vtkMRGIVisibilityPyramid.h"
 #include "vtkMRGIVoxelization.h"
 #include "mrgi_voxel_march.h"
 #include "vtkMRGIMultiresSplatFS.h"
@@ -214,6 +215,8 @@ struct vtkMRGIMultiresolution::Internals
   // of the GatherAreaLight() call in progress (not owned; null otherwise).
   vtkOpenGLQuadHelper* AreaGatherQuad = nullptr;
   vtkOpenGLQuadHelper* AreaVisibleGatherQuad = nullptr; // with the voxel march
+  vtkOpenGLQuadHelper* AreaMaskedGatherQuad = nullptr;  // with visibility masks
+  vtkMRGIVisibilityPyramid* AreaMasks = nullptr;
   const mrgi_area_light_uniforms* AreaLight = nullptr;
   vtkMRGIVoxelization* AreaVoxels = nullptr;
   // Receivers built for the current selection (Update() clears it).
@@ -365,6 +368,7 @@ vtkMRGIMultiresolution::~vtkMRGIMultiresolution()
   delete this->Internal->GatherQuad;
   delete this->Internal->AreaGatherQuad;
   delete this->Internal->AreaVisibleGatherQuad;
+  delete this->Internal->AreaMaskedGatherQuad;
 }
 
 //------------------------------------------------------------------------------
@@ -396,6 +400,7 @@ void vtkMRGIMultiresolution::ReleaseGraphicsResources(vtkWindow* w)
   releaseQuad(this->Internal->GatherQuad);
   releaseQuad(this->Internal->AreaGatherQuad);
   releaseQuad(this->Internal->AreaVisibleGatherQuad);
+  releaseQuad(this->Internal->AreaMaskedGatherQuad);
   if (this->Internal->FrameBuffer)
   {
     this->Internal->FrameBuffer->ReleaseGraphicsResources(w);
@@ -811,7 +816,7 @@ bool vtkMRGIMultiresolution::Gather(vtkOpenGLRenderWindow* window, vtkTextureObj
 bool vtkMRGIMultiresolution::GatherAreaLight(vtkOpenGLRenderWindow* window,
   vtkTextureObject* position, vtkTextureObject* normal, int x0, int y0, vtkTextureObject* samples,
   int sampleCount, const mrgi_area_light_uniforms& light, const float viewToWorld[16],
-  vtkMRGIVoxelization* visibility)
+  vtkMRGIVoxelization* visibility, vtkMRGIVisibilityPyramid* masks)
 {
   // The same receivers, selection and stenciled gather as the VPLs', with
   // the area-light term (nichols-penmatsa-wyman-2010 3.2: "we use the same
@@ -823,10 +828,12 @@ bool vtkMRGIMultiresolution::GatherAreaLight(vtkOpenGLRenderWindow* window,
     {
       this->In.AreaLight = nullptr;
       this->In.AreaVoxels = nullptr;
+      this->In.AreaMasks = nullptr;
     }
   } clear{ *this->Internal };
   this->Internal->AreaLight = &light;
-  this->Internal->AreaVoxels = visibility;
+  this->Internal->AreaVoxels = masks ? nullptr : visibility;
+  this->Internal->AreaMasks = masks;
   return this->Gather(window, position, normal, x0, y0, samples, sampleCount, viewToWorld);
 }
 
@@ -846,11 +853,16 @@ bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
   using vtkMRGIShaderUtilities::ScopedStage;
   const bool area = in.AreaLight != nullptr;
   const bool visibility = area && in.AreaVoxels != nullptr;
+  const bool masked = area && in.AreaMasks != nullptr;
   ScopedStage gatherStep(this->StageTimer, area ? "gather.samples" : "gather.vpls");
-  vtkOpenGLQuadHelper*& quad = visibility ? in.AreaVisibleGatherQuad : area ? in.AreaGatherQuad : in.GatherQuad;
+  vtkOpenGLQuadHelper*& quad = visibility ? in.AreaVisibleGatherQuad
+    : masked                              ? in.AreaMaskedGatherQuad
+    : area                                ? in.AreaGatherQuad
+                                          : in.GatherQuad;
   if (!quad)
   {
     const std::string body = std::string("#define MRGI_GATHER_IRRADIANCE_ONLY 1\n") +
+      (masked ? std::string("#define MRGI_AREA_VISIBILITY_MASKS 1\n") : std::string()) +
       (visibility ? std::string("#define MRGI_AREA_VISIBILITY 1\n") + vtkMRGIVoxelization::GetMarchShaderSource()
                   : std::string()) +
       (area ? std::string("#define MRGI_GATHER_AREA_LIGHT 1\n") + vtkMRGIAreaLightDiffuse : std::string()) +
@@ -943,6 +955,28 @@ bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
     gather->SetUniformi("mrgiPosition", receiverP->GetTextureUnit());
     gather->SetUniformi("mrgiNormal", receiverN->GetTextureUnit());
     gather->SetUniform2i("mrgiReceiverOffset", receiverOffset);
+    std::vector<vtkTextureObject*> maskTextures;
+    if (masked)
+    {
+      // Missing words (fewer than 384 samples) read the first texture:
+      // their bits are never asked for. One texture activated once.
+      vtkTextureObject* first = in.AreaMasks->GetMaskTexture(i, 0);
+      first->Activate();
+      maskTextures.push_back(first);
+      for (int w = 0; w < 4; ++w)
+      {
+        vtkTextureObject* t = in.AreaMasks->GetMaskTexture(i, w);
+        if (t && t != first)
+        {
+          t->Activate();
+          maskTextures.push_back(t);
+        }
+        gather->SetUniformi(("mrgiVisibilityMask" + std::to_string(w)).c_str(),
+          (t ? t : first)->GetTextureUnit());
+      }
+      const int maskOffset[2] = { -layout.level_offset[i], 0 };
+      gather->SetUniform2i("mrgiMaskOffset", maskOffset);
+    }
     ostate->vtkglViewport(layout.level_offset[i], 0, layout.level_width[i], layout.level_height[i]);
     if (this->CollectStatistics)
     {
@@ -963,6 +997,10 @@ bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
     {
       gather->SetUniformi("mrgiAreaSampleFirst", 0);
       gather->SetUniformi("mrgiAreaSampleCount", batch);
+    }
+    for (vtkTextureObject* t : maskTextures)
+    {
+      t->Deactivate();
     }
     receiverN->Deactivate();
     receiverP->Deactivate();

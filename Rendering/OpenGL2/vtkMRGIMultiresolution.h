@@ -44,6 +44,7 @@
 
 struct mrgi_area_light_uniforms;
 struct mrgi_multires_layout;
+class vtkMRGIVisibilityPyramid;
 class vtkMRGIVoxelization;
 class vtkFloatArray;
 class vtkOpenGLRenderWindow;
@@ -160,12 +161,14 @@ public:
    * mrgi_area_light_diffuse(). With `visibility` (voxelized this frame),
    * each sample counts only where the voxel march (3.3.1, the naive query:
    * one march per texel and sample; vtkMRGIVoxelMarch.glsl, C twin
-   * mrgi_voxel_march()) finds it visible.
+   * mrgi_voxel_march()) finds it visible; with `masks` (Update()d this frame
+   * on this selection), where the texel's bit of the incremental visibility
+   * (3.3.2) is set.
    */
   bool GatherAreaLight(vtkOpenGLRenderWindow* window, vtkTextureObject* position,
     vtkTextureObject* normal, int x0, int y0, vtkTextureObject* samples, int sampleCount,
     const mrgi_area_light_uniforms& light, const float viewToWorld[16],
-    vtkMRGIVoxelization* visibility = nullptr);
+    vtkMRGIVoxelization* visibility = nullptr, vtkMRGIVisibilityPyramid* masks = nullptr);
 #endif
 
   enum GatherModes

@@ -7,6 +7,7 @@
 #include "vtkImageData.h"
 #include "vtkMRGIAreaLight.h"
 #include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIVisibilityPyramid.h"
 #include "vtkMRGIVoxelization.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIShaderUtilities.h"
@@ -231,6 +232,7 @@ vtkMRGIPass::vtkMRGIPass()
   this->VPLSelection = vtkMRGIVPLSelection::New();
   this->Multiresolution = vtkMRGIMultiresolution::New();
   this->Voxelization = vtkMRGIVoxelization::New();
+  this->VisibilityPyramid = vtkMRGIVisibilityPyramid::New();
   this->OpaqueSequence = vtkSequencePass::New();
   for (int i = 0; i < 16; ++i)
   {
@@ -270,6 +272,7 @@ vtkMRGIPass::~vtkMRGIPass()
   this->Multiresolution->Delete();
   this->OpaqueSequence->Delete();
   this->Voxelization->Delete();
+  this->VisibilityPyramid->Delete();
   this->RemoveAllAreaLights();
 }
 
@@ -364,6 +367,7 @@ void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
   this->VPLSelection->ReleaseGraphicsResources(w);
   this->Multiresolution->ReleaseGraphicsResources(w);
   this->Voxelization->ReleaseGraphicsResources(w);
+  this->VisibilityPyramid->ReleaseGraphicsResources(w);
   Release(this->GatherQuad, w);
   Release(this->AddQuad, w);
   Release(this->OutputQuad, w);
@@ -389,6 +393,8 @@ void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
   Release(this->AreaIrradianceTexture, w);
   Release(this->AreaDirectTexture, w);
   Release(this->AreaSumTexture, w);
+  Release(this->SpecularTexture, w);
+  Release(this->ShininessTexture, w);
   for (size_t i = 0; i < this->AreaLightSamples.size(); ++i)
   {
     Release(this->AreaLightSamples[i], w);
@@ -442,6 +448,11 @@ void vtkMRGIPass::PrepareBuffers(vtkOpenGLRenderWindow* renWin, int w, int h, bo
     ensure(this->AlbedoTexture, GL_RGBA16F);
     ensure(this->IrradianceTexture, GL_RGBA32F);
     ensure(this->IndirectTexture, GL_RGBA32F);
+    if (this->SpecularCaptured)
+    {
+      ensure(this->SpecularTexture, GL_RGBA16F);
+      ensure(this->ShininessTexture, GL_RGBA16F);
+    }
   }
   if (!this->FrameBuffer)
   {
@@ -462,7 +473,14 @@ void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
     fbo->AddColorAttachment(MRGI_GBUFFER_POSITION, this->PositionTexture);
     fbo->AddColorAttachment(MRGI_GBUFFER_NORMAL, this->NormalTexture);
     fbo->AddColorAttachment(MRGI_GBUFFER_ALBEDO, this->AlbedoTexture);
-    fbo->ActivateDrawBuffers(MRGI_GBUFFER_ATTACHMENTS);
+    // Specular data only when something reads it: every named draw buffer
+    // needs an attachment (GL 3.2 completeness).
+    if (this->SpecularCaptured)
+    {
+      fbo->AddColorAttachment(MRGI_GBUFFER_SPECULAR, this->SpecularTexture);
+      fbo->AddColorAttachment(MRGI_GBUFFER_SHININESS, this->ShininessTexture);
+    }
+    fbo->ActivateDrawBuffers(this->SpecularCaptured ? MRGI_GBUFFER_ATTACHMENTS : MRGI_GBUFFER_SPECULAR);
   }
   else
   {
@@ -742,6 +760,21 @@ bool vtkMRGIPass::RenderAreaLights(
     return false;
   }
   ScopedStage stage(timer, "area");
+  // Steps: "voxelize", "visibility.pyramid" and "gather.samples" (the
+  // gathers; receivers are this frame's, built once).
+  this->VisibilityPyramid->SetStageTimer(timer);
+  this->Voxelization->SetStageTimer(timer);
+  this->Multiresolution->SetStageTimer(timer);
+  struct ClearTimers
+  {
+    vtkMRGIPass* Pass;
+    ~ClearTimers()
+    {
+      this->Pass->VisibilityPyramid->SetStageTimer(nullptr);
+      this->Pass->Voxelization->SetStageTimer(nullptr);
+      this->Pass->Multiresolution->SetStageTimer(nullptr);
+    }
+  } clearTimers{ this };
   const int w = this->ColorTexture->GetWidth(), h = this->ColorTexture->GetHeight();
   auto ensure = [&](vtkTextureObject*& t) {
     if (!t)
@@ -775,7 +808,7 @@ bool vtkMRGIPass::RenderAreaLights(
   // camera's clipping range (VTK fits it to the visible props' bounds: the
   // visible scene's depth range, mrgi_voxel.h section 2).
   vtkMRGIVoxelization* voxels = nullptr;
-  if (this->AreaLightVisibility == VisibilityNaive)
+  if (this->AreaLightVisibility != VisibilityOff)
   {
     double range[2];
     renderer->GetActiveCamera()->GetClippingRange(range);
@@ -819,8 +852,26 @@ bool vtkMRGIPass::RenderAreaLights(
       }
       this->AreaLightSampleBuilds[i] = light->GetNumberOfSampleBuilds();
     }
+    // Incremental visibility: the masks of every level first (they need
+    // this selection's receivers), then the gather reads its texel's bits.
+    vtkMRGIVisibilityPyramid* masks = nullptr;
+    if (voxels && this->AreaLightVisibility == VisibilityIncremental &&
+      count <= vtkMRGIVisibilityPyramid::GetMaximumNumberOfSamples())
+    {
+      double w2v[16];
+      float worldToView[16];
+      voxels->GetLastWorldToView(w2v);
+      std::copy(w2v, w2v + 16, worldToView);
+      if (mr->BuildReceivers(renWin, this->PositionTexture, this->NormalTexture, this->Viewport[0],
+            this->Viewport[1]) &&
+        this->VisibilityPyramid->Update(renWin, mr, voxels, texture, count, uniforms.two_sided != 0,
+          worldToView))
+      {
+        masks = this->VisibilityPyramid;
+      }
+    }
     if (!mr->GatherAreaLight(renWin, this->PositionTexture, this->NormalTexture, this->Viewport[0],
-          this->Viewport[1], texture, count, uniforms, this->LastViewToWorldFloat, voxels) ||
+          this->Viewport[1], texture, count, uniforms, this->LastViewToWorldFloat, voxels, masks) ||
       !mr->Upsample(renWin, this->UpsampleMode, this->UpsampleMaskWeight) ||
       !mr->Resolve(renWin, this->AlbedoTexture, this->PositionTexture, this->NormalTexture,
         this->LastParallel, this->AreaIrradianceTexture, this->AreaDirectTexture, this->Viewport[0],
@@ -964,6 +1015,7 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   this->IndirectComputed = false;
   this->AreaLightsComputed = false;
   this->Captured = capture;
+  this->SpecularCaptured = capture && !this->AreaLights.empty() && this->AreaLightSpecular;
 
   this->PrepareBuffers(renWin, x + w, y + h, capture);
   this->BufferSize[0] = w;
@@ -1044,7 +1096,11 @@ bool vtkMRGIPass::PostReplaceShaderValues(std::string&, std::string&, std::strin
   const bool opaque = !prop || !prop->HasTranslucentPolygonalGeometry();
   if (opaque && vtkMRGIShaderUtilities::CanCapture(fragmentShader))
   {
-    vtkMRGIShaderUtilities::InsertCapture(fragmentShader, "", vtkMRGIGBufferCapture);
+    // VTK's lit shaders (not PBR) compute specularColor and specularPower.
+    const bool phong = fragmentShader.find("float specularPower") != std::string::npos &&
+      fragmentShader.find("vec3 specularColor") != std::string::npos;
+    vtkMRGIShaderUtilities::InsertCapture(
+      fragmentShader, phong ? "#define MRGI_SPECULAR_MATERIAL 1\n" : "", vtkMRGIGBufferCapture);
   }
   else
   {
@@ -1052,7 +1108,9 @@ bool vtkMRGIPass::PostReplaceShaderValues(std::string&, std::string&, std::strin
     vtkMRGIShaderUtilities::InsertCapture(fragmentShader, "",
       "  gl_FragData[MRGI_GBUFFER_POSITION] = vec4(0.0);\n"
       "  gl_FragData[MRGI_GBUFFER_NORMAL] = vec4(0.0);\n"
-      "  gl_FragData[MRGI_GBUFFER_ALBEDO] = vec4(0.0);\n");
+      "  gl_FragData[MRGI_GBUFFER_ALBEDO] = vec4(0.0);\n"
+      "  gl_FragData[MRGI_GBUFFER_SPECULAR] = vec4(0.0);\n"
+      "  gl_FragData[MRGI_GBUFFER_SHININESS] = vec4(0.0);\n");
   }
   return true;
 }
@@ -1203,6 +1261,13 @@ bool vtkMRGIPass::GetGBuffer(
     this->ReadViewport(window, captured ? this->AlbedoTexture : nullptr, 4, albedo, "Albedo");
 }
 
+bool vtkMRGIPass::GetSpecularGBuffer(vtkRenderWindow* window, vtkImageData* specular, vtkImageData* shininess)
+{
+  const bool captured = this->SpecularTexture && this->SpecularCaptured;
+  return this->ReadViewport(window, captured ? this->SpecularTexture : nullptr, 4, specular, "Specular") &&
+    this->ReadViewport(window, captured ? this->ShininessTexture : nullptr, 4, shininess, "Shininess");
+}
+
 bool vtkMRGIPass::GetVPLs(vtkRenderWindow* window, vtkFloatArray* vpls)
 {
   vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
@@ -1235,7 +1300,10 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RSMResolution: " << this->RSMPass->GetResolution() << "\n";
   os << indent << "StageTimingEnabled: " << (this->StageTimingEnabled ? "On" : "Off") << "\n";
   os << indent << "AreaLights: " << this->AreaLights.size() << "\n";
-  os << indent << "AreaLightVisibility: " << (this->AreaLightVisibility == VisibilityNaive ? "Naive" : "Off")
+  os << indent << "AreaLightVisibility: "
+     << (this->AreaLightVisibility == VisibilityIncremental ? "Incremental"
+          : this->AreaLightVisibility == VisibilityNaive    ? "Naive"
+                                                            : "Off")
      << "\n";
   os << indent << "BufferSize: " << this->BufferSize[0] << " x " << this->BufferSize[1] << "\n";
   for (int i = 0; i < this->GetNumberOfStages(); ++i)

@@ -51,6 +51,7 @@ class vtkFloatArray;
 class vtkImageData;
 class vtkMRGIAreaLight;
 class vtkMRGIMultiresolution;
+class vtkMRGIVisibilityPyramid;
 class vtkMRGIVoxelization;
 class vtkMRGIReflectiveShadowMapPass;
 class vtkMRGIVPLSelection;
@@ -148,25 +149,44 @@ public:
 
   enum AreaLightVisibilityModes
   {
-    VisibilityOff = 0,  ///< no shadows from area lights (NPW10 3.2)
-    VisibilityNaive = 1 ///< a voxel march per texel and light sample (NPW10 3.3.1; default)
+    VisibilityOff = 0,        ///< no shadows from area lights (NPW10 3.2)
+    VisibilityNaive = 1,      ///< a voxel march per texel and light sample (NPW10 3.3.1)
+    VisibilityIncremental = 2 ///< coarse to fine, reusing agreeing coarse bits (NPW10 3.3.2; default)
   };
 
   ///@{
   /**
-   * Shadows of the area lights: none, or the naive voxel visibility
-   * (nichols-penmatsa-wyman-2010 3.3: the visible scene is voxelized into
-   * 128 depth slices per pixel of a voxel buffer, GetVoxelization() holds
-   * its size and march knobs, and each light sample is tested by marching
-   * from each gathering texel). Occluders outside the view are unknown to a
-   * screen-space method.
+   * Shadows of the area lights (nichols-penmatsa-wyman-2010 3.3): none;
+   * naive (the visible scene is voxelized into 128 depth slices per pixel
+   * of a voxel buffer, GetVoxelization() holds its size and march knobs,
+   * and each light sample is marched from each gathering texel); or
+   * incremental (default: one visibility bit per sample and texel, computed
+   * coarse to fine over the multiresolution levels, a coarse bit reused
+   * where the 3x3 coarser neighbours agree, 2x2 interleaved;
+   * GetVisibilityPyramid() holds its knobs and ray statistics; lights with
+   * more samples than it takes, 512, fall back to naive). Occluders outside
+   * the view are unknown to a screen-space method.
    */
-  vtkSetClampMacro(AreaLightVisibility, int, VisibilityOff, VisibilityNaive);
+  vtkSetClampMacro(AreaLightVisibility, int, VisibilityOff, VisibilityIncremental);
   vtkGetMacro(AreaLightVisibility, int);
+  ///@}
+
+  ///@{
+  /**
+   * Phong highlights of the area lights on surfaces with a vtkProperty
+   * Specular > 0 (nichols-penmatsa-wyman-2010 3.2.1; default on): the
+   * G-buffer then also captures k_s c_s and SpecularPower.
+   */
+  vtkSetMacro(AreaLightSpecular, bool);
+  vtkGetMacro(AreaLightSpecular, bool);
+  vtkBooleanMacro(AreaLightSpecular, bool);
   ///@}
 
   /** The screen-space voxelization of the area-light visibility (voxel buffer size, march knobs). */
   vtkMRGIVoxelization* GetVoxelization() { return this->Voxelization; }
+
+  /** The incremental visibility (knobs, per-level ray statistics of the last light gathered). */
+  vtkMRGIVisibilityPyramid* GetVisibilityPyramid() { return this->VisibilityPyramid; }
 
   /**
    * The direct light of the area lights in the last frame (albedo x X,
@@ -226,6 +246,14 @@ public:
   /** The G-buffer of the last frame (RGBA float each; see mrgi_buffers.h). */
   bool GetGBuffer(vtkRenderWindow* window, vtkImageData* position, vtkImageData* normal,
     vtkImageData* albedo);
+
+  /**
+   * The specular part of the last frame's G-buffer (RGBA float each):
+   * k_s c_s and the Phong exponent (red channel), mrgi_buffers.h. Captured
+   * only while area lights reflect specularly (AreaLightSpecular on and at
+   * least one area light); false otherwise.
+   */
+  bool GetSpecularGBuffer(vtkRenderWindow* window, vtkImageData* specular, vtkImageData* shininess);
 
   /** The VPL cache of the last frame: MRGI_VPL_FLOATS floats per VPL. */
   bool GetVPLs(vtkRenderWindow* window, vtkFloatArray* vpls);
@@ -289,6 +317,10 @@ protected:
   bool IndirectComputed = false;
   bool AreaLightsComputed = false;
   bool Captured = false; // the last frame captured the G-buffer
+  bool SpecularCaptured = false; // ... with its specular attachments
+  bool AreaLightSpecular = true;
+  vtkTextureObject* SpecularTexture = nullptr;
+  vtkTextureObject* ShininessTexture = nullptr;
   double LastViewToWorld[16];
   float LastViewToWorldFloat[16];
   bool LastParallel = false;
@@ -301,8 +333,9 @@ protected:
   vtkTextureObject* AreaIrradianceTexture = nullptr;
   vtkTextureObject* AreaDirectTexture = nullptr;
   vtkTextureObject* AreaSumTexture = nullptr;
-  int AreaLightVisibility = VisibilityNaive;
+  int AreaLightVisibility = VisibilityIncremental;
   vtkMRGIVoxelization* Voxelization = nullptr;
+  vtkMRGIVisibilityPyramid* VisibilityPyramid = nullptr;
 
   vtkMRGIReflectiveShadowMapPass* RSMPass = nullptr;
   vtkMRGIVPLSelection* VPLSelection = nullptr;

@@ -21,6 +21,7 @@
 
 #include "mrgi_area_light.h"
 #include "mrgi_voxel_march.h"
+#include "vtkMRGIVisibilityPyramid.h"
 #include "vtkMRGIVoxelization.h"
 #include "vtkTypeUInt32Array.h"
 
@@ -112,7 +113,7 @@ int main()
   vtkMRGIMultiresolution* mr = pass->GetMultiresolution();
   mr->SetDepthThreshold(0.0);
   mr->SetNormalThreshold(0.0);
-  MRGI_TEST_CHECK(pass->GetAreaLightVisibility() == vtkMRGIPass::VisibilityNaive); // the default
+  MRGI_TEST_CHECK(pass->GetAreaLightVisibility() == vtkMRGIPass::VisibilityIncremental); // the default
   pass->SetAreaLightVisibility(vtkMRGIPass::VisibilityOff);
   window->Render();
   MRGI_TEST_CHECK(pass->GetAreaLightsComputed() && !pass->GetIndirectComputed());
@@ -255,6 +256,77 @@ int main()
     100.0 * shadowedSum / unshadowedSum, visibilityError);
   MRGI_TEST_CHECK(shadowedSum < 0.97 * unshadowedSum && shadowedSum > 0.2 * unshadowedSum);
   MRGI_TEST_CHECK(visibilityError < 1e-3);
+
+  // 1c. Incremental visibility (NPW10 3.3.2): the gather weights each
+  // sample by the texel's bit of the visibility pyramid (read back here),
+  // and stays close to the naive image while marching far fewer rays.
+  pass->SetAreaLightVisibility(vtkMRGIPass::VisibilityIncremental);
+  pass->GetVisibilityPyramid()->CollectStatisticsOn();
+  window->Render();
+  vtkSmartPointer<vtkImageData> incremental = AreaBuffer(pass, window);
+  vtkMRGIVisibilityPyramid* pyramid = pass->GetVisibilityPyramid();
+  vtkNew<vtkTypeUInt32Array> masks;
+  MRGI_TEST_CHECK(pyramid->ReadMasks(window, masks));
+  const int words = pyramid->GetNumberOfMaskWords();
+  MRGI_TEST_CHECK(words == (count + 31) / 32);
+  vtkDataArray* I = incremental->GetPointData()->GetScalars();
+  double inum = 0, iden = 0, nnum = 0;
+  for (vtkIdType i = 0; i < P->GetNumberOfTuples(); ++i)
+  {
+    // Thresholds 0: every pixel gathers at level 0, whose flattened texel
+    // is the pixel (level 0 starts the layout).
+    const int x = static_cast<int>(i % W), y = static_cast<int>(i / W);
+    const vtkIdType flat = static_cast<vtkIdType>(y) * mr->GetFlattenedWidth() + x;
+    double X[3] = { 0.0, 0.0, 0.0 };
+    if (P->GetComponent(i, 3) > 0.5)
+    {
+      float p[3], n[3];
+      for (int r = 0; r < 3; ++r)
+      {
+        p[r] = m[12 + r];
+        n[r] = 0.0f;
+        for (int k = 0; k < 3; ++k)
+        {
+          p[r] += m[4 * k + r] * static_cast<float>(P->GetComponent(i, k));
+          n[r] += m[4 * k + r] * static_cast<float>(N->GetComponent(i, k));
+        }
+      }
+      for (int j = 0; j < count; ++j)
+      {
+        if (((masks->GetValue(flat * words + j / 32) >> (j % 32)) & 1u) == 0u)
+        {
+          continue;
+        }
+        float Xj[3];
+        mrgi_area_light_diffuse(&uniforms, samples + j, 1, p, n, Xj);
+        for (int k = 0; k < 3; ++k)
+        {
+          X[k] += Xj[k];
+        }
+      }
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      const double expected = A->GetComponent(i, k) * X[k];
+      const double got = I->GetComponent(i, k);
+      MRGI_TEST_CHECK(std::isfinite(got));
+      inum += (got - expected) * (got - expected);
+      iden += expected * expected;
+      nnum += (got - S->GetComponent(i, k)) * (got - S->GetComponent(i, k));
+    }
+  }
+  const double maskError = std::sqrt(inum / (iden > 0 ? iden : 1.0));
+  const double againstNaive = std::sqrt(nnum / (den > 0 ? den : 1.0));
+  std::printf("incremental visibility: relative RMS against the masks x C twin %.3g, against naive %.3g; "
+              "rays %lld of naive %lld (%.2f)\n",
+    maskError, againstNaive, static_cast<long long>(pyramid->GetTotalNumberOfRays()),
+    static_cast<long long>(pyramid->GetNumberOfNaiveRays()),
+    double(pyramid->GetTotalNumberOfRays()) / double(pyramid->GetNumberOfNaiveRays()));
+  MRGI_TEST_CHECK(maskError < 1e-5);
+  // Reused coarse bits and 2x2 interleaving trade some per-pixel accuracy
+  // (measured 7.6% here at 96x80) for ~7x fewer rays.
+  MRGI_TEST_CHECK(againstNaive < 0.12);
+  MRGI_TEST_CHECK(pyramid->GetTotalNumberOfRays() < pyramid->GetNumberOfNaiveRays() / 2);
   pass->SetAreaLightVisibility(vtkMRGIPass::VisibilityOff);
 
   // 2. Multiresolution (Balanced): close to the full-resolution buffer.

@@ -20,6 +20,16 @@ uniform int mrgiAreaTwoSided;
 // with its uniforms), in eye space: the voxels' space.
 uniform mat4 mrgiWCToVC;
 #endif
+#ifdef MRGI_AREA_VISIBILITY_MASKS
+// Visibility from the incremental pyramid (3.3.2, vtkMRGIVisibilityPyramid):
+// one bit per sample at this texel, sample j in word j >> 5 (texture
+// (j >> 5) >> 2, channel (j >> 5) & 3), bit j & 31; level-local texels.
+uniform usampler2D mrgiVisibilityMask0;
+uniform usampler2D mrgiVisibilityMask1;
+uniform usampler2D mrgiVisibilityMask2;
+uniform usampler2D mrgiVisibilityMask3;
+uniform ivec2 mrgiMaskOffset; // level-local texel = flattened texel + this
+#endif
 
 // The VTK irradiance X at receiver (P, N) (world space; Pvc, Nvc the same
 // receiver in eye space, for the visibility march): the receiver shows
@@ -46,6 +56,14 @@ vec3 mrgiAreaLightDiffuse(vec3 P, vec3 N, vec3 Pvc, vec3 Nvc)
     return vec3(0.0);
   }
   vec3 X = vec3(0.0);
+#ifdef MRGI_AREA_VISIBILITY_MASKS
+  ivec2 maskTexel = ivec2(gl_FragCoord.xy) + mrgiMaskOffset;
+  uvec4 masks[4];
+  masks[0] = texelFetch(mrgiVisibilityMask0, maskTexel, 0);
+  masks[1] = texelFetch(mrgiVisibilityMask1, maskTexel, 0);
+  masks[2] = texelFetch(mrgiVisibilityMask2, maskTexel, 0);
+  masks[3] = texelFetch(mrgiVisibilityMask3, maskTexel, 0);
+#endif
   for (int j = mrgiAreaSampleFirst; j < mrgiAreaSampleFirst + mrgiAreaSampleCount; ++j)
   {
     vec4 position = texelFetch(mrgiAreaSamples, ivec2(MRGI_AREA_LIGHT_SAMPLE_TEXEL_POSITION, j), 0);
@@ -65,6 +83,9 @@ vec3 mrgiAreaLightDiffuse(vec3 P, vec3 N, vec3 Pvc, vec3 Nvc)
     // side's normal (the horizon test and the bias at the light end).
     if (mrgiAreaTwoSided != 0 && dot(NLvc, Pvc - Lvc) < 0.0) { NLvc = -NLvc; }
     if (!mrgiVoxelVisible(Pvc, Nvc, Lvc, NLvc)) { continue; }
+#endif
+#ifdef MRGI_AREA_VISIBILITY_MASKS
+    if (((masks[j >> 7][(j >> 5) & 3] >> uint(j & 31)) & 1u) == 0u) { continue; }
 #endif
     vec3 radiance = texelFetch(mrgiAreaSamples, ivec2(MRGI_AREA_LIGHT_SAMPLE_TEXEL_RADIANCE, j), 0).rgb;
     X += radiance * (position.w * (cosIr * cosJr / r2) / (MRGI_PI * r2 + position.w));

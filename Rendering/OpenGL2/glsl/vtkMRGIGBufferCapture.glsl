@@ -12,11 +12,22 @@
       gl_FragData[MRGI_GBUFFER_POSITION] = vec4(0.0);
       gl_FragData[MRGI_GBUFFER_NORMAL] = vec4(0.0);
       gl_FragData[MRGI_GBUFFER_ALBEDO] = vec4(0.0);
+      gl_FragData[MRGI_GBUFFER_SPECULAR] = vec4(0.0);
+      gl_FragData[MRGI_GBUFFER_SHININESS] = vec4(0.0);
     }
     else
     {
       gl_FragData[MRGI_GBUFFER_POSITION] = vec4(vertexVC.xyz, MRGI_GBUFFER_VALID);
       gl_FragData[MRGI_GBUFFER_NORMAL] = vec4(mrgiNormalVC, MRGI_GBUFFER_VALID);
       gl_FragData[MRGI_GBUFFER_ALBEDO] = vec4(diffuseColor * mrgiTextureFactor, MRGI_GBUFFER_VALID);
+      // Phong material for the area lights' specular gather (written only
+      // where the pass attached these targets).
+#ifdef MRGI_SPECULAR_MATERIAL
+      gl_FragData[MRGI_GBUFFER_SPECULAR] = vec4(specularColor, MRGI_GBUFFER_VALID);
+      gl_FragData[MRGI_GBUFFER_SHININESS] = vec4(specularPower, 0.0, 0.0, MRGI_GBUFFER_VALID);
+#else
+      gl_FragData[MRGI_GBUFFER_SPECULAR] = vec4(0.0, 0.0, 0.0, MRGI_GBUFFER_VALID);
+      gl_FragData[MRGI_GBUFFER_SHININESS] = vec4(0.0, 0.0, 0.0, MRGI_GBUFFER_VALID);
+#endif
     }
   }

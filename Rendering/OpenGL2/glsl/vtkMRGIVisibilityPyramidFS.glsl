@@ -1,0 +1,419 @@
+// MRGI incremental voxel-space visibility, coarse to fine over the
+// multiresolution levels (nichols-penmatsa-wyman-2010 sections 3.3.2 and
+// 3.4). GPU side of mrgi_voxel_visibility_pyramid() (Rendering/Core/
+// mrgi_voxel_incremental.h, whose file comment is the contract: sample masks,
+// the naive and incremental rules, COMPUTED/INHERITED texels, the bit-count
+// metric, 2x2 interleaving with the same-surface test); every function below
+// translates its C counterpart in the same order. One ray is mrgiVoxelVisible()
+// (vtkMRGIVoxelMarch.glsl, prepended with the core's constants block).
+//
+// vtkMRGIVisibilityPyramid prepends, besides the march library:
+//   MRGI_VIS_STAGE    0: decide, then inherit or compute the own phase (all
+//                        phases without interleaving); 1: combine the 2x2
+//                        quarters (interleaving), re-marching the phases no
+//                        block texel on the same surface computed; 2: count
+//                        the rays stages 0 and 1 march (no march)
+//   MRGI_VIS_WORDS    W = ceil(N / 32) mask words
+//   MRGI_VIS_TARGETS  ceil(W / 4) RGBA32UI targets (stage 2: one)
+// and declares the outputs `out uvec4 fragOutputK` itself (word w in target
+// w / 4, channel w % 4).
+//
+// One draw per level (x batches): every fragment is level-i texel
+// ivec2(gl_FragCoord.xy). Only samples j in [mrgiVisFirst, mrgiVisLast) are
+// marched by a draw; every other bit a draw writes (reused, inherited,
+// combined) is the same in every batch, so the batches are ORed together
+// (glLogicOp(GL_OR), the first draw without) and each draw's marches fit
+// llvmpipe's loop budget (mrgi_voxel_samples_per_batch()).
+in vec2 texCoord; // bound by vtkOpenGLQuadHelper; texels are addressed by gl_FragCoord
+
+// Receivers of level i: texel t at t + mrgiVisReceiverOffset. mrgiVisGBuffer:
+// level 0 is the raw G-buffer, made a receiver as vtkMRGIMultiresReceiversFS
+// stage 0 does (mrgi_multires_receivers_build()).
+uniform sampler2D mrgiVisPosition;
+uniform sampler2D mrgiVisNormal;
+uniform ivec2 mrgiVisReceiverOffset;
+uniform int mrgiVisGBuffer;
+uniform ivec2 mrgiVisLevelSize;
+// Level i+1 (unused on the naive levels): receiver positions and final masks.
+uniform sampler2D mrgiVisParentPosition;
+uniform ivec2 mrgiVisParentOffset;
+uniform ivec2 mrgiVisParentSize;
+uniform usampler2D mrgiVisParent0;
+uniform usampler2D mrgiVisParent1;
+uniform usampler2D mrgiVisParent2;
+uniform usampler2D mrgiVisParent3;
+// Stage 1: stage 0's masks of level i (own phase only).
+uniform usampler2D mrgiVisQuarter0;
+uniform usampler2D mrgiVisQuarter1;
+uniform usampler2D mrgiVisQuarter2;
+uniform usampler2D mrgiVisQuarter3;
+// 1: every receiver is COMPUTED with no coarse masks (coarsest level, or
+// incremental visibility off: the naive query everywhere).
+uniform int mrgiVisNaive;
+uniform int mrgiVisThreshold;  // mrgi_voxel_refine_threshold()
+uniform int mrgiVisMetric;     // MRGI_VOXEL_METRIC_*
+uniform int mrgiVisInterleave; // 0 or 1
+// Optional refine mask: the multiresolution selection (flattened, red > 0.5).
+uniform int mrgiVisRefine;
+uniform sampler2D mrgiVisSelection;
+uniform int mrgiVisLevelOffset; // level i's x offset in the flattened layout
+// Light samples: mrgi_area_light_sample records in world space, as
+// vtkMRGIAreaLightDiffuse.glsl reads them, and the world -> eye matrix.
+uniform sampler2D mrgiVisSamples;
+uniform mat4 mrgiVisWCToVC;
+uniform int mrgiVisTwoSided;
+uniform int mrgiVisSampleCount; // N
+uniform int mrgiVisFirst;       // this draw marches samples [first, last)
+uniform int mrgiVisLast;
+
+#if MRGI_VIS_STAGE == 2
+out uvec4 fragOutput0;
+#else
+out uvec4 fragOutput0;
+#if MRGI_VIS_TARGETS > 1
+out uvec4 fragOutput1;
+#endif
+#if MRGI_VIS_TARGETS > 2
+out uvec4 fragOutput2;
+#endif
+#if MRGI_VIS_TARGETS > 3
+out uvec4 fragOutput3;
+#endif
+#endif
+
+// mrgi_voxel_popcount(): SWAR (GLSL 1.50 has no bitCount).
+uint mrgiVisPopcount(uint v)
+{
+  v = v - ((v >> 1u) & 0x55555555u);
+  v = (v & 0x33333333u) + ((v >> 2u) & 0x33333333u);
+  v = (v + (v >> 4u)) & 0x0F0F0F0Fu;
+  return (v * 0x01010101u) >> 24u;
+}
+
+// mrgi_voxel_phase_word_mask()
+uint mrgiVisPhaseBits(int phaseSet)
+{
+  return uint(phaseSet & 15) * 0x11111111u;
+}
+
+// mrgi_voxel_valid_bits(): bits of word w that hold samples.
+uint mrgiVisValidBits(int w)
+{
+  int rest = mrgiVisSampleCount - 32 * w;
+  return rest >= 32 ? 0xFFFFFFFFu : ((1u << uint(max(rest, 0))) - 1u);
+}
+
+bool mrgiVisFinite(vec3 v)
+{
+  return !any(isnan(v)) && !any(isinf(v));
+}
+
+// vtkMRGIMultiresReceiversFS's mrgiNormalize().
+vec3 mrgiVisNormalize(vec3 n)
+{
+  float length2 = n.x * n.x + n.y * n.y + n.z * n.z;
+  if (!(length2 > MRGI_MULTIRES_MIN_PIXEL_SIZE)) { length2 = MRGI_MULTIRES_MIN_PIXEL_SIZE; }
+  return n * (1.0 / sqrt(length2));
+}
+
+// mrgi_voxel_receiver(): level-i texel t; N = 0 without a usable normal.
+bool mrgiVisReceiver(ivec2 t, out vec3 P, out vec3 N)
+{
+  vec4 p = texelFetch(mrgiVisPosition, t + mrgiVisReceiverOffset, 0);
+  vec3 n = texelFetch(mrgiVisNormal, t + mrgiVisReceiverOffset, 0).xyz;
+  if (mrgiVisGBuffer != 0)
+  {
+    bool valid = p.w > MRGI_GBUFFER_VALID_THRESHOLD && mrgiVisFinite(p.xyz) && mrgiVisFinite(n);
+    p = valid ? vec4(p.xyz, 1.0) : vec4(0.0);
+    n = valid ? mrgiVisNormalize(n) : vec3(0.0);
+  }
+  P = p.xyz;
+  N = vec3(0.0);
+  if (!(p.w > MRGI_GBUFFER_VALID_THRESHOLD) || !mrgiVisFinite(p.xyz))
+  {
+    return false;
+  }
+  if (mrgiVisFinite(n) && (n.x != 0.0 || n.y != 0.0 || n.z != 0.0))
+  {
+    N = n;
+  }
+  return true;
+}
+
+// mrgi_voxel_same_surface(), squared, without divisions, in the C's order.
+bool mrgiVisSameSurface(vec3 p, vec3 n, vec3 q, vec3 m)
+{
+  float nn = n.x * n.x + n.y * n.y + n.z * n.z;
+  float mm = m.x * m.x + m.y * m.y + m.z * m.z;
+  if (nn == 0.0 || mm == 0.0)
+  {
+    return false; // a missing normal (the C's NULL)
+  }
+  float nm = n.x * m.x + n.y * m.y + n.z * m.z;
+  if (!(nm > 0.0 && nm * nm >= MRGI_VOXEL_INTERLEAVE_MIN_COS * MRGI_VOXEL_INTERLEAVE_MIN_COS * nn * mm))
+  {
+    return false;
+  }
+  vec3 d = vec3(q.x - p.x, q.y - p.y, q.z - p.z);
+  float dd = d.x * d.x + d.y * d.y + d.z * d.z;
+  float nd = n.x * d.x + n.y * d.y + n.z * d.z;
+  float md = m.x * d.x + m.y * d.y + m.z * d.z;
+  float s2 = MRGI_VOXEL_INTERLEAVE_MAX_SLOPE * MRGI_VOXEL_INTERLEAVE_MAX_SLOPE;
+  return nd * nd <= s2 * dd * nn && md * md <= s2 * dd * mm;
+}
+
+// A mask of level i+1 (parent != 0) or stage 0's level-i masks.
+void mrgiVisFetch(bool parent, ivec2 p, out uint m[MRGI_VIS_WORDS])
+{
+  uint w4[4 * MRGI_VIS_TARGETS];
+  uvec4 v = parent ? texelFetch(mrgiVisParent0, p, 0) : texelFetch(mrgiVisQuarter0, p, 0);
+  w4[0] = v.x; w4[1] = v.y; w4[2] = v.z; w4[3] = v.w;
+#if MRGI_VIS_TARGETS > 1
+  v = parent ? texelFetch(mrgiVisParent1, p, 0) : texelFetch(mrgiVisQuarter1, p, 0);
+  w4[4] = v.x; w4[5] = v.y; w4[6] = v.z; w4[7] = v.w;
+#endif
+#if MRGI_VIS_TARGETS > 2
+  v = parent ? texelFetch(mrgiVisParent2, p, 0) : texelFetch(mrgiVisQuarter2, p, 0);
+  w4[8] = v.x; w4[9] = v.y; w4[10] = v.z; w4[11] = v.w;
+#endif
+#if MRGI_VIS_TARGETS > 3
+  v = parent ? texelFetch(mrgiVisParent3, p, 0) : texelFetch(mrgiVisQuarter3, p, 0);
+  w4[12] = v.x; w4[13] = v.y; w4[14] = v.z; w4[15] = v.w;
+#endif
+  for (int w = 0; w < MRGI_VIS_WORDS; ++w)
+  {
+    m[w] = w4[w];
+  }
+}
+
+#if MRGI_VIS_STAGE != 2
+void mrgiVisWrite(uint m[MRGI_VIS_WORDS])
+{
+  uint w4[4 * MRGI_VIS_TARGETS];
+  for (int w = 0; w < 4 * MRGI_VIS_TARGETS; ++w)
+  {
+    w4[w] = w < MRGI_VIS_WORDS ? m[min(w, MRGI_VIS_WORDS - 1)] : 0u;
+  }
+  fragOutput0 = uvec4(w4[0], w4[1], w4[2], w4[3]);
+#if MRGI_VIS_TARGETS > 1
+  fragOutput1 = uvec4(w4[4], w4[5], w4[6], w4[7]);
+#endif
+#if MRGI_VIS_TARGETS > 2
+  fragOutput2 = uvec4(w4[8], w4[9], w4[10], w4[11]);
+#endif
+#if MRGI_VIS_TARGETS > 3
+  fragOutput3 = uvec4(w4[12], w4[13], w4[14], w4[15]);
+#endif
+}
+#endif
+
+// The coarse neighbours of level-i texel t (mrgi_voxel_gather_neighbours():
+// the level-(i+1) 3x3 around the parent, clamped, non-receivers skipped),
+// folded into per-word AND and OR, and the refinement decision they make
+// (mrgi_voxel_neighbourhood_metric() + mrgi_voxel_needs_refinement()).
+// have: at least one neighbour took part. On naive levels: no neighbours,
+// every receiver refines.
+bool mrgiVisNeighbours(ivec2 t, out uint all[MRGI_VIS_WORDS], out uint any_[MRGI_VIS_WORDS],
+  out bool have)
+{
+  for (int w = 0; w < MRGI_VIS_WORDS; ++w)
+  {
+    all[w] = 0xFFFFFFFFu;
+    any_[w] = 0u;
+  }
+  have = false;
+  if (mrgiVisNaive != 0)
+  {
+    return true;
+  }
+  ivec2 c = t / 2;
+  int countMin = 0;
+  int countMax = 0;
+  for (int k = 0; k < MRGI_VOXEL_NEIGHBOURS; ++k)
+  {
+    ivec2 s = clamp(c + ivec2(k % 3 - 1, k / 3 - 1), ivec2(0), mrgiVisParentSize - 1);
+    if (!(texelFetch(mrgiVisParentPosition, s + mrgiVisParentOffset, 0).w > MRGI_GBUFFER_VALID_THRESHOLD))
+    {
+      continue;
+    }
+    uint m[MRGI_VIS_WORDS];
+    mrgiVisFetch(true, s, m);
+    int count = 0;
+    for (int w = 0; w < MRGI_VIS_WORDS; ++w)
+    {
+      all[w] &= m[w];
+      any_[w] |= m[w];
+      count += int(mrgiVisPopcount(m[w]));
+    }
+    countMin = have ? min(countMin, count) : count;
+    countMax = have ? max(countMax, count) : count;
+    have = true;
+  }
+  int disagree = 0;
+  for (int w = 0; w < MRGI_VIS_WORDS; ++w)
+  {
+    disagree += int(mrgiVisPopcount(any_[w] & ~all[w]));
+  }
+  if (!have)
+  {
+    disagree = 0;
+  }
+  int value = mrgiVisMetric == MRGI_VOXEL_METRIC_COUNT_SPREAD ? countMax - countMin : disagree;
+  return value >= mrgiVisThreshold;
+}
+
+bool mrgiVisRefined(ivec2 t)
+{
+  return mrgiVisRefine != 0 &&
+    texelFetch(mrgiVisSelection, ivec2(t.x + mrgiVisLevelOffset, t.y), 0).r > 0.5;
+}
+
+// Whether light sample j is visible from receiver (P, N): the area-light
+// gather's transform (vtkMRGIAreaLightDiffuse.glsl), then the march.
+bool mrgiVisSampleVisible(int j, vec3 P, vec3 N)
+{
+  vec4 position = texelFetch(mrgiVisSamples, ivec2(MRGI_AREA_LIGHT_SAMPLE_TEXEL_POSITION, j), 0);
+  vec3 sampleNormal = texelFetch(mrgiVisSamples, ivec2(MRGI_AREA_LIGHT_SAMPLE_TEXEL_NORMAL, j), 0).xyz;
+  vec3 L = (mrgiVisWCToVC * vec4(position.xyz, 1.0)).xyz;
+  vec3 NL = mat3(mrgiVisWCToVC) * sampleNormal;
+  // A two-sided light emits from the side facing the receiver.
+  if (mrgiVisTwoSided != 0 && dot(NL, P - L) < 0.0) { NL = -NL; }
+  return mrgiVoxelVisible(P, N, L, NL);
+}
+
+// mrgi_voxel_visibility() for one word: the bits of `wanted`, reused where
+// the coarse neighbours agree, the others marched (this draw's samples only).
+// rays (stage 2): the bits that are marched, over all draws.
+// phase >= 0: `wanted` holds only that phase's bits, and the loop visits
+// only them (b = phase mod 4), so that fragments of different phases march
+// in lockstep: llvmpipe runs a SIMD group of fragments through the union of
+// their loop iterations, and its loop budget counts them (the batch sizes of
+// vtkMRGIVisibilityPyramid assume this).
+uint mrgiVisWord(int w, uint wanted, uint all, uint any_, bool have, vec3 P, vec3 N, int phase,
+  out uint marched)
+{
+  uint agree = have ? wanted & ~(all ^ any_) : 0u;
+  uint result = all & agree;
+  uint todo = wanted & ~agree;
+  marched = todo;
+#if MRGI_VIS_STAGE != 2
+  int lo = max(mrgiVisFirst - 32 * w, 0);
+  int hi = min(mrgiVisLast - 32 * w, 32);
+  int step = phase >= 0 ? MRGI_VOXEL_INTERLEAVE_PHASES : 1;
+  if (phase >= 0)
+  {
+    lo += (phase - lo) & 3; // first b >= lo of the phase (32 w is a multiple of 4)
+  }
+  for (int b = lo; b < hi; b += step)
+  {
+    if (((todo >> uint(b)) & 1u) != 0u && mrgiVisSampleVisible(32 * w + b, P, N))
+    {
+      result |= 1u << uint(b);
+    }
+  }
+#endif
+  return result;
+}
+
+void main()
+{
+  ivec2 t = ivec2(gl_FragCoord.xy);
+  uint mask[MRGI_VIS_WORDS];
+  for (int w = 0; w < MRGI_VIS_WORDS; ++w)
+  {
+    mask[w] = 0u;
+  }
+  vec3 P;
+  vec3 N;
+  bool receiver = mrgiVisReceiver(t, P, N);
+  uint all[MRGI_VIS_WORDS];
+  uint any_[MRGI_VIS_WORDS];
+  bool have = false;
+  bool fires = receiver && mrgiVisNeighbours(t, all, any_, have);
+  bool computed = receiver && (fires || mrgiVisNaive != 0 || mrgiVisRefined(t));
+  uint rays = 0u;
+  if (receiver && !computed)
+  {
+    // INHERITED: the parent's final mask (NPW10 3.4 step 3, upsampled).
+    mrgiVisFetch(true, t / 2, mask);
+  }
+  else if (computed)
+  {
+    int own = mrgiVisInterleave != 0 ? ((t.x & 1) | ((t.y & 1) << 1)) : -1;
+#if MRGI_VIS_STAGE == 0 || MRGI_VIS_STAGE == 2
+    // Stage 0 (and its ray count): the own phase, or every phase.
+    uint phaseBits = own >= 0 ? mrgiVisPhaseBits(1 << own) : mrgiVisPhaseBits(MRGI_VOXEL_ALL_PHASES);
+    for (int w = 0; w < MRGI_VIS_WORDS; ++w)
+    {
+      uint marched;
+      mask[w] = mrgiVisWord(w, phaseBits & mrgiVisValidBits(w), all[w], any_[w], have, P, N, own, marched);
+      rays += mrgiVisPopcount(marched);
+    }
+#endif
+#if MRGI_VIS_STAGE == 1 || MRGI_VIS_STAGE == 2
+    if (own >= 0)
+    {
+#if MRGI_VIS_STAGE == 1
+      for (int w = 0; w < MRGI_VIS_WORDS; ++w)
+      {
+        mask[w] = 0u;
+      }
+#endif
+      // Stage 1: phase q from the block texel u that computed it on the same
+      // surface, else re-marched here (mrgi_voxel_visibility_pyramid pass 2).
+      for (int q = 0; q < MRGI_VOXEL_INTERLEAVE_PHASES; ++q)
+      {
+        ivec2 u = ivec2((t.x & ~1) | (q & 1), (t.y & ~1) | (q >> 1));
+        bool take = false;
+        if (u.x < mrgiVisLevelSize.x && u.y < mrgiVisLevelSize.y)
+        {
+          if (u == t)
+          {
+            take = true;
+          }
+          else
+          {
+            vec3 Q;
+            vec3 M;
+            // u shares t's parent: the same neighbourhood, the same metric.
+            take = mrgiVisReceiver(u, Q, M) && (fires || mrgiVisNaive != 0 || mrgiVisRefined(u)) &&
+              mrgiVisSameSurface(P, N, Q, M);
+          }
+        }
+        uint phaseBits = mrgiVisPhaseBits(1 << q);
+#if MRGI_VIS_STAGE == 1
+        if (take)
+        {
+          uint quarter[MRGI_VIS_WORDS];
+          mrgiVisFetch(false, u, quarter);
+          for (int w = 0; w < MRGI_VIS_WORDS; ++w)
+          {
+            mask[w] |= quarter[w] & phaseBits;
+          }
+          continue;
+        }
+#else
+        if (take)
+        {
+          continue;
+        }
+#endif
+        for (int w = 0; w < MRGI_VIS_WORDS; ++w)
+        {
+          uint marched;
+          uint bits = mrgiVisWord(w, phaseBits & mrgiVisValidBits(w), all[w], any_[w], have, P, N, q, marched);
+#if MRGI_VIS_STAGE == 1
+          mask[w] |= bits;
+#endif
+          rays += mrgiVisPopcount(marched);
+        }
+      }
+    }
+#endif
+  }
+#if MRGI_VIS_STAGE == 2
+  fragOutput0 = uvec4(rays, computed ? 1u : 0u, receiver && !computed ? 1u : 0u, receiver ? 1u : 0u);
+#else
+  mrgiVisWrite(mask);
+#endif
+}

@@ -1,0 +1,646 @@
+#include "vtk_glew.h"
+
+#include "vtkMRGIVisibilityPyramid.h"
+
+#include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIShaderUtilities.h"
+#include "vtkMRGIVoxelization.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderUtilities.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtkTypeUInt32Array.h"
+
+#include "vtkMRGIVisibilityPyramidFS.h"
+
+#include "mrgi_area_light.h"
+#include "mrgi_multires.h"
+#include "mrgi_voxel_incremental.h"
+#include "mrgi_voxel_march.h"
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkMRGIVisibilityPyramid);
+
+namespace
+{
+// Mask targets per pass: 4 x 128 samples (see the class notes).
+constexpr int MaxTargets = 4;
+
+enum Stage
+{
+  StageCompute = 0,
+  StageCombine = 1,
+  StageCount = 2
+};
+
+vtkTextureObject* MakeUIntTexture(vtkOpenGLRenderWindow* window, int w, int h)
+{
+  vtkTextureObject* t = vtkTextureObject::New();
+  t->SetContext(window);
+  t->SetInternalFormat(GL_RGBA32UI);
+  t->SetFormat(GL_RGBA_INTEGER);
+  t->SetDataType(GL_UNSIGNED_INT);
+  t->SetMinificationFilter(vtkTextureObject::Nearest);
+  t->SetMagnificationFilter(vtkTextureObject::Nearest);
+  t->SetWrapS(vtkTextureObject::ClampToEdge);
+  t->SetWrapT(vtkTextureObject::ClampToEdge);
+  if (!t->Allocate2D(static_cast<unsigned int>(w), static_cast<unsigned int>(h), 4, VTK_UNSIGNED_INT))
+  {
+    t->Delete();
+    return nullptr;
+  }
+  return t;
+}
+
+void ReleaseTexture(vtkTextureObject*& t, vtkWindow* w)
+{
+  if (t)
+  {
+    if (w)
+    {
+      t->ReleaseGraphicsResources(w);
+    }
+    t->Delete();
+    t = nullptr;
+  }
+}
+
+// What vtkOpenGLState does not track: the logic op.
+struct ScopedLogicOp
+{
+  ScopedLogicOp()
+  {
+    this->Enabled = glIsEnabled(GL_COLOR_LOGIC_OP) == GL_TRUE;
+    glGetIntegerv(GL_LOGIC_OP_MODE, &this->Mode);
+  }
+  ~ScopedLogicOp()
+  {
+    if (this->Enabled)
+    {
+      glEnable(GL_COLOR_LOGIC_OP);
+    }
+    else
+    {
+      glDisable(GL_COLOR_LOGIC_OP);
+    }
+    glLogicOp(static_cast<GLenum>(this->Mode));
+  }
+  bool Enabled = false;
+  GLint Mode = GL_COPY;
+};
+}
+
+struct vtkMRGIVisibilityPyramid::Internals
+{
+  vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
+  // Per level: mask textures (level size) and the statistics texture.
+  std::vector<std::array<vtkTextureObject*, MaxTargets>> Masks;
+  std::vector<vtkTextureObject*> Stats;
+  // Stage 0's masks with interleaving (level-0 size, reused by every level).
+  std::array<vtkTextureObject*, MaxTargets> Quarters{};
+  mrgi_multires_layout Layout{};
+  int Levels = 0, Samples = 0, Words = 0, Targets = 0, Threshold = 0, Draws = 0;
+  bool Valid = false;
+  // Programs by (stage, words): stage 2 is the statistics.
+  std::map<std::pair<int, int>, vtkOpenGLQuadHelper*> Quads;
+  std::vector<vtkIdType> Rays, Computed, Inherited;
+
+  void ReleaseTextures(vtkWindow* w)
+  {
+    for (auto& level : this->Masks)
+    {
+      for (auto*& t : level)
+      {
+        ReleaseTexture(t, w);
+      }
+    }
+    this->Masks.clear();
+    for (auto*& t : this->Stats)
+    {
+      ReleaseTexture(t, w);
+    }
+    this->Stats.clear();
+    for (auto*& t : this->Quarters)
+    {
+      ReleaseTexture(t, w);
+    }
+    this->Valid = false;
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkMRGIVisibilityPyramid::vtkMRGIVisibilityPyramid()
+  : Internal(new Internals)
+{
+  this->RefineFraction = MRGI_VOXEL_DEFAULT_REFINE_FRACTION;
+}
+
+vtkMRGIVisibilityPyramid::~vtkMRGIVisibilityPyramid()
+{
+  this->ReleaseGraphicsResources(nullptr);
+}
+
+int vtkMRGIVisibilityPyramid::GetMaximumNumberOfSamples()
+{
+  return std::min(MaxTargets * 128, static_cast<int>(MRGI_VOXEL_MAX_SAMPLES));
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIVisibilityPyramid::ReleaseGraphicsResources(vtkWindow* w)
+{
+  Internals& in = *this->Internal;
+  in.ReleaseTextures(w);
+  for (auto& q : in.Quads)
+  {
+    if (w && q.second)
+    {
+      q.second->ReleaseGraphicsResources(w);
+    }
+    delete q.second;
+  }
+  in.Quads.clear();
+  if (in.FrameBuffer)
+  {
+    if (w)
+    {
+      in.FrameBuffer->ReleaseGraphicsResources(w);
+    }
+    in.FrameBuffer->Delete();
+    in.FrameBuffer = nullptr;
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
+  vtkMRGIMultiresolution* multires, vtkMRGIVoxelization* voxels, vtkTextureObject* samples,
+  int sampleCount, bool twoSided, const float worldToView[16])
+{
+  Internals& in = *this->Internal;
+  in.Valid = false;
+  in.Rays.clear();
+  in.Computed.clear();
+  in.Inherited.clear();
+  mrgi_multires_layout layout;
+  if (!window || !multires || !voxels || !samples || !worldToView ||
+    !multires->GetLayout(&layout) || !multires->GetReceiverTexture(0, 0) || !voxels->GetVoxelTexture())
+  {
+    vtkErrorMacro("Update needs a window, a multiresolution with receivers built "
+                  "(Update() + BuildReceivers()), a voxelization and the light samples");
+    return false;
+  }
+  if (sampleCount < 1 || sampleCount > GetMaximumNumberOfSamples())
+  {
+    vtkErrorMacro("Update: " << sampleCount << " light samples, outside 1.."
+                             << GetMaximumNumberOfSamples());
+    return false;
+  }
+  const int threshold =
+    mrgi_voxel_refine_threshold(static_cast<float>(this->RefineFraction), sampleCount);
+  if (threshold < 0)
+  {
+    vtkErrorMacro("Update: refine fraction " << this->RefineFraction << " is outside [0, 1]");
+    return false;
+  }
+  const int levels = layout.level_count;
+  const int words = mrgi_voxel_mask_words(sampleCount);
+  const int targets = (words + 3) / 4;
+  window->MakeCurrent();
+  while (glGetError() != GL_NO_ERROR)
+  {
+    // errors of earlier passes are not this pass's
+  }
+
+  // Textures: (re)allocate on a new layout or mask size.
+  const bool sameShape = !in.Masks.empty() && in.Targets == targets && in.Levels == levels &&
+    in.Layout.width == layout.width && in.Layout.height == layout.height &&
+    in.Layout.total_width == layout.total_width;
+  if (!sameShape)
+  {
+    in.ReleaseTextures(window);
+    in.Masks.resize(static_cast<size_t>(levels));
+    in.Stats.assign(static_cast<size_t>(levels), nullptr);
+    bool ok = true;
+    for (int i = 0; i < levels && ok; ++i)
+    {
+      auto& level = in.Masks[static_cast<size_t>(i)];
+      level.fill(nullptr);
+      for (int k = 0; k < targets && ok; ++k)
+      {
+        level[static_cast<size_t>(k)] =
+          MakeUIntTexture(window, layout.level_width[i], layout.level_height[i]);
+        ok = level[static_cast<size_t>(k)] != nullptr;
+      }
+      in.Stats[static_cast<size_t>(i)] =
+        ok ? MakeUIntTexture(window, layout.level_width[i], layout.level_height[i]) : nullptr;
+      ok = ok && in.Stats[static_cast<size_t>(i)];
+    }
+    for (int k = 0; k < targets && ok; ++k)
+    {
+      in.Quarters[static_cast<size_t>(k)] = MakeUIntTexture(window, layout.width, layout.height);
+      ok = in.Quarters[static_cast<size_t>(k)] != nullptr;
+    }
+    if (!ok)
+    {
+      in.ReleaseTextures(window);
+      vtkErrorMacro("Update: could not allocate the RGBA32UI mask textures");
+      return false;
+    }
+  }
+  in.Layout = layout;
+  in.Levels = levels;
+  in.Samples = sampleCount;
+  in.Words = words;
+  in.Targets = targets;
+  in.Threshold = threshold;
+  in.Draws = 0;
+  if (!in.FrameBuffer)
+  {
+    in.FrameBuffer = vtkOpenGLFramebufferObject::New();
+    in.FrameBuffer->SetContext(window);
+  }
+
+  // Programs: one per (stage, words).
+  auto ready = [&](int stage) -> vtkOpenGLQuadHelper* {
+    vtkOpenGLQuadHelper*& quad = in.Quads[std::make_pair(stage, words)];
+    if (!quad)
+    {
+      const int outputs = stage == 2 ? 1 : targets;
+      // The outputs are uvec4 (declared by the shader); naming gl_FragData[k]
+      // here makes VTK bind fragOutputK to draw buffer k.
+      std::string body = "// outputs:";
+      for (int k = 0; k < outputs; ++k)
+      {
+        body += " gl_FragData[" + std::to_string(k) + "]";
+      }
+      body += "\n#define MRGI_VIS_STAGE " + std::to_string(stage) + "\n#define MRGI_VIS_WORDS " +
+        std::to_string(words) + "\n#define MRGI_VIS_TARGETS " + std::to_string(targets) + "\n" +
+        vtkMRGIVoxelization::GetMarchShaderSource() + vtkMRGIVisibilityPyramidFS;
+      quad = new vtkOpenGLQuadHelper(window,
+        vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
+        vtkMRGIShaderUtilities::FullScreenShader(body.c_str()).c_str(), "");
+    }
+    window->GetShaderCache()->ReadyShaderProgram(quad->Program);
+    return (quad->Program && quad->Program->GetCompiled()) ? quad : nullptr;
+  };
+
+  using vtkMRGIShaderUtilities::ScopedStage;
+  ScopedStage step(this->StageTimer, "visibility.pyramid");
+  vtkOpenGLState* ostate = window->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND), depth(ostate, GL_DEPTH_TEST),
+    scissor(ostate, GL_SCISSOR_TEST), stencil(ostate, GL_STENCIL_TEST);
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  ScopedLogicOp logicOp;
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglDisable(GL_DEPTH_TEST);
+  ostate->vtkglDisable(GL_SCISSOR_TEST);
+  ostate->vtkglDisable(GL_STENCIL_TEST);
+  glLogicOp(GL_OR);
+  vtkOpenGLFramebufferObject* fbo = in.FrameBuffer;
+  fbo->SaveCurrentBindingsAndBuffers();
+  fbo->Bind();
+
+  vtkTextureObject* selection = multires->GetSelectionTexture();
+  const bool refine = this->RefineSelected && selection;
+  const bool interleave = this->Interleave;
+  // Samples per draw within llvmpipe's loop budget
+  // (mrgi_voxel_samples_per_batch()). The budget counts the iterations of a
+  // SIMD group of fragments, i.e. the union of its fragments' loops: a draw
+  // may march at most perBatch samples in lockstep. Interleaved stage 0
+  // visits only the own phase, in lockstep over the 2x2 phases: ranges of
+  // 4 perBatch. Stage 1 visits each phase q for every fragment (those that
+  // take q from a block texel skip its marches): perBatch.
+  const int perBatch = mrgi_voxel_samples_per_batch(voxels->GetMaxSteps());
+  const int range0 = interleave ? 4 * perBatch : perBatch;
+  const int range1 = perBatch;
+
+  bool ok = true;
+  for (int i = levels - 1; i >= 0 && ok; --i)
+  {
+    const bool naive = !this->Incremental || i == levels - 1;
+    const int lw = layout.level_width[i], lh = layout.level_height[i];
+    int receiverOffset[2];
+    multires->GetReceiverOffset(i, receiverOffset);
+    receiverOffset[0] += layout.level_offset[i];
+    vtkTextureObject* position = multires->GetReceiverTexture(i, 0);
+    vtkTextureObject* normal = multires->GetReceiverTexture(i, 1);
+    vtkTextureObject* parentPosition = naive ? position : multires->GetReceiverTexture(i + 1, 0);
+    int parentOffset[2] = { 0, 0 };
+    if (!naive)
+    {
+      multires->GetReceiverOffset(i + 1, parentOffset);
+      parentOffset[0] += layout.level_offset[i + 1];
+    }
+    const auto& parentMasks = in.Masks[static_cast<size_t>(naive ? i : i + 1)];
+    if (!position || !normal || !parentPosition)
+    {
+      vtkErrorMacro("Update: the receivers of level " << i << " are missing");
+      ok = false;
+      break;
+    }
+
+    // stage: 0 compute, 1 combine, 2 statistics.
+    auto run = [&](int stage, const std::array<vtkTextureObject*, MaxTargets>& out, int range) -> bool {
+      vtkOpenGLQuadHelper* quad = ready(stage);
+      if (!quad)
+      {
+        vtkErrorMacro("Update: the visibility shader (stage " << stage << ") did not compile");
+        return false;
+      }
+      vtkShaderProgram* p = quad->Program;
+      if (!voxels->SetMarchUniforms(p))
+      {
+        return false;
+      }
+      const int outputs = stage == 2 ? 1 : targets;
+      fbo->RemoveColorAttachments(MaxTargets);
+      for (int k = 0; k < outputs; ++k)
+      {
+        fbo->AddColorAttachment(static_cast<unsigned int>(k),
+          stage == 2 ? in.Stats[static_cast<size_t>(i)] : out[static_cast<size_t>(k)]);
+      }
+      fbo->ActivateDrawBuffers(static_cast<unsigned int>(outputs));
+      ostate->vtkglViewport(0, 0, lw, lh);
+      // Every sampler on a unit holding a texture of its type (unused ones too).
+      // The voxels too: SetMarchUniforms() activates them only when the
+      // program marches (not in the statistics stage); activating again
+      // keeps the unit, one Deactivate() frees it.
+      std::vector<vtkTextureObject*> active{ voxels->GetVoxelTexture() };
+      voxels->GetVoxelTexture()->Activate();
+      auto bind = [&](const char* name, vtkTextureObject* t) {
+        if (std::find(active.begin(), active.end(), t) == active.end())
+        {
+          t->Activate();
+          active.push_back(t);
+        }
+        p->SetUniformi(name, t->GetTextureUnit());
+      };
+      bind("mrgiVisPosition", position);
+      bind("mrgiVisNormal", normal);
+      bind("mrgiVisParentPosition", parentPosition);
+      bind("mrgiVisSamples", samples);
+      bind("mrgiVisSelection", selection ? selection : samples);
+      // Unused integer samplers read the voxels (never a texture attached
+      // now: no feedback loop).
+      vtkTextureObject* spare = voxels->GetVoxelTexture();
+      for (int k = 0; k < MaxTargets; ++k)
+      {
+        const size_t kk = static_cast<size_t>(std::min(k, targets - 1));
+        bind(("mrgiVisParent" + std::to_string(k)).c_str(), naive ? spare : parentMasks[kk]);
+        bind(("mrgiVisQuarter" + std::to_string(k)).c_str(),
+          stage == StageCombine ? in.Quarters[kk] : spare);
+      }
+      const int levelSize[2] = { lw, lh };
+      const int parentSize[2] = { naive ? lw : layout.level_width[i + 1],
+        naive ? lh : layout.level_height[i + 1] };
+      p->SetUniform2i("mrgiVisReceiverOffset", receiverOffset);
+      p->SetUniformi("mrgiVisGBuffer", i == 0 ? 1 : 0);
+      p->SetUniform2i("mrgiVisLevelSize", levelSize);
+      p->SetUniform2i("mrgiVisParentOffset", parentOffset);
+      p->SetUniform2i("mrgiVisParentSize", parentSize);
+      p->SetUniformi("mrgiVisNaive", naive ? 1 : 0);
+      p->SetUniformi("mrgiVisThreshold", threshold);
+      p->SetUniformi("mrgiVisMetric", this->Metric);
+      p->SetUniformi("mrgiVisInterleave", interleave ? 1 : 0);
+      p->SetUniformi("mrgiVisRefine", refine ? 1 : 0);
+      p->SetUniformi("mrgiVisLevelOffset", layout.level_offset[i]);
+      p->SetUniformMatrix4x4("mrgiVisWCToVC", const_cast<float*>(worldToView));
+      p->SetUniformi("mrgiVisTwoSided", twoSided ? 1 : 0);
+      p->SetUniformi("mrgiVisSampleCount", sampleCount);
+      // Batches: the first draw replaces, the others OR into it.
+      glDisable(GL_COLOR_LOGIC_OP);
+      for (int first = 0; first < sampleCount; first += range)
+      {
+        p->SetUniformi("mrgiVisFirst", first);
+        p->SetUniformi("mrgiVisLast", std::min(first + range, sampleCount));
+        quad->Render();
+        ++in.Draws;
+        glEnable(GL_COLOR_LOGIC_OP);
+      }
+      glDisable(GL_COLOR_LOGIC_OP);
+      for (vtkTextureObject* t : active)
+      {
+        t->Deactivate();
+      }
+      return true;
+    };
+
+    const auto& finalMasks = in.Masks[static_cast<size_t>(i)];
+    if (interleave)
+    {
+      ok = run(StageCompute, in.Quarters, range0) && run(StageCombine, finalMasks, range1);
+    }
+    else
+    {
+      ok = run(StageCompute, finalMasks, range0);
+    }
+    if (ok && this->CollectStatistics)
+    {
+      // One draw: the range is every sample (nothing is marched).
+      ok = run(2, finalMasks, sampleCount);
+    }
+  }
+  fbo->RemoveColorAttachments(MaxTargets);
+  fbo->UnBind();
+  fbo->RestorePreviousBindingsAndBuffers();
+  if (!ok)
+  {
+    vtkErrorMacro("Update: the visibility passes failed");
+    return false;
+  }
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("Update: OpenGL error 0x" << std::hex << error << std::dec);
+    return false;
+  }
+  in.Valid = true;
+
+  if (this->CollectStatistics)
+  {
+    // Sum the statistics textures (rays, computed, inherited, receiver).
+    in.Rays.assign(static_cast<size_t>(levels), 0);
+    in.Computed.assign(static_cast<size_t>(levels), 0);
+    in.Inherited.assign(static_cast<size_t>(levels), 0);
+    ostate->PushReadFramebufferBinding();
+    fbo->Bind(GL_READ_FRAMEBUFFER);
+    for (int i = 0; i < levels; ++i)
+    {
+      const int lw = layout.level_width[i], lh = layout.level_height[i];
+      std::vector<GLuint> words4(static_cast<size_t>(lw) * lh * 4);
+      fbo->AddColorAttachment(0, in.Stats[static_cast<size_t>(i)]);
+      fbo->ActivateReadBuffer(0);
+      glPixelStorei(GL_PACK_ALIGNMENT, 4);
+      glReadPixels(0, 0, lw, lh, GL_RGBA_INTEGER, GL_UNSIGNED_INT, words4.data());
+      for (size_t k = 0; k < words4.size(); k += 4)
+      {
+        in.Rays[static_cast<size_t>(i)] += words4[k];
+        in.Computed[static_cast<size_t>(i)] += words4[k + 1];
+        in.Inherited[static_cast<size_t>(i)] += words4[k + 2];
+      }
+    }
+    fbo->RemoveColorAttachments(1);
+    fbo->UnBind(GL_READ_FRAMEBUFFER);
+    ostate->PopReadFramebufferBinding();
+  }
+  return glGetError() == GL_NO_ERROR;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIVisibilityPyramid::ReadMasks(vtkRenderWindow* window, vtkTypeUInt32Array* masks)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  if (!renWin || !masks || !in.Valid)
+  {
+    vtkErrorMacro("ReadMasks: needs an OpenGL window, an array and a successful Update()");
+    return false;
+  }
+  const mrgi_multires_layout& layout = in.Layout;
+  const size_t texels = static_cast<size_t>(mrgi_multires_texel_count(&layout));
+  const int words = in.Words;
+  masks->SetNumberOfComponents(words);
+  masks->SetNumberOfTuples(static_cast<vtkIdType>(texels));
+  std::fill_n(masks->GetPointer(0), texels * static_cast<size_t>(words), 0u);
+  renWin->MakeCurrent();
+  vtkOpenGLState* ostate = renWin->GetState();
+  ostate->PushReadFramebufferBinding();
+  vtkOpenGLFramebufferObject* fbo = in.FrameBuffer;
+  fbo->Bind(GL_READ_FRAMEBUFFER);
+  for (int i = 0; i < in.Levels; ++i)
+  {
+    const int lw = layout.level_width[i], lh = layout.level_height[i];
+    std::vector<GLuint> words4(static_cast<size_t>(lw) * lh * 4);
+    for (int k = 0; k < in.Targets; ++k)
+    {
+      fbo->AddColorAttachment(0, in.Masks[static_cast<size_t>(i)][static_cast<size_t>(k)]);
+      fbo->ActivateReadBuffer(0);
+      glPixelStorei(GL_PACK_ALIGNMENT, 4);
+      glReadPixels(0, 0, lw, lh, GL_RGBA_INTEGER, GL_UNSIGNED_INT, words4.data());
+      for (int y = 0; y < lh; ++y)
+      {
+        for (int x = 0; x < lw; ++x)
+        {
+          uint32_t* out = masks->GetPointer(0) + mrgi_multires_index(&layout, i, x, y) * static_cast<size_t>(words);
+          for (int c = 0; c < 4 && 4 * k + c < words; ++c)
+          {
+            out[4 * k + c] = words4[(static_cast<size_t>(y) * lw + x) * 4 + static_cast<size_t>(c)];
+          }
+        }
+      }
+    }
+  }
+  fbo->RemoveColorAttachments(1);
+  fbo->UnBind(GL_READ_FRAMEBUFFER);
+  ostate->PopReadFramebufferBinding();
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("ReadMasks: OpenGL error 0x" << std::hex << error << std::dec);
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+int vtkMRGIVisibilityPyramid::GetNumberOfLevels() const
+{
+  return this->Internal->Valid ? this->Internal->Levels : 0;
+}
+int vtkMRGIVisibilityPyramid::GetNumberOfSamples() const
+{
+  return this->Internal->Valid ? this->Internal->Samples : 0;
+}
+int vtkMRGIVisibilityPyramid::GetNumberOfMaskWords() const
+{
+  return this->Internal->Valid ? this->Internal->Words : 0;
+}
+int vtkMRGIVisibilityPyramid::GetNumberOfMaskTextures() const
+{
+  return this->Internal->Valid ? this->Internal->Targets : 0;
+}
+int vtkMRGIVisibilityPyramid::GetThreshold() const
+{
+  return this->Internal->Threshold;
+}
+int vtkMRGIVisibilityPyramid::GetNumberOfDraws() const
+{
+  return this->Internal->Draws;
+}
+
+vtkTextureObject* vtkMRGIVisibilityPyramid::GetMaskTexture(int level, int word4) const
+{
+  const Internals& in = *this->Internal;
+  if (!in.Valid || level < 0 || level >= in.Levels || word4 < 0 || word4 >= in.Targets)
+  {
+    return nullptr;
+  }
+  return in.Masks[static_cast<size_t>(level)][static_cast<size_t>(word4)];
+}
+
+namespace
+{
+vtkIdType At(const std::vector<vtkIdType>& v, int level)
+{
+  return level >= 0 && static_cast<size_t>(level) < v.size() ? v[static_cast<size_t>(level)] : -1;
+}
+}
+
+vtkIdType vtkMRGIVisibilityPyramid::GetNumberOfRays(int level) const
+{
+  return At(this->Internal->Rays, level);
+}
+vtkIdType vtkMRGIVisibilityPyramid::GetNumberOfComputedTexels(int level) const
+{
+  return At(this->Internal->Computed, level);
+}
+vtkIdType vtkMRGIVisibilityPyramid::GetNumberOfInheritedTexels(int level) const
+{
+  return At(this->Internal->Inherited, level);
+}
+vtkIdType vtkMRGIVisibilityPyramid::GetTotalNumberOfRays() const
+{
+  const Internals& in = *this->Internal;
+  if (in.Rays.empty())
+  {
+    return -1;
+  }
+  vtkIdType total = 0;
+  for (vtkIdType r : in.Rays)
+  {
+    total += r;
+  }
+  return total;
+}
+vtkIdType vtkMRGIVisibilityPyramid::GetNumberOfNaiveRays() const
+{
+  const Internals& in = *this->Internal;
+  if (in.Computed.empty())
+  {
+    return -1;
+  }
+  return static_cast<vtkIdType>(in.Samples) * (in.Computed[0] + in.Inherited[0]);
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIVisibilityPyramid::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Incremental: " << (this->Incremental ? "On" : "Off") << "\n";
+  os << indent << "RefineFraction: " << this->RefineFraction << "\n";
+  os << indent << "Metric: " << (this->Metric == MetricCountSpread ? "CountSpread" : "Disagree") << "\n";
+  os << indent << "Interleave: " << (this->Interleave ? "On" : "Off") << "\n";
+  os << indent << "RefineSelected: " << (this->RefineSelected ? "On" : "Off") << "\n";
+  os << indent << "CollectStatistics: " << (this->CollectStatistics ? "On" : "Off") << "\n";
+  os << indent << "Levels: " << this->GetNumberOfLevels() << "\n";
+  os << indent << "Samples: " << this->GetNumberOfSamples() << "\n";
+}
