@@ -908,7 +908,7 @@ static int al_lobe_grid(const mrgi_area_light_uniforms* light,
   const float along[3] = { r[0] - rn * light->normal[0], r[1] - rn * light->normal[1],
                            r[2] - rn * light->normal[2] };
   float e1[3];
-  if (!(sqrtf(al_dotf(along, along)) > 1e-6f) || !al_normalizef(along, e1))
+  if (!(sqrtf(al_dotf(along, along)) > MRGI_AREA_LIGHT_MIN_ALONG) || !al_normalizef(along, e1))
   {
     e1[0] = light->axis_u[0];
     e1[1] = light->axis_u[1];

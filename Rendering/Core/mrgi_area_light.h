@@ -290,6 +290,8 @@ extern "C" {
 #define MRGI_AREA_LIGHT_LOBE_DISCARD 1.0e-3f
 /** Lower bound of |R.n| when the lobe's footprint is stretched over the light's plane. */
 #define MRGI_AREA_LIGHT_MIN_COS 0.05f
+/** Lobe grid: below this length of R's projection on the light's plane, the grid's first axis is u. */
+#define MRGI_AREA_LIGHT_MIN_ALONG 1.0e-6f
 
 /**
  * A rectangular area light (file comment: geometry, units, texture mapping).

@@ -12,17 +12,26 @@
 #include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataAlgorithm.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
+#include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTexture.h"
+#include "vtkTextureObject.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkWeakPointer.h"
+#include "vtk_glew.h"
+
+// The area-light GLSL libraries (embedded by vtk_encode_string).
+#include "vtkMRGIAreaLightDiffuse.h"
+#include "vtkMRGIAreaLightSpecular.h"
 
 #include "mrgi_area_light.h"
 #include "mrgi_error.h"
@@ -258,6 +267,16 @@ struct vtkMRGIAreaLight::vtkInternals
   std::string SampleError;
   std::vector<mrgi_area_light_sample> Samples;
   int SampleCount = 0;
+
+  // GPU copies (GetPyramidTexture(), GetSampleTexture()) in GLWindow's
+  // context, with the generation of what they hold.
+  vtkWeakPointer<vtkOpenGLRenderWindow> GLWindow;
+  bool HadGLWindow = false; // GLWindow was set (a null GLWindow is then a dead one)
+  vtkSmartPointer<vtkTextureObject> PyramidTexture;
+  vtkTypeUInt64 PyramidTextureGeneration = 0;
+  vtkSmartPointer<vtkTextureObject> SampleTexture;
+  int SampleTextureBuild = -1; // NumberOfSampleBuilds at upload
+  bool TexturesActive = false;
 
   // The emitter's actor and what feeds it (created on first request).
   vtkSmartPointer<vtkActor> Actor;
@@ -920,6 +939,304 @@ void vtkMRGIAreaLight::UpdateGeometryActor()
 }
 
 //------------------------------------------------------------------------------
+void vtkMRGIAreaLight::ReleaseGraphicsResources(vtkWindow* window)
+{
+  vtkInternals& internals = *this->Internals;
+  for (vtkSmartPointer<vtkTextureObject>* texture :
+    { &internals.PyramidTexture, &internals.SampleTexture })
+  {
+    if (*texture && window)
+    {
+      (*texture)->ReleaseGraphicsResources(window);
+    }
+    *texture = nullptr;
+  }
+  internals.TexturesActive = false;
+  internals.GLWindow = nullptr;
+  internals.HadGLWindow = false;
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIAreaLight::UseGraphicsWindow(vtkOpenGLRenderWindow* window)
+{
+  vtkInternals& internals = *this->Internals;
+  if (internals.HadGLWindow && internals.GLWindow.Get() != window)
+  {
+    // Textures live in one context: free them in the old window (or forget
+    // them when that window, and its context, is gone).
+    vtkOpenGLRenderWindow* old = internals.GLWindow;
+    if (old)
+    {
+      old->MakeCurrent();
+    }
+    this->ReleaseGraphicsResources(old);
+  }
+  internals.GLWindow = window;
+  internals.HadGLWindow = true;
+  window->MakeCurrent();
+}
+
+//------------------------------------------------------------------------------
+vtkTextureObject* vtkMRGIAreaLight::GetPyramidTexture(vtkOpenGLRenderWindow* window)
+{
+  if (!window)
+  {
+    this->Fail("GetPyramidTexture: no window given");
+    return nullptr;
+  }
+  if (!this->UpdateTexture())
+  {
+    return nullptr;
+  }
+  this->UseGraphicsWindow(window);
+  vtkInternals& internals = *this->Internals;
+  if (internals.PyramidTexture &&
+    internals.PyramidTextureGeneration == internals.TextureGeneration)
+  {
+    this->LastErrorMessage.clear();
+    return internals.PyramidTexture;
+  }
+  // An untextured light: the core's 1 x 1 white pyramid.
+  mrgi_area_light_texture_pyramid white{};
+  float whiteTexel[3];
+  mrgi_error err;
+  const mrgi_area_light_texture_pyramid* pyramid = &internals.Pyramid;
+  if (!internals.HasTexture)
+  {
+    if (mrgi_area_light_texture_pyramid_init(&white, nullptr, whiteTexel, 3, &err) != MRGI_OK)
+    {
+      this->Fail(std::string("area light pyramid: ") + err.message);
+      return nullptr;
+    }
+    pyramid = &white;
+  }
+  if (!internals.PyramidTexture)
+  {
+    internals.PyramidTexture = vtkSmartPointer<vtkTextureObject>::New();
+  }
+  vtkTextureObject* texture = internals.PyramidTexture;
+  texture->SetContext(window);
+  texture->SetInternalFormat(GL_RGB32F);
+  texture->SetFormat(GL_RGB);
+  texture->SetDataType(GL_FLOAT);
+  texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  texture->SetMinificationFilter(vtkTextureObject::LinearMipmapLinear);
+  texture->SetMagnificationFilter(vtkTextureObject::Linear);
+  texture->SetBaseLevel(0);
+  texture->SetMaxLevel(pyramid->level_count - 1);
+  texture->SetGenerateMipmap(false);
+  // Level 0 through VTK (it creates and sizes the texture), the others as
+  // GL mip levels of the same texture: the core's sizes are GL's chain.
+  if (!texture->Create2DFromRaw(static_cast<unsigned int>(pyramid->width[0]),
+        static_cast<unsigned int>(pyramid->height[0]), 3, VTK_FLOAT,
+        pyramid->texels + pyramid->offset[0]))
+  {
+    this->Fail("GetPyramidTexture: could not create the GL texture");
+    return nullptr;
+  }
+  texture->Activate();
+  vtkOpenGLState* state = window->GetState();
+  state->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 4); // RGB32F rows are whole words
+  for (int32_t k = 1; k < pyramid->level_count; ++k)
+  {
+    glTexImage2D(GL_TEXTURE_2D, k, GL_RGB32F, pyramid->width[k], pyramid->height[k], 0, GL_RGB,
+      GL_FLOAT, pyramid->texels + pyramid->offset[k]);
+  }
+  texture->SendParameters(); // base/max level, filters, wrap
+  texture->Deactivate();
+  internals.PyramidTextureGeneration = internals.TextureGeneration;
+  ++this->NumberOfPyramidUploads;
+  this->LastErrorMessage.clear();
+  return texture;
+}
+
+//------------------------------------------------------------------------------
+vtkTextureObject* vtkMRGIAreaLight::GetSampleTexture(vtkOpenGLRenderWindow* window, int* count)
+{
+  if (count)
+  {
+    *count = 0;
+  }
+  if (!window)
+  {
+    this->Fail("GetSampleTexture: no window given");
+    return nullptr;
+  }
+  if (!this->UpdateSamples())
+  {
+    return nullptr;
+  }
+  this->UseGraphicsWindow(window);
+  vtkInternals& internals = *this->Internals;
+  if (!internals.SampleTexture || internals.SampleTextureBuild != this->NumberOfSampleBuilds)
+  {
+    if (!internals.SampleTexture)
+    {
+      internals.SampleTexture = vtkSmartPointer<vtkTextureObject>::New();
+    }
+    vtkTextureObject* texture = internals.SampleTexture;
+    texture->SetContext(window);
+    texture->SetInternalFormat(GL_RGBA32F);
+    texture->SetFormat(GL_RGBA);
+    texture->SetDataType(GL_FLOAT);
+    texture->SetMinificationFilter(vtkTextureObject::Nearest);
+    texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+    texture->SetWrapS(vtkTextureObject::ClampToEdge);
+    texture->SetWrapT(vtkTextureObject::ClampToEdge);
+    if (!texture->Create2DFromRaw(MRGI_AREA_LIGHT_SAMPLE_TEXELS,
+          static_cast<unsigned int>(internals.SampleCount), 4, VTK_FLOAT,
+          const_cast<float*>(mrgi_area_light_sample_texture_data(internals.Samples.data()))))
+    {
+      this->Fail("GetSampleTexture: could not create the GL texture");
+      return nullptr;
+    }
+    internals.SampleTextureBuild = this->NumberOfSampleBuilds;
+    ++this->NumberOfSampleUploads;
+  }
+  if (count)
+  {
+    *count = internals.SampleCount;
+  }
+  this->LastErrorMessage.clear();
+  return internals.SampleTexture;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIAreaLight::SetShaderUniforms(vtkShaderProgram* program, vtkOpenGLRenderWindow* window)
+{
+  if (!program)
+  {
+    return this->Fail("SetShaderUniforms: no shader program given");
+  }
+  if (!window)
+  {
+    return this->Fail("SetShaderUniforms: no window given");
+  }
+  mrgi_area_light_uniforms light;
+  int count = 0;
+  if (!this->GetCoreUniforms(&light))
+  {
+    return false;
+  }
+  vtkTextureObject* samples = this->GetSampleTexture(window, &count);
+  vtkTextureObject* pyramid = samples ? this->GetPyramidTexture(window) : nullptr;
+  if (!samples || !pyramid)
+  {
+    return false;
+  }
+  auto used = [program](const char* name) { return program->IsUniformUsed(name); };
+  if (used("mrgiAreaSamples"))
+  {
+    samples->Activate();
+    program->SetUniformi("mrgiAreaSamples", samples->GetTextureUnit());
+    this->Internals->TexturesActive = true;
+  }
+  if (used("mrgiAreaPyramid"))
+  {
+    pyramid->Activate();
+    program->SetUniformi("mrgiAreaPyramid", pyramid->GetTextureUnit());
+    this->Internals->TexturesActive = true;
+  }
+  const int textureSize[2] = { light.texture_width, light.texture_height };
+  if (used("mrgiAreaSampleFirst"))
+  {
+    program->SetUniformi("mrgiAreaSampleFirst", 0);
+  }
+  if (used("mrgiAreaSampleCount"))
+  {
+    program->SetUniformi("mrgiAreaSampleCount", count);
+  }
+  const struct
+  {
+    const char* Name;
+    const float* Value;
+  } vectors[] = { { "mrgiAreaCenter", light.center }, { "mrgiAreaNormal", light.normal },
+    { "mrgiAreaAxisU", light.axis_u }, { "mrgiAreaAxisV", light.axis_v },
+    { "mrgiAreaScale", light.scale } };
+  for (const auto& vector : vectors)
+  {
+    if (used(vector.Name))
+    {
+      program->SetUniform3f(vector.Name, vector.Value);
+    }
+  }
+  if (used("mrgiAreaCorners"))
+  {
+    program->SetUniform3fv("mrgiAreaCorners", 4, light.corners);
+  }
+  if (used("mrgiAreaTwoSided"))
+  {
+    program->SetUniformi("mrgiAreaTwoSided", light.two_sided);
+  }
+  if (used("mrgiAreaHalfU"))
+  {
+    program->SetUniformf("mrgiAreaHalfU", light.half_u);
+  }
+  if (used("mrgiAreaHalfV"))
+  {
+    program->SetUniformf("mrgiAreaHalfV", light.half_v);
+  }
+  if (used("mrgiAreaTextureSize"))
+  {
+    program->SetUniform2i("mrgiAreaTextureSize", textureSize);
+  }
+  if (used("mrgiAreaTextureLevels"))
+  {
+    program->SetUniformi("mrgiAreaTextureLevels", light.texture_levels);
+  }
+  if (used("mrgiAreaTextured"))
+  {
+    program->SetUniformi("mrgiAreaTextured", this->Internals->HasTexture ? 1 : 0);
+  }
+  this->LastErrorMessage.clear();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIAreaLight::DeactivateTextures()
+{
+  vtkInternals& internals = *this->Internals;
+  if (!internals.TexturesActive)
+  {
+    return;
+  }
+  for (vtkTextureObject* texture : { internals.SampleTexture.Get(), internals.PyramidTexture.Get() })
+  {
+    if (texture)
+    {
+      texture->Deactivate();
+    }
+  }
+  internals.TexturesActive = false;
+}
+
+//------------------------------------------------------------------------------
+const char* vtkMRGIAreaLight::GetSpecularShaderSource()
+{
+  return vtkMRGIAreaLightSpecular;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkMRGIAreaLight::GetShaderSource(bool diffuse, bool specular)
+{
+  std::string source;
+  if (diffuse)
+  {
+    source += vtkMRGIAreaLightDiffuse;
+  }
+  if (diffuse && specular)
+  {
+    source += "\n#define MRGI_AREA_LIGHT_DIFFUSE_DECLARED\n";
+  }
+  if (specular)
+  {
+    source += vtkMRGIAreaLightSpecular;
+  }
+  return source;
+}
+
+//------------------------------------------------------------------------------
 void vtkMRGIAreaLight::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -941,6 +1258,8 @@ void vtkMRGIAreaLight::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TextureData: " << static_cast<void*>(this->TextureData) << "\n";
   os << indent << "NumberOfTextureBuilds: " << this->NumberOfTextureBuilds << "\n";
   os << indent << "NumberOfSampleBuilds: " << this->NumberOfSampleBuilds << "\n";
+  os << indent << "NumberOfPyramidUploads: " << this->NumberOfPyramidUploads << "\n";
+  os << indent << "NumberOfSampleUploads: " << this->NumberOfSampleUploads << "\n";
   os << indent << "LastErrorMessage: "
      << (this->LastErrorMessage.empty() ? "(none)" : this->LastErrorMessage) << "\n";
 }

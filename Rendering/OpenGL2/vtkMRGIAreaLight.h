@@ -58,8 +58,12 @@
 class vtkActor;
 class vtkFloatArray;
 class vtkImageData;
+class vtkOpenGLRenderWindow;
 class vtkPolyData;
+class vtkShaderProgram;
 class vtkTexture;
+class vtkTextureObject;
+class vtkWindow;
 struct mrgi_area_light;
 struct mrgi_area_light_sample;
 struct mrgi_area_light_texture_pyramid;
@@ -197,6 +201,23 @@ public:
   vtkGetMacro(NumberOfSampleBuilds, int);
   ///@}
 
+  ///@{
+  /**
+   * GPU uploads so far of the pyramid texture (GetPyramidTexture()) and of
+   * the sample texture (GetSampleTexture()): each happens once per rebuild
+   * (or per new window / after ReleaseGraphicsResources()), not per request.
+   */
+  vtkGetMacro(NumberOfPyramidUploads, int);
+  vtkGetMacro(NumberOfSampleUploads, int);
+  ///@}
+
+  /**
+   * Free the GPU textures (pyramid, samples) in `window`'s context, the
+   * window they were uploaded in; nullptr forgets them without GL calls
+   * (their context is gone). The next request uploads again.
+   */
+  void ReleaseGraphicsResources(vtkWindow* window);
+
   /** Why the last request failed; empty after a success. */
   const char* GetLastErrorMessage() { return this->LastErrorMessage.c_str(); }
 
@@ -223,6 +244,63 @@ public:
    * nullptr on error. Valid until the next request after a change.
    */
   const mrgi_area_light_sample* GetCoreSamples(int* count);
+
+  /**
+   * The texture pyramid as one GL texture in `window`'s context: mip level
+   * k holds pyramid level k (GL_RGB32F, GL's mip sizes, which are the
+   * core's; GL's first row is the picture's TOP row as the core stores it;
+   * CLAMP_TO_EDGE, LINEAR_MIPMAP_LINEAR, MAX_LEVEL = levels - 1: the upload
+   * of mrgi_area_light.h "The texture pyramid"). An untextured light gets
+   * its 1 x 1 white pyramid. vtkMRGIAreaLightSpecular.glsl reads it with
+   * texelFetch() only. Uploaded again only after the pyramid was rebuilt
+   * (GetNumberOfPyramidUploads()). Owned by the light; nullptr (error
+   * reported) for an invalid texture or no window. Makes `window` current.
+   */
+  vtkTextureObject* GetPyramidTexture(vtkOpenGLRenderWindow* window);
+
+  /**
+   * The light samples as the GPU sample texture (RGBA32F,
+   * MRGI_AREA_LIGHT_SAMPLE_TEXELS wide, one row per sample, NEAREST; the
+   * memory of GetCoreSamples()), uploaded again only after the samples were
+   * rebuilt. `count` (may be nullptr) receives the rows. nullptr on error.
+   */
+  vtkTextureObject* GetSampleTexture(vtkOpenGLRenderWindow* window, int* count = nullptr);
+
+  /**
+   * Set every uniform of the area-light GLSL libraries in `program`
+   * (bound, as after vtkOpenGLShaderCache::ReadyShaderProgram(), in
+   * `window`'s context): ::mrgi_area_light_uniforms as GetCoreUniforms()
+   * gives them (mrgiAreaCenter, mrgiAreaNormal, mrgiAreaCorners,
+   * mrgiAreaTwoSided, mrgiAreaAxisU, mrgiAreaAxisV, mrgiAreaHalfU,
+   * mrgiAreaHalfV, mrgiAreaScale, mrgiAreaTextureSize, mrgiAreaTextureLevels),
+   * mrgiAreaTextured, the samples (mrgiAreaSamples on an activated unit,
+   * mrgiAreaSampleFirst = 0, mrgiAreaSampleCount = all of them) and the
+   * pyramid (mrgiAreaPyramid on an activated unit): the same floats and
+   * ints the C twins read. Uniforms the program does not use are skipped.
+   * Call DeactivateTextures() after drawing. False, with an error and
+   * nothing set, for a null program or window or an invalid light.
+   */
+  bool SetShaderUniforms(vtkShaderProgram* program, vtkOpenGLRenderWindow* window);
+
+  /** Free the texture units SetShaderUniforms() activated. */
+  void DeactivateTextures();
+
+  /**
+   * The GLSL of the specular library (vtkMRGIAreaLightSpecular.glsl):
+   * uniforms and functions, no main() and no #version. Put it after
+   * //VTK::System::Dec and the constants block (vtkMRGIShaderUtilities::
+   * Defines()).
+   */
+  static const char* GetSpecularShaderSource();
+
+  /**
+   * The area-light GLSL libraries in the order they must appear: the
+   * diffuse one (vtkMRGIAreaLightDiffuse.glsl; with MRGI_AREA_VISIBILITY
+   * defined it needs the voxel march before it), then, when both are asked
+   * for, `#define MRGI_AREA_LIGHT_DIFFUSE_DECLARED` (the uniforms both use
+   * are declared once), then the specular one.
+   */
+  static std::string GetShaderSource(bool diffuse, bool specular);
 #endif
 
 protected:
@@ -258,7 +336,12 @@ protected:
   vtkImageData* TextureData = nullptr;
   int NumberOfTextureBuilds = 0;
   int NumberOfSampleBuilds = 0;
+  int NumberOfPyramidUploads = 0;
+  int NumberOfSampleUploads = 0;
   std::string LastErrorMessage;
+
+  /** Forget or free the GL textures when `window` is not the one they live in. */
+  void UseGraphicsWindow(vtkOpenGLRenderWindow* window);
 
 private:
   vtkMRGIAreaLight(const vtkMRGIAreaLight&) = delete;
