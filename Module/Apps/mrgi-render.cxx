@@ -10,6 +10,9 @@
 #include "vtkLightCollection.h"
 #include "vtkMRGIEGLRenderWindow.h"
 #include "vtkMRGIImageIO.h"
+#include "vtkActor.h"
+#include "vtkActorCollection.h"
+#include "vtkProperty.h"
 #include "vtkMRGIAreaLight.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIVoxelization.h"
@@ -97,6 +100,10 @@ Documentation/AreaLights.md; drawn whatever --gi says)
                          light sample; or coarse to fine, reusing agreeing coarse samples
                          (default incremental; nichols-penmatsa-wyman-2010 3.3)
   --voxel-size N         voxel buffer side for the visibility, 1..4096 (default 128)
+  --area-light-specular on|off
+                         Phong highlights of the area lights on specular materials (default on)
+  --specular KS:POWER    give every opaque surface VTK's Specular KS (0..1) and SpecularPower
+                         POWER (0..128), e.g. 0.5:40, to see the highlights
 
 Scaling scene
   --triangles N          total triangle count (default 100000)
@@ -184,6 +191,10 @@ struct Options
   long long AreaLightSamples = 256;
   int AreaLightVisibility = vtkMRGIPass::VisibilityIncremental;
   long long VoxelSize = 128;
+  bool AreaLightSpecular = true;
+  bool HasSpecular = false;
+  double SpecularCoefficient = 0.0;
+  double SpecularPower = 1.0;
   long long VPLs = 256;
   bool ImportanceVPLs = false;
   long long RSMSize = 256;
@@ -564,6 +575,25 @@ int ParseArguments(int argc, char* argv[], Options& o)
       else
         return Fail(std::string("--area-light-visibility '") + v + "': expected off, naive or incremental");
     }
+    else if (arg == "--area-light-specular")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      if (!ParseSwitch(v, "on", o.AreaLightSpecular))
+        return Fail(std::string("--area-light-specular '") + v + "': expected on or off");
+    }
+    else if (arg == "--specular")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      const std::vector<std::string> parts = SplitColon(v);
+      if (parts.size() != 2 || mrgi_parse_double(parts[0].c_str(), &o.SpecularCoefficient, &err) != MRGI_OK ||
+        mrgi_parse_double(parts[1].c_str(), &o.SpecularPower, &err) != MRGI_OK ||
+        !(o.SpecularCoefficient >= 0 && o.SpecularCoefficient <= 1) ||
+        !(o.SpecularPower >= 0 && o.SpecularPower <= 128))
+        return Fail(std::string("--specular '") + v + "': expected KS:POWER with KS in [0, 1] and POWER in [0, 128]");
+      o.HasSpecular = true;
+    }
     else if (arg == "--voxel-size")
     {
       if (!needValue(i, arg, v))
@@ -854,6 +884,20 @@ int main(int argc, char* argv[])
     mrgi->GetMultiresolution()->SetFinestLevel(static_cast<int>(o.FinestLevel));
   mrgi->GetMultiresolution()->SetSurfaceDetail(o.SurfaceDetail);
   mrgi->SetAreaLightVisibility(o.AreaLightVisibility);
+  mrgi->SetAreaLightSpecular(o.AreaLightSpecular);
+  if (o.HasSpecular)
+  {
+    vtkActorCollection* actors = renderer->GetActors();
+    actors->InitTraversal();
+    while (vtkActor* actor = actors->GetNextActor())
+    {
+      if (actor->GetProperty()->GetOpacity() >= 1.0 && actor->GetProperty()->GetAmbient() == 0.0)
+      {
+        actor->GetProperty()->SetSpecular(o.SpecularCoefficient);
+        actor->GetProperty()->SetSpecularPower(o.SpecularPower);
+      }
+    }
+  }
   mrgi->GetVoxelization()->SetVoxelSide(static_cast<int>(o.VoxelSize));
   if (o.AreaLightsOn)
   {

@@ -41,6 +41,7 @@
 #include "vtkMRGIGBufferCapture.h"
 #include "vtkMRGIGatherFS.h"
 #include "vtkMRGIVPLIrradiance.h"
+#include "vtkMRGIAreaSpecularFS.h"
 
 #include "mrgi_buffers.h"
 #include "mrgi_area_light.h"
@@ -263,6 +264,7 @@ vtkMRGIPass::~vtkMRGIPass()
   delete this->GatherQuad;
   delete this->AddQuad;
   delete this->OutputQuad;
+  delete this->SpecularQuad;
   if (this->FXAAFilter)
   {
     this->FXAAFilter->Delete();
@@ -371,6 +373,11 @@ void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
   Release(this->GatherQuad, w);
   Release(this->AddQuad, w);
   Release(this->OutputQuad, w);
+  Release(this->SpecularQuad, w);
+  for (vtkMRGIAreaLight* light : this->AreaLights)
+  {
+    light->ReleaseGraphicsResources(w);
+  }
   if (this->FXAAFilter)
   {
     this->FXAAFilter->ReleaseGraphicsResources();
@@ -881,10 +888,61 @@ bool vtkMRGIPass::RenderAreaLights(
     }
     this->RenderAdd(renWin, this->AreaDirectTexture, this->ColorTexture);
     this->RenderAdd(renWin, this->AreaDirectTexture, this->AreaSumTexture);
+    if (this->SpecularCaptured && this->RenderAreaSpecular(renWin, light, timer))
+    {
+      this->RenderAdd(renWin, this->AreaDirectTexture, this->ColorTexture);
+      this->RenderAdd(renWin, this->AreaDirectTexture, this->AreaSumTexture);
+    }
     drawn = true;
   }
   mr->SetSurfaceDetail(surfaceDetail);
   return drawn;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIPass::RenderAreaSpecular(
+  vtkOpenGLRenderWindow* renWin, vtkMRGIAreaLight* light, vtkRenderTimerLog* timer)
+{
+  static const std::string body = std::string(vtkMRGIVPLIrradiance) +
+    vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
+  vtkShaderProgram* program = ReadyQuad(this->SpecularQuad, renWin, body.c_str());
+  if (!program)
+  {
+    vtkErrorMacro("could not build the area-light specular shader");
+    return false;
+  }
+  vtkMRGIShaderUtilities::ScopedStage step(timer, "specular");
+  if (!light->SetShaderUniforms(program, renWin))
+  {
+    return false;
+  }
+  vtkOpenGLFramebufferObject* fbo = this->FrameBuffer;
+  vtkOpenGLState* ostate = renWin->GetState();
+  ViewportQuadState state(ostate, this->Viewport);
+  fbo->SaveCurrentBindingsAndBuffers();
+  fbo->Bind();
+  fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
+  fbo->AddColorAttachment(0, this->AreaDirectTexture);
+  fbo->ActivateDrawBuffers(1);
+  vtkTextureObject* inputs[4] = { this->PositionTexture, this->NormalTexture, this->SpecularTexture,
+    this->ShininessTexture };
+  const char* names[4] = { "mrgiPosition", "mrgiNormal", "mrgiSpecular", "mrgiShininess" };
+  for (int k = 0; k < 4; ++k)
+  {
+    inputs[k]->Activate();
+    program->SetUniformi(names[k], inputs[k]->GetTextureUnit());
+  }
+  program->SetUniformMatrix4x4("mrgiVCToWC", this->LastViewToWorldFloat);
+  program->SetUniformi("mrgiParallel", this->LastParallel ? 1 : 0);
+  this->SpecularQuad->Render();
+  for (vtkTextureObject* t : inputs)
+  {
+    t->Deactivate();
+  }
+  light->DeactivateTextures();
+  fbo->UnBind();
+  fbo->RestorePreviousBindingsAndBuffers();
+  return true;
 }
 
 //------------------------------------------------------------------------------

@@ -301,6 +301,8 @@ protected:
     vtkRenderTimerLog* timer, float viewToWorld[16], bool& parallel);
   bool RenderMultiresolution(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, int vplCount,
     vtkRenderTimerLog* timer);
+  // One area light's Phong highlight into AreaDirectTexture (full resolution).
+  bool RenderAreaSpecular(vtkOpenGLRenderWindow* renWin, vtkMRGIAreaLight* light, vtkRenderTimerLog* timer);
   // Every area light's direct light, added to the colour; `selected`: this
   // frame's selection exists (the indirect light made it).
   bool RenderAreaLights(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, bool selected,
@@ -355,6 +357,7 @@ protected:
   vtkOpenGLQuadHelper* GatherQuad = nullptr;
   vtkOpenGLQuadHelper* AddQuad = nullptr;
   vtkOpenGLQuadHelper* OutputQuad = nullptr;
+  vtkOpenGLQuadHelper* SpecularQuad = nullptr;
   vtkOpenGLFXAAFilter* FXAAFilter = nullptr;
 
   std::vector<std::string> StageNames;
