@@ -63,18 +63,6 @@ vtkTextureObject* MakeFloatTexture(vtkOpenGLRenderWindow* window, int w, int h)
   return t;
 }
 
-void ReleaseTexture(vtkTextureObject*& t, vtkWindow* w)
-{
-  if (t)
-  {
-    if (w)
-    {
-      t->ReleaseGraphicsResources(w);
-    }
-    t->Delete();
-    t = nullptr;
-  }
-}
 }
 
 namespace
@@ -243,7 +231,7 @@ struct vtkMRGIMultiresolution::Internals
     {
       for (auto*& t : level)
       {
-        ReleaseTexture(t, w);
+        vtkMRGIShaderUtilities::ReleaseTexture(t, w);
       }
     }
     this->Levels.clear();
@@ -251,7 +239,7 @@ struct vtkMRGIMultiresolution::Internals
     {
       for (auto*& t : level)
       {
-        ReleaseTexture(t, w);
+        vtkMRGIShaderUtilities::ReleaseTexture(t, w);
       }
     }
     this->Receivers.clear();
@@ -259,13 +247,13 @@ struct vtkMRGIMultiresolution::Internals
     {
       for (auto*& t : level)
       {
-        ReleaseTexture(t, w);
+        vtkMRGIShaderUtilities::ReleaseTexture(t, w);
       }
     }
     this->Upsampled.clear();
-    ReleaseTexture(this->FlatIrradiance, w);
-    ReleaseTexture(this->FlatSelection, w);
-    ReleaseTexture(this->DepthStencil, w);
+    vtkMRGIShaderUtilities::ReleaseTexture(this->FlatIrradiance, w);
+    vtkMRGIShaderUtilities::ReleaseTexture(this->FlatSelection, w);
+    vtkMRGIShaderUtilities::ReleaseTexture(this->DepthStencil, w);
     this->HasLayout = false;
     this->LastPosition = this->LastNormal = nullptr;
     this->ReceiversValid = false;
@@ -281,6 +269,23 @@ struct vtkMRGIMultiresolution::Internals
       glDeleteQueries(static_cast<GLsizei>(this->Queries.size()), this->Queries.data());
     }
     this->Queries.clear();
+  }
+
+  // Bind level i's receivers (level 0: the G-buffer at (x0, y0)) as
+  // mrgiPosition / mrgiNormal with the gather's texel offset; the caller
+  // deactivates the two textures returned.
+  std::array<vtkTextureObject*, 2> BindReceivers(vtkShaderProgram* program, int i,
+    vtkTextureObject* position, vtkTextureObject* normal, int x0, int y0)
+  {
+    vtkTextureObject* p = i == 0 ? position : this->Receivers[static_cast<size_t>(i)][0];
+    vtkTextureObject* n = i == 0 ? normal : this->Receivers[static_cast<size_t>(i)][1];
+    const int offset[2] = { i == 0 ? x0 : -this->Layout.level_offset[i], i == 0 ? y0 : 0 };
+    p->Activate();
+    n->Activate();
+    program->SetUniformi("mrgiPosition", p->GetTextureUnit());
+    program->SetUniformi("mrgiNormal", n->GetTextureUnit());
+    program->SetUniform2i("mrgiReceiverOffset", offset);
+    return { p, n };
   }
 
   // Vertex array and buffer need the context: only with a window.
@@ -947,14 +952,7 @@ bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
   }
   for (int i = finest; i < levels; ++i)
   {
-    vtkTextureObject* receiverP = i == 0 ? position : in.Receivers[i][0];
-    vtkTextureObject* receiverN = i == 0 ? normal : in.Receivers[i][1];
-    const int receiverOffset[2] = { i == 0 ? x0 : -layout.level_offset[i], i == 0 ? y0 : 0 };
-    receiverP->Activate();
-    receiverN->Activate();
-    gather->SetUniformi("mrgiPosition", receiverP->GetTextureUnit());
-    gather->SetUniformi("mrgiNormal", receiverN->GetTextureUnit());
-    gather->SetUniform2i("mrgiReceiverOffset", receiverOffset);
+    const std::array<vtkTextureObject*, 2> receivers = in.BindReceivers(gather, i, position, normal, x0, y0);
     std::vector<vtkTextureObject*> maskTextures;
     if (masked)
     {
@@ -1002,8 +1000,8 @@ bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
     {
       t->Deactivate();
     }
-    receiverN->Deactivate();
-    receiverP->Deactivate();
+    receivers[1]->Deactivate();
+    receivers[0]->Deactivate();
   }
   vpls->Deactivate();
   if (vplCount > batch)
@@ -1132,18 +1130,11 @@ bool vtkMRGIMultiresolution::RunSplatting(vtkOpenGLRenderWindow* window,
     {
       continue;
     }
-    vtkTextureObject* receiverP = i == 0 ? position : in.Receivers[i][0];
-    vtkTextureObject* receiverN = i == 0 ? normal : in.Receivers[i][1];
-    const int receiverOffset[2] = { i == 0 ? x0 : -layout.level_offset[i], i == 0 ? y0 : 0 };
-    receiverP->Activate();
-    receiverN->Activate();
-    splat->SetUniformi("mrgiPosition", receiverP->GetTextureUnit());
-    splat->SetUniformi("mrgiNormal", receiverN->GetTextureUnit());
-    splat->SetUniform2i("mrgiReceiverOffset", receiverOffset);
+    const std::array<vtkTextureObject*, 2> receivers = in.BindReceivers(splat, i, position, normal, x0, y0);
     glDrawArraysInstanced(GL_POINTS, static_cast<GLint>(in.SplatFirst[static_cast<size_t>(i)]),
       static_cast<GLsizei>(count), vplCount);
-    receiverN->Deactivate();
-    receiverP->Deactivate();
+    receivers[1]->Deactivate();
+    receivers[0]->Deactivate();
   }
   for (int i = 0; i < finest; ++i)
   {

@@ -111,6 +111,20 @@ void InsertCapture(
 }
 
 //------------------------------------------------------------------------------
+void ReleaseTexture(vtkTextureObject*& t, vtkWindow* w)
+{
+  if (t)
+  {
+    if (w)
+    {
+      t->ReleaseGraphicsResources(w);
+    }
+    t->Delete();
+    t = nullptr;
+  }
+}
+
+//------------------------------------------------------------------------------
 bool ReadTextureRGBA(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, std::vector<float>& rgba)
 {
   if (!window || !texture || texture->GetHandle() == 0)

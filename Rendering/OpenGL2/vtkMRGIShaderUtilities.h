@@ -14,6 +14,7 @@
 
 class vtkOpenGLRenderWindow;
 class vtkTextureObject;
+class vtkWindow;
 
 namespace vtkMRGIShaderUtilities
 {
@@ -57,6 +58,9 @@ bool CanCapture(const std::string& fragmentShader);
  */
 void InsertCapture(
   std::string& fragmentShader, const std::string& declarations, const std::string& capture);
+
+/** Free a texture's GL resources (when `w` is given) and delete it; null-safe, nulls `t`. */
+void ReleaseTexture(vtkTextureObject*& t, vtkWindow* w);
 
 /**
  * Read a colour texture back as RGBA floats (rows bottom-up, as OpenGL

@@ -62,18 +62,6 @@ vtkTextureObject* MakeUIntTexture(vtkOpenGLRenderWindow* window, int w, int h)
   return t;
 }
 
-void ReleaseTexture(vtkTextureObject*& t, vtkWindow* w)
-{
-  if (t)
-  {
-    if (w)
-    {
-      t->ReleaseGraphicsResources(w);
-    }
-    t->Delete();
-    t = nullptr;
-  }
-}
 
 // What vtkOpenGLState does not track: the logic op.
 struct ScopedLogicOp
@@ -121,18 +109,18 @@ struct vtkMRGIVisibilityPyramid::Internals
     {
       for (auto*& t : level)
       {
-        ReleaseTexture(t, w);
+        vtkMRGIShaderUtilities::ReleaseTexture(t, w);
       }
     }
     this->Masks.clear();
     for (auto*& t : this->Stats)
     {
-      ReleaseTexture(t, w);
+      vtkMRGIShaderUtilities::ReleaseTexture(t, w);
     }
     this->Stats.clear();
     for (auto*& t : this->Quarters)
     {
-      ReleaseTexture(t, w);
+      vtkMRGIShaderUtilities::ReleaseTexture(t, w);
     }
     this->Valid = false;
   }

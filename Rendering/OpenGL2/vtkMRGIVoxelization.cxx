@@ -30,6 +30,7 @@
 #include "vtkWeakPointer.h"
 
 #include "vtkMRGIVoxelMarch.h"
+#include "vtkMRGIVoxelBits.h"
 #include "vtkMRGIVoxelizeFS.h"
 #include "vtkMRGIVoxelizeGS.h"
 #include "vtkMRGIVoxelizeVS.h"
@@ -437,7 +438,9 @@ void vtkMRGIVoxelization::GetMarchParams(mrgi_voxel_march_params* params) const
 //------------------------------------------------------------------------------
 const char* vtkMRGIVoxelization::GetMarchShaderSource()
 {
-  return vtkMRGIVoxelMarch;
+  // The slicing and masks first (shared with the voxelization), then the march.
+  static const std::string source = std::string(vtkMRGIVoxelBits) + vtkMRGIVoxelMarch;
+  return source.c_str();
 }
 
 //------------------------------------------------------------------------------
@@ -772,7 +775,7 @@ bool vtkMRGIVoxelization::Voxelize(vtkRenderer* ren, double nearDepth, double fa
   const std::string header = "//VTK::System::Dec\n" + vtkMRGIShaderUtilities::Defines();
   const std::string vs = header + vtkMRGIVoxelizeVS;
   const std::string gs = header + vtkMRGIVoxelizeGS;
-  const std::string fs = header + vtkMRGIVoxelizeFS;
+  const std::string fs = header + vtkMRGIVoxelBits + vtkMRGIVoxelizeFS;
   vtkShaderProgram* program =
     window->GetShaderCache()->ReadyShaderProgram(vs.c_str(), fs.c_str(), gs.c_str());
   if (!program || !program->GetCompiled())
@@ -853,9 +856,9 @@ bool vtkMRGIVoxelization::Voxelize(vtkRenderer* ren, double nearDepth, double fa
         clip[14] = static_cast<float>(-2.0 * f * n / (f - n));
       }
       program->SetUniformMatrix4x4("mrgiProjection", clip);
-      program->SetUniformf("mrgiNear", grid.near_depth);
-      program->SetUniformf("mrgiFar", grid.far_depth);
-      program->SetUniformf("mrgiSliceScale", grid.slice_scale);
+      program->SetUniformf("mrgiVoxelNear", grid.near_depth);
+      program->SetUniformf("mrgiVoxelFar", grid.far_depth);
+      program->SetUniformf("mrgiVoxelSliceScale", grid.slice_scale);
 
       glBindVertexArray(in.VertexArray);
       vtkIdType triangles = 0;

@@ -4,6 +4,7 @@ buffers as numpy arrays, EXR/PNG writing, and the core's image metrics
 C code the tests check)."""
 import os
 import subprocess
+import time
 
 import numpy as np
 from vtkmodules.vtkCommonDataModel import vtkImageData
@@ -49,6 +50,21 @@ def build_scene(renderer, name):
     builder.SetScene(name)
     assert builder.Build(renderer), builder.GetLastErrorMessage()
     return {"cornell-spot": "Cornell box lit by a spot light (65 degree half-angle)"}.get(name, name)
+
+
+def frames(window, gi, count):
+    """Render `count` frames; median GPU ms per stage of the MRGI pass `gi` and wall ms per frame ("frame")."""
+    times, walls = {}, []
+    for _ in range(count):
+        start = time.perf_counter()
+        window.Render()
+        n = gi.FetchStageTimings(window, True)
+        walls.append((time.perf_counter() - start) * 1e3)
+        for s in range(n):
+            times.setdefault(gi.GetStageName(s), []).append(gi.GetStageTimeMilliseconds(s))
+    result = {k: float(np.median(v)) for k, v in times.items()}
+    result["frame"] = float(np.median(walls))
+    return result
 
 
 def make_window(width, height):

@@ -23,7 +23,6 @@ import csv
 import math
 import os
 import sys
-import time
 
 import numpy as np
 
@@ -69,18 +68,7 @@ class Bench:
 
     def frames(self, count):
         """Render `count` frames; median GPU ms per stage and wall ms per frame."""
-        times = {}
-        walls = []
-        for _ in range(count):
-            start = time.perf_counter()
-            self.window.Render()
-            n = self.gi.FetchStageTimings(self.window, True)
-            walls.append((time.perf_counter() - start) * 1e3)
-            for s in range(n):
-                times.setdefault(self.gi.GetStageName(s), []).append(self.gi.GetStageTimeMilliseconds(s))
-        result = {k: float(np.median(v)) for k, v in times.items()}
-        result["frame"] = float(np.median(walls))
-        return result
+        return mb.frames(self.window, self.gi, count)
 
     def indirect(self):
         image = vtkImageData()

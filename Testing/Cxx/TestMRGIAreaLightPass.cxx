@@ -34,18 +34,25 @@
 
 namespace
 {
-class ErrorCounter : public vtkCommand
+// G-buffer pixel i in world space as the shaders compute it (float, eye ->
+// world by the column-major m): position, normal, and the view direction
+// towards a perspective eye.
+void ToWorld(const float m[16], vtkDataArray* P, vtkDataArray* N, vtkIdType i, float p[3], float n[3],
+  float v[3])
 {
-public:
-  static ErrorCounter* New() { return new ErrorCounter; }
-  void Execute(vtkObject*, unsigned long, void* data) override
+  for (int r = 0; r < 3; ++r)
   {
-    ++this->Count;
-    this->Last = data ? static_cast<const char*>(data) : "";
+    p[r] = m[12 + r];
+    n[r] = 0.0f;
+    v[r] = 0.0f;
+    for (int k = 0; k < 3; ++k)
+    {
+      p[r] += m[4 * k + r] * static_cast<float>(P->GetComponent(i, k));
+      n[r] += m[4 * k + r] * static_cast<float>(N->GetComponent(i, k));
+      v[r] -= m[4 * k + r] * static_cast<float>(P->GetComponent(i, k));
+    }
   }
-  int Count = 0;
-  std::string Last;
-};
+}
 
 vtkSmartPointer<vtkImageData> AreaBuffer(vtkMRGIPass* pass, vtkRenderWindow* window)
 {
@@ -144,17 +151,8 @@ int main()
     float X[3] = { 0.0f, 0.0f, 0.0f };
     if (P->GetComponent(i, 3) > 0.5)
     {
-      float p[3], n[3];
-      for (int r = 0; r < 3; ++r)
-      {
-        p[r] = m[12 + r];
-        n[r] = 0.0f;
-        for (int k = 0; k < 3; ++k)
-        {
-          p[r] += m[4 * k + r] * static_cast<float>(P->GetComponent(i, k));
-          n[r] += m[4 * k + r] * static_cast<float>(N->GetComponent(i, k));
-        }
-      }
+      float p[3], n[3], v[3];
+      ToWorld(m, P, N, i, p, n, v);
       mrgi_area_light_diffuse(&uniforms, samples, count, p, n, X);
     }
     lit += X[0] + X[1] + X[2] > 0.0f;
@@ -201,18 +199,12 @@ int main()
     double X[3] = { 0.0, 0.0, 0.0 };
     if (P->GetComponent(i, 3) > 0.5)
     {
-      float p[3], n[3], pv[3], nv[3];
+      float p[3], n[3], v[3], pv[3], nv[3];
+      ToWorld(m, P, N, i, p, n, v);
       for (int r = 0; r < 3; ++r)
       {
         pv[r] = static_cast<float>(P->GetComponent(i, r));
         nv[r] = static_cast<float>(N->GetComponent(i, r));
-        p[r] = m[12 + r];
-        n[r] = 0.0f;
-        for (int k = 0; k < 3; ++k)
-        {
-          p[r] += m[4 * k + r] * pv[k];
-          n[r] += m[4 * k + r] * nv[k];
-        }
       }
       for (int j = 0; j < count; ++j)
       {
@@ -283,17 +275,8 @@ int main()
     double X[3] = { 0.0, 0.0, 0.0 };
     if (P->GetComponent(i, 3) > 0.5)
     {
-      float p[3], n[3];
-      for (int r = 0; r < 3; ++r)
-      {
-        p[r] = m[12 + r];
-        n[r] = 0.0f;
-        for (int k = 0; k < 3; ++k)
-        {
-          p[r] += m[4 * k + r] * static_cast<float>(P->GetComponent(i, k));
-          n[r] += m[4 * k + r] * static_cast<float>(N->GetComponent(i, k));
-        }
-      }
+      float p[3], n[3], v[3];
+      ToWorld(m, P, N, i, p, n, v);
       for (int j = 0; j < count; ++j)
       {
         if (((masks->GetValue(flat * words + j / 32) >> (j % 32)) & 1u) == 0u)
@@ -372,18 +355,7 @@ int main()
       if (P->GetComponent(i, 3) > 0.5 && K->GetComponent(i, 0) + K->GetComponent(i, 1) + K->GetComponent(i, 2) > 0)
       {
         float p[3], n[3], v[3], S[3];
-        for (int r = 0; r < 3; ++r)
-        {
-          p[r] = m[12 + r];
-          n[r] = 0.0f;
-          v[r] = 0.0f;
-          for (int k = 0; k < 3; ++k)
-          {
-            p[r] += m[4 * k + r] * static_cast<float>(P->GetComponent(i, k));
-            n[r] += m[4 * k + r] * static_cast<float>(N->GetComponent(i, k));
-            v[r] -= m[4 * k + r] * static_cast<float>(P->GetComponent(i, k));
-          }
-        }
+        ToWorld(m, P, N, i, p, n, v);
         mrgi_area_light_specular(&uniforms, samples, count, pyramid, p, n, v,
           static_cast<float>(E->GetComponent(i, 0)), S, nullptr);
         for (int k = 0; k < 3; ++k)
@@ -460,7 +432,7 @@ int main()
 
   // 5. An invalid light (zero edge) draws nothing, says why, and the image
   // stays finite; removing all lights turns the area light off.
-  vtkNew<ErrorCounter> errors;
+  vtkNew<mrgitest::ErrorCatcher> errors;
   vtkNew<vtkMRGIAreaLight> broken;
   broken->AddObserver(vtkCommand::ErrorEvent, errors);
   broken->SetEdgeU(0.0, 0.0, 0.0);

@@ -1048,32 +1048,6 @@ CaseResult RunCase(const LightCase& c, vtkOpenGLRenderWindow* window, GPUSpecula
   return result;
 }
 
-// Catches vtkErrorMacro output so that expected errors are checked, not printed.
-class ErrorCatcher : public vtkCommand
-{
-public:
-  static ErrorCatcher* New() { return new ErrorCatcher; }
-  void Execute(vtkObject*, unsigned long, void* data) override
-  {
-    this->Last = data ? static_cast<const char*>(data) : "";
-    ++this->Count;
-  }
-  bool Caught(const char* fragment)
-  {
-    const bool ok = this->Count > 0 && this->Last.find(fragment) != std::string::npos;
-    if (!ok)
-    {
-      std::fprintf(stderr, "expected an error containing '%s', got %d errors, last '%s'\n",
-        fragment, this->Count, this->Last.c_str());
-    }
-    this->Count = 0;
-    this->Last.clear();
-    return ok;
-  }
-  std::string Last;
-  int Count = 0;
-};
-
 // The GPU resources: uploaded once per rebuild, the mip levels as the core's
 // pyramid, released on request; sources and error handling.
 void Api(vtkOpenGLRenderWindow* window)
@@ -1095,7 +1069,7 @@ void Api(vtkOpenGLRenderWindow* window)
   }
 
   vtkNew<vtkMRGIAreaLight> light;
-  vtkNew<ErrorCatcher> errors;
+  vtkNew<mrgitest::ErrorCatcher> errors;
   light->AddObserver(vtkCommand::ErrorEvent, errors);
   MRGI_TEST_CHECK(!light->GetPyramidTexture(nullptr));
   MRGI_TEST_CHECK(errors->Caught("no window"));

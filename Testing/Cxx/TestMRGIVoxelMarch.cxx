@@ -29,6 +29,7 @@
 // gives 0.16-0.7% disagreements, most of them unexplained.) A twin with a
 // deliberately wrong normal offset or skip radius must fail the same bound.
 #include "mrgiTestUtilities.h"
+#include "mrgiVoxelTestUtilities.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -72,78 +73,13 @@
 
 namespace
 {
+using mrgitest::DepthRange;
+using mrgitest::MakeActor;
+using mrgitest::SceneTriangles;
+using mrgitest::Triangle;
 // ---------------------------------------------------------------------------
 // Scenes as eye-space triangles (for sampling receivers and light samples on
 // surfaces; the voxels themselves come from the GPU).
-using Triangle = std::array<double, 9>;
-
-std::vector<Triangle> SceneTriangles(vtkRenderer* ren)
-{
-  std::vector<Triangle> out;
-  vtkMatrix4x4* view = ren->GetActiveCamera()->GetModelViewTransformMatrix();
-  vtkPropCollection* props = ren->GetViewProps();
-  props->InitTraversal();
-  while (vtkProp* prop = props->GetNextProp())
-  {
-    vtkActor* actor = vtkActor::SafeDownCast(prop);
-    if (!actor || !actor->GetVisibility() || actor->GetProperty()->GetOpacity() < 1.0)
-    {
-      continue;
-    }
-    vtkPolyDataMapper* mapper = vtkPolyDataMapper::SafeDownCast(actor->GetMapper());
-    MRGI_TEST_CHECK(mapper);
-    mapper->Update();
-    vtkPolyData* data = vtkPolyData::SafeDownCast(mapper->GetInputDataObject(0, 0));
-    MRGI_TEST_CHECK(data);
-    vtkNew<vtkTriangleFilter> tri;
-    tri->SetInputData(data);
-    tri->PassVertsOff();
-    tri->PassLinesOff();
-    tri->Update();
-    vtkNew<vtkMatrix4x4> m;
-    vtkMatrix4x4::Multiply4x4(view, actor->GetMatrix(), m);
-    vtkPolyData* t = tri->GetOutput();
-    vtkIdType n = 0;
-    const vtkIdType* ids = nullptr;
-    vtkCellArray* polys = t->GetPolys();
-    for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
-    {
-      if (n != 3)
-      {
-        continue;
-      }
-      Triangle tr;
-      for (int k = 0; k < 3; ++k)
-      {
-        double p[4] = { 0, 0, 0, 1 };
-        t->GetPoint(ids[k], p);
-        double q[4];
-        m->MultiplyPoint(p, q);
-        for (int r = 0; r < 3; ++r)
-        {
-          tr[3 * k + r] = q[r];
-        }
-      }
-      out.push_back(tr);
-    }
-  }
-  return out;
-}
-
-void DepthRange(const std::vector<Triangle>& tris, double range[2])
-{
-  range[0] = VTK_DOUBLE_MAX;
-  range[1] = -VTK_DOUBLE_MAX;
-  for (const Triangle& t : tris)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      range[0] = std::min(range[0], -t[3 * k + 2]);
-      range[1] = std::max(range[1], -t[3 * k + 2]);
-    }
-  }
-}
-
 // ---------------------------------------------------------------------------
 // Rays: P, Np, L, Nl (eye space; a zero normal is "none").
 struct Ray
@@ -770,15 +706,6 @@ Comparison RunCase(const std::string& name, vtkRenderWindow* window, vtkRenderer
   return c;
 }
 
-vtkSmartPointer<vtkActor> MakeActor(vtkAlgorithm* source)
-{
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(source->GetOutputPort());
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
-  return actor;
-}
-
 mrgi_voxel_march_params Params(int steps, float offset, int radius)
 {
   mrgi_voxel_march_params p;
@@ -906,32 +833,6 @@ void RandomBoxes(bool parallel)
   vox->ReleaseGraphicsResources(window);
 }
 
-// Catches vtkErrorMacro output so that expected errors are checked, not printed.
-class ErrorCatcher : public vtkCommand
-{
-public:
-  static ErrorCatcher* New() { return new ErrorCatcher; }
-  void Execute(vtkObject*, unsigned long, void* data) override
-  {
-    this->Last = data ? static_cast<const char*>(data) : "";
-    ++this->Count;
-  }
-  bool Caught(const char* fragment)
-  {
-    const bool ok = this->Count > 0 && this->Last.find(fragment) != std::string::npos;
-    if (!ok)
-    {
-      std::fprintf(stderr, "expected an error containing '%s', got %d errors, last '%s'\n",
-        fragment, this->Count, this->Last.c_str());
-    }
-    this->Count = 0;
-    this->Last.clear();
-    return ok;
-  }
-  std::string Last;
-  int Count = 0;
-};
-
 // The knobs' defaults and ranges are the core's; SetMarchUniforms refuses
 // what it cannot do.
 void Api()
@@ -951,7 +852,7 @@ void Api()
   MRGI_TEST_CHECK(vox->GetNormalOffset() == 0.0);
   vox->SetNormalOffset(1e9);
   MRGI_TEST_CHECK(vox->GetNormalOffset() == MRGI_VOXEL_MAX_NORMAL_OFFSET);
-  vtkNew<ErrorCatcher> errors;
+  vtkNew<mrgitest::ErrorCatcher> errors;
   vox->AddObserver(vtkCommand::ErrorEvent, errors);
   vox->SetNormalOffset(std::nan(""));
   MRGI_TEST_CHECK(errors->Caught("NaN"));

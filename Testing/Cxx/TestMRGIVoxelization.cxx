@@ -23,6 +23,7 @@
 // parallel Cornell box at 300x7: the floor) lights a whole row or not. A
 // deliberately wrong near depth given to the twin must fail this comparison.
 #include "mrgiTestUtilities.h"
+#include "mrgiVoxelTestUtilities.h"
 
 #include "vtkActor.h"
 #include "vtkAssembly.h"
@@ -62,126 +63,10 @@
 
 namespace
 {
-using Triangle = std::array<double, 9>; // three eye-space points
-
-// Row-major 4x4 product.
-void Multiply(const double a[16], const double b[16], double out[16])
-{
-  double r[16];
-  for (int i = 0; i < 4; ++i)
-  {
-    for (int j = 0; j < 4; ++j)
-    {
-      double s = 0;
-      for (int k = 0; k < 4; ++k)
-      {
-        s += a[4 * i + k] * b[4 * k + j];
-      }
-      r[4 * i + j] = s;
-    }
-  }
-  std::copy(r, r + 16, out);
-}
-
-void AddActorTriangles(vtkActor* actor, const double objectToWorld[16], const double worldToEye[16],
-  std::vector<Triangle>& out)
-{
-  vtkPolyDataMapper* mapper = vtkPolyDataMapper::SafeDownCast(actor->GetMapper());
-  MRGI_TEST_CHECK(mapper);
-  mapper->Update();
-  vtkPolyData* data = vtkPolyData::SafeDownCast(mapper->GetInputDataObject(0, 0));
-  MRGI_TEST_CHECK(data);
-  vtkNew<vtkTriangleFilter> tri;
-  tri->SetInputData(data);
-  tri->PassVertsOff();
-  tri->PassLinesOff();
-  tri->Update();
-  vtkPolyData* t = tri->GetOutput();
-  double m[16];
-  Multiply(worldToEye, objectToWorld, m);
-  vtkIdType n = 0;
-  const vtkIdType* ids = nullptr;
-  vtkCellArray* polys = t->GetPolys();
-  for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
-  {
-    if (n != 3)
-    {
-      continue;
-    }
-    Triangle tr;
-    for (int k = 0; k < 3; ++k)
-    {
-      double p[3];
-      t->GetPoint(ids[k], p);
-      for (int r = 0; r < 3; ++r)
-      {
-        tr[3 * k + r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
-      }
-    }
-    out.push_back(tr);
-  }
-}
-
-// The eye-space triangles the voxelization must see, found independently of
-// the class: visible actors with opacity 1 and assembly parts (assembly
-// matrix x part matrix).
-std::vector<Triangle> SceneTriangles(vtkRenderer* ren)
-{
-  std::vector<Triangle> out;
-  vtkMatrix4x4* view = ren->GetActiveCamera()->GetModelViewTransformMatrix();
-  double worldToEye[16];
-  std::copy(view->GetData(), view->GetData() + 16, worldToEye);
-  vtkPropCollection* props = ren->GetViewProps();
-  props->InitTraversal();
-  while (vtkProp* prop = props->GetNextProp())
-  {
-    if (!prop->GetVisibility())
-    {
-      continue;
-    }
-    if (vtkActor* actor = vtkActor::SafeDownCast(prop))
-    {
-      if (actor->GetProperty()->GetOpacity() < 1.0)
-      {
-        continue;
-      }
-      AddActorTriangles(actor, actor->GetMatrix()->GetData(), worldToEye, out);
-    }
-    else if (vtkAssembly* assembly = vtkAssembly::SafeDownCast(prop))
-    {
-      vtkProp3DCollection* parts = assembly->GetParts();
-      parts->InitTraversal();
-      while (vtkProp3D* part = parts->GetNextProp3D())
-      {
-        vtkActor* partActor = vtkActor::SafeDownCast(part);
-        if (!partActor || !partActor->GetVisibility() ||
-          partActor->GetProperty()->GetOpacity() < 1.0)
-        {
-          continue;
-        }
-        double m[16];
-        Multiply(assembly->GetMatrix()->GetData(), partActor->GetMatrix()->GetData(), m);
-        AddActorTriangles(partActor, m, worldToEye, out);
-      }
-    }
-  }
-  return out;
-}
-
-void DepthRange(const std::vector<Triangle>& tris, double range[2])
-{
-  range[0] = VTK_DOUBLE_MAX;
-  range[1] = -VTK_DOUBLE_MAX;
-  for (const Triangle& t : tris)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      range[0] = std::min(range[0], -t[3 * k + 2]);
-      range[1] = std::max(range[1], -t[3 * k + 2]);
-    }
-  }
-}
-
+using mrgitest::DepthRange;
+using mrgitest::MakeActor;
+using mrgitest::SceneTriangles;
+using mrgitest::Triangle;
 struct Twin
 {
   std::vector<uint32_t> Voxels;    // the C twin's buffer
@@ -461,41 +346,6 @@ Comparison RunCase(const char* name, vtkRenderWindow* window, vtkRenderer* ren,
   return c;
 }
 
-// Catches vtkErrorMacro output (ErrorEvent) so that expected errors are checked, not printed.
-class ErrorCatcher : public vtkCommand
-{
-public:
-  static ErrorCatcher* New() { return new ErrorCatcher; }
-  void Execute(vtkObject*, unsigned long, void* data) override
-  {
-    this->Last = data ? static_cast<const char*>(data) : "";
-    ++this->Count;
-  }
-  bool Caught(const char* fragment)
-  {
-    const bool ok = this->Count > 0 && this->Last.find(fragment) != std::string::npos;
-    if (!ok)
-    {
-      std::fprintf(stderr, "expected an error containing '%s', got %d errors, last '%s'\n",
-        fragment, this->Count, this->Last.c_str());
-    }
-    this->Count = 0;
-    this->Last.clear();
-    return ok;
-  }
-  std::string Last;
-  int Count = 0;
-};
-
-vtkSmartPointer<vtkActor> MakeActor(vtkAlgorithm* source)
-{
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(source->GetOutputPort());
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
-  return actor;
-}
-
 const int WindowW = 150, WindowH = 110;
 
 // The sizes every scene is voxelized at.
@@ -653,7 +503,7 @@ void RandomBoxes()
   // A voxelization that fails keeps the previous buffer.
   vtkNew<vtkTypeUInt32Array> kept, still;
   MRGI_TEST_CHECK(vox->ReadVoxels(window, kept));
-  vtkNew<ErrorCatcher> errors;
+  vtkNew<mrgitest::ErrorCatcher> errors;
   vox->AddObserver(vtkCommand::ErrorEvent, errors);
   MRGI_TEST_CHECK(!vox->Voxelize(renderer, 3.0, 2.0));
   MRGI_TEST_CHECK(errors->Caught("must be less than far"));
@@ -737,7 +587,7 @@ void Grazing(bool parallel, vtkMRGIVoxelization* vox)
 
 void BadInputs()
 {
-  vtkNew<ErrorCatcher> errors;
+  vtkNew<mrgitest::ErrorCatcher> errors;
   vtkNew<vtkMRGIVoxelization> vox;
   vox->AddObserver(vtkCommand::ErrorEvent, errors);
 

@@ -13,6 +13,7 @@
 #ifndef mrgiTestUtilities_h
 #define mrgiTestUtilities_h
 
+#include "vtkCommand.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMRGIImageIO.h"
@@ -43,6 +44,36 @@
 
 namespace mrgitest
 {
+/**
+ * Catches vtkErrorMacro output (observe ErrorEvent with it) so that expected
+ * errors are checked, not printed: Count and the Last message.
+ */
+class ErrorCatcher : public vtkCommand
+{
+public:
+  static ErrorCatcher* New() { return new ErrorCatcher; }
+  void Execute(vtkObject*, unsigned long, void* data) override
+  {
+    this->Last = data ? static_cast<const char*>(data) : "";
+    ++this->Count;
+  }
+  /** Whether an error containing `fragment` came since the last call; resets. */
+  bool Caught(const char* fragment)
+  {
+    const bool ok = this->Count > 0 && this->Last.find(fragment) != std::string::npos;
+    if (!ok)
+    {
+      std::fprintf(stderr, "expected an error containing '%s', got %d errors, last '%s'\n", fragment,
+        this->Count, this->Last.c_str());
+    }
+    this->Count = 0;
+    this->Last.clear();
+    return ok;
+  }
+  std::string Last;
+  int Count = 0;
+};
+
 /** A headless window of the given size, or exit(1) with the reason. */
 inline vtkSmartPointer<vtkRenderWindow> HeadlessWindow(int width, int height)
 {

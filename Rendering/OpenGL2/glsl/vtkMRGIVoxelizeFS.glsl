@@ -9,37 +9,8 @@ in float mrgiDepthGS;
 flat in float mrgiDepthMinGS;
 flat in float mrgiDepthMaxGS;
 
-uniform float mrgiNear;       // grid near_depth (float)
-uniform float mrgiFar;        // grid far_depth (float)
-uniform float mrgiSliceScale; // grid slice_scale: MRGI_VOXEL_SLICES / (far - near) as float
-
+// Slicing and masks: vtkMRGIVoxelBits.glsl (prepended).
 out uvec4 mrgiVoxels;
-
-// slice(d) = int(clamp((d - near) * scale, 0.0, 127.0))  (mrgi_voxel_slice)
-int mrgiSlice(float d)
-{
-  return int(clamp((d - mrgiNear) * mrgiSliceScale, 0.0, float(MRGI_VOXEL_SLICES - 1)));
-}
-
-// Slices lo..hi inclusive (mrgi_voxel_range_mask): per channel c,
-// a = max(lo - 32c, 0), b = min(hi - 32c, 31), bits a..b; no shift by 32,
-// which GLSL leaves undefined, hence the a <= b test first.
-uvec4 mrgiRangeMask(int lo, int hi)
-{
-  lo = max(lo, 0);
-  hi = min(hi, MRGI_VOXEL_SLICES - 1);
-  uvec4 mask = uvec4(0u);
-  for (int c = 0; c < MRGI_VOXEL_CHANNELS; ++c)
-  {
-    int a = max(lo - MRGI_VOXEL_CHANNEL_BITS * c, 0);
-    int b = min(hi - MRGI_VOXEL_CHANNEL_BITS * c, MRGI_VOXEL_CHANNEL_BITS - 1);
-    if (a <= b)
-    {
-      mask[c] = (0xFFFFFFFFu >> uint(MRGI_VOXEL_CHANNEL_BITS - 1 - b)) & (0xFFFFFFFFu << uint(a));
-    }
-  }
-  return mask;
-}
 
 void main()
 {
@@ -52,7 +23,7 @@ void main()
   float h = 0.5 * fwidth(d);
   // Outside [near, far] (or NaN): nothing. The clip planes already drop
   // these; the test makes the rule exact where clipping rounds.
-  if (!(d >= mrgiNear && d <= mrgiFar))
+  if (!(d >= mrgiVoxelNear && d <= mrgiVoxelFar))
   {
     discard;
   }
@@ -60,5 +31,5 @@ void main()
   // Clamp to the triangle's own depth range, always keeping the centre.
   float lo = min(max(d - h, mrgiDepthMinGS), d);
   float hi = max(min(d + h, mrgiDepthMaxGS), d);
-  mrgiVoxels = mrgiRangeMask(mrgiSlice(lo), mrgiSlice(hi));
+  mrgiVoxels = mrgiVoxelRangeMask(mrgiVoxelSlice(lo), mrgiVoxelSlice(hi));
 }
