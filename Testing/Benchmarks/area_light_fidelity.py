@@ -101,7 +101,19 @@ def main():
     parser.add_argument("--scenes", default="cornell-area,living-room")
     parser.add_argument("--truth-passes", type=int, default=32, help="ground-truth passes")
     parser.add_argument("--truth-samples", type=int, default=64, help="shadow rays per light per pixel per pass")
+    parser.add_argument("--page-only", action="store_true",
+                        help="rewrite the page from Documentation/data/area-lights.csv without measuring")
     args = parser.parse_args()
+    if args.page_only:
+        with open(os.path.join(args.doc, "data", "area-lights.csv"), newline="") as f:
+            rows = [{k: (v if k in ("scene", "visibility", "preset") else float(v)) for k, v in r.items()}
+                    for r in csv.DictReader(f)]
+        for r in rows:
+            r["voxels"] = int(r["voxels"])
+        notes = {r["scene"]: "ground truth: %d passes x %d stratified shadow rays per pixel"
+                 % (args.truth_passes, args.truth_samples) for r in rows}
+        write_page(args, rows, notes, os.path.join(args.doc, "AreaLights.md"))
+        return
     compare_tool = os.path.join(args.build, "bin", "mrgi-compare")
     scratch = os.path.join(args.build, "Testing", "Temporary", "area")
     images = os.path.join(args.doc, "images")
@@ -122,8 +134,8 @@ def main():
         mb.write(unshadowed, unshadowed_path)
         scale = 1.0 / max(float(np.percentile(truth, 99.5)), 1e-12)
         mb.write_display(truth, os.path.join(images, "area-%s-truth.png" % name), scale)
-        notes[name] = "ground truth: %d passes x %d shadow rays per pixel, relative standard error %.4f" % (
-            args.truth_passes, args.truth_samples, truth_error)
+        notes[name] = "ground truth: %d passes x %d stratified shadow rays per pixel" % (
+            args.truth_passes, args.truth_samples)
         settings = []
         for visibility, value in visibility_modes(scene.gi):
             for preset, index in list(presets.items()) + [("full", None)]:
@@ -297,10 +309,17 @@ def write_page(args, rows, notes, path):
                          % (name, 100.0 * i["rays"] / max(n["rays"], 1), "{:,}".format(int(i["rays"])),
                             "{:,}".format(int(n["rays"])), i["area_ms"], n["area_ms"],
                             n["area_ms"] / max(i["area_ms"], 1e-9), i["rel_rms_truth"], n["rel_rms_truth"],
-                            "Met." if n["area_ms"] >= 3 * i["area_ms"] else
-                            "**Not met** on llvmpipe: the rays saved do not turn into time there, where every "
-                            "fragment of a SIMD group waits for the slowest and the pyramid computes masks for "
-                            "every texel of every level, needed or not."))
+                            ("Met." if n["area_ms"] >= 3 * i["area_ms"] else
+                             "**Not met** on llvmpipe: the rays saved do not turn into time there, where every "
+                             "fragment of a SIMD group waits for the slowest and the pyramid computes masks for "
+                             "every texel of every level, needed or not.") +
+                            ("" if i["rel_rms_truth"] <= 1.2 * n["rel_rms_truth"] else
+                             " **Nor at equal error**: next to the light (the TV stand just under the screen) "
+                             "coarse receivers average pixels across the stand's edge and sit inside the set; their "
+                             "3x3 neighbourhood agrees that the screen is hidden, so the fine texels inherit or "
+                             "reuse those bits without marching (NPW10's reuse rule has no guard for this; "
+                             "restricting the neighbourhood to receivers on the same surface is the fix to try). "
+                             "The naive query stays accurate there.")))
         o = pick["off"]
         if o and i:
             lines.append("- `%s`: the gather at the multiresolution texels does %.1f%% of the full-resolution "
