@@ -287,8 +287,6 @@ void vtkMRGIPass::AddAreaLight(vtkMRGIAreaLight* light)
   }
   light->Register(this);
   this->AreaLights.push_back(light);
-  this->AreaLightSamples.push_back(nullptr);
-  this->AreaLightSampleBuilds.push_back(-1);
   this->Modified();
 }
 
@@ -299,15 +297,7 @@ void vtkMRGIPass::RemoveAreaLight(vtkMRGIAreaLight* light)
   {
     return;
   }
-  const size_t i = static_cast<size_t>(it - this->AreaLights.begin());
-  // A texture of a light removed while the context is gone is freed by
-  // vtkTextureObject's destructor without GL calls.
-  if (this->AreaLightSamples[i])
-  {
-    this->AreaLightSamples[i]->Delete();
-  }
-  this->AreaLightSamples.erase(this->AreaLightSamples.begin() + static_cast<std::ptrdiff_t>(i));
-  this->AreaLightSampleBuilds.erase(this->AreaLightSampleBuilds.begin() + static_cast<std::ptrdiff_t>(i));
+  // The light keeps its GPU textures (its own ReleaseGraphicsResources).
   this->AreaLights.erase(it);
   light->UnRegister(this);
   this->Modified();
@@ -402,11 +392,6 @@ void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
   Release(this->AreaSumTexture, w);
   Release(this->SpecularTexture, w);
   Release(this->ShininessTexture, w);
-  for (size_t i = 0; i < this->AreaLightSamples.size(); ++i)
-  {
-    Release(this->AreaLightSamples[i], w);
-    this->AreaLightSampleBuilds[i] = -1;
-  }
   this->BufferSize[0] = this->BufferSize[1] = 0;
   this->IndirectComputed = false;
   this->AreaLightsComputed = false;
@@ -835,29 +820,13 @@ bool vtkMRGIPass::RenderAreaLights(
   for (size_t i = 0; i < this->AreaLights.size(); ++i)
   {
     vtkMRGIAreaLight* light = this->AreaLights[i];
+    // The light's samples on the GPU, uploaded by the light once per rebuild.
     int count = 0;
-    const mrgi_area_light_sample* samples = light->GetCoreSamples(&count);
+    vtkTextureObject* texture = light->GetSampleTexture(renWin, &count);
     mrgi_area_light_uniforms uniforms;
-    if (!samples || count < 1 || !light->GetCoreUniforms(&uniforms))
+    if (!texture || count < 1 || !light->GetCoreUniforms(&uniforms))
     {
       continue; // the light reported why
-    }
-    vtkTextureObject*& texture = this->AreaLightSamples[i];
-    if (!texture || this->AreaLightSampleBuilds[i] != light->GetNumberOfSampleBuilds() ||
-      texture->GetHeight() != static_cast<unsigned int>(count))
-    {
-      if (!texture)
-      {
-        texture = vtkTextureObject::New();
-        texture->SetContext(renWin);
-      }
-      if (!texture->Create2DFromRaw(MRGI_AREA_LIGHT_SAMPLE_TEXELS, static_cast<unsigned int>(count), 4,
-            VTK_FLOAT, const_cast<float*>(mrgi_area_light_sample_texture_data(samples))))
-      {
-        vtkErrorMacro("could not upload the samples of area light " << i);
-        continue;
-      }
-      this->AreaLightSampleBuilds[i] = light->GetNumberOfSampleBuilds();
     }
     // Incremental visibility: the masks of every level first (they need
     // this selection's receivers), then the gather reads its texel's bits.

@@ -327,11 +327,8 @@ protected:
   float LastViewToWorldFloat[16];
   bool LastParallel = false;
 
-  // Area lights (registered), their sample textures and the sample build
-  // each texture holds (re-uploaded only when the light rebuilt them).
+  // Area lights (registered; each owns its GPU sample and pyramid textures).
   std::vector<vtkMRGIAreaLight*> AreaLights;
-  std::vector<vtkTextureObject*> AreaLightSamples;
-  std::vector<int> AreaLightSampleBuilds;
   vtkTextureObject* AreaIrradianceTexture = nullptr;
   vtkTextureObject* AreaDirectTexture = nullptr;
   vtkTextureObject* AreaSumTexture = nullptr;
