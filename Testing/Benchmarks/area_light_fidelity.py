@@ -112,6 +112,9 @@ def main():
             r["voxels"] = int(r["voxels"])
         notes = {r["scene"]: "ground truth: %d passes x %d stratified shadow rays per pixel"
                  % (args.truth_passes, args.truth_samples) for r in rows}
+        images = os.path.join(args.doc, "images")
+        plot(rows, os.path.join(images, "area-voxel-sweep.png"))
+        plot_tradeoff(rows, os.path.join(images, "area-tradeoff.png"))
         write_page(args, rows, notes, os.path.join(args.doc, "AreaLights.md"))
         return
     compare_tool = os.path.join(args.build, "bin", "mrgi-compare")
@@ -207,7 +210,47 @@ def main():
         writer.writeheader()
         writer.writerows(rows)
     plot(rows, os.path.join(images, "area-voxel-sweep.png"))
+    plot_tradeoff(rows, os.path.join(images, "area-tradeoff.png"))
     write_page(args, rows, notes, os.path.join(args.doc, "AreaLights.md"))
+
+
+def plot_tradeoff(rows, path):
+    """Error against GPU time of every setting, per scene, with the Pareto frontier (as the multiresolution
+    page's plot)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    scenes = sorted({r["scene"] for r in rows})
+    fig, axes = plt.subplots(1, len(scenes), figsize=(6.5 * len(scenes), 4.5), squeeze=False)
+    markers = {"off": "s", "naive": "o", "incremental": "^"}
+    for ax, scene in zip(axes[0], scenes):
+        mine = [r for r in rows if r["scene"] == scene]
+        for visibility in ("off", "naive", "incremental"):
+            sel = [r for r in mine if r["visibility"] == visibility]
+            if sel:
+                ax.scatter([r["area_ms"] for r in sel], [100 * r["rel_rms_truth"] for r in sel],
+                           marker=markers[visibility], s=30, label="visibility %s" % visibility)
+                for r in sel:
+                    label = r["preset"] + ("" if r["voxels"] in (0, 128) else " %d^2" % r["voxels"])
+                    ax.annotate(label, (r["area_ms"], 100 * r["rel_rms_truth"]), textcoords="offset points",
+                                xytext=(4, 3), fontsize=7)
+        front = sorted(mine, key=lambda r: r["area_ms"])
+        best, frontier = float("inf"), []
+        for r in front:
+            if r["rel_rms_truth"] < best:
+                best = r["rel_rms_truth"]
+                frontier.append(r)
+        ax.plot([r["area_ms"] for r in frontier], [100 * r["rel_rms_truth"] for r in frontier], "k-", lw=1,
+                label="Pareto frontier")
+        ax.set_xscale("log")
+        ax.set_xlabel("area-light GPU ms per frame (llvmpipe)")
+        ax.set_ylabel("relative RMS error vs ground truth (%)")
+        ax.set_title(scene)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+    print("wrote %s" % path)
 
 
 def plot(rows, path):
@@ -297,7 +340,10 @@ def write_page(args, rows, notes, path):
             r["scene"], r["visibility"], "%d^2" % r["voxels"] if r["voxels"] else "-", r["preset"], r["area_ms"],
             r["visibility_ms"], r["gather_ms"], r["select_ms"], r["work"],
             "{:,}".format(int(r["rays"])) if r["rays"] else "-", r["rel_rms_truth"], r["rel_rms_unshadowed"]))
-    lines += ["", "![error against voxel resolution](images/area-voxel-sweep.png)", "", "## Targets", ""]
+    lines += ["", "![error against time](images/area-tradeoff.png)", "",
+              "Every setting's error against its GPU time (the black line: no other setting is both faster and "
+              "more accurate).", "", "![error against voxel resolution](images/area-voxel-sweep.png)", "",
+              "## Targets", ""]
     for name in notes:
         pick = {v: next((r for r in rows if r["scene"] == name and r["visibility"] == v and r["preset"] == "balanced"
                          and r["voxels"] in (0, 128)), None) for v in ("off", "naive", "incremental")}
