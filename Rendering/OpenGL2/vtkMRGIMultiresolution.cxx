@@ -47,7 +47,9 @@ enum Stage
   MipmapReduce = 1,
   Flags = 2,
   Select = 3,
-  StageCount = 4
+  MipmapReduceLevel0 = 4, // stage 1 reading level 0 (one normal texture)
+  FlagsLevel0 = 5,        // stage 2 of level 0 (one normal texture)
+  StageCount = 6
 };
 
 vtkTextureObject* MakeFloatTexture(vtkOpenGLRenderWindow* window, int w, int h)
@@ -223,7 +225,7 @@ struct vtkMRGIMultiresolution::Internals
   vtkTextureObject* FlatSelection = nullptr;
   vtkTextureObject* DepthStencil = nullptr;
   vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
-  vtkOpenGLQuadHelper* Quads[StageCount] = { nullptr, nullptr, nullptr, nullptr };
+  vtkOpenGLQuadHelper* Quads[StageCount] = { nullptr, nullptr, nullptr, nullptr, nullptr, nullptr };
 
   void ReleaseTextures(vtkWindow* w)
   {
@@ -520,8 +522,9 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
   {
     if (!in.Quads[s])
     {
-      const std::string body =
-        "#define MRGI_MR_STAGE " + std::to_string(s) + "\n" + vtkMRGIMultiresSelectFS;
+      const int stage = s == MipmapReduceLevel0 ? MipmapReduce : s == FlagsLevel0 ? Flags : s;
+      const std::string body = "#define MRGI_MR_STAGE " + std::to_string(stage) + "\n" +
+        (s >= MipmapReduceLevel0 ? "#define MRGI_MR_LEVEL0 1\n" : "") + vtkMRGIMultiresSelectFS;
       in.Quads[s] = new vtkOpenGLQuadHelper(window,
         vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
         vtkMRGIShaderUtilities::FullScreenShader(body.c_str()).c_str(), "");
@@ -574,9 +577,8 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
   {
     ScopedStage step(this->StageTimer, "select.mipmap0");
     auto& level = in.Levels[0];
-    target({ level[MRGI_MULTIRES_TEX_DEPTH], level[MRGI_MULTIRES_TEX_NORMAL_MIN],
-             level[MRGI_MULTIRES_TEX_NORMAL_MAX] },
-      width, height);
+    // One normal texture at level 0 (min = max; NORMAL_MAX stays unused).
+    target({ level[MRGI_MULTIRES_TEX_DEPTH], level[MRGI_MULTIRES_TEX_NORMAL_MIN] }, width, height);
     vtkShaderProgram* p = programs[MipmapBase];
     bind(p, { position, normal });
     const int offset[2] = { x0, y0 };
@@ -596,14 +598,23 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     target({ level[MRGI_MULTIRES_TEX_DEPTH], level[MRGI_MULTIRES_TEX_NORMAL_MIN],
              level[MRGI_MULTIRES_TEX_NORMAL_MAX] },
       layout.level_width[i], layout.level_height[i]);
-    vtkShaderProgram* p = programs[MipmapReduce];
-    bind(p, { fine[MRGI_MULTIRES_TEX_DEPTH], fine[MRGI_MULTIRES_TEX_NORMAL_MIN],
-              fine[MRGI_MULTIRES_TEX_NORMAL_MAX] });
+    const int stage = i == 1 ? MipmapReduceLevel0 : MipmapReduce;
+    vtkShaderProgram* p = programs[stage];
+    vtkTextureObject* normalMax = fine[i == 1 ? MRGI_MULTIRES_TEX_NORMAL_MIN : MRGI_MULTIRES_TEX_NORMAL_MAX];
+    bind(p, { fine[MRGI_MULTIRES_TEX_DEPTH], fine[MRGI_MULTIRES_TEX_NORMAL_MIN] });
+    if (i != 1)
+    {
+      normalMax->Activate();
+      p->SetUniformi("mrgiInput2", normalMax->GetTextureUnit());
+    }
     const int size[2] = { layout.level_width[i - 1], layout.level_height[i - 1] };
     p->SetUniform2i("mrgiSize", size);
-    in.Quads[MipmapReduce]->Render();
-    unbind({ fine[MRGI_MULTIRES_TEX_DEPTH], fine[MRGI_MULTIRES_TEX_NORMAL_MIN],
-      fine[MRGI_MULTIRES_TEX_NORMAL_MAX] });
+    in.Quads[stage]->Render();
+    unbind({ fine[MRGI_MULTIRES_TEX_DEPTH], fine[MRGI_MULTIRES_TEX_NORMAL_MIN] });
+    if (i != 1)
+    {
+      normalMax->Deactivate();
+    }
   }
   // 3. Flags, fine to coarse (refinement and balance read the finer level).
   const float depthThreshold = mrgi_multires_threshold_uniform(
@@ -616,7 +627,8 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     auto& level = in.Levels[i];
     const int flagsSlot = MRGI_MULTIRES_TEX_COUNT;
     target({ level[flagsSlot] }, layout.level_width[i], layout.level_height[i]);
-    vtkShaderProgram* p = programs[Flags];
+    const int stage = i == 0 ? FlagsLevel0 : Flags;
+    vtkShaderProgram* p = programs[stage];
     // Level 0 has no finer level: its own (not yet written) flags stand in,
     // unread since level 0 <= the finest level.
     vtkTextureObject* finer = in.Levels[i > 0 ? i - 1 : 0][flagsSlot];
@@ -624,6 +636,8 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     {
       finer = in.Levels[std::min(1, levels - 1)][MRGI_MULTIRES_TEX_DEPTH];
     }
+    // Level 0: one normal texture (FlagsLevel0 reads mrgiInput1 only; the
+    // NORMAL_MAX slot stands in for the unread mrgiInput2).
     bind(p, { level[MRGI_MULTIRES_TEX_DEPTH], level[MRGI_MULTIRES_TEX_NORMAL_MIN],
               level[MRGI_MULTIRES_TEX_NORMAL_MAX], finer });
     const int size[2] = { layout.level_width[i], layout.level_height[i] };
@@ -636,7 +650,7 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     p->SetUniformi("mrgiLevel", i);
     p->SetUniformi("mrgiFinestLevel", finest);
     p->SetUniformi("mrgiBalance", this->Balance ? 1 : 0);
-    in.Quads[Flags]->Render();
+    in.Quads[stage]->Render();
     unbind({ level[MRGI_MULTIRES_TEX_DEPTH], level[MRGI_MULTIRES_TEX_NORMAL_MIN],
       level[MRGI_MULTIRES_TEX_NORMAL_MAX], finer });
   }

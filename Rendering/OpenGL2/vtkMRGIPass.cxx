@@ -1332,6 +1332,11 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
           : this->AreaLightVisibility == VisibilityNaive    ? "Naive"
                                                             : "Off")
      << "\n";
+  os << indent << "AreaLightSpecular: " << (this->AreaLightSpecular ? "On" : "Off") << "\n";
+  os << indent << "Voxelization:\n";
+  this->Voxelization->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "VisibilityPyramid:\n";
+  this->VisibilityPyramid->PrintSelf(os, indent.GetNextIndent());
   os << indent << "BufferSize: " << this->BufferSize[0] << " x " << this->BufferSize[1] << "\n";
   for (int i = 0; i < this->GetNumberOfStages(); ++i)
   {

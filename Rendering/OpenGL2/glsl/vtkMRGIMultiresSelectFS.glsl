@@ -2,7 +2,11 @@
 // mrgi_multires_mipmap_build, mrgi_multires_flags_compute,
 // mrgi_multires_select_one_pass). One shader, four stages chosen by
 // MRGI_MR_STAGE; every rule and its float order mirror the C code:
-// 0: level-0 mipmap from the G-buffer (validity, depth, unit normal, depth derivative g);
+// 0: level-0 mipmap from the G-buffer (validity, depth, unit normal, depth
+//    derivative g). A pixel's normal range is the normal itself, so level 0
+//    stores one normal texture (min = max), not two: one target less to
+//    write, and the flags of level 0 (stage 2 with MRGI_MR_LEVEL0) read one
+//    normal per neighbour instead of two;
 // 1: level i mipmap, 2x2 min/max/OR of level i-1 (children clamped to the level);
 // 2: flags of level i (3x3 window, refinement from level i-1's flags, balance);
 // 3: the one-pass selection of nichols-shopf-wyman-2009 3.2.1, drawn once
@@ -58,9 +62,11 @@ void main()
   vec3 N;
   if (!mrgiValid(t, dp, N))
   {
+    // The normal of an invalid pixel is never read: the passes that read
+    // level 0 (stage 1 and stage 2 with MRGI_MR_LEVEL0) skip invalid
+    // pixels, as the C twin's (+FLT_MAX, -FLT_MAX) range does.
     gl_FragData[0] = vec4(MRGI_MULTIRES_FLT_MAX, -MRGI_MULTIRES_FLT_MAX, 0.0, float(MRGI_MULTIRES_INVALID_BIT));
     gl_FragData[1] = vec4(vec3(MRGI_MULTIRES_FLT_MAX), 0.0);
-    gl_FragData[2] = vec4(vec3(-MRGI_MULTIRES_FLT_MAX), 0.0);
     return;
   }
   float length2 = N.x * N.x + N.y * N.y + N.z * N.z;
@@ -84,7 +90,6 @@ void main()
   }
   gl_FragData[0] = vec4(dp, dp, g, float(MRGI_MULTIRES_VALID_BIT));
   gl_FragData[1] = vec4(n, 0.0);
-  gl_FragData[2] = vec4(n, 0.0);
 #elif MRGI_MR_STAGE == 1
   vec4 a = vec4(MRGI_MULTIRES_FLT_MAX, -MRGI_MULTIRES_FLT_MAX, 0.0, 0.0);
   vec3 lo = vec3(MRGI_MULTIRES_FLT_MAX);
@@ -100,8 +105,16 @@ void main()
       a.y = max(a.y, depth.y);
       a.z = max(a.z, depth.z);
       bits |= int(depth.w);
+#ifdef MRGI_MR_LEVEL0
+      // Level 0 holds one normal per pixel (min = max); invalid pixels widen nothing.
+      bool valid = (int(depth.w) & MRGI_MULTIRES_VALID_BIT) != 0;
+      vec3 n = texelFetch(mrgiInput1, s, 0).xyz;
+      lo = min(lo, valid ? n : vec3(MRGI_MULTIRES_FLT_MAX));
+      hi = max(hi, valid ? n : vec3(-MRGI_MULTIRES_FLT_MAX));
+#else
       lo = min(lo, texelFetch(mrgiInput1, s, 0).xyz);
       hi = max(hi, texelFetch(mrgiInput2, s, 0).xyz);
+#endif
     }
   }
   gl_FragData[0] = vec4(a.xyz, float(bits));
@@ -124,8 +137,16 @@ void main()
       {
         ivec2 s = clamp(t + ivec2(dx, dy), ivec2(0), mrgiSize - 1);
         g = max(g, texelFetch(mrgiInput0, s, 0).z);
+#ifdef MRGI_MR_LEVEL0
+        // One normal per pixel (min = max); invalid pixels widen nothing.
+        bool valid = (int(texelFetch(mrgiInput0, s, 0).w) & MRGI_MULTIRES_VALID_BIT) != 0;
+        vec3 n = texelFetch(mrgiInput1, s, 0).xyz;
+        lo = min(lo, valid ? n : vec3(MRGI_MULTIRES_FLT_MAX));
+        hi = max(hi, valid ? n : vec3(-MRGI_MULTIRES_FLT_MAX));
+#else
         lo = min(lo, texelFetch(mrgiInput1, s, 0).xyz);
         hi = max(hi, texelFetch(mrgiInput2, s, 0).xyz);
+#endif
       }
     }
     bool discontinuous = false;
