@@ -242,13 +242,20 @@ int mrgi_voxel_same_surface(const float p[3], const float n[3], const float q[3]
   return nd * nd <= s2 * dd * nn && md * md <= s2 * dd * mm;
 }
 
-/* The 3x3 level-`level` texels around (cx, cy), clamped; non-receivers NULL. */
-static void mrgi_voxel_gather_neighbours(const mrgi_multires_layout* layout, int32_t level,
-                                         int32_t cx, int32_t cy, const float* position,
-                                         const uint32_t* masks, int32_t words,
-                                         const uint32_t* out[MRGI_VOXEL_NEIGHBOURS])
+/* The coarse neighbourhood of a level-(level - 1) texel with receiver (p, n)
+ * (section 3): the 3x3 level-`level` texels around its parent (cx, cy),
+ * clamped; non-receivers NULL. The same-surface guard: *kept counts the
+ * receivers on the texel's surface (mrgi_voxel_same_surface(p, n, q, m));
+ * returns 1 when the parent itself (the centre) is one of them. */
+static int mrgi_voxel_gather_neighbours(const mrgi_multires_layout* layout, int32_t level,
+                                        int32_t cx, int32_t cy, const float* position,
+                                        const float* normal, const float* p, const float* n,
+                                        const uint32_t* masks, int32_t words,
+                                        const uint32_t* out[MRGI_VOXEL_NEIGHBOURS], int* kept)
 {
   int k = 0;
+  int parent_kept = 0;
+  *kept = 0;
   for (int32_t dy = -1; dy <= 1; ++dy)
   {
     for (int32_t dx = -1; dx <= 1; ++dx)
@@ -258,11 +265,16 @@ static void mrgi_voxel_gather_neighbours(const mrgi_multires_layout* layout, int
       x = x < 0 ? 0 : (x >= layout->level_width[level] ? layout->level_width[level] - 1 : x);
       y = y < 0 ? 0 : (y >= layout->level_height[level] ? layout->level_height[level] - 1 : y);
       const size_t t = mrgi_multires_index(layout, level, x, y);
-      out[k++] = position[4 * t + 3] > MRGI_GBUFFER_VALID_THRESHOLD
-                   ? masks + t * (size_t)words
-                   : NULL;
+      const float* q;
+      const float* m;
+      const int receiver = mrgi_voxel_receiver(position, normal, t, &q, &m);
+      const int same = receiver && mrgi_voxel_same_surface(p, n, q, m);
+      *kept += same;
+      parent_kept = k == MRGI_VOXEL_NEIGHBOURS / 2 ? same : parent_kept;
+      out[k++] = receiver ? masks + t * (size_t)words : NULL;
     }
   }
+  return parent_kept;
 }
 
 mrgi_status mrgi_voxel_visibility_pyramid(
@@ -366,14 +378,18 @@ mrgi_status mrgi_voxel_visibility_pyramid(
         }
         uint32_t* mask = masks + t * (size_t)words;
         const uint32_t* neighbours[MRGI_VOXEL_NEIGHBOURS];
+        int kept = 0;
         int compute = i == coarsest;
         if (!compute)
         {
-          mrgi_voxel_gather_neighbours(layout, i + 1, x / 2, y / 2, receiver_position, masks,
-                                       words, neighbours);
+          /* Same-surface guard (section 3): t inherits only from a parent on
+           * its surface, and reuses only with a neighbour on its surface. */
+          const int parent_kept =
+            mrgi_voxel_gather_neighbours(layout, i + 1, x / 2, y / 2, receiver_position,
+                                         receiver_normal, P, N, masks, words, neighbours, &kept);
           mrgi_voxel_metric metric;
           mrgi_voxel_neighbourhood_metric(neighbours, words, &metric);
-          compute = (refine && refine[t]) ||
+          compute = (refine && refine[t]) || !parent_kept ||
                     mrgi_voxel_needs_refinement(&metric, knobs.metric, threshold);
         }
         if (!compute)
@@ -389,8 +405,9 @@ mrgi_status mrgi_voxel_visibility_pyramid(
         const uint32_t phases =
           knobs.interleave ? 1u << (uint32_t)mrgi_voxel_interleave_phase(x, y)
                            : (uint32_t)MRGI_VOXEL_ALL_PHASES;
-        s.rays[i] += mrgi_voxel_visibility(view, samples, P, N, i == coarsest ? NULL : neighbours,
-                                           phases, mask);
+        s.rays[i] += mrgi_voxel_visibility(view, samples, P, N,
+                                           i == coarsest || kept == 0 ? NULL : neighbours, phases,
+                                           mask);
       }
     }
     if (!knobs.interleave)
@@ -411,10 +428,11 @@ mrgi_status mrgi_voxel_visibility_pyramid(
         const float* N;
         mrgi_voxel_receiver(receiver_position, receiver_normal, t, &P, &N);
         const uint32_t* neighbours[MRGI_VOXEL_NEIGHBOURS];
+        int kept = 0;
         if (i != coarsest)
         {
-          mrgi_voxel_gather_neighbours(layout, i + 1, x / 2, y / 2, receiver_position, masks,
-                                       words, neighbours);
+          mrgi_voxel_gather_neighbours(layout, i + 1, x / 2, y / 2, receiver_position,
+                                       receiver_normal, P, N, masks, words, neighbours, &kept);
         }
         uint32_t* out = combined + ((size_t)y * (size_t)lw + (size_t)x) * (size_t)words;
         memset(out, 0, (size_t)words * sizeof(uint32_t));
@@ -441,7 +459,7 @@ mrgi_status mrgi_voxel_visibility_pyramid(
           {
             uint32_t own[MRGI_VOXEL_MAX_MASK_WORDS];
             s.rays[i] += mrgi_voxel_visibility(view, samples, P, N,
-                                               i == coarsest ? NULL : neighbours,
+                                               i == coarsest || kept == 0 ? NULL : neighbours,
                                                1u << (uint32_t)q, own);
             for (int32_t w = 0; w < words; ++w)
             {

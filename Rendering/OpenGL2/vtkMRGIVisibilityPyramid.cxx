@@ -322,6 +322,8 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
     vtkTextureObject* position = multires->GetReceiverTexture(i, 0);
     vtkTextureObject* normal = multires->GetReceiverTexture(i, 1);
     vtkTextureObject* parentPosition = naive ? position : multires->GetReceiverTexture(i + 1, 0);
+    // The same-surface guard reads the parent level's normals too.
+    vtkTextureObject* parentNormal = naive ? normal : multires->GetReceiverTexture(i + 1, 1);
     int parentOffset[2] = { 0, 0 };
     if (!naive)
     {
@@ -329,7 +331,7 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
       parentOffset[0] += layout.level_offset[i + 1];
     }
     const auto& parentMasks = in.Masks[static_cast<size_t>(naive ? i : i + 1)];
-    if (!position || !normal || !parentPosition)
+    if (!position || !normal || !parentPosition || !parentNormal)
     {
       vtkErrorMacro("Update: the receivers of level " << i << " are missing");
       ok = false;
@@ -375,6 +377,7 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
       bind("mrgiVisPosition", position);
       bind("mrgiVisNormal", normal);
       bind("mrgiVisParentPosition", parentPosition);
+      bind("mrgiVisParentNormal", parentNormal);
       bind("mrgiVisSamples", samples);
       bind("mrgiVisSelection", selection ? selection : samples);
       // Unused integer samplers read the voxels (never a texture attached

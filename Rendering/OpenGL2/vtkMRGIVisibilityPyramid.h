@@ -10,8 +10,11 @@
  * (Rendering/Core/mrgi_voxel_incremental.h): sample j is bit j & 31 of word
  * j >> 5; from the coarsest level down, a receiver texel is COMPUTED (coarsest
  * level, refinement metric of its parent's 3x3 at or above the threshold, or
- * forced by the selection) with the incremental rule (agree = wanted &
- * ~(AND ^ OR) reused, the rest marched), else INHERITED (the parent's mask);
+ * forced by the selection, or its parent not on its surface) with the
+ * incremental rule (agree = wanted & ~(AND ^ OR) reused, the rest marched;
+ * nothing reused without a neighbour on its surface), else INHERITED (the
+ * parent's mask); the same-surface guard is the C twin's section 3 and
+ * reads the parent level's receiver normals too;
  * with 2x2 interleaving each texel marches the samples of its phase and the
  * block's quarters are combined between texels on the same surface. One ray
  * is the GLSL march of vtkMRGIVoxelMarch.glsl (C twin mrgi_voxel_march()).
@@ -34,8 +37,9 @@
  * level-local coordinates, not the flattened layout). The masks are unpacked
  * (all N bits per texel, also with interleaving), so N <=
  * GetMaximumNumberOfSamples() (512: 4 targets; the pass also binds the
- * parent's and the quarters' textures, within the 16 texture units OpenGL
- * 3.2 guarantees). ReadMasks() gives the C twin's flattened layout.
+ * parent's masks, receiver positions and normals and the quarters'
+ * textures: 15 samplers with the voxels, within the 16 texture units
+ * OpenGL 3.2 guarantees). ReadMasks() gives the C twin's flattened layout.
  *
  * Inputs: after vtkMRGIMultiresolution::Update() and BuildReceivers(), the
  * receivers of each level (GetReceiverTexture(), GetReceiverOffset(); level

@@ -1353,6 +1353,7 @@ static void test_incremental(void)
           continue;
         }
         uint32_t all[2] = { 0xFFFFFFFFu, 0xFFFFFFFFu }, any[2] = { 0, 0 };
+        int kept = 0;
         for (int32_t dy = -1; dy <= 1; ++dy)
         {
           for (int32_t dx = -1; dx <= 1; ++dx)
@@ -1363,6 +1364,9 @@ static void test_incremental(void)
             const size_t c = mrgi_multires_index(&ps.layout, i + 1, cx, cy);
             if (ps.position[4 * c + 3] > MRGI_GBUFFER_VALID_THRESHOLD)
             {
+              /* the same-surface guard: reuse needs a neighbour on q's surface */
+              kept += mrgi_voxel_same_surface(ps.position + 4 * q, ps.normal + 4 * q,
+                                              ps.position + 4 * c, ps.normal + 4 * c);
               for (int w = 0; w < 2; ++w)
               {
                 all[w] &= masks[2 * c + (size_t)w];
@@ -1373,7 +1377,8 @@ static void test_incremental(void)
         }
         for (int w = 0; w < 2; ++w)
         {
-          const uint32_t disagree = all[w] ^ any[w];
+          /* without a neighbour on its surface every bit is re-marched */
+          const uint32_t disagree = kept ? all[w] ^ any[w] : 0xFFFFFFFFu;
           /* disagreeing bits were re-marched: equal to the naive bits */
           MRGI_CHECK(((masks[2 * q + (size_t)w] ^ naive[2 * q + (size_t)w]) & disagree) == 0u);
           /* agreeing bits are the neighbours' common value */
@@ -1513,6 +1518,104 @@ static void test_incremental(void)
   free(again);
   free(naive);
   free_pyramid(&ps);
+  free(t.voxels);
+}
+
+/* The same-surface guard (mrgi_voxel_incremental.h section 3): the top of a
+ * box (y = -0.5, normal up), lit from above, at level 0 (8 x 8); level 1
+ * (4 x 4) holds coarse receivers as a texel averaging the top and the front
+ * face across the box's front edge gets them: the mean normal halfway
+ * between, the mean position inside the box. Those coarse receivers are
+ * hidden (naive at the coarsest level) and agree on it; without the guard
+ * every fine texel under them inherited "hidden" (or reused it). Left
+ * half: coarse receivers on the top itself (visible, reused). */
+static void test_incremental_guard(void)
+{
+  mrgi_error err;
+  float lp[3 * 64], ln[3 * 64];
+  light_samples(8, lp, ln);
+  const mrgi_voxel_samples samples = { 64, lp, ln };
+  scene s = { 0 };
+  scene_add(&s, -12, -2.5, -30, 12, -2, -3); /* floor */
+  scene_add(&s, -3, -2, -12, 3, -0.5, -9);   /* the box: top y = -0.5, front z = -9 */
+  test_view t = scene_view(&s, 64);
+  mrgi_multires_layout layout;
+  MRGI_CHECK(mrgi_multires_layout_init(&layout, 8, 8, 4, &err) == MRGI_OK);
+  MRGI_CHECK(layout.level_count == 2);
+  const size_t texels = (size_t)mrgi_multires_texel_count(&layout);
+  float* position = (float*)calloc(4 * texels, sizeof(float));
+  float* normal = (float*)calloc(4 * texels, sizeof(float));
+  uint32_t* masks = (uint32_t*)calloc(2 * texels, sizeof(uint32_t));
+  MRGI_CHECK(position && normal && masks);
+  for (int32_t i = 0; i < 2; ++i)
+  {
+    const int32_t side = layout.level_width[i];
+    for (int32_t y = 0; y < side; ++y)
+    {
+      for (int32_t x = 0; x < side; ++x)
+      {
+        const size_t q = mrgi_multires_index(&layout, i, x, y);
+        float* P = position + 4 * q;
+        float* N = normal + 4 * q;
+        P[0] = (float)(-2.0 + 4.0 * (x + 0.5) / side);
+        P[1] = -0.5f;
+        P[2] = (float)(-11.5 + 2.0 * (y + 0.5) / side);
+        P[3] = i == 0 ? MRGI_GBUFFER_VALID : 4.0f;
+        N[1] = 1.0f;
+        if (i == 1 && x >= 2)
+        {
+          /* across the front edge: inside the box, normal between up and +z */
+          P[1] = -1.0f;
+          P[2] = -9.5f;
+          N[1] = 0.7071f;
+          N[2] = 0.7071f;
+          MRGI_CHECK(!mrgi_voxel_same_surface(position + 4 * mrgi_multires_index(&layout, 0, 2 * x, 2 * y),
+                                              normal + 4 * mrgi_multires_index(&layout, 0, 2 * x, 2 * y),
+                                              P, N));
+        }
+      }
+    }
+  }
+  for (int interleave = 0; interleave <= 1; ++interleave)
+  {
+    for (int f = 0; f < 2; ++f)
+    {
+      const float fractions[2] = { 0.0f, 0.5f };
+      mrgi_voxel_incremental_params params = { interleave, MRGI_VOXEL_METRIC_DISAGREE,
+                                               fractions[f] };
+      mrgi_voxel_incremental_stats stats;
+      MRGI_CHECK(mrgi_voxel_visibility_pyramid(&layout, position, normal, 4 * texels, &t.view,
+                                               &samples, NULL, 0, &params, masks, 2 * texels,
+                                               &stats, &err) == MRGI_OK);
+      for (int32_t y = 0; y < 4; ++y)
+      {
+        for (int32_t x = 0; x < 4; ++x)
+        {
+          /* the coarse receivers: inside the box hidden (all agree), on the top visible */
+          const uint32_t* m = masks + 2 * mrgi_multires_index(&layout, 1, x, y);
+          MRGI_CHECK(m[0] == (x >= 2 ? 0u : 0xFFFFFFFFu) && m[1] == m[0]);
+        }
+      }
+      for (int32_t y = 0; y < 8; ++y)
+      {
+        for (int32_t x = 0; x < 8; ++x)
+        {
+          /* every fine texel on the lit top sees every sample, under the hidden parents too */
+          const uint32_t* m = masks + 2 * mrgi_multires_index(&layout, 0, x, y);
+          MRGI_CHECK(m[0] == 0xFFFFFFFFu && m[1] == 0xFFFFFFFFu);
+        }
+      }
+      /* the guard keeps the reuse where the neighbourhood is on the surface */
+      if (f == 1)
+      {
+        MRGI_CHECK(stats.inherited[0] > 0);
+      }
+      MRGI_CHECK(stats.rays[0] > 0 && stats.rays_total < stats.rays_naive + stats.rays[1]);
+    }
+  }
+  free(position);
+  free(normal);
+  free(masks);
   free(t.voxels);
 }
 
@@ -1751,6 +1854,7 @@ int main(void)
   test_march_symmetry();
   test_masks_and_metric();
   test_incremental();
+  test_incremental_guard();
   test_vsm();
   test_random_scenes();
   printf("TestVoxel: all checks passed\n");

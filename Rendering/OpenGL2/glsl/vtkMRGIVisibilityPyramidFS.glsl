@@ -34,8 +34,10 @@ uniform sampler2D mrgiVisNormal;
 uniform ivec2 mrgiVisReceiverOffset;
 uniform int mrgiVisGBuffer;
 uniform ivec2 mrgiVisLevelSize;
-// Level i+1 (unused on the naive levels): receiver positions and final masks.
+// Level i+1 (unused on the naive levels): receivers (the same-surface guard
+// reads both) and final masks.
 uniform sampler2D mrgiVisParentPosition;
+uniform sampler2D mrgiVisParentNormal;
 uniform ivec2 mrgiVisParentOffset;
 uniform ivec2 mrgiVisParentSize;
 uniform usampler2D mrgiVisParent0;
@@ -162,6 +164,25 @@ bool mrgiVisSameSurface(vec3 p, vec3 n, vec3 q, vec3 m)
   return nd * nd <= s2 * dd * nn && md * md <= s2 * dd * mm;
 }
 
+// mrgi_voxel_receiver() at level-(i+1) texel s (never the G-buffer); M = 0
+// without a usable normal.
+bool mrgiVisParentReceiver(ivec2 s, out vec3 Q, out vec3 M)
+{
+  vec4 q = texelFetch(mrgiVisParentPosition, s + mrgiVisParentOffset, 0);
+  vec3 m = texelFetch(mrgiVisParentNormal, s + mrgiVisParentOffset, 0).xyz;
+  Q = q.xyz;
+  M = vec3(0.0);
+  if (!(q.w > MRGI_GBUFFER_VALID_THRESHOLD) || !mrgiVisFinite(q.xyz))
+  {
+    return false;
+  }
+  if (mrgiVisFinite(m) && (m.x != 0.0 || m.y != 0.0 || m.z != 0.0))
+  {
+    M = m;
+  }
+  return true;
+}
+
 // A mask of level i+1 (parent != 0) or stage 0's level-i masks.
 void mrgiVisFetch(bool parent, ivec2 p, out uint m[MRGI_VIS_WORDS])
 {
@@ -207,14 +228,16 @@ void mrgiVisWrite(uint m[MRGI_VIS_WORDS])
 }
 #endif
 
-// The coarse neighbours of level-i texel t (mrgi_voxel_gather_neighbours():
-// the level-(i+1) 3x3 around the parent, clamped, non-receivers skipped),
-// folded into per-word AND and OR, and the refinement decision they make
-// (mrgi_voxel_neighbourhood_metric() + mrgi_voxel_needs_refinement()).
-// have: at least one neighbour took part. On naive levels: no neighbours,
-// every receiver refines.
-bool mrgiVisNeighbours(ivec2 t, out uint all[MRGI_VIS_WORDS], out uint any_[MRGI_VIS_WORDS],
-  out bool have)
+// The coarse neighbours of level-i texel t with receiver (P, N)
+// (mrgi_voxel_gather_neighbours(): the level-(i+1) 3x3 around the parent,
+// clamped, non-receivers skipped), folded into per-word AND and OR, and the
+// refinement decision they make (mrgi_voxel_neighbourhood_metric() +
+// mrgi_voxel_needs_refinement()). The same-surface guard (mrgi_voxel_
+// incremental.h section 3): have = at least one neighbour is on t's surface
+// (else nothing is reused), parentKept = the parent (the centre) is. On
+// naive levels: no neighbours, every receiver refines.
+bool mrgiVisNeighbours(ivec2 t, vec3 P, vec3 N, out uint all[MRGI_VIS_WORDS],
+  out uint any_[MRGI_VIS_WORDS], out bool have, out bool parentKept)
 {
   for (int w = 0; w < MRGI_VIS_WORDS; ++w)
   {
@@ -222,6 +245,7 @@ bool mrgiVisNeighbours(ivec2 t, out uint all[MRGI_VIS_WORDS], out uint any_[MRGI
     any_[w] = 0u;
   }
   have = false;
+  parentKept = false;
   if (mrgiVisNaive != 0)
   {
     return true;
@@ -229,12 +253,22 @@ bool mrgiVisNeighbours(ivec2 t, out uint all[MRGI_VIS_WORDS], out uint any_[MRGI
   ivec2 c = t / 2;
   int countMin = 0;
   int countMax = 0;
+  bool any_receiver = false;
+  bool kept = false;
   for (int k = 0; k < MRGI_VOXEL_NEIGHBOURS; ++k)
   {
     ivec2 s = clamp(c + ivec2(k % 3 - 1, k / 3 - 1), ivec2(0), mrgiVisParentSize - 1);
-    if (!(texelFetch(mrgiVisParentPosition, s + mrgiVisParentOffset, 0).w > MRGI_GBUFFER_VALID_THRESHOLD))
+    vec3 Q;
+    vec3 M;
+    if (!mrgiVisParentReceiver(s, Q, M))
     {
       continue;
+    }
+    bool same = mrgiVisSameSurface(P, N, Q, M);
+    kept = kept || same;
+    if (k == MRGI_VOXEL_NEIGHBOURS / 2)
+    {
+      parentKept = same;
     }
     uint m[MRGI_VIS_WORDS];
     mrgiVisFetch(true, s, m);
@@ -245,19 +279,21 @@ bool mrgiVisNeighbours(ivec2 t, out uint all[MRGI_VIS_WORDS], out uint any_[MRGI
       any_[w] |= m[w];
       count += int(mrgiVisPopcount(m[w]));
     }
-    countMin = have ? min(countMin, count) : count;
-    countMax = have ? max(countMax, count) : count;
-    have = true;
+    countMin = any_receiver ? min(countMin, count) : count;
+    countMax = any_receiver ? max(countMax, count) : count;
+    any_receiver = true;
   }
   int disagree = 0;
   for (int w = 0; w < MRGI_VIS_WORDS; ++w)
   {
     disagree += int(mrgiVisPopcount(any_[w] & ~all[w]));
   }
-  if (!have)
+  if (!any_receiver)
   {
     disagree = 0;
   }
+  // No neighbour on t's surface: nothing is reused (every wanted bit marched).
+  have = kept;
   int value = mrgiVisMetric == MRGI_VOXEL_METRIC_COUNT_SPREAD ? countMax - countMin : disagree;
   return value >= mrgiVisThreshold;
 }
@@ -266,6 +302,15 @@ bool mrgiVisRefined(ivec2 t)
 {
   return mrgiVisRefine != 0 &&
     texelFetch(mrgiVisSelection, ivec2(t.x + mrgiVisLevelOffset, t.y), 0).r > 0.5;
+}
+
+// Whether level-i texel t's parent is on t's surface (P, N): the guard's
+// INHERIT condition, as mrgiVisNeighbours() finds it for the centre.
+bool mrgiVisParentKept(ivec2 t, vec3 P, vec3 N)
+{
+  vec3 Q;
+  vec3 M;
+  return mrgiVisParentReceiver(t / 2, Q, M) && mrgiVisSameSurface(P, N, Q, M);
 }
 
 // Whether light sample j is visible from receiver (P, N): the area-light
@@ -329,8 +374,11 @@ void main()
   uint all[MRGI_VIS_WORDS];
   uint any_[MRGI_VIS_WORDS];
   bool have = false;
-  bool fires = receiver && mrgiVisNeighbours(t, all, any_, have);
-  bool computed = receiver && (fires || mrgiVisNaive != 0 || mrgiVisRefined(t));
+  bool parentKept = false;
+  bool fires = receiver && mrgiVisNeighbours(t, P, N, all, any_, have, parentKept);
+  // COMPUTED (mrgi_voxel_visibility_pyramid pass 1): naive level, the metric
+  // fires, the parent is not on t's surface (the guard), or forced.
+  bool computed = receiver && (fires || mrgiVisNaive != 0 || !parentKept || mrgiVisRefined(t));
   uint rays = 0u;
   if (receiver && !computed)
   {
@@ -375,9 +423,10 @@ void main()
           {
             vec3 Q;
             vec3 M;
-            // u shares t's parent: the same neighbourhood, the same metric.
-            take = mrgiVisReceiver(u, Q, M) && (fires || mrgiVisNaive != 0 || mrgiVisRefined(u)) &&
-              mrgiVisSameSurface(P, N, Q, M);
+            // u shares t's parent: the same neighbourhood, the same metric;
+            // whether its parent is on its surface is u's own (the guard).
+            take = mrgiVisReceiver(u, Q, M) && mrgiVisSameSurface(P, N, Q, M) &&
+              (fires || mrgiVisNaive != 0 || mrgiVisRefined(u) || !mrgiVisParentKept(u, Q, M));
           }
         }
         uint phaseBits = mrgiVisPhaseBits(1 << q);
