@@ -15,6 +15,7 @@
 #include "vtkProperty.h"
 #include "vtkMRGIAreaLight.h"
 #include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIVisibilityPyramid.h"
 #include "vtkMRGIVoxelization.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGIReferenceRenderer.h"
@@ -100,6 +101,8 @@ Documentation/AreaLights.md; drawn whatever --gi says)
                          light sample; or coarse to fine, reusing agreeing coarse samples
                          (default incremental; nichols-penmatsa-wyman-2010 3.3)
   --voxel-size N         voxel buffer side for the visibility, 1..4096 (default 128)
+  --visibility-interleave on|off
+                         incremental visibility: 2x2 interleaved light samples (default off)
   --area-light-specular on|off
                          Phong highlights of the area lights on specular materials (default on)
   --specular KS:POWER    give every opaque surface VTK's Specular KS (0..1) and SpecularPower
@@ -192,6 +195,7 @@ struct Options
   int AreaLightVisibility = vtkMRGIPass::VisibilityIncremental;
   long long VoxelSize = 128;
   bool AreaLightSpecular = true;
+  bool VisibilityInterleave = false;
   bool HasSpecular = false;
   double SpecularCoefficient = 0.0;
   double SpecularPower = 1.0;
@@ -575,6 +579,13 @@ int ParseArguments(int argc, char* argv[], Options& o)
       else
         return Fail(std::string("--area-light-visibility '") + v + "': expected off, naive or incremental");
     }
+    else if (arg == "--visibility-interleave")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      if (!ParseSwitch(v, "on", o.VisibilityInterleave))
+        return Fail(std::string("--visibility-interleave '") + v + "': expected on or off");
+    }
     else if (arg == "--area-light-specular")
     {
       if (!needValue(i, arg, v))
@@ -885,6 +896,7 @@ int main(int argc, char* argv[])
   mrgi->GetMultiresolution()->SetSurfaceDetail(o.SurfaceDetail);
   mrgi->SetAreaLightVisibility(o.AreaLightVisibility);
   mrgi->SetAreaLightSpecular(o.AreaLightSpecular);
+  mrgi->GetVisibilityPyramid()->SetInterleave(o.VisibilityInterleave);
   if (o.HasSpecular)
   {
     vtkActorCollection* actors = renderer->GetActors();

@@ -234,6 +234,10 @@ vtkMRGIPass::vtkMRGIPass()
   this->Multiresolution = vtkMRGIMultiresolution::New();
   this->Voxelization = vtkMRGIVoxelization::New();
   this->VisibilityPyramid = vtkMRGIVisibilityPyramid::New();
+  // 2x2 interleaving off by default: measured at 256^2 on llvmpipe it saved
+  // 5-15% of the area-light time but raised the error against the ground
+  // truth from 0.111 to 0.179 (living room; Cornell box 0.137 -> 0.142).
+  this->VisibilityPyramid->InterleaveOff();
   this->OpaqueSequence = vtkSequencePass::New();
   for (int i = 0; i < 16; ++i)
   {

@@ -162,7 +162,8 @@ public:
    * and each light sample is marched from each gathering texel); or
    * incremental (default: one visibility bit per sample and texel, computed
    * coarse to fine over the multiresolution levels, a coarse bit reused
-   * where the 3x3 coarser neighbours agree, 2x2 interleaved;
+   * where the 3x3 coarser neighbours on the same surface agree; 2x2
+   * interleaving is available and off by default, measured less accurate;
    * GetVisibilityPyramid() holds its knobs and ray statistics; lights with
    * more samples than it takes, 512, fall back to naive). Occluders outside
    * the view are unknown to a screen-space method.
