@@ -1,5 +1,6 @@
 #include "vtkMRGIPass.h"
 
+#include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCameraPass.h"
 #include "vtkFloatArray.h"
@@ -7,11 +8,11 @@
 #include "vtkImageData.h"
 #include "vtkMRGIAreaLight.h"
 #include "vtkMRGIMultiresolution.h"
-#include "vtkMRGIVisibilityPyramid.h"
-#include "vtkMRGIVoxelization.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIVPLSelection.h"
+#include "vtkMRGIVisibilityPyramid.h"
+#include "vtkMRGIVoxelization.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLError.h"
@@ -26,6 +27,9 @@
 #include "vtkOpenGLState.h"
 #include "vtkPointData.h"
 #include "vtkProp.h"
+#include "vtkProp3D.h"
+#include "vtkPropCollection.h"
+#include "vtkProperty.h"
 #include "vtkRenderPassCollection.h"
 #include "vtkRenderState.h"
 #include "vtkRenderStepsPass.h"
@@ -280,6 +284,33 @@ vtkMRGIPass::~vtkMRGIPass()
   this->Voxelization->Delete();
   this->VisibilityPyramid->Delete();
   this->RemoveAllAreaLights();
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+// Whether some visible prop may reflect specularly: an actor with Specular
+// > 0; other 3D props (assemblies, volumes) are not looked into and count
+// as possibly specular; 2D props (text, overlays) never reach the G-buffer.
+bool AnySpecularProp(vtkRenderer* renderer)
+{
+  vtkPropCollection* props = renderer->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    if (!prop->GetVisibility() || !vtkProp3D::SafeDownCast(prop))
+    {
+      continue;
+    }
+    vtkActor* actor = vtkActor::SafeDownCast(prop);
+    if (!actor || actor->GetProperty()->GetSpecular() > 0.0)
+    {
+      return true;
+    }
+  }
+  return false;
+}
 }
 
 //------------------------------------------------------------------------------
@@ -1046,7 +1077,10 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   this->IndirectComputed = false;
   this->AreaLightsComputed = false;
   this->Captured = capture;
-  this->SpecularCaptured = capture && !this->AreaLights.empty() && this->AreaLightSpecular;
+  // The specular pass cannot change the image when no visible prop has a
+  // specular material: then neither it nor its G-buffer targets run.
+  this->SpecularCaptured = capture && !this->AreaLights.empty() && this->AreaLightSpecular &&
+    AnySpecularProp(renderer);
 
   this->PrepareBuffers(renWin, x + w, y + h, capture);
   this->BufferSize[0] = w;

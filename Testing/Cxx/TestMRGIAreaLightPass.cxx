@@ -386,6 +386,19 @@ int main()
     {
       actor->GetProperty()->SetSpecular(0.0);
     }
+    // No specular material left: the specular pass and its G-buffer targets
+    // do not run, and the image is the matte one.
+    window->Render();
+    const unsigned long again = pass->AddObserver(vtkCommand::ErrorEvent, notCaptured);
+    MRGI_TEST_CHECK(!pass->GetSpecularGBuffer(window, noSpecular, noShininess));
+    MRGI_TEST_CHECK(notCaptured->Caught("Specular"));
+    pass->RemoveObserver(again);
+    vtkSmartPointer<vtkImageData> matteAgain = AreaBuffer(pass, window);
+    vtkDataArray* M = matteAgain->GetPointData()->GetScalars();
+    for (vtkIdType i = 0; i < M->GetNumberOfValues(); ++i)
+    {
+      MRGI_TEST_CHECK(M->GetVariantValue(i).ToDouble() == G0->GetVariantValue(i).ToDouble());
+    }
   }
 
   // 2. Multiresolution (Balanced): close to the full-resolution buffer.
