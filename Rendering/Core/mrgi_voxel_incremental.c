@@ -91,8 +91,18 @@ int64_t mrgi_voxel_visibility(const mrgi_voxel_view* view, const mrgi_voxel_samp
       if ((todo >> (uint32_t)b) & 1u)
       {
         const int32_t j = 32 * w + b;
+        const float* y = samples->position + 3 * j;
         const float* n = samples->normal ? samples->normal + 3 * j : NULL;
-        if (mrgi_voxel_march(view, receiver, normal, samples->position + 3 * j, n))
+        float facing[3];
+        if (n && samples->two_sided &&
+            n[0] * (receiver[0] - y[0]) + n[1] * (receiver[1] - y[1]) + n[2] * (receiver[2] - y[2]) < 0.0f)
+        {
+          facing[0] = -n[0];
+          facing[1] = -n[1];
+          facing[2] = -n[2];
+          n = facing;
+        }
+        if (mrgi_voxel_march(view, receiver, normal, y, n))
         {
           result |= 1u << (uint32_t)b;
         }

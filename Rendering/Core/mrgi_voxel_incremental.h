@@ -220,6 +220,7 @@ typedef struct mrgi_voxel_samples
   int32_t count;         /**< N, 1..MRGI_VOXEL_MAX_SAMPLES. */
   const float* position; /**< 3 N floats. */
   const float* normal;   /**< 3 N floats (the light surface's normals; give them when the emitter is geometry, mrgi_voxel_march.h), or NULL: none. */
+  int32_t two_sided;     /**< Non-zero: the light emits on both sides, and a sample's normal is flipped to face the receiver (n . (P - y) < 0, summed x, y, z left to right) before the march, as the shaders do. 0 (one-sided): as given. */
 } mrgi_voxel_samples;
 
 /**

@@ -59,6 +59,7 @@ struct Mode
   float Fraction;
   int Metric;
   bool RefineSelected;
+  bool TwoSided = false; // the light emits on both sides (sample normals face each receiver)
 };
 
 struct Result
@@ -293,7 +294,8 @@ void RunScene(const char* scene, int W, int H, const std::vector<int>& sampleCou
         Ln[3 * j + r] = M[r] * n[0] + M[4 + r] * n[1] + M[8 + r] * n[2];
       }
     }
-    const mrgi_voxel_samples cs = { count, Lp.data(), Ln.data() };
+    const mrgi_voxel_samples oneSided = { count, Lp.data(), Ln.data(), 0 };
+    const mrgi_voxel_samples twoSided = { count, Lp.data(), Ln.data(), 1 };
     const int words = mrgi_voxel_mask_words(count);
 
     for (const Mode& mode : modes)
@@ -304,7 +306,8 @@ void RunScene(const char* scene, int W, int H, const std::vector<int>& sampleCou
       vis->SetMetric(mode.Metric);
       vis->SetRefineSelected(mode.RefineSelected);
       auto t0 = std::chrono::steady_clock::now();
-      MRGI_TEST_CHECK(vis->Update(gl, multires, voxels, sampleTexture, count, false, M));
+      MRGI_TEST_CHECK(vis->Update(gl, multires, voxels, sampleTexture, count, mode.TwoSided, M));
+      const mrgi_voxel_samples& cs = mode.TwoSided ? twoSided : oneSided;
       vtkNew<vtkTypeUInt32Array> gpu;
       MRGI_TEST_CHECK(vis->ReadMasks(window, gpu));
       const double gpuTime = Seconds(t0);
@@ -349,6 +352,17 @@ void RunScene(const char* scene, int W, int H, const std::vector<int>& sampleCou
         // 0.45-0.50 alone, 0.19-0.23 with interleaving).
         MRGI_TEST_CHECK(ratio < (mode.Interleave ? 0.3 : 0.6));
       }
+      if (mode.TwoSided)
+      {
+        // The flip matters: a one-sided twin disagrees (the ceiling above
+        // the light sees its samples only through flipped normals).
+        std::vector<uint32_t> c1;
+        mrgi_voxel_incremental_stats s1;
+        CTwin(layout, P, N, view, oneSided, nullptr, params, true, c1, s1);
+        const Result r1 = Compare(layout, P, gpu->GetPointer(0), c1, words);
+        std::printf("    one-sided twin against the two-sided GPU: %zu bits differ\n", r1.Differ);
+        MRGI_TEST_CHECK(r1.Differ > 0);
+      }
       if (proveFailure && mode.Incremental && mode.Fraction > 0.0f && !mode.RefineSelected)
       {
         // A twin with the wrong threshold (refine fraction 1: almost never
@@ -385,9 +399,13 @@ int main()
   const Mode spreadRefined = { "incr., count spread 0.25, selection", true, true, 0.25f,
     MRGI_VOXEL_METRIC_COUNT_SPREAD, true };
   const Mode everywhere = { "incremental, threshold 0", true, false, 0.0f, MRGI_VOXEL_METRIC_DISAGREE, false };
+  // The light under cornell-spot's ceiling, emitting up as well: the ceiling
+  // sees it through flipped sample normals.
+  const Mode twoSided = { "incremental, two-sided light", true, false, 0.5f, MRGI_VOXEL_METRIC_DISAGREE,
+    false, true };
   RunScene("cornell-area", 97, 61, { 64, 256 },
     { naive, naiveInterleaved, incremental, incrementalInterleaved, spreadRefined, everywhere }, true);
-  RunScene("cornell-spot", 80, 53, { 64 }, { naive, incremental, incrementalInterleaved }, true);
+  RunScene("cornell-spot", 80, 53, { 64 }, { naive, incremental, incrementalInterleaved, twoSided }, true);
   MRGI_TEST_CHECK(failureChecks >= 2);
   return 0;
 }

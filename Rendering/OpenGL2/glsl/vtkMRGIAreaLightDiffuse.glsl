@@ -81,7 +81,7 @@ vec3 mrgiAreaLightDiffuse(vec3 P, vec3 N, vec3 Pvc, vec3 Nvc)
     vec3 NLvc = mat3(mrgiWCToVC) * sampleNormal;
     // A two-sided light emits from the side facing the receiver: that
     // side's normal (the horizon test and the bias at the light end).
-    if (mrgiAreaTwoSided != 0 && dot(NLvc, Pvc - Lvc) < 0.0) { NLvc = -NLvc; }
+    if (mrgiAreaTwoSided != 0 && mrgiVoxelDot(NLvc, Pvc - Lvc) < 0.0) { NLvc = -NLvc; }
     if (!mrgiVoxelVisible(Pvc, Nvc, Lvc, NLvc)) { continue; }
 #endif
 #ifdef MRGI_AREA_VISIBILITY_MASKS

@@ -322,7 +322,7 @@ bool mrgiVisSampleVisible(int j, vec3 P, vec3 N)
   vec3 L = (mrgiVisWCToVC * vec4(position.xyz, 1.0)).xyz;
   vec3 NL = mat3(mrgiVisWCToVC) * sampleNormal;
   // A two-sided light emits from the side facing the receiver.
-  if (mrgiVisTwoSided != 0 && dot(NL, P - L) < 0.0) { NL = -NL; }
+  if (mrgiVisTwoSided != 0 && mrgiVoxelDot(NL, P - L) < 0.0) { NL = -NL; }
   return mrgiVoxelVisible(P, N, L, NL);
 }
 
