@@ -778,9 +778,9 @@ bool vtkMRGIPass::RenderAreaLights(
 {
   // nichols-penmatsa-wyman-2010 3.2: the area light's direct light at the
   // multiresolution texels, upsampled like the indirect light. One gather,
-  // upsampling and resolve per light, each added to the colour; the sum is
-  // kept for GetAreaLightBuffer(). The steps are timed as one stage, "area"
-  // (the multiresolution object's step names belong to the indirect light).
+  // upsampling and resolve per light, each added to the lights' sum, which
+  // is added to the colour once (and read by GetAreaLightBuffer()). Timed as
+  // the stage "area" with its steps.
   if (!selected &&
     !this->SelectMultiresolution(renWin, renderer, timer, this->LastViewToWorldFloat, this->LastParallel))
   {
@@ -890,16 +890,19 @@ bool vtkMRGIPass::RenderAreaLights(
     {
       break;
     }
-    this->RenderAdd(renWin, this->AreaDirectTexture, this->ColorTexture);
     this->RenderAdd(renWin, this->AreaDirectTexture, this->AreaSumTexture);
     if (this->SpecularCaptured && this->RenderAreaSpecular(renWin, light, timer))
     {
-      this->RenderAdd(renWin, this->AreaDirectTexture, this->ColorTexture);
       this->RenderAdd(renWin, this->AreaDirectTexture, this->AreaSumTexture);
     }
     drawn = true;
   }
   mr->SetSurfaceDetail(surfaceDetail);
+  // The lights' sum (what GetAreaLightBuffer() reads) joins the image once.
+  if (drawn)
+  {
+    this->RenderAdd(renWin, this->AreaSumTexture, this->ColorTexture);
+  }
   return drawn;
 }
 
