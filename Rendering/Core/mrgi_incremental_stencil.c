@@ -1,0 +1,139 @@
+#include "mrgi_incremental_stencil.h"
+
+#include "mrgi_buffers.h"
+#include "mrgi_voxel_incremental.h"
+
+#include <math.h>
+#include <string.h>
+
+/* A receiver texel (mrgi_multires_receivers.h): w above the threshold, xyz finite. */
+static int mrgi_stencil_receiver(const float* position, size_t t)
+{
+  const float* P = position + 4 * t;
+  return P[3] > MRGI_GBUFFER_VALID_THRESHOLD && isfinite(P[0]) && isfinite(P[1]) &&
+         isfinite(P[2]);
+}
+
+/* F_level(x, y) of the file comment: the bit-count metric over the 3x3
+ * level-`level` texels around (x, y), clamped, non-receivers skipped. */
+static int mrgi_stencil_discontinuity(const mrgi_multires_layout* layout, int32_t level,
+                                      int32_t x, int32_t y, const float* position,
+                                      const uint32_t* masks, int32_t words, int32_t metric_kind,
+                                      int32_t threshold)
+{
+  const uint32_t* neighbours[MRGI_VOXEL_NEIGHBOURS];
+  int k = 0;
+  for (int32_t dy = -1; dy <= 1; ++dy)
+  {
+    for (int32_t dx = -1; dx <= 1; ++dx)
+    {
+      int32_t nx = x + dx;
+      int32_t ny = y + dy;
+      nx = nx < 0 ? 0 : (nx >= layout->level_width[level] ? layout->level_width[level] - 1 : nx);
+      ny = ny < 0 ? 0 : (ny >= layout->level_height[level] ? layout->level_height[level] - 1 : ny);
+      const size_t t = mrgi_multires_index(layout, level, nx, ny);
+      neighbours[k++] = mrgi_stencil_receiver(position, t) ? masks + t * (size_t)words : NULL;
+    }
+  }
+  mrgi_voxel_metric metric;
+  mrgi_voxel_neighbourhood_metric(neighbours, words, &metric);
+  return mrgi_voxel_needs_refinement(&metric, metric_kind, threshold);
+}
+
+mrgi_status mrgi_incremental_stencil_build(
+  const mrgi_multires_layout* layout, int32_t finest_level, const uint8_t* flags,
+  const uint8_t* selection, size_t texel_bytes, const float* receiver_position,
+  size_t receiver_floats, const uint32_t* masks, int32_t words, size_t mask_words,
+  int32_t metric_kind, int32_t threshold, uint8_t* rendered, size_t rendered_size,
+  mrgi_incremental_stencil_stats* stats, mrgi_error* err)
+{
+  mrgi_status status = mrgi_multires_layout_check(layout, err);
+  if (status != MRGI_OK)
+  {
+    return status;
+  }
+  const size_t texels = (size_t)mrgi_multires_texel_count(layout);
+  if (!flags || !selection || texel_bytes < texels)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "flags or selection are NULL or hold %zu bytes; the layout needs %zu",
+                          texel_bytes, texels);
+  }
+  if (!receiver_position || receiver_floats < 4 * texels)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "receiver positions are NULL or hold %zu floats; the layout needs %zu",
+                          receiver_floats, 4 * texels);
+  }
+  if (words < 1 || words > MRGI_VOXEL_MAX_MASK_WORDS)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "mask words %d is outside 1..%d", words,
+                          MRGI_VOXEL_MAX_MASK_WORDS);
+  }
+  if (!masks || mask_words < (size_t)words * texels)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "masks are NULL or hold %zu words; the layout needs %zu", mask_words,
+                          (size_t)words * texels);
+  }
+  if (metric_kind != MRGI_VOXEL_METRIC_DISAGREE && metric_kind != MRGI_VOXEL_METRIC_COUNT_SPREAD)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "refinement metric %d is unknown",
+                          metric_kind);
+  }
+  if (threshold < 0)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "refinement threshold %d is negative",
+                          threshold);
+  }
+  if (finest_level < 0)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "finest level %d is negative",
+                          finest_level);
+  }
+  if (!rendered || rendered_size < texels)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "output mask is NULL or holds %zu bytes; the layout needs %zu",
+                          rendered_size, texels);
+  }
+  const int32_t coarsest = layout->level_count - 1;
+  const int32_t finest = finest_level < coarsest ? finest_level : coarsest;
+  mrgi_incremental_stencil_stats counts;
+  memset(&counts, 0, sizeof(counts));
+  memset(rendered, 0, texels);
+  for (int32_t i = finest; i <= coarsest; ++i)
+  {
+    for (int32_t y = 0; y < layout->level_height[i]; ++y)
+    {
+      for (int32_t x = 0; x < layout->level_width[i]; ++x)
+      {
+        const size_t t = mrgi_multires_index(layout, i, x, y);
+        if (!(flags[t] & MRGI_MULTIRES_FLAG_NONEMPTY))
+        {
+          continue;
+        }
+        if (selection[t])
+        {
+          rendered[t] = 1;
+          ++counts.selected[i];
+          continue;
+        }
+        const int refined = i != finest && (flags[t] & MRGI_MULTIRES_FLAG_REFINE);
+        if (i < coarsest && !refined &&
+            mrgi_stencil_discontinuity(layout, i + 1, x / 2, y / 2, receiver_position, masks, words,
+                                       metric_kind, threshold))
+        {
+          rendered[t] = 1;
+          ++counts.added[i];
+        }
+      }
+    }
+    counts.rendered_total += counts.selected[i] + counts.added[i];
+  }
+  if (stats)
+  {
+    *stats = counts;
+  }
+  return MRGI_OK;
+}
