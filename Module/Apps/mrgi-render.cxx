@@ -103,6 +103,10 @@ Documentation/AreaLights.md; drawn whatever --gi says)
   --voxel-size N         voxel buffer side for the visibility, 1..4096 (default 128)
   --visibility-interleave on|off
                          incremental visibility: 2x2 interleaved light samples (default off)
+  --incremental-stencil on|off
+                         incremental visibility: also gather below the geometric selection where
+                         the coarser level's visibility changes, e.g. penumbrae (default on;
+                         nichols-penmatsa-wyman-2010 3.4)
   --area-light-specular on|off
                          Phong highlights of the area lights on specular materials (default on)
   --specular KS:POWER    give every opaque surface VTK's Specular KS (0..1) and SpecularPower
@@ -196,6 +200,7 @@ struct Options
   long long VoxelSize = 128;
   bool AreaLightSpecular = true;
   bool VisibilityInterleave = false;
+  bool IncrementalStencil = true;
   bool HasSpecular = false;
   double SpecularCoefficient = 0.0;
   double SpecularPower = 1.0;
@@ -586,6 +591,13 @@ int ParseArguments(int argc, char* argv[], Options& o)
       if (!ParseSwitch(v, "on", o.VisibilityInterleave))
         return Fail(std::string("--visibility-interleave '") + v + "': expected on or off");
     }
+    else if (arg == "--incremental-stencil")
+    {
+      if (!needValue(i, arg, v))
+        return 2;
+      if (!ParseSwitch(v, "on", o.IncrementalStencil))
+        return Fail(std::string("--incremental-stencil '") + v + "': expected on or off");
+    }
     else if (arg == "--area-light-specular")
     {
       if (!needValue(i, arg, v))
@@ -897,6 +909,7 @@ int main(int argc, char* argv[])
   mrgi->SetAreaLightVisibility(o.AreaLightVisibility);
   mrgi->SetAreaLightSpecular(o.AreaLightSpecular);
   mrgi->GetVisibilityPyramid()->SetInterleave(o.VisibilityInterleave);
+  mrgi->GetMultiresolution()->SetIncrementalStencil(o.IncrementalStencil);
   if (o.HasSpecular)
   {
     vtkActorCollection* actors = renderer->GetActors();

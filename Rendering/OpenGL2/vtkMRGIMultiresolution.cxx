@@ -27,12 +27,16 @@
 #include "vtkMRGIMultiresReceiversFS.h"
 #include "vtkMRGIMultiresUpsampleFS.h"
 #include "vtkMRGIMultiresSelectFS.h"
+#include "vtkMRGIIncrementalStencilFS.h"
+#include "vtkMRGIVisibilityBits.h"
+#include "mrgi_voxel_incremental.h"
 #include "vtkFloatArray.h"
 
 #include "mrgi_multires.h"
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -224,6 +228,14 @@ struct vtkMRGIMultiresolution::Internals
   vtkOpenGLQuadHelper* UpsampleQuads[3] = { nullptr, nullptr, nullptr };
   vtkTextureObject* FlatSelection = nullptr;
   vtkTextureObject* DepthStencil = nullptr;
+  // Incremental stencil (NPW10 3.4): the texels the area-light gather
+  // renders, as colour and stencil; programs per mask word count; whether
+  // the last gather used it (then Upsample() reads it instead of the
+  // selection).
+  vtkTextureObject* FlatIncremental = nullptr;
+  vtkTextureObject* IncrementalDepthStencil = nullptr;
+  std::map<int, vtkOpenGLQuadHelper*> IncrementalQuads;
+  bool LastGatherIncremental = false;
   vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
   vtkOpenGLQuadHelper* Quads[StageCount] = { nullptr, nullptr, nullptr, nullptr, nullptr, nullptr };
 
@@ -256,6 +268,9 @@ struct vtkMRGIMultiresolution::Internals
     vtkMRGIShaderUtilities::ReleaseTexture(this->FlatIrradiance, w);
     vtkMRGIShaderUtilities::ReleaseTexture(this->FlatSelection, w);
     vtkMRGIShaderUtilities::ReleaseTexture(this->DepthStencil, w);
+    vtkMRGIShaderUtilities::ReleaseTexture(this->FlatIncremental, w);
+    vtkMRGIShaderUtilities::ReleaseTexture(this->IncrementalDepthStencil, w);
+    this->LastGatherIncremental = false;
     this->HasLayout = false;
     this->LastPosition = this->LastNormal = nullptr;
     this->ReceiversValid = false;
@@ -376,6 +391,10 @@ vtkMRGIMultiresolution::~vtkMRGIMultiresolution()
   delete this->Internal->AreaGatherQuad;
   delete this->Internal->AreaVisibleGatherQuad;
   delete this->Internal->AreaMaskedGatherQuad;
+  for (auto& q : this->Internal->IncrementalQuads)
+  {
+    delete q.second;
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -408,6 +427,11 @@ void vtkMRGIMultiresolution::ReleaseGraphicsResources(vtkWindow* w)
   releaseQuad(this->Internal->AreaGatherQuad);
   releaseQuad(this->Internal->AreaVisibleGatherQuad);
   releaseQuad(this->Internal->AreaMaskedGatherQuad);
+  for (auto& q : this->Internal->IncrementalQuads)
+  {
+    releaseQuad(q.second);
+  }
+  this->Internal->IncrementalQuads.clear();
   if (this->Internal->FrameBuffer)
   {
     this->Internal->FrameBuffer->ReleaseGraphicsResources(w);
@@ -455,6 +479,7 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     return false;
   }
   this->Internal->ReceiversValid = false; // a new selection: its receivers come with the next gather
+  this->Internal->LastGatherIncremental = false;
   mrgi_multires_layout layout;
   mrgi_error err;
   if (mrgi_multires_layout_init(&layout, width, height, this->CoarsestSide, &err) != MRGI_OK)
@@ -507,6 +532,12 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     in.DepthStencil->SetMinificationFilter(vtkTextureObject::Nearest);
     in.DepthStencil->SetMagnificationFilter(vtkTextureObject::Nearest);
     in.DepthStencil->AllocateDepthStencil(layout.total_width, layout.total_height);
+    in.FlatIncremental = MakeFloatTexture(window, layout.total_width, layout.total_height);
+    in.IncrementalDepthStencil = vtkTextureObject::New();
+    in.IncrementalDepthStencil->SetContext(window);
+    in.IncrementalDepthStencil->SetMinificationFilter(vtkTextureObject::Nearest);
+    in.IncrementalDepthStencil->SetMagnificationFilter(vtkTextureObject::Nearest);
+    in.IncrementalDepthStencil->AllocateDepthStencil(layout.total_width, layout.total_height);
   }
   in.Layout = layout;
   in.HasLayout = true;
@@ -873,6 +904,16 @@ bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
   const bool area = in.AreaLight != nullptr;
   const bool visibility = area && in.AreaVoxels != nullptr;
   const bool masked = area && in.AreaMasks != nullptr;
+  // NPW10 3.4: with visibility masks the stencil also follows the light's
+  // discontinuities (built before the gather's own GL state is set).
+  const bool incremental = masked && this->IncrementalStencil;
+  in.LastGatherIncremental = false;
+  if (incremental && !this->BuildIncrementalStencil(window, in.AreaMasks))
+  {
+    return false;
+  }
+  in.LastGatherIncremental = incremental;
+  vtkTextureObject* stencil = incremental ? in.IncrementalDepthStencil : in.DepthStencil;
   ScopedStage gatherStep(this->StageTimer, area ? "gather.samples" : "gather.vpls");
   vtkOpenGLQuadHelper*& quad = visibility ? in.AreaVisibleGatherQuad
     : masked                              ? in.AreaMaskedGatherQuad
@@ -906,7 +947,7 @@ bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
   vtkOpenGLState* ostate = steps.State;
   steps.Target(in.FlatIrradiance, nullptr, 0, 0, layout.total_width, layout.total_height);
   glFramebufferTexture2D(
-    GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, in.DepthStencil->GetHandle(), 0);
+    GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, stencil->GetHandle(), 0);
   ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
   ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
   ostate->vtkglEnable(GL_STENCIL_TEST);
@@ -1055,6 +1096,7 @@ bool vtkMRGIMultiresolution::RunSplatting(vtkOpenGLRenderWindow* window,
   // table 1): every VPL draws one point per selected texel ("subsplat"),
   // additive blending sums them.
   Internals& in = *this->Internal;
+  in.LastGatherIncremental = false;
   const mrgi_multires_layout& layout = in.Layout;
   const int levels = layout.level_count;
   const int finest = std::min(this->FinestLevel, levels - 1);
@@ -1195,12 +1237,15 @@ bool vtkMRGIMultiresolution::Upsample(vtkOpenGLRenderWindow* window, int mode, d
     vtkTextureObject* flags = in.Levels[i][MRGI_MULTIRES_TEX_COUNT];
     window->GetShaderCache()->ReadyShaderProgram(state);
     steps.Target(value, nullptr, 0, 0, w, h);
-    BindInputs(state, { in.FlatSelection, flags, in.FlatIrradiance, parent });
+    // The texels the last gather rendered: the selection, or the
+    // incremental stencil (NPW10 3.4 step 3: upsample where not rendered).
+    vtkTextureObject* rendered = in.LastGatherIncremental ? in.FlatIncremental : in.FlatSelection;
+    BindInputs(state, { rendered, flags, in.FlatIrradiance, parent });
     const int offset[2] = { layout.level_offset[i], 0 };
     state->SetUniform2i("mrgiOffset", offset);
     state->SetUniformi("mrgiCoarsest", i == coarsest ? 1 : 0);
     in.UpsampleQuads[0]->Render();
-    UnbindInputs({ in.FlatSelection, flags, in.FlatIrradiance, parent });
+    UnbindInputs({ rendered, flags, in.FlatIrradiance, parent });
 
     window->GetShaderCache()->ReadyShaderProgram(filter);
     steps.Target(filtered, nullptr, 0, 0, w, h);
@@ -1373,6 +1418,136 @@ bool vtkMRGIMultiresolution::ReadSelection(
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::BuildIncrementalStencil(
+  vtkOpenGLRenderWindow* window, vtkMRGIVisibilityPyramid* masks)
+{
+  // NPW10 3.4, one draw per level into its rectangle of the flattened
+  // layout: a texel is rendered when selected, or when its parent's 3x3
+  // masks show a light discontinuity (mrgi_incremental_stencil_build()).
+  // Each draw reads the coarser level's masks and receivers only, so the
+  // levels are independent and the order does not matter.
+  Internals& in = *this->Internal;
+  const mrgi_multires_layout& layout = in.Layout;
+  const int levels = layout.level_count;
+  const int finest = std::min(this->FinestLevel, levels - 1);
+  const int words = masks->GetNumberOfMaskWords();
+  const int targets = masks->GetNumberOfMaskTextures();
+  const int threshold =
+    mrgi_voxel_refine_threshold(static_cast<float>(this->IncrementalStencilFraction),
+      masks->GetNumberOfSamples());
+  if (masks->GetNumberOfLevels() != levels || words < 1 || targets < 1 || targets > 4 ||
+    threshold < 0)
+  {
+    vtkErrorMacro("the incremental stencil needs visibility masks of this frame's "
+      << levels << " levels (they have " << masks->GetNumberOfLevels() << " levels, " << words
+      << " words)");
+    return false;
+  }
+  vtkOpenGLQuadHelper*& quad = in.IncrementalQuads[words];
+  if (!quad)
+  {
+    const std::string body = "#define MRGI_STENCIL_WORDS " + std::to_string(words) +
+      "\n#define MRGI_STENCIL_TARGETS " + std::to_string(targets) + "\n" + vtkMRGIVisibilityBits +
+      vtkMRGIIncrementalStencilFS;
+    quad = new vtkOpenGLQuadHelper(window,
+      vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
+      vtkMRGIShaderUtilities::FullScreenShader(body.c_str()).c_str(), "");
+  }
+  window->GetShaderCache()->ReadyShaderProgram(quad->Program);
+  vtkShaderProgram* program = (quad->Program && quad->Program->GetCompiled()) ? quad->Program : nullptr;
+  if (!program)
+  {
+    vtkErrorMacro("could not build the incremental stencil shader");
+    return false;
+  }
+  using vtkMRGIShaderUtilities::ScopedStage;
+  ScopedStage step(this->StageTimer, "select.incremental");
+  QuadSteps steps(window, in.FrameBuffer);
+  vtkOpenGLState* ostate = steps.State;
+  steps.Target(in.FlatIncremental, nullptr, 0, 0, layout.total_width, layout.total_height);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D,
+    in.IncrementalDepthStencil->GetHandle(), 0);
+  ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+  ostate->vtkglStencilMask(0xFF);
+  glClearStencil(0);
+  ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  ostate->vtkglEnable(GL_STENCIL_TEST);
+  ostate->vtkglStencilFunc(GL_ALWAYS, 1, 0xFF);
+  ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  program->SetUniformi("mrgiThreshold", threshold);
+  program->SetUniformi("mrgiMetric", masks->GetMetric());
+  bool ok = true;
+  for (int i = finest; i < levels && ok; ++i)
+  {
+    // The coarsest level has no parent: its own receivers and masks stand
+    // in, unread.
+    const int parent = std::min(i + 1, levels - 1);
+    std::vector<vtkTextureObject*> inputs = { in.Levels[i][MRGI_MULTIRES_TEX_COUNT], in.FlatSelection,
+      in.Receivers[parent][0] };
+    const char* names[7] = { "mrgiFlags", "mrgiSelection", "mrgiParentPosition", "mrgiParentMask0",
+      "mrgiParentMask1", "mrgiParentMask2", "mrgiParentMask3" };
+    for (int k = 0; k < targets; ++k)
+    {
+      vtkTextureObject* m = masks->GetMaskTexture(parent, k);
+      ok = ok && m != nullptr;
+      inputs.push_back(m);
+    }
+    if (!ok)
+    {
+      vtkErrorMacro("the visibility masks of level " << parent << " are missing");
+      break;
+    }
+    for (size_t k = 0; k < inputs.size(); ++k)
+    {
+      inputs[k]->Activate();
+      program->SetUniformi(names[k], inputs[k]->GetTextureUnit());
+    }
+    const int parentSize[2] = { layout.level_width[parent], layout.level_height[parent] };
+    program->SetUniformi("mrgiLevelOffset", layout.level_offset[i]);
+    program->SetUniform2i("mrgiParentSize", parentSize);
+    program->SetUniformi("mrgiFinest", i == finest ? 1 : 0);
+    program->SetUniformi("mrgiCoarsest", i == levels - 1 ? 1 : 0);
+    ostate->vtkglViewport(layout.level_offset[i], 0, layout.level_width[i], layout.level_height[i]);
+    quad->Render();
+    for (vtkTextureObject* t : inputs)
+    {
+      t->Deactivate();
+    }
+  }
+  ostate->vtkglStencilFunc(GL_ALWAYS, 0, 0xFF);
+  ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("OpenGL error 0x" << std::hex << error << " in the incremental stencil");
+    return false;
+  }
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::ReadIncrementalStencil(vtkRenderWindow* window, vtkUnsignedCharArray* mask)
+{
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  Internals& in = *this->Internal;
+  std::vector<float> rgba;
+  if (!renWin || !mask || !in.HasLayout || !in.LastGatherIncremental ||
+    !vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.FlatIncremental, rgba))
+  {
+    vtkErrorMacro("ReadIncrementalStencil: the last gather did not use the incremental stencil");
+    return false;
+  }
+  mask->SetNumberOfComponents(1);
+  mask->SetNumberOfTuples(static_cast<vtkIdType>(in.Layout.total_width) * in.Layout.total_height);
+  for (vtkIdType i = 0; i < mask->GetNumberOfTuples(); ++i)
+  {
+    mask->SetValue(i, rgba[4 * static_cast<size_t>(i)] > 0.5f ? 1 : 0);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 bool vtkMRGIMultiresolution::ReadFlags(vtkRenderWindow* window, vtkUnsignedCharArray* flags)
 {
   vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
@@ -1491,6 +1666,8 @@ void vtkMRGIMultiresolution::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Balance: " << (this->Balance ? "On" : "Off") << "\n";
   os << indent << "CoarsestSide: " << this->CoarsestSide << "\n";
   os << indent << "SurfaceDetail: " << this->SurfaceDetail << "\n";
+  os << indent << "IncrementalStencil: " << (this->IncrementalStencil ? "On" : "Off") << "\n";
+  os << indent << "IncrementalStencilFraction: " << this->IncrementalStencilFraction << "\n";
   os << indent << "GatherMode: " << (this->GatherMode == GatherSplatting ? "Splatting" : "Stenciled") << "\n";
   os << indent << "CollectStatistics: " << (this->CollectStatistics ? "On" : "Off") << "\n";
   os << indent << "Levels: " << this->GetNumberOfLevels() << "\n";

@@ -163,13 +163,41 @@ public:
    * one march per texel and sample; vtkMRGIVoxelMarch.glsl, C twin
    * mrgi_voxel_march()) finds it visible; with `masks` (Update()d this frame
    * on this selection), where the texel's bit of the incremental visibility
-   * (3.3.2) is set.
+   * (3.3.2) is set, and, with IncrementalStencil on, at the texels of the
+   * incremental stencil (3.4) instead of the selection.
    */
   bool GatherAreaLight(vtkOpenGLRenderWindow* window, vtkTextureObject* position,
     vtkTextureObject* normal, int x0, int y0, vtkTextureObject* samples, int sampleCount,
     const mrgi_area_light_uniforms& light, const float viewToWorld[16],
     vtkMRGIVoxelization* visibility = nullptr, vtkMRGIVisibilityPyramid* masks = nullptr);
 #endif
+
+  ///@{
+  /**
+   * Incremental stencil rendering for area lights with visibility masks
+   * (nichols-penmatsa-wyman-2010 section 3.4; C twin and contract:
+   * mrgi_incremental_stencil_build() in Rendering/Core/
+   * mrgi_incremental_stencil.h). On (the default), GatherAreaLight() with
+   * masks also renders a texel below the geometric selection when its
+   * parent's 3x3 masks disagree on at least ceil(IncrementalStencilFraction
+   * N) of the N samples (the masks' refinement metric), so that penumbrae
+   * are gathered at the resolution the shadow needs instead of the coarse
+   * texel the flat geometry asks for; Upsample() then interpolates from the
+   * finest rendered texel. Off: the geometric selection alone.
+   */
+  vtkSetMacro(IncrementalStencil, bool);
+  vtkGetMacro(IncrementalStencil, bool);
+  vtkBooleanMacro(IncrementalStencil, bool);
+  vtkSetClampMacro(IncrementalStencilFraction, double, 0.0, 1.0);
+  vtkGetMacro(IncrementalStencilFraction, double);
+  ///@}
+
+  /**
+   * Read back the texels the last area-light gather rendered with the
+   * incremental stencil (one byte per flattened texel, 1 = rendered). False
+   * when the last gather used the geometric selection.
+   */
+  bool ReadIncrementalStencil(vtkRenderWindow* window, vtkUnsignedCharArray* mask);
 
   enum GatherModes
   {
@@ -318,7 +346,12 @@ protected:
   bool CollectStatistics = false;
   double SurfaceDetail = 0.0;
   int GatherMode = GatherStenciled;
+  bool IncrementalStencil = true;
+  double IncrementalStencilFraction = 0.25;
   vtkRenderTimerLog* StageTimer = nullptr;
+
+  // The incremental stencil (3.4) of the area-light gather in progress.
+  bool BuildIncrementalStencil(vtkOpenGLRenderWindow* window, vtkMRGIVisibilityPyramid* masks);
 
   // The two ways of Gather() (after the receivers are built).
   bool RunStenciledGather(vtkOpenGLRenderWindow* window, vtkTextureObject* position,

@@ -16,6 +16,7 @@
 #include "vtkTextureObject.h"
 #include "vtkTypeUInt32Array.h"
 
+#include "vtkMRGIVisibilityBits.h"
 #include "vtkMRGIVisibilityPyramidFS.h"
 
 #include "mrgi_area_light.h"
@@ -36,11 +37,15 @@ namespace
 // Mask targets per pass: 4 x 128 samples (see the class notes).
 constexpr int MaxTargets = 4;
 
+// Shader stages (vtkMRGIVisibilityPyramidFS.glsl's MRGI_VIS_STAGE).
 enum Stage
 {
   StageCompute = 0,
   StageCombine = 1,
-  StageCount = 2
+  StageStatistics = 2,
+  StageDecide = 3,
+  StageMarch = 4,
+  StageMark = 5
 };
 
 vtkTextureObject* MakeUIntTexture(vtkOpenGLRenderWindow* window, int w, int h)
@@ -94,8 +99,11 @@ struct vtkMRGIVisibilityPyramid::Internals
   // Per level: mask textures (level size) and the statistics texture.
   std::vector<std::array<vtkTextureObject*, MaxTargets>> Masks;
   std::vector<vtkTextureObject*> Stats;
-  // Stage 0's masks with interleaving (level-0 size, reused by every level).
+  // Stage 0's masks with interleaving, or stage 3's todo bits without
+  // (level-0 size, reused by every level).
   std::array<vtkTextureObject*, MaxTargets> Quarters{};
+  // Stencil of the texels with bits to march (level-0 size, every level).
+  vtkTextureObject* DepthStencil = nullptr;
   mrgi_multires_layout Layout{};
   int Levels = 0, Samples = 0, Words = 0, Targets = 0, Threshold = 0, Draws = 0;
   bool Valid = false;
@@ -122,6 +130,7 @@ struct vtkMRGIVisibilityPyramid::Internals
     {
       vtkMRGIShaderUtilities::ReleaseTexture(t, w);
     }
+    vtkMRGIShaderUtilities::ReleaseTexture(this->DepthStencil, w);
     this->Valid = false;
   }
 };
@@ -237,6 +246,15 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
       in.Quarters[static_cast<size_t>(k)] = MakeUIntTexture(window, layout.width, layout.height);
       ok = in.Quarters[static_cast<size_t>(k)] != nullptr;
     }
+    if (ok)
+    {
+      in.DepthStencil = vtkTextureObject::New();
+      in.DepthStencil->SetContext(window);
+      in.DepthStencil->SetMinificationFilter(vtkTextureObject::Nearest);
+      in.DepthStencil->SetMagnificationFilter(vtkTextureObject::Nearest);
+      ok = in.DepthStencil->AllocateDepthStencil(
+        static_cast<unsigned int>(layout.width), static_cast<unsigned int>(layout.height));
+    }
     if (!ok)
     {
       in.ReleaseTextures(window);
@@ -262,7 +280,9 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
     vtkOpenGLQuadHelper*& quad = in.Quads[std::make_pair(stage, words)];
     if (!quad)
     {
-      const int outputs = stage == 2 ? 1 : targets;
+      const int outputs = (stage == StageStatistics || stage == StageMark) ? 1
+        : stage == StageDecide                                       ? 2 * targets
+                                                                     : targets;
       // The outputs are uvec4 (declared by the shader); naming gl_FragData[k]
       // here makes VTK bind fragOutputK to draw buffer k.
       std::string body = "// outputs:";
@@ -271,8 +291,9 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
         body += " gl_FragData[" + std::to_string(k) + "]";
       }
       body += "\n#define MRGI_VIS_STAGE " + std::to_string(stage) + "\n#define MRGI_VIS_WORDS " +
-        std::to_string(words) + "\n#define MRGI_VIS_TARGETS " + std::to_string(targets) + "\n" +
-        vtkMRGIVoxelization::GetMarchShaderSource() + vtkMRGIVisibilityPyramidFS;
+        std::to_string(words) + "\n#define MRGI_VIS_TARGETS " + std::to_string(targets) +
+        "\n#define MRGI_VIS_OUTPUTS " + std::to_string(outputs) + "\n" +
+        vtkMRGIVoxelization::GetMarchShaderSource() + vtkMRGIVisibilityBits + vtkMRGIVisibilityPyramidFS;
       quad = new vtkOpenGLQuadHelper(window,
         vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
         vtkMRGIShaderUtilities::FullScreenShader(body.c_str()).c_str(), "");
@@ -351,12 +372,18 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
       {
         return false;
       }
-      const int outputs = stage == 2 ? 1 : targets;
-      fbo->RemoveColorAttachments(MaxTargets);
+      // Stage 3 writes the masks and the todo bits; stage 5 writes only the
+      // stencil (its colour goes to the statistics texture, which stage 2
+      // rewrites).
+      const bool single = stage == StageStatistics || stage == StageMark;
+      const int outputs = single ? 1 : stage == StageDecide ? 2 * targets : targets;
+      fbo->RemoveColorAttachments(2 * MaxTargets);
       for (int k = 0; k < outputs; ++k)
       {
+        const size_t kk = static_cast<size_t>(k);
         fbo->AddColorAttachment(static_cast<unsigned int>(k),
-          stage == 2 ? in.Stats[static_cast<size_t>(i)] : out[static_cast<size_t>(k)]);
+          single ? in.Stats[static_cast<size_t>(i)]
+                 : (k < targets ? out[kk] : in.Quarters[kk - static_cast<size_t>(targets)]));
       }
       fbo->ActivateDrawBuffers(static_cast<unsigned int>(outputs));
       ostate->vtkglViewport(0, 0, lw, lh);
@@ -387,8 +414,8 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
       {
         const size_t kk = static_cast<size_t>(std::min(k, targets - 1));
         bind(("mrgiVisParent" + std::to_string(k)).c_str(), naive ? spare : parentMasks[kk]);
-        bind(("mrgiVisQuarter" + std::to_string(k)).c_str(),
-          stage == StageCombine ? in.Quarters[kk] : spare);
+        const bool quarters = stage == StageCombine || stage == StageMarch || stage == StageMark;
+        bind(("mrgiVisQuarter" + std::to_string(k)).c_str(), quarters ? in.Quarters[kk] : spare);
       }
       const int levelSize[2] = { lw, lh };
       const int parentSize[2] = { naive ? lw : layout.level_width[i + 1],
@@ -407,8 +434,16 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
       p->SetUniformMatrix4x4("mrgiVisWCToVC", const_cast<float*>(worldToView));
       p->SetUniformi("mrgiVisTwoSided", twoSided ? 1 : 0);
       p->SetUniformi("mrgiVisSampleCount", sampleCount);
-      // Batches: the first draw replaces, the others OR into it.
-      glDisable(GL_COLOR_LOGIC_OP);
+      // Batches: the first draw replaces, the others OR into it; stage 4's
+      // all OR into stage 3's masks.
+      if (stage == StageMarch)
+      {
+        glEnable(GL_COLOR_LOGIC_OP);
+      }
+      else
+      {
+        glDisable(GL_COLOR_LOGIC_OP);
+      }
       for (int first = 0; first < sampleCount; first += range)
       {
         p->SetUniformi("mrgiVisFirst", first);
@@ -432,15 +467,40 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
     }
     else
     {
-      ok = run(StageCompute, finalMasks, range0);
+      // Decide (masks + todo bits), mark the texels with bits left in the
+      // stencil, march only there (early stencil culling skips the rest):
+      // the same masks as stage 0 alone, without paying the decision once
+      // per batch nor the marches' SIMD groups for texels that march
+      // nothing (mostly INHERITED ones).
+      ok = run(StageDecide, finalMasks, sampleCount);
+      if (ok)
+      {
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D,
+          in.DepthStencil->GetHandle(), 0);
+        ostate->vtkglEnable(GL_STENCIL_TEST);
+        ostate->vtkglStencilMask(0xFF);
+        glClearStencil(0);
+        ostate->vtkglClear(GL_STENCIL_BUFFER_BIT);
+        ostate->vtkglStencilFunc(GL_ALWAYS, 1, 0xFF);
+        ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+        ok = run(StageMark, finalMasks, sampleCount);
+        ostate->vtkglStencilMask(0x00);
+        ostate->vtkglStencilFunc(GL_EQUAL, 1, 0xFF);
+        ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+        ok = ok && run(StageMarch, finalMasks, range0);
+        ostate->vtkglStencilMask(0xFF);
+        ostate->vtkglStencilFunc(GL_ALWAYS, 0, 0xFF);
+        ostate->vtkglDisable(GL_STENCIL_TEST);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+      }
     }
     if (ok && this->CollectStatistics)
     {
       // One draw: the range is every sample (nothing is marched).
-      ok = run(2, finalMasks, sampleCount);
+      ok = run(StageStatistics, finalMasks, sampleCount);
     }
   }
-  fbo->RemoveColorAttachments(MaxTargets);
+  fbo->RemoveColorAttachments(2 * MaxTargets);
   fbo->UnBind();
   fbo->RestorePreviousBindingsAndBuffers();
   if (!ok)

@@ -88,6 +88,18 @@ def main():
                              "--area-light-samples", "16", "--area-light-visibility", visibility,
                              "--voxel-size", "64", "--timings")
         check(code == 0 and "area" in out, "cornell-area, visibility %s: %s" % (visibility, err))
+    # Incremental visibility with and without the incremental stencil
+    # (NPW10 3.4): it gathers the penumbrae at finer levels, so the images differ.
+    for stencil in ("on", "off"):
+        area["stencil-" + stencil] = fresh("cli_area_stencil_%s.exr" % stencil)
+        code, out, err = run("cornell-area", "-o", area["stencil-" + stencil], "--size", "48x48", "-q",
+                             "--area-light-samples", "64", "--area-light-visibility", "incremental",
+                             "--voxel-size", "64", "--incremental-stencil", stencil, "--timings")
+        check(code == 0, "--incremental-stencil %s: %s" % (stencil, err))
+        check(("select.incremental" in out) == (stencil == "on"),
+              "--incremental-stencil %s times its stencil pass only when on" % stencil)
+    check(open(area["stencil-on"], "rb").read() != open(area["stencil-off"], "rb").read(),
+          "--incremental-stencil changes the image")
     dark = fresh("cli_area_dark.exr")
     code, _, err = run("cornell-area", "-o", dark, "--size", "48x48", "-q", "--area-lights", "off")
     check(code == 0, "--area-lights off: " + err)
@@ -143,6 +155,7 @@ def main():
         (["cornell", "-o", target, "--area-light-samples", "0"], "--area-light-samples"),
         (["cornell", "-o", target, "--area-light-visibility", "exact"], "--area-light-visibility"),
         (["cornell", "-o", target, "--voxel-size", "0"], "--voxel-size"),
+        (["cornell", "-o", target, "--incremental-stencil", "yes"], "--incremental-stencil"),
         (["cornell", "-o", target, "--area-lights", "maybe"], "--area-lights"),
         (["cornell", "-o", target, "--vpls", "5000"], "--vpls"),
         (["cornell", "-o", target, "--vpls", "-1"], "--vpls"),

@@ -12,9 +12,22 @@
 //                        phases without interleaving); 1: combine the 2x2
 //                        quarters (interleaving), re-marching the phases no
 //                        block texel on the same surface computed; 2: count
-//                        the rays stages 0 and 1 march (no march)
+//                        the rays stages 0 and 1 march (no march).
+//                        Without interleaving stage 0 is split in three so
+//                        that the marches skip the texels with nothing to
+//                        march (early stencil culling, NPW10 section 4: "early
+//                        stencil culling (to cull unnecessary fragments)"):
+//                        3: decide, write the final mask of INHERITED texels
+//                        and the reused bits of COMPUTED ones, and the bits
+//                        left to march ("todo", targets T..2T-1); 5: set the
+//                        stencil where some bit is left (discard elsewhere);
+//                        4: under that stencil, march the todo bits (read
+//                        through mrgiVisQuarterK) of this draw's samples,
+//                        ORed into the masks. Stages 3+5+4 write exactly
+//                        what stage 0 writes.
 //   MRGI_VIS_WORDS    W = ceil(N / 32) mask words
-//   MRGI_VIS_TARGETS  ceil(W / 4) RGBA32UI targets (stage 2: one)
+//   MRGI_VIS_TARGETS  T = ceil(W / 4) RGBA32UI mask targets
+//   MRGI_VIS_OUTPUTS  outputs: T (stages 0, 1, 4), 2T (stage 3), 1 (2, 5)
 // and declares the outputs `out uvec4 fragOutputK` itself (word w in target
 // w / 4, channel w % 4).
 //
@@ -68,29 +81,30 @@ uniform int mrgiVisSampleCount; // N
 uniform int mrgiVisFirst;       // this draw marches samples [first, last)
 uniform int mrgiVisLast;
 
-#if MRGI_VIS_STAGE == 2
 out uvec4 fragOutput0;
-#else
-out uvec4 fragOutput0;
-#if MRGI_VIS_TARGETS > 1
+#if MRGI_VIS_OUTPUTS > 1
 out uvec4 fragOutput1;
 #endif
-#if MRGI_VIS_TARGETS > 2
+#if MRGI_VIS_OUTPUTS > 2
 out uvec4 fragOutput2;
 #endif
-#if MRGI_VIS_TARGETS > 3
+#if MRGI_VIS_OUTPUTS > 3
 out uvec4 fragOutput3;
 #endif
+#if MRGI_VIS_OUTPUTS > 4
+out uvec4 fragOutput4;
+#endif
+#if MRGI_VIS_OUTPUTS > 5
+out uvec4 fragOutput5;
+#endif
+#if MRGI_VIS_OUTPUTS > 6
+out uvec4 fragOutput6;
+#endif
+#if MRGI_VIS_OUTPUTS > 7
+out uvec4 fragOutput7;
 #endif
 
-// mrgi_voxel_popcount(): SWAR (GLSL 1.50 has no bitCount).
-uint mrgiVisPopcount(uint v)
-{
-  v = v - ((v >> 1u) & 0x55555555u);
-  v = (v & 0x33333333u) + ((v >> 2u) & 0x33333333u);
-  v = (v + (v >> 4u)) & 0x0F0F0F0Fu;
-  return (v * 0x01010101u) >> 24u;
-}
+// mrgiVisPopcount(): vtkMRGIVisibilityBits.glsl, prepended.
 
 // mrgi_voxel_phase_word_mask()
 uint mrgiVisPhaseBits(int phaseSet)
@@ -207,7 +221,7 @@ void mrgiVisFetch(bool parent, ivec2 p, out uint m[MRGI_VIS_WORDS])
   }
 }
 
-#if MRGI_VIS_STAGE != 2
+#if MRGI_VIS_STAGE != 2 && MRGI_VIS_STAGE != 5
 void mrgiVisWrite(uint m[MRGI_VIS_WORDS])
 {
   uint w4[4 * MRGI_VIS_TARGETS];
@@ -224,6 +238,33 @@ void mrgiVisWrite(uint m[MRGI_VIS_WORDS])
 #endif
 #if MRGI_VIS_TARGETS > 3
   fragOutput3 = uvec4(w4[12], w4[13], w4[14], w4[15]);
+#endif
+}
+#endif
+
+#if MRGI_VIS_STAGE == 3
+// Stage 3's second half: the bits left to march, in targets T..2T-1.
+void mrgiVisWriteTodo(uint m[MRGI_VIS_WORDS])
+{
+  uint w4[4 * MRGI_VIS_TARGETS];
+  for (int w = 0; w < 4 * MRGI_VIS_TARGETS; ++w)
+  {
+    w4[w] = w < MRGI_VIS_WORDS ? m[min(w, MRGI_VIS_WORDS - 1)] : 0u;
+  }
+#if MRGI_VIS_TARGETS == 1
+  fragOutput1 = uvec4(w4[0], w4[1], w4[2], w4[3]);
+#elif MRGI_VIS_TARGETS == 2
+  fragOutput2 = uvec4(w4[0], w4[1], w4[2], w4[3]);
+  fragOutput3 = uvec4(w4[4], w4[5], w4[6], w4[7]);
+#elif MRGI_VIS_TARGETS == 3
+  fragOutput3 = uvec4(w4[0], w4[1], w4[2], w4[3]);
+  fragOutput4 = uvec4(w4[4], w4[5], w4[6], w4[7]);
+  fragOutput5 = uvec4(w4[8], w4[9], w4[10], w4[11]);
+#else
+  fragOutput4 = uvec4(w4[0], w4[1], w4[2], w4[3]);
+  fragOutput5 = uvec4(w4[4], w4[5], w4[6], w4[7]);
+  fragOutput6 = uvec4(w4[8], w4[9], w4[10], w4[11]);
+  fragOutput7 = uvec4(w4[12], w4[13], w4[14], w4[15]);
 #endif
 }
 #endif
@@ -334,14 +375,11 @@ bool mrgiVisSampleVisible(int j, vec3 P, vec3 N)
 // in lockstep: llvmpipe runs a SIMD group of fragments through the union of
 // their loop iterations, and its loop budget counts them (the batch sizes of
 // vtkMRGIVisibilityPyramid assume this).
-uint mrgiVisWord(int w, uint wanted, uint all, uint any_, bool have, vec3 P, vec3 N, int phase,
-  out uint marched)
+// The bits of `todo` (word w) among this draw's samples that the march
+// finds visible.
+uint mrgiVisMarchBits(int w, uint todo, vec3 P, vec3 N, int phase)
 {
-  uint agree = have ? wanted & ~(all ^ any_) : 0u;
-  uint result = all & agree;
-  uint todo = wanted & ~agree;
-  marched = todo;
-#if MRGI_VIS_STAGE != 2
+  uint result = 0u;
   int lo = max(mrgiVisFirst - 32 * w, 0);
   int hi = min(mrgiVisLast - 32 * w, 32);
   int step = phase >= 0 ? MRGI_VOXEL_INTERLEAVE_PHASES : 1;
@@ -356,6 +394,18 @@ uint mrgiVisWord(int w, uint wanted, uint all, uint any_, bool have, vec3 P, vec
       result |= 1u << uint(b);
     }
   }
+  return result;
+}
+
+uint mrgiVisWord(int w, uint wanted, uint all, uint any_, bool have, vec3 P, vec3 N, int phase,
+  out uint marched)
+{
+  uint agree = have ? wanted & ~(all ^ any_) : 0u;
+  uint result = all & agree;
+  uint todo = wanted & ~agree;
+  marched = todo;
+#if MRGI_VIS_STAGE != 2 && MRGI_VIS_STAGE != 3
+  result |= mrgiVisMarchBits(w, todo, P, N, phase);
 #endif
   return result;
 }
@@ -367,6 +417,37 @@ void main()
   for (int w = 0; w < MRGI_VIS_WORDS; ++w)
   {
     mask[w] = 0u;
+  }
+#if MRGI_VIS_STAGE == 4 || MRGI_VIS_STAGE == 5
+  // After stage 3: the todo bits of this texel.
+  uint todo[MRGI_VIS_WORDS];
+  mrgiVisFetch(false, t, todo);
+#if MRGI_VIS_STAGE == 5
+  uint left = 0u;
+  for (int w = 0; w < MRGI_VIS_WORDS; ++w)
+  {
+    left |= todo[w];
+  }
+  if (left == 0u)
+  {
+    discard;
+  }
+  fragOutput0 = uvec4(0u);
+#else
+  vec3 P4;
+  vec3 N4;
+  mrgiVisReceiver(t, P4, N4);
+  for (int w = 0; w < MRGI_VIS_WORDS; ++w)
+  {
+    mask[w] = mrgiVisMarchBits(w, todo[w], P4, N4, -1);
+  }
+  mrgiVisWrite(mask);
+#endif
+#else
+  uint todo[MRGI_VIS_WORDS];
+  for (int w = 0; w < MRGI_VIS_WORDS; ++w)
+  {
+    todo[w] = 0u;
   }
   vec3 P;
   vec3 N;
@@ -388,13 +469,15 @@ void main()
   else if (computed)
   {
     int own = mrgiVisInterleave != 0 ? ((t.x & 1) | ((t.y & 1) << 1)) : -1;
-#if MRGI_VIS_STAGE == 0 || MRGI_VIS_STAGE == 2
-    // Stage 0 (and its ray count): the own phase, or every phase.
+#if MRGI_VIS_STAGE == 0 || MRGI_VIS_STAGE == 2 || MRGI_VIS_STAGE == 3
+    // Stage 0 (and its ray count, and stage 3 without the march): the own
+    // phase, or every phase.
     uint phaseBits = own >= 0 ? mrgiVisPhaseBits(1 << own) : mrgiVisPhaseBits(MRGI_VOXEL_ALL_PHASES);
     for (int w = 0; w < MRGI_VIS_WORDS; ++w)
     {
       uint marched;
       mask[w] = mrgiVisWord(w, phaseBits & mrgiVisValidBits(w), all[w], any_[w], have, P, N, own, marched);
+      todo[w] = marched;
       rays += mrgiVisPopcount(marched);
     }
 #endif
@@ -464,5 +547,9 @@ void main()
   fragOutput0 = uvec4(rays, computed ? 1u : 0u, receiver && !computed ? 1u : 0u, receiver ? 1u : 0u);
 #else
   mrgiVisWrite(mask);
+#endif
+#if MRGI_VIS_STAGE == 3
+  mrgiVisWriteTodo(todo);
+#endif
 #endif
 }

@@ -1,0 +1,122 @@
+// MRGI incremental stencil rendering (nichols-penmatsa-wyman-2010 3.4): the
+// area-light gather's stencil, where a level also renders below the
+// geometric cut when its parent's 3x3 of visibility masks shows a light
+// discontinuity. GPU side of mrgi_incremental_stencil_build()
+// (Rendering/Core/mrgi_incremental_stencil.h, whose file comment is the
+// contract); the metric is mrgi_voxel_neighbourhood_metric() as the
+// visibility pyramid computes it (mrgiVisPopcount from
+// vtkMRGIVisibilityBits.glsl, prepended).
+//
+// vtkMRGIMultiresolution prepends MRGI_STENCIL_WORDS (W = ceil(N / 32)) and
+// MRGI_STENCIL_TARGETS (ceil(W / 4) mask textures per level). One draw per
+// level i, into level i's rectangle of the flattened layout: a rendered
+// texel writes 1 (and the stencil), any other is discarded (the target is
+// cleared to 0 first).
+in vec2 texCoord; // bound by vtkOpenGLQuadHelper; texels are addressed by gl_FragCoord
+//VTK::Output::Dec
+
+uniform sampler2D mrgiFlags;          // level i's flags (red, level-local)
+uniform sampler2D mrgiSelection;      // the flattened geometric selection (red > 0.5)
+uniform sampler2D mrgiParentPosition; // level i+1 receivers (level-local; w = validity)
+uniform usampler2D mrgiParentMask0;   // level i+1 masks: word w in texture w / 4, channel w % 4
+uniform usampler2D mrgiParentMask1;
+uniform usampler2D mrgiParentMask2;
+uniform usampler2D mrgiParentMask3;
+uniform int mrgiLevelOffset;   // o_i
+uniform ivec2 mrgiParentSize;  // w_{i+1}, h_{i+1}
+uniform int mrgiFinest;        // 1 when i is the finest gathering level
+uniform int mrgiCoarsest;      // 1 when i is the coarsest level (no parent)
+uniform int mrgiThreshold;     // >= 0
+uniform int mrgiMetric;        // MRGI_VOXEL_METRIC_*
+
+bool mrgiStencilReceiver(ivec2 s)
+{
+  vec4 p = texelFetch(mrgiParentPosition, s, 0);
+  return p.w > MRGI_GBUFFER_VALID_THRESHOLD && !any(isnan(p.xyz)) && !any(isinf(p.xyz));
+}
+
+uvec4 mrgiStencilMask(int k, ivec2 s)
+{
+#if MRGI_STENCIL_TARGETS > 3
+  if (k == 3) { return texelFetch(mrgiParentMask3, s, 0); }
+#endif
+#if MRGI_STENCIL_TARGETS > 2
+  if (k == 2) { return texelFetch(mrgiParentMask2, s, 0); }
+#endif
+#if MRGI_STENCIL_TARGETS > 1
+  if (k == 1) { return texelFetch(mrgiParentMask1, s, 0); }
+#endif
+  return texelFetch(mrgiParentMask0, s, 0);
+}
+
+// F_{i+1}(c): mrgi_voxel_neighbourhood_metric() over the 3x3 level-(i+1)
+// texels around c (clamped, non-receivers skipped), then
+// mrgi_voxel_needs_refinement().
+bool mrgiStencilDiscontinuity(ivec2 c)
+{
+  uint all[4 * MRGI_STENCIL_TARGETS];
+  uint any_[4 * MRGI_STENCIL_TARGETS];
+  for (int w = 0; w < 4 * MRGI_STENCIL_TARGETS; ++w)
+  {
+    all[w] = 0xFFFFFFFFu;
+    any_[w] = 0u;
+  }
+  int countMin = 0;
+  int countMax = 0;
+  bool anyReceiver = false;
+  for (int k = 0; k < MRGI_VOXEL_NEIGHBOURS; ++k)
+  {
+    ivec2 s = clamp(c + ivec2(k % 3 - 1, k / 3 - 1), ivec2(0), mrgiParentSize - 1);
+    if (!mrgiStencilReceiver(s))
+    {
+      continue;
+    }
+    int count = 0;
+    for (int t = 0; t < MRGI_STENCIL_TARGETS; ++t)
+    {
+      uvec4 m = mrgiStencilMask(t, s);
+      for (int q = 0; q < 4; ++q)
+      {
+        uint v = m[q];
+        all[4 * t + q] &= v;
+        any_[4 * t + q] |= v;
+        count += int(mrgiVisPopcount(v));
+      }
+    }
+    countMin = anyReceiver ? min(countMin, count) : count;
+    countMax = anyReceiver ? max(countMax, count) : count;
+    anyReceiver = true;
+  }
+  int disagree = 0;
+  for (int w = 0; w < MRGI_STENCIL_WORDS; ++w)
+  {
+    disagree += int(mrgiVisPopcount(any_[w] & ~all[w]));
+  }
+  int value = !anyReceiver ? 0
+    : (mrgiMetric == MRGI_VOXEL_METRIC_COUNT_SPREAD ? countMax - countMin : disagree);
+  return value >= mrgiThreshold;
+}
+
+void main()
+{
+  ivec2 f = ivec2(gl_FragCoord.xy);
+  ivec2 t = ivec2(f.x - mrgiLevelOffset, f.y);
+  int flags = int(texelFetch(mrgiFlags, t, 0).r);
+  bool rendered = false;
+  if ((flags & MRGI_MULTIRES_FLAG_NONEMPTY) != 0)
+  {
+    if (texelFetch(mrgiSelection, f, 0).r > 0.5)
+    {
+      rendered = true;
+    }
+    else if (mrgiCoarsest == 0 && (mrgiFinest != 0 || (flags & MRGI_MULTIRES_FLAG_REFINE) == 0))
+    {
+      rendered = mrgiStencilDiscontinuity(t / 2);
+    }
+  }
+  if (!rendered)
+  {
+    discard;
+  }
+  gl_FragData[0] = vec4(1.0);
+}
