@@ -22,10 +22,13 @@
  * level is COMPUTED without coarse masks (as if each level were the coarsest).
  *
  * Passes per level (vtkMRGIVisibilityPyramidFS.glsl), each drawn over the
- * level's W_i x H_i texels: stage 0 (decide, inherit or compute the own
- * phase), with interleaving stage 1 (combine the quarters, re-march what no
- * same-surface block texel computed), and with CollectStatistics a stage
- * that counts the rays the other two march. Marching stages are split into
+ * level's W_i x H_i texels. Without interleaving: decide once (INHERITED
+ * masks, reused bits, and the bits left to march), mark the texels with
+ * bits left in a stencil, and march only there (early stencil culling
+ * skips the INHERITED texels, NPW10 section 4); with interleaving, stage 0
+ * (decide, inherit or compute the own phase) and stage 1 (combine the
+ * quarters, re-march what no same-surface block texel computed). With
+ * CollectStatistics a last stage counts the rays the others march. Marching stages are split into
  * draws over sample ranges so that one fragment's marches fit llvmpipe's
  * loop budget (mrgi_voxel_samples_per_batch()); the draws are ORed
  * (glLogicOp(GL_OR); every bit a draw writes outside its range is the same
