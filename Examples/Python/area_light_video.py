@@ -1,7 +1,9 @@
 """A "TV" showing a moving picture lights a room: a vtkMRGIAreaLight whose
 texture is a vtkImageData updated every frame (as a video player would), in
-the built-in living room, rendered headless through vtkMRGIPass. Writes
-tv-0.png .. tv-2.png and prints how much light reached the room per frame.
+the built-in living room, rendered headless through vtkMRGIPass. The TV's
+screen shows each frame (the scene's screen actor shares the light's
+emitter actor) and lights the room. Writes tv-0.png .. tv-2.png and prints
+how much light reached the room per frame.
 
     PYTHONPATH=build/lib/python3/dist-packages /usr/bin/python3 Examples/Python/area_light_video.py
 """
@@ -55,7 +57,8 @@ def main():
     io = mrgi.vtkMRGIImageIO()
     for t in range(3):
         # A new frame: overwrite the pixels and mark the image modified; the
-        # light rebuilds its samples on the next render, nothing else.
+        # light rebuilds its samples and the screen's picture on the next
+        # render, nothing else.
         scalars = picture.GetPointData().GetScalars()
         vtk_to_numpy(scalars)[:] = frame(t)
         scalars.Modified()

@@ -282,6 +282,8 @@ struct vtkMRGIAreaLight::vtkInternals
   vtkSmartPointer<vtkActor> Actor;
   vtkSmartPointer<vtkTexture> EmissionTexture;
   vtkSmartPointer<vtkProperty> BackProperty;
+  // Actors given to ShareGeometryActor(): kept in step with Actor's look.
+  std::vector<vtkWeakPointer<vtkActor>> Views;
 
   ~vtkInternals()
   {
@@ -302,6 +304,9 @@ public:
   // Weak: the light owns this source (through its actor), while a renderer
   // may keep the actor after the light is gone.
   vtkWeakPointer<vtkMRGIAreaLight> Light;
+  // Set for the sources of ShareGeometryActor()'s views only: they keep the
+  // light alive (it holds them weakly, so there is no cycle).
+  vtkSmartPointer<vtkMRGIAreaLight> Owner;
 
   vtkMTimeType GetMTime() override
   {
@@ -333,9 +338,11 @@ private:
 vtkStandardNewMacro(vtkMRGIAreaLightGeometrySource);
 
 //------------------------------------------------------------------------------
-// The emitter's picture: clamp(Intensity * Color * T) as 8-bit sRGB RGB, the
-// input of the actor's texture; regenerated when the light or its texture
-// image changes (the next video frame).
+// The emitter's picture: Intensity * Color * T scaled for display (divided by
+// P = Intensity * max(Color) * max(1, max texel) when P > 1, see
+// GetGeometryActor()) as 8-bit sRGB RGB, the input of the actor's texture;
+// regenerated when the light or its texture image changes (the next video
+// frame).
 class vtkMRGIAreaLightEmissionSource : public vtkImageAlgorithm
 {
 public:
@@ -396,11 +403,32 @@ protected:
       }
       return;
     }
+    // Display scale: the radiance scale Intensity * Color, divided by the
+    // peak P = Intensity * max(Color) * max(1, max texel) when P > 1. The
+    // max texel counts only above 1 (float HDR pictures): a picture in
+    // [0, 1] keeps one scale from frame to frame (no exposure flicker).
+    float maxTexel = 0.0f;
+    const size_t values = static_cast<size_t>(dims[0]) * static_cast<size_t>(dims[1]) * 3;
+    for (size_t i = 0; i < values; ++i)
+    {
+      maxTexel = std::max(maxTexel, picture->pixels[i]);
+    }
+    const double intensity = Sanitized(this->Light->GetIntensity());
+    double color[3], maxColor = 0.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      color[c] = Sanitized(this->Light->GetColor()[c]);
+      maxColor = std::max(maxColor, color[c]);
+    }
+    const double texturePeak = std::max(1.0, static_cast<double>(maxTexel));
+    const double peak = intensity * maxColor * texturePeak; // may be +inf: handled below
     float scale[3];
     for (int c = 0; c < 3; ++c)
     {
+      // Above 1, Intensity * Color[c] / P, written without the product
+      // (which can overflow for huge finite inputs).
       scale[c] = static_cast<float>(
-        Sanitized(this->Light->GetIntensity()) * Sanitized(this->Light->GetColor()[c]));
+        peak > 1.0 ? color[c] / maxColor / texturePeak : intensity * color[c]);
     }
     unsigned char* dst = rgb->GetPointer(0);
     for (int y = 0; y < dims[1]; ++y)
@@ -919,7 +947,8 @@ void vtkMRGIAreaLight::UpdateGeometryActor()
       front[c] = Sanitized(this->Intensity) * Sanitized(this->Color[c]);
     }
   }
-  actor->SetTexture(textured ? internals.EmissionTexture.Get() : nullptr);
+  vtkTexture* texture = textured ? internals.EmissionTexture.Get() : nullptr;
+  actor->SetTexture(texture);
   // With a texture, VTK clamps the colour to [0, 1] before it modulates
   // the texture: the radiance scale is in the emission picture and the
   // colour is white. Without one, the colour is the radiance.
@@ -936,6 +965,46 @@ void vtkMRGIAreaLight::UpdateGeometryActor()
   internals.BackProperty->SetAmbientColor(back);
   internals.BackProperty->SetColor(back);
   actor->SetBackfaceProperty(internals.BackProperty);
+  // The shared views follow the texture switch (everything else they share).
+  for (const vtkWeakPointer<vtkActor>& view : internals.Views)
+  {
+    if (view)
+    {
+      view->SetTexture(texture);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIAreaLight::ShareGeometryActor(vtkActor* actor)
+{
+  vtkActor* own = this->GetGeometryActor();
+  if (!actor || actor == own)
+  {
+    return;
+  }
+  // Forget views that are gone; add this one once.
+  auto& views = this->Internals->Views;
+  views.erase(std::remove_if(views.begin(), views.end(),
+                [](const vtkWeakPointer<vtkActor>& view) { return !view; }),
+    views.end());
+  if (std::none_of(views.begin(), views.end(),
+        [actor](const vtkWeakPointer<vtkActor>& view) { return view.Get() == actor; }))
+  {
+    views.emplace_back(actor);
+  }
+  // Its own quad source (the same quad), which keeps the light alive: the
+  // view may outlive whoever made it (a scene builder).
+  vtkNew<vtkMRGIAreaLightGeometrySource> geometry;
+  geometry->Light = this;
+  geometry->Owner = this;
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(geometry->GetOutputPort());
+  mapper->ScalarVisibilityOff();
+  actor->SetMapper(mapper);
+  actor->SetProperty(own->GetProperty());
+  actor->SetBackfaceProperty(own->GetBackfaceProperty());
+  actor->SetTexture(own->GetTexture());
 }
 
 //------------------------------------------------------------------------------

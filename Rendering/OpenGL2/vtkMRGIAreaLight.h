@@ -7,8 +7,10 @@
  * units and sampling). This class holds the light's properties, turns them
  * into the core's structs, caches the texture pyramid and the light samples
  * and draws the emitter. The GPU gather that lights a scene with these
- * samples (Nichols, Penmatsa and Wyman 2010, [NPW10] section 3.2) is not
- * wired into vtkMRGIPass yet.
+ * samples (Nichols, Penmatsa and Wyman 2010, [NPW10] section 3.2) is
+ * vtkMRGIPass's: give the light to vtkMRGIPass::AddAreaLight() (its
+ * emitter geometry, GetGeometryActor(), is added to the renderer
+ * separately).
  *
  * Geometry: a rectangle with centre Center and FULL edge vectors EdgeU and
  * EdgeV (world units, perpendicular), corners Center +- EdgeU/2 +- EdgeV/2,
@@ -187,13 +189,43 @@ public:
   /**
    * An actor that draws the emitter, owned by the light and kept in step
    * with it at render time: the quad of MakeGeometry() with VTK lighting
-   * off, showing Intensity * Color (unclamped: float buffers keep it HDR),
-   * or, with a texture, the radiance picture clipped to [0, 1] (an 8-bit
-   * sRGB texture). The back of a one-sided light is black. Hidden when
-   * Visible is off; empty while the light is invalid. [NPW10] 3.2 notes
-   * that the gather can skip the emitter's own pixels.
+   * off (self-luminous: ambient 1, diffuse and specular 0; MRGI's passes
+   * neither capture nor light unlit geometry, so nothing is added to it).
+   *
+   * Untextured, it shows Intensity * Color as its colour (unclamped: float
+   * buffers keep it HDR). Textured, it shows the light's picture through
+   * the quad's texture coordinates (the mapping of the class
+   * documentation: upright from the emitting side), an 8-bit sRGB
+   * vtkTexture holding Intensity * Color * T scaled for display: divided
+   * by P = Intensity * max(Color) * max(1, max texel) when P > 1, else
+   * shown as is. So a texture with values in [0, 1] (every 8-bit one)
+   * appears with its full range, tinted by Color / max(Color), whatever
+   * the Intensity (a bright TV is a visible picture, not a white square),
+   * and the scale stays the same from one video frame to the next; a dim
+   * light (P <= 1) shows its true radiance. This is a display picture, not
+   * the radiance: GetSamples() and vtkMRGIPass use the true one. The
+   * picture follows the texture image: after Modified() (the next video
+   * frame) the next render shows it, with no other call.
+   *
+   * The back of a one-sided light is black; a two-sided light shows the
+   * same picture on its back (seen from behind, mirrored: each point emits
+   * the same radiance on both sides). Hidden when Visible is off; empty
+   * while the light is invalid. [NPW10] 3.2 notes that the gather can skip
+   * the emitter's own pixels.
    */
   vtkActor* GetGeometryActor();
+
+  /**
+   * Make `actor` a second view of the emitter: it gets a mapper of the
+   * light's quad and GetGeometryActor()'s front and back properties and
+   * picture texture, and is kept in step with the light as that actor is
+   * (also when a texture is set or removed), but keeps its own visibility,
+   * which Visible does not drive. For scenes that own their emitter's
+   * actor: vtkMRGISceneBuilder draws a textured light's screen this way.
+   * The view's mapper keeps the light alive (the light holds `actor` only
+   * weakly: no cycle); nullptr and GetGeometryActor() itself are ignored.
+   */
+  void ShareGeometryActor(vtkActor* actor);
 
   ///@{
   /** Pyramid and sample rebuilds so far (for tests and profiling). */

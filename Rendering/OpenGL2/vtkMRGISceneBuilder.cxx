@@ -16,6 +16,7 @@
 #include "vtkGenericDataObjectReader.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkOBJReader.h"
 #include "vtkObjectFactory.h"
@@ -40,9 +41,11 @@
 #include "mrgi_scene_scaling.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <strings.h>
+#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkMRGISceneBuilder);
@@ -113,6 +116,38 @@ private:
   unsigned long WarningTag = 0;
   std::string Message;
 };
+
+// Whether every vertex of `mesh` lies in the rectangle of `light` (up to a
+// small fraction of its size).
+bool InRectangle(const mrgi_mesh& mesh, const mrgi_area_light& light)
+{
+  double n[3];
+  vtkMath::Cross(light.edge_u, light.edge_v, n);
+  const double uu = vtkMath::Dot(light.edge_u, light.edge_u);
+  const double vv = vtkMath::Dot(light.edge_v, light.edge_v);
+  const double nn = vtkMath::Norm(n);
+  if (mesh.vertex_count < 1 || !(uu > 0.0) || !(vv > 0.0) || !(nn > 0.0))
+  {
+    return false;
+  }
+  const double tolerance = 1e-4;
+  const double size = std::sqrt(uu) + std::sqrt(vv);
+  for (int64_t i = 0; i < mesh.vertex_count; ++i)
+  {
+    double d[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      d[c] = mesh.positions[3 * static_cast<size_t>(i) + static_cast<size_t>(c)] - light.center[c];
+    }
+    if (std::fabs(vtkMath::Dot(d, n)) / nn > tolerance * size ||
+      std::fabs(vtkMath::Dot(d, light.edge_u)) / uu > 0.5 + tolerance ||
+      std::fabs(vtkMath::Dot(d, light.edge_v)) / vv > 0.5 + tolerance)
+    {
+      return false;
+    }
+  }
+  return true;
+}
 
 vtkSmartPointer<vtkLight> MakeLight(const mrgi_light& in)
 {
@@ -225,6 +260,7 @@ bool vtkMRGISceneBuilder::BuildCoreScene(const mrgi_scene* scene, vtkRenderer* r
 {
   vtkIdType triangles = 0;
   std::vector<vtkSmartPointer<vtkActor>> actors;
+  std::vector<std::pair<const mrgi_mesh*, vtkActor*>> emitters; // for textured area lights
   for (int32_t m = 0; m < scene->mesh_count; ++m)
   {
     const mrgi_mesh& mesh = scene->meshes[m];
@@ -245,6 +281,7 @@ bool vtkMRGISceneBuilder::BuildCoreScene(const mrgi_scene* scene, vtkRenderer* r
       property->SetSpecular(0.0);
       property->SetAmbientColor(mesh.emission[0], mesh.emission[1], mesh.emission[2]);
       property->SetColor(mesh.emission[0], mesh.emission[1], mesh.emission[2]);
+      emitters.emplace_back(&mesh, actor.Get());
     }
     else
     {
@@ -296,6 +333,18 @@ bool vtkMRGISceneBuilder::BuildCoreScene(const mrgi_scene* scene, vtkRenderer* r
         }
       }
       light->SetTextureData(image);
+      // The emitter mesh lying in this light's rectangle (living-room's
+      // screen) shows the light's picture instead of its mean radiance: it
+      // becomes a view of the light's geometry actor (the same quad, unlit,
+      // the picture scaled for display, the next video frame included; see
+      // vtkMRGIAreaLight::GetGeometryActor()) with its own visibility.
+      for (const auto& emitter : emitters)
+      {
+        if (InRectangle(*emitter.first, core))
+        {
+          light->ShareGeometryActor(emitter.second);
+        }
+      }
     }
     this->AreaLights.push_back(light);
   }

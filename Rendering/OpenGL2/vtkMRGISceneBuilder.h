@@ -12,8 +12,9 @@
  *   pass, no vtkLight stands in for it);
  * - "living-room": a room (metres) with a sofa, a coffee table and a
  *   bookshelf, lit only by a TV screen: one one-sided textured area light
- *   (a 64 x 36 test card, 1.2 x 0.7 m; the emitter quad shows its mean
- *   radiance), nichols-penmatsa-wyman-2010's living room (mrgi_scene_living_room.h);
+ *   (a 64 x 36 test card, 1.2 x 0.7 m; the screen mesh draws the light's
+ *   picture through vtkMRGIAreaLight::ShareGeometryActor()),
+ *   nichols-penmatsa-wyman-2010's living room (mrgi_scene_living_room.h);
  * - "scaling": ObjectCount objects with TriangleCount triangles in total,
  *   laid out so that screen coverage does not depend on the triangle count.
  *

@@ -16,9 +16,15 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkImageShiftScale.h"
+#include "vtkLight.h"
 #include "vtkMRGIAreaLight.h"
+#include "vtkMRGIPass.h"
 #include "vtkPointData.h"
+#include "vtkPlaneSource.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderStepsPass.h"
 #include "vtkRenderer.h"
 #include "vtkTestErrorObserver.h"
 #include "vtkTexture.h"
@@ -30,6 +36,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -205,6 +212,40 @@ bool Near(const double rgb[3], double r, double g, double b, double tolerance)
   {
     std::fprintf(stderr, "got (%.1f, %.1f, %.1f), expected (%.1f, %.1f, %.1f) +- %.1f\n", rgb[0],
       rgb[1], rgb[2], r, g, b, tolerance);
+  }
+  return ok;
+}
+
+// Overwrite the 2 x 2 RGB unsigned-char image's scalars (VTK rows, bottom first).
+void SetTexels(vtkImageData* image, std::initializer_list<int> values)
+{
+  auto* texels = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars());
+  vtkIdType i = 0;
+  for (int v : values)
+  {
+    texels->SetValue(i++, static_cast<unsigned char>(v));
+  }
+}
+
+// The four quadrants of the 64 x 64 window (8 x 8 pixels near each corner,
+// between the texel centres and the quad's edges, where bilinear filtering
+// clamped at the edges gives a texel's own colour) against `expected`:
+// bottom-left, bottom-right, top-left, top-right, RGB each (0..255).
+bool Quadrants(vtkRenderWindow* window, std::initializer_list<double> expected)
+{
+  const int corners[4][2] = { { 8, 8 }, { 48, 8 }, { 8, 48 }, { 48, 48 } };
+  std::vector<double> e(expected);
+  bool ok = true;
+  for (int q = 0; q < 4; ++q)
+  {
+    double rgb[3];
+    Mean(window, corners[q][0], corners[q][1], corners[q][0] + 8, corners[q][1] + 8, rgb);
+    if (!Near(rgb, e[3 * q], e[3 * q + 1], e[3 * q + 2], 2.0))
+    {
+      std::fprintf(
+        stderr, "  in quadrant %d (bottom-left, bottom-right, top-left, top-right)\n", q);
+      ok = false;
+    }
   }
   return ok;
 }
@@ -544,35 +585,48 @@ void TestGeometryAndRendering()
   camera->SetPosition(0, 0, 5);
 
   // A 2 x 2 texture, upright from the front: VTK row 0 (bottom) red, green;
-  // row 1 blue, white. Intensity 1 and white: the picture itself.
+  // row 1 blue, white. Intensity 1 and white: the picture itself. Every
+  // quadrant has its own colour, so texture coordinates flipped in s, in t
+  // or transposed swap two of them and fail.
   vtkNew<vtkImageData> picture;
   picture->SetDimensions(2, 2, 1);
   picture->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
   auto* texels = vtkUnsignedCharArray::SafeDownCast(picture->GetPointData()->GetScalars());
-  const unsigned char colors[12] = { 255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255 };
-  for (int i = 0; i < 12; ++i)
-  {
-    texels->SetValue(i, colors[i]);
-  }
+  SetTexels(picture, { 255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255 });
   light->SetTextureData(picture);
   light->SetColor(1, 1, 1);
   light->SetIntensity(1);
   window->Render();
-  // Between the texel centres and the quad's edges bilinear filtering
-  // (clamped at the edges) gives the texels' exact colours.
-  Mean(window, 8, 8, 16, 16, rgb);
-  MRGI_TEST_CHECK(Near(rgb, 255, 0, 0, 2.0));
-  Mean(window, 48, 8, 56, 16, rgb);
-  MRGI_TEST_CHECK(Near(rgb, 0, 255, 0, 2.0));
-  Mean(window, 8, 48, 16, 56, rgb);
-  MRGI_TEST_CHECK(Near(rgb, 0, 0, 255, 2.0));
-  Mean(window, 48, 48, 56, 56, rgb);
-  MRGI_TEST_CHECK(Near(rgb, 255, 255, 255, 2.0));
+  MRGI_TEST_CHECK(light->GetGeometryActor()->GetTexture() != nullptr);
+  MRGI_TEST_CHECK(Quadrants(window, { 255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255 }));
   // The samples agree: the sample nearest the bottom-left corner is red.
   std::vector<float> samples = LightSamples(light);
   MRGI_TEST_CHECK(samples[8] > 0.99f && samples[9] < 0.01f && samples[10] < 0.01f);
 
-  // The next video frame (the red texel turns half grey) is drawn.
+  // From behind: black for a one-sided light; a two-sided one shows the
+  // same picture, mirrored (the camera's right is -x there).
+  camera->SetPosition(0, 0, -5);
+  window->Render();
+  Mean(window, 8, 8, 56, 56, rgb);
+  MRGI_TEST_CHECK(Near(rgb, 0, 0, 0, 1.0));
+  light->TwoSidedOn();
+  window->Render();
+  MRGI_TEST_CHECK(Quadrants(window, { 0, 255, 0, 255, 0, 0, 255, 255, 255, 0, 0, 255 }));
+  light->TwoSidedOff();
+  camera->SetPosition(0, 0, 5);
+
+  // The next video frame: new scalars in the same image and Modified(); the
+  // next render shows it, nothing else called.
+  SetTexels(picture, { 0, 255, 255, 255, 0, 255, 255, 255, 0, 0, 0, 0 });
+  picture->Modified();
+  window->Render();
+  MRGI_TEST_CHECK(Quadrants(window, { 0, 255, 255, 255, 0, 255, 255, 255, 0, 0, 0, 0 }));
+  // One texel of it changed (the red texel of the first frame turns half
+  // grey: 128 of 255 in linear 8-bit).
+  SetTexels(picture, { 255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255 });
+  picture->Modified();
+  window->Render();
+  MRGI_TEST_CHECK(Quadrants(window, { 255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255 }));
   texels->SetValue(0, 128);
   texels->SetValue(1, 128);
   texels->SetValue(2, 128);
@@ -580,8 +634,90 @@ void TestGeometryAndRendering()
   window->Render();
   Mean(window, 8, 8, 16, 16, rgb);
   MRGI_TEST_CHECK(Near(rgb, 128, 128, 128, 2.0));
-  // A scaled radiance is clipped to [0, 1] in the picture; 0.5 halves it.
+
+  // A radiance scale above 1 is normalised for display (P = Intensity *
+  // max(Color) = 40): the picture keeps its range, tinted by Color / 1.
+  light->SetIntensity(40);
+  light->SetColor(1, 0.5, 0.25);
+  window->Render();
+  MRGI_TEST_CHECK(Quadrants(window,
+    { 128, 64, 32, 0, 127.5, 0, 0, 0, 63.75, 255, 127.5, 63.75 }));
+  // Below 1 it is the radiance: 0.5 halves the picture.
+  light->SetColor(1, 1, 1);
   light->SetIntensity(0.5);
+  window->Render();
+  Mean(window, 48, 48, 56, 56, rgb);
+  MRGI_TEST_CHECK(Near(rgb, 127.5, 127.5, 127.5, 2.0));
+
+  // An HDR float texture through a vtkTexture: P = max texel = 4 (Intensity
+  // 1) maps 4 to 1; its next frame is shown as well.
+  vtkNew<vtkImageData> hdr;
+  hdr->SetDimensions(2, 2, 1);
+  hdr->AllocateScalars(VTK_FLOAT, 3);
+  auto* hdrTexels = vtkFloatArray::SafeDownCast(hdr->GetPointData()->GetScalars());
+  const float hdrValues[12] = { 4, 0, 0, 0, 2, 0, 0, 0, 1, 1, 1, 1 };
+  for (int i = 0; i < 12; ++i)
+  {
+    hdrTexels->SetValue(i, hdrValues[i]);
+  }
+  vtkNew<vtkTexture> hdrTexture;
+  hdrTexture->SetInputData(hdr);
+  light->SetTexture(hdrTexture);
+  light->SetIntensity(1);
+  window->Render();
+  MRGI_TEST_CHECK(Quadrants(window,
+    { 255, 0, 0, 0, 127.5, 0, 0, 0, 63.75, 63.75, 63.75, 63.75 }));
+  // (A float picture's peak above 1 is its frame's: without the 4, the
+  // brightest texel, 2, maps to 1.)
+  hdrTexels->SetValue(0, 0); // bottom-left red 4 -> green 0.5
+  hdrTexels->SetValue(1, 0.5f);
+  hdr->Modified();
+  window->Render();
+  MRGI_TEST_CHECK(Quadrants(window,
+    { 0, 63.75, 0, 0, 255, 0, 0, 0, 127.5, 127.5, 127.5, 127.5 }));
+
+  // A second actor sharing the emitter (ShareGeometryActor) draws the same
+  // picture with its own visibility, and follows the texture switch.
+  vtkNew<vtkActor> view;
+  light->ShareGeometryActor(view);
+  light->ShareGeometryActor(view); // once is enough
+  renderer->RemoveActor(light->GetGeometryActor());
+  renderer->AddActor(view);
+  light->VisibleOff();
+  light->SetTextureData(picture); // the first frame again, red texel grey
+  window->Render();
+  MRGI_TEST_CHECK(view->GetVisibility() && view->GetTexture() != nullptr);
+  MRGI_TEST_CHECK(Quadrants(window, { 128, 128, 128, 0, 255, 0, 0, 0, 255, 255, 255, 255 }));
+  light->SetTextureData(nullptr);
+  light->SetColor(0.2, 0.4, 0.6);
+  window->Render();
+  MRGI_TEST_CHECK(view->GetTexture() == nullptr);
+  Mean(window, 16, 16, 48, 48, rgb);
+  MRGI_TEST_CHECK(Near(rgb, 51, 102, 153, 2.0));
+  light->SetTextureData(picture);
+  light->SetColor(1, 1, 1);
+  light->SetIntensity(0.5);
+  window->Render();
+  Mean(window, 48, 48, 56, 56, rgb);
+  MRGI_TEST_CHECK(Near(rgb, 127.5, 127.5, 127.5, 2.0));
+  renderer->RemoveActor(view);
+  // A view keeps its light alive: made from a light nobody else holds (a
+  // scene builder's, once the builder is gone), it still draws the picture.
+  vtkNew<vtkActor> orphan;
+  {
+    auto temporary = vtkSmartPointer<vtkMRGIAreaLight>::New();
+    temporary->SetEdgeU(2, 0, 0);
+    temporary->SetEdgeV(0, 2, 0);
+    temporary->SetTextureData(picture);
+    temporary->VisibleOff();
+    temporary->ShareGeometryActor(orphan);
+  }
+  renderer->AddActor(orphan);
+  window->Render();
+  MRGI_TEST_CHECK(Quadrants(window, { 128, 128, 128, 0, 255, 0, 0, 0, 255, 255, 255, 255 }));
+  renderer->RemoveActor(orphan);
+  renderer->AddActor(light->GetGeometryActor());
+  light->VisibleOn();
   window->Render();
   Mean(window, 48, 48, 56, 56, rgb);
   MRGI_TEST_CHECK(Near(rgb, 127.5, 127.5, 127.5, 2.0));
@@ -623,6 +759,113 @@ void TestGeometryAndRendering()
   std::printf("rendering: emitter colour, back face, texture orientation, next frame, "
               "visibility checked\n");
 }
+
+// The textured emitter drawn through vtkMRGIPass, with its own light and a
+// second, bright area light facing it: the pass lights the diffuse wall
+// behind the emitter but adds nothing onto the emitter (unlit geometry is
+// no receiver; the gather also skips receivers in a light's plane), which
+// shows the same picture as without the pass.
+void TestEmitterUnderPass()
+{
+  const int size = 64;
+  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(size, size);
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->ParallelProjectionOn();
+  camera->SetParallelScale(1.0);
+  camera->SetFocalPoint(0, 0, 0);
+  camera->SetPosition(0, 0, 5);
+  camera->SetViewUp(0, 1, 0);
+
+  // The emitter: 2 x 2 at z = 0 facing +z, the 2 x 2 picture of
+  // TestGeometryAndRendering (it fills the window).
+  vtkNew<vtkImageData> picture;
+  picture->SetDimensions(2, 2, 1);
+  picture->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  SetTexels(picture, { 255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255 });
+  vtkNew<vtkMRGIAreaLight> emitter;
+  emitter->SetEdgeU(2, 0, 0);
+  emitter->SetEdgeV(0, 2, 0);
+  emitter->SetTextureData(picture);
+  emitter->SetIntensity(0.5); // P <= 1: the picture at half its values
+  emitter->SetNumberOfSamples(16);
+  renderer->AddActor(emitter->GetGeometryActor());
+  // A grey wall behind it, larger than the view, and a second light in
+  // front facing the scene (-z), its geometry not drawn.
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(-3, -3, -0.5);
+  plane->SetPoint1(3, -3, -0.5);
+  plane->SetPoint2(-3, 3, -0.5);
+  vtkNew<vtkPolyDataMapper> wallMapper;
+  wallMapper->SetInputConnection(plane->GetOutputPort());
+  vtkNew<vtkActor> wall;
+  wall->SetMapper(wallMapper);
+  wall->GetProperty()->SetColor(0.5, 0.5, 0.5);
+  wall->GetProperty()->SetAmbient(0.0);
+  wall->GetProperty()->SetDiffuse(1.0);
+  renderer->AddActor(wall);
+  vtkNew<vtkMRGIAreaLight> flood;
+  flood->SetCenter(0, 0, 1);
+  flood->SetEdgeU(6, 0, 0);
+  flood->SetEdgeV(0, -6, 0); // u x v = -z
+  flood->SetIntensity(1.0);
+  flood->SetNumberOfSamples(16);
+  vtkNew<vtkLight> dark; // keeps VTK's lighting on, adds nothing
+  dark->SetLightTypeToSceneLight();
+  dark->SetIntensity(0.0);
+  renderer->AddLight(dark);
+  renderer->AutomaticLightCreationOff();
+  renderer->ResetCameraClippingRange(-3, 3, -3, 3, -3, 3);
+
+  // Half the picture's values (Intensity 0.5).
+  const std::initializer_list<double> half = { 127.5, 0, 0, 0, 127.5, 0, 0, 0, 127.5, 127.5, 127.5,
+    127.5 };
+  window->Render();
+  MRGI_TEST_CHECK(Quadrants(window, half));
+
+  // Shrink the emitter to the middle half of the view: the wall shows
+  // around it.
+  emitter->SetEdgeU(1, 0, 0);
+  emitter->SetEdgeV(0, 1, 0);
+  vtkNew<vtkRenderStepsPass> steps;
+  vtkNew<vtkMRGIPass> pass;
+  pass->SetDelegatePass(steps);
+  pass->SetIndirectMode(vtkMRGIPass::IndirectOff);
+  pass->SetAreaLightVisibility(vtkMRGIPass::VisibilityOff);
+  pass->AddAreaLight(emitter);
+  pass->AddAreaLight(flood);
+  renderer->SetPass(pass);
+  window->Render();
+  MRGI_TEST_CHECK(pass->GetAreaLightsComputed());
+  double rgb[3];
+  // The wall (outside the emitter) is lit by the flood light.
+  Mean(window, 2, 2, 10, 10, rgb);
+  std::printf("under vtkMRGIPass: wall (%.1f, %.1f, %.1f)\n", rgb[0], rgb[1], rgb[2]);
+  MRGI_TEST_CHECK(rgb[0] > 40 && rgb[1] > 40 && rgb[2] > 40);
+  // The emitter (pixels 16..48) keeps its picture, quadrant by quadrant.
+  // (Between the texel centres and the quad's edges, as in Quadrants().)
+  const int corners[4][2] = { { 17, 17 }, { 41, 17 }, { 17, 41 }, { 41, 41 } };
+  std::vector<double> e(half);
+  for (int q = 0; q < 4; ++q)
+  {
+    Mean(window, corners[q][0], corners[q][1], corners[q][0] + 6, corners[q][1] + 6, rgb);
+    MRGI_TEST_CHECK(Near(rgb, e[3 * q], e[3 * q + 1], e[3 * q + 2], 2.0));
+  }
+  // The next frame under the pass too.
+  SetTexels(picture, { 0, 255, 255, 255, 0, 255, 255, 255, 0, 0, 0, 0 });
+  picture->Modified();
+  window->Render();
+  const double next[12] = { 0, 127.5, 127.5, 127.5, 0, 127.5, 127.5, 127.5, 0, 0, 0, 0 };
+  for (int q = 0; q < 4; ++q)
+  {
+    Mean(window, corners[q][0], corners[q][1], corners[q][0] + 6, corners[q][1] + 6, rgb);
+    MRGI_TEST_CHECK(Near(rgb, next[3 * q], next[3 * q + 1], next[3 * q + 2], 2.0));
+  }
+  renderer->SetPass(nullptr);
+  pass->ReleaseGraphicsResources(window);
+  std::printf("under vtkMRGIPass: the emitter keeps its picture, the next frame too\n");
+}
 }
 
 int main()
@@ -630,6 +873,7 @@ int main()
   TestSamplesAndCache();
   TestBadInput();
   TestGeometryAndRendering();
+  TestEmitterUnderPass();
   std::printf("TestMRGIAreaLight passed\n");
   return 0;
 }

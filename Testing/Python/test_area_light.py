@@ -1,14 +1,14 @@
 """vtkMRGIAreaLight from Python: a numpy-made vtkImageData as the texture,
 samples as a float array (3 RGBA texels per sample), the cache, the next
 video frame, bad input reported (no exception, False, a message), the
-emitter actor."""
+emitter actor (textured with the light's picture, shareable)."""
 import math
 import sys
 
 import numpy as np
 from vtkmodules.vtkCommonCore import vtkCommand, vtkFloatArray
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData
-from vtkmodules.vtkRenderingCore import vtkTexture
+from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkTexture
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
 import mrgi
@@ -123,8 +123,42 @@ def main():
     check(quad.GetNumberOfPoints() == 4 and quad.GetNumberOfPolys() == 1, "one quad")
     actor = light.GetGeometryActor()
     check(actor is not None and actor.GetVisibility() == 1, "a visible actor")
+    check(actor.GetTexture() is None, "untextured: a plain colour")
+    check(actor.GetProperty().GetLighting() == 0, "the emitter is unlit")
+    light.SetTextureData(image)
+    check(actor.GetTexture() is not None, "textured: the light's picture")
+    view = vtkActor()
+    light.ShareGeometryActor(view)
+    check(view.GetMapper() is not None and view.GetProperty() is actor.GetProperty()
+          and view.GetTexture() is actor.GetTexture(),
+          "a shared view draws the same quad and picture")
     light.VisibleOff()
     check(actor.GetVisibility() == 0, "Visible drives the actor")
+    check(view.GetVisibility() == 1, "a shared view keeps its own visibility")
+    light.SetTextureData(None)
+    check(actor.GetTexture() is None and view.GetTexture() is None, "the view follows the light")
+
+    # The living room's screen (the scene's own emitter actor) shows its
+    # light's picture: it shares the light's emitter actor, while the
+    # light's own actor stays hidden (Visible off).
+    renderer = vtkRenderer()
+    builder = mrgi.vtkMRGISceneBuilder()
+    builder.SetScene("living-room")
+    check(builder.Build(renderer), builder.GetLastErrorMessage())
+    tv = builder.GetAreaLight(0)
+    emitter = tv.GetGeometryActor()
+    actors = renderer.GetActors()
+    actors.InitTraversal()
+    screens = [a for a in (actors.GetNextActor() for _ in range(actors.GetNumberOfItems()))
+               if a.GetProperty() is emitter.GetProperty()]
+    check(len(screens) == 1, "one scene actor draws the TV's emitter, got %d" % len(screens))
+    check(screens[0].GetTexture() is not None and screens[0].GetTexture() is emitter.GetTexture(),
+          "the screen shows the light's picture")
+    check(screens[0].GetVisibility() == 1 and not tv.GetVisible(), "the screen is drawn once")
+    del builder, tv, emitter  # the screen keeps its light (and picture) alive
+    screens[0].GetMapper().Update()
+    check(screens[0].GetMapper().GetInput().GetNumberOfPolys() == 1,
+          "the screen outlives the builder")
     print("area light from Python: ok")
 
 
