@@ -106,7 +106,7 @@ def main():
     args = parser.parse_args()
     if args.page_only:
         with open(os.path.join(args.doc, "data", "area-lights.csv"), newline="") as f:
-            rows = [{k: (v if k in ("scene", "visibility", "preset") else float(v)) for k, v in r.items()}
+            rows = [{k: (v if k in ("scene", "visibility", "preset", "levels") else float(v)) for k, v in r.items()}
                     for r in csv.DictReader(f)]
         for r in rows:
             r["voxels"] = int(r["voxels"])
@@ -142,12 +142,17 @@ def main():
         settings = []
         for visibility, value in visibility_modes(scene.gi):
             for preset, index in list(presets.items()) + [("full", None)]:
-                settings.append((visibility, value, preset, index, 128))
+                settings.append((visibility, value, preset, index, 128, True))
             if visibility == "naive":
                 for side in [int(v) for v in args.voxel_sizes.split(",") if v]:
                     if side != 128:
-                        settings.append((visibility, value, "balanced", presets["balanced"], side))
-        for visibility, value, preset, index, side in settings:
+                        settings.append((visibility, value, "balanced", presets["balanced"], side, True))
+            if visibility == "incremental" and hasattr(scene.mr, "SetIncrementalStencil"):
+                # NPW10 3.4 off: the gather keeps the geometric selection.
+                settings.append(("incremental-geometric", value, "balanced", presets["balanced"], 128, False))
+        for visibility, value, preset, index, side, stencil in settings:
+            if hasattr(scene.mr, "SetIncrementalStencil"):
+                scene.mr.SetIncrementalStencil(stencil)
             if value is not None:
                 scene.gi.SetAreaLightVisibility(value)
                 scene.gi.GetVoxelization().SetVoxelSide(side)
@@ -166,10 +171,11 @@ def main():
                     pyramid.SetCollectStatistics(True)
                 scene.window.Render()
                 work = scene.mr.GetGatherWorkFraction()
-                gathered = sum(max(scene.mr.GetNumberOfGatheredTexels(i), 0)
-                               for i in range(scene.mr.GetNumberOfLevels()))
+                per_level = [max(scene.mr.GetNumberOfGatheredTexels(i), 0) for i in range(scene.mr.GetNumberOfLevels())]
+                gathered = sum(per_level)
+                valid = max(scene.mr.GetNumberOfValidPixels(), 1)
                 samples = scene.lights[0].GetNumberOfSamples() if scene.lights else 0
-                if visibility == "incremental" and pyramid is not None:
+                if visibility.startswith("incremental") and pyramid is not None:
                     rays = pyramid.GetTotalNumberOfRays()
                 elif visibility == "naive":
                     rays = gathered * samples
@@ -192,6 +198,10 @@ def main():
                            voxels=side if visibility != "off" else 0, area_ms=t.get("area", 0.0),
                            visibility_ms=t.get("visibility.pyramid", 0.0), gather_ms=t.get("gather.samples", 0.0),
                            rays=rays,
+                           # fraction of the valid pixels gathered at each level, finest first (NPW10: 10-15%
+                           # of the pixels need per-pixel work)
+                           level0=per_level[0] / valid,
+                           levels="/".join("%.4f" % (n / valid) for n in per_level),
                            select_ms=t.get("select", 0.0), frame_ms=t["frame"], work=work,
                            rel_rms_truth=vs_truth["relative_rms"],
                            rel_rms_unshadowed=vs_unshadowed["relative_rms"])
@@ -222,10 +232,10 @@ def plot_tradeoff(rows, path):
     import matplotlib.pyplot as plt
     scenes = sorted({r["scene"] for r in rows})
     fig, axes = plt.subplots(1, len(scenes), figsize=(6.5 * len(scenes), 4.5), squeeze=False)
-    markers = {"off": "s", "naive": "o", "incremental": "^"}
+    markers = {"off": "s", "naive": "o", "incremental": "^", "incremental-geometric": "v"}
     for ax, scene in zip(axes[0], scenes):
         mine = [r for r in rows if r["scene"] == scene]
-        for visibility in ("off", "naive", "incremental"):
+        for visibility in ("off", "naive", "incremental", "incremental-geometric"):
             sel = [r for r in mine if r["visibility"] == visibility]
             if sel:
                 ax.scatter([r["area_ms"] for r in sel], [100 * r["rel_rms_truth"] for r in sel],
@@ -312,15 +322,22 @@ def write_page(args, rows, notes, path):
              "slices per pixel (RGBA32UI, logic-op OR; `vtkMRGIVoxelization`), and a ray from a texel to a sample "
              "is marched through it with a bias of 1.5 voxel sizes. *Naive*: one march per texel and sample. "
              "*Incremental* (default): one visibility bit per sample and texel, computed coarse to fine over the "
-             "levels; a bit is reused where the 3x3 coarser neighbours agree, texels are refined where at least "
-             "half the samples disagree, and 2x2 interleaving splits the samples of a block "
-             "(`vtkMRGIVisibilityPyramid`).",
+             "levels; a bit is reused where the 3x3 coarser neighbours on the same surface agree, texels are "
+             "refined where at least half the samples disagree (`vtkMRGIVisibilityPyramid`; 2x2 interleaving "
+             "is available, off by default). Per level one pass decides what each texel reuses or inherits, a "
+             "stencil marks the texels with bits left, and the marches run under it (early stencil culling).",
+             "- **Incremental stencil** (3.4, `vtkMRGIMultiresolution::SetIncrementalStencil`, default on): the "
+             "gather also renders a texel below the geometric selection where its parent's 3x3 visibility masks "
+             "disagree on at least a quarter of the samples (`IncrementalStencilFraction`), so penumbrae on flat "
+             "surfaces are gathered at the resolution the shadow needs; the upsampling interpolates from the "
+             "finest rendered texel. `incremental-geometric` below is the same with the geometric selection "
+             "alone.",
              "- **Phong highlights** (3.2.1): on surfaces with a vtkProperty Specular > 0, a separate pass adds "
              "k_s c_s S with the energy-normalised Phong lobe, discarding lobes that miss the light and sampling "
              "the light's texture on a 5x5 grid inside sharp lobes (`--specular KS:POWER` gives every surface a "
              "material to see it). At full resolution, without visibility.",
              "- Every GPU stage has a C twin in `Rendering/Core` and a parity test (diffuse 3e-7, march 0 of 1.1M "
-             "rays, visibility masks bit-equal, specular 2e-7 in the pass).",
+             "rays, visibility masks bit-equal, incremental stencil bit-equal, specular 2e-7 in the pass).",
              "- On Mesa's llvmpipe a shader invocation stops all its loops after 65535 iterations in total, "
              "silently; the marches are therefore batched (`mrgi_voxel_samples_per_batch`).", "",
              "Not done: the variance shadow query for sharp lobes (3.3.3; the C twin exists), visibility in the "
@@ -333,12 +350,13 @@ def write_page(args, rows, notes, path):
               "(\"truth\") and against the ground truth without visibility (what the gather without "
               "visibility computes, up to its sampling and upsampling).", "",
               "| scene | visibility | voxels | preset | area-light GPU ms | of which visibility pyramid | "
-              "gather | selection ms | work | rays marched | rel. RMS vs truth | rel. RMS vs unshadowed truth |",
-              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+              "gather | selection ms | work | level 0 | rays marched | rel. RMS vs truth | "
+              "rel. RMS vs unshadowed truth |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        lines.append("| %s | %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.3f | %s | %.4f | %.4f |" % (
+        lines.append("| %s | %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.3f | %.3f | %s | %.4f | %.4f |" % (
             r["scene"], r["visibility"], "%d^2" % r["voxels"] if r["voxels"] else "-", r["preset"], r["area_ms"],
-            r["visibility_ms"], r["gather_ms"], r["select_ms"], r["work"],
+            r["visibility_ms"], r["gather_ms"], r["select_ms"], r["work"], r.get("level0", float("nan")),
             "{:,}".format(int(r["rays"])) if r["rays"] else "-", r["rel_rms_truth"], r["rel_rms_unshadowed"]))
     lines += ["", "![error against time](images/area-tradeoff.png)", "",
               "Every setting's error against its GPU time (the black line: no other setting is both faster and "
@@ -356,23 +374,27 @@ def write_page(args, rows, notes, path):
                             "{:,}".format(int(n["rays"])), i["area_ms"], n["area_ms"],
                             n["area_ms"] / max(i["area_ms"], 1e-9), i["rel_rms_truth"], n["rel_rms_truth"],
                             ("Met." if n["area_ms"] >= 3 * i["area_ms"] else
-                             "**Not met** on llvmpipe: the rays saved do not turn into time there, where every "
-                             "fragment of a SIMD group waits for the slowest and the pyramid computes masks for "
-                             "every texel of every level, needed or not.") +
+                             "**Not met** on llvmpipe: the rays saved turn into less time than their share, "
+                             "because a SIMD group of fragments marches the union of its fragments' bits, and the "
+                             "decision, marking and gather passes cost per texel whatever is marched.") +
                             ("" if i["rel_rms_truth"] <= 1.2 * n["rel_rms_truth"] else
-                             " **Nor at equal error**: next to the light (the TV stand just under the screen) "
-                             "coarse receivers average pixels across the stand's edge and sit inside the set; their "
-                             "3x3 neighbourhood agrees that the screen is hidden, so the fine texels inherit or "
-                             "reuse those bits without marching (NPW10's reuse rule has no guard for this; "
-                             "restricting the neighbourhood to receivers on the same surface is the fix to try). "
-                             "The naive query stays accurate there.")))
+                             " **Not at equal error** (more than 1.2x the naive error).")))
+        g = next((r for r in rows if r["scene"] == name and r["visibility"] == "incremental-geometric"), None)
+        if g and i:
+            lines.append("- `%s`, incremental stencil (3.4): relative RMS %.4f against %.4f with the geometric "
+                         "selection alone, %.1f%% against %.1f%% of the pixels gathered at full resolution, "
+                         "%.0f ms against %.0f ms."
+                         % (name, i["rel_rms_truth"], g["rel_rms_truth"], 100 * i.get("level0", 0.0),
+                            100 * g.get("level0", 0.0), i["area_ms"], g["area_ms"]))
         o = pick["off"]
         if o and i:
             lines.append("- `%s`: the gather at the multiresolution texels does %.1f%% of the full-resolution "
                          "work at the balanced preset (NPW10 report 10-15%% of pixels needing per-pixel work)."
                          % (name, 100 * o["work"]))
-    lines += ["", "`work`: texels gathered over valid pixels (the full-resolution gather's work; NPW10 reports "
-              "10-15% of pixels needing per-pixel work). `full`: thresholds 0, every pixel gathers.", "",
+    lines += ["", "`work`: texels gathered at all levels over valid pixels (the full-resolution gather's work). "
+              "`level 0`: the pixels gathered at full resolution (NPW10 report 10-15% of pixels needing "
+              "per-pixel work); the CSV's `levels` column has every level, finest first. `full`: thresholds 0, "
+              "every pixel gathers.", "",
               "## Images", "", "| scene | ground truth | MRGI (balanced) | difference x4 |", "|---|---|---|---|"]
     for name in notes:
         for visibility in sorted({r["visibility"] for r in rows if r["scene"] == name}):
