@@ -896,12 +896,11 @@ float mrgi_area_light_phong_refinement(const mrgi_area_light_lobe* lobe, float e
   return metric < FLT_MAX ? metric : FLT_MAX;
 }
 
-/* The 5 x 5 lobe grid of the header; 0 when the lobe has no finite footprint. */
-static int al_lobe_grid(const mrgi_area_light_uniforms* light,
-                        const mrgi_area_light_texture_pyramid* pyramid, const float position[3],
-                        const float n[3], const mrgi_area_light_lobe* lobe, float power,
-                        float normalisation, float sum[3], int32_t* cells)
+int mrgi_area_light_lobe_grid_cells(const mrgi_area_light_uniforms* light,
+                                    const mrgi_area_light_lobe* lobe,
+                                    mrgi_area_light_lobe_grid* grid)
 {
+  memset(grid, 0, sizeof(*grid));
   const float* r = lobe->reflect;
   const float rn = al_dotf(r, light->normal);
   const float c = fmaxf(fabsf(rn), MRGI_AREA_LIGHT_MIN_COS);
@@ -926,8 +925,10 @@ static int al_lobe_grid(const mrgi_area_light_uniforms* light,
   {
     return 0;
   }
-  const float lod = log2f(fmaxf(hu * (float)light->texture_width / (2.0f * light->half_u),
-                                hv * (float)light->texture_height / (2.0f * light->half_v)));
+  grid->spacing_u = hu;
+  grid->spacing_v = hv;
+  grid->lod = log2f(fmaxf(hu * (float)light->texture_width / (2.0f * light->half_u),
+                          hv * (float)light->texture_height / (2.0f * light->half_v)));
   const int32_t half_grid = MRGI_AREA_LIGHT_LOBE_GRID / 2;
   for (int32_t b = -half_grid; b <= half_grid; ++b)
   {
@@ -945,34 +946,200 @@ static int al_lobe_grid(const mrgi_area_light_uniforms* light,
       {
         continue;
       }
-      ++*cells;
-      const float cell_area = (hi_u - lo_u) * (hi_v - lo_v);
+      const int32_t cell = (b + half_grid) * MRGI_AREA_LIGHT_LOBE_GRID + (a + half_grid);
       const float cu = 0.5f * (lo_u + hi_u), cv = 0.5f * (lo_v + hi_v);
-      float texel[3] = { 1.0f, 1.0f, 1.0f };
-      if (pyramid)
+      ++grid->cells;
+      grid->on_light[cell] = 1;
+      grid->area[cell] = (hi_u - lo_u) * (hi_v - lo_v);
+      grid->u[cell] = cu;
+      grid->v[cell] = cv;
+      for (int k = 0; k < 3; ++k)
       {
-        mrgi_area_light_texture_sample(pyramid, cu / (2.0f * light->half_u) + 0.5f,
-                                       cv / (2.0f * light->half_v) + 0.5f, lod, texel);
+        grid->position[cell][k] =
+          light->center[k] + cu * light->axis_u[k] + cv * light->axis_v[k];
       }
-      const float d[3] = {
-        light->center[0] + cu * light->axis_u[0] + cv * light->axis_v[0] - position[0],
-        light->center[1] + cu * light->axis_u[1] + cv * light->axis_v[1] - position[1],
-        light->center[2] + cu * light->axis_u[2] + cv * light->axis_v[2] - position[2]
-      };
+    }
+  }
+  return 1;
+}
+
+/* Visibility of lobe grid cell `cell` (header, "Shadowed highlights"): its
+ * query's, the dropped corner the mean of its two edge neighbours. */
+static float al_cell_visibility(const float* query_visibility, int32_t cell)
+{
+  const int32_t corner = MRGI_AREA_LIGHT_LOBE_CELLS - 1;
+  if (cell < corner)
+  {
+    return query_visibility[cell];
+  }
+  return 0.5f * (query_visibility[corner - 1] + query_visibility[corner - MRGI_AREA_LIGHT_LOBE_GRID]);
+}
+
+/* The lobe grid's sum (header): every cell on the light acts as a sample. */
+static void al_lobe_grid_sum(const mrgi_area_light_uniforms* light,
+                             const mrgi_area_light_texture_pyramid* pyramid,
+                             const float position[3], const float n[3], const float r[3],
+                             const mrgi_area_light_lobe_grid* grid, float power,
+                             float normalisation, const float* query_visibility, float sum[3])
+{
+  for (int32_t cell = 0; cell < MRGI_AREA_LIGHT_LOBE_CELLS; ++cell)
+  {
+    if (!grid->on_light[cell])
+    {
+      continue;
+    }
+    float texel[3] = { 1.0f, 1.0f, 1.0f };
+    if (pyramid)
+    {
+      mrgi_area_light_texture_sample(pyramid, grid->u[cell] / (2.0f * light->half_u) + 0.5f,
+                                     grid->v[cell] / (2.0f * light->half_v) + 0.5f, grid->lod,
+                                     texel);
+    }
+    const float d[3] = { grid->position[cell][0] - position[0],
+                         grid->position[cell][1] - position[1],
+                         grid->position[cell][2] - position[2] };
+    float r2;
+    const float transfer = al_transfer(light, d, light->normal, grid->area[cell], n, &r2);
+    const float rw = al_dotf(r, d);
+    if (!(transfer > 0.0f) || !(rw > 0.0f))
+    {
+      continue;
+    }
+    float weight = normalisation * powf(rw / sqrtf(r2), power) * transfer;
+    if (query_visibility)
+    {
+      weight *= al_cell_visibility(query_visibility, cell);
+    }
+    sum[0] += light->scale[0] * texel[0] * weight;
+    sum[1] += light->scale[1] * texel[1] * weight;
+    sum[2] += light->scale[2] * texel[2] * weight;
+  }
+}
+
+/* Early-outs, lobe, the count of samples in the lobe and the path (header);
+ * `n` receives the unit normal, `grid` the lobe grid on that path. */
+static void al_specular_classify(const mrgi_area_light_uniforms* light,
+                                 const mrgi_area_light_sample* samples, int32_t count,
+                                 const float position[3], const float normal[3],
+                                 const float view[3], float power, float n[3],
+                                 mrgi_area_light_lobe_grid* grid,
+                                 mrgi_area_light_specular_info* info)
+{
+  memset(info, 0, sizeof(*info));
+  float v[3];
+  if (!al_normalizef(normal, n) || !al_normalizef(view, v))
+  {
+    info->path = MRGI_AREA_LIGHT_SPECULAR_FACING_AWAY;
+    return;
+  }
+  if (al_culled_behind(light, position))
+  {
+    info->path = MRGI_AREA_LIGHT_SPECULAR_BEHIND;
+    return;
+  }
+  if (al_culled_facing(light, position, n))
+  {
+    info->path = MRGI_AREA_LIGHT_SPECULAR_FACING_AWAY;
+    return;
+  }
+  mrgi_area_light_phong_lobe(light, position, n, v, power, &info->lobe);
+  if (!(info->lobe.peak >= MRGI_AREA_LIGHT_LOBE_DISCARD))
+  {
+    info->path = MRGI_AREA_LIGHT_SPECULAR_LOBE_MISS;
+    return;
+  }
+  /* Every sample inside the half-maximum cone counts, visible or not. */
+  const float* r = info->lobe.reflect;
+  for (int32_t j = 0; j < count; ++j)
+  {
+    const mrgi_area_light_sample* sample = samples + j;
+    const float d[3] = { sample->position[0] - position[0], sample->position[1] - position[1],
+                         sample->position[2] - position[2] };
+    float r2;
+    const float transfer = al_transfer(light, d, sample->normal, sample->area, n, &r2);
+    const float rw = al_dotf(r, d);
+    if (!(transfer > 0.0f) || !(rw > 0.0f))
+    {
+      continue;
+    }
+    if (powf(rw / sqrtf(r2), power) >= MRGI_AREA_LIGHT_LOBE_CUTOFF)
+    {
+      ++info->samples_in_lobe;
+    }
+  }
+  info->path = MRGI_AREA_LIGHT_SPECULAR_SAMPLES;
+  if (info->samples_in_lobe < MRGI_AREA_LIGHT_LOBE_MIN_SAMPLES && info->lobe.reaches_plane &&
+      mrgi_area_light_lobe_grid_cells(light, &info->lobe, grid))
+  {
+    info->path = MRGI_AREA_LIGHT_SPECULAR_LOBE_GRID;
+    info->grid_cells = grid->cells;
+  }
+}
+
+void mrgi_area_light_specular_classify(const mrgi_area_light_uniforms* light,
+                                       const mrgi_area_light_sample* samples, int32_t count,
+                                       const float position[3], const float normal[3],
+                                       const float view[3], float power,
+                                       mrgi_area_light_specular_info* info)
+{
+  float n[3];
+  mrgi_area_light_lobe_grid grid;
+  al_specular_classify(light, samples, count, position, normal, view, power, n, &grid, info);
+}
+
+void mrgi_area_light_specular_visible(const mrgi_area_light_uniforms* light,
+                                      const mrgi_area_light_sample* samples, int32_t count,
+                                      const mrgi_area_light_texture_pyramid* pyramid,
+                                      const float position[3], const float normal[3],
+                                      const float view[3], float power, const uint32_t* sample_mask,
+                                      const float* query_visibility, float out[3],
+                                      mrgi_area_light_specular_info* info)
+{
+  mrgi_area_light_specular_info local;
+  mrgi_area_light_lobe_grid grid;
+  float n[3];
+  al_specular_classify(light, samples, count, position, normal, view, power, n, &grid, &local);
+  out[0] = out[1] = out[2] = 0.0f;
+  /* Normalised Phong: (n + 2) / (2 pi) times the pi of cos dw = pi T. */
+  const float normalisation = 0.5f * (power + 2.0f);
+  const float* r = local.lobe.reflect;
+  float sum[3] = { 0.0f, 0.0f, 0.0f };
+  if (local.path == MRGI_AREA_LIGHT_SPECULAR_LOBE_GRID)
+  {
+    al_lobe_grid_sum(light, pyramid, position, n, r, &grid, power, normalisation,
+                     query_visibility, sum);
+  }
+  else if (local.path == MRGI_AREA_LIGHT_SPECULAR_SAMPLES)
+  {
+    for (int32_t j = 0; j < count; ++j)
+    {
+      const mrgi_area_light_sample* sample = samples + j;
+      const float d[3] = { sample->position[0] - position[0], sample->position[1] - position[1],
+                           sample->position[2] - position[2] };
       float r2;
-      const float transfer = al_transfer(light, d, light->normal, cell_area, n, &r2);
+      const float transfer = al_transfer(light, d, sample->normal, sample->area, n, &r2);
       const float rw = al_dotf(r, d);
       if (!(transfer > 0.0f) || !(rw > 0.0f))
       {
         continue;
       }
+      if (sample_mask && !((sample_mask[j >> 5] >> (uint32_t)(j & 31)) & 1u))
+      {
+        continue; /* occluded */
+      }
       const float weight = normalisation * powf(rw / sqrtf(r2), power) * transfer;
-      sum[0] += light->scale[0] * texel[0] * weight;
-      sum[1] += light->scale[1] * texel[1] * weight;
-      sum[2] += light->scale[2] * texel[2] * weight;
+      sum[0] += sample->radiance[0] * weight;
+      sum[1] += sample->radiance[1] * weight;
+      sum[2] += sample->radiance[2] * weight;
     }
   }
-  return 1;
+  out[0] = sum[0];
+  out[1] = sum[1];
+  out[2] = sum[2];
+  if (info)
+  {
+    *info = local;
+  }
 }
 
 void mrgi_area_light_specular(const mrgi_area_light_uniforms* light,
@@ -981,79 +1148,6 @@ void mrgi_area_light_specular(const mrgi_area_light_uniforms* light,
                               const float position[3], const float normal[3], const float view[3],
                               float power, float out[3], mrgi_area_light_specular_info* info)
 {
-  mrgi_area_light_specular_info local;
-  memset(&local, 0, sizeof(local));
-  out[0] = out[1] = out[2] = 0.0f;
-  float n[3], v[3];
-  if (!al_normalizef(normal, n) || !al_normalizef(view, v))
-  {
-    local.path = MRGI_AREA_LIGHT_SPECULAR_FACING_AWAY;
-  }
-  else if (al_culled_behind(light, position))
-  {
-    local.path = MRGI_AREA_LIGHT_SPECULAR_BEHIND;
-  }
-  else if (al_culled_facing(light, position, n))
-  {
-    local.path = MRGI_AREA_LIGHT_SPECULAR_FACING_AWAY;
-  }
-  else
-  {
-    mrgi_area_light_phong_lobe(light, position, n, v, power, &local.lobe);
-    if (!(local.lobe.peak >= MRGI_AREA_LIGHT_LOBE_DISCARD))
-    {
-      local.path = MRGI_AREA_LIGHT_SPECULAR_LOBE_MISS;
-    }
-    else
-    {
-      /* Normalised Phong: (n + 2) / (2 pi) times the pi of cos dw = pi T. */
-      const float normalisation = 0.5f * (power + 2.0f);
-      const float* r = local.lobe.reflect;
-      float sum[3] = { 0.0f, 0.0f, 0.0f };
-      for (int32_t j = 0; j < count; ++j)
-      {
-        const mrgi_area_light_sample* sample = samples + j;
-        const float d[3] = { sample->position[0] - position[0], sample->position[1] - position[1],
-                             sample->position[2] - position[2] };
-        float r2;
-        const float transfer = al_transfer(light, d, sample->normal, sample->area, n, &r2);
-        const float rw = al_dotf(r, d);
-        if (!(transfer > 0.0f) || !(rw > 0.0f))
-        {
-          continue;
-        }
-        const float lobe = powf(rw / sqrtf(r2), power);
-        if (lobe >= MRGI_AREA_LIGHT_LOBE_CUTOFF)
-        {
-          ++local.samples_in_lobe;
-        }
-        const float weight = normalisation * lobe * transfer;
-        sum[0] += sample->radiance[0] * weight;
-        sum[1] += sample->radiance[1] * weight;
-        sum[2] += sample->radiance[2] * weight;
-      }
-      local.path = MRGI_AREA_LIGHT_SPECULAR_SAMPLES;
-      if (local.samples_in_lobe < MRGI_AREA_LIGHT_LOBE_MIN_SAMPLES && local.lobe.reaches_plane)
-      {
-        float grid[3] = { 0.0f, 0.0f, 0.0f };
-        int32_t cells = 0;
-        if (al_lobe_grid(light, pyramid, position, n, &local.lobe, power, normalisation, grid,
-                         &cells))
-        {
-          local.path = MRGI_AREA_LIGHT_SPECULAR_LOBE_GRID;
-          local.grid_cells = cells;
-          sum[0] = grid[0];
-          sum[1] = grid[1];
-          sum[2] = grid[2];
-        }
-      }
-      out[0] = sum[0];
-      out[1] = sum[1];
-      out[2] = sum[2];
-    }
-  }
-  if (info)
-  {
-    *info = local;
-  }
+  mrgi_area_light_specular_visible(light, samples, count, pyramid, position, normal, view, power,
+                                   NULL, NULL, out, info);
 }

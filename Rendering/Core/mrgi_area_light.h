@@ -240,6 +240,40 @@
  * the receiver (2^level pixels: s = 2^level * 2 e tan(fov / 2) / height
  * for a perspective camera), e the distance from the eye.
  *
+ * ## Shadowed highlights ([NPW10] 3.3.1-3.3.3)
+ *
+ * mrgi_area_light_specular_visible() is mrgi_area_light_specular() with
+ * visibility; the visibility itself is computed elsewhere (voxel marches,
+ * mrgi_voxel_march.h; incremental masks and the variance shadow query,
+ * mrgi_voxel_incremental.h) and passed in, so that this stays the twin of
+ * the specular shader alone:
+ *
+ * - the path (samples or lobe grid) is decided exactly as without
+ *   visibility: samples_in_lobe counts every sample inside the half-maximum
+ *   cone, visible or not (visibility changes the light that arrives, not
+ *   how densely the light is sampled inside the lobe);
+ * - sample path (glossy lobes): sample j's term is multiplied by its
+ *   visibility bit, bit j & 31 of word j >> 5 of `sample_mask` (the layout
+ *   of mrgi_voxel_incremental.h section 1; "visibility from a fixed set of
+ *   256 VPLs", 3.3.3);
+ * - lobe-grid path (sharp lobes): cell (a, b)'s term is multiplied by a
+ *   visibility in [0, 1] from `query_visibility`, G G - 1 floats (the
+ *   variance shadow query's MRGI_VOXEL_VSM_QUERIES): cell (a, b) is query
+ *   (b + G/2) G + (a + G/2) (mrgi_voxel_vsm_query_cell() is its inverse;
+ *   "we send only 24 visibility queries (ignoring one corner on the 5 x 5
+ *   grid)"). The paper does not say what the dropped corner (G/2, G/2)
+ *   receives; here it takes the mean of its two edge neighbours in the
+ *   grid, (G/2 - 1, G/2) and (G/2, G/2 - 1), the queried cells nearest to
+ *   it, as far from the lobe's centre as it is along one axis (its lobe
+ *   weight is small: about 2^-8 of the peak for a round footprint, 2^-4 at
+ *   most, since the spacing is the half-maximum extent). Neither 1 (light
+ *   leaking through a shadow's edge) nor 0 (a dark fringe on lit floors)
+ *   would follow the shadow.
+ *
+ * NULL for either means visible (the unshadowed function, bit for bit).
+ * mrgi_area_light_lobe_grid_cells() gives the cells' geometry, the points
+ * the queries aim at; mrgi_area_light_specular_classify() the path alone.
+ *
  * ## Precision
  *
  * The per-receiver functions compute in float, in the order written, with
@@ -564,6 +598,69 @@ void mrgi_area_light_specular(const mrgi_area_light_uniforms* light,
                               const mrgi_area_light_texture_pyramid* pyramid,
                               const float position[3], const float normal[3], const float view[3],
                               float power, float out[3], mrgi_area_light_specular_info* info);
+
+/**
+ * @brief mrgi_area_light_specular() with visibility (file comment, "Shadowed
+ *        highlights").
+ * @param sample_mask      mrgi_voxel_mask_words(count) words, sample j = bit
+ *                         j & 31 of word j >> 5 (1 visible), or NULL (all visible).
+ * @param query_visibility MRGI_AREA_LIGHT_LOBE_GRID^2 - 1 floats in [0, 1],
+ *                         cell (a, b) = query (b + G/2) G + (a + G/2), the
+ *                         corner (G/2, G/2) the mean of queries G G - 2 and
+ *                         G G - 1 - G; or NULL (all visible).
+ * Other parameters as mrgi_area_light_specular(); `info` is the same as
+ * without visibility.
+ */
+void mrgi_area_light_specular_visible(const mrgi_area_light_uniforms* light,
+                                      const mrgi_area_light_sample* samples, int32_t count,
+                                      const mrgi_area_light_texture_pyramid* pyramid,
+                                      const float position[3], const float normal[3],
+                                      const float view[3], float power, const uint32_t* sample_mask,
+                                      const float* query_visibility, float out[3],
+                                      mrgi_area_light_specular_info* info);
+
+/**
+ * @brief What mrgi_area_light_specular() decides before summing: the path,
+ *        samples_in_lobe, grid_cells and the lobe, as its `info` (file
+ *        comment). The GPU's variance shadow query pass needs the path
+ *        alone (it marches toward the lobe grid's cells only).
+ */
+void mrgi_area_light_specular_classify(const mrgi_area_light_uniforms* light,
+                                       const mrgi_area_light_sample* samples, int32_t count,
+                                       const float position[3], const float normal[3],
+                                       const float view[3], float power,
+                                       mrgi_area_light_specular_info* info);
+
+/** Cells of the lobe grid (G x G). */
+#define MRGI_AREA_LIGHT_LOBE_CELLS (MRGI_AREA_LIGHT_LOBE_GRID * MRGI_AREA_LIGHT_LOBE_GRID)
+
+/**
+ * The lobe grid of one receiver (file comment, "Phong specular"): cell
+ * (a, b), a, b in -G/2..G/2, is entry (b + G/2) G + (a + G/2) (rows of
+ * constant b, a fastest: the order of the sum).
+ */
+typedef struct mrgi_area_light_lobe_grid
+{
+  float spacing_u;  /**< h_u: the cells' size along u before clipping. */
+  float spacing_v;  /**< h_v. */
+  float lod;        /**< Pyramid level of detail of the cells' texture reads. */
+  int32_t cells;    /**< Cells on the light (grid_cells of the info). */
+  int32_t on_light[MRGI_AREA_LIGHT_LOBE_CELLS]; /**< 1: the clipped cell is not empty. */
+  float u[MRGI_AREA_LIGHT_LOBE_CELLS];    /**< Clipped cell centre, (y - c).axis_u (0 when off the light). */
+  float v[MRGI_AREA_LIGHT_LOBE_CELLS];    /**< ... (y - c).axis_v. */
+  float area[MRGI_AREA_LIGHT_LOBE_CELLS]; /**< Clipped cell area (0 when off the light). */
+  float position[MRGI_AREA_LIGHT_LOBE_CELLS][3]; /**< The centre c + u axis_u + v axis_v, the light's space. */
+} mrgi_area_light_lobe_grid;
+
+/**
+ * @brief The lobe grid of `lobe` (from mrgi_area_light_phong_lobe(), with
+ *        reaches_plane), in float as the specular sum computes it.
+ * @return 1, or 0 (grid zeroed) when the lobe has no finite footprint (the
+ *         specular then keeps the sample sum).
+ */
+int mrgi_area_light_lobe_grid_cells(const mrgi_area_light_uniforms* light,
+                                    const mrgi_area_light_lobe* lobe,
+                                    mrgi_area_light_lobe_grid* grid);
 
 #ifdef __cplusplus
 }

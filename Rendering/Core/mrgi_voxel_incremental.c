@@ -578,10 +578,10 @@ mrgi_status mrgi_voxel_vsm_resolve(int32_t width, int32_t height, int32_t query_
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "VSM query count %d is outside 1..%d",
                           query_count, MRGI_VOXEL_MAX_SAMPLES);
   }
-  if (radius < 0 || radius > 16)
+  if (radius < 0 || radius > MRGI_VOXEL_VSM_MAX_RADIUS)
   {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "VSM blur radius %d is outside 0..16",
-                          radius);
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "VSM blur radius %d is outside 0..%d",
+                          radius, MRGI_VOXEL_VSM_MAX_RADIUS);
   }
   if (!(min_variance >= 0.0f) || !isfinite(min_variance))
   {
@@ -632,4 +632,61 @@ mrgi_status mrgi_voxel_vsm_resolve(int32_t width, int32_t height, int32_t query_
     }
   }
   return MRGI_OK;
+}
+
+_Static_assert(MRGI_VOXEL_VSM_QUERIES == MRGI_AREA_LIGHT_LOBE_CELLS - 1,
+               "VSM query j is lobe grid cell j; the last cell (a corner) is dropped");
+
+int mrgi_voxel_vsm_specular_moments(const mrgi_voxel_view* view,
+                                    const mrgi_area_light_uniforms* light,
+                                    const mrgi_area_light_sample* samples, int32_t count,
+                                    const float world_to_eye[16], const float position[3],
+                                    const float normal[3], const float view_dir[3], float power,
+                                    const float receiver_eye[3], const float normal_eye[3],
+                                    uint32_t phase_set, float* moments)
+{
+  memset(moments, 0, 2 * MRGI_VOXEL_VSM_QUERIES * sizeof(float));
+  mrgi_area_light_specular_info info;
+  mrgi_area_light_specular_classify(light, samples, count, position, normal, view_dir, power,
+                                    &info);
+  if (info.path != MRGI_AREA_LIGHT_SPECULAR_LOBE_GRID)
+  {
+    return 0;
+  }
+  mrgi_area_light_lobe_grid grid;
+  mrgi_area_light_lobe_grid_cells(light, &info.lobe, &grid);
+  const float* m = world_to_eye;
+  const float* ln = light->normal;
+  const float light_normal[3] = { m[0] * ln[0] + m[4] * ln[1] + m[8] * ln[2],
+                                  m[1] * ln[0] + m[5] * ln[1] + m[9] * ln[2],
+                                  m[2] * ln[0] + m[6] * ln[1] + m[10] * ln[2] };
+  for (int32_t j = 0; j < MRGI_VOXEL_VSM_QUERIES; ++j)
+  {
+    if (!((phase_set >> (uint32_t)(j & 3)) & 1u))
+    {
+      continue;
+    }
+    float z = 1.0f; /* a cell off the light: no light there to hide */
+    if (grid.on_light[j])
+    {
+      const float* y = grid.position[j];
+      float L[3], NL[3], PL[3];
+      for (int c = 0; c < 3; ++c)
+      {
+        L[c] = m[c] * y[0] + m[4 + c] * y[1] + m[8 + c] * y[2] + m[12 + c];
+        NL[c] = light_normal[c];
+        PL[c] = receiver_eye[c] - L[c];
+      }
+      if (light->two_sided && NL[0] * PL[0] + NL[1] * PL[1] + NL[2] * PL[2] < 0.0f)
+      {
+        NL[0] = -NL[0];
+        NL[1] = -NL[1];
+        NL[2] = -NL[2];
+      }
+      z = mrgi_voxel_march_occluder_fraction(view, receiver_eye, normal_eye, L, NL);
+    }
+    moments[2 * j] = z;
+    moments[2 * j + 1] = z * z;
+  }
+  return 1;
 }

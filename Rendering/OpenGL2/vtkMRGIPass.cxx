@@ -11,6 +11,7 @@
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIVPLSelection.h"
+#include "vtkMRGIVarianceShadowQuery.h"
 #include "vtkMRGIVisibilityPyramid.h"
 #include "vtkMRGIVoxelization.h"
 #include "vtkMatrix4x4.h"
@@ -50,10 +51,13 @@
 #include "mrgi_buffers.h"
 #include "mrgi_area_light.h"
 #include "mrgi_multires.h"
+#include "mrgi_voxel_march.h"
 #include "mrgi_vpl.h"
 
 #include <algorithm>
 #include <cstring>
+#include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkMRGIPass);
 
@@ -242,6 +246,7 @@ vtkMRGIPass::vtkMRGIPass()
   // 5-15% of the area-light time but raised the error against the ground
   // truth from 0.111 to 0.179 (living room; Cornell box 0.137 -> 0.142).
   this->VisibilityPyramid->InterleaveOff();
+  this->VarianceShadowQuery = vtkMRGIVarianceShadowQuery::New();
   this->OpaqueSequence = vtkSequencePass::New();
   for (int i = 0; i < 16; ++i)
   {
@@ -273,6 +278,8 @@ vtkMRGIPass::~vtkMRGIPass()
   delete this->AddQuad;
   delete this->OutputQuad;
   delete this->SpecularQuad;
+  delete this->SpecularMaskedQuad;
+  delete this->SpecularMarchedQuad;
   if (this->FXAAFilter)
   {
     this->FXAAFilter->Delete();
@@ -283,6 +290,7 @@ vtkMRGIPass::~vtkMRGIPass()
   this->OpaqueSequence->Delete();
   this->Voxelization->Delete();
   this->VisibilityPyramid->Delete();
+  this->VarianceShadowQuery->Delete();
   this->RemoveAllAreaLights();
 }
 
@@ -395,10 +403,13 @@ void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
   this->Multiresolution->ReleaseGraphicsResources(w);
   this->Voxelization->ReleaseGraphicsResources(w);
   this->VisibilityPyramid->ReleaseGraphicsResources(w);
+  this->VarianceShadowQuery->ReleaseGraphicsResources(w);
   Release(this->GatherQuad, w);
   Release(this->AddQuad, w);
   Release(this->OutputQuad, w);
   Release(this->SpecularQuad, w);
+  Release(this->SpecularMaskedQuad, w);
+  Release(this->SpecularMarchedQuad, w);
   for (vtkMRGIAreaLight* light : this->AreaLights)
   {
     light->ReleaseGraphicsResources(w);
@@ -891,7 +902,7 @@ bool vtkMRGIPass::RenderAreaLights(
       break;
     }
     this->RenderAdd(renWin, this->AreaDirectTexture, this->AreaSumTexture);
-    if (this->SpecularCaptured && this->RenderAreaSpecular(renWin, light, timer))
+    if (this->SpecularCaptured && this->RenderAreaSpecular(renWin, light, voxels, masks, timer))
     {
       this->RenderAdd(renWin, this->AreaDirectTexture, this->AreaSumTexture);
     }
@@ -907,25 +918,106 @@ bool vtkMRGIPass::RenderAreaLights(
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIPass::RenderAreaSpecular(
-  vtkOpenGLRenderWindow* renWin, vtkMRGIAreaLight* light, vtkRenderTimerLog* timer)
+bool vtkMRGIPass::RenderAreaSpecular(vtkOpenGLRenderWindow* renWin, vtkMRGIAreaLight* light,
+  vtkMRGIVoxelization* voxels, vtkMRGIVisibilityPyramid* masks, vtkRenderTimerLog* timer)
 {
-  static const std::string body = std::string(vtkMRGIVPLIrradiance) +
+  // nichols-penmatsa-wyman-2010 3.2.1 (the highlight, its own pass) and
+  // 3.3.3 (its shadows): with visibility, each sample's term of a glossy
+  // lobe counts where the sample is visible (the level-0 bit of the
+  // incremental masks, or a march per sample: the naive query, in batches
+  // that fit llvmpipe's loop budget), and each lobe-grid cell of a sharp
+  // lobe is weighted by the variance shadow query (its moments pass first).
+  vtkMRGIShaderUtilities::ScopedStage step(timer, "specular");
+  bool shadowed = voxels != nullptr;
+  if (shadowed)
+  {
+    this->VarianceShadowQuery->SetStageTimer(timer);
+    shadowed = this->VarianceShadowQuery->ComputeMoments(renWin, this->PositionTexture,
+      this->NormalTexture, this->SpecularTexture, this->ShininessTexture, this->Viewport, light,
+      voxels, this->LastViewToWorldFloat, this->LastParallel);
+    this->VarianceShadowQuery->SetStageTimer(nullptr);
+    if (!shadowed)
+    {
+      vtkErrorMacro("area lights: no variance shadow query; drawing the highlights without shadows");
+    }
+  }
+  const bool masked = shadowed && masks != nullptr;
+  const bool marched = shadowed && !masked;
+  static const std::string unshadowedBody = std::string(vtkMRGIVPLIrradiance) +
     vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
-  vtkShaderProgram* program = ReadyQuad(this->SpecularQuad, renWin, body.c_str());
+  static const std::string maskedBody =
+    std::string("#define MRGI_AREA_SPECULAR_VISIBILITY 1\n#define MRGI_AREA_SPECULAR_MASKS 1\n") +
+    vtkMRGIVPLIrradiance + vtkMRGIVarianceShadowQuery::GetResolveShaderSource() +
+    vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
+  static const std::string marchedBody =
+    std::string("#define MRGI_AREA_SPECULAR_VISIBILITY 1\n#define MRGI_AREA_SPECULAR_BATCHES 1\n") +
+    vtkMRGIVoxelization::GetMarchShaderSource() + vtkMRGIVPLIrradiance +
+    vtkMRGIVarianceShadowQuery::GetResolveShaderSource() +
+    vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
+  vtkShaderProgram* program = masked
+    ? ReadyQuad(this->SpecularMaskedQuad, renWin, maskedBody.c_str())
+    : marched ? ReadyQuad(this->SpecularMarchedQuad, renWin, marchedBody.c_str())
+              : ReadyQuad(this->SpecularQuad, renWin, unshadowedBody.c_str());
+  vtkOpenGLQuadHelper* quad =
+    masked ? this->SpecularMaskedQuad : (marched ? this->SpecularMarchedQuad : this->SpecularQuad);
   if (!program)
   {
     vtkErrorMacro("could not build the area-light specular shader");
     return false;
   }
-  vtkMRGIShaderUtilities::ScopedStage step(timer, "specular");
-  if (!light->SetShaderUniforms(program, renWin))
+  int sampleCount = 0;
+  if (!light->SetShaderUniforms(program, renWin) || !light->GetSampleTexture(renWin, &sampleCount))
   {
     return false;
+  }
+  // Texture units: the G-buffer's 4, the light's 2, and with shadows the
+  // moments' 3 and the masks' (up to 4) or the voxels (1): 13 at most.
+  std::vector<vtkTextureObject*> active;
+  if (shadowed)
+  {
+    const int origin[2] = { this->Viewport[0], this->Viewport[1] };
+    program->SetUniform2i("mrgiViewportOrigin", origin);
+    this->VarianceShadowQuery->SetResolveUniforms(program);
+    if (masked)
+    {
+      // Level 0 of the pyramid is the viewport at full resolution; missing
+      // words (fewer than 384 samples) read the first texture: their bits
+      // are never asked for.
+      vtkTextureObject* first = masks->GetMaskTexture(0, 0);
+      first->Activate();
+      active.push_back(first);
+      for (int w = 0; w < 4; ++w)
+      {
+        vtkTextureObject* t = masks->GetMaskTexture(0, w);
+        if (t && t != first)
+        {
+          t->Activate();
+          active.push_back(t);
+        }
+        program->SetUniformi(("mrgiVisibilityMask" + std::to_string(w)).c_str(),
+          (t ? t : first)->GetTextureUnit());
+      }
+    }
+    else
+    {
+      double w2v[16];
+      voxels->GetLastWorldToView(w2v);
+      float worldToView[16];
+      std::copy(w2v, w2v + 16, worldToView);
+      program->SetUniformMatrix4x4("mrgiWCToVC", worldToView);
+      if (!voxels->SetMarchUniforms(program))
+      {
+        this->VarianceShadowQuery->DeactivateTextures();
+        light->DeactivateTextures();
+        return false;
+      }
+      active.push_back(voxels->GetVoxelTexture());
+    }
   }
   vtkOpenGLFramebufferObject* fbo = this->FrameBuffer;
   vtkOpenGLState* ostate = renWin->GetState();
   ViewportQuadState state(ostate, this->Viewport);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
   fbo->SaveCurrentBindingsAndBuffers();
   fbo->Bind();
   fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
@@ -941,10 +1033,39 @@ bool vtkMRGIPass::RenderAreaSpecular(
   }
   program->SetUniformMatrix4x4("mrgiVCToWC", this->LastViewToWorldFloat);
   program->SetUniformi("mrgiParallel", this->LastParallel ? 1 : 0);
-  this->SpecularQuad->Render();
+  if (marched)
+  {
+    // One march per sample and pixel can run past the loop iterations
+    // llvmpipe gives one invocation (mrgi_voxel_march.h): batches of
+    // samples, one draw each, added to the first.
+    const int batch = mrgi_voxel_samples_per_batch(voxels->GetMaxSteps());
+    for (int first = 0; first < sampleCount; first += batch)
+    {
+      if (first == batch)
+      {
+        ostate->vtkglEnable(GL_BLEND);
+        ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
+      }
+      program->SetUniformi("mrgiSpecularBatchFirst", first);
+      program->SetUniformi("mrgiSpecularBatchCount", std::min(batch, sampleCount - first));
+      quad->Render();
+    }
+  }
+  else
+  {
+    quad->Render();
+  }
   for (vtkTextureObject* t : inputs)
   {
     t->Deactivate();
+  }
+  for (vtkTextureObject* t : active)
+  {
+    t->Deactivate();
+  }
+  if (shadowed)
+  {
+    this->VarianceShadowQuery->DeactivateTextures();
   }
   light->DeactivateTextures();
   fbo->UnBind();
@@ -1378,6 +1499,8 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
   this->Voxelization->PrintSelf(os, indent.GetNextIndent());
   os << indent << "VisibilityPyramid:\n";
   this->VisibilityPyramid->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "VarianceShadowQuery:\n";
+  this->VarianceShadowQuery->PrintSelf(os, indent.GetNextIndent());
   os << indent << "BufferSize: " << this->BufferSize[0] << " x " << this->BufferSize[1] << "\n";
   for (int i = 0; i < this->GetNumberOfStages(); ++i)
   {

@@ -51,6 +51,7 @@ class vtkFloatArray;
 class vtkImageData;
 class vtkMRGIAreaLight;
 class vtkMRGIMultiresolution;
+class vtkMRGIVarianceShadowQuery;
 class vtkMRGIVisibilityPyramid;
 class vtkMRGIVoxelization;
 class vtkMRGIReflectiveShadowMapPass;
@@ -176,7 +177,8 @@ public:
   /**
    * Phong highlights of the area lights on surfaces with a vtkProperty
    * Specular > 0 (nichols-penmatsa-wyman-2010 3.2.1; default on): the
-   * G-buffer then also captures k_s c_s and SpecularPower.
+   * G-buffer then also captures k_s c_s and SpecularPower. Shadowed as
+   * AreaLightVisibility says (3.3.3; see GetVarianceShadowQuery()).
    */
   vtkSetMacro(AreaLightSpecular, bool);
   vtkGetMacro(AreaLightSpecular, bool);
@@ -188,6 +190,18 @@ public:
 
   /** The incremental visibility (knobs, per-level ray statistics of the last light gathered). */
   vtkMRGIVisibilityPyramid* GetVisibilityPyramid() { return this->VisibilityPyramid; }
+
+  /**
+   * The shadows of sharp area-light highlights (NPW10 3.3.3's variance
+   * shadow query: blur radius, minimum variance, the last light's moments).
+   * With AreaLightVisibility on, a highlight is shadowed like the diffuse
+   * light: on glossy lobes each light sample's term counts where the
+   * sample is visible (the texel's bit of the incremental visibility at
+   * full resolution, or a voxel march per sample when visibility is naive
+   * or the light has more samples than the pyramid takes); on sharp lobes
+   * (the 5 x 5 lobe grid) each cell's term is weighted by this query.
+   */
+  vtkMRGIVarianceShadowQuery* GetVarianceShadowQuery() { return this->VarianceShadowQuery; }
 
   /**
    * The direct light of the area lights in the last frame (albedo x X,
@@ -302,8 +316,12 @@ protected:
     vtkRenderTimerLog* timer, float viewToWorld[16], bool& parallel);
   bool RenderMultiresolution(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, int vplCount,
     vtkRenderTimerLog* timer);
-  // One area light's Phong highlight into AreaDirectTexture (full resolution).
-  bool RenderAreaSpecular(vtkOpenGLRenderWindow* renWin, vtkMRGIAreaLight* light, vtkRenderTimerLog* timer);
+  // One area light's Phong highlight into AreaDirectTexture (full resolution),
+  // shadowed when `voxels` (this frame's voxelization) is given: sample bits
+  // from `masks` (updated for this light) or marched, lobe-grid cells by the
+  // variance shadow query.
+  bool RenderAreaSpecular(vtkOpenGLRenderWindow* renWin, vtkMRGIAreaLight* light,
+    vtkMRGIVoxelization* voxels, vtkMRGIVisibilityPyramid* masks, vtkRenderTimerLog* timer);
   // Every area light's direct light, added to the colour; `selected`: this
   // frame's selection exists (the indirect light made it).
   bool RenderAreaLights(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, bool selected,
@@ -336,6 +354,7 @@ protected:
   int AreaLightVisibility = VisibilityIncremental;
   vtkMRGIVoxelization* Voxelization = nullptr;
   vtkMRGIVisibilityPyramid* VisibilityPyramid = nullptr;
+  vtkMRGIVarianceShadowQuery* VarianceShadowQuery = nullptr;
 
   vtkMRGIReflectiveShadowMapPass* RSMPass = nullptr;
   vtkMRGIVPLSelection* VPLSelection = nullptr;
@@ -355,7 +374,9 @@ protected:
   vtkOpenGLQuadHelper* GatherQuad = nullptr;
   vtkOpenGLQuadHelper* AddQuad = nullptr;
   vtkOpenGLQuadHelper* OutputQuad = nullptr;
-  vtkOpenGLQuadHelper* SpecularQuad = nullptr;
+  vtkOpenGLQuadHelper* SpecularQuad = nullptr;        // unshadowed
+  vtkOpenGLQuadHelper* SpecularMaskedQuad = nullptr;  // shadowed, sample bits from the masks
+  vtkOpenGLQuadHelper* SpecularMarchedQuad = nullptr; // shadowed, samples marched in batches
   vtkOpenGLFXAAFilter* FXAAFilter = nullptr;
 
   std::vector<std::string> StageNames;

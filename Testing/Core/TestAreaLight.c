@@ -1268,6 +1268,125 @@ static void test_lobe_grid(void)
   mrgi_image_destroy(&texture);
 }
 
+/* Visibility in the specular sum (header, "Shadowed highlights"): the
+ * path never depends on it; sample bits and query visibilities weight the
+ * terms linearly; the dropped corner follows its two edge neighbours. */
+static void test_specular_visibility(void)
+{
+  mrgi_image texture = random_texture(16, 16, 3, 5);
+  mrgi_area_light light = ceiling_light(1.0, 1.0, 2.0);
+  light.texture = &texture;
+  const double p[3] = { 0.3, 0.0, 0.0 }, n[3] = { 0, 0, 1 };
+  const double v[3] = { 0.2 + 0.3, -0.15, 1.0 };
+  const float pf[3] = { 0.3f, 0.0f, 0.0f }, nf[3] = { 0, 0, 1 };
+  const float vf[3] = { 0.5f, -0.15f, 1.0f };
+  /* 1. sample path (n = 10, 256 samples) */
+  light_samples t = make_samples(&light, 256, 0, 1);
+  float full[3], out[3], even[3], odd[3];
+  mrgi_area_light_specular_info info, vinfo;
+  specular_at(&t, p, n, v, 10.0f, full, &info);
+  MRGI_CHECK(info.path == MRGI_AREA_LIGHT_SPECULAR_SAMPLES && full[1] > 0.0f);
+  uint32_t ones[8], none[8], evens[8], odds[8];
+  for (int w = 0; w < 8; ++w)
+  {
+    ones[w] = 0xffffffffu;
+    none[w] = 0u;
+    evens[w] = 0x55555555u;
+    odds[w] = 0xaaaaaaaau;
+  }
+  mrgi_area_light_specular_visible(&t.uniforms, t.samples, t.count, &t.pyramid, pf, nf, vf, 10.0f,
+                                   ones, NULL, out, &vinfo);
+  MRGI_CHECK(memcmp(out, full, sizeof(out)) == 0 && vinfo.path == info.path &&
+             vinfo.samples_in_lobe == info.samples_in_lobe);
+  mrgi_area_light_specular_visible(&t.uniforms, t.samples, t.count, &t.pyramid, pf, nf, vf, 10.0f,
+                                   none, NULL, out, &vinfo);
+  MRGI_CHECK(out[0] == 0.0f && out[1] == 0.0f && out[2] == 0.0f);
+  MRGI_CHECK(vinfo.path == info.path && vinfo.samples_in_lobe == info.samples_in_lobe);
+  mrgi_area_light_specular_visible(&t.uniforms, t.samples, t.count, &t.pyramid, pf, nf, vf, 10.0f,
+                                   evens, NULL, even, NULL);
+  mrgi_area_light_specular_visible(&t.uniforms, t.samples, t.count, &t.pyramid, pf, nf, vf, 10.0f,
+                                   odds, NULL, odd, NULL);
+  for (int c = 0; c < 3; ++c)
+  {
+    MRGI_CHECK(even[c] > 0.0f && odd[c] > 0.0f);
+    MRGI_CHECK(rel(even[c] + odd[c], full[c]) < 1e-5);
+  }
+  free_samples(&t);
+  /* 2. lobe-grid path (n = 128, 4 samples): the cells and their visibility */
+  t = make_samples(&light, 4, 0, 1);
+  specular_at(&t, p, n, v, 128.0f, full, &info);
+  MRGI_CHECK(info.path == MRGI_AREA_LIGHT_SPECULAR_LOBE_GRID && info.grid_cells == 25);
+  mrgi_area_light_specular_info cinfo;
+  mrgi_area_light_specular_classify(&t.uniforms, t.samples, t.count, pf, nf, vf, 128.0f, &cinfo);
+  MRGI_CHECK(cinfo.path == info.path && cinfo.grid_cells == info.grid_cells &&
+             cinfo.samples_in_lobe == info.samples_in_lobe);
+  mrgi_area_light_lobe_grid grid;
+  MRGI_CHECK(mrgi_area_light_lobe_grid_cells(&t.uniforms, &info.lobe, &grid) == 1);
+  MRGI_CHECK(grid.cells == 25 && grid.on_light[MRGI_AREA_LIGHT_LOBE_CELLS - 1]);
+  for (int32_t j = 0; j < MRGI_AREA_LIGHT_LOBE_CELLS; ++j)
+  {
+    /* cell j = (a, b) in raster order around the hit point (-0.2, 0.15) */
+    const int32_t a = j % MRGI_AREA_LIGHT_LOBE_GRID - 2, b = j / MRGI_AREA_LIGHT_LOBE_GRID - 2;
+    if (fabs(grid.area[j] - grid.spacing_u * grid.spacing_v) < 1e-6 * grid.area[j])
+    {
+      /* not clipped by the light's edges */
+      MRGI_CHECK_NEAR(grid.u[j], info.lobe.hit_u + a * grid.spacing_u, 1e-5);
+      MRGI_CHECK_NEAR(grid.v[j], info.lobe.hit_v + b * grid.spacing_v, 1e-5);
+    }
+    MRGI_CHECK(fabs(grid.u[j]) <= 0.5 && fabs(grid.v[j]) <= 0.5);
+    MRGI_CHECK_NEAR(grid.position[j][2], 1.0, 1e-6); /* on the light's plane */
+  }
+  float q[MRGI_AREA_LIGHT_LOBE_CELLS - 1];
+  for (int j = 0; j < MRGI_AREA_LIGHT_LOBE_CELLS - 1; ++j)
+  {
+    q[j] = 1.0f;
+  }
+  mrgi_area_light_specular_visible(&t.uniforms, t.samples, t.count, &t.pyramid, pf, nf, vf, 128.0f,
+                                   none, q, out, &vinfo); /* the sample mask is not read here */
+  MRGI_CHECK(memcmp(out, full, sizeof(out)) == 0 && vinfo.path == info.path);
+  for (int j = 0; j < MRGI_AREA_LIGHT_LOBE_CELLS - 1; ++j)
+  {
+    q[j] = 0.0f;
+  }
+  mrgi_area_light_specular_visible(&t.uniforms, t.samples, t.count, &t.pyramid, pf, nf, vf, 128.0f,
+                                   NULL, q, out, NULL);
+  MRGI_CHECK(out[0] == 0.0f && out[1] == 0.0f && out[2] == 0.0f); /* the corner too */
+  /* linear in each query; the corner (2, 2) takes the mean of queries 23
+   * (1, 2) and 19 (2, 1): dropping both halves drops half of all three */
+  const int32_t left = MRGI_AREA_LIGHT_LOBE_CELLS - 2, below = MRGI_AREA_LIGHT_LOBE_CELLS - 1 - MRGI_AREA_LIGHT_LOBE_GRID;
+  float s_left[3], s_below[3], s_half[3], s_centre[3];
+  for (int j = 0; j < MRGI_AREA_LIGHT_LOBE_CELLS - 1; ++j)
+  {
+    q[j] = 1.0f;
+  }
+  q[left] = 0.0f;
+  mrgi_area_light_specular_visible(&t.uniforms, t.samples, t.count, &t.pyramid, pf, nf, vf, 128.0f,
+                                   NULL, q, s_left, NULL);
+  q[left] = 1.0f;
+  q[below] = 0.0f;
+  mrgi_area_light_specular_visible(&t.uniforms, t.samples, t.count, &t.pyramid, pf, nf, vf, 128.0f,
+                                   NULL, q, s_below, NULL);
+  q[left] = q[below] = 0.5f;
+  mrgi_area_light_specular_visible(&t.uniforms, t.samples, t.count, &t.pyramid, pf, nf, vf, 128.0f,
+                                   NULL, q, s_half, NULL);
+  q[left] = q[below] = 1.0f;
+  q[12] = 0.0f; /* the centre cell (0, 0) */
+  mrgi_area_light_specular_visible(&t.uniforms, t.samples, t.count, &t.pyramid, pf, nf, vf, 128.0f,
+                                   NULL, q, s_centre, NULL);
+  for (int c = 0; c < 3; ++c)
+  {
+    MRGI_CHECK(s_left[c] < full[c] && s_below[c] < full[c]);
+    const double dropped = (full[c] - s_left[c]) + (full[c] - s_below[c]);
+    MRGI_CHECK_NEAR(s_half[c], full[c] - 0.5 * dropped, 1e-5 * full[c]);
+    MRGI_CHECK(full[c] - s_centre[c] > 0.1 * full[c]); /* the centre carries the lobe */
+  }
+  printf("specular visibility: sample halves sum to the whole; lobe grid centre cell %.0f%% of "
+         "the highlight, corner rule linear\n",
+         100.0 * (full[1] - s_centre[1]) / full[1]);
+  free_samples(&t);
+  mrgi_image_destroy(&texture);
+}
+
 static void test_refinement(void)
 {
   mrgi_area_light light = ceiling_light(4.0, 2.0, 1.0);
@@ -1324,6 +1443,7 @@ int main(void)
   test_specular_convergence();
   test_lobe_peak_and_miss();
   test_lobe_grid();
+  test_specular_visibility();
   test_refinement();
   printf("TestAreaLight passed\n");
   return 0;

@@ -1,7 +1,9 @@
-// MRGI area light, Phong specular direct light without visibility
-// (nichols-penmatsa-wyman-2010 section 3.2.1). C twins:
-// mrgi_area_light_phong_lobe(), mrgi_area_light_phong_refinement(),
-// mrgi_area_light_specular() and mrgi_area_light_texture_sample()
+// MRGI area light, Phong specular direct light, without visibility or with
+// the including shader's (nichols-penmatsa-wyman-2010 sections 3.2.1 and
+// 3.3.3). C twins: mrgi_area_light_phong_lobe(),
+// mrgi_area_light_phong_refinement(), mrgi_area_light_specular(),
+// mrgi_area_light_specular_visible(), mrgi_area_light_specular_classify(),
+// mrgi_area_light_lobe_grid_cells() and mrgi_area_light_texture_sample()
 // (mrgi_area_light.h, "Phong specular", "The texture pyramid" and
 // "Precision"), which this translates line by line, in float, in the same
 // order; world space throughout. A function library: no #version, no
@@ -44,6 +46,27 @@ uniform ivec2 mrgiAreaTextureSize; // pyramid level-0 size (1, 1 without texture
 uniform int mrgiAreaTextureLevels; // pyramid levels (1 without texture)
 uniform int mrgiAreaTextured;      // 0: the lobe grid reads 1 (the twin's NULL pyramid)
 uniform sampler2D mrgiAreaPyramid;
+
+// Shadowed highlights (nichols-penmatsa-wyman-2010 3.3.1-3.3.3; C twin
+// mrgi_area_light_specular_visible(), mrgi_area_light.h "Shadowed
+// highlights"): a shader that defines MRGI_AREA_SPECULAR_VISIBILITY before
+// this library defines these two functions after it; the sums weight each
+// sample's term by the first (its visibility bit) and each lobe-grid cell's
+// term by the second (query = (b + G/2) G + (a + G/2), the variance shadow
+// query's visibility in [0, 1]; the dropped corner takes the mean of
+// queries G G - 2 and G G - 1 - G). The path does not depend on them.
+// With MRGI_AREA_SPECULAR_BATCHES as well, the sample sum covers only the
+// samples mrgiSpecularBatchFirst .. + mrgiSpecularBatchCount - 1 (a shader
+// that marches each sample draws the samples in batches; the path is still
+// decided from all of them).
+#ifdef MRGI_AREA_SPECULAR_VISIBILITY
+bool mrgiAreaSpecularSampleVisible(int j, vec3 samplePosition, vec3 sampleNormal);
+float mrgiAreaSpecularQueryVisibility(int query);
+#endif
+#ifdef MRGI_AREA_SPECULAR_BATCHES
+uniform int mrgiSpecularBatchFirst;
+uniform int mrgiSpecularBatchCount;
+#endif
 
 // ::mrgi_area_light_lobe. FLT_MAX is MRGI_MULTIRES_FLT_MAX (the core's
 // spelling of FLT_MAX for GLSL).
@@ -249,10 +272,10 @@ float mrgiAreaTransfer(vec3 d, vec3 patchNormal, float patchArea, vec3 n, out fl
   return patchArea * (cosIr * cosJr / r2) / (MRGI_PI * r2 + patchArea);
 }
 
-// al_lobe_grid(): the 5 x 5 lobe grid around H; false when the lobe has no
-// finite footprint. Adds into sum, counts cells.
-bool mrgiAreaLobeGrid(vec3 P, vec3 n, mrgiAreaLightLobe lobe, float power, float normalisation,
-  inout vec3 sum, inout int cells)
+// mrgi_area_light_lobe_grid_cells(), first part: the grid's spacings h_u,
+// h_v (the half-maximum ellipse's half extents along u and v); false when
+// the lobe has no finite footprint.
+bool mrgiAreaLobeGridSpacing(mrgiAreaLightLobe lobe, out float hu, out float hv)
 {
   vec3 r = lobe.reflect;
   float rn = dot(r, mrgiAreaNormal);
@@ -272,42 +295,85 @@ bool mrgiAreaLobeGrid(vec3 P, vec3 n, mrgiAreaLightLobe lobe, float power, float
   float pu2 = a2 * dot(e2, mrgiAreaAxisU);
   float pv1 = a1 * dot(e1, mrgiAreaAxisV);
   float pv2 = a2 * dot(e2, mrgiAreaAxisV);
-  float hu = sqrt(pu1 * pu1 + pu2 * pu2);
-  float hv = sqrt(pv1 * pv1 + pv2 * pv2);
-  if (!(hu > 0.0 && hu < MRGI_MULTIRES_FLT_MAX && hv > 0.0 && hv < MRGI_MULTIRES_FLT_MAX))
+  hu = sqrt(pu1 * pu1 + pu2 * pu2);
+  hv = sqrt(pv1 * pv1 + pv2 * pv2);
+  return hu > 0.0 && hu < MRGI_MULTIRES_FLT_MAX && hv > 0.0 && hv < MRGI_MULTIRES_FLT_MAX;
+}
+
+// mrgi_area_light_lobe_grid_cells(), one cell: cell (a, b), a, b in
+// -G/2..G/2, clipped to the rectangle; false when nothing is left. Its
+// centre (cu, cv) in the light's axes, `position` = c + cu u + cv v (the
+// point the sum lights from and the variance shadow query aims at), area.
+bool mrgiAreaLobeGridCell(mrgiAreaLightLobe lobe, float hu, float hv, int a, int b,
+  out vec3 position, out float cu, out float cv, out float cellArea)
+{
+  position = vec3(0.0);
+  cu = 0.0;
+  cv = 0.0;
+  cellArea = 0.0;
+  float loV = max(lobe.hitV + (float(b) - 0.5) * hv, -mrgiAreaHalfV);
+  float hiV = min(lobe.hitV + (float(b) + 0.5) * hv, mrgiAreaHalfV);
+  float loU = max(lobe.hitU + (float(a) - 0.5) * hu, -mrgiAreaHalfU);
+  float hiU = min(lobe.hitU + (float(a) + 0.5) * hu, mrgiAreaHalfU);
+  if (!(hiV > loV) || !(hiU > loU))
   {
     return false;
   }
+  cellArea = (hiU - loU) * (hiV - loV);
+  cu = 0.5 * (loU + hiU);
+  cv = 0.5 * (loV + hiV);
+  position = mrgiAreaCenter + cu * mrgiAreaAxisU + cv * mrgiAreaAxisV;
+  return true;
+}
+
+#ifdef MRGI_AREA_SPECULAR_VISIBILITY
+// al_cell_visibility(): lobe grid cell `cell` (raster order, (b + G/2) G +
+// (a + G/2)) takes query `cell`'s visibility; the corner the variance
+// shadow query drops (the last cell) the mean of its two edge neighbours.
+float mrgiAreaLobeCellVisibility(int cell)
+{
+  const int corner = MRGI_VOXEL_VSM_QUERIES; // G G - 1
+  if (cell < corner)
+  {
+    return mrgiAreaSpecularQueryVisibility(cell);
+  }
+  return 0.5 * (mrgiAreaSpecularQueryVisibility(corner - 1) +
+    mrgiAreaSpecularQueryVisibility(corner - MRGI_AREA_LIGHT_LOBE_GRID));
+}
+#endif
+
+// al_lobe_grid_sum(): the 5 x 5 lobe grid around H (a finite footprint:
+// mrgiAreaLobeGridSpacing() true); adds into sum, counts cells.
+void mrgiAreaLobeGrid(vec3 P, vec3 n, mrgiAreaLightLobe lobe, float power, float normalisation,
+  inout vec3 sum, inout int cells)
+{
+  vec3 r = lobe.reflect;
+  float hu;
+  float hv;
+  mrgiAreaLobeGridSpacing(lobe, hu, hv);
   float lod = log2(max(hu * float(mrgiAreaTextureSize.x) / (2.0 * mrgiAreaHalfU),
     hv * float(mrgiAreaTextureSize.y) / (2.0 * mrgiAreaHalfV)));
   const int halfGrid = MRGI_AREA_LIGHT_LOBE_GRID / 2;
   for (int b = -halfGrid; b <= halfGrid; ++b)
   {
-    float loV = max(lobe.hitV + (float(b) - 0.5) * hv, -mrgiAreaHalfV);
-    float hiV = min(lobe.hitV + (float(b) + 0.5) * hv, mrgiAreaHalfV);
-    if (!(hiV > loV))
-    {
-      continue;
-    }
     for (int a = -halfGrid; a <= halfGrid; ++a)
     {
-      float loU = max(lobe.hitU + (float(a) - 0.5) * hu, -mrgiAreaHalfU);
-      float hiU = min(lobe.hitU + (float(a) + 0.5) * hu, mrgiAreaHalfU);
-      if (!(hiU > loU))
+      vec3 position;
+      float cu;
+      float cv;
+      float cellArea;
+      if (!mrgiAreaLobeGridCell(lobe, hu, hv, a, b, position, cu, cv, cellArea))
       {
         continue;
       }
       ++cells;
-      float cellArea = (hiU - loU) * (hiV - loV);
-      float cu = 0.5 * (loU + hiU);
-      float cv = 0.5 * (loV + hiV);
       vec3 texel = vec3(1.0);
       if (mrgiAreaTextured != 0)
       {
         texel = mrgiAreaTextureSample(cu / (2.0 * mrgiAreaHalfU) + 0.5,
           cv / (2.0 * mrgiAreaHalfV) + 0.5, lod);
       }
-      vec3 d = mrgiAreaCenter + cu * mrgiAreaAxisU + cv * mrgiAreaAxisV - P;
+      vec3 d = position - P;
       float r2;
       float transfer = mrgiAreaTransfer(d, mrgiAreaNormal, cellArea, n, r2);
       float rw = dot(r, d);
@@ -316,42 +382,37 @@ bool mrgiAreaLobeGrid(vec3 P, vec3 n, mrgiAreaLightLobe lobe, float power, float
         continue;
       }
       float weight = normalisation * pow(rw / sqrt(r2), power) * transfer;
+#ifdef MRGI_AREA_SPECULAR_VISIBILITY
+      weight *= mrgiAreaLobeCellVisibility((b + halfGrid) * MRGI_AREA_LIGHT_LOBE_GRID + a + halfGrid);
+#endif
       sum += mrgiAreaScale * texel * weight;
     }
   }
-  return true;
 }
 
-// mrgi_area_light_specular() with its info: S (the composite shows k_s c_s S)
-// at receiver P, normal N and towards-eye V (normalized here), Phong power
-// n >= 0; `path` is an MRGI_AREA_LIGHT_SPECULAR_* value, samplesInLobe the
-// samples with max(0, R.w)^n >= MRGI_AREA_LIGHT_LOBE_CUTOFF, gridCells the
-// lobe grid's cells on the light, lobe the lobe (zeroed after early-outs).
-// Sums samples mrgiAreaSampleFirst .. + mrgiAreaSampleCount - 1 and decides
-// the lobe grid from those alone: the twin's parity needs all of the
-// light's samples in one call (at most MRGI_AREA_LIGHT_MAX_SAMPLES loop
-// iterations, well within llvmpipe's per-invocation loop budget).
-vec3 mrgiAreaLightSpecularInfo(vec3 P, vec3 N, vec3 V, float power, out int path,
-  out int samplesInLobe, out int gridCells, out mrgiAreaLightLobe lobe)
+// al_specular_classify() (mrgi_area_light_specular_classify()): the early-
+// outs, the lobe, the samples inside the half-maximum cone (all of the
+// light's samples, mrgiAreaSampleFirst .. + mrgiAreaSampleCount - 1,
+// visible or not) and the path, MRGI_AREA_LIGHT_SPECULAR_*. `n` receives
+// the unit normal; lobe and samplesInLobe are zeroed after early-outs 1 and
+// 2 (and zero normals or views). At most MRGI_AREA_LIGHT_MAX_SAMPLES loop
+// iterations, well within llvmpipe's per-invocation loop budget.
+int mrgiAreaLightSpecularClassify(vec3 P, vec3 N, vec3 V, float power, out vec3 n,
+  out mrgiAreaLightLobe lobe, out int samplesInLobe)
 {
   lobe = mrgiAreaLightLobe(vec3(0.0), 0.0, 0.0, false, false, 0.0, 0.0, 0.0, 0.0, 0.0);
   samplesInLobe = 0;
-  gridCells = 0;
-  vec3 result = vec3(0.0);
-  vec3 n;
   vec3 v;
   float side = dot(mrgiAreaNormal, P - mrgiAreaCenter);
   bool facing = false;
   if (!mrgiAreaNormalize(N, n) || !mrgiAreaNormalize(V, v))
   {
-    path = MRGI_AREA_LIGHT_SPECULAR_FACING_AWAY;
-    return result;
+    return MRGI_AREA_LIGHT_SPECULAR_FACING_AWAY;
   }
   // Early-out 1: behind a one-sided light or in its plane.
   if (mrgiAreaTwoSided != 0 ? side == 0.0 : !(side > 0.0))
   {
-    path = MRGI_AREA_LIGHT_SPECULAR_BEHIND;
-    return result;
+    return MRGI_AREA_LIGHT_SPECULAR_BEHIND;
   }
   // Early-out 2: facing away from every corner.
   for (int k = 0; k < 4; ++k)
@@ -360,20 +421,15 @@ vec3 mrgiAreaLightSpecularInfo(vec3 P, vec3 N, vec3 V, float power, out int path
   }
   if (!facing)
   {
-    path = MRGI_AREA_LIGHT_SPECULAR_FACING_AWAY;
-    return result;
+    return MRGI_AREA_LIGHT_SPECULAR_FACING_AWAY;
   }
   lobe = mrgiAreaLightPhongLobe(P, n, v, power);
   // Lobe miss ("we discard fragments where the Phong lobe misses the light").
   if (!(lobe.peak >= MRGI_AREA_LIGHT_LOBE_DISCARD))
   {
-    path = MRGI_AREA_LIGHT_SPECULAR_LOBE_MISS;
-    return result;
+    return MRGI_AREA_LIGHT_SPECULAR_LOBE_MISS;
   }
-  // Normalised Phong: (n + 2) / (2 pi) times the pi of cos dw = pi T.
-  float normalisation = 0.5 * (power + 2.0);
   vec3 r = lobe.reflect;
-  vec3 sum = vec3(0.0);
   for (int j = mrgiAreaSampleFirst; j < mrgiAreaSampleFirst + mrgiAreaSampleCount; ++j)
   {
     vec4 position = texelFetch(mrgiAreaSamples, ivec2(MRGI_AREA_LIGHT_SAMPLE_TEXEL_POSITION, j), 0);
@@ -386,31 +442,90 @@ vec3 mrgiAreaLightSpecularInfo(vec3 P, vec3 N, vec3 V, float power, out int path
     {
       continue;
     }
-    float lobeValue = pow(rw / sqrt(r2), power);
-    if (lobeValue >= MRGI_AREA_LIGHT_LOBE_CUTOFF)
+    if (pow(rw / sqrt(r2), power) >= MRGI_AREA_LIGHT_LOBE_CUTOFF)
     {
       ++samplesInLobe;
     }
-    float weight = normalisation * lobeValue * transfer;
-    vec3 radiance = texelFetch(mrgiAreaSamples, ivec2(MRGI_AREA_LIGHT_SAMPLE_TEXEL_RADIANCE, j), 0).rgb;
-    sum += radiance * weight;
   }
-  path = MRGI_AREA_LIGHT_SPECULAR_SAMPLES;
   // Too few samples in the lobe: "we directly sample the light texture 25
   // times inside the lobe using a mipmap level dependent on the lobe size".
-  if (samplesInLobe < MRGI_AREA_LIGHT_LOBE_MIN_SAMPLES && lobe.reachesPlane)
+  float hu;
+  float hv;
+  if (samplesInLobe < MRGI_AREA_LIGHT_LOBE_MIN_SAMPLES && lobe.reachesPlane &&
+    mrgiAreaLobeGridSpacing(lobe, hu, hv))
   {
-    vec3 grid = vec3(0.0);
-    int cells = 0;
-    if (mrgiAreaLobeGrid(P, n, lobe, power, normalisation, grid, cells))
+    return MRGI_AREA_LIGHT_SPECULAR_LOBE_GRID;
+  }
+  return MRGI_AREA_LIGHT_SPECULAR_SAMPLES;
+}
+
+// The sum of mrgi_area_light_specular_visible() for a classified receiver
+// (unit normal n, its lobe and path from mrgiAreaLightSpecularClassify()):
+// S, 0 on the early-out paths; gridCells counts the lobe grid's cells on
+// the light. The sample sum covers the samples of this draw: all of them,
+// or with MRGI_AREA_SPECULAR_BATCHES the range mrgiSpecularBatchFirst ..
+// + mrgiSpecularBatchCount - 1 of them (batched visibility marches).
+vec3 mrgiAreaLightSpecularSum(vec3 P, vec3 n, mrgiAreaLightLobe lobe, float power, int path,
+  out int gridCells)
+{
+  gridCells = 0;
+  vec3 sum = vec3(0.0);
+  // Normalised Phong: (n + 2) / (2 pi) times the pi of cos dw = pi T.
+  float normalisation = 0.5 * (power + 2.0);
+  if (path == MRGI_AREA_LIGHT_SPECULAR_LOBE_GRID)
+  {
+    mrgiAreaLobeGrid(P, n, lobe, power, normalisation, sum, gridCells);
+  }
+  else if (path == MRGI_AREA_LIGHT_SPECULAR_SAMPLES)
+  {
+    vec3 r = lobe.reflect;
+    int first = mrgiAreaSampleFirst;
+    int end = mrgiAreaSampleFirst + mrgiAreaSampleCount;
+#ifdef MRGI_AREA_SPECULAR_BATCHES
+    first = max(first, mrgiSpecularBatchFirst);
+    end = min(end, mrgiSpecularBatchFirst + mrgiSpecularBatchCount);
+#endif
+    for (int j = first; j < end; ++j)
     {
-      path = MRGI_AREA_LIGHT_SPECULAR_LOBE_GRID;
-      gridCells = cells;
-      sum = grid;
+      vec4 position = texelFetch(mrgiAreaSamples, ivec2(MRGI_AREA_LIGHT_SAMPLE_TEXEL_POSITION, j), 0);
+      vec3 d = position.xyz - P;
+      vec3 sampleNormal = texelFetch(mrgiAreaSamples, ivec2(MRGI_AREA_LIGHT_SAMPLE_TEXEL_NORMAL, j), 0).xyz;
+      float r2;
+      float transfer = mrgiAreaTransfer(d, sampleNormal, position.w, n, r2);
+      float rw = dot(r, d);
+      if (!(transfer > 0.0) || !(rw > 0.0))
+      {
+        continue;
+      }
+#ifdef MRGI_AREA_SPECULAR_VISIBILITY
+      if (!mrgiAreaSpecularSampleVisible(j, position.xyz, sampleNormal))
+      {
+        continue; // occluded
+      }
+#endif
+      float weight = normalisation * pow(rw / sqrt(r2), power) * transfer;
+      vec3 radiance = texelFetch(mrgiAreaSamples, ivec2(MRGI_AREA_LIGHT_SAMPLE_TEXEL_RADIANCE, j), 0).rgb;
+      sum += radiance * weight;
     }
   }
-  result = sum;
-  return result;
+  return sum;
+}
+
+// mrgi_area_light_specular() with its info: S (the composite shows k_s c_s S)
+// at receiver P, normal N and towards-eye V (normalized here), Phong power
+// n >= 0; `path` is an MRGI_AREA_LIGHT_SPECULAR_* value, samplesInLobe the
+// samples with max(0, R.w)^n >= MRGI_AREA_LIGHT_LOBE_CUTOFF, gridCells the
+// lobe grid's cells on the light, lobe the lobe (zeroed after early-outs).
+// Sums samples mrgiAreaSampleFirst .. + mrgiAreaSampleCount - 1 and decides
+// the lobe grid from those alone: the twin's parity needs all of the
+// light's samples in one call. With MRGI_AREA_SPECULAR_VISIBILITY, the
+// terms are weighted by the including shader's visibility (see the top).
+vec3 mrgiAreaLightSpecularInfo(vec3 P, vec3 N, vec3 V, float power, out int path,
+  out int samplesInLobe, out int gridCells, out mrgiAreaLightLobe lobe)
+{
+  vec3 n;
+  path = mrgiAreaLightSpecularClassify(P, N, V, power, n, lobe, samplesInLobe);
+  return mrgiAreaLightSpecularSum(P, n, lobe, power, path, gridCells);
 }
 
 // S at receiver P (see mrgiAreaLightSpecularInfo()); `path` says how it was

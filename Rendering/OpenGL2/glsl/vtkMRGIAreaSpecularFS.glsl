@@ -1,11 +1,25 @@
 // MRGI: the Phong highlight of one area light (nichols-penmatsa-wyman-2010
 // 3.2.1: "diffuse and specular are gathered in separate passes"), at every
 // pixel whose G-buffer holds a specular material: k_s c_s S, S from
-// mrgiAreaLightSpecular() (vtkMRGIAreaLightSpecular.glsl, C twin
-// mrgi_area_light_specular()), which the C++ side prepends with the
-// receiver test (vtkMRGIVPLIrradiance.glsl). Full resolution: sharp lobes
-// change from pixel to pixel, and the lobe grid keeps their cost at 25
-// lookups. No visibility (the voxel masks are the diffuse gather's).
+// vtkMRGIAreaLightSpecular.glsl (C twin mrgi_area_light_specular(), or
+// mrgi_area_light_specular_visible() with visibility), which the C++ side
+// prepends with the receiver test (vtkMRGIVPLIrradiance.glsl). Full
+// resolution: sharp lobes change from pixel to pixel, and the lobe grid
+// keeps their cost at 25 lookups.
+//
+// Shadows (3.3.3), with MRGI_AREA_SPECULAR_VISIBILITY defined before the
+// libraries (vtkMRGIPass::RenderAreaSpecular()):
+// - sample path: sample j counts where it is visible, either bit j of this
+//   pixel's level-0 mask of the incremental visibility
+//   (MRGI_AREA_SPECULAR_MASKS: vtkMRGIVisibilityPyramid, word w in texture
+//   w / 4 channel w % 4, viewport-local texels), or by a march through the
+//   voxels (otherwise: the naive query of 3.3.1, vtkMRGIVoxelMarch.glsl
+//   prepended, in batches of samples, MRGI_AREA_SPECULAR_BATCHES, each draw
+//   adding its batch; draws after the first write 0 where the path is not
+//   the sample sum);
+// - lobe-grid path: cell j weighted by the variance shadow query's
+//   visibility of query j (vtkMRGIVarianceShadowResolve.glsl prepended,
+//   resolved here, at the pixels that need it).
 in vec2 texCoord; // bound by vtkOpenGLQuadHelper; texels are addressed by gl_FragCoord
 uniform sampler2D mrgiPosition;  // G-buffer, eye space
 uniform sampler2D mrgiNormal;
@@ -13,23 +27,86 @@ uniform sampler2D mrgiSpecular;  // k_s c_s
 uniform sampler2D mrgiShininess; // r: Phong exponent
 uniform mat4 mrgiVCToWC;         // eye -> world (rigid)
 uniform int mrgiParallel;        // 1: parallel projection (view direction +z in eye space)
+#ifdef MRGI_AREA_SPECULAR_VISIBILITY
+uniform ivec2 mrgiViewportOrigin; // window pixel of the viewport's lower left corner
+float mrgiSpecularQueries[MRGI_VOXEL_VSM_QUERIES];
+#ifdef MRGI_AREA_SPECULAR_MASKS
+uniform usampler2D mrgiVisibilityMask0;
+uniform usampler2D mrgiVisibilityMask1;
+uniform usampler2D mrgiVisibilityMask2;
+uniform usampler2D mrgiVisibilityMask3;
+uvec4 mrgiSpecularMasks[4];
+bool mrgiAreaSpecularSampleVisible(int j, vec3 samplePosition, vec3 sampleNormal)
+{
+  return ((mrgiSpecularMasks[j >> 7][(j >> 5) & 3] >> uint(j & 31)) & 1u) != 0u;
+}
+#else
+uniform mat4 mrgiWCToVC; // world -> eye: the voxels' space
+vec3 mrgiSpecularPvc;    // the receiver in eye space (G-buffer position and normal)
+vec3 mrgiSpecularNvc;
+bool mrgiAreaSpecularSampleVisible(int j, vec3 samplePosition, vec3 sampleNormal)
+{
+  vec3 L = (mrgiWCToVC * vec4(samplePosition, 1.0)).xyz;
+  vec3 NL = mat3(mrgiWCToVC) * sampleNormal;
+  // A two-sided light emits from the side facing the receiver.
+  if (mrgiAreaTwoSided != 0 && mrgiVoxelDot(NL, mrgiSpecularPvc - L) < 0.0) { NL = -NL; }
+  return mrgiVoxelVisible(mrgiSpecularPvc, mrgiSpecularNvc, L, NL);
+}
+#endif
+float mrgiAreaSpecularQueryVisibility(int query)
+{
+  return mrgiSpecularQueries[query];
+}
+#endif
 //VTK::Output::Dec
 void main()
 {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec4 positionVC = texelFetch(mrgiPosition, pixel, 0);
+  vec3 normalVC = texelFetch(mrgiNormal, pixel, 0).xyz;
   vec3 ks = texelFetch(mrgiSpecular, pixel, 0).rgb;
   vec3 P;
   vec3 N;
   if (max(ks.r, max(ks.g, ks.b)) <= 0.0 ||
-    mrgiClassifyReceiver(positionVC, texelFetch(mrgiNormal, pixel, 0).xyz, mrgiVCToWC, P, N) != 2)
+    mrgiClassifyReceiver(positionVC, normalVC, mrgiVCToWC, P, N) != 2)
   {
     gl_FragData[0] = vec4(0.0);
     return;
   }
   vec3 viewVC = mrgiParallel != 0 ? vec3(0.0, 0.0, 1.0) : -positionVC.xyz;
   vec3 V = mat3(mrgiVCToWC) * viewVC;
-  int path;
-  vec3 S = mrgiAreaLightSpecular(P, N, V, texelFetch(mrgiShininess, pixel, 0).r, path);
+  float power = texelFetch(mrgiShininess, pixel, 0).r;
+  vec3 n;
+  mrgiAreaLightLobe lobe;
+  int samplesInLobe;
+  int path = mrgiAreaLightSpecularClassify(P, N, V, power, n, lobe, samplesInLobe);
+#ifdef MRGI_AREA_SPECULAR_VISIBILITY
+  ivec2 local = pixel - mrgiViewportOrigin;
+#ifdef MRGI_AREA_SPECULAR_BATCHES
+  if (mrgiSpecularBatchFirst > 0 && path != MRGI_AREA_LIGHT_SPECULAR_SAMPLES)
+  {
+    gl_FragData[0] = vec4(0.0); // drawn by the first batch
+    return;
+  }
+#endif
+  if (path == MRGI_AREA_LIGHT_SPECULAR_SAMPLES)
+  {
+#ifdef MRGI_AREA_SPECULAR_MASKS
+    mrgiSpecularMasks[0] = texelFetch(mrgiVisibilityMask0, local, 0);
+    mrgiSpecularMasks[1] = texelFetch(mrgiVisibilityMask1, local, 0);
+    mrgiSpecularMasks[2] = texelFetch(mrgiVisibilityMask2, local, 0);
+    mrgiSpecularMasks[3] = texelFetch(mrgiVisibilityMask3, local, 0);
+#else
+    mrgiSpecularPvc = positionVC.xyz;
+    mrgiSpecularNvc = normalVC;
+#endif
+  }
+  else if (path == MRGI_AREA_LIGHT_SPECULAR_LOBE_GRID)
+  {
+    mrgiVsmResolve(local, mrgiSpecularQueries);
+  }
+#endif
+  int gridCells;
+  vec3 S = mrgiAreaLightSpecularSum(P, n, lobe, power, path, gridCells);
   gl_FragData[0] = vec4(ks * S, 0.0);
 }
