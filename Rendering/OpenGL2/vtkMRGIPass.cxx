@@ -14,7 +14,10 @@
 #include "vtkMRGIVarianceShadowQuery.h"
 #include "vtkMRGIVisibilityPyramid.h"
 #include "vtkMRGIVoxelization.h"
+#include "vtkDataObject.h"
+#include "vtkMapper.h"
 #include "vtkMatrix4x4.h"
+#include "vtkTexture.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLFXAAFilter.h"
@@ -56,6 +59,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -404,6 +408,7 @@ void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
   this->Voxelization->ReleaseGraphicsResources(w);
   this->VisibilityPyramid->ReleaseGraphicsResources(w);
   this->VarianceShadowQuery->ReleaseGraphicsResources(w);
+  this->AreaLightSignature.clear(); // the sum it describes is released below
   Release(this->GatherQuad, w);
   Release(this->AddQuad, w);
   Release(this->OutputQuad, w);
@@ -792,6 +797,15 @@ bool vtkMRGIPass::RenderAreaLights(
   // upsampling and resolve per light, each added to the lights' sum, which
   // is added to the colour once (and read by GetAreaLightBuffer()). Timed as
   // the stage "area" with its steps.
+  const std::string signature = this->AreaLightInputs(renWin, renderer);
+  if (!signature.empty() && signature == this->AreaLightSignature && this->AreaSumTexture)
+  {
+    // Nothing the lights' sum depends on changed: add it again.
+    ScopedStage stage(timer, "area");
+    this->RenderAdd(renWin, this->AreaSumTexture, this->ColorTexture);
+    return true;
+  }
+  this->AreaLightSignature.clear();
   if (!selected &&
     !this->SelectMultiresolution(renWin, renderer, timer, this->LastViewToWorldFloat, this->LastParallel))
   {
@@ -913,8 +927,79 @@ bool vtkMRGIPass::RenderAreaLights(
   if (drawn)
   {
     this->RenderAdd(renWin, this->AreaSumTexture, this->ColorTexture);
+    this->AreaLightSignature = signature;
+    ++this->NumberOfAreaLightUpdates;
   }
   return drawn;
+}
+
+//------------------------------------------------------------------------------
+std::string vtkMRGIPass::AreaLightInputs(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer)
+{
+  // Everything the area lights' sum is computed from, as modification
+  // times: the camera and viewport (the G-buffer), the visible props and
+  // their data (an actor's matrix, property, texture, mapper and input;
+  // other props' GetRedrawMTime()), each light and its picture (asking for its
+  // samples rebuilds them when the picture changed), and the settings of
+  // the pass and of its stages. Empty: do not reuse.
+  if (!this->AreaLightReuse || this->Multiresolution->GetCollectStatistics() ||
+    this->VisibilityPyramid->GetCollectStatistics())
+  {
+    return std::string();
+  }
+  std::ostringstream s;
+  vtkCamera* camera = renderer->GetActiveCamera();
+  s << camera << ':' << camera->GetMTime() << ';' << renderer->GetMTime() << ';';
+  for (int k = 0; k < 4; ++k)
+  {
+    s << this->Viewport[k] << ',';
+  }
+  s << this->ColorTexture->GetWidth() << 'x' << this->ColorTexture->GetHeight() << ';'
+    << this->SpecularCaptured << this->LastParallel << ';' << this->GetMTime() << ','
+    << this->Multiresolution->GetMTime() << ',' << this->VisibilityPyramid->GetMTime() << ','
+    << this->Voxelization->GetMTime() << ',' << this->VarianceShadowQuery->GetMTime() << ';';
+  vtkPropCollection* props = renderer->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    if (!prop->GetVisibility())
+    {
+      continue;
+    }
+    vtkActor* actor = vtkActor::SafeDownCast(prop);
+    if (!actor)
+    {
+      s << prop << ':' << prop->GetRedrawMTime() << ';';
+      continue;
+    }
+    // An actor by what it draws rather than its own MTime, which VTK's
+    // mappers bump when they first give it a shader property (after this
+    // frame's signature: the next frame would recompute for nothing).
+    s << actor << ':';
+    vtkMatrix4x4* matrix = actor->GetMatrix();
+    for (int k = 0; k < 16; ++k)
+    {
+      s << matrix->GetElement(k / 4, k % 4) << ',';
+    }
+    s << actor->GetProperty()->GetMTime() << ','
+      << (actor->GetBackfaceProperty() ? actor->GetBackfaceProperty()->GetMTime() : 0) << ','
+      << (actor->GetTexture() ? actor->GetTexture()->GetMTime() : 0) << ',';
+    if (vtkMapper* mapper = actor->GetMapper())
+    {
+      vtkDataObject* input = mapper->GetInputDataObject(0, 0);
+      s << mapper->GetMTime() << ',' << (input ? input->GetMTime() : 0);
+    }
+    s << ';';
+  }
+  for (vtkMRGIAreaLight* light : this->AreaLights)
+  {
+    int count = 0;
+    light->GetSampleTexture(renWin, &count);
+    s << light << ':' << light->GetMTime() << ',' << light->GetNumberOfTextureBuilds() << ','
+      << light->GetNumberOfSampleBuilds() << ';';
+  }
+  return s.str();
 }
 
 //------------------------------------------------------------------------------
@@ -1499,6 +1584,8 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
   this->Voxelization->PrintSelf(os, indent.GetNextIndent());
   os << indent << "VisibilityPyramid:\n";
   this->VisibilityPyramid->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "AreaLightReuse: " << (this->AreaLightReuse ? "On" : "Off") << "\n";
+  os << indent << "NumberOfAreaLightUpdates: " << this->NumberOfAreaLightUpdates << "\n";
   os << indent << "VarianceShadowQuery:\n";
   this->VarianceShadowQuery->PrintSelf(os, indent.GetNextIndent());
   os << indent << "BufferSize: " << this->BufferSize[0] << " x " << this->BufferSize[1] << "\n";

@@ -213,6 +213,22 @@ public:
   /** Whether the last frame drew area lights. */
   vtkGetMacro(AreaLightsComputed, bool);
 
+  /**
+   * How many frames computed the area lights' light (voxelization,
+   * visibility, gathers). A frame whose inputs did not change since the
+   * last computation (camera, viewport, the visible props and their data,
+   * the area lights and their pictures, the pass's and its stages'
+   * settings) adds the previous result again instead: "buffers are not
+   * re-rendered when their inputs did not change". Statistics collection
+   * (vtkMRGIMultiresolution, vtkMRGIVisibilityPyramid) always computes, and
+   * so does every frame with AreaLightReuse off (benchmarks: they measure
+   * the computation).
+   */
+  vtkGetMacro(NumberOfAreaLightUpdates, vtkIdType);
+  vtkSetMacro(AreaLightReuse, bool);
+  vtkGetMacro(AreaLightReuse, bool);
+  vtkBooleanMacro(AreaLightReuse, bool);
+
   /** The sub-stages, for inspection (statistics, read-backs). */
   vtkMRGIReflectiveShadowMapPass* GetReflectiveShadowMapPass() { return this->RSMPass; }
   vtkMRGIVPLSelection* GetVPLSelection() { return this->VPLSelection; }
@@ -322,6 +338,9 @@ protected:
   // variance shadow query.
   bool RenderAreaSpecular(vtkOpenGLRenderWindow* renWin, vtkMRGIAreaLight* light,
     vtkMRGIVoxelization* voxels, vtkMRGIVisibilityPyramid* masks, vtkRenderTimerLog* timer);
+  // What the area lights' sum depends on (AreaLightSignature); empty when
+  // it must be computed anyway.
+  std::string AreaLightInputs(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer);
   // Every area light's direct light, added to the colour; `selected`: this
   // frame's selection exists (the indirect light made it).
   bool RenderAreaLights(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, bool selected,
@@ -337,6 +356,10 @@ protected:
   int Viewport[4] = { 0, 0, 0, 0 };
   bool IndirectComputed = false;
   bool AreaLightsComputed = false;
+  // What the area lights' sum was computed from (empty: nothing cached).
+  std::string AreaLightSignature;
+  vtkIdType NumberOfAreaLightUpdates = 0;
+  bool AreaLightReuse = true;
   bool Captured = false; // the last frame captured the G-buffer
   bool SpecularCaptured = false; // ... with its specular attachments
   bool AreaLightSpecular = true;

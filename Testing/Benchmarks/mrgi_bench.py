@@ -55,6 +55,8 @@ def build_scene(renderer, name):
 def frames(window, gi, count):
     """Render `count` frames; median GPU ms per stage of the MRGI pass `gi` and wall ms per frame ("frame")."""
     times, walls = {}, []
+    if hasattr(gi, "SetAreaLightReuse"):
+        gi.SetAreaLightReuse(False)  # measure the area lights' computation, not its reuse
     for _ in range(count):
         start = time.perf_counter()
         window.Render()

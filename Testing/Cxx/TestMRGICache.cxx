@@ -2,9 +2,13 @@
 // cache are not re-rendered while lights and geometry are unchanged (a
 // camera move does not touch them), and are when a light or a prop changes;
 // lights that are off or cannot reach anything visible get no map at all.
+// The area lights' light is not recomputed while nothing it depends on
+// changed, and is when the camera, a light, its picture, a prop or a setting
+// changes.
 #include "mrgiTestUtilities.h"
 
 #include "vtkActor.h"
+#include "vtkDataArray.h"
 #include "vtkActorCollection.h"
 #include "vtkCallbackCommand.h"
 #include "vtkPoints.h"
@@ -12,7 +16,11 @@
 #include "vtkCamera.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkMRGIAreaLight.h"
+#include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIPass.h"
+#include "vtkProperty.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGISceneBuilder.h"
 #include "vtkMRGIVPLSelection.h"
@@ -22,9 +30,108 @@
 #include "vtkRenderer.h"
 
 #include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace
+{
+std::vector<double> Values(vtkImageData* image)
+{
+  vtkDataArray* a = image->GetPointData()->GetScalars();
+  std::vector<double> v(static_cast<size_t>(a->GetNumberOfValues()));
+  for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i)
+  {
+    v[static_cast<size_t>(i)] = a->GetVariantValue(i).ToDouble();
+  }
+  return v;
+}
+
+void TestAreaLightReuse()
+{
+  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(64, 64);
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  vtkNew<vtkMRGISceneBuilder> builder;
+  builder->SetScene("cornell-area");
+  MRGI_TEST_CHECK(builder->Build(renderer) && builder->GetNumberOfAreaLights() == 1);
+  vtkNew<vtkRenderStepsPass> steps;
+  vtkNew<vtkMRGIPass> pass;
+  pass->SetDelegatePass(steps);
+  renderer->SetPass(pass);
+  vtkMRGIAreaLight* light = builder->GetAreaLight(0);
+  light->SetNumberOfSamples(32);
+  pass->AddAreaLight(light);
+  MRGI_TEST_CHECK(pass->GetAreaLightReuse()); // the default
+  auto frame = [&]() {
+    window->Render();
+    MRGI_TEST_CHECK(pass->GetAreaLightsComputed());
+    vtkNew<vtkImageData> color, area;
+    MRGI_TEST_CHECK(pass->GetColorBuffer(window, color) && pass->GetAreaLightBuffer(window, area));
+    return std::make_pair(Values(color), Values(area));
+  };
+  auto first = frame();
+  MRGI_TEST_CHECK(pass->GetNumberOfAreaLightUpdates() == 1);
+  // Unchanged: reused, and the image is the same.
+  auto again = frame();
+  MRGI_TEST_CHECK(pass->GetNumberOfAreaLightUpdates() == 1);
+  MRGI_TEST_CHECK(again == first);
+  // Each input changes it once.
+  vtkIdType expected = 1;
+  auto changes = [&](const char* what) {
+    auto changed = frame();
+    ++expected;
+    std::printf("area-light reuse: %s -> %lld updates\n", what,
+      static_cast<long long>(pass->GetNumberOfAreaLightUpdates()));
+    MRGI_TEST_CHECK(pass->GetNumberOfAreaLightUpdates() == expected);
+    frame();
+    MRGI_TEST_CHECK(pass->GetNumberOfAreaLightUpdates() == expected);
+    return changed;
+  };
+  renderer->GetActiveCamera()->Azimuth(4.0);
+  auto turned = changes("camera turned");
+  MRGI_TEST_CHECK(turned.second != first.second);
+  light->SetIntensity(2.0 * light->GetIntensity());
+  changes("light intensity");
+  vtkNew<vtkImageData> picture;
+  picture->SetDimensions(2, 2, 1);
+  picture->AllocateScalars(VTK_UNSIGNED_CHAR, 3);
+  auto* texels = static_cast<unsigned char*>(picture->GetScalarPointer());
+  for (int i = 0; i < 12; ++i)
+  {
+    texels[i] = 200;
+  }
+  light->SetTextureData(picture);
+  auto pictured = changes("picture set");
+  texels[0] = 10; // the next video frame
+  picture->Modified();
+  auto next = changes("picture modified");
+  MRGI_TEST_CHECK(next.second != pictured.second);
+  vtkActorCollection* actors = renderer->GetActors();
+  actors->InitTraversal();
+  actors->GetNextActor()->GetProperty()->SetColor(0.2, 0.9, 0.3);
+  changes("prop colour");
+  pass->SetAreaLightVisibility(vtkMRGIPass::VisibilityNaive);
+  changes("visibility mode");
+  pass->GetMultiresolution()->SetDepthThreshold(2.0);
+  changes("multiresolution setting");
+  window->SetSize(48, 64);
+  changes("window size");
+  // Released resources, statistics and reuse off: computed every frame.
+  pass->ReleaseGraphicsResources(window);
+  changes("resources released");
+  pass->AreaLightReuseOff();
+  window->Render();
+  window->Render();
+  MRGI_TEST_CHECK(pass->GetNumberOfAreaLightUpdates() == expected + 2);
+  renderer->SetPass(nullptr);
+  pass->ReleaseGraphicsResources(window);
+}
+}
 
 int main()
 {
+  TestAreaLightReuse();
+
   vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(96, 96);
   vtkNew<vtkRenderer> renderer;
   window->AddRenderer(renderer);
