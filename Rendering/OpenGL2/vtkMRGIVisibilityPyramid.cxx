@@ -45,8 +45,18 @@ enum Stage
   StageStatistics = 2,
   StageDecide = 3,
   StageMarch = 4,
-  StageMark = 5
+  StageMark = 5,
+  StageCopies = 6
 };
+
+// Levels with both sides below this are marched as copies side by side, one
+// copy per sample range (vtkMRGIVisibilityPyramidFS.glsl, stages 4-6).
+constexpr int CopyLevelSide = 128;
+// Copies are padded to this width, so that no SIMD group of fragments
+// straddles two copies (it would march both ranges: past the loop budget).
+constexpr int CopyAlign = 16;
+// Widest copy strip.
+constexpr int MaxCopyWidth = 8192;
 
 vtkTextureObject* MakeUIntTexture(vtkOpenGLRenderWindow* window, int w, int h)
 {
@@ -104,6 +114,10 @@ struct vtkMRGIVisibilityPyramid::Internals
   std::array<vtkTextureObject*, MaxTargets> Quarters{};
   // Stencil of the texels with bits to march (level-0 size, every level).
   vtkTextureObject* DepthStencil = nullptr;
+  // Small levels' copies: masks and stencil (CopyWidth x CopyHeight).
+  std::array<vtkTextureObject*, MaxTargets> CopyMasks{};
+  vtkTextureObject* CopyStencil = nullptr;
+  int CopyWidth = 0, CopyHeight = 0, CopyTargets = 0;
   mrgi_multires_layout Layout{};
   int Levels = 0, Samples = 0, Words = 0, Targets = 0, Threshold = 0, Draws = 0;
   bool Valid = false;
@@ -131,7 +145,18 @@ struct vtkMRGIVisibilityPyramid::Internals
       vtkMRGIShaderUtilities::ReleaseTexture(t, w);
     }
     vtkMRGIShaderUtilities::ReleaseTexture(this->DepthStencil, w);
+    this->ReleaseCopies(w);
     this->Valid = false;
+  }
+
+  void ReleaseCopies(vtkWindow* w)
+  {
+    for (auto*& t : this->CopyMasks)
+    {
+      vtkMRGIShaderUtilities::ReleaseTexture(t, w);
+    }
+    vtkMRGIShaderUtilities::ReleaseTexture(this->CopyStencil, w);
+    this->CopyWidth = this->CopyHeight = this->CopyTargets = 0;
   }
 };
 
@@ -360,7 +385,11 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
     }
 
     // stage: 0 compute, 1 combine, 2 statistics.
-    auto run = [&](int stage, const std::array<vtkTextureObject*, MaxTargets>& out, int range) -> bool {
+    // copies > 0: stages 4 and 5 over that many copies of the level (one
+    // draw, into CopyMasks), stage 6 ORs them into `out`.
+    const int stride = (lw + CopyAlign - 1) / CopyAlign * CopyAlign;
+    auto run = [&](int stage, const std::array<vtkTextureObject*, MaxTargets>& out, int range,
+                 int copies = 0) -> bool {
       vtkOpenGLQuadHelper* quad = ready(stage);
       if (!quad)
       {
@@ -377,16 +406,28 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
       // rewrites).
       const bool single = stage == StageStatistics || stage == StageMark;
       const int outputs = single ? 1 : stage == StageDecide ? 2 * targets : targets;
+      const bool onCopies = copies > 0 && (stage == StageMark || stage == StageMarch);
       fbo->RemoveColorAttachments(2 * MaxTargets);
       for (int k = 0; k < outputs; ++k)
       {
         const size_t kk = static_cast<size_t>(k);
         fbo->AddColorAttachment(static_cast<unsigned int>(k),
-          single ? in.Stats[static_cast<size_t>(i)]
-                 : (k < targets ? out[kk] : in.Quarters[kk - static_cast<size_t>(targets)]));
+          onCopies ? in.CopyMasks[kk]
+            : single ? in.Stats[static_cast<size_t>(i)]
+                     : (k < targets ? out[kk] : in.Quarters[kk - static_cast<size_t>(targets)]));
       }
       fbo->ActivateDrawBuffers(static_cast<unsigned int>(outputs));
-      ostate->vtkglViewport(0, 0, lw, lh);
+      ostate->vtkglViewport(0, 0, onCopies ? copies * stride : lw, lh);
+      if (onCopies && stage == StageMarch)
+      {
+        // The texels the stencil culls keep what an earlier level wrote:
+        // start from zeros (clears ignore the stencil test).
+        const GLuint zero[4] = { 0, 0, 0, 0 };
+        for (int k = 0; k < outputs; ++k)
+        {
+          glClearBufferuiv(GL_COLOR, k, zero);
+        }
+      }
       // Every sampler on a unit holding a texture of its type (unused ones too).
       // The voxels too: SetMarchUniforms() activates them only when the
       // program marches (not in the statistics stage); activating again
@@ -415,7 +456,8 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
         const size_t kk = static_cast<size_t>(std::min(k, targets - 1));
         bind(("mrgiVisParent" + std::to_string(k)).c_str(), naive ? spare : parentMasks[kk]);
         const bool quarters = stage == StageCombine || stage == StageMarch || stage == StageMark;
-        bind(("mrgiVisQuarter" + std::to_string(k)).c_str(), quarters ? in.Quarters[kk] : spare);
+        bind(("mrgiVisQuarter" + std::to_string(k)).c_str(),
+          stage == StageCopies ? in.CopyMasks[kk] : quarters ? in.Quarters[kk] : spare);
       }
       const int levelSize[2] = { lw, lh };
       const int parentSize[2] = { naive ? lw : layout.level_width[i + 1],
@@ -434,9 +476,12 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
       p->SetUniformMatrix4x4("mrgiVisWCToVC", const_cast<float*>(worldToView));
       p->SetUniformi("mrgiVisTwoSided", twoSided ? 1 : 0);
       p->SetUniformi("mrgiVisSampleCount", sampleCount);
+      p->SetUniformi("mrgiVisCopyStride", copies > 0 ? stride : 0);
+      p->SetUniformi("mrgiVisCopyRange", range0);
+      p->SetUniformi("mrgiVisCopies", copies);
       // Batches: the first draw replaces, the others OR into it; stage 4's
       // all OR into stage 3's masks.
-      if (stage == StageMarch)
+      if ((stage == StageMarch && !onCopies) || stage == StageCopies)
       {
         glEnable(GL_COLOR_LOGIC_OP);
       }
@@ -444,7 +489,7 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
       {
         glDisable(GL_COLOR_LOGIC_OP);
       }
-      for (int first = 0; first < sampleCount; first += range)
+      for (int first = 0; first < sampleCount; first += onCopies ? sampleCount : range)
       {
         p->SetUniformi("mrgiVisFirst", first);
         p->SetUniformi("mrgiVisLast", std::min(first + range, sampleCount));
@@ -473,25 +518,57 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
       // per batch nor the marches' SIMD groups for texels that march
       // nothing (mostly INHERITED ones).
       ok = run(StageDecide, finalMasks, sampleCount);
+      const int batches = (sampleCount + range0 - 1) / range0;
+      const int copies = batches > 1 && lw < CopyLevelSide && lh < CopyLevelSide &&
+          batches * stride <= MaxCopyWidth
+        ? batches
+        : 0;
+      if (ok && copies > 0 &&
+        (in.CopyWidth < copies * stride || in.CopyHeight < lh || in.CopyTargets != targets))
+      {
+        // Sized for the largest small level of this layout.
+        in.ReleaseCopies(window);
+        in.CopyWidth = std::min(batches * (CopyLevelSide + CopyAlign), MaxCopyWidth);
+        in.CopyHeight = CopyLevelSide;
+        in.CopyTargets = targets;
+        for (int k = 0; k < targets && ok; ++k)
+        {
+          in.CopyMasks[static_cast<size_t>(k)] = MakeUIntTexture(window, in.CopyWidth, in.CopyHeight);
+          ok = in.CopyMasks[static_cast<size_t>(k)] != nullptr;
+        }
+        in.CopyStencil = vtkTextureObject::New();
+        in.CopyStencil->SetContext(window);
+        in.CopyStencil->SetMinificationFilter(vtkTextureObject::Nearest);
+        in.CopyStencil->SetMagnificationFilter(vtkTextureObject::Nearest);
+        ok = ok &&
+          in.CopyStencil->AllocateDepthStencil(
+            static_cast<unsigned int>(in.CopyWidth), static_cast<unsigned int>(in.CopyHeight));
+        if (!ok)
+        {
+          in.ReleaseCopies(window);
+          vtkErrorMacro("Update: could not allocate the copies of the small levels");
+        }
+      }
       if (ok)
       {
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D,
-          in.DepthStencil->GetHandle(), 0);
+          (copies > 0 ? in.CopyStencil : in.DepthStencil)->GetHandle(), 0);
         ostate->vtkglEnable(GL_STENCIL_TEST);
         ostate->vtkglStencilMask(0xFF);
         glClearStencil(0);
         ostate->vtkglClear(GL_STENCIL_BUFFER_BIT);
         ostate->vtkglStencilFunc(GL_ALWAYS, 1, 0xFF);
         ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-        ok = run(StageMark, finalMasks, sampleCount);
+        ok = run(StageMark, finalMasks, sampleCount, copies);
         ostate->vtkglStencilMask(0x00);
         ostate->vtkglStencilFunc(GL_EQUAL, 1, 0xFF);
         ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-        ok = ok && run(StageMarch, finalMasks, range0);
+        ok = ok && run(StageMarch, finalMasks, range0, copies);
         ostate->vtkglStencilMask(0xFF);
         ostate->vtkglStencilFunc(GL_ALWAYS, 0, 0xFF);
         ostate->vtkglDisable(GL_STENCIL_TEST);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+        ok = ok && (copies == 0 || run(StageCopies, finalMasks, sampleCount, copies));
       }
     }
     if (ok && this->CollectStatistics)

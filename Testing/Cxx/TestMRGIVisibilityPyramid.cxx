@@ -406,6 +406,9 @@ int main()
   RunScene("cornell-area", 97, 61, { 64, 256 },
     { naive, naiveInterleaved, incremental, incrementalInterleaved, spreadRefined, everywhere }, true);
   RunScene("cornell-spot", 80, 53, { 64 }, { naive, incremental, incrementalInterleaved, twoSided }, true);
+  // Levels 0 and 1 at least 128 wide march in batches, one draw per sample
+  // range; the smaller ones as copies side by side (one draw): both ways.
+  RunScene("cornell-area", 260, 132, { 64 }, { naive, incremental }, false);
   MRGI_TEST_CHECK(failureChecks >= 2);
   return 0;
 }

@@ -25,6 +25,13 @@
 //                        through mrgiVisQuarterK) of this draw's samples,
 //                        ORed into the masks. Stages 3+5+4 write exactly
 //                        what stage 0 writes.
+//                        On small levels stages 5 and 4 run over COPIES of the
+//                        level side by side (mrgiVisCopyStride > 0): copy c
+//                        marches samples [c range, (c + 1) range) in one draw,
+//                        instead of one draw per range over the level alone
+//                        (llvmpipe shades a 64x64 tile on one thread: a
+//                        16 x 16 level kept one core busy); 6: OR the copies
+//                        (read through mrgiVisQuarterK) into the masks.
 //   MRGI_VIS_WORDS    W = ceil(N / 32) mask words
 //   MRGI_VIS_TARGETS  T = ceil(W / 4) RGBA32UI mask targets
 //   MRGI_VIS_OUTPUTS  outputs: T (stages 0, 1, 4), 2T (stage 3), 1 (2, 5)
@@ -80,6 +87,15 @@ uniform int mrgiVisTwoSided;
 uniform int mrgiVisSampleCount; // N
 uniform int mrgiVisFirst;       // this draw marches samples [first, last)
 uniform int mrgiVisLast;
+// Stages 4-6 on copies: the copies' x stride (0: no copies), the samples
+// per copy, and (stage 6) the number of copies.
+uniform int mrgiVisCopyStride;
+uniform int mrgiVisCopyRange;
+uniform int mrgiVisCopies;
+// The samples this fragment marches: [mrgiVisFirst, mrgiVisLast), or its
+// copy's range (set in main()).
+int mrgiVisBatchFirst;
+int mrgiVisBatchLast;
 
 out uvec4 fragOutput0;
 #if MRGI_VIS_OUTPUTS > 1
@@ -380,8 +396,8 @@ bool mrgiVisSampleVisible(int j, vec3 P, vec3 N)
 uint mrgiVisMarchBits(int w, uint todo, vec3 P, vec3 N, int phase)
 {
   uint result = 0u;
-  int lo = max(mrgiVisFirst - 32 * w, 0);
-  int hi = min(mrgiVisLast - 32 * w, 32);
+  int lo = max(mrgiVisBatchFirst - 32 * w, 0);
+  int hi = min(mrgiVisBatchLast - 32 * w, 32);
   int step = phase >= 0 ? MRGI_VOXEL_INTERLEAVE_PHASES : 1;
   if (phase >= 0)
   {
@@ -418,7 +434,33 @@ void main()
   {
     mask[w] = 0u;
   }
-#if MRGI_VIS_STAGE == 4 || MRGI_VIS_STAGE == 5
+  mrgiVisBatchFirst = mrgiVisFirst;
+  mrgiVisBatchLast = mrgiVisLast;
+#if MRGI_VIS_STAGE == 6
+  // OR the copies' bits of texel t.
+  for (int c = 0; c < mrgiVisCopies; ++c)
+  {
+    uint copy[MRGI_VIS_WORDS];
+    mrgiVisFetch(false, ivec2(t.x + c * mrgiVisCopyStride, t.y), copy);
+    for (int w = 0; w < MRGI_VIS_WORDS; ++w)
+    {
+      mask[w] |= copy[w];
+    }
+  }
+  mrgiVisWrite(mask);
+#elif MRGI_VIS_STAGE == 4 || MRGI_VIS_STAGE == 5
+  if (mrgiVisCopyStride > 0)
+  {
+    // Copy c of the level: texel t, samples [c range, (c + 1) range).
+    int c = t.x / mrgiVisCopyStride;
+    t.x -= c * mrgiVisCopyStride;
+    mrgiVisBatchFirst = c * mrgiVisCopyRange;
+    mrgiVisBatchLast = min(mrgiVisBatchFirst + mrgiVisCopyRange, mrgiVisSampleCount);
+    if (t.x >= mrgiVisLevelSize.x)
+    {
+      discard; // padding between copies
+    }
+  }
   // After stage 3: the todo bits of this texel.
   uint todo[MRGI_VIS_WORDS];
   mrgiVisFetch(false, t, todo);
