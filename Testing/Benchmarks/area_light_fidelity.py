@@ -335,14 +335,20 @@ def write_page(args, rows, notes, path):
              "- **Phong highlights** (3.2.1): on surfaces with a vtkProperty Specular > 0, a separate pass adds "
              "k_s c_s S with the energy-normalised Phong lobe, discarding lobes that miss the light and sampling "
              "the light's texture on a 5x5 grid inside sharp lobes (`--specular KS:POWER` gives every surface a "
-             "material to see it). At full resolution, without visibility.",
+             "material to see it). At full resolution. Shadowed (3.3.3): on glossy lobes each sample's term "
+             "counts where the sample is visible (the level-0 bit of the incremental masks, or a march with "
+             "naive visibility); on sharp lobes each lobe-grid cell is weighted by the variance shadow query "
+             "(`vtkMRGIVarianceShadowQuery`: moments of the occluder distance per query, 2x2 interleaved, "
+             "box-blurred, Chebyshev's bound).",
              "- Every GPU stage has a C twin in `Rendering/Core` and a parity test (diffuse 3e-7, march 0 of 1.1M "
              "rays, visibility masks bit-equal, incremental stencil bit-equal, specular 2e-7 in the pass).",
              "- On Mesa's llvmpipe a shader invocation stops all its loops after 65535 iterations in total, "
-             "silently; the marches are therefore batched (`mrgi_voxel_samples_per_batch`).", "",
-             "Not done: the variance shadow query for sharp lobes (3.3.3; the C twin exists), visibility in the "
-             "specular pass, refining the gather's stencil by the visibility metric (3.4: the pyramid refines its "
-             "masks, the gather keeps the geometric selection).", "",
+             "silently; the marches are therefore batched (`mrgi_voxel_samples_per_batch`); levels smaller than "
+             "128x128 march their batches as copies side by side in one draw (llvmpipe shades each 64x64 tile "
+             "on one thread).",
+             "- Nothing is recomputed while the camera, the visible props, the lights, their pictures and the "
+             "settings are unchanged (`vtkMRGIPass::GetNumberOfAreaLightUpdates`); the timings below switch "
+             "that off (`SetAreaLightReuse(False)`) to measure the computation.", "",
              "## Fidelity and speed", ""]
     for name, note in notes.items():
         lines.append("- `%s`: %s." % (name, note))
