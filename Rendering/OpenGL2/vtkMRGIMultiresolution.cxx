@@ -28,6 +28,9 @@
 #include "vtkMRGIMultiresUpsampleFS.h"
 #include "vtkMRGIMultiresSelectFS.h"
 #include "vtkMRGIIncrementalStencilFS.h"
+#include "vtkMRGISpecularStencilFS.h"
+#include "vtkMRGIAreaLightSpecular.h"
+#include "mrgi_specular_stencil.h"
 #include "vtkMRGIVisibilityBits.h"
 #include "mrgi_voxel_incremental.h"
 #include "vtkFloatArray.h"
@@ -236,6 +239,19 @@ struct vtkMRGIMultiresolution::Internals
   vtkTextureObject* IncrementalDepthStencil = nullptr;
   std::map<int, vtkOpenGLQuadHelper*> IncrementalQuads;
   bool LastGatherIncremental = false;
+  // The specular stencil (NPW10 3.2.1, mrgi_specular_stencil.h): material
+  // pyramid per level, refinement bits and selection (flattened), its
+  // stencil, programs per stage; whether the last gather was the specular
+  // one (then Upsample() reads the specular selection). Pixel size
+  // coefficients of the last Update().
+  std::vector<vtkTextureObject*> SpecularMaterial;
+  vtkTextureObject* FlatSpecularBits = nullptr;
+  vtkTextureObject* FlatSpecularSelection = nullptr;
+  vtkTextureObject* SpecularDepthStencil = nullptr;
+  vtkOpenGLQuadHelper* SpecularQuads[4] = { nullptr, nullptr, nullptr, nullptr };
+  bool SpecularStencilValid = false;
+  bool LastGatherSpecular = false;
+  double PixelSize[2] = { 0.0, 0.0 };
   vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
   vtkOpenGLQuadHelper* Quads[StageCount] = { nullptr, nullptr, nullptr, nullptr, nullptr, nullptr };
 
@@ -271,6 +287,16 @@ struct vtkMRGIMultiresolution::Internals
     vtkMRGIShaderUtilities::ReleaseTexture(this->FlatIncremental, w);
     vtkMRGIShaderUtilities::ReleaseTexture(this->IncrementalDepthStencil, w);
     this->LastGatherIncremental = false;
+    for (auto*& t : this->SpecularMaterial)
+    {
+      vtkMRGIShaderUtilities::ReleaseTexture(t, w);
+    }
+    this->SpecularMaterial.clear();
+    vtkMRGIShaderUtilities::ReleaseTexture(this->FlatSpecularBits, w);
+    vtkMRGIShaderUtilities::ReleaseTexture(this->FlatSpecularSelection, w);
+    vtkMRGIShaderUtilities::ReleaseTexture(this->SpecularDepthStencil, w);
+    this->SpecularStencilValid = false;
+    this->LastGatherSpecular = false;
     this->HasLayout = false;
     this->LastPosition = this->LastNormal = nullptr;
     this->ReceiversValid = false;
@@ -427,6 +453,10 @@ void vtkMRGIMultiresolution::ReleaseGraphicsResources(vtkWindow* w)
   releaseQuad(this->Internal->AreaGatherQuad);
   releaseQuad(this->Internal->AreaVisibleGatherQuad);
   releaseQuad(this->Internal->AreaMaskedGatherQuad);
+  for (auto*& q : this->Internal->SpecularQuads)
+  {
+    releaseQuad(q);
+  }
   for (auto& q : this->Internal->IncrementalQuads)
   {
     releaseQuad(q.second);
@@ -480,6 +510,10 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
   }
   this->Internal->ReceiversValid = false; // a new selection: its receivers come with the next gather
   this->Internal->LastGatherIncremental = false;
+  this->Internal->LastGatherSpecular = false;
+  this->Internal->SpecularStencilValid = false;
+  this->Internal->PixelSize[0] = a;
+  this->Internal->PixelSize[1] = b;
   mrgi_multires_layout layout;
   mrgi_error err;
   if (mrgi_multires_layout_init(&layout, width, height, this->CoarsestSide, &err) != MRGI_OK)
@@ -908,6 +942,7 @@ bool vtkMRGIMultiresolution::RunStenciledGather(vtkOpenGLRenderWindow* window,
   // discontinuities (built before the gather's own GL state is set).
   const bool incremental = masked && this->IncrementalStencil;
   in.LastGatherIncremental = false;
+  in.LastGatherSpecular = false;
   if (incremental && !this->BuildIncrementalStencil(window, in.AreaMasks))
   {
     return false;
@@ -1097,6 +1132,7 @@ bool vtkMRGIMultiresolution::RunSplatting(vtkOpenGLRenderWindow* window,
   // additive blending sums them.
   Internals& in = *this->Internal;
   in.LastGatherIncremental = false;
+  in.LastGatherSpecular = false;
   const mrgi_multires_layout& layout = in.Layout;
   const int levels = layout.level_count;
   const int finest = std::min(this->FinestLevel, levels - 1);
@@ -1239,7 +1275,10 @@ bool vtkMRGIMultiresolution::Upsample(vtkOpenGLRenderWindow* window, int mode, d
     steps.Target(value, nullptr, 0, 0, w, h);
     // The texels the last gather rendered: the selection, or the
     // incremental stencil (NPW10 3.4 step 3: upsample where not rendered).
-    vtkTextureObject* rendered = in.LastGatherIncremental ? in.FlatIncremental : in.FlatSelection;
+    // The specular gather (NPW10 3.2.1) renders its own selection.
+    vtkTextureObject* rendered = in.LastGatherSpecular ? in.FlatSpecularSelection
+      : in.LastGatherIncremental                        ? in.FlatIncremental
+                                                        : in.FlatSelection;
     BindInputs(state, { rendered, flags, in.FlatIrradiance, parent });
     const int offset[2] = { layout.level_offset[i], 0 };
     state->SetUniform2i("mrgiOffset", offset);
@@ -1668,7 +1707,335 @@ void vtkMRGIMultiresolution::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SurfaceDetail: " << this->SurfaceDetail << "\n";
   os << indent << "IncrementalStencil: " << (this->IncrementalStencil ? "On" : "Off") << "\n";
   os << indent << "IncrementalStencilFraction: " << this->IncrementalStencilFraction << "\n";
+  os << indent << "SpecularLobeRefinement: " << (this->SpecularLobeRefinement ? "On" : "Off") << "\n";
   os << indent << "GatherMode: " << (this->GatherMode == GatherSplatting ? "Splatting" : "Stenciled") << "\n";
   os << indent << "CollectStatistics: " << (this->CollectStatistics ? "On" : "Off") << "\n";
   os << indent << "Levels: " << this->GetNumberOfLevels() << "\n";
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIMultiresolution::GetPixelSizeCoefficients(double coefficients[2]) const
+{
+  coefficients[0] = this->Internal->PixelSize[0];
+  coefficients[1] = this->Internal->PixelSize[1];
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::BuildSpecularStencil(vtkOpenGLRenderWindow* window,
+  vtkTextureObject* position, vtkTextureObject* normal, vtkTextureObject* specular,
+  vtkTextureObject* shininess, int x0, int y0, const mrgi_area_light_uniforms& light,
+  const float viewToWorld[16], bool parallel)
+{
+  // nichols-penmatsa-wyman-2010 3.2.1 ("when we create our depth and normal
+  // mipmaps, we also compute the cross-sectional Phong lobe size at the
+  // light") and 3.4 (the stencil from depth, normal and BRDF frequency
+  // metrics): mrgi_specular_stencil.h. Material pyramid (one pass per
+  // level), the refinement bits (one draw per level into the flattened
+  // layout), then the selection with its stencil (one draw per level, each
+  // walking its ancestors' bits).
+  Internals& in = *this->Internal;
+  in.SpecularStencilValid = false;
+  if (!window || !position || !normal || !specular || !shininess || !in.HasLayout)
+  {
+    vtkErrorMacro("BuildSpecularStencil needs Update() first and the G-buffer with its specular targets");
+    return false;
+  }
+  if (!in.ReceiversValid && !this->BuildReceivers(window, position, normal, x0, y0))
+  {
+    return false;
+  }
+  const mrgi_multires_layout& layout = in.Layout;
+  const int levels = layout.level_count;
+  const int finest = std::min(this->FinestLevel, levels - 1);
+  if (in.SpecularMaterial.size() != static_cast<size_t>(levels))
+  {
+    for (auto*& t : in.SpecularMaterial)
+    {
+      vtkMRGIShaderUtilities::ReleaseTexture(t, window);
+    }
+    in.SpecularMaterial.assign(static_cast<size_t>(levels), nullptr);
+    for (int i = 0; i < levels; ++i)
+    {
+      in.SpecularMaterial[static_cast<size_t>(i)] =
+        MakeFloatTexture(window, layout.level_width[i], layout.level_height[i]);
+    }
+  }
+  if (!in.FlatSpecularBits)
+  {
+    in.FlatSpecularBits = MakeFloatTexture(window, layout.total_width, layout.total_height);
+    in.FlatSpecularSelection = MakeFloatTexture(window, layout.total_width, layout.total_height);
+    in.SpecularDepthStencil = vtkTextureObject::New();
+    in.SpecularDepthStencil->SetContext(window);
+    in.SpecularDepthStencil->SetMinificationFilter(vtkTextureObject::Nearest);
+    in.SpecularDepthStencil->SetMagnificationFilter(vtkTextureObject::Nearest);
+    in.SpecularDepthStencil->AllocateDepthStencil(layout.total_width, layout.total_height);
+  }
+  vtkShaderProgram* programs[4];
+  for (int stage = 0; stage < 4; ++stage)
+  {
+    if (!in.SpecularQuads[stage])
+    {
+      std::string body = "#define MRGI_SPEC_STAGE " + std::to_string(stage) + "\n";
+      if (stage == 2)
+      {
+        body += std::string(vtkMRGIAreaLightDiffuse) + "\n#define MRGI_AREA_LIGHT_DIFFUSE_DECLARED\n" +
+          vtkMRGIAreaLightSpecular;
+      }
+      body += vtkMRGISpecularStencilFS;
+      in.SpecularQuads[stage] = new vtkOpenGLQuadHelper(window,
+        vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
+        vtkMRGIShaderUtilities::FullScreenShader(body.c_str()).c_str(), "");
+    }
+    window->GetShaderCache()->ReadyShaderProgram(in.SpecularQuads[stage]->Program);
+    vtkShaderProgram* p = in.SpecularQuads[stage]->Program;
+    programs[stage] = (p && p->GetCompiled()) ? p : nullptr;
+    if (!programs[stage])
+    {
+      vtkErrorMacro("could not build the specular stencil shader (stage " << stage << ")");
+      return false;
+    }
+  }
+  using vtkMRGIShaderUtilities::ScopedStage;
+  ScopedStage step(this->StageTimer, "select.specular");
+  QuadSteps steps(window, in.FrameBuffer);
+  vtkOpenGLState* ostate = steps.State;
+  // 1. Material pyramid.
+  for (int i = 0; i < levels; ++i)
+  {
+    vtkShaderProgram* p = programs[i == 0 ? 0 : 1];
+    window->GetShaderCache()->ReadyShaderProgram(p);
+    steps.Target(in.SpecularMaterial[static_cast<size_t>(i)], nullptr, 0, 0, layout.level_width[i],
+      layout.level_height[i]);
+    if (i == 0)
+    {
+      BindInputs(p, { position, specular, shininess });
+      const int offset[2] = { x0, y0 };
+      p->SetUniform2i("mrgiOffset", offset);
+      in.SpecularQuads[0]->Render();
+      UnbindInputs({ position, specular, shininess });
+    }
+    else
+    {
+      vtkTextureObject* child = in.SpecularMaterial[static_cast<size_t>(i - 1)];
+      BindInputs(p, { child });
+      const int size[2] = { layout.level_width[i - 1], layout.level_height[i - 1] };
+      p->SetUniform2i("mrgiSize", size);
+      in.SpecularQuads[1]->Render();
+      UnbindInputs({ child });
+    }
+  }
+  // 2. Refinement bits of every level at or above the finest.
+  {
+    vtkShaderProgram* p = programs[2];
+    window->GetShaderCache()->ReadyShaderProgram(p);
+    steps.Target(in.FlatSpecularBits, nullptr, 0, 0, layout.total_width, layout.total_height);
+    ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+    ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
+    p->SetUniform3f("mrgiAreaCenter", light.center);
+    p->SetUniform3f("mrgiAreaNormal", light.normal);
+    p->SetUniform3fv("mrgiAreaCorners", 4, light.corners);
+    p->SetUniform3f("mrgiAreaAxisU", light.axis_u);
+    p->SetUniform3f("mrgiAreaAxisV", light.axis_v);
+    p->SetUniformf("mrgiAreaHalfU", light.half_u);
+    p->SetUniformf("mrgiAreaHalfV", light.half_v);
+    p->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(viewToWorld));
+    p->SetUniformi("mrgiParallel", parallel ? 1 : 0);
+    p->SetUniformi("mrgiLobe", this->SpecularLobeRefinement ? 1 : 0);
+    const float pixelSize[2] = { static_cast<float>(in.PixelSize[0]),
+      static_cast<float>(in.PixelSize[1]) };
+    p->SetUniform2f("mrgiPixelSize", pixelSize);
+    for (int i = finest; i < levels; ++i)
+    {
+      const std::array<vtkTextureObject*, 2> receivers = in.BindReceivers(p, i, position, normal, x0, y0);
+      vtkTextureObject* flags = in.Levels[static_cast<size_t>(i)][MRGI_MULTIRES_TEX_COUNT];
+      vtkTextureObject* material = in.SpecularMaterial[static_cast<size_t>(i)];
+      flags->Activate();
+      material->Activate();
+      p->SetUniformi("mrgiFlags", flags->GetTextureUnit());
+      p->SetUniformi("mrgiMaterial", material->GetTextureUnit());
+      p->SetUniformi("mrgiLevelOffset", layout.level_offset[i]);
+      p->SetUniformi("mrgiLevel", i);
+      p->SetUniformi("mrgiFinest", i == finest ? 1 : 0);
+      ostate->vtkglViewport(layout.level_offset[i], 0, layout.level_width[i], layout.level_height[i]);
+      in.SpecularQuads[2]->Render();
+      material->Deactivate();
+      flags->Deactivate();
+      receivers[1]->Deactivate();
+      receivers[0]->Deactivate();
+    }
+  }
+  // 3. Selection and stencil.
+  {
+    vtkShaderProgram* p = programs[3];
+    window->GetShaderCache()->ReadyShaderProgram(p);
+    steps.Target(in.FlatSpecularSelection, nullptr, 0, 0, layout.total_width, layout.total_height);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D,
+      in.SpecularDepthStencil->GetHandle(), 0);
+    ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+    ostate->vtkglStencilMask(0xFF);
+    glClearStencil(0);
+    ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    ostate->vtkglEnable(GL_STENCIL_TEST);
+    ostate->vtkglStencilFunc(GL_ALWAYS, 1, 0xFF);
+    ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    in.FlatSpecularBits->Activate();
+    p->SetUniformi("mrgiRefine", in.FlatSpecularBits->GetTextureUnit());
+    p->SetUniformi("mrgiCoarsestLevel", levels - 1);
+    std::vector<int> offsets(MRGI_MULTIRES_MAX_LEVELS, 0);
+    for (int i = 0; i < levels; ++i)
+    {
+      offsets[static_cast<size_t>(i)] = layout.level_offset[i];
+    }
+    p->SetUniform1iv("mrgiOffsets", MRGI_MULTIRES_MAX_LEVELS, offsets.data());
+    for (int i = finest; i < levels; ++i)
+    {
+      p->SetUniformi("mrgiLevel", i);
+      ostate->vtkglViewport(layout.level_offset[i], 0, layout.level_width[i], layout.level_height[i]);
+      in.SpecularQuads[3]->Render();
+    }
+    in.FlatSpecularBits->Deactivate();
+    ostate->vtkglStencilFunc(GL_ALWAYS, 0, 0xFF);
+    ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+  }
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("OpenGL error 0x" << std::hex << error << " in the specular stencil");
+    return false;
+  }
+  in.SpecularStencilValid = true;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::GatherAreaSpecular(vtkOpenGLRenderWindow* window,
+  vtkTextureObject* position, vtkTextureObject* normal, int x0, int y0, vtkShaderProgram* program,
+  const std::function<bool(int level)>& draw)
+{
+  // NPW10 3.2.1: "we separate diffuse and Phong components into separate
+  // gather passes": the specular gather at the texels of the specular
+  // stencil, one draw per level (early stencil culling).
+  Internals& in = *this->Internal;
+  if (!window || !program || !in.SpecularStencilValid)
+  {
+    vtkErrorMacro("GatherAreaSpecular needs BuildSpecularStencil() first and a program");
+    return false;
+  }
+  const mrgi_multires_layout& layout = in.Layout;
+  const int levels = layout.level_count;
+  const int finest = std::min(this->FinestLevel, levels - 1);
+  vtkMRGIShaderUtilities::ScopedStage step(this->StageTimer, "gather.specular");
+  in.LastGatherIncremental = false;
+  in.LastGatherSpecular = false;
+  bool ok = true;
+  {
+    QuadSteps steps(window, in.FrameBuffer);
+    vtkOpenGLState* ostate = steps.State;
+    vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
+    steps.Target(in.FlatIrradiance, nullptr, 0, 0, layout.total_width, layout.total_height);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D,
+      in.SpecularDepthStencil->GetHandle(), 0);
+    ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+    ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
+    ostate->vtkglEnable(GL_STENCIL_TEST);
+    ostate->vtkglStencilMask(0x00);
+    ostate->vtkglStencilFunc(GL_EQUAL, 1, 0xFF);
+    ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    for (int i = finest; i < levels && ok; ++i)
+    {
+      const std::array<vtkTextureObject*, 2> receivers =
+        in.BindReceivers(program, i, position, normal, x0, y0);
+      vtkTextureObject* material = in.SpecularMaterial[static_cast<size_t>(i)];
+      material->Activate();
+      program->SetUniformi("mrgiMaterial", material->GetTextureUnit());
+      const int origin[2] = { layout.level_offset[i], 0 };
+      program->SetUniform2i("mrgiLevelOrigin", origin);
+      program->SetUniformi("mrgiLevelScale", 1 << i);
+      ostate->vtkglDisable(GL_BLEND);
+      ostate->vtkglViewport(layout.level_offset[i], 0, layout.level_width[i], layout.level_height[i]);
+      ok = draw(i);
+      material->Deactivate();
+      receivers[1]->Deactivate();
+      receivers[0]->Deactivate();
+    }
+    ostate->vtkglStencilMask(0xFF);
+    ostate->vtkglStencilFunc(GL_ALWAYS, 0, 0xFF);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+  }
+  in.LastGatherSpecular = ok;
+  return ok && glGetError() == GL_NO_ERROR;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::ReadSpecularStencil(vtkRenderWindow* window,
+  vtkUnsignedCharArray* selection, vtkUnsignedCharArray* bits, bool fromStencil)
+{
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  Internals& in = *this->Internal;
+  if (!renWin || !selection || !in.SpecularStencilValid)
+  {
+    vtkErrorMacro("ReadSpecularStencil: no specular stencil built");
+    return false;
+  }
+  const vtkIdType n = static_cast<vtkIdType>(in.Layout.total_width) * in.Layout.total_height;
+  std::vector<float> rgba;
+  if (bits)
+  {
+    if (!vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.FlatSpecularBits, rgba))
+    {
+      return false;
+    }
+    bits->SetNumberOfComponents(1);
+    bits->SetNumberOfTuples(n);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      bits->SetValue(i, static_cast<unsigned char>(rgba[4 * static_cast<size_t>(i)]));
+    }
+  }
+  selection->SetNumberOfComponents(1);
+  selection->SetNumberOfTuples(n);
+  if (!fromStencil)
+  {
+    if (!vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.FlatSpecularSelection, rgba))
+    {
+      return false;
+    }
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      selection->SetValue(i, rgba[4 * static_cast<size_t>(i)] > 0.5f ? 1 : 0);
+    }
+    return true;
+  }
+  renWin->MakeCurrent();
+  vtkOpenGLState* ostate = renWin->GetState();
+  ostate->PushReadFramebufferBinding();
+  in.FrameBuffer->Bind(GL_READ_FRAMEBUFFER);
+  glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D,
+    in.SpecularDepthStencil->GetHandle(), 0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, in.Layout.total_width, in.Layout.total_height, GL_STENCIL_INDEX,
+    GL_UNSIGNED_BYTE, selection->GetPointer(0));
+  glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+  ostate->PopReadFramebufferBinding();
+  return glGetError() == GL_NO_ERROR;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::ReadSpecularMaterial(vtkRenderWindow* window, vtkFloatArray* material)
+{
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  Internals& in = *this->Internal;
+  std::vector<float> flat;
+  if (!renWin || !material || !in.SpecularStencilValid ||
+    !ReadFlattened(renWin, in.Layout, 4,
+      [&](int level) { return in.SpecularMaterial[static_cast<size_t>(level)]; }, flat))
+  {
+    vtkErrorMacro("ReadSpecularMaterial: no specular stencil built");
+    return false;
+  }
+  material->SetNumberOfComponents(4);
+  material->SetNumberOfTuples(static_cast<vtkIdType>(flat.size() / 4));
+  std::copy(flat.begin(), flat.end(), material->GetPointer(0));
+  return true;
 }

@@ -40,7 +40,8 @@
 #include "MRGIRenderingModule.h" // For export macro
 #include "vtkObject.h"
 
-#include <memory> // For std::unique_ptr
+#include <functional> // For std::function
+#include <memory>     // For std::unique_ptr
 
 struct mrgi_area_light_uniforms;
 struct mrgi_multires_layout;
@@ -48,6 +49,7 @@ class vtkMRGIVisibilityPyramid;
 class vtkMRGIVoxelization;
 class vtkFloatArray;
 class vtkOpenGLRenderWindow;
+class vtkShaderProgram;
 class vtkRenderTimerLog;
 class vtkRenderWindow;
 class vtkTextureObject;
@@ -191,6 +193,67 @@ public:
   vtkSetClampMacro(IncrementalStencilFraction, double, 0.0, 1.0);
   vtkGetMacro(IncrementalStencilFraction, double);
   ///@}
+
+  ///@{
+  /**
+   * The lobe-size refinement metric of the multiresolution specular gather
+   * (nichols-penmatsa-wyman-2010 3.2.1, "image-space sample spacing must be
+   * denser than the lobe width"; mrgi_specular_stencil.h). On (default):
+   * BuildSpecularStencil() also refines a texel whose Phong lobe is
+   * narrower than its spacing (m > 1). Off: the geometric refinement and
+   * mixed exponents alone (for comparisons and tests).
+   */
+  vtkSetMacro(SpecularLobeRefinement, bool);
+  vtkGetMacro(SpecularLobeRefinement, bool);
+  vtkBooleanMacro(SpecularLobeRefinement, bool);
+  ///@}
+
+#ifndef __VTK_WRAP__
+  /**
+   * After Update() (and this frame's receivers, built here when missing):
+   * the stencil of the multiresolution specular gather of one area light
+   * (NPW10 3.2.1 and 3.4; C twin and contract: mrgi_specular_stencil.h).
+   * Builds the material pyramid (max k_s, max and min Phong exponent per
+   * texel) from the specular G-buffer targets, the refinement bits (the
+   * geometric REFINE flag, mixed exponents and the lobe metric) and the
+   * selection (texels with specular material only), with its stencil.
+   * Timer step "select.specular". False on error.
+   */
+  bool BuildSpecularStencil(vtkOpenGLRenderWindow* window, vtkTextureObject* position,
+    vtkTextureObject* normal, vtkTextureObject* specular, vtkTextureObject* shininess, int x0,
+    int y0, const mrgi_area_light_uniforms& light, const float viewToWorld[16], bool parallel);
+
+  /**
+   * After BuildSpecularStencil(): the stenciled specular gather into the
+   * flattened irradiance buffer, one level at a time from the finest
+   * gathering level (timer step "gather.specular"). `program` is the
+   * caller's (ready, its own uniforms and textures set); for each level this
+   * binds the receivers (mrgiPosition, mrgiNormal, mrgiReceiverOffset as
+   * the gather's), the level's material (mrgiMaterial: x max k_s, y the
+   * largest exponent), mrgiLevelOrigin (the level's offset in the flattened
+   * layout) and mrgiLevelScale (2^level), sets the viewport to the level and
+   * calls `draw(level)`, which draws (and may bind per-level inputs).
+   * Upsample() then reads the specular selection. False on error.
+   */
+  bool GatherAreaSpecular(vtkOpenGLRenderWindow* window, vtkTextureObject* position,
+    vtkTextureObject* normal, int x0, int y0, vtkShaderProgram* program,
+    const std::function<bool(int level)>& draw);
+#endif
+
+  /**
+   * Read back the last BuildSpecularStencil(): the selection (1 = selected)
+   * and the refinement bits (MRGI_SPECULAR_STENCIL_*), one byte per
+   * flattened texel; `fromStencil` reads the selection from the stencil.
+   * `bits` may be null.
+   */
+  bool ReadSpecularStencil(vtkRenderWindow* window, vtkUnsignedCharArray* selection,
+    vtkUnsignedCharArray* bits, bool fromStencil = false);
+
+  /** Read the material pyramid of the last BuildSpecularStencil() (4 floats per flattened texel). */
+  bool ReadSpecularMaterial(vtkRenderWindow* window, vtkFloatArray* material);
+
+  /** The pixel size coefficients (a, b) of the last Update(). */
+  void GetPixelSizeCoefficients(double coefficients[2]) const;
 
   /**
    * Read back the texels the last area-light gather rendered with the
@@ -348,6 +411,7 @@ protected:
   int GatherMode = GatherStenciled;
   bool IncrementalStencil = true;
   double IncrementalStencilFraction = 0.25;
+  bool SpecularLobeRefinement = true;
   vtkRenderTimerLog* StageTimer = nullptr;
 
   // The incremental stencil (3.4) of the area-light gather in progress.

@@ -284,6 +284,9 @@ vtkMRGIPass::~vtkMRGIPass()
   delete this->SpecularQuad;
   delete this->SpecularMaskedQuad;
   delete this->SpecularMarchedQuad;
+  delete this->SpecularMultiresQuad;
+  delete this->SpecularMultiresMaskedQuad;
+  delete this->SpecularMultiresMarchedQuad;
   if (this->FXAAFilter)
   {
     this->FXAAFilter->Delete();
@@ -414,6 +417,9 @@ void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
   Release(this->OutputQuad, w);
   Release(this->SpecularQuad, w);
   Release(this->SpecularMaskedQuad, w);
+  Release(this->SpecularMultiresQuad, w);
+  Release(this->SpecularMultiresMaskedQuad, w);
+  Release(this->SpecularMultiresMarchedQuad, w);
   Release(this->SpecularMarchedQuad, w);
   for (vtkMRGIAreaLight* light : this->AreaLights)
   {
@@ -1026,6 +1032,10 @@ bool vtkMRGIPass::RenderAreaSpecular(vtkOpenGLRenderWindow* renWin, vtkMRGIAreaL
       vtkErrorMacro("area lights: no variance shadow query; drawing the highlights without shadows");
     }
   }
+  if (this->AreaLightSpecularResolution == SpecularMultiresolution)
+  {
+    return this->RenderAreaSpecularMultiresolution(renWin, light, voxels, masks, shadowed);
+  }
   const bool masked = shadowed && masks != nullptr;
   const bool marched = shadowed && !masked;
   static const std::string unshadowedBody = std::string(vtkMRGIVPLIrradiance) +
@@ -1156,6 +1166,155 @@ bool vtkMRGIPass::RenderAreaSpecular(vtkOpenGLRenderWindow* renWin, vtkMRGIAreaL
   fbo->UnBind();
   fbo->RestorePreviousBindingsAndBuffers();
   return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIPass::RenderAreaSpecularMultiresolution(vtkOpenGLRenderWindow* renWin,
+  vtkMRGIAreaLight* light, vtkMRGIVoxelization* voxels, vtkMRGIVisibilityPyramid* masks,
+  bool shadowed)
+{
+  // nichols-penmatsa-wyman-2010 3.2.1: the highlight gathered at the texels
+  // of the specular stencil (this frame's multiresolution selection plus
+  // the lobe-size metric, texels without specular material skipped;
+  // mrgi_specular_stencil.h), then upsampled and resolved like the diffuse
+  // term, the resolve's "albedo" being k_s c_s. Shadows (3.3.3): the
+  // sample path reads the level's incremental masks (3.3.2, every level
+  // has them) or marches at the texel's receiver (naive visibility, in
+  // batches); the lobe grid reads the variance shadow query at the
+  // footprint's centre pixel.
+  vtkMRGIMultiresolution* mr = this->Multiresolution;
+  mrgi_area_light_uniforms uniforms;
+  mrgi_multires_layout layout;
+  int sampleCount = 0;
+  if (!light->GetCoreUniforms(&uniforms) || !light->GetSampleTexture(renWin, &sampleCount) ||
+    !mr->GetLayout(&layout) ||
+    !mr->BuildSpecularStencil(renWin, this->PositionTexture, this->NormalTexture,
+      this->SpecularTexture, this->ShininessTexture, this->Viewport[0], this->Viewport[1], uniforms,
+      this->LastViewToWorldFloat, this->LastParallel))
+  {
+    return false;
+  }
+  const bool masked = shadowed && masks != nullptr &&
+    masks->GetNumberOfLevels() == layout.level_count;
+  const bool marched = shadowed && !masked;
+  static const std::string prefix = "#define MRGI_AREA_SPECULAR_MULTIRES 1\n";
+  static const std::string unshadowedBody = prefix + vtkMRGIVPLIrradiance +
+    vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
+  static const std::string maskedBody = prefix +
+    "#define MRGI_AREA_SPECULAR_VISIBILITY 1\n#define MRGI_AREA_SPECULAR_MASKS 1\n" +
+    vtkMRGIVPLIrradiance + vtkMRGIVarianceShadowQuery::GetResolveShaderSource() +
+    vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
+  static const std::string marchedBody = prefix +
+    "#define MRGI_AREA_SPECULAR_VISIBILITY 1\n#define MRGI_AREA_SPECULAR_BATCHES 1\n" +
+    vtkMRGIVoxelization::GetMarchShaderSource() + vtkMRGIVPLIrradiance +
+    vtkMRGIVarianceShadowQuery::GetResolveShaderSource() +
+    vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
+  vtkShaderProgram* program = masked
+    ? ReadyQuad(this->SpecularMultiresMaskedQuad, renWin, maskedBody.c_str())
+    : marched ? ReadyQuad(this->SpecularMultiresMarchedQuad, renWin, marchedBody.c_str())
+              : ReadyQuad(this->SpecularMultiresQuad, renWin, unshadowedBody.c_str());
+  vtkOpenGLQuadHelper* quad = masked ? this->SpecularMultiresMaskedQuad
+    : (marched ? this->SpecularMultiresMarchedQuad : this->SpecularMultiresQuad);
+  if (!program || !light->SetShaderUniforms(program, renWin))
+  {
+    vtkErrorMacro("could not build the multiresolution area-light specular shader");
+    return false;
+  }
+  // Texture units: receivers 2, material 1, the light's 2, and with shadows
+  // the moments' 3 and the masks' (up to 4) or the voxels (1): 12 at most.
+  std::vector<vtkTextureObject*> active;
+  bool ok = true;
+  if (shadowed)
+  {
+    const int size[2] = { this->Viewport[2], this->Viewport[3] };
+    program->SetUniform2i("mrgiViewportSize", size);
+    this->VarianceShadowQuery->SetResolveUniforms(program);
+    if (marched)
+    {
+      double w2v[16];
+      voxels->GetLastWorldToView(w2v);
+      float worldToView[16];
+      std::copy(w2v, w2v + 16, worldToView);
+      program->SetUniformMatrix4x4("mrgiWCToVC", worldToView);
+      ok = voxels->SetMarchUniforms(program);
+      active.push_back(voxels->GetVoxelTexture());
+    }
+  }
+  program->SetUniformMatrix4x4("mrgiVCToWC", this->LastViewToWorldFloat);
+  program->SetUniformi("mrgiParallel", this->LastParallel ? 1 : 0);
+  const int batch = marched ? mrgi_voxel_samples_per_batch(voxels->GetMaxSteps()) : sampleCount;
+  auto draw = [&](int level) -> bool {
+    std::vector<vtkTextureObject*> levelMasks;
+    if (masked)
+    {
+      // The level's masks, level-local texels (as the diffuse gather's).
+      vtkTextureObject* first = masks->GetMaskTexture(level, 0);
+      if (!first)
+      {
+        return false;
+      }
+      first->Activate();
+      levelMasks.push_back(first);
+      for (int w = 0; w < 4; ++w)
+      {
+        vtkTextureObject* t = masks->GetMaskTexture(level, w);
+        if (t && t != first)
+        {
+          t->Activate();
+          levelMasks.push_back(t);
+        }
+        program->SetUniformi(("mrgiVisibilityMask" + std::to_string(w)).c_str(),
+          (t ? t : first)->GetTextureUnit());
+      }
+    }
+    if (shadowed)
+    {
+      const int origin[2] = { layout.level_offset[level], 0 };
+      program->SetUniform2i("mrgiViewportOrigin", origin);
+    }
+    if (marched)
+    {
+      vtkOpenGLState* ostate = renWin->GetState();
+      for (int first = 0; first < sampleCount; first += batch)
+      {
+        if (first == batch)
+        {
+          ostate->vtkglEnable(GL_BLEND);
+          ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
+        }
+        program->SetUniformi("mrgiSpecularBatchFirst", first);
+        program->SetUniformi("mrgiSpecularBatchCount", std::min(batch, sampleCount - first));
+        quad->Render();
+      }
+    }
+    else
+    {
+      quad->Render();
+    }
+    for (vtkTextureObject* t : levelMasks)
+    {
+      t->Deactivate();
+    }
+    return true;
+  };
+  ok = ok &&
+    mr->GatherAreaSpecular(renWin, this->PositionTexture, this->NormalTexture, this->Viewport[0],
+      this->Viewport[1], program, draw);
+  for (vtkTextureObject* t : active)
+  {
+    t->Deactivate();
+  }
+  if (shadowed)
+  {
+    this->VarianceShadowQuery->DeactivateTextures();
+  }
+  light->DeactivateTextures();
+  // Upsampled S times each pixel's k_s c_s (the resolve's albedo) into
+  // AreaDirectTexture; the irradiance output is scratch.
+  return ok && mr->Upsample(renWin, this->UpsampleMode, this->UpsampleMaskWeight) &&
+    mr->Resolve(renWin, this->SpecularTexture, this->PositionTexture, this->NormalTexture,
+      this->LastParallel, this->AreaIrradianceTexture, this->AreaDirectTexture, this->Viewport[0],
+      this->Viewport[1], 1.0);
 }
 
 //------------------------------------------------------------------------------
@@ -1580,6 +1739,9 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
                                                             : "Off")
      << "\n";
   os << indent << "AreaLightSpecular: " << (this->AreaLightSpecular ? "On" : "Off") << "\n";
+  os << indent << "AreaLightSpecularResolution: "
+     << (this->AreaLightSpecularResolution == SpecularMultiresolution ? "Multiresolution" : "FullResolution")
+     << "\n";
   os << indent << "Voxelization:\n";
   this->Voxelization->PrintSelf(os, indent.GetNextIndent());
   os << indent << "VisibilityPyramid:\n";

@@ -6,6 +6,7 @@
 #include "mrgi_area_light.h"
 #include "mrgi_gather.h"
 #include "mrgi_multires.h"
+#include "mrgi_specular_stencil.h"
 #include "mrgi_upsample.h"
 #include "mrgi_test.h"
 #include "mrgi_voxel_incremental.h"
@@ -60,6 +61,9 @@ static expected_constant expected[] = {
   EXPECT(MRGI_RSM_NORMAL, EXPECT_INT),
   EXPECT(MRGI_RSM_FLUX, EXPECT_INT),
   EXPECT(MRGI_MULTIRES_MAX_LEVELS, EXPECT_INT),
+  EXPECT(MRGI_SPECULAR_STENCIL_REFINE, EXPECT_INT),
+  EXPECT(MRGI_SPECULAR_STENCIL_LOBE, EXPECT_INT),
+  EXPECT(MRGI_SPECULAR_STENCIL_SPECULAR, EXPECT_INT),
   EXPECT(MRGI_MULTIRES_TEX_DEPTH, EXPECT_INT),
   EXPECT(MRGI_MULTIRES_TEX_NORMAL_MIN, EXPECT_INT),
   EXPECT(MRGI_MULTIRES_TEX_NORMAL_MAX, EXPECT_INT),

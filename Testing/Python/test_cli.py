@@ -100,6 +100,21 @@ def main():
               "--incremental-stencil %s times its stencil pass only when on" % stencil)
     check(open(area["stencil-on"], "rb").read() != open(area["stencil-off"], "rb").read(),
           "--incremental-stencil changes the image")
+    # Area-light highlights gathered at full resolution or at the
+    # multiresolution texels (NPW10 3.2.1): only multires times the specular
+    # stencil; the images differ.
+    for resolution in ("full", "multires"):
+        area["specular-" + resolution] = fresh("cli_area_specular_%s.exr" % resolution)
+        code, out, err = run("cornell-area", "-o", area["specular-" + resolution], "--size", "48x48",
+                             "-q", "--area-light-samples", "16", "--area-light-visibility", "off",
+                             "--specular", "0.5:40", "--area-light-specular-resolution", resolution,
+                             "--timings")
+        check(code == 0, "--area-light-specular-resolution %s: %s" % (resolution, err))
+        check(("select.specular" in out) == (resolution == "multires"),
+              "--area-light-specular-resolution %s times the specular stencil only when multires"
+              % resolution)
+    check(open(area["specular-full"], "rb").read() != open(area["specular-multires"], "rb").read(),
+          "--area-light-specular-resolution changes the image")
     dark = fresh("cli_area_dark.exr")
     code, _, err = run("cornell-area", "-o", dark, "--size", "48x48", "-q", "--area-lights", "off")
     check(code == 0, "--area-lights off: " + err)
@@ -156,6 +171,8 @@ def main():
         (["cornell", "-o", target, "--area-light-visibility", "exact"], "--area-light-visibility"),
         (["cornell", "-o", target, "--voxel-size", "0"], "--voxel-size"),
         (["cornell", "-o", target, "--incremental-stencil", "yes"], "--incremental-stencil"),
+        (["cornell", "-o", target, "--area-light-specular-resolution", "half"],
+         "--area-light-specular-resolution"),
         (["cornell", "-o", target, "--area-lights", "maybe"], "--area-lights"),
         (["cornell", "-o", target, "--vpls", "5000"], "--vpls"),
         (["cornell", "-o", target, "--vpls", "-1"], "--vpls"),

@@ -20,6 +20,19 @@
 // - lobe-grid path: cell j weighted by the variance shadow query's
 //   visibility of query j (vtkMRGIVarianceShadowResolve.glsl prepended,
 //   resolved here, at the pixels that need it).
+//
+// Multiresolution (MRGI_AREA_SPECULAR_MULTIRES: vtkMRGIPass
+// AreaLightSpecularResolution = SpecularMultiresolution, drawn by
+// vtkMRGIMultiresolution::GatherAreaSpecular() once per level at the texels
+// of the specular stencil, mrgi_specular_stencil.h): the receiver is the
+// texel's (mean position and normal, mrgiPosition/mrgiNormal at
+// gl_FragCoord + mrgiReceiverOffset), the exponent the largest of its
+// footprint (mrgiMaterial.y), and the output is S alone (alpha 1): the
+// upsampled S is multiplied by each pixel's own k_s c_s in the resolve.
+// Visibility: the sample path reads the texel's own masks of that level
+// (mrgiViewportOrigin = the level's origin in the flattened layout), the
+// lobe grid reads the variance shadow query at the footprint's centre pixel
+// (the moments are full resolution).
 in vec2 texCoord; // bound by vtkOpenGLQuadHelper; texels are addressed by gl_FragCoord
 uniform sampler2D mrgiPosition;  // G-buffer, eye space
 uniform sampler2D mrgiNormal;
@@ -27,6 +40,13 @@ uniform sampler2D mrgiSpecular;  // k_s c_s
 uniform sampler2D mrgiShininess; // r: Phong exponent
 uniform mat4 mrgiVCToWC;         // eye -> world (rigid)
 uniform int mrgiParallel;        // 1: parallel projection (view direction +z in eye space)
+#ifdef MRGI_AREA_SPECULAR_MULTIRES
+uniform ivec2 mrgiReceiverOffset; // flattened texel -> receiver texel
+uniform sampler2D mrgiMaterial;   // level material: x max k_s, y largest exponent (level-local)
+uniform ivec2 mrgiLevelOrigin;    // the level's origin in the flattened layout
+uniform int mrgiLevelScale;       // 2^level
+uniform ivec2 mrgiViewportSize;   // full-resolution viewport (variance shadow query)
+#endif
 #ifdef MRGI_AREA_SPECULAR_VISIBILITY
 uniform ivec2 mrgiViewportOrigin; // window pixel of the viewport's lower left corner
 float mrgiSpecularQueries[MRGI_VOXEL_VSM_QUERIES];
@@ -62,9 +82,16 @@ float mrgiAreaSpecularQueryVisibility(int query)
 void main()
 {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
+#ifdef MRGI_AREA_SPECULAR_MULTIRES
+  vec4 positionVC = texelFetch(mrgiPosition, pixel + mrgiReceiverOffset, 0);
+  vec3 normalVC = texelFetch(mrgiNormal, pixel + mrgiReceiverOffset, 0).xyz;
+  vec4 material = texelFetch(mrgiMaterial, pixel - mrgiLevelOrigin, 0);
+  vec3 ks = vec3(material.x);
+#else
   vec4 positionVC = texelFetch(mrgiPosition, pixel, 0);
   vec3 normalVC = texelFetch(mrgiNormal, pixel, 0).xyz;
   vec3 ks = texelFetch(mrgiSpecular, pixel, 0).rgb;
+#endif
   vec3 P;
   vec3 N;
   if (max(ks.r, max(ks.g, ks.b)) <= 0.0 ||
@@ -75,7 +102,11 @@ void main()
   }
   vec3 viewVC = mrgiParallel != 0 ? vec3(0.0, 0.0, 1.0) : -positionVC.xyz;
   vec3 V = mat3(mrgiVCToWC) * viewVC;
+#ifdef MRGI_AREA_SPECULAR_MULTIRES
+  float power = material.y;
+#else
   float power = texelFetch(mrgiShininess, pixel, 0).r;
+#endif
   vec3 n;
   mrgiAreaLightLobe lobe;
   int samplesInLobe;
@@ -103,10 +134,19 @@ void main()
   }
   else if (path == MRGI_AREA_LIGHT_SPECULAR_LOBE_GRID)
   {
+#ifdef MRGI_AREA_SPECULAR_MULTIRES
+    mrgiVsmResolve(min(local * mrgiLevelScale + mrgiLevelScale / 2, mrgiViewportSize - 1),
+      mrgiSpecularQueries);
+#else
     mrgiVsmResolve(local, mrgiSpecularQueries);
+#endif
   }
 #endif
   int gridCells;
   vec3 S = mrgiAreaLightSpecularSum(P, n, lobe, power, path, gridCells);
+#ifdef MRGI_AREA_SPECULAR_MULTIRES
+  gl_FragData[0] = vec4(S, 1.0);
+#else
   gl_FragData[0] = vec4(ks * S, 0.0);
+#endif
 }
