@@ -153,6 +153,11 @@ mrgi_status mrgi_specular_stencil_build(
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "light or view is NULL");
   }
+  if (view->lobe && !(view->lobe_threshold > 0.0f && isfinite(view->lobe_threshold)))
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "lobe threshold %g must be finite and > 0", (double)view->lobe_threshold);
+  }
   if (finest_level < 0)
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "finest level %d is negative",
@@ -198,7 +203,7 @@ mrgi_status mrgi_specular_stencil_build(
             q = q || m[2] < m[1];
             if (view->lobe &&
                 mrgi_specular_stencil_metric(light, view, receiver_position + 4 * u,
-                                             receiver_normal + 4 * u, m[1], j) > 1.0f)
+                                             receiver_normal + 4 * u, m[1], j) > view->lobe_threshold)
             {
               b |= MRGI_SPECULAR_STENCIL_LOBE;
               ++counts.lobe[j];

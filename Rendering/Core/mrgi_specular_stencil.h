@@ -46,7 +46,11 @@
  * the specular gather when
  *
  *     Q_j(u) = j > f && NONEMPTY(u) && ( R_j(u)
- *              || ( K_j(u) && ( z_j(u) < y_j(u) || (lobe && m_j(u) > 1) ) ) )
+ *              || ( K_j(u) && ( z_j(u) < y_j(u) || (lobe && m_j(u) > c) ) ) )
+ *
+ * with c = lobe_threshold (NPW10's criterion is c = 1: sample spacing equal
+ * to the lobe width; sampling a lobe, not just touching it, wants a few
+ * samples across it, c < 1).
  *
  * - R_j(u): the geometric refinement flag (depth, normals, balance);
  * - z < y: the footprint mixes exponents (a BRDF discontinuity on a smooth
@@ -137,6 +141,7 @@ typedef struct mrgi_specular_stencil_view
   int32_t parallel;        /**< 1: parallel projection. */
   float pixel_size[2];     /**< (a, b): pixel size at depth d is max(a |d| + b, MIN). */
   int32_t lobe;            /**< 1: the lobe metric is on. */
+  float lobe_threshold;    /**< Refine where m > this; > 0 (NPW10: 1, the spacing equals the lobe width; smaller refines earlier). */
 } mrgi_specular_stencil_view;
 
 /**

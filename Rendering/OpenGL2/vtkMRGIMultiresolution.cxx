@@ -1708,6 +1708,7 @@ void vtkMRGIMultiresolution::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IncrementalStencil: " << (this->IncrementalStencil ? "On" : "Off") << "\n";
   os << indent << "IncrementalStencilFraction: " << this->IncrementalStencilFraction << "\n";
   os << indent << "SpecularLobeRefinement: " << (this->SpecularLobeRefinement ? "On" : "Off") << "\n";
+  os << indent << "SpecularLobeThreshold: " << this->SpecularLobeThreshold << "\n";
   os << indent << "GatherMode: " << (this->GatherMode == GatherSplatting ? "Splatting" : "Stenciled") << "\n";
   os << indent << "CollectStatistics: " << (this->CollectStatistics ? "On" : "Off") << "\n";
   os << indent << "Levels: " << this->GetNumberOfLevels() << "\n";
@@ -1841,6 +1842,7 @@ bool vtkMRGIMultiresolution::BuildSpecularStencil(vtkOpenGLRenderWindow* window,
     p->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(viewToWorld));
     p->SetUniformi("mrgiParallel", parallel ? 1 : 0);
     p->SetUniformi("mrgiLobe", this->SpecularLobeRefinement ? 1 : 0);
+    p->SetUniformf("mrgiLobeThreshold", static_cast<float>(this->SpecularLobeThreshold));
     const float pixelSize[2] = { static_cast<float>(in.PixelSize[0]),
       static_cast<float>(in.PixelSize[1]) };
     p->SetUniform2f("mrgiPixelSize", pixelSize);

@@ -99,6 +99,7 @@ static void scene_init(scene* s, float left, float right)
   }
   s->view.pixel_size[0] = 1.0f / 64.0f;
   s->view.lobe = 1;
+  s->view.lobe_threshold = 1.0f;
 }
 
 static void scene_free(scene* s)
@@ -204,6 +205,17 @@ static void test_lobe(void)
   MRGI_CHECK(build(&s, 0, &stats, NULL) == MRGI_OK);
   check_partition(&s);
   MRGI_CHECK(stats.selected[3] == 64 && stats.selected_total == 64);
+  /* ... until the threshold asks for many samples across the lobe */
+  s.view.lobe_threshold = 1e-3f;
+  MRGI_CHECK(build(&s, 0, &stats, NULL) == MRGI_OK);
+  check_partition(&s);
+  MRGI_CHECK(stats.lobe[3] > 0 && stats.selected_total > 64);
+  /* a threshold that is not finite and positive is refused */
+  mrgi_error err;
+  s.view.lobe_threshold = 0.0f;
+  MRGI_CHECK(build(&s, 0, &stats, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(strstr(err.message, "lobe threshold") != NULL);
+  s.view.lobe_threshold = 1.0f;
   /* parallel projection: 1/e = 0, still finite */
   s.view.parallel = 1;
   s.view.pixel_size[0] = 0.0f;

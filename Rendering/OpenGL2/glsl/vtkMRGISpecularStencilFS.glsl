@@ -52,6 +52,7 @@ uniform int mrgiLevelOffset;
 uniform int mrgiLevel;
 uniform int mrgiFinest;      // 1 when level i is the finest gathering level
 uniform int mrgiLobe;        // 1: the lobe metric is on
+uniform float mrgiLobeThreshold; // refine where m > this (mrgi_specular_stencil_view.lobe_threshold)
 uniform int mrgiParallel;
 uniform vec2 mrgiPixelSize;  // (a, b)
 uniform mat4 mrgiVCToWC;
@@ -92,7 +93,7 @@ void mrgiSpecularStage()
       if (k)
       {
         q = q || m.z < m.y;
-        if (mrgiLobe != 0 && mrgiSpecularStencilMetric(f, m.y) > 1.0)
+        if (mrgiLobe != 0 && mrgiSpecularStencilMetric(f, m.y) > mrgiLobeThreshold)
         {
           bits |= MRGI_SPECULAR_STENCIL_LOBE;
           q = true;
