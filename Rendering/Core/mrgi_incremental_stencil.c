@@ -53,28 +53,23 @@ mrgi_status mrgi_incremental_stencil_build(
     return status;
   }
   const size_t texels = (size_t)mrgi_multires_texel_count(layout);
-  if (!flags || !selection || texel_bytes < texels)
+  if ((status = mrgi_multires_check_array(layout, flags, texel_bytes, 1, "flags", err)) != MRGI_OK ||
+      (status = mrgi_multires_check_array(layout, selection, texel_bytes, 1, "selection", err)) !=
+        MRGI_OK ||
+      (status = mrgi_multires_check_array(layout, receiver_position, receiver_floats, 4,
+                                          "receiver positions", err)) != MRGI_OK)
   {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "flags or selection are NULL or hold %zu bytes; the layout needs %zu",
-                          texel_bytes, texels);
-  }
-  if (!receiver_position || receiver_floats < 4 * texels)
-  {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "receiver positions are NULL or hold %zu floats; the layout needs %zu",
-                          receiver_floats, 4 * texels);
+    return status;
   }
   if (words < 1 || words > MRGI_VOXEL_MAX_MASK_WORDS)
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "mask words %d is outside 1..%d", words,
                           MRGI_VOXEL_MAX_MASK_WORDS);
   }
-  if (!masks || mask_words < (size_t)words * texels)
+  if ((status = mrgi_multires_check_array(layout, masks, mask_words, (size_t)words, "masks",
+                                          err)) != MRGI_OK)
   {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "masks are NULL or hold %zu words; the layout needs %zu", mask_words,
-                          (size_t)words * texels);
+    return status;
   }
   if (metric_kind != MRGI_VOXEL_METRIC_DISAGREE && metric_kind != MRGI_VOXEL_METRIC_COUNT_SPREAD)
   {
@@ -91,11 +86,10 @@ mrgi_status mrgi_incremental_stencil_build(
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "finest level %d is negative",
                           finest_level);
   }
-  if (!rendered || rendered_size < texels)
+  if ((status = mrgi_multires_check_array(layout, rendered, rendered_size, 1, "output mask",
+                                          err)) != MRGI_OK)
   {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "output mask is NULL or holds %zu bytes; the layout needs %zu",
-                          rendered_size, texels);
+    return status;
   }
   const int32_t coarsest = layout->level_count - 1;
   const int32_t finest = finest_level < coarsest ? finest_level : coarsest;

@@ -441,24 +441,30 @@ mrgi_status mrgi_multires_params_validate(const mrgi_multires_params* params,
   return MRGI_OK;
 }
 
+mrgi_status mrgi_multires_check_array(const mrgi_multires_layout* layout, const void* array,
+                                      size_t count, size_t per_texel, const char* what,
+                                      mrgi_error* err)
+{
+  const uint64_t needed = (uint64_t)mrgi_multires_texel_count(layout) * (uint64_t)per_texel;
+  if (!array)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "%s is NULL", what);
+  }
+  if ((uint64_t)count < needed)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "%s holds %zu values but the %d x %d flattened layout needs %llu",
+                          what, count, layout->total_width, layout->total_height,
+                          (unsigned long long)needed);
+  }
+  return MRGI_OK;
+}
+
 static mrgi_status mrgi_multires_check_buffer(const mrgi_multires_layout* layout,
                                               const void* buffer, size_t size, const char* what,
                                               mrgi_error* err)
 {
-  const int64_t needed = mrgi_multires_texel_count(layout);
-  if (!buffer)
-  {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "%s buffer is NULL", what);
-  }
-  if ((uint64_t)size < (uint64_t)needed)
-  {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "%s buffer holds %zu bytes but the %d x %d flattened layout needs "
-                          "%lld",
-                          what, size, layout->total_width, layout->total_height,
-                          (long long)needed);
-  }
-  return MRGI_OK;
+  return mrgi_multires_check_array(layout, buffer, size, 1, what, err);
 }
 
 /* D of level i texel (x, y) (section 3); `t_depth`, `t_normal` are the

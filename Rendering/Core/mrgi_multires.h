@@ -235,6 +235,16 @@ mrgi_status mrgi_multires_layout_check(const mrgi_multires_layout* layout, mrgi_
 int64_t mrgi_multires_texel_count(const mrgi_multires_layout* layout);
 
 /**
+ * @brief Check an array in the flattened layout: not NULL and at least
+ *        `per_texel` values per texel (`count` values given).
+ * @return ::MRGI_ERR_INVALID_ARGUMENT naming `what` ("%s is NULL", "%s holds
+ *         N values but the W x H flattened layout needs M").
+ */
+mrgi_status mrgi_multires_check_array(const mrgi_multires_layout* layout, const void* array,
+                                      size_t count, size_t per_texel, const char* what,
+                                      mrgi_error* err);
+
+/**
  * @brief Flattened index of level `level` texel (x, y). No checks (hot loops):
  *        0 <= level < level_count, 0 <= x < w_level, 0 <= y < h_level.
  */

@@ -131,23 +131,17 @@ mrgi_status mrgi_specular_stencil_build(
     return status;
   }
   const size_t texels = (size_t)mrgi_multires_texel_count(layout);
-  if (!flags || !selection || texel_bytes < texels)
+  if ((status = mrgi_multires_check_array(layout, flags, texel_bytes, 1, "flags", err)) != MRGI_OK ||
+      (status = mrgi_multires_check_array(layout, selection, texel_bytes, 1, "selection", err)) !=
+        MRGI_OK ||
+      (status = mrgi_multires_check_array(layout, material, material_floats, 4, "material", err)) !=
+        MRGI_OK ||
+      (status = mrgi_multires_check_array(layout, receiver_position, receiver_floats, 4,
+                                          "receiver positions", err)) != MRGI_OK ||
+      (status = mrgi_multires_check_array(layout, receiver_normal, receiver_floats, 4,
+                                          "receiver normals", err)) != MRGI_OK)
   {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "flags or selection are NULL or hold %zu bytes; the layout needs %zu",
-                          texel_bytes, texels);
-  }
-  if (!material || material_floats < 4 * texels)
-  {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "material is NULL or holds %zu floats; the layout needs %zu",
-                          material_floats, 4 * texels);
-  }
-  if (!receiver_position || !receiver_normal || receiver_floats < 4 * texels)
-  {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "receivers are NULL or hold %zu floats; the layout needs %zu",
-                          receiver_floats, 4 * texels);
+    return status;
   }
   if (!light || !view)
   {

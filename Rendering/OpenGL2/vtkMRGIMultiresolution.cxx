@@ -61,15 +61,7 @@ enum Stage
 
 vtkTextureObject* MakeFloatTexture(vtkOpenGLRenderWindow* window, int w, int h)
 {
-  vtkTextureObject* t = vtkTextureObject::New();
-  t->SetContext(window);
-  t->SetFormat(GL_RGBA);
-  t->SetInternalFormat(GL_RGBA32F);
-  t->SetDataType(GL_FLOAT);
-  t->SetMinificationFilter(vtkTextureObject::Nearest);
-  t->SetMagnificationFilter(vtkTextureObject::Nearest);
-  t->Allocate2D(w, h, 4, VTK_FLOAT);
-  return t;
+  return vtkMRGIShaderUtilities::NewTexture(window, GL_RGBA32F, w, h);
 }
 
 }
@@ -184,6 +176,45 @@ bool ReadFlattened(vtkOpenGLRenderWindow* window, const mrgi_multires_layout& la
     }
   }
   return true;
+}
+}
+
+namespace
+{
+// One byte per texel of a flattened mask: the red channel of `colour`
+// (> 0.5 -> 1) or, with fromStencil, the stencil of `stencil` as it is.
+bool ReadMask(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* fbo,
+  const mrgi_multires_layout& layout, vtkTextureObject* colour, vtkTextureObject* stencil,
+  bool fromStencil, vtkUnsignedCharArray* mask)
+{
+  const vtkIdType n = static_cast<vtkIdType>(layout.total_width) * layout.total_height;
+  mask->SetNumberOfComponents(1);
+  mask->SetNumberOfTuples(n);
+  if (!fromStencil)
+  {
+    std::vector<float> rgba;
+    if (!vtkMRGIShaderUtilities::ReadTextureRGBA(window, colour, rgba))
+    {
+      return false;
+    }
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      mask->SetValue(i, rgba[4 * static_cast<size_t>(i)] > 0.5f ? 1 : 0);
+    }
+    return true;
+  }
+  window->MakeCurrent();
+  vtkOpenGLState* ostate = window->GetState();
+  ostate->PushReadFramebufferBinding();
+  fbo->Bind(GL_READ_FRAMEBUFFER);
+  glFramebufferTexture2D(
+    GL_READ_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, stencil->GetHandle(), 0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, layout.total_width, layout.total_height, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE,
+    mask->GetPointer(0));
+  glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+  ostate->PopReadFramebufferBinding();
+  return glGetError() == GL_NO_ERROR;
 }
 }
 
@@ -561,17 +592,27 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
       }
     }
     in.FlatSelection = MakeFloatTexture(window, layout.total_width, layout.total_height);
-    in.DepthStencil = vtkTextureObject::New();
-    in.DepthStencil->SetContext(window);
-    in.DepthStencil->SetMinificationFilter(vtkTextureObject::Nearest);
-    in.DepthStencil->SetMagnificationFilter(vtkTextureObject::Nearest);
-    in.DepthStencil->AllocateDepthStencil(layout.total_width, layout.total_height);
+    in.DepthStencil = vtkMRGIShaderUtilities::NewDepthStencil(window, layout.total_width, layout.total_height);
     in.FlatIncremental = MakeFloatTexture(window, layout.total_width, layout.total_height);
-    in.IncrementalDepthStencil = vtkTextureObject::New();
-    in.IncrementalDepthStencil->SetContext(window);
-    in.IncrementalDepthStencil->SetMinificationFilter(vtkTextureObject::Nearest);
-    in.IncrementalDepthStencil->SetMagnificationFilter(vtkTextureObject::Nearest);
-    in.IncrementalDepthStencil->AllocateDepthStencil(layout.total_width, layout.total_height);
+    in.IncrementalDepthStencil =
+      vtkMRGIShaderUtilities::NewDepthStencil(window, layout.total_width, layout.total_height);
+    bool allocated = in.FlatIrradiance && in.FlatSelection && in.DepthStencil && in.FlatIncremental &&
+      in.IncrementalDepthStencil;
+    for (int i = 0; i < levels; ++i)
+    {
+      for (auto* list : { in.Levels[i].data(), in.Receivers[i].data(), in.Upsampled[i].data() })
+      {
+        allocated = allocated && list[0] && list[1];
+      }
+      allocated = allocated && in.Levels[i][2] && in.Levels[i][3];
+    }
+    if (!allocated)
+    {
+      in.ReleaseTextures(window);
+      vtkErrorMacro("could not allocate the multiresolution buffers (" << layout.total_width << " x "
+                                                                       << layout.total_height << ")");
+      return false;
+    }
   }
   in.Layout = layout;
   in.HasLayout = true;
@@ -1427,33 +1468,7 @@ bool vtkMRGIMultiresolution::ReadSelection(
     vtkErrorMacro("ReadSelection: nothing selected yet");
     return false;
   }
-  const int w = in.Layout.total_width, h = in.Layout.total_height;
-  mask->SetNumberOfComponents(1);
-  mask->SetNumberOfTuples(static_cast<vtkIdType>(w) * h);
-  if (!fromStencil)
-  {
-    std::vector<float> rgba;
-    if (!vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.FlatSelection, rgba))
-    {
-      return false;
-    }
-    for (vtkIdType i = 0; i < mask->GetNumberOfTuples(); ++i)
-    {
-      mask->SetValue(i, rgba[4 * static_cast<size_t>(i)] > 0.5f ? 1 : 0);
-    }
-    return true;
-  }
-  renWin->MakeCurrent();
-  vtkOpenGLState* ostate = renWin->GetState();
-  ostate->PushReadFramebufferBinding();
-  in.FrameBuffer->Bind(GL_READ_FRAMEBUFFER);
-  glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D,
-    in.DepthStencil->GetHandle(), 0);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, w, h, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, mask->GetPointer(0));
-  glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
-  ostate->PopReadFramebufferBinding();
-  return glGetError() == GL_NO_ERROR;
+  return ReadMask(renWin, in.FrameBuffer, in.Layout, in.FlatSelection, in.DepthStencil, fromStencil, mask);
 }
 
 //------------------------------------------------------------------------------
@@ -1570,20 +1585,13 @@ bool vtkMRGIMultiresolution::ReadIncrementalStencil(vtkRenderWindow* window, vtk
 {
   vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
   Internals& in = *this->Internal;
-  std::vector<float> rgba;
-  if (!renWin || !mask || !in.HasLayout || !in.LastGatherIncremental ||
-    !vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.FlatIncremental, rgba))
+  if (!renWin || !mask || !in.HasLayout || !in.LastGatherIncremental)
   {
     vtkErrorMacro("ReadIncrementalStencil: the last gather did not use the incremental stencil");
     return false;
   }
-  mask->SetNumberOfComponents(1);
-  mask->SetNumberOfTuples(static_cast<vtkIdType>(in.Layout.total_width) * in.Layout.total_height);
-  for (vtkIdType i = 0; i < mask->GetNumberOfTuples(); ++i)
-  {
-    mask->SetValue(i, rgba[4 * static_cast<size_t>(i)] > 0.5f ? 1 : 0);
-  }
-  return true;
+  return ReadMask(renWin, in.FrameBuffer, in.Layout, in.FlatIncremental, in.IncrementalDepthStencil,
+    false, mask);
 }
 
 //------------------------------------------------------------------------------
@@ -1765,11 +1773,14 @@ bool vtkMRGIMultiresolution::BuildSpecularStencil(vtkOpenGLRenderWindow* window,
   {
     in.FlatSpecularBits = MakeFloatTexture(window, layout.total_width, layout.total_height);
     in.FlatSpecularSelection = MakeFloatTexture(window, layout.total_width, layout.total_height);
-    in.SpecularDepthStencil = vtkTextureObject::New();
-    in.SpecularDepthStencil->SetContext(window);
-    in.SpecularDepthStencil->SetMinificationFilter(vtkTextureObject::Nearest);
-    in.SpecularDepthStencil->SetMagnificationFilter(vtkTextureObject::Nearest);
-    in.SpecularDepthStencil->AllocateDepthStencil(layout.total_width, layout.total_height);
+    in.SpecularDepthStencil =
+      vtkMRGIShaderUtilities::NewDepthStencil(window, layout.total_width, layout.total_height);
+  }
+  if (!in.FlatSpecularBits || !in.FlatSpecularSelection || !in.SpecularDepthStencil ||
+    std::find(in.SpecularMaterial.begin(), in.SpecularMaterial.end(), nullptr) != in.SpecularMaterial.end())
+  {
+    vtkErrorMacro("could not allocate the specular stencil's buffers");
+    return false;
   }
   vtkShaderProgram* programs[4];
   for (int stage = 0; stage < 4; ++stage)
@@ -1995,32 +2006,8 @@ bool vtkMRGIMultiresolution::ReadSpecularStencil(vtkRenderWindow* window,
       bits->SetValue(i, static_cast<unsigned char>(rgba[4 * static_cast<size_t>(i)]));
     }
   }
-  selection->SetNumberOfComponents(1);
-  selection->SetNumberOfTuples(n);
-  if (!fromStencil)
-  {
-    if (!vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.FlatSpecularSelection, rgba))
-    {
-      return false;
-    }
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      selection->SetValue(i, rgba[4 * static_cast<size_t>(i)] > 0.5f ? 1 : 0);
-    }
-    return true;
-  }
-  renWin->MakeCurrent();
-  vtkOpenGLState* ostate = renWin->GetState();
-  ostate->PushReadFramebufferBinding();
-  in.FrameBuffer->Bind(GL_READ_FRAMEBUFFER);
-  glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D,
-    in.SpecularDepthStencil->GetHandle(), 0);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, in.Layout.total_width, in.Layout.total_height, GL_STENCIL_INDEX,
-    GL_UNSIGNED_BYTE, selection->GetPointer(0));
-  glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
-  ostate->PopReadFramebufferBinding();
-  return glGetError() == GL_NO_ERROR;
+  return ReadMask(renWin, in.FrameBuffer, in.Layout, in.FlatSpecularSelection,
+    in.SpecularDepthStencil, fromStencil, selection);
 }
 
 //------------------------------------------------------------------------------

@@ -67,6 +67,30 @@ vtkStandardNewMacro(vtkMRGIPass);
 
 namespace
 {
+// Draw `quad` once per batch of `batch` light samples (uniforms
+// mrgiSpecularBatchFirst / Count), the later batches added to the first
+// (RGB summed, alpha kept): each draw's marches stay within llvmpipe's
+// loop budget (mrgi_voxel_samples_per_batch()). The caller restores the
+// blend state.
+void RenderSampleBatches(vtkOpenGLState* ostate, vtkShaderProgram* program,
+  vtkOpenGLQuadHelper* quad, int sampleCount, int batch)
+{
+  for (int first = 0; first < sampleCount; first += batch)
+  {
+    if (first == batch)
+    {
+      ostate->vtkglEnable(GL_BLEND);
+      ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
+    }
+    program->SetUniformi("mrgiSpecularBatchFirst", first);
+    program->SetUniformi("mrgiSpecularBatchCount", std::min(batch, sampleCount - first));
+    quad->Render();
+  }
+}
+}
+
+namespace
+{
 // First step of the opaque sequence: VTK's camera pass has just cleared
 // every draw buffer to the background colour; the G-buffer attachments must
 // say "no geometry" (0) instead. Respects the renderer's scissor.
@@ -1133,18 +1157,8 @@ bool vtkMRGIPass::RenderAreaSpecular(vtkOpenGLRenderWindow* renWin, vtkMRGIAreaL
     // One march per sample and pixel can run past the loop iterations
     // llvmpipe gives one invocation (mrgi_voxel_march.h): batches of
     // samples, one draw each, added to the first.
-    const int batch = mrgi_voxel_samples_per_batch(voxels->GetMaxSteps());
-    for (int first = 0; first < sampleCount; first += batch)
-    {
-      if (first == batch)
-      {
-        ostate->vtkglEnable(GL_BLEND);
-        ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
-      }
-      program->SetUniformi("mrgiSpecularBatchFirst", first);
-      program->SetUniformi("mrgiSpecularBatchCount", std::min(batch, sampleCount - first));
-      quad->Render();
-    }
+    RenderSampleBatches(ostate, program, quad, sampleCount,
+      mrgi_voxel_samples_per_batch(voxels->GetMaxSteps()));
   }
   else
   {
@@ -1274,18 +1288,7 @@ bool vtkMRGIPass::RenderAreaSpecularMultiresolution(vtkOpenGLRenderWindow* renWi
     }
     if (marched)
     {
-      vtkOpenGLState* ostate = renWin->GetState();
-      for (int first = 0; first < sampleCount; first += batch)
-      {
-        if (first == batch)
-        {
-          ostate->vtkglEnable(GL_BLEND);
-          ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
-        }
-        program->SetUniformi("mrgiSpecularBatchFirst", first);
-        program->SetUniformi("mrgiSpecularBatchCount", std::min(batch, sampleCount - first));
-        quad->Render();
-      }
+      RenderSampleBatches(renWin->GetState(), program, quad, sampleCount, batch);
     }
     else
     {

@@ -125,6 +125,45 @@ void ReleaseTexture(vtkTextureObject*& t, vtkWindow* w)
 }
 
 //------------------------------------------------------------------------------
+vtkTextureObject* NewTexture(vtkOpenGLRenderWindow* window, int internalFormat, int w, int h)
+{
+  const bool integer = internalFormat == GL_RGBA32UI;
+  vtkTextureObject* t = vtkTextureObject::New();
+  t->SetContext(window);
+  t->SetInternalFormat(static_cast<unsigned int>(internalFormat));
+  t->SetFormat(integer ? GL_RGBA_INTEGER : GL_RGBA);
+  t->SetDataType(integer ? GL_UNSIGNED_INT : GL_FLOAT);
+  t->SetMinificationFilter(vtkTextureObject::Nearest);
+  t->SetMagnificationFilter(vtkTextureObject::Nearest);
+  t->SetWrapS(vtkTextureObject::ClampToEdge);
+  t->SetWrapT(vtkTextureObject::ClampToEdge);
+  if (w < 1 || h < 1 ||
+    !t->Allocate2D(static_cast<unsigned int>(w), static_cast<unsigned int>(h), 4,
+      integer ? VTK_UNSIGNED_INT : VTK_FLOAT))
+  {
+    t->Delete();
+    return nullptr;
+  }
+  return t;
+}
+
+//------------------------------------------------------------------------------
+vtkTextureObject* NewDepthStencil(vtkOpenGLRenderWindow* window, int w, int h)
+{
+  vtkTextureObject* t = vtkTextureObject::New();
+  t->SetContext(window);
+  t->SetMinificationFilter(vtkTextureObject::Nearest);
+  t->SetMagnificationFilter(vtkTextureObject::Nearest);
+  if (w < 1 || h < 1 ||
+    !t->AllocateDepthStencil(static_cast<unsigned int>(w), static_cast<unsigned int>(h)))
+  {
+    t->Delete();
+    return nullptr;
+  }
+  return t;
+}
+
+//------------------------------------------------------------------------------
 bool ReadTextureRGBA(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, std::vector<float>& rgba)
 {
   if (!window || !texture || texture->GetHandle() == 0)

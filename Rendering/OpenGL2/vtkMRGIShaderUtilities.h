@@ -63,6 +63,16 @@ void InsertCapture(
 void ReleaseTexture(vtkTextureObject*& t, vtkWindow* w);
 
 /**
+ * A new w x h RGBA texture, nearest filtering, clamped to its edge:
+ * `internalFormat` a float format (GL_RGBA32F, GL_RGBA16F) or GL_RGBA32UI.
+ * Null (nothing left allocated) when the allocation fails.
+ */
+vtkTextureObject* NewTexture(vtkOpenGLRenderWindow* window, int internalFormat, int w, int h);
+
+/** A new w x h depth-stencil texture, nearest filtering; null when the allocation fails. */
+vtkTextureObject* NewDepthStencil(vtkOpenGLRenderWindow* window, int w, int h);
+
+/**
  * Read a colour texture back as RGBA floats (rows bottom-up, as OpenGL
  * stores them). Returns false when the texture or context is missing.
  */

@@ -158,16 +158,8 @@ bool vtkMRGIVarianceShadowQuery::ComputeMoments(vtkOpenGLRenderWindow* window,
   {
     if (!t)
     {
-      t = vtkTextureObject::New();
-      t->SetContext(window);
-      t->SetFormat(GL_RGBA);
-      t->SetInternalFormat(GL_RGBA32F);
-      t->SetDataType(GL_FLOAT);
-      t->SetMinificationFilter(vtkTextureObject::Nearest);
-      t->SetMagnificationFilter(vtkTextureObject::Nearest);
-      t->SetWrapS(vtkTextureObject::ClampToEdge);
-      t->SetWrapT(vtkTextureObject::ClampToEdge);
-      if (!t->Allocate2D(static_cast<unsigned int>(w), static_cast<unsigned int>(h), 4, VTK_FLOAT))
+      t = vtkMRGIShaderUtilities::NewTexture(window, GL_RGBA32F, w, h);
+      if (!t)
       {
         vtkErrorMacro("ComputeMoments: could not allocate the moments (" << w << " x " << h << ")");
         return false;

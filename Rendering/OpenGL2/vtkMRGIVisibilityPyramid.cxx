@@ -60,21 +60,7 @@ constexpr int MaxCopyWidth = 8192;
 
 vtkTextureObject* MakeUIntTexture(vtkOpenGLRenderWindow* window, int w, int h)
 {
-  vtkTextureObject* t = vtkTextureObject::New();
-  t->SetContext(window);
-  t->SetInternalFormat(GL_RGBA32UI);
-  t->SetFormat(GL_RGBA_INTEGER);
-  t->SetDataType(GL_UNSIGNED_INT);
-  t->SetMinificationFilter(vtkTextureObject::Nearest);
-  t->SetMagnificationFilter(vtkTextureObject::Nearest);
-  t->SetWrapS(vtkTextureObject::ClampToEdge);
-  t->SetWrapT(vtkTextureObject::ClampToEdge);
-  if (!t->Allocate2D(static_cast<unsigned int>(w), static_cast<unsigned int>(h), 4, VTK_UNSIGNED_INT))
-  {
-    t->Delete();
-    return nullptr;
-  }
-  return t;
+  return vtkMRGIShaderUtilities::NewTexture(window, GL_RGBA32UI, w, h);
 }
 
 
@@ -273,12 +259,8 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
     }
     if (ok)
     {
-      in.DepthStencil = vtkTextureObject::New();
-      in.DepthStencil->SetContext(window);
-      in.DepthStencil->SetMinificationFilter(vtkTextureObject::Nearest);
-      in.DepthStencil->SetMagnificationFilter(vtkTextureObject::Nearest);
-      ok = in.DepthStencil->AllocateDepthStencil(
-        static_cast<unsigned int>(layout.width), static_cast<unsigned int>(layout.height));
+      in.DepthStencil = vtkMRGIShaderUtilities::NewDepthStencil(window, layout.width, layout.height);
+      ok = in.DepthStencil != nullptr;
     }
     if (!ok)
     {
@@ -536,13 +518,8 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
           in.CopyMasks[static_cast<size_t>(k)] = MakeUIntTexture(window, in.CopyWidth, in.CopyHeight);
           ok = in.CopyMasks[static_cast<size_t>(k)] != nullptr;
         }
-        in.CopyStencil = vtkTextureObject::New();
-        in.CopyStencil->SetContext(window);
-        in.CopyStencil->SetMinificationFilter(vtkTextureObject::Nearest);
-        in.CopyStencil->SetMagnificationFilter(vtkTextureObject::Nearest);
-        ok = ok &&
-          in.CopyStencil->AllocateDepthStencil(
-            static_cast<unsigned int>(in.CopyWidth), static_cast<unsigned int>(in.CopyHeight));
+        in.CopyStencil = vtkMRGIShaderUtilities::NewDepthStencil(window, in.CopyWidth, in.CopyHeight);
+        ok = ok && in.CopyStencil != nullptr;
         if (!ok)
         {
           in.ReleaseCopies(window);

@@ -210,7 +210,7 @@ static void test_bad_input(void)
                                             s.position, 4 * s.texels, s.masks, WORDS,
                                             WORDS * s.texels, 0, 1, s.rendered, s.texels, NULL,
                                             &err) == MRGI_ERR_INVALID_ARGUMENT);
-  MRGI_CHECK(message_has(&err, "flags or selection"));
+  MRGI_CHECK(message_has(&err, "flags holds"));
   MRGI_CHECK(mrgi_incremental_stencil_build(&s.layout, 0, s.flags, s.selection, s.texels,
                                             s.position, 4 * s.texels, s.masks, 0,
                                             WORDS * s.texels, 0, 1, s.rendered, s.texels, NULL,
