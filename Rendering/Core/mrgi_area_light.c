@@ -1018,6 +1018,22 @@ static void al_lobe_grid_sum(const mrgi_area_light_uniforms* light,
 
 /* Early-outs, lobe, the count of samples in the lobe and the path (header);
  * `n` receives the unit normal, `grid` the lobe grid on that path. */
+/* Sample j's terms at receiver P with unit normal n and reflection r: the
+ * transfer T_j, r . d and |d|^2 (d = y_j - P); 0 when it sends nothing
+ * along the lobe's half-space (T_j <= 0 or r . d <= 0). The sample loops of
+ * the classification and the sum share it, in this order. */
+static int al_sample_in_front(const mrgi_area_light_uniforms* light,
+                              const mrgi_area_light_sample* sample, const float position[3],
+                              const float n[3], const float r[3], float* transfer, float* rw,
+                              float* r2)
+{
+  const float d[3] = { sample->position[0] - position[0], sample->position[1] - position[1],
+                       sample->position[2] - position[2] };
+  *transfer = al_transfer(light, d, sample->normal, sample->area, n, r2);
+  *rw = al_dotf(r, d);
+  return *transfer > 0.0f && *rw > 0.0f;
+}
+
 static void al_specular_classify(const mrgi_area_light_uniforms* light,
                                  const mrgi_area_light_sample* samples, int32_t count,
                                  const float position[3], const float normal[3],
@@ -1052,13 +1068,8 @@ static void al_specular_classify(const mrgi_area_light_uniforms* light,
   const float* r = info->lobe.reflect;
   for (int32_t j = 0; j < count; ++j)
   {
-    const mrgi_area_light_sample* sample = samples + j;
-    const float d[3] = { sample->position[0] - position[0], sample->position[1] - position[1],
-                         sample->position[2] - position[2] };
-    float r2;
-    const float transfer = al_transfer(light, d, sample->normal, sample->area, n, &r2);
-    const float rw = al_dotf(r, d);
-    if (!(transfer > 0.0f) || !(rw > 0.0f))
+    float transfer, rw, r2;
+    if (!al_sample_in_front(light, samples + j, position, n, r, &transfer, &rw, &r2))
     {
       continue;
     }
@@ -1113,13 +1124,8 @@ void mrgi_area_light_specular_visible(const mrgi_area_light_uniforms* light,
   {
     for (int32_t j = 0; j < count; ++j)
     {
-      const mrgi_area_light_sample* sample = samples + j;
-      const float d[3] = { sample->position[0] - position[0], sample->position[1] - position[1],
-                           sample->position[2] - position[2] };
-      float r2;
-      const float transfer = al_transfer(light, d, sample->normal, sample->area, n, &r2);
-      const float rw = al_dotf(r, d);
-      if (!(transfer > 0.0f) || !(rw > 0.0f))
+      float transfer, rw, r2;
+      if (!al_sample_in_front(light, samples + j, position, n, r, &transfer, &rw, &r2))
       {
         continue;
       }
@@ -1128,9 +1134,9 @@ void mrgi_area_light_specular_visible(const mrgi_area_light_uniforms* light,
         continue; /* occluded */
       }
       const float weight = normalisation * powf(rw / sqrtf(r2), power) * transfer;
-      sum[0] += sample->radiance[0] * weight;
-      sum[1] += sample->radiance[1] * weight;
-      sum[2] += sample->radiance[2] * weight;
+      sum[0] += samples[j].radiance[0] * weight;
+      sum[1] += samples[j].radiance[1] * weight;
+      sum[2] += samples[j].radiance[2] * weight;
     }
   }
   out[0] = sum[0];

@@ -114,6 +114,31 @@ struct QuadSteps
   vtkOpenGLFramebufferObject* Fbo;
 };
 
+// Writing a flattened mask as colour and stencil (the selection, the
+// incremental and the specular stencils): the colour target already set on
+// the bound framebuffer and `depthStencil` are cleared to 0, and every
+// fragment that passes sets its stencil to 1. EndMaskWrite() restores the
+// stencil state and detaches the depth-stencil texture.
+void BeginMaskWrite(vtkOpenGLState* ostate, vtkTextureObject* depthStencil)
+{
+  glFramebufferTexture2D(
+    GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, depthStencil->GetHandle(), 0);
+  ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+  ostate->vtkglStencilMask(0xFF);
+  glClearStencil(0);
+  ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  ostate->vtkglEnable(GL_STENCIL_TEST);
+  ostate->vtkglStencilFunc(GL_ALWAYS, 1, 0xFF);
+  ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+}
+
+void EndMaskWrite(vtkOpenGLState* ostate)
+{
+  ostate->vtkglStencilFunc(GL_ALWAYS, 0, 0xFF);
+  ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+}
+
 vtkShaderProgram* ReadyStage(vtkOpenGLQuadHelper*& quad, vtkOpenGLRenderWindow* window,
   const char* source, int stage)
 {
@@ -765,15 +790,7 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
   // layout; the texels that survive set the stencil.
   ScopedStage stencilStep(this->StageTimer, "select.stencil");
   target({ in.FlatSelection }, layout.total_width, layout.total_height);
-  glFramebufferTexture2D(
-    GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, in.DepthStencil->GetHandle(), 0);
-  ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
-  ostate->vtkglStencilMask(0xFF);
-  glClearStencil(0);
-  ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-  ostate->vtkglEnable(GL_STENCIL_TEST);
-  ostate->vtkglStencilFunc(GL_ALWAYS, 1, 0xFF);
-  ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  BeginMaskWrite(ostate, in.DepthStencil);
   for (int i = finest; i < levels; ++i)
   {
     vtkShaderProgram* p = programs[Select];
@@ -790,9 +807,7 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     in.Quads[Select]->Render();
     unbind({ flags, parent });
   }
-  ostate->vtkglStencilFunc(GL_ALWAYS, 0, 0xFF);
-  ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+  EndMaskWrite(ostate);
   const GLenum error = glGetError();
   if (error != GL_NO_ERROR)
   {
@@ -1519,15 +1534,7 @@ bool vtkMRGIMultiresolution::BuildIncrementalStencil(
   QuadSteps steps(window, in.FrameBuffer);
   vtkOpenGLState* ostate = steps.State;
   steps.Target(in.FlatIncremental, nullptr, 0, 0, layout.total_width, layout.total_height);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D,
-    in.IncrementalDepthStencil->GetHandle(), 0);
-  ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
-  ostate->vtkglStencilMask(0xFF);
-  glClearStencil(0);
-  ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-  ostate->vtkglEnable(GL_STENCIL_TEST);
-  ostate->vtkglStencilFunc(GL_ALWAYS, 1, 0xFF);
-  ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  BeginMaskWrite(ostate, in.IncrementalDepthStencil);
   program->SetUniformi("mrgiThreshold", threshold);
   program->SetUniformi("mrgiMetric", masks->GetMetric());
   bool ok = true;
@@ -1568,9 +1575,7 @@ bool vtkMRGIMultiresolution::BuildIncrementalStencil(
       t->Deactivate();
     }
   }
-  ostate->vtkglStencilFunc(GL_ALWAYS, 0, 0xFF);
-  ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+  EndMaskWrite(ostate);
   const GLenum error = glGetError();
   if (error != GL_NO_ERROR)
   {
@@ -1882,15 +1887,7 @@ bool vtkMRGIMultiresolution::BuildSpecularStencil(vtkOpenGLRenderWindow* window,
     vtkShaderProgram* p = programs[3];
     window->GetShaderCache()->ReadyShaderProgram(p);
     steps.Target(in.FlatSpecularSelection, nullptr, 0, 0, layout.total_width, layout.total_height);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D,
-      in.SpecularDepthStencil->GetHandle(), 0);
-    ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
-    ostate->vtkglStencilMask(0xFF);
-    glClearStencil(0);
-    ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-    ostate->vtkglEnable(GL_STENCIL_TEST);
-    ostate->vtkglStencilFunc(GL_ALWAYS, 1, 0xFF);
-    ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    BeginMaskWrite(ostate, in.SpecularDepthStencil);
     in.FlatSpecularBits->Activate();
     p->SetUniformi("mrgiRefine", in.FlatSpecularBits->GetTextureUnit());
     p->SetUniformi("mrgiCoarsestLevel", levels - 1);
@@ -1907,9 +1904,7 @@ bool vtkMRGIMultiresolution::BuildSpecularStencil(vtkOpenGLRenderWindow* window,
       in.SpecularQuads[3]->Render();
     }
     in.FlatSpecularBits->Deactivate();
-    ostate->vtkglStencilFunc(GL_ALWAYS, 0, 0xFF);
-    ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+    EndMaskWrite(ostate);
   }
   const GLenum error = glGetError();
   if (error != GL_NO_ERROR)
