@@ -58,12 +58,7 @@ void ToWorld(const float m[16], vtkDataArray* P, vtkDataArray* N, vtkIdType i, f
   }
 }
 
-vtkSmartPointer<vtkImageData> AreaBuffer(vtkMRGIPass* pass, vtkRenderWindow* window)
-{
-  vtkNew<vtkImageData> image;
-  MRGI_TEST_CHECK(pass->GetAreaLightBuffer(window, image));
-  return vtkSmartPointer<vtkImageData>(image.GetPointer());
-}
+using mrgitest::AreaBuffer;
 
 double Sum(vtkImageData* image)
 {

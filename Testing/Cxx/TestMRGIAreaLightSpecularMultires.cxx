@@ -33,12 +33,7 @@
 
 namespace
 {
-vtkSmartPointer<vtkImageData> AreaBuffer(vtkMRGIPass* pass, vtkRenderWindow* window)
-{
-  vtkNew<vtkImageData> image;
-  MRGI_TEST_CHECK(pass->GetAreaLightBuffer(window, image));
-  return vtkSmartPointer<vtkImageData>(image.GetPointer());
-}
+using mrgitest::AreaBuffer;
 
 // ||a - b|| / ||ref - base|| over RGB.
 double RelativeError(vtkImageData* a, vtkImageData* b, vtkImageData* ref, vtkImageData* base)

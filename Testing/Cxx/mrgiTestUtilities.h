@@ -17,6 +17,7 @@
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMRGIImageIO.h"
+#include "vtkMRGIPass.h"
 #include "vtkMRGIRenderWindowFactory.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
@@ -73,6 +74,14 @@ public:
   std::string Last;
   int Count = 0;
 };
+
+/** The area lights' buffer of the last frame (vtkMRGIPass::GetAreaLightBuffer()); fails the test when there is none. */
+inline vtkSmartPointer<vtkImageData> AreaBuffer(vtkMRGIPass* pass, vtkRenderWindow* window)
+{
+  vtkNew<vtkImageData> image;
+  MRGI_TEST_CHECK(pass->GetAreaLightBuffer(window, image));
+  return vtkSmartPointer<vtkImageData>(image.GetPointer());
+}
 
 /** A headless window of the given size, or exit(1) with the reason. */
 inline vtkSmartPointer<vtkRenderWindow> HeadlessWindow(int width, int height)
