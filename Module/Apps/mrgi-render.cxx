@@ -14,7 +14,10 @@
 #include "vtkActorCollection.h"
 #include "vtkProperty.h"
 #include "vtkMRGIAreaLight.h"
+#include "vtkMRGIAreaLightStage.h"
+#include "vtkMRGIGather.h"
 #include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIUpsample.h"
 #include "vtkMRGIVisibilityPyramid.h"
 #include "vtkMRGIVoxelization.h"
 #include "vtkMRGIPass.h"
@@ -910,7 +913,8 @@ int main(int argc, char* argv[])
   mrgi->SetDelegatePass(steps);
   mrgi->SetStageTimingEnabled(o.Timings);
   // Per-level statistics wait for the GPU once per frame: with --timings only.
-  mrgi->GetMultiresolution()->SetCollectStatistics(o.Timings);
+  mrgi->GetGather()->SetCollectStatistics(o.Timings);
+  mrgi->GetAreaLightStage()->GetGather()->SetCollectStatistics(o.Timings);
   mrgi->SetIndirectMode(!o.GI ? vtkMRGIPass::IndirectOff
       : o.Multires             ? vtkMRGIPass::IndirectMultires
                                : vtkMRGIPass::IndirectFull);
@@ -922,12 +926,12 @@ int main(int argc, char* argv[])
     mrgi->GetMultiresolution()->SetNormalThreshold(o.NormalThreshold);
   if (o.FinestLevel >= 0)
     mrgi->GetMultiresolution()->SetFinestLevel(static_cast<int>(o.FinestLevel));
-  mrgi->GetMultiresolution()->SetSurfaceDetail(o.SurfaceDetail);
+  mrgi->SetSurfaceDetail(o.SurfaceDetail);
   mrgi->SetAreaLightVisibility(o.AreaLightVisibility);
   mrgi->SetAreaLightSpecular(o.AreaLightSpecular);
   mrgi->SetAreaLightSpecularResolution(o.AreaLightSpecularResolution);
   mrgi->GetVisibilityPyramid()->SetInterleave(o.VisibilityInterleave);
-  mrgi->GetMultiresolution()->SetIncrementalStencil(o.IncrementalStencil);
+  mrgi->GetAreaLightStage()->SetIncrementalStencil(o.IncrementalStencil);
   // Repeated frames of one view would reuse the area lights' light: with
   // --frames the timings measure its computation instead.
   mrgi->SetAreaLightReuse(o.Frames <= 1);
@@ -967,10 +971,10 @@ int main(int argc, char* argv[])
       mrgi->GetAreaLight(l)->SetTwoSided(mrgi->GetAreaLight(l)->GetTwoSided() || o.AreaLightTwoSided);
     }
   }
-  mrgi->GetMultiresolution()->SetGatherMode(o.Splatting ? vtkMRGIMultiresolution::GatherSplatting
-                                                        : vtkMRGIMultiresolution::GatherStenciled);
-  mrgi->SetUpsampleMode(o.MaskUpsampling ? vtkMRGIMultiresolution::UpsampleMaskWeighted
-                                         : vtkMRGIMultiresolution::UpsampleTent);
+  mrgi->GetGather()->SetGatherMode(
+    o.Splatting ? vtkMRGIGather::GatherSplatting : vtkMRGIGather::GatherStenciled);
+  mrgi->SetUpsampleMode(
+    o.MaskUpsampling ? vtkMRGIUpsample::UpsampleMaskWeighted : vtkMRGIUpsample::UpsampleTent);
   mrgi->SetNumberOfVPLs(static_cast<int>(o.VPLs));
   mrgi->SetVPLSelectionMode(o.ImportanceVPLs ? vtkMRGIVPLSelection::FluxImportance : vtkMRGIVPLSelection::Grid);
   mrgi->SetRSMResolution(static_cast<int>(o.RSMSize));
@@ -1125,7 +1129,11 @@ int main(int argc, char* argv[])
     }
     std::printf("%-24s %12.3f\n", "total (GPU)", total);
     vtkMRGIMultiresolution* mr = mrgi->GetMultiresolution();
-    if (o.GI && o.Multires && mr->GetGatherWorkFraction() >= 0)
+    // The indirect light's gather, or else the area lights' (the last light's).
+    vtkMRGIGather* gather = mrgi->GetGather()->GetGatherWorkFraction() >= 0
+      ? mrgi->GetGather()
+      : mrgi->GetAreaLightStage()->GetGather();
+    if (o.GI && o.Multires && gather->GetGatherWorkFraction() >= 0)
     {
       // nichols-shopf-wyman-2009 table 1: where the gather's work went (last frame).
       std::printf("%-6s %-11s %16s\n", "level", "size", "texels gathered");
@@ -1135,10 +1143,10 @@ int main(int argc, char* argv[])
         mr->GetLevelSize(i, size);
         std::snprintf(line, sizeof(line), "%dx%d", size[0], size[1]);
         std::printf("%-6d %-11s %16lld\n", i, line,
-          static_cast<long long>(mr->GetNumberOfGatheredTexels(i)));
+          static_cast<long long>(gather->GetNumberOfGatheredTexels(i)));
       }
       std::printf("gathered / valid pixels: %.4f (of %lld valid pixels)\n",
-        mr->GetGatherWorkFraction(), static_cast<long long>(mr->GetNumberOfValidPixels()));
+        gather->GetGatherWorkFraction(), static_cast<long long>(gather->GetNumberOfValidPixels()));
     }
     std::printf("%-24s %12.3f\n", "frame (wall)", Median(frameTimes));
     if (stageOrder.empty())

@@ -1,3 +1,5 @@
+#include "vtk_glew.h"
+
 #include "vtkMRGIPass.h"
 
 #include "vtkActor.h"
@@ -6,28 +8,26 @@
 #include "vtkFloatArray.h"
 #include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
-#include "vtkMRGIAreaLight.h"
+#include "vtkMRGIAreaLightStage.h"
+#include "vtkMRGIFrameContext.h"
+#include "vtkMRGIFullScreenStep.h"
+#include "vtkMRGIGBuffer.h"
+#include "vtkMRGIGather.h"
 #include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIProgramCache.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIShaderUtilities.h"
+#include "vtkMRGIUpsample.h"
 #include "vtkMRGIVPLSelection.h"
-#include "vtkMRGIVarianceShadowQuery.h"
-#include "vtkMRGIVisibilityPyramid.h"
-#include "vtkMRGIVoxelization.h"
-#include "vtkDataObject.h"
-#include "vtkMapper.h"
 #include "vtkMatrix4x4.h"
-#include "vtkTexture.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLFXAAFilter.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLPolyDataMapper.h"
 #include "vtkOpenGLQuadHelper.h"
-#include "vtkOpenGLRenderUtilities.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLRenderer.h"
-#include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
 #include "vtkPointData.h"
 #include "vtkProp.h"
@@ -44,50 +44,21 @@
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
 
-#include "vtkMRGIAddIndirectFS.h"
 #include "vtkMRGICompositeFS.h"
 #include "vtkMRGIGBufferCapture.h"
 #include "vtkMRGIGatherFS.h"
 #include "vtkMRGIVPLIrradiance.h"
-#include "vtkMRGIAreaSpecularFS.h"
 
 #include "mrgi_buffers.h"
-#include "mrgi_area_light.h"
 #include "mrgi_multires.h"
-#include "mrgi_voxel_march.h"
 #include "mrgi_vpl.h"
 
 #include <algorithm>
 #include <cstring>
-#include <sstream>
 #include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkMRGIPass);
-
-namespace
-{
-// Draw `quad` once per batch of `batch` light samples (uniforms
-// mrgiSpecularBatchFirst / Count), the later batches added to the first
-// (RGB summed, alpha kept): each draw's marches stay within llvmpipe's
-// loop budget (mrgi_voxel_samples_per_batch()). The caller restores the
-// blend state.
-void RenderSampleBatches(vtkOpenGLState* ostate, vtkShaderProgram* program,
-  vtkOpenGLQuadHelper* quad, int sampleCount, int batch)
-{
-  for (int first = 0; first < sampleCount; first += batch)
-  {
-    if (first == batch)
-    {
-      ostate->vtkglEnable(GL_BLEND);
-      ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
-    }
-    program->SetUniformi("mrgiSpecularBatchFirst", first);
-    program->SetUniformi("mrgiSpecularBatchCount", std::min(batch, sampleCount - first));
-    quad->Render();
-  }
-}
-}
 
 namespace
 {
@@ -190,91 +161,25 @@ vtkRenderTimerLog* TimerFor(vtkRenderer* renderer, bool enabled)
   return (timer && enabled && timer->GetLoggingEnabled()) ? timer : nullptr;
 }
 
-vtkTextureObject* MakeTexture(vtkOpenGLRenderWindow* renWin, int internalFormat, int w, int h)
-{
-  vtkTextureObject* t = vtkTextureObject::New();
-  t->SetContext(renWin);
-  t->SetFormat(GL_RGBA);
-  t->SetInternalFormat(internalFormat);
-  t->SetDataType(GL_FLOAT);
-  t->SetMinificationFilter(vtkTextureObject::Nearest);
-  t->SetMagnificationFilter(vtkTextureObject::Nearest);
-  t->Allocate2D(w, h, 4, VTK_FLOAT);
-  return t;
 }
 
-void Release(vtkTextureObject*& t, vtkWindow* w)
+struct vtkMRGIPass::Internals
 {
-  if (t)
-  {
-    t->ReleaseGraphicsResources(w);
-    t->Delete();
-    t = nullptr;
-  }
-}
-
-void Release(vtkOpenGLQuadHelper*& q, vtkWindow* w)
-{
-  if (q)
-  {
-    q->ReleaseGraphicsResources(w);
-    delete q;
-    q = nullptr;
-  }
-}
-
-// GL state of a full-screen step over the renderer's viewport: blending
-// and depth test off (steps turn on what they need), viewport and scissor on
-// the renderer's tile; everything restored when the step ends.
-struct ViewportQuadState
-{
-  ViewportQuadState(vtkOpenGLState* ostate, const int viewport[4])
-    : Blend(ostate, GL_BLEND)
-    , DepthTest(ostate, GL_DEPTH_TEST)
-    , Viewport(ostate)
-    , Scissor(ostate)
-  {
-    ostate->vtkglDisable(GL_BLEND);
-    ostate->vtkglDisable(GL_DEPTH_TEST);
-    ostate->vtkglViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    ostate->vtkglScissor(viewport[0], viewport[1], viewport[2], viewport[3]);
-  }
-  vtkOpenGLState::ScopedglEnableDisable Blend;
-  vtkOpenGLState::ScopedglEnableDisable DepthTest;
-  vtkOpenGLState::ScopedglViewport Viewport;
-  vtkOpenGLState::ScopedglScissor Scissor;
+  vtkMRGIGBuffer GBuffer;
+  // The full-resolution gather, the add and the output programs.
+  vtkMRGIProgramCache Programs;
 };
-
-// Builds (once) or readies a full-screen program; nullptr when it fails.
-vtkShaderProgram* ReadyQuad(vtkOpenGLQuadHelper*& quad, vtkOpenGLRenderWindow* renWin, const char* body)
-{
-  if (!quad)
-  {
-    quad = new vtkOpenGLQuadHelper(renWin,
-      vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
-      vtkMRGIShaderUtilities::FullScreenShader(body).c_str(), "");
-  }
-  else
-  {
-    renWin->GetShaderCache()->ReadyShaderProgram(quad->Program);
-  }
-  return (quad->Program && quad->Program->GetCompiled()) ? quad->Program : nullptr;
-}
-}
 
 //------------------------------------------------------------------------------
 vtkMRGIPass::vtkMRGIPass()
+  : Internal(new Internals)
 {
   this->RSMPass = vtkMRGIReflectiveShadowMapPass::New();
   this->VPLSelection = vtkMRGIVPLSelection::New();
   this->Multiresolution = vtkMRGIMultiresolution::New();
-  this->Voxelization = vtkMRGIVoxelization::New();
-  this->VisibilityPyramid = vtkMRGIVisibilityPyramid::New();
-  // 2x2 interleaving off by default: measured at 256^2 on llvmpipe it saved
-  // 5-15% of the area-light time but raised the error against the ground
-  // truth from 0.111 to 0.179 (living room; Cornell box 0.137 -> 0.142).
-  this->VisibilityPyramid->InterleaveOff();
-  this->VarianceShadowQuery = vtkMRGIVarianceShadowQuery::New();
+  this->Gather = vtkMRGIGather::New();
+  this->Upsample = vtkMRGIUpsample::New();
+  this->AreaLightStage = vtkMRGIAreaLightStage::New();
   this->OpaqueSequence = vtkSequencePass::New();
   for (int i = 0; i < 16; ++i)
   {
@@ -285,44 +190,51 @@ vtkMRGIPass::vtkMRGIPass()
 //------------------------------------------------------------------------------
 vtkMRGIPass::~vtkMRGIPass()
 {
-  if (this->FrameBuffer || this->ColorTexture || this->OutputQuad)
+  if (this->Internal->GBuffer.HoldsResources())
   {
     vtkErrorMacro("vtkMRGIPass destroyed while it still holds GL resources: call "
                   "ReleaseGraphicsResources() first (the render window does so).");
   }
-  for (vtkTextureObject* t : { this->ColorTexture, this->PositionTexture, this->NormalTexture,
-         this->AlbedoTexture, this->DepthTexture, this->IrradianceTexture, this->IndirectTexture })
-  {
-    if (t)
-    {
-      t->Delete();
-    }
-  }
-  if (this->FrameBuffer)
-  {
-    this->FrameBuffer->Delete();
-  }
-  delete this->GatherQuad;
-  delete this->AddQuad;
-  delete this->OutputQuad;
-  delete this->SpecularQuad;
-  delete this->SpecularMaskedQuad;
-  delete this->SpecularMarchedQuad;
-  delete this->SpecularMultiresQuad;
-  delete this->SpecularMultiresMaskedQuad;
-  delete this->SpecularMultiresMarchedQuad;
-  if (this->FXAAFilter)
-  {
-    this->FXAAFilter->Delete();
-  }
+  this->ReleaseResources(nullptr);
   this->RSMPass->Delete();
   this->VPLSelection->Delete();
   this->Multiresolution->Delete();
+  this->Gather->Delete();
+  this->Upsample->Delete();
+  this->AreaLightStage->Delete();
   this->OpaqueSequence->Delete();
-  this->Voxelization->Delete();
-  this->VisibilityPyramid->Delete();
-  this->VarianceShadowQuery->Delete();
-  this->RemoveAllAreaLights();
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
+{
+  this->Superclass::ReleaseGraphicsResources(w);
+  this->RSMPass->ReleaseGraphicsResources(w);
+  this->VPLSelection->ReleaseGraphicsResources(w);
+  this->Multiresolution->ReleaseGraphicsResources(w);
+  this->Gather->ReleaseGraphicsResources(w);
+  this->Upsample->ReleaseGraphicsResources(w);
+  this->AreaLightStage->ReleaseGraphicsResources(w);
+  this->ReleaseResources(w);
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIPass::ReleaseResources(vtkWindow* w)
+{
+  this->Internal->Programs.ReleaseGraphicsResources(w);
+  this->Internal->GBuffer.Release(w);
+  if (this->FXAAFilter)
+  {
+    if (w)
+    {
+      this->FXAAFilter->ReleaseGraphicsResources();
+    }
+    this->FXAAFilter->Delete();
+    this->FXAAFilter = nullptr;
+  }
+  this->BufferSize[0] = this->BufferSize[1] = 0;
+  this->IndirectComputed = false;
+  this->AreaLightsComputed = false;
 }
 
 //------------------------------------------------------------------------------
@@ -355,45 +267,109 @@ bool AnySpecularProp(vtkRenderer* renderer)
 //------------------------------------------------------------------------------
 void vtkMRGIPass::AddAreaLight(vtkMRGIAreaLight* light)
 {
-  if (!light || std::find(this->AreaLights.begin(), this->AreaLights.end(), light) != this->AreaLights.end())
-  {
-    return;
-  }
-  light->Register(this);
-  this->AreaLights.push_back(light);
-  this->Modified();
+  this->AreaLightStage->AddLight(light);
 }
-
 void vtkMRGIPass::RemoveAreaLight(vtkMRGIAreaLight* light)
 {
-  auto it = std::find(this->AreaLights.begin(), this->AreaLights.end(), light);
-  if (it == this->AreaLights.end())
-  {
-    return;
-  }
-  // The light keeps its GPU textures (its own ReleaseGraphicsResources).
-  this->AreaLights.erase(it);
-  light->UnRegister(this);
-  this->Modified();
+  this->AreaLightStage->RemoveLight(light);
 }
-
 void vtkMRGIPass::RemoveAllAreaLights()
 {
-  while (!this->AreaLights.empty())
-  {
-    this->RemoveAreaLight(this->AreaLights.back());
-  }
+  this->AreaLightStage->RemoveAllLights();
 }
-
 int vtkMRGIPass::GetNumberOfAreaLights() const
 {
-  return static_cast<int>(this->AreaLights.size());
+  return this->AreaLightStage->GetNumberOfLights();
 }
-
 vtkMRGIAreaLight* vtkMRGIPass::GetAreaLight(int index) const
 {
-  return index >= 0 && index < this->GetNumberOfAreaLights() ? this->AreaLights[static_cast<size_t>(index)]
-                                                             : nullptr;
+  return this->AreaLightStage->GetLight(index);
+}
+void vtkMRGIPass::SetAreaLightVisibility(int mode)
+{
+  this->AreaLightStage->SetVisibility(mode);
+}
+int vtkMRGIPass::GetAreaLightVisibility()
+{
+  return this->AreaLightStage->GetVisibility();
+}
+void vtkMRGIPass::SetAreaLightSpecular(bool specular)
+{
+  this->AreaLightStage->SetSpecular(specular);
+}
+bool vtkMRGIPass::GetAreaLightSpecular()
+{
+  return this->AreaLightStage->GetSpecular();
+}
+void vtkMRGIPass::SetAreaLightSpecularResolution(int resolution)
+{
+  this->AreaLightStage->SetSpecularResolution(resolution);
+}
+int vtkMRGIPass::GetAreaLightSpecularResolution()
+{
+  return this->AreaLightStage->GetSpecularResolution();
+}
+void vtkMRGIPass::SetAreaLightReuse(bool reuse)
+{
+  this->AreaLightStage->SetReuse(reuse);
+}
+bool vtkMRGIPass::GetAreaLightReuse()
+{
+  return this->AreaLightStage->GetReuse();
+}
+vtkIdType vtkMRGIPass::GetNumberOfAreaLightUpdates()
+{
+  return this->AreaLightStage->GetNumberOfUpdates();
+}
+vtkMRGIVoxelization* vtkMRGIPass::GetVoxelization()
+{
+  return this->AreaLightStage->GetVoxelization();
+}
+vtkMRGIVisibilityPyramid* vtkMRGIPass::GetVisibilityPyramid()
+{
+  return this->AreaLightStage->GetVisibilityPyramid();
+}
+vtkMRGIVarianceShadowQuery* vtkMRGIPass::GetVarianceShadowQuery()
+{
+  return this->AreaLightStage->GetVarianceShadowQuery();
+}
+
+//------------------------------------------------------------------------------
+// The upsampling settings apply to the indirect light and to the area
+// lights' gathers alike; the area-light stage holds them.
+void vtkMRGIPass::SetUpsampleMode(int mode)
+{
+  this->AreaLightStage->SetUpsampleMode(mode);
+}
+int vtkMRGIPass::GetUpsampleMode()
+{
+  return this->AreaLightStage->GetUpsampleMode();
+}
+void vtkMRGIPass::SetUpsampleMaskWeight(double weight)
+{
+  this->AreaLightStage->SetUpsampleMaskWeight(weight);
+}
+double vtkMRGIPass::GetUpsampleMaskWeight()
+{
+  return this->AreaLightStage->GetUpsampleMaskWeight();
+}
+
+//------------------------------------------------------------------------------
+vtkTextureObject* vtkMRGIPass::GetPositionTexture()
+{
+  return this->Internal->GBuffer.Position;
+}
+vtkTextureObject* vtkMRGIPass::GetNormalTexture()
+{
+  return this->Internal->GBuffer.Normal;
+}
+vtkTextureObject* vtkMRGIPass::GetAlbedoTexture()
+{
+  return this->Internal->GBuffer.Albedo;
+}
+vtkTextureObject* vtkMRGIPass::GetIrradianceTexture()
+{
+  return this->Internal->GBuffer.Irradiance;
 }
 
 //------------------------------------------------------------------------------
@@ -426,142 +402,34 @@ int vtkMRGIPass::GetRSMResolution()
 }
 
 //------------------------------------------------------------------------------
-void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
-{
-  this->Superclass::ReleaseGraphicsResources(w);
-  this->RSMPass->ReleaseGraphicsResources(w);
-  this->VPLSelection->ReleaseGraphicsResources(w);
-  this->Multiresolution->ReleaseGraphicsResources(w);
-  this->Voxelization->ReleaseGraphicsResources(w);
-  this->VisibilityPyramid->ReleaseGraphicsResources(w);
-  this->VarianceShadowQuery->ReleaseGraphicsResources(w);
-  this->AreaLightSignature.clear(); // the sum it describes is released below
-  Release(this->GatherQuad, w);
-  Release(this->AddQuad, w);
-  Release(this->OutputQuad, w);
-  Release(this->SpecularQuad, w);
-  Release(this->SpecularMaskedQuad, w);
-  Release(this->SpecularMultiresQuad, w);
-  Release(this->SpecularMultiresMaskedQuad, w);
-  Release(this->SpecularMultiresMarchedQuad, w);
-  Release(this->SpecularMarchedQuad, w);
-  for (vtkMRGIAreaLight* light : this->AreaLights)
-  {
-    light->ReleaseGraphicsResources(w);
-  }
-  if (this->FXAAFilter)
-  {
-    this->FXAAFilter->ReleaseGraphicsResources();
-    this->FXAAFilter->Delete();
-    this->FXAAFilter = nullptr;
-  }
-  if (this->FrameBuffer)
-  {
-    this->FrameBuffer->ReleaseGraphicsResources(w);
-    this->FrameBuffer->Delete();
-    this->FrameBuffer = nullptr;
-  }
-  Release(this->ColorTexture, w);
-  Release(this->PositionTexture, w);
-  Release(this->NormalTexture, w);
-  Release(this->AlbedoTexture, w);
-  Release(this->DepthTexture, w);
-  Release(this->IrradianceTexture, w);
-  Release(this->IndirectTexture, w);
-  Release(this->AreaIrradianceTexture, w);
-  Release(this->AreaDirectTexture, w);
-  Release(this->AreaSumTexture, w);
-  Release(this->SpecularTexture, w);
-  Release(this->ShininessTexture, w);
-  this->BufferSize[0] = this->BufferSize[1] = 0;
-  this->IndirectComputed = false;
-  this->AreaLightsComputed = false;
-}
-
-//------------------------------------------------------------------------------
-void vtkMRGIPass::PrepareBuffers(vtkOpenGLRenderWindow* renWin, int w, int h, bool capture)
-{
-  // Float colour: VTK's lighting is unclamped and the HDR result is what EXR
-  // output reads. G-buffer positions need float range; normals and albedo
-  // are bounded, half floats suffice.
-  auto ensure = [&](vtkTextureObject*& t, int format) {
-    if (!t)
-    {
-      t = MakeTexture(renWin, format, w, h);
-    }
-    t->Resize(w, h);
-  };
-  ensure(this->ColorTexture, GL_RGBA32F);
-  if (!this->DepthTexture)
-  {
-    this->DepthTexture = vtkTextureObject::New();
-    this->DepthTexture->SetContext(renWin);
-    this->DepthTexture->SetMinificationFilter(vtkTextureObject::Nearest);
-    this->DepthTexture->SetMagnificationFilter(vtkTextureObject::Nearest);
-    // The depth format of VTK's own framebuffers, chosen as
-    // vtkOrderIndependentTranslucentPass chooses its depth texture (from the
-    // framebuffer bound now: the window's, or an enclosing pass's): that pass
-    // blits MRGI's depth into its texture, and a blit needs identical depth
-    // formats (a float depth here left translucent props without depth test).
-    if (renWin->GetStencilCapable())
-    {
-      this->DepthTexture->AllocateDepthStencil(w, h);
-    }
-    else
-    {
-      this->DepthTexture->AllocateDepth(w, h,
-        renWin->GetDepthBufferSize() == 32 ? vtkTextureObject::Fixed32 : vtkTextureObject::Fixed24);
-    }
-  }
-  this->DepthTexture->Resize(w, h);
-  if (capture)
-  {
-    ensure(this->PositionTexture, GL_RGBA32F);
-    ensure(this->NormalTexture, GL_RGBA16F);
-    ensure(this->AlbedoTexture, GL_RGBA16F);
-    ensure(this->IrradianceTexture, GL_RGBA32F);
-    ensure(this->IndirectTexture, GL_RGBA32F);
-    if (this->SpecularCaptured)
-    {
-      ensure(this->SpecularTexture, GL_RGBA16F);
-      ensure(this->ShininessTexture, GL_RGBA16F);
-    }
-  }
-  if (!this->FrameBuffer)
-  {
-    this->FrameBuffer = vtkOpenGLFramebufferObject::New();
-    this->FrameBuffer->SetContext(renWin);
-  }
-}
-
-//------------------------------------------------------------------------------
 void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
 {
-  vtkOpenGLFramebufferObject* fbo = this->FrameBuffer;
+  Internals& in = *this->Internal;
+  vtkOpenGLFramebufferObject* fbo = in.GBuffer.FrameBuffer;
   fbo->SaveCurrentBindingsAndBuffers();
   fbo->Bind();
-  fbo->AddColorAttachment(MRGI_GBUFFER_DIRECT, this->ColorTexture);
+  fbo->AddColorAttachment(MRGI_GBUFFER_DIRECT, in.GBuffer.Color);
   if (capture)
   {
-    fbo->AddColorAttachment(MRGI_GBUFFER_POSITION, this->PositionTexture);
-    fbo->AddColorAttachment(MRGI_GBUFFER_NORMAL, this->NormalTexture);
-    fbo->AddColorAttachment(MRGI_GBUFFER_ALBEDO, this->AlbedoTexture);
+    fbo->AddColorAttachment(MRGI_GBUFFER_POSITION, in.GBuffer.Position);
+    fbo->AddColorAttachment(MRGI_GBUFFER_NORMAL, in.GBuffer.Normal);
+    fbo->AddColorAttachment(MRGI_GBUFFER_ALBEDO, in.GBuffer.Albedo);
     // Specular data only when something reads it: every named draw buffer
     // needs an attachment (GL 3.2 completeness).
     if (this->SpecularCaptured)
     {
-      fbo->AddColorAttachment(MRGI_GBUFFER_SPECULAR, this->SpecularTexture);
-      fbo->AddColorAttachment(MRGI_GBUFFER_SHININESS, this->ShininessTexture);
+      fbo->AddColorAttachment(MRGI_GBUFFER_SPECULAR, in.GBuffer.Specular);
+      fbo->AddColorAttachment(MRGI_GBUFFER_SHININESS, in.GBuffer.Shininess);
     }
     fbo->ActivateDrawBuffers(this->SpecularCaptured ? MRGI_GBUFFER_ATTACHMENTS : MRGI_GBUFFER_SPECULAR);
   }
   else
   {
     fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
-    fbo->AddColorAttachment(MRGI_GBUFFER_DIRECT, this->ColorTexture);
+    fbo->AddColorAttachment(MRGI_GBUFFER_DIRECT, in.GBuffer.Color);
     fbo->ActivateDrawBuffers(1);
   }
-  fbo->AddDepthAttachment(this->DepthTexture);
+  fbo->AddDepthAttachment(in.GBuffer.Depth);
 
   // The camera pass sets the renderer's viewport and clears: MRGI's buffers
   // are as large as the window, so the renderer's tile lands where it does
@@ -610,16 +478,17 @@ void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
 //------------------------------------------------------------------------------
 void vtkMRGIPass::RenderForward(const vtkRenderState* s)
 {
+  Internals& in = *this->Internal;
   // Translucent props, volumes and overlays, over the lit opaque scene, into
   // the colour buffer only (the G-buffer is for opaque surfaces).
   vtkRenderStepsPass* steps = vtkRenderStepsPass::SafeDownCast(this->DelegatePass);
-  vtkOpenGLFramebufferObject* fbo = this->FrameBuffer;
+  vtkOpenGLFramebufferObject* fbo = in.GBuffer.FrameBuffer;
   fbo->SaveCurrentBindingsAndBuffers();
   fbo->Bind();
   fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
-  fbo->AddColorAttachment(MRGI_GBUFFER_DIRECT, this->ColorTexture);
+  fbo->AddColorAttachment(MRGI_GBUFFER_DIRECT, in.GBuffer.Color);
   fbo->ActivateDrawBuffers(1);
-  fbo->AddDepthAttachment(this->DepthTexture);
+  fbo->AddDepthAttachment(in.GBuffer.Depth);
   vtkOpenGLRenderWindow* renWin =
     static_cast<vtkOpenGLRenderWindow*>(s->GetRenderer()->GetRenderWindow());
   vtkOpenGLState* ostate = renWin->GetState();
@@ -701,66 +570,84 @@ void vtkMRGIPass::RenderForward(const vtkRenderState* s)
 }
 
 //------------------------------------------------------------------------------
-void vtkMRGIPass::RenderGather(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, int vplCount)
+bool vtkMRGIPass::RenderGather(const vtkMRGIFrameContext& frame, int vplCount)
 {
-  static const std::string body = std::string(vtkMRGIVPLIrradiance) + vtkMRGIGatherFS;
-  vtkShaderProgram* program = ReadyQuad(this->GatherQuad, renWin, body.c_str());
-  if (!program)
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* renWin = frame.Window;
+  vtkOpenGLQuadHelper* quad = in.Programs.Ready(
+    renWin, "gather.full", "", [] { return std::string(vtkMRGIVPLIrradiance) + vtkMRGIGatherFS; });
+  if (!quad)
   {
     vtkErrorMacro("could not build the MRGI gather shader");
-    return;
+    return false;
   }
+  vtkShaderProgram* program = quad->Program;
+  vtkTextureObject* vpls = this->VPLSelection->GetVPLTexture();
+  vtkOpenGLFramebufferObject* fbo = in.GBuffer.FrameBuffer;
+  vtkMRGIViewportStep state(renWin->GetState(), frame.Viewport);
+  fbo->SaveCurrentBindingsAndBuffers();
+  fbo->Bind();
+  fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
+  fbo->AddColorAttachment(0, in.GBuffer.Irradiance);
+  fbo->AddColorAttachment(1, in.GBuffer.Indirect);
+  fbo->ActivateDrawBuffers(2);
+  in.GBuffer.Position->Activate();
+  in.GBuffer.Normal->Activate();
+  in.GBuffer.Albedo->Activate();
+  vpls->Activate();
+  program->SetUniformi("mrgiPosition", in.GBuffer.Position->GetTextureUnit());
+  program->SetUniformi("mrgiNormal", in.GBuffer.Normal->GetTextureUnit());
+  program->SetUniformi("mrgiAlbedo", in.GBuffer.Albedo->GetTextureUnit());
+  program->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
+  program->SetUniformi("mrgiVPLCount", vplCount);
+  program->SetUniformf("mrgiStrength", static_cast<float>(this->IndirectStrength));
+  program->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
+  quad->Render();
+  vpls->Deactivate();
+  in.GBuffer.Albedo->Deactivate();
+  in.GBuffer.Normal->Deactivate();
+  in.GBuffer.Position->Deactivate();
+  fbo->RemoveColorAttachments(2);
+  fbo->UnBind();
+  fbo->RestorePreviousBindingsAndBuffers();
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIPass::MakeFrame(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer,
+  vtkRenderTimerLog* timer, bool capture, vtkMRGIFrameContext& frame)
+{
+  const vtkMRGIGBuffer& g = this->Internal->GBuffer;
+  frame.Window = renWin;
+  frame.Renderer = renderer;
+  frame.Position = capture ? g.Position : nullptr;
+  frame.Normal = capture ? g.Normal : nullptr;
+  frame.Albedo = capture ? g.Albedo : nullptr;
+  frame.Specular = this->SpecularCaptured ? g.Specular : nullptr;
+  frame.Shininess = this->SpecularCaptured ? g.Shininess : nullptr;
+  std::copy(this->Viewport, this->Viewport + 4, frame.Viewport);
+  frame.Timer = timer;
   // Eye -> world: the inverse of the camera's view matrix.
-  vtkNew<vtkMatrix4x4> viewToWorld;
-  vtkMatrix4x4::Invert(renderer->GetActiveCamera()->GetModelViewTransformMatrix(), viewToWorld);
-  float m[16];
+  vtkCamera* camera = renderer->GetActiveCamera();
+  vtkNew<vtkMatrix4x4> inverse;
+  vtkMatrix4x4::Invert(camera->GetModelViewTransformMatrix(), inverse);
   for (int r = 0; r < 4; ++r)
   {
     for (int c = 0; c < 4; ++c)
     {
-      m[c * 4 + r] = static_cast<float>(viewToWorld->GetElement(r, c));
-      this->LastViewToWorld[c * 4 + r] = viewToWorld->GetElement(r, c);
+      frame.ViewToWorld[c * 4 + r] = static_cast<float>(inverse->GetElement(r, c));
+      frame.ViewToWorldDouble[c * 4 + r] = inverse->GetElement(r, c);
     }
   }
-  vtkTextureObject* vpls = this->VPLSelection->GetVPLTexture();
-  vtkOpenGLFramebufferObject* fbo = this->FrameBuffer;
-  ViewportQuadState state(renWin->GetState(), this->Viewport);
-  fbo->SaveCurrentBindingsAndBuffers();
-  fbo->Bind();
-  fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
-  fbo->AddColorAttachment(0, this->IrradianceTexture);
-  fbo->AddColorAttachment(1, this->IndirectTexture);
-  fbo->ActivateDrawBuffers(2);
-  this->PositionTexture->Activate();
-  this->NormalTexture->Activate();
-  this->AlbedoTexture->Activate();
-  vpls->Activate();
-  program->SetUniformi("mrgiPosition", this->PositionTexture->GetTextureUnit());
-  program->SetUniformi("mrgiNormal", this->NormalTexture->GetTextureUnit());
-  program->SetUniformi("mrgiAlbedo", this->AlbedoTexture->GetTextureUnit());
-  program->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
-  program->SetUniformi("mrgiVPLCount", vplCount);
-  program->SetUniformf("mrgiStrength", static_cast<float>(this->IndirectStrength));
-  program->SetUniformMatrix4x4("mrgiVCToWC", m);
-  this->GatherQuad->Render();
-  vpls->Deactivate();
-  this->AlbedoTexture->Deactivate();
-  this->NormalTexture->Deactivate();
-  this->PositionTexture->Deactivate();
-  fbo->RemoveColorAttachments(2);
-  fbo->UnBind();
-  fbo->RestorePreviousBindingsAndBuffers();
-}
-
-//------------------------------------------------------------------------------
-bool vtkMRGIPass::SelectMultiresolution(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer,
-  vtkRenderTimerLog* timer, float viewToWorld[16], bool& parallel)
-{
-  // Pixel size at depth d for the scale-invariant thresholds (mrgi_multires.h).
-  vtkCamera* camera = renderer->GetActiveCamera();
   const mrgi_multires_projection projection = { camera->GetParallelProjection() ? 1 : 0,
     camera->GetViewAngle(), camera->GetParallelScale() };
-  parallel = projection.parallel != 0;
+  frame.Parallel = projection.parallel != 0;
+  if (!capture)
+  {
+    return false; // nothing gathers this frame
+  }
+  std::copy(frame.ViewToWorldDouble, frame.ViewToWorldDouble + 16, this->LastViewToWorld);
+  // Pixel size at depth d for the scale-invariant thresholds (mrgi_multires.h).
   float ab[2];
   mrgi_error err;
   if (mrgi_multires_pixel_size_coefficients(&projection, this->Viewport[3], ab, &err) != MRGI_OK)
@@ -768,615 +655,80 @@ bool vtkMRGIPass::SelectMultiresolution(vtkOpenGLRenderWindow* renWin, vtkRender
     vtkErrorMacro(<< "multiresolution: " << err.message);
     return false;
   }
-  vtkNew<vtkMatrix4x4> inverse;
-  vtkMatrix4x4::Invert(camera->GetModelViewTransformMatrix(), inverse);
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      viewToWorld[c * 4 + r] = static_cast<float>(inverse->GetElement(r, c));
-      this->LastViewToWorld[c * 4 + r] = inverse->GetElement(r, c);
-    }
-  }
-  vtkMRGIMultiresolution* mr = this->Multiresolution;
-  mr->SetStageTimer(timer);
-  ScopedStage stage(timer, "select");
-  const bool ok = mr->Update(renWin, this->PositionTexture, this->NormalTexture, this->Viewport[0],
-    this->Viewport[1], this->Viewport[2], this->Viewport[3], ab[0], ab[1]);
-  mr->SetStageTimer(nullptr);
-  return ok;
-}
-
-//------------------------------------------------------------------------------
-bool vtkMRGIPass::RenderMultiresolution(
-  vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, int vplCount, vtkRenderTimerLog* timer)
-{
-  float* m = this->LastViewToWorldFloat;
-  if (!this->SelectMultiresolution(renWin, renderer, timer, m, this->LastParallel))
-  {
-    return false;
-  }
-  vtkMRGIMultiresolution* mr = this->Multiresolution;
-  mr->SetStageTimer(timer);
-  struct ClearTimer
-  {
-    vtkMRGIMultiresolution* Target;
-    ~ClearTimer() { this->Target->SetStageTimer(nullptr); }
-  } clearTimer{ mr };
-  {
-    ScopedStage stage(timer, "gather");
-    if (!mr->Gather(renWin, this->PositionTexture, this->NormalTexture, this->Viewport[0],
-          this->Viewport[1], this->VPLSelection->GetVPLTexture(), vplCount, m))
-    {
-      return false;
-    }
-  }
-  ScopedStage stage(timer, "upsample");
-  return mr->Upsample(renWin, this->UpsampleMode, this->UpsampleMaskWeight) &&
-    mr->Resolve(renWin, this->AlbedoTexture, this->PositionTexture, this->NormalTexture,
-      this->LastParallel, this->IrradianceTexture, this->IndirectTexture,
-      this->Viewport[0], this->Viewport[1], this->IndirectStrength);
-}
-
-//------------------------------------------------------------------------------
-bool vtkMRGIPass::RenderAreaLights(
-  vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, bool selected, vtkRenderTimerLog* timer)
-{
-  // nichols-penmatsa-wyman-2010 3.2: the area light's direct light at the
-  // multiresolution texels, upsampled like the indirect light. One gather,
-  // upsampling and resolve per light, each added to the lights' sum, which
-  // is added to the colour once (and read by GetAreaLightBuffer()). Timed as
-  // the stage "area" with its steps.
-  const std::string signature = this->AreaLightInputs(renWin, renderer);
-  if (!signature.empty() && signature == this->AreaLightSignature && this->AreaSumTexture)
-  {
-    // Nothing the lights' sum depends on changed: add it again.
-    ScopedStage stage(timer, "area");
-    this->RenderAdd(renWin, this->AreaSumTexture, this->ColorTexture);
-    return true;
-  }
-  this->AreaLightSignature.clear();
-  if (!selected &&
-    !this->SelectMultiresolution(renWin, renderer, timer, this->LastViewToWorldFloat, this->LastParallel))
-  {
-    return false;
-  }
-  ScopedStage stage(timer, "area");
-  // Steps: "voxelize", "visibility.pyramid" and "gather.samples" (the
-  // gathers; receivers are this frame's, built once).
-  this->VisibilityPyramid->SetStageTimer(timer);
-  this->Voxelization->SetStageTimer(timer);
-  this->Multiresolution->SetStageTimer(timer);
-  struct ClearTimers
-  {
-    vtkMRGIPass* Pass;
-    ~ClearTimers()
-    {
-      this->Pass->VisibilityPyramid->SetStageTimer(nullptr);
-      this->Pass->Voxelization->SetStageTimer(nullptr);
-      this->Pass->Multiresolution->SetStageTimer(nullptr);
-    }
-  } clearTimers{ this };
-  const int w = this->ColorTexture->GetWidth(), h = this->ColorTexture->GetHeight();
-  auto ensure = [&](vtkTextureObject*& t) {
-    if (!t)
-    {
-      t = MakeTexture(renWin, GL_RGBA32F, w, h);
-    }
-    t->Resize(w, h);
-  };
-  ensure(this->AreaIrradianceTexture);
-  ensure(this->AreaDirectTexture);
-  ensure(this->AreaSumTexture);
-  {
-    // Clear the sum over the viewport.
-    vtkOpenGLState* ostate = renWin->GetState();
-    ViewportQuadState state(ostate, this->Viewport);
-    vtkOpenGLFramebufferObject* fbo = this->FrameBuffer;
-    fbo->SaveCurrentBindingsAndBuffers();
-    fbo->Bind();
-    fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
-    fbo->AddColorAttachment(0, this->AreaSumTexture);
-    fbo->ActivateDrawBuffers(1);
-    vtkOpenGLState::ScopedglClearColor clearColor(ostate);
-    ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
-    ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
-    fbo->UnBind();
-    fbo->RestorePreviousBindingsAndBuffers();
-  }
-  // Surface-detail modulation (nichols-wyman-2009 eq. 2) is for indirect
-  // light; direct light is resolved without it.
-  // Visibility: one voxelization per frame for every light, over the
-  // camera's clipping range (VTK fits it to the visible props' bounds: the
-  // visible scene's depth range, mrgi_voxel.h section 2).
-  vtkMRGIVoxelization* voxels = nullptr;
-  if (this->AreaLightVisibility != VisibilityOff)
-  {
-    double range[2];
-    renderer->GetActiveCamera()->GetClippingRange(range);
-    if (this->Voxelization->Voxelize(renderer, range[0], range[1]))
-    {
-      voxels = this->Voxelization;
-    }
-    else
-    {
-      vtkErrorMacro("area lights: could not voxelize the scene; drawing them without shadows");
-    }
-  }
-  vtkMRGIMultiresolution* mr = this->Multiresolution;
-  const double surfaceDetail = mr->GetSurfaceDetail();
-  mr->SetSurfaceDetail(0.0);
-  bool drawn = false;
-  for (size_t i = 0; i < this->AreaLights.size(); ++i)
-  {
-    vtkMRGIAreaLight* light = this->AreaLights[i];
-    // The light's samples on the GPU, uploaded by the light once per rebuild.
-    int count = 0;
-    vtkTextureObject* texture = light->GetSampleTexture(renWin, &count);
-    mrgi_area_light_uniforms uniforms;
-    if (!texture || count < 1 || !light->GetCoreUniforms(&uniforms))
-    {
-      continue; // the light reported why
-    }
-    // Incremental visibility: the masks of every level first (they need
-    // this selection's receivers), then the gather reads its texel's bits.
-    vtkMRGIVisibilityPyramid* masks = nullptr;
-    if (voxels && this->AreaLightVisibility == VisibilityIncremental &&
-      count <= vtkMRGIVisibilityPyramid::GetMaximumNumberOfSamples())
-    {
-      double w2v[16];
-      float worldToView[16];
-      voxels->GetLastWorldToView(w2v);
-      std::copy(w2v, w2v + 16, worldToView);
-      if (mr->BuildReceivers(renWin, this->PositionTexture, this->NormalTexture, this->Viewport[0],
-            this->Viewport[1]) &&
-        this->VisibilityPyramid->Update(renWin, mr, voxels, texture, count, uniforms.two_sided != 0,
-          worldToView))
-      {
-        masks = this->VisibilityPyramid;
-      }
-    }
-    if (!mr->GatherAreaLight(renWin, this->PositionTexture, this->NormalTexture, this->Viewport[0],
-          this->Viewport[1], texture, count, uniforms, this->LastViewToWorldFloat, voxels, masks) ||
-      !mr->Upsample(renWin, this->UpsampleMode, this->UpsampleMaskWeight) ||
-      !mr->Resolve(renWin, this->AlbedoTexture, this->PositionTexture, this->NormalTexture,
-        this->LastParallel, this->AreaIrradianceTexture, this->AreaDirectTexture, this->Viewport[0],
-        this->Viewport[1], 1.0))
-    {
-      break;
-    }
-    this->RenderAdd(renWin, this->AreaDirectTexture, this->AreaSumTexture);
-    if (this->SpecularCaptured && this->RenderAreaSpecular(renWin, light, voxels, masks, timer))
-    {
-      this->RenderAdd(renWin, this->AreaDirectTexture, this->AreaSumTexture);
-    }
-    drawn = true;
-  }
-  mr->SetSurfaceDetail(surfaceDetail);
-  // The lights' sum (what GetAreaLightBuffer() reads) joins the image once.
-  if (drawn)
-  {
-    this->RenderAdd(renWin, this->AreaSumTexture, this->ColorTexture);
-    this->AreaLightSignature = signature;
-    ++this->NumberOfAreaLightUpdates;
-  }
-  return drawn;
-}
-
-//------------------------------------------------------------------------------
-std::string vtkMRGIPass::AreaLightInputs(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer)
-{
-  // Everything the area lights' sum is computed from, as modification
-  // times: the camera and viewport (the G-buffer), the visible props and
-  // their data (an actor's matrix, property, texture, mapper and input;
-  // other props' GetRedrawMTime()), each light and its picture (asking for its
-  // samples rebuilds them when the picture changed), and the settings of
-  // the pass and of its stages. Empty: do not reuse.
-  if (!this->AreaLightReuse || this->Multiresolution->GetCollectStatistics() ||
-    this->VisibilityPyramid->GetCollectStatistics())
-  {
-    return std::string();
-  }
-  std::ostringstream s;
-  vtkCamera* camera = renderer->GetActiveCamera();
-  s << camera << ':' << camera->GetMTime() << ';' << renderer->GetMTime() << ';';
-  for (int k = 0; k < 4; ++k)
-  {
-    s << this->Viewport[k] << ',';
-  }
-  s << this->ColorTexture->GetWidth() << 'x' << this->ColorTexture->GetHeight() << ';'
-    << this->SpecularCaptured << this->LastParallel << ';' << this->GetMTime() << ','
-    << this->Multiresolution->GetMTime() << ',' << this->VisibilityPyramid->GetMTime() << ','
-    << this->Voxelization->GetMTime() << ',' << this->VarianceShadowQuery->GetMTime() << ';';
-  vtkPropCollection* props = renderer->GetViewProps();
-  vtkCollectionSimpleIterator it;
-  props->InitTraversal(it);
-  while (vtkProp* prop = props->GetNextProp(it))
-  {
-    if (!prop->GetVisibility())
-    {
-      continue;
-    }
-    vtkActor* actor = vtkActor::SafeDownCast(prop);
-    if (!actor)
-    {
-      s << prop << ':' << prop->GetRedrawMTime() << ';';
-      continue;
-    }
-    // An actor by what it draws rather than its own MTime, which VTK's
-    // mappers bump when they first give it a shader property (after this
-    // frame's signature: the next frame would recompute for nothing).
-    s << actor << ':';
-    vtkMatrix4x4* matrix = actor->GetMatrix();
-    for (int k = 0; k < 16; ++k)
-    {
-      s << matrix->GetElement(k / 4, k % 4) << ',';
-    }
-    s << actor->GetProperty()->GetMTime() << ','
-      << (actor->GetBackfaceProperty() ? actor->GetBackfaceProperty()->GetMTime() : 0) << ','
-      << (actor->GetTexture() ? actor->GetTexture()->GetMTime() : 0) << ',';
-    if (vtkMapper* mapper = actor->GetMapper())
-    {
-      vtkDataObject* input = mapper->GetInputDataObject(0, 0);
-      s << mapper->GetMTime() << ',' << (input ? input->GetMTime() : 0);
-    }
-    s << ';';
-  }
-  for (vtkMRGIAreaLight* light : this->AreaLights)
-  {
-    int count = 0;
-    light->GetSampleTexture(renWin, &count);
-    s << light << ':' << light->GetMTime() << ',' << light->GetNumberOfTextureBuilds() << ','
-      << light->GetNumberOfSampleBuilds() << ';';
-  }
-  return s.str();
-}
-
-//------------------------------------------------------------------------------
-bool vtkMRGIPass::RenderAreaSpecular(vtkOpenGLRenderWindow* renWin, vtkMRGIAreaLight* light,
-  vtkMRGIVoxelization* voxels, vtkMRGIVisibilityPyramid* masks, vtkRenderTimerLog* timer)
-{
-  // nichols-penmatsa-wyman-2010 3.2.1 (the highlight, its own pass) and
-  // 3.3.3 (its shadows): with visibility, each sample's term of a glossy
-  // lobe counts where the sample is visible (the level-0 bit of the
-  // incremental masks, or a march per sample: the naive query, in batches
-  // that fit llvmpipe's loop budget), and each lobe-grid cell of a sharp
-  // lobe is weighted by the variance shadow query (its moments pass first).
-  vtkMRGIShaderUtilities::ScopedStage step(timer, "specular");
-  bool shadowed = voxels != nullptr;
-  if (shadowed)
-  {
-    this->VarianceShadowQuery->SetStageTimer(timer);
-    shadowed = this->VarianceShadowQuery->ComputeMoments(renWin, this->PositionTexture,
-      this->NormalTexture, this->SpecularTexture, this->ShininessTexture, this->Viewport, light,
-      voxels, this->LastViewToWorldFloat, this->LastParallel);
-    this->VarianceShadowQuery->SetStageTimer(nullptr);
-    if (!shadowed)
-    {
-      vtkErrorMacro("area lights: no variance shadow query; drawing the highlights without shadows");
-    }
-  }
-  if (this->AreaLightSpecularResolution == SpecularMultiresolution)
-  {
-    return this->RenderAreaSpecularMultiresolution(renWin, light, voxels, masks, shadowed);
-  }
-  const bool masked = shadowed && masks != nullptr;
-  const bool marched = shadowed && !masked;
-  static const std::string unshadowedBody = std::string(vtkMRGIVPLIrradiance) +
-    vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
-  static const std::string maskedBody =
-    std::string("#define MRGI_AREA_SPECULAR_VISIBILITY 1\n#define MRGI_AREA_SPECULAR_MASKS 1\n") +
-    vtkMRGIVPLIrradiance + vtkMRGIVarianceShadowQuery::GetResolveShaderSource() +
-    vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
-  static const std::string marchedBody =
-    std::string("#define MRGI_AREA_SPECULAR_VISIBILITY 1\n#define MRGI_AREA_SPECULAR_BATCHES 1\n") +
-    vtkMRGIVoxelization::GetMarchShaderSource() + vtkMRGIVPLIrradiance +
-    vtkMRGIVarianceShadowQuery::GetResolveShaderSource() +
-    vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
-  vtkShaderProgram* program = masked
-    ? ReadyQuad(this->SpecularMaskedQuad, renWin, maskedBody.c_str())
-    : marched ? ReadyQuad(this->SpecularMarchedQuad, renWin, marchedBody.c_str())
-              : ReadyQuad(this->SpecularQuad, renWin, unshadowedBody.c_str());
-  vtkOpenGLQuadHelper* quad =
-    masked ? this->SpecularMaskedQuad : (marched ? this->SpecularMarchedQuad : this->SpecularQuad);
-  if (!program)
-  {
-    vtkErrorMacro("could not build the area-light specular shader");
-    return false;
-  }
-  int sampleCount = 0;
-  if (!light->SetShaderUniforms(program, renWin) || !light->GetSampleTexture(renWin, &sampleCount))
-  {
-    return false;
-  }
-  // Texture units: the G-buffer's 4, the light's 2, and with shadows the
-  // moments' 3 and the masks' (up to 4) or the voxels (1): 13 at most.
-  std::vector<vtkTextureObject*> active;
-  if (shadowed)
-  {
-    const int origin[2] = { this->Viewport[0], this->Viewport[1] };
-    program->SetUniform2i("mrgiViewportOrigin", origin);
-    this->VarianceShadowQuery->SetResolveUniforms(program);
-    if (masked)
-    {
-      // Level 0 of the pyramid is the viewport at full resolution; missing
-      // words (fewer than 384 samples) read the first texture: their bits
-      // are never asked for.
-      vtkTextureObject* first = masks->GetMaskTexture(0, 0);
-      first->Activate();
-      active.push_back(first);
-      for (int w = 0; w < 4; ++w)
-      {
-        vtkTextureObject* t = masks->GetMaskTexture(0, w);
-        if (t && t != first)
-        {
-          t->Activate();
-          active.push_back(t);
-        }
-        program->SetUniformi(("mrgiVisibilityMask" + std::to_string(w)).c_str(),
-          (t ? t : first)->GetTextureUnit());
-      }
-    }
-    else
-    {
-      double w2v[16];
-      voxels->GetLastWorldToView(w2v);
-      float worldToView[16];
-      std::copy(w2v, w2v + 16, worldToView);
-      program->SetUniformMatrix4x4("mrgiWCToVC", worldToView);
-      if (!voxels->SetMarchUniforms(program))
-      {
-        this->VarianceShadowQuery->DeactivateTextures();
-        light->DeactivateTextures();
-        return false;
-      }
-      active.push_back(voxels->GetVoxelTexture());
-    }
-  }
-  vtkOpenGLFramebufferObject* fbo = this->FrameBuffer;
-  vtkOpenGLState* ostate = renWin->GetState();
-  ViewportQuadState state(ostate, this->Viewport);
-  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
-  fbo->SaveCurrentBindingsAndBuffers();
-  fbo->Bind();
-  fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
-  fbo->AddColorAttachment(0, this->AreaDirectTexture);
-  fbo->ActivateDrawBuffers(1);
-  vtkTextureObject* inputs[4] = { this->PositionTexture, this->NormalTexture, this->SpecularTexture,
-    this->ShininessTexture };
-  const char* names[4] = { "mrgiPosition", "mrgiNormal", "mrgiSpecular", "mrgiShininess" };
-  for (int k = 0; k < 4; ++k)
-  {
-    inputs[k]->Activate();
-    program->SetUniformi(names[k], inputs[k]->GetTextureUnit());
-  }
-  program->SetUniformMatrix4x4("mrgiVCToWC", this->LastViewToWorldFloat);
-  program->SetUniformi("mrgiParallel", this->LastParallel ? 1 : 0);
-  if (marched)
-  {
-    // One march per sample and pixel can run past the loop iterations
-    // llvmpipe gives one invocation (mrgi_voxel_march.h): batches of
-    // samples, one draw each, added to the first.
-    RenderSampleBatches(ostate, program, quad, sampleCount,
-      mrgi_voxel_samples_per_batch(voxels->GetMaxSteps()));
-  }
-  else
-  {
-    quad->Render();
-  }
-  for (vtkTextureObject* t : inputs)
-  {
-    t->Deactivate();
-  }
-  for (vtkTextureObject* t : active)
-  {
-    t->Deactivate();
-  }
-  if (shadowed)
-  {
-    this->VarianceShadowQuery->DeactivateTextures();
-  }
-  light->DeactivateTextures();
-  fbo->UnBind();
-  fbo->RestorePreviousBindingsAndBuffers();
+  frame.PixelSize[0] = ab[0];
+  frame.PixelSize[1] = ab[1];
   return true;
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIPass::RenderAreaSpecularMultiresolution(vtkOpenGLRenderWindow* renWin,
-  vtkMRGIAreaLight* light, vtkMRGIVoxelization* voxels, vtkMRGIVisibilityPyramid* masks,
-  bool shadowed)
+bool vtkMRGIPass::RenderMultiresolution(const vtkMRGIFrameContext& frame, int vplCount)
 {
-  // nichols-penmatsa-wyman-2010 3.2.1: the highlight gathered at the texels
-  // of the specular stencil (this frame's multiresolution selection plus
-  // the lobe-size metric, texels without specular material skipped;
-  // mrgi_specular_stencil.h), then upsampled and resolved like the diffuse
-  // term, the resolve's "albedo" being k_s c_s. Shadows (3.3.3): the
-  // sample path reads the level's incremental masks (3.3.2, every level
-  // has them) or marches at the texel's receiver (naive visibility, in
-  // batches); the lobe grid reads the variance shadow query at the
-  // footprint's centre pixel.
   vtkMRGIMultiresolution* mr = this->Multiresolution;
-  mrgi_area_light_uniforms uniforms;
-  mrgi_multires_layout layout;
-  int sampleCount = 0;
-  if (!light->GetCoreUniforms(&uniforms) || !light->GetSampleTexture(renWin, &sampleCount) ||
-    !mr->GetLayout(&layout) ||
-    !mr->BuildSpecularStencil(renWin, this->PositionTexture, this->NormalTexture,
-      this->SpecularTexture, this->ShininessTexture, this->Viewport[0], this->Viewport[1], uniforms,
-      this->LastViewToWorldFloat, this->LastParallel))
+  vtkRenderTimerLog* timer = frame.Timer;
   {
-    return false;
-  }
-  const bool masked = shadowed && masks != nullptr &&
-    masks->GetNumberOfLevels() == layout.level_count;
-  const bool marched = shadowed && !masked;
-  static const std::string prefix = "#define MRGI_AREA_SPECULAR_MULTIRES 1\n";
-  static const std::string unshadowedBody = prefix + vtkMRGIVPLIrradiance +
-    vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
-  static const std::string maskedBody = prefix +
-    "#define MRGI_AREA_SPECULAR_VISIBILITY 1\n#define MRGI_AREA_SPECULAR_MASKS 1\n" +
-    vtkMRGIVPLIrradiance + vtkMRGIVarianceShadowQuery::GetResolveShaderSource() +
-    vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
-  static const std::string marchedBody = prefix +
-    "#define MRGI_AREA_SPECULAR_VISIBILITY 1\n#define MRGI_AREA_SPECULAR_BATCHES 1\n" +
-    vtkMRGIVoxelization::GetMarchShaderSource() + vtkMRGIVPLIrradiance +
-    vtkMRGIVarianceShadowQuery::GetResolveShaderSource() +
-    vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
-  vtkShaderProgram* program = masked
-    ? ReadyQuad(this->SpecularMultiresMaskedQuad, renWin, maskedBody.c_str())
-    : marched ? ReadyQuad(this->SpecularMultiresMarchedQuad, renWin, marchedBody.c_str())
-              : ReadyQuad(this->SpecularMultiresQuad, renWin, unshadowedBody.c_str());
-  vtkOpenGLQuadHelper* quad = masked ? this->SpecularMultiresMaskedQuad
-    : (marched ? this->SpecularMultiresMarchedQuad : this->SpecularMultiresQuad);
-  if (!program || !light->SetShaderUniforms(program, renWin))
-  {
-    vtkErrorMacro("could not build the multiresolution area-light specular shader");
-    return false;
-  }
-  // Texture units: receivers 2, material 1, the light's 2, and with shadows
-  // the moments' 3 and the masks' (up to 4) or the voxels (1): 12 at most.
-  std::vector<vtkTextureObject*> active;
-  bool ok = true;
-  if (shadowed)
-  {
-    const int size[2] = { this->Viewport[2], this->Viewport[3] };
-    program->SetUniform2i("mrgiViewportSize", size);
-    this->VarianceShadowQuery->SetResolveUniforms(program);
-    if (marched)
+    ScopedStage stage(timer, "select");
+    if (!mr->Update(frame.Window, frame.Position, frame.Normal, frame.Viewport[0], frame.Viewport[1],
+          frame.Viewport[2], frame.Viewport[3], frame.PixelSize[0], frame.PixelSize[1], timer))
     {
-      double w2v[16];
-      voxels->GetLastWorldToView(w2v);
-      float worldToView[16];
-      std::copy(w2v, w2v + 16, worldToView);
-      program->SetUniformMatrix4x4("mrgiWCToVC", worldToView);
-      ok = voxels->SetMarchUniforms(program);
-      active.push_back(voxels->GetVoxelTexture());
+      return false;
     }
   }
-  program->SetUniformMatrix4x4("mrgiVCToWC", this->LastViewToWorldFloat);
-  program->SetUniformi("mrgiParallel", this->LastParallel ? 1 : 0);
-  const int batch = marched ? mrgi_voxel_samples_per_batch(voxels->GetMaxSteps()) : sampleCount;
-  auto draw = [&](int level) -> bool {
-    std::vector<vtkTextureObject*> levelMasks;
-    if (masked)
-    {
-      // The level's masks, level-local texels (as the diffuse gather's).
-      vtkTextureObject* first = masks->GetMaskTexture(level, 0);
-      if (!first)
-      {
-        return false;
-      }
-      first->Activate();
-      levelMasks.push_back(first);
-      for (int w = 0; w < 4; ++w)
-      {
-        vtkTextureObject* t = masks->GetMaskTexture(level, w);
-        if (t && t != first)
-        {
-          t->Activate();
-          levelMasks.push_back(t);
-        }
-        program->SetUniformi(("mrgiVisibilityMask" + std::to_string(w)).c_str(),
-          (t ? t : first)->GetTextureUnit());
-      }
-    }
-    if (shadowed)
-    {
-      const int origin[2] = { layout.level_offset[level], 0 };
-      program->SetUniform2i("mrgiViewportOrigin", origin);
-    }
-    if (marched)
-    {
-      RenderSampleBatches(renWin->GetState(), program, quad, sampleCount, batch);
-    }
-    else
-    {
-      quad->Render();
-    }
-    for (vtkTextureObject* t : levelMasks)
-    {
-      t->Deactivate();
-    }
-    return true;
-  };
-  ok = ok &&
-    mr->GatherAreaSpecular(renWin, this->PositionTexture, this->NormalTexture, this->Viewport[0],
-      this->Viewport[1], program, draw);
-  for (vtkTextureObject* t : active)
   {
-    t->Deactivate();
+    ScopedStage stage(timer, "gather");
+    if (!mr->BuildReceivers(
+          frame.Window, frame.Position, frame.Normal, frame.Viewport[0], frame.Viewport[1], timer) ||
+      !this->Gather->GatherVPLs(frame, mr, this->VPLSelection->GetVPLTexture(), vplCount))
+    {
+      return false;
+    }
   }
-  if (shadowed)
-  {
-    this->VarianceShadowQuery->DeactivateTextures();
-  }
-  light->DeactivateTextures();
-  // Upsampled S times each pixel's k_s c_s (the resolve's albedo) into
-  // AreaDirectTexture; the irradiance output is scratch.
-  return ok && mr->Upsample(renWin, this->UpsampleMode, this->UpsampleMaskWeight) &&
-    mr->Resolve(renWin, this->SpecularTexture, this->PositionTexture, this->NormalTexture,
-      this->LastParallel, this->AreaIrradianceTexture, this->AreaDirectTexture, this->Viewport[0],
-      this->Viewport[1], 1.0);
+  Internals& in = *this->Internal;
+  ScopedStage stage(timer, "upsample");
+  return this->Upsample->Upsample(frame, mr, this->Gather->GetIrradianceTexture(),
+           mr->GetSelectionTexture(), this->GetUpsampleMode(), this->GetUpsampleMaskWeight()) &&
+    this->Upsample->Resolve(frame, mr, frame.Albedo, in.GBuffer.Irradiance, in.GBuffer.Indirect,
+      this->IndirectStrength, this->SurfaceDetail);
 }
 
 //------------------------------------------------------------------------------
-void vtkMRGIPass::RenderAddIndirect(vtkOpenGLRenderWindow* renWin)
+void vtkMRGIPass::RenderAdd(
+  const vtkMRGIFrameContext& frame, vtkTextureObject* source, vtkTextureObject* target)
 {
-  this->RenderAdd(renWin, this->IndirectTexture, this->ColorTexture);
-}
-
-//------------------------------------------------------------------------------
-void vtkMRGIPass::RenderAdd(vtkOpenGLRenderWindow* renWin, vtkTextureObject* source, vtkTextureObject* target)
-{
-  vtkShaderProgram* program = ReadyQuad(this->AddQuad, renWin, vtkMRGIAddIndirectFS);
-  if (!program)
+  Internals& in = *this->Internal;
+  if (!vtkMRGIFullScreenStep::AddRGB(
+        frame.Window, in.Programs, in.GBuffer.FrameBuffer, frame.Viewport, source, target))
   {
     vtkErrorMacro("could not build the MRGI composite shader");
-    return;
   }
-  vtkOpenGLFramebufferObject* fbo = this->FrameBuffer;
-  vtkOpenGLState* ostate = renWin->GetState();
-  ViewportQuadState state(ostate, this->Viewport);
-  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
-  ostate->vtkglEnable(GL_BLEND);
-  ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
-  fbo->SaveCurrentBindingsAndBuffers();
-  fbo->Bind();
-  fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
-  fbo->AddColorAttachment(0, target);
-  fbo->ActivateDrawBuffers(1);
-  source->Activate();
-  program->SetUniformi("mrgiIndirect", source->GetTextureUnit());
-  this->AddQuad->Render();
-  source->Deactivate();
-  fbo->UnBind();
-  fbo->RestorePreviousBindingsAndBuffers();
 }
 
 //------------------------------------------------------------------------------
-void vtkMRGIPass::RenderOutput(vtkOpenGLRenderWindow* renWin)
+void vtkMRGIPass::RenderOutput(const vtkMRGIFrameContext& frame)
 {
-  vtkShaderProgram* program = ReadyQuad(this->OutputQuad, renWin, vtkMRGICompositeFS);
-  if (!program)
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* renWin = frame.Window;
+  vtkOpenGLQuadHelper* quad =
+    in.Programs.Ready(renWin, "output", "", [] { return vtkMRGICompositeFS; });
+  if (!quad)
   {
     vtkErrorMacro("could not build the MRGI output shader");
     return;
   }
+  vtkShaderProgram* program = quad->Program;
   vtkOpenGLState* ostate = renWin->GetState();
-  ViewportQuadState state(ostate, this->Viewport);
+  vtkMRGIViewportStep state(ostate, frame.Viewport);
   vtkOpenGLState::ScopedglDepthFunc depthFunc(ostate);
   vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
   ostate->vtkglEnable(GL_DEPTH_TEST); // writes the scene's depth (GL_ALWAYS)
   ostate->vtkglDepthFunc(GL_ALWAYS);
   ostate->vtkglDepthMask(GL_TRUE);
-  this->ColorTexture->Activate();
-  this->DepthTexture->Activate();
-  program->SetUniformi("mrgiColor", this->ColorTexture->GetTextureUnit());
-  program->SetUniformi("mrgiDepth", this->DepthTexture->GetTextureUnit());
-  this->OutputQuad->Render();
-  this->DepthTexture->Deactivate();
-  this->ColorTexture->Deactivate();
+  in.GBuffer.Color->Activate();
+  in.GBuffer.Depth->Activate();
+  program->SetUniformi("mrgiColor", in.GBuffer.Color->GetTextureUnit());
+  program->SetUniformi("mrgiDepth", in.GBuffer.Depth->GetTextureUnit());
+  quad->Render();
+  in.GBuffer.Depth->Deactivate();
+  in.GBuffer.Color->Deactivate();
 }
 
 //------------------------------------------------------------------------------
@@ -1441,8 +793,10 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
 
   // Model only what the frame requires: no capture, no maps, no gather
   // when indirect light is off or cannot contribute.
+  Internals& in = *this->Internal;
+  const bool areaLights = this->AreaLightStage->GetNumberOfLights() > 0;
   const bool indirect = this->IndirectMode != IndirectOff && this->GetNumberOfVPLs() > 0;
-  const bool capture = indirect || !this->AreaLights.empty();
+  const bool capture = indirect || areaLights;
   const bool split = vtkRenderStepsPass::SafeDownCast(this->DelegatePass) != nullptr;
   vtkRenderTimerLog* timer = TimerFor(renderer, this->StageTimingEnabled);
   this->IndirectComputed = false;
@@ -1450,16 +804,20 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   this->Captured = capture;
   // The specular pass cannot change the image when no visible prop has a
   // specular material: then neither it nor its G-buffer targets run.
-  this->SpecularCaptured = capture && !this->AreaLights.empty() && this->AreaLightSpecular &&
-    AnySpecularProp(renderer);
+  this->SpecularCaptured =
+    capture && areaLights && this->AreaLightStage->GetSpecular() && AnySpecularProp(renderer);
 
-  this->PrepareBuffers(renWin, x + w, y + h, capture);
+  in.GBuffer.Prepare(renWin, x + w, y + h, capture, this->SpecularCaptured);
   this->BufferSize[0] = w;
   this->BufferSize[1] = h;
   {
     ScopedStage stage(timer, "scene");
     this->RenderScene(s, capture, split);
   }
+  // The frame's context, built once; `framed`: the multiresolution terms
+  // (pixel size) are defined, which only a captured frame needs.
+  vtkMRGIFrameContext frame;
+  const bool framed = this->MakeFrame(renWin, renderer, timer, capture, frame);
   bool selected = false; // this frame's multiresolution selection exists
   if (indirect)
   {
@@ -1477,25 +835,26 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
       bool gathered = true;
       if (this->IndirectMode == IndirectMultires)
       {
-        gathered = this->RenderMultiresolution(renWin, renderer, vplCount, timer);
+        gathered = framed && this->RenderMultiresolution(frame, vplCount);
         selected = gathered;
       }
       else
       {
         ScopedStage stage(timer, "gather");
-        this->RenderGather(renWin, renderer, vplCount);
+        gathered = this->RenderGather(frame, vplCount);
       }
       if (gathered)
       {
         ScopedStage stage(timer, "add");
-        this->RenderAddIndirect(renWin);
+        this->RenderAdd(frame, in.GBuffer.Indirect, in.GBuffer.Color);
         this->IndirectComputed = true;
       }
     }
   }
-  if (!this->AreaLights.empty())
+  if (areaLights && framed)
   {
-    this->AreaLightsComputed = this->RenderAreaLights(renWin, renderer, selected, timer);
+    this->AreaLightsComputed =
+      this->AreaLightStage->Render(frame, this->Multiresolution, selected, in.GBuffer.Color);
   }
   if (split)
   {
@@ -1504,7 +863,7 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   }
   {
     ScopedStage stage(timer, "output");
-    this->RenderOutput(renWin);
+    this->RenderOutput(frame);
   }
   vtkOpenGLCheckErrorMacro("failed after vtkMRGIPass::Render");
 }
@@ -1667,41 +1026,46 @@ bool vtkMRGIPass::ReadViewport(vtkRenderWindow* window, vtkTextureObject* textur
 
 bool vtkMRGIPass::GetColorBuffer(vtkRenderWindow* window, vtkImageData* image)
 {
-  return this->ReadViewport(window, this->ColorTexture, 4, image, "HDRColor");
+  Internals& in = *this->Internal;
+  return this->ReadViewport(window, in.GBuffer.Color, 4, image, "HDRColor");
 }
 
 bool vtkMRGIPass::GetIndirectBuffer(vtkRenderWindow* window, vtkImageData* image)
 {
+  Internals& in = *this->Internal;
   return this->ReadViewport(
-    window, this->IndirectComputed ? this->IndirectTexture : nullptr, 3, image, "Indirect");
+    window, this->IndirectComputed ? in.GBuffer.Indirect : nullptr, 3, image, "Indirect");
 }
 
 bool vtkMRGIPass::GetAreaLightBuffer(vtkRenderWindow* window, vtkImageData* image)
 {
-  return this->ReadViewport(
-    window, this->AreaLightsComputed ? this->AreaSumTexture : nullptr, 3, image, "Area light");
+  return this->ReadViewport(window,
+    this->AreaLightsComputed ? this->AreaLightStage->GetSumTexture() : nullptr, 3, image, "Area light");
 }
 
 bool vtkMRGIPass::GetIrradianceBuffer(vtkRenderWindow* window, vtkImageData* image)
 {
+  Internals& in = *this->Internal;
   return this->ReadViewport(
-    window, this->IndirectComputed ? this->IrradianceTexture : nullptr, 3, image, "Irradiance");
+    window, this->IndirectComputed ? in.GBuffer.Irradiance : nullptr, 3, image, "Irradiance");
 }
 
 bool vtkMRGIPass::GetGBuffer(
   vtkRenderWindow* window, vtkImageData* position, vtkImageData* normal, vtkImageData* albedo)
 {
-  const bool captured = this->PositionTexture && this->Captured;
-  return this->ReadViewport(window, captured ? this->PositionTexture : nullptr, 4, position, "Position") &&
-    this->ReadViewport(window, captured ? this->NormalTexture : nullptr, 4, normal, "Normal") &&
-    this->ReadViewport(window, captured ? this->AlbedoTexture : nullptr, 4, albedo, "Albedo");
+  Internals& in = *this->Internal;
+  const bool captured = in.GBuffer.Position && this->Captured;
+  return this->ReadViewport(window, captured ? in.GBuffer.Position : nullptr, 4, position, "Position") &&
+    this->ReadViewport(window, captured ? in.GBuffer.Normal : nullptr, 4, normal, "Normal") &&
+    this->ReadViewport(window, captured ? in.GBuffer.Albedo : nullptr, 4, albedo, "Albedo");
 }
 
 bool vtkMRGIPass::GetSpecularGBuffer(vtkRenderWindow* window, vtkImageData* specular, vtkImageData* shininess)
 {
-  const bool captured = this->SpecularTexture && this->SpecularCaptured;
-  return this->ReadViewport(window, captured ? this->SpecularTexture : nullptr, 4, specular, "Specular") &&
-    this->ReadViewport(window, captured ? this->ShininessTexture : nullptr, 4, shininess, "Shininess");
+  Internals& in = *this->Internal;
+  const bool captured = in.GBuffer.Specular && this->SpecularCaptured;
+  return this->ReadViewport(window, captured ? in.GBuffer.Specular : nullptr, 4, specular, "Specular") &&
+    this->ReadViewport(window, captured ? in.GBuffer.Shininess : nullptr, 4, shininess, "Shininess");
 }
 
 bool vtkMRGIPass::GetVPLs(vtkRenderWindow* window, vtkFloatArray* vpls)
@@ -1728,31 +1092,20 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IndirectMode: "
      << (this->IndirectMode == IndirectOff ? "Off" : this->IndirectMode == IndirectFull ? "Full" : "Multires")
      << "\n";
-  os << indent << "UpsampleMode: " << this->UpsampleMode << "\n";
-  os << indent << "UpsampleMaskWeight: " << this->UpsampleMaskWeight << "\n";
+  os << indent << "UpsampleMode: " << this->GetUpsampleMode() << "\n";
+  os << indent << "UpsampleMaskWeight: " << this->GetUpsampleMaskWeight() << "\n";
+  os << indent << "SurfaceDetail: " << this->SurfaceDetail << "\n";
   os << indent << "IndirectStrength: " << this->IndirectStrength << "\n";
   os << indent << "NumberOfVPLs: " << this->VPLSelection->GetNumberOfVPLs() << "\n";
   os << indent << "VPLSelectionMode: " << this->VPLSelection->GetMode() << "\n";
   os << indent << "RSMResolution: " << this->RSMPass->GetResolution() << "\n";
   os << indent << "StageTimingEnabled: " << (this->StageTimingEnabled ? "On" : "Off") << "\n";
-  os << indent << "AreaLights: " << this->AreaLights.size() << "\n";
-  os << indent << "AreaLightVisibility: "
-     << (this->AreaLightVisibility == VisibilityIncremental ? "Incremental"
-          : this->AreaLightVisibility == VisibilityNaive    ? "Naive"
-                                                            : "Off")
-     << "\n";
-  os << indent << "AreaLightSpecular: " << (this->AreaLightSpecular ? "On" : "Off") << "\n";
-  os << indent << "AreaLightSpecularResolution: "
-     << (this->AreaLightSpecularResolution == SpecularMultiresolution ? "Multiresolution" : "FullResolution")
-     << "\n";
-  os << indent << "Voxelization:\n";
-  this->Voxelization->PrintSelf(os, indent.GetNextIndent());
-  os << indent << "VisibilityPyramid:\n";
-  this->VisibilityPyramid->PrintSelf(os, indent.GetNextIndent());
-  os << indent << "AreaLightReuse: " << (this->AreaLightReuse ? "On" : "Off") << "\n";
-  os << indent << "NumberOfAreaLightUpdates: " << this->NumberOfAreaLightUpdates << "\n";
-  os << indent << "VarianceShadowQuery:\n";
-  this->VarianceShadowQuery->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "Multiresolution:\n";
+  this->Multiresolution->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "Gather:\n";
+  this->Gather->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "AreaLightStage:\n";
+  this->AreaLightStage->PrintSelf(os, indent.GetNextIndent());
   os << indent << "BufferSize: " << this->BufferSize[0] << " x " << this->BufferSize[1] << "\n";
   for (int i = 0; i < this->GetNumberOfStages(); ++i)
   {

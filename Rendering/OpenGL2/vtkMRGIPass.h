@@ -44,21 +44,24 @@
 #include "MRGIRenderingModule.h" // For export macro
 #include "vtkImageProcessingPass.h"
 
+#include <memory> // For std::unique_ptr
 #include <string> // For std::string
 #include <vector> // For std::vector
 
 class vtkFloatArray;
 class vtkImageData;
+struct vtkMRGIFrameContext;
 class vtkMRGIAreaLight;
+class vtkMRGIAreaLightStage;
+class vtkMRGIGather;
 class vtkMRGIMultiresolution;
+class vtkMRGIUpsample;
 class vtkMRGIVarianceShadowQuery;
 class vtkMRGIVisibilityPyramid;
 class vtkMRGIVoxelization;
 class vtkMRGIReflectiveShadowMapPass;
 class vtkMRGIVPLSelection;
 class vtkOpenGLFXAAFilter;
-class vtkOpenGLFramebufferObject;
-class vtkOpenGLQuadHelper;
 class vtkOpenGLRenderWindow;
 class vtkRenderTimerLog;
 class vtkRenderWindow;
@@ -117,17 +120,41 @@ public:
   ///@}
 
   /**
-   * The multiresolution gather (IndirectMultires): its thresholds, finest
-   * level, balance rule, coarsest side and upsampling are set on it.
+   * The multiresolution buffer (IndirectMultires, and the area lights): its
+   * thresholds, finest level, balance rule and coarsest side choose the
+   * texels that gather; read-backs of the selection, flags and receivers.
    */
   vtkMRGIMultiresolution* GetMultiresolution() { return this->Multiresolution; }
 
+  /**
+   * The indirect light's multiresolution gather (gather mode, statistics,
+   * the flattened irradiance) and its upsampling (read-back of the
+   * upsampled E). The area lights have their own: GetAreaLightStage().
+   */
+  vtkMRGIGather* GetGather() { return this->Gather; }
+  vtkMRGIUpsample* GetUpsample() { return this->Upsample; }
+
   ///@{
-  /** Upsampling of the multiresolution gather: vtkMRGIMultiresolution::UpsampleTent (default) or UpsampleMaskWeighted, and the mask weight (default 100). */
-  vtkSetClampMacro(UpsampleMode, int, 0, 1);
-  vtkGetMacro(UpsampleMode, int);
-  vtkSetClampMacro(UpsampleMaskWeight, double, 1.0, 1e6);
-  vtkGetMacro(UpsampleMaskWeight, double);
+  /**
+   * Upsampling of the multiresolution gathers (indirect light and area
+   * lights): vtkMRGIUpsample::UpsampleTent (default) or
+   * UpsampleMaskWeighted, and the mask weight (default 100).
+   */
+  void SetUpsampleMode(int mode);
+  int GetUpsampleMode();
+  void SetUpsampleMaskWeight(double weight);
+  double GetUpsampleMaskWeight();
+  ///@}
+
+  ///@{
+  /**
+   * Surface-detail modulation of the indirect light (nichols-wyman-2009
+   * section 4.2, eq. 2): the resolved E is multiplied by alpha max(V.N, 0)
+   * + 1 - alpha, bringing back the shading detail coarse texels blur out.
+   * 0 (default) is off. Direct light from area lights is never modulated.
+   */
+  vtkSetClampMacro(SurfaceDetail, double, 0.0, 1.0);
+  vtkGetMacro(SurfaceDetail, double);
   ///@}
 
   ///@{
@@ -169,8 +196,8 @@ public:
    * more samples than it takes, 512, fall back to naive). Occluders outside
    * the view are unknown to a screen-space method.
    */
-  vtkSetClampMacro(AreaLightVisibility, int, VisibilityOff, VisibilityIncremental);
-  vtkGetMacro(AreaLightVisibility, int);
+  void SetAreaLightVisibility(int mode);
+  int GetAreaLightVisibility();
   ///@}
 
   ///@{
@@ -180,9 +207,10 @@ public:
    * G-buffer then also captures k_s c_s and SpecularPower. Shadowed as
    * AreaLightVisibility says (3.3.3; see GetVarianceShadowQuery()).
    */
-  vtkSetMacro(AreaLightSpecular, bool);
-  vtkGetMacro(AreaLightSpecular, bool);
-  vtkBooleanMacro(AreaLightSpecular, bool);
+  void SetAreaLightSpecular(bool specular);
+  bool GetAreaLightSpecular();
+  void AreaLightSpecularOn() { this->SetAreaLightSpecular(true); }
+  void AreaLightSpecularOff() { this->SetAreaLightSpecular(false); }
   ///@}
 
   enum AreaLightSpecularResolutions
@@ -203,7 +231,8 @@ public:
    * Visibility as AreaLightVisibility says: the level's incremental masks,
    * or the naive march at the texel's receiver; lobe-grid cells read the
    * variance shadow query at the footprint's centre pixel. The lobe metric
-   * can be turned off with GetMultiresolution()->SpecularLobeRefinementOff().
+   * can be turned off with
+   * GetAreaLightStage()->GetSpecularStencilStage()->LobeRefinementOff().
    * Experimental: measured at 256x256 (--specular 0.5:40 / 0.5:120) the
    * highlight's relative RMS error against full resolution is 2.6% / 3.4%
    * on living-room but 21% / 34% on cornell-area (flat walls gathered at
@@ -211,15 +240,23 @@ public:
    * with no speed gain yet (the full-resolution variance shadow moments and
    * the stencil dominate).
    */
-  vtkSetClampMacro(AreaLightSpecularResolution, int, SpecularFullResolution, SpecularMultiresolution);
-  vtkGetMacro(AreaLightSpecularResolution, int);
+  void SetAreaLightSpecularResolution(int resolution);
+  int GetAreaLightSpecularResolution();
   ///@}
 
+  /**
+   * The area lights' stage (vtkMRGIAreaLightStage): it owns their
+   * textures, programs and stages (gather, upsampling, incremental and
+   * specular stencils, voxelization, visibility, variance shadow query).
+   * The area-light methods of this class forward to it.
+   */
+  vtkMRGIAreaLightStage* GetAreaLightStage() { return this->AreaLightStage; }
+
   /** The screen-space voxelization of the area-light visibility (voxel buffer size, march knobs). */
-  vtkMRGIVoxelization* GetVoxelization() { return this->Voxelization; }
+  vtkMRGIVoxelization* GetVoxelization();
 
   /** The incremental visibility (knobs, per-level ray statistics of the last light gathered). */
-  vtkMRGIVisibilityPyramid* GetVisibilityPyramid() { return this->VisibilityPyramid; }
+  vtkMRGIVisibilityPyramid* GetVisibilityPyramid();
 
   /**
    * The shadows of sharp area-light highlights (NPW10 3.3.3's variance
@@ -231,7 +268,7 @@ public:
    * or the light has more samples than the pyramid takes); on sharp lobes
    * (the 5 x 5 lobe grid) each cell's term is weighted by this query.
    */
-  vtkMRGIVarianceShadowQuery* GetVarianceShadowQuery() { return this->VarianceShadowQuery; }
+  vtkMRGIVarianceShadowQuery* GetVarianceShadowQuery();
 
   /**
    * The direct light of the area lights in the last frame (albedo x X,
@@ -250,14 +287,15 @@ public:
    * the area lights and their pictures, the pass's and its stages'
    * settings) adds the previous result again instead: "buffers are not
    * re-rendered when their inputs did not change". Statistics collection
-   * (vtkMRGIMultiresolution, vtkMRGIVisibilityPyramid) always computes, and
-   * so does every frame with AreaLightReuse off (benchmarks: they measure
-   * the computation).
+   * (the area-light stage's vtkMRGIGather, vtkMRGIVisibilityPyramid) always
+   * computes, and so does every frame with AreaLightReuse off (benchmarks:
+   * they measure the computation).
    */
-  vtkGetMacro(NumberOfAreaLightUpdates, vtkIdType);
-  vtkSetMacro(AreaLightReuse, bool);
-  vtkGetMacro(AreaLightReuse, bool);
-  vtkBooleanMacro(AreaLightReuse, bool);
+  vtkIdType GetNumberOfAreaLightUpdates();
+  void SetAreaLightReuse(bool reuse);
+  bool GetAreaLightReuse();
+  void AreaLightReuseOn() { this->SetAreaLightReuse(true); }
+  void AreaLightReuseOff() { this->SetAreaLightReuse(false); }
 
   /** The sub-stages, for inspection (statistics, read-backs). */
   vtkMRGIReflectiveShadowMapPass* GetReflectiveShadowMapPass() { return this->RSMPass; }
@@ -330,9 +368,11 @@ public:
 
   ///@{
   /** The G-buffer textures (window-sized; the viewport is where the renderer drew). */
-  vtkTextureObject* GetPositionTexture() { return this->PositionTexture; }
-  vtkTextureObject* GetNormalTexture() { return this->NormalTexture; }
-  vtkTextureObject* GetAlbedoTexture() { return this->AlbedoTexture; }
+  vtkTextureObject* GetPositionTexture();
+  vtkTextureObject* GetNormalTexture();
+  vtkTextureObject* GetAlbedoTexture();
+  /** E of the indirect gather (RGB; alpha 1 where gathered), window-sized. */
+  vtkTextureObject* GetIrradianceTexture();
   ///@}
 
   /** Whether the last frame computed indirect light. */
@@ -350,101 +390,55 @@ protected:
   vtkMRGIPass();
   ~vtkMRGIPass() override;
 
-  void PrepareBuffers(vtkOpenGLRenderWindow* renWin, int width, int height, bool capture);
   void RenderScene(const vtkRenderState* s, bool capture, bool split);
   void RenderForward(const vtkRenderState* s);
-  void RenderGather(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, int vplCount);
-  void RenderAddIndirect(vtkOpenGLRenderWindow* renWin);
+#ifndef __VTK_WRAP__
+  // The frame's context once the G-buffer is captured (camera transforms,
+  // pixel size). False when nothing gathers: no capture, or (with an
+  // error) an undefined pixel size.
+  bool MakeFrame(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, vtkRenderTimerLog* timer,
+    bool capture, vtkMRGIFrameContext& frame);
+  // Full-resolution gather: every pixel gathers every VPL.
+  bool RenderGather(const vtkMRGIFrameContext& frame, int vplCount);
+  // Selection, gather, upsampling and resolve of the multiresolution gather.
+  bool RenderMultiresolution(const vtkMRGIFrameContext& frame, int vplCount);
   // Adds `source`'s RGB to `target`'s (additive blending, target alpha kept).
-  void RenderAdd(vtkOpenGLRenderWindow* renWin, vtkTextureObject* source, vtkTextureObject* target);
-  // The multiresolution selection of this frame (camera terms, eye -> world).
-  bool SelectMultiresolution(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer,
-    vtkRenderTimerLog* timer, float viewToWorld[16], bool& parallel);
-  bool RenderMultiresolution(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, int vplCount,
-    vtkRenderTimerLog* timer);
-  // One area light's Phong highlight into AreaDirectTexture (full resolution),
-  // shadowed when `voxels` (this frame's voxelization) is given: sample bits
-  // from `masks` (updated for this light) or marched, lobe-grid cells by the
-  // variance shadow query.
-  bool RenderAreaSpecular(vtkOpenGLRenderWindow* renWin, vtkMRGIAreaLight* light,
-    vtkMRGIVoxelization* voxels, vtkMRGIVisibilityPyramid* masks, vtkRenderTimerLog* timer);
-  // The same into AreaDirectTexture at the texels of the specular stencil
-  // (AreaLightSpecularResolution = SpecularMultiresolution), upsampled and
-  // multiplied by k_s c_s; `shadowed` when the variance shadow query's
-  // moments are ready.
-  bool RenderAreaSpecularMultiresolution(vtkOpenGLRenderWindow* renWin, vtkMRGIAreaLight* light,
-    vtkMRGIVoxelization* voxels, vtkMRGIVisibilityPyramid* masks, bool shadowed);
-  // What the area lights' sum depends on (AreaLightSignature); empty when
-  // it must be computed anyway.
-  std::string AreaLightInputs(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer);
-  // Every area light's direct light, added to the colour; `selected`: this
-  // frame's selection exists (the indirect light made it).
-  bool RenderAreaLights(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, bool selected,
-    vtkRenderTimerLog* timer);
-  void RenderOutput(vtkOpenGLRenderWindow* renWin);
+  void RenderAdd(const vtkMRGIFrameContext& frame, vtkTextureObject* source, vtkTextureObject* target);
+  void RenderOutput(const vtkMRGIFrameContext& frame);
+#endif
   bool ReadViewport(vtkRenderWindow* window, vtkTextureObject* texture, int components,
     vtkImageData* image, const char* what);
+  // Frees every GL resource (with `w`) or, without, the C++ objects that
+  // hold them: the destructor and ReleaseGraphicsResources() share it.
+  void ReleaseResources(vtkWindow* w);
 
   int IndirectMode = IndirectMultires;
   double IndirectStrength = 1.0;
+  double SurfaceDetail = 0.0;
   bool StageTimingEnabled = false;
   int BufferSize[2] = { 0, 0 };
   int Viewport[4] = { 0, 0, 0, 0 };
   bool IndirectComputed = false;
   bool AreaLightsComputed = false;
-  // What the area lights' sum was computed from (empty: nothing cached).
-  std::string AreaLightSignature;
-  vtkIdType NumberOfAreaLightUpdates = 0;
-  bool AreaLightReuse = true;
-  bool Captured = false; // the last frame captured the G-buffer
+  bool Captured = false;         // the last frame captured the G-buffer
   bool SpecularCaptured = false; // ... with its specular attachments
-  bool AreaLightSpecular = true;
-  vtkTextureObject* SpecularTexture = nullptr;
-  vtkTextureObject* ShininessTexture = nullptr;
   double LastViewToWorld[16];
-  float LastViewToWorldFloat[16];
-  bool LastParallel = false;
-
-  // Area lights (registered; each owns its GPU sample and pyramid textures).
-  std::vector<vtkMRGIAreaLight*> AreaLights;
-  vtkTextureObject* AreaIrradianceTexture = nullptr;
-  vtkTextureObject* AreaDirectTexture = nullptr;
-  vtkTextureObject* AreaSumTexture = nullptr;
-  int AreaLightVisibility = VisibilityIncremental;
-  vtkMRGIVoxelization* Voxelization = nullptr;
-  vtkMRGIVisibilityPyramid* VisibilityPyramid = nullptr;
-  vtkMRGIVarianceShadowQuery* VarianceShadowQuery = nullptr;
 
   vtkMRGIReflectiveShadowMapPass* RSMPass = nullptr;
   vtkMRGIVPLSelection* VPLSelection = nullptr;
   vtkMRGIMultiresolution* Multiresolution = nullptr;
-  int UpsampleMode = 0;
-  double UpsampleMaskWeight = 100.0;
+  vtkMRGIGather* Gather = nullptr;
+  vtkMRGIUpsample* Upsample = nullptr;
+  vtkMRGIAreaLightStage* AreaLightStage = nullptr;
   vtkSequencePass* OpaqueSequence = nullptr;
-
-  vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
-  vtkTextureObject* ColorTexture = nullptr;
-  vtkTextureObject* PositionTexture = nullptr;
-  vtkTextureObject* NormalTexture = nullptr;
-  vtkTextureObject* AlbedoTexture = nullptr;
-  vtkTextureObject* DepthTexture = nullptr;
-  vtkTextureObject* IrradianceTexture = nullptr;
-  vtkTextureObject* IndirectTexture = nullptr;
-  vtkOpenGLQuadHelper* GatherQuad = nullptr;
-  vtkOpenGLQuadHelper* AddQuad = nullptr;
-  vtkOpenGLQuadHelper* OutputQuad = nullptr;
-  vtkOpenGLQuadHelper* SpecularQuad = nullptr;        // unshadowed
-  vtkOpenGLQuadHelper* SpecularMaskedQuad = nullptr;  // shadowed, sample bits from the masks
-  vtkOpenGLQuadHelper* SpecularMarchedQuad = nullptr; // shadowed, samples marched in batches
-  // The multiresolution specular gather's programs (same three kinds).
-  vtkOpenGLQuadHelper* SpecularMultiresQuad = nullptr;
-  vtkOpenGLQuadHelper* SpecularMultiresMaskedQuad = nullptr;
-  vtkOpenGLQuadHelper* SpecularMultiresMarchedQuad = nullptr;
-  int AreaLightSpecularResolution = SpecularFullResolution;
   vtkOpenGLFXAAFilter* FXAAFilter = nullptr;
 
   std::vector<std::string> StageNames;
   std::vector<double> StageTimes;
+
+  // The window-sized buffers and the full-screen programs.
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
 
 private:
   vtkMRGIPass(const vtkMRGIPass&) = delete;

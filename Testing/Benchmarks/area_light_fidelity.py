@@ -60,6 +60,7 @@ class Scene:
         for light in self.lights:
             self.gi.AddAreaLight(light)
         self.mr = self.gi.GetMultiresolution()
+        self.area = self.gi.GetAreaLightStage()
 
     def frames(self, count):
         return mb.frames(self.window, self.gi, count)
@@ -150,12 +151,12 @@ def main():
                 for side in [int(v) for v in args.voxel_sizes.split(",") if v]:
                     if side != 128:
                         settings.append((visibility, value, "balanced", presets["balanced"], side, True))
-            if visibility == "incremental" and hasattr(scene.mr, "SetIncrementalStencil"):
+            if visibility == "incremental" and hasattr(scene.area, "SetIncrementalStencil"):
                 # NPW10 3.4 off: the gather keeps the geometric selection.
                 settings.append(("incremental-geometric", value, "balanced", presets["balanced"], 128, False))
         for visibility, value, preset, index, side, stencil in settings:
-            if hasattr(scene.mr, "SetIncrementalStencil"):
-                scene.mr.SetIncrementalStencil(stencil)
+            if hasattr(scene.area, "SetIncrementalStencil"):
+                scene.area.SetIncrementalStencil(stencil)
             if value is not None:
                 scene.gi.SetAreaLightVisibility(value)
                 scene.gi.GetVoxelization().SetVoxelSide(side)
@@ -168,15 +169,15 @@ def main():
                     scene.mr.SetPreset(index)
                 scene.frames(1)
                 t = scene.frames(args.repeats)
-                scene.mr.SetCollectStatistics(True)
+                scene.area.GetGather().SetCollectStatistics(True)
                 pyramid = scene.gi.GetVisibilityPyramid() if hasattr(scene.gi, "GetVisibilityPyramid") else None
                 if pyramid is not None:
                     pyramid.SetCollectStatistics(True)
                 scene.window.Render()
-                work = scene.mr.GetGatherWorkFraction()
-                per_level = [max(scene.mr.GetNumberOfGatheredTexels(i), 0) for i in range(scene.mr.GetNumberOfLevels())]
+                work = scene.area.GetGather().GetGatherWorkFraction()
+                per_level = [max(scene.area.GetGather().GetNumberOfGatheredTexels(i), 0) for i in range(scene.mr.GetNumberOfLevels())]
                 gathered = sum(per_level)
-                valid = max(scene.mr.GetNumberOfValidPixels(), 1)
+                valid = max(scene.area.GetGather().GetNumberOfValidPixels(), 1)
                 samples = scene.lights[0].GetNumberOfSamples() if scene.lights else 0
                 if visibility.startswith("incremental") and pyramid is not None:
                     rays = pyramid.GetTotalNumberOfRays()
@@ -184,7 +185,7 @@ def main():
                     rays = gathered * samples
                 else:
                     rays = 0
-                scene.mr.SetCollectStatistics(False)
+                scene.area.GetGather().SetCollectStatistics(False)
                 if pyramid is not None:
                     pyramid.SetCollectStatistics(False)
                 image = scene.color()
@@ -364,9 +365,9 @@ def write_page(args, rows, notes, path, speed=()):
              "refined where at least half the samples disagree (`vtkMRGIVisibilityPyramid`; 2x2 interleaving "
              "is available, off by default). Per level one pass decides what each texel reuses or inherits, a "
              "stencil marks the texels with bits left, and the marches run under it (early stencil culling).",
-             "- **Incremental stencil** (3.4, `vtkMRGIMultiresolution::SetIncrementalStencil`, default on): the "
+             "- **Incremental stencil** (3.4, `vtkMRGIAreaLightStage::SetIncrementalStencil`, default on): the "
              "gather also renders a texel below the geometric selection where its parent's 3x3 visibility masks "
-             "disagree on at least a quarter of the samples (`IncrementalStencilFraction`), so penumbrae on flat "
+             "disagree on at least a quarter of the samples (`vtkMRGIIncrementalStencil::Fraction`), so penumbrae on flat "
              "surfaces are gathered at the resolution the shadow needs; the upsampling interpolates from the "
              "finest rendered texel. `incremental-geometric` below is the same with the geometric selection "
              "alone.",

@@ -63,6 +63,7 @@ class Bench:
         self.gi.SetStageTimingEnabled(True)
         self.window.GetRenderTimer().SetLoggingEnabled(True)
         self.mr = self.gi.GetMultiresolution()
+        self.gather = self.gi.GetGather()
         self.light = self.renderer.GetLights().GetItemAsObject(0)
         self.camera = self.renderer.GetActiveCamera()
 
@@ -250,10 +251,10 @@ def main():
                 seen.add((depth, normal, finest, balance))
                 configure(bench, mrgi.vtkMRGIPass.IndirectMultires, depth, normal, finest, vpls, balance)
                 t = bench.frames(args.repeats)
-                bench.mr.SetCollectStatistics(True)
+                bench.gather.SetCollectStatistics(True)
                 bench.window.Render()
-                work = bench.mr.GetGatherWorkFraction()
-                bench.mr.SetCollectStatistics(False)
+                work = bench.gather.GetGatherWorkFraction()
+                bench.gather.SetCollectStatistics(False)
                 image = bench.indirect()
                 path = save(image, os.path.join(scratch, "%s-%d-mr.exr" % (scene, vpls)))
                 vs_full = metrics(compare_tool, path, full_path, peak)
@@ -383,32 +384,32 @@ def splat_compare(bench, scene, vpls, presets, repeats):
     (checked), GPU time of the gathering step ("gather.vpls") in both, frames interleaved so that load on
     the machine hits both alike."""
     out = []
-    stenciled, splatting = mrgi.vtkMRGIMultiresolution.GatherStenciled, mrgi.vtkMRGIMultiresolution.GatherSplatting
+    stenciled, splatting = mrgi.vtkMRGIGather.GatherStenciled, mrgi.vtkMRGIGather.GatherSplatting
     for name, p in presets.items():
         configure(bench, mrgi.vtkMRGIPass.IndirectMultires, p[0] if p[0] >= 0 else math.inf,
                   p[1] if p[1] >= 0 else math.inf, int(p[2]), vpls)
         flat = {}
         for mode in (stenciled, splatting):  # warm-up (shader builds) and the outputs
-            bench.mr.SetGatherMode(mode)
-            bench.mr.SetCollectStatistics(True)
+            bench.gather.SetGatherMode(mode)
+            bench.gather.SetCollectStatistics(True)
             bench.window.Render()
-            bench.mr.SetCollectStatistics(False)
+            bench.gather.SetCollectStatistics(False)
             array = vtkFloatArray()
-            assert bench.mr.ReadIrradiance(bench.window, array)
+            assert bench.gather.ReadIrradiance(bench.window, array)
             flat[mode] = vtk_to_numpy(array).copy()
-        work = bench.mr.GetGatherWorkFraction()
+        work = bench.gather.GetGatherWorkFraction()
         peak = float(np.abs(flat[stenciled][:, :3]).max())
         difference = float(np.abs(flat[splatting] - flat[stenciled]).max()) / max(peak, 1e-30)
         times = {stenciled: [], splatting: []}
         lists = []
         for _ in range(repeats):
             for mode in (stenciled, splatting):
-                bench.mr.SetGatherMode(mode)
+                bench.gather.SetGatherMode(mode)
                 t = bench.frames(1)
                 times[mode].append(t.get("gather.vpls", 0.0))
                 if mode == splatting:
                     lists.append(t.get("gather.subsplats", 0.0))
-        bench.mr.SetGatherMode(stenciled)
+        bench.gather.SetGatherMode(stenciled)
         a, b = float(np.median(times[stenciled])), float(np.median(times[splatting]))
         row = dict(scene=scene, vpls=vpls, preset=name, work=work, stenciled_ms=a, splatting_ms=b,
                    speedup=b / max(a, 1e-9), subsplat_list_ms=float(np.median(lists)),
@@ -533,7 +534,7 @@ def write_page(args, rows, scaling, splats, presets, notes, path):
                          % (r["max_difference"], r["speedup"], "Met." if r["speedup"] >= 4 else "**Not met.**"))
     if splats:
         lines += ["", "## Stenciled gather against multiresolution splatting", "",
-                  "`--gather splat` (vtkMRGIMultiresolution::GatherSplatting) draws, per VPL, one point per selected "
+                  "`--gather splat` (vtkMRGIGather::GatherSplatting) draws, per VPL, one point per selected "
                   "texel with additive blending (nichols-wyman-2009 3.4); the stenciled gather draws one quad per "
                   "level and lets early stencil culling skip the unselected texels (nichols-shopf-wyman-2009 "
                   "3.2.2). Both compute the same numbers (shared GLSL, vtkMRGIVPLIrradiance.glsl); the table "

@@ -11,6 +11,8 @@
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkMRGIAreaLight.h"
+#include "vtkMRGIAreaLightStage.h"
+#include "vtkMRGIIncrementalStencil.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGISceneBuilder.h"
@@ -320,7 +322,8 @@ int main()
   // it adds texels below the geometric cut (the shadow edges), so the test
   // can fail; switched off, the gather uses the selection alone.
   mr->SetPreset(vtkMRGIMultiresolution::PresetBalanced);
-  MRGI_TEST_CHECK(mr->GetIncrementalStencil()); // the default
+  vtkMRGIAreaLightStage* area = pass->GetAreaLightStage();
+  MRGI_TEST_CHECK(area->GetIncrementalStencil()); // the default
   window->Render();
   vtkSmartPointer<vtkImageData> stenciled = AreaBuffer(pass, window);
   {
@@ -328,7 +331,9 @@ int main()
     vtkNew<vtkFloatArray> position, normal;
     vtkNew<vtkTypeUInt32Array> levelMasks;
     mrgi_multires_layout layout;
-    MRGI_TEST_CHECK(mr->ReadIncrementalStencil(window, gpuRendered) && mr->ReadFlags(window, flags) &&
+    MRGI_TEST_CHECK(area->GetIncrementalStencilUsed());
+    MRGI_TEST_CHECK(area->GetIncrementalStencilStage()->ReadStencil(window, gpuRendered) &&
+      mr->ReadFlags(window, flags) &&
       mr->ReadSelection(window, selection, false) && mr->ReadReceivers(window, position, normal) &&
       pyramid->ReadMasks(window, levelMasks) && mr->GetLayout(&layout));
     const size_t texels = static_cast<size_t>(mrgi_multires_texel_count(&layout));
@@ -336,7 +341,7 @@ int main()
     mrgi_incremental_stencil_stats stats;
     mrgi_error err;
     const int threshold =
-      mrgi_voxel_refine_threshold(static_cast<float>(mr->GetIncrementalStencilFraction()), count);
+      mrgi_voxel_refine_threshold(static_cast<float>(area->GetIncrementalStencilStage()->GetFraction()), count);
     MRGI_TEST_CHECK(mrgi_incremental_stencil_build(&layout, mr->GetFinestLevel(), flags->GetPointer(0),
                       selection->GetPointer(0), texels, position->GetPointer(0),
                       static_cast<size_t>(position->GetNumberOfValues()), levelMasks->GetPointer(0), words,
@@ -354,12 +359,11 @@ int main()
     MRGI_TEST_CHECK(differ == 0);
     MRGI_TEST_CHECK(added > 0 && stats.added[0] > 0);
   }
-  mr->IncrementalStencilOff();
+  area->IncrementalStencilOff();
   window->Render();
   vtkSmartPointer<vtkImageData> geometric = AreaBuffer(pass, window);
   {
-    vtkNew<vtkUnsignedCharArray> none;
-    MRGI_TEST_CHECK(!mr->ReadIncrementalStencil(window, none));
+    MRGI_TEST_CHECK(!area->GetIncrementalStencilUsed());
     vtkDataArray* a = stenciled->GetPointData()->GetScalars();
     vtkDataArray* g = geometric->GetPointData()->GetScalars();
     vtkIdType changed = 0;
@@ -371,7 +375,7 @@ int main()
       static_cast<long long>(changed), static_cast<long long>(a->GetNumberOfTuples()));
     MRGI_TEST_CHECK(changed > 0);
   }
-  mr->IncrementalStencilOn();
+  area->IncrementalStencilOn();
   mr->SetDepthThreshold(0.0);
   mr->SetNormalThreshold(0.0);
   mr->SetFinestLevel(0);

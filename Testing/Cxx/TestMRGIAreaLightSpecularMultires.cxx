@@ -15,7 +15,9 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkMRGIAreaLight.h"
+#include "vtkMRGIAreaLightStage.h"
 #include "vtkMRGIMultiresolution.h"
+#include "vtkMRGISpecularStencil.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGISceneBuilder.h"
 #include "vtkPointData.h"
@@ -92,6 +94,7 @@ int main()
   }
   MRGI_TEST_CHECK(pass->GetAreaLightSpecularResolution() == vtkMRGIPass::SpecularFullResolution);
   vtkMRGIMultiresolution* mr = pass->GetMultiresolution();
+  vtkMRGISpecularStencil* specularStencil = pass->GetAreaLightStage()->GetSpecularStencilStage();
 
   // References: diffuse only, full-resolution highlight.
   pass->AreaLightSpecularOff();
@@ -106,7 +109,7 @@ int main()
   long long selected[2] = { 0, 0 }, lobeFired[2] = { 0, 0 };
   for (int lobe = 1; lobe >= 0; --lobe)
   {
-    mr->SetSpecularLobeRefinement(lobe != 0);
+    specularStencil->SetLobeRefinement(lobe != 0);
     window->Render();
     MRGI_TEST_CHECK(pass->GetAreaLightsComputed());
     vtkSmartPointer<vtkImageData> multires = AreaBuffer(pass, window);
@@ -116,9 +119,9 @@ int main()
     vtkNew<vtkUnsignedCharArray> gpuSelection, gpuStencil, gpuBits, flags;
     vtkNew<vtkFloatArray> position, normal, material;
     mrgi_multires_layout layout;
-    MRGI_TEST_CHECK(mr->ReadSpecularStencil(window, gpuSelection, gpuBits) &&
-      mr->ReadSpecularStencil(window, gpuStencil, nullptr, true) && mr->ReadFlags(window, flags) &&
-      mr->ReadReceivers(window, position, normal) && mr->ReadSpecularMaterial(window, material) &&
+    MRGI_TEST_CHECK(specularStencil->ReadStencil(window, gpuSelection, gpuBits) &&
+      specularStencil->ReadStencil(window, gpuStencil, nullptr, true) && mr->ReadFlags(window, flags) &&
+      mr->ReadReceivers(window, position, normal) && specularStencil->ReadMaterial(window, material) &&
       mr->GetLayout(&layout));
     const size_t texels = static_cast<size_t>(mrgi_multires_texel_count(&layout));
     mrgi_area_light_uniforms uniforms;
@@ -135,7 +138,7 @@ int main()
     view.pixel_size[1] = static_cast<float>(ab[1]);
     view.parallel = 0;
     view.lobe = lobe;
-    view.lobe_threshold = static_cast<float>(mr->GetSpecularLobeThreshold());
+    view.lobe_threshold = static_cast<float>(specularStencil->GetLobeThreshold());
     std::vector<uint8_t> bits(texels), selection(texels);
     mrgi_specular_stencil_stats stats;
     mrgi_error err;

@@ -8,7 +8,9 @@
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkMRGIGather.h"
 #include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIUpsample.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGISceneBuilder.h"
 #include "vtkPointData.h"
@@ -70,6 +72,7 @@ int main()
 
   pass->SetIndirectMode(vtkMRGIPass::IndirectMultires);
   vtkMRGIMultiresolution* mr = pass->GetMultiresolution();
+  vtkMRGIGather* gather = pass->GetGather();
   struct Setting
   {
     double Depth, Normal;
@@ -113,8 +116,8 @@ int main()
 
   // Statistics: the occlusion-query counts per level equal the stencil's
   // selected texels per level, and the valid pixels those of the G-buffer.
-  mr->SetCollectStatistics(true);
-  MRGI_TEST_CHECK(mr->GetNumberOfGatheredTexels(0) == -1 || mr->GetGatherWorkFraction() < 0);
+  gather->SetCollectStatistics(true);
+  MRGI_TEST_CHECK(gather->GetNumberOfGatheredTexels(0) == -1 || gather->GetGatherWorkFraction() < 0);
   mr->SetDepthThreshold(4.0);
   mr->SetNormalThreshold(0.25);
   window->Render();
@@ -138,14 +141,14 @@ int main()
       }
     }
     std::printf("level %d: %lld texels selected, %lld counted by the query\n", level, selected,
-      static_cast<long long>(mr->GetNumberOfGatheredTexels(level)));
-    MRGI_TEST_CHECK(mr->GetNumberOfGatheredTexels(level) == selected);
+      static_cast<long long>(gather->GetNumberOfGatheredTexels(level)));
+    MRGI_TEST_CHECK(gather->GetNumberOfGatheredTexels(level) == selected);
     gathered += selected;
   }
   std::printf("valid pixels %lld (queried %lld), work fraction %.4f\n", validPixels,
-    static_cast<long long>(mr->GetNumberOfValidPixels()), mr->GetGatherWorkFraction());
-  MRGI_TEST_CHECK(mr->GetNumberOfValidPixels() == validPixels);
-  MRGI_TEST_CHECK(std::fabs(mr->GetGatherWorkFraction() - double(gathered) / double(validPixels)) < 1e-12);
+    static_cast<long long>(gather->GetNumberOfValidPixels()), gather->GetGatherWorkFraction());
+  MRGI_TEST_CHECK(gather->GetNumberOfValidPixels() == validPixels);
+  MRGI_TEST_CHECK(std::fabs(gather->GetGatherWorkFraction() - double(gathered) / double(validPixels)) < 1e-12);
   MRGI_TEST_CHECK(gathered > 0 && gathered < validPixels);
 
   // Multiresolution splatting (nichols-wyman-2009 3.4) gathers the same
@@ -165,15 +168,15 @@ int main()
     mr->SetFinestLevel(c.Finest);
     vtkNew<vtkFloatArray> stenciled, splatted;
     std::vector<long long> stenciledCounts, splattedCounts;
-    for (const int mode : { vtkMRGIMultiresolution::GatherStenciled, vtkMRGIMultiresolution::GatherSplatting })
+    for (const int mode : { vtkMRGIGather::GatherStenciled, vtkMRGIGather::GatherSplatting })
     {
-      mr->SetGatherMode(mode);
+      gather->SetGatherMode(mode);
       window->Render();
-      MRGI_TEST_CHECK(mr->ReadIrradiance(window, mode == vtkMRGIMultiresolution::GatherStenciled ? stenciled : splatted));
-      auto& counts = mode == vtkMRGIMultiresolution::GatherStenciled ? stenciledCounts : splattedCounts;
+      MRGI_TEST_CHECK(gather->ReadIrradiance(window, mode == vtkMRGIGather::GatherStenciled ? stenciled : splatted));
+      auto& counts = mode == vtkMRGIGather::GatherStenciled ? stenciledCounts : splattedCounts;
       for (int level = 0; level < layout.level_count; ++level)
       {
-        counts.push_back(static_cast<long long>(mr->GetNumberOfGatheredTexels(level)));
+        counts.push_back(static_cast<long long>(gather->GetNumberOfGatheredTexels(level)));
       }
     }
     MRGI_TEST_CHECK(stenciledCounts == splattedCounts);
@@ -197,21 +200,21 @@ int main()
     MRGI_TEST_CHECK(texels > 0 && alphaMismatch == 0);
     MRGI_TEST_CHECK(peak > 0.0 && worst <= 1e-5 * peak);
   }
-  mr->SetGatherMode(vtkMRGIMultiresolution::GatherStenciled);
+  gather->SetGatherMode(vtkMRGIGather::GatherStenciled);
   mr->SetFinestLevel(0);
   mr->SetDepthThreshold(4.0);
   mr->SetNormalThreshold(0.25);
-  mr->SetCollectStatistics(false);
+  gather->SetCollectStatistics(false);
 
   // Surface-detail modulation (nichols-wyman-2009 eq. 2): the resolved E is
   // the upsampled E times the C twin's factor, pixel by pixel.
   for (const double alpha : { 0.0, 0.5, 1.0 })
   {
-    mr->SetSurfaceDetail(alpha);
+    pass->SetSurfaceDetail(alpha);
     window->Render();
     vtkNew<vtkFloatArray> upsampled;
     vtkNew<vtkImageData> irradiance;
-    MRGI_TEST_CHECK(mr->ReadUpsampled(window, upsampled));
+    MRGI_TEST_CHECK(pass->GetUpsample()->ReadUpsampled(window, upsampled));
     MRGI_TEST_CHECK(pass->GetIrradianceBuffer(window, irradiance));
     MRGI_TEST_CHECK(pass->GetGBuffer(window, gPosition, gNormal, gAlbedo));
     vtkDataArray* E = irradiance->GetPointData()->GetScalars();
@@ -242,7 +245,7 @@ int main()
     MRGI_TEST_CHECK(worst < 1e-5);
     MRGI_TEST_CHECK(alpha == 0.0 ? darkest == 1.0 : (darkest < 1.0 && darkest >= 1.0 - alpha));
   }
-  mr->SetSurfaceDetail(0.0);
+  pass->SetSurfaceDetail(0.0);
 
   // The stages of a multiresolution frame.
   pass->FetchStageTimings(window, true);

@@ -6,7 +6,10 @@
 #include "mrgiTestUtilities.h"
 
 #include "vtkCamera.h"
+#include "vtkMRGIFrameContext.h"
+#include "vtkMRGIGather.h"
 #include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIUpsample.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGISceneBuilder.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -22,6 +25,7 @@
 #include "vtkMRGIVPLSelection.h"
 #include "vtkTextureObject.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -131,14 +135,26 @@ int RunCase(const Case& c)
   vtkTextureObject* vpls = pass->GetVPLSelection()->GetVPLTexture();
   const int vplCount = pass->GetVPLSelection()->GetVPLCount();
   MRGI_TEST_CHECK(vpls && vplCount > 0);
-  MRGI_TEST_CHECK(gpu->Gather(glWindow, pass->GetPositionTexture(), pass->GetNormalTexture(), vp[0],
-    vp[1], vpls, vplCount, viewToWorld));
+  // The stages take the frame's context and the buffer as arguments.
+  vtkMRGIFrameContext frame;
+  frame.Window = glWindow;
+  frame.Position = pass->GetPositionTexture();
+  frame.Normal = pass->GetNormalTexture();
+  frame.Viewport[0] = vp[0];
+  frame.Viewport[1] = vp[1];
+  frame.Viewport[2] = W;
+  frame.Viewport[3] = H;
+  std::copy(viewToWorld, viewToWorld + 16, frame.ViewToWorld);
+  vtkNew<vtkMRGIGather> gather;
+  vtkNew<vtkMRGIUpsample> upsample;
+  MRGI_TEST_CHECK(gpu->BuildReceivers(glWindow, frame.Position, frame.Normal, vp[0], vp[1]));
+  MRGI_TEST_CHECK(gather->GatherVPLs(frame, gpu, vpls, vplCount));
   std::vector<float> receiverP(4 * texels), receiverN(4 * texels);
   MRGI_TEST_CHECK(mrgi_multires_receivers_build(&layout, &gbuffer, receiverP.data(),
                     receiverN.data(), 4 * texels, &err) == MRGI_OK);
   vtkNew<vtkFloatArray> gpuP, gpuN, gpuE, vplArray;
   MRGI_TEST_CHECK(gpu->ReadReceivers(window, gpuP, gpuN));
-  MRGI_TEST_CHECK(gpu->ReadIrradiance(window, gpuE));
+  MRGI_TEST_CHECK(gather->ReadIrradiance(window, gpuE));
   double receiverError = 0, receiverScale = 0;
   for (size_t i = 0; i < 4 * texels; ++i)
   {
@@ -180,16 +196,17 @@ int RunCase(const Case& c)
   MRGI_TEST_CHECK(leaks == 0);
 
   // Upsampling, both modes, on the GPU's own gathered values.
-  for (int mode : { vtkMRGIMultiresolution::UpsampleTent, vtkMRGIMultiresolution::UpsampleMaskWeighted })
+  for (int mode : { vtkMRGIUpsample::UpsampleTent, vtkMRGIUpsample::UpsampleMaskWeighted })
   {
     const double weight = 100.0;
-    MRGI_TEST_CHECK(gpu->Upsample(glWindow, mode, weight));
+    MRGI_TEST_CHECK(upsample->Upsample(
+      frame, gpu, gather->GetIrradianceTexture(), gpu->GetSelectionTexture(), mode, weight));
     vtkNew<vtkFloatArray> gpuU;
-    MRGI_TEST_CHECK(gpu->ReadUpsampled(window, gpuU));
+    MRGI_TEST_CHECK(upsample->ReadUpsampled(window, gpuU));
     MRGI_TEST_CHECK(gpuU->GetNumberOfTuples() == static_cast<vtkIdType>(W) * H);
     mrgi_upsample_params up;
     mrgi_upsample_params_default(&up);
-    up.mode = mode == vtkMRGIMultiresolution::UpsampleTent ? MRGI_UPSAMPLE_TENT : MRGI_UPSAMPLE_MASK_WEIGHTED;
+    up.mode = mode == vtkMRGIUpsample::UpsampleTent ? MRGI_UPSAMPLE_TENT : MRGI_UPSAMPLE_MASK_WEIGHTED;
     up.mask_weight = static_cast<float>(weight);
     mrgi_image cU{};
     MRGI_TEST_CHECK(mrgi_upsample(&layout, flags.data(), texels, mask.data(), texels,
@@ -263,10 +280,13 @@ int RunCase(const Case& c)
     MRGI_TEST_CHECK(sampleTexture->Create2DFromRaw(MRGI_AREA_LIGHT_SAMPLE_TEXELS,
       static_cast<unsigned int>(sampleCount), 4, VTK_FLOAT,
       const_cast<float*>(mrgi_area_light_sample_texture_data(samples.data()))));
-    MRGI_TEST_CHECK(gpu->GatherAreaLight(glWindow, pass->GetPositionTexture(),
-      pass->GetNormalTexture(), vp[0], vp[1], sampleTexture, sampleCount, uniforms, viewToWorld));
+    vtkMRGIAreaLightTerm term;
+    term.Samples = sampleTexture;
+    term.SampleCount = sampleCount;
+    term.Light = &uniforms;
+    MRGI_TEST_CHECK(gather->GatherAreaLight(frame, gpu, term, gpu->GetStencilTexture()));
     vtkNew<vtkFloatArray> gpuX;
-    MRGI_TEST_CHECK(gpu->ReadIrradiance(window, gpuX));
+    MRGI_TEST_CHECK(gather->ReadIrradiance(window, gpuX));
     double xnum = 0, xden = 0;
     size_t xleaks = 0, lit = 0;
     for (size_t t = 0; t < texels; ++t)
@@ -315,6 +335,8 @@ int RunCase(const Case& c)
   }
   mrgi_image_destroy(&lightTexture);
 
+  gather->ReleaseGraphicsResources(window);
+  upsample->ReleaseGraphicsResources(window);
   gpu->ReleaseGraphicsResources(window);
   renderer->SetPass(nullptr);
   pass->ReleaseGraphicsResources(window);

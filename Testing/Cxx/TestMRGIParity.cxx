@@ -64,7 +64,7 @@ public:
   vtkTypeMacro(vtkMRGIParityPass, vtkMRGIPass);
   bool GetIrradianceRGBA(vtkRenderWindow* window, vtkImageData* image)
   {
-    return this->ReadViewport(window, this->IndirectComputed ? this->IrradianceTexture : nullptr,
+    return this->ReadViewport(window, this->IndirectComputed ? this->GetIrradianceTexture() : nullptr,
       4, image, "IrradianceRGBA");
   }
 

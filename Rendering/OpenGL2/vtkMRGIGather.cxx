@@ -1,0 +1,648 @@
+#include "vtk_glew.h"
+
+#include "vtkMRGIGather.h"
+
+#include "vtkFloatArray.h"
+#include "vtkMRGIFrameContext.h"
+#include "vtkMRGIFullScreenStep.h"
+#include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIProgramCache.h"
+#include "vtkMRGIShaderUtilities.h"
+#include "vtkMRGISpecularStencil.h"
+#include "vtkMRGIVisibilityPyramid.h"
+#include "vtkMRGIVoxelization.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+
+#include "vtkMRGIAreaLightDiffuse.h"
+#include "vtkMRGIGatherFS.h"
+#include "vtkMRGIMultiresSplatFS.h"
+#include "vtkMRGIMultiresSplatVS.h"
+#include "vtkMRGIVPLIrradiance.h"
+
+#include "mrgi_area_light.h"
+#include "mrgi_multires.h"
+#include "mrgi_voxel_march.h"
+
+#include <algorithm>
+#include <array>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkMRGIGather);
+
+struct vtkMRGIGather::Internals
+{
+  // The flattened irradiance (the gathers' output), sized to the buffer's layout.
+  vtkTextureObject* FlatIrradiance = nullptr;
+  vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
+  vtkMRGIProgramCache Programs;
+  // Statistics of the last gather (occlusion queries, one per level).
+  std::vector<unsigned int> Queries;
+  std::vector<long long> GatheredTexels;
+  long long ValidPixels = -1;
+  // Multiresolution splatting: the subsplat list (the selected texels,
+  // sorted by level; host copy kept so that its capacity is reused from
+  // frame to frame) in a vertex buffer with its vertex array.
+  std::vector<int> SplatTexels;
+  std::vector<long long> SplatFirst;
+  std::vector<long long> SplatCount;
+  unsigned int SplatArray = 0;
+  unsigned int SplatBuffer = 0;
+
+  // The output texture and framebuffer for `layout`; false when they cannot be allocated.
+  bool Prepare(vtkOpenGLRenderWindow* window, const mrgi_multires_layout& layout)
+  {
+    if (this->FlatIrradiance &&
+      (this->FlatIrradiance->GetWidth() != static_cast<unsigned int>(layout.total_width) ||
+        this->FlatIrradiance->GetHeight() != static_cast<unsigned int>(layout.total_height)))
+    {
+      vtkMRGIShaderUtilities::ReleaseTexture(this->FlatIrradiance, window);
+    }
+    if (!this->FlatIrradiance)
+    {
+      this->FlatIrradiance =
+        vtkMRGIShaderUtilities::NewTexture(window, GL_RGBA32F, layout.total_width, layout.total_height);
+    }
+    if (!this->FrameBuffer)
+    {
+      this->FrameBuffer = vtkOpenGLFramebufferObject::New();
+      this->FrameBuffer->SetContext(window);
+    }
+    return this->FlatIrradiance != nullptr;
+  }
+
+  // Occlusion queries need the context: only with a window.
+  void ReleaseQueries(vtkWindow* w)
+  {
+    if (w && !this->Queries.empty())
+    {
+      glDeleteQueries(static_cast<GLsizei>(this->Queries.size()), this->Queries.data());
+    }
+    this->Queries.clear();
+  }
+
+  // Vertex array and buffer need the context: only with a window.
+  void ReleaseSplats(vtkWindow* w)
+  {
+    if (w && this->SplatArray)
+    {
+      glDeleteVertexArrays(1, &this->SplatArray);
+    }
+    if (w && this->SplatBuffer)
+    {
+      glDeleteBuffers(1, &this->SplatBuffer);
+    }
+    this->SplatArray = this->SplatBuffer = 0;
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkMRGIGather::vtkMRGIGather()
+  : Internal(new Internals)
+{
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIGather::~vtkMRGIGather()
+{
+  if (this->Internal->FrameBuffer || this->Internal->FlatIrradiance)
+  {
+    vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
+  }
+  vtkMRGIShaderUtilities::ReleaseTexture(this->Internal->FlatIrradiance, nullptr);
+  if (this->Internal->FrameBuffer)
+  {
+    this->Internal->FrameBuffer->Delete();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIGather::ReleaseGraphicsResources(vtkWindow* w)
+{
+  Internals& in = *this->Internal;
+  in.ReleaseQueries(w);
+  in.ReleaseSplats(w);
+  in.Programs.ReleaseGraphicsResources(w);
+  vtkMRGIShaderUtilities::ReleaseTexture(in.FlatIrradiance, w);
+  in.GatheredTexels.clear();
+  in.ValidPixels = -1;
+  if (in.FrameBuffer)
+  {
+    in.FrameBuffer->ReleaseGraphicsResources(w);
+    in.FrameBuffer->Delete();
+    in.FrameBuffer = nullptr;
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkTextureObject* vtkMRGIGather::GetIrradianceTexture() const
+{
+  return this->Internal->FlatIrradiance;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIGather::GatherVPLs(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
+  vtkTextureObject* vpls, int vplCount)
+{
+  if (!vpls || vplCount < 1)
+  {
+    vtkErrorMacro("GatherVPLs needs at least one VPL");
+    return false;
+  }
+  return this->Run(frame, buffer, vpls, vplCount, nullptr, buffer ? buffer->GetStencilTexture() : nullptr);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIGather::GatherAreaLight(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
+  const vtkMRGIAreaLightTerm& term, vtkTextureObject* stencil)
+{
+  // The same receivers, selection and stenciled gather as the VPLs', with
+  // the area-light term (nichols-penmatsa-wyman-2010 3.2: "we use the same
+  // multiresolution framework").
+  if (!term.Samples || term.SampleCount < 1 || !term.Light)
+  {
+    vtkErrorMacro("GatherAreaLight needs the light's samples and uniforms");
+    return false;
+  }
+  return this->Run(frame, buffer, term.Samples, term.SampleCount, &term, stencil);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIGather::Run(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
+  vtkTextureObject* vpls, int vplCount, const vtkMRGIAreaLightTerm* term, vtkTextureObject* stencil)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  mrgi_multires_layout layout;
+  if (!window || !buffer || !stencil || !buffer->HasReceivers() || !buffer->GetLayout(&layout))
+  {
+    vtkErrorMacro("the gather needs a window, a stencil, and the buffer's selection and receivers of this frame");
+    return false;
+  }
+  if (!in.Prepare(window, layout))
+  {
+    vtkErrorMacro("could not allocate the flattened irradiance (" << layout.total_width << " x "
+                                                                 << layout.total_height << ")");
+    return false;
+  }
+  const int levels = layout.level_count;
+  in.GatheredTexels.assign(static_cast<size_t>(levels), -1);
+  in.ValidPixels = -1;
+  bool ok = this->GatherMode == GatherSplatting && !term
+    ? this->RunSplatting(frame, buffer, layout, vpls, vplCount)
+    : this->RunStenciled(frame, buffer, layout, vpls, vplCount, term, stencil);
+  if (ok && this->CollectStatistics)
+  {
+    // The coarsest receivers carry their pixel counts: their sum is the
+    // number of valid pixels, the work of the full-resolution gather.
+    // With one level, the validity bits of the level-0 mipmap count them.
+    std::vector<float> coarsest;
+    if (levels > 1 &&
+      vtkMRGIShaderUtilities::ReadTextureRGBA(window, buffer->GetReceiverTexture(levels - 1, 0), coarsest))
+    {
+      double sum = 0.0;
+      for (size_t k = 3; k < coarsest.size(); k += 4)
+      {
+        sum += coarsest[k];
+      }
+      in.ValidPixels = static_cast<long long>(sum + 0.5);
+    }
+    else if (levels == 1 &&
+      vtkMRGIShaderUtilities::ReadTextureRGBA(
+        window, buffer->GetMipmapTexture(0, MRGI_MULTIRES_TEX_DEPTH), coarsest))
+    {
+      in.ValidPixels = 0;
+      for (size_t k = 3; k < coarsest.size(); k += 4)
+      {
+        in.ValidPixels += (static_cast<int>(coarsest[k]) & MRGI_MULTIRES_VALID_BIT) ? 1 : 0;
+      }
+    }
+  }
+  if (!ok)
+  {
+    vtkErrorMacro("could not build or run the multiresolution gather");
+    return false;
+  }
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("OpenGL error " << error << " in the multiresolution gather");
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
+  const mrgi_multires_layout& layout, vtkTextureObject* vpls, int vplCount,
+  const vtkMRGIAreaLightTerm* term, vtkTextureObject* stencil)
+{
+  // The stenciled gather, one draw per level into its rectangle of the
+  // flattened layout (early stencil culling skips the texels not selected).
+  // With statistics on, an occlusion query per level counts the texels that
+  // passed the stencil, i.e. the texels gathered.
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  const int levels = layout.level_count;
+  const int finest = buffer->GetFinestGatherLevel();
+  using vtkMRGIShaderUtilities::ScopedStage;
+  const bool area = term != nullptr;
+  const bool masked = area && term->Masks != nullptr;
+  const bool visibility = area && !masked && term->Voxels != nullptr;
+  ScopedStage gatherStep(frame.Timer, area ? "gather.samples" : "gather.vpls");
+  const std::string defines = std::string("#define MRGI_GATHER_IRRADIANCE_ONLY 1\n") +
+    (masked ? "#define MRGI_AREA_VISIBILITY_MASKS 1\n" : "");
+  vtkOpenGLQuadHelper* quad = in.Programs.Ready(window,
+    visibility ? "gather.area.march" : masked ? "gather.area.masks" : area ? "gather.area" : "gather",
+    defines, [&] {
+      return (visibility ? std::string("#define MRGI_AREA_VISIBILITY 1\n") +
+            vtkMRGIVoxelization::GetMarchShaderSource()
+                         : std::string()) +
+        (area ? std::string("#define MRGI_GATHER_AREA_LIGHT 1\n") + vtkMRGIAreaLightDiffuse
+              : std::string()) +
+        vtkMRGIVPLIrradiance + vtkMRGIGatherFS;
+    });
+  vtkShaderProgram* gather = quad ? quad->Program : nullptr;
+  if (!gather)
+  {
+    return false;
+  }
+  if (this->CollectStatistics && in.Queries.size() != static_cast<size_t>(levels))
+  {
+    in.ReleaseQueries(window);
+    in.Queries.resize(static_cast<size_t>(levels));
+    glGenQueries(levels, in.Queries.data());
+  }
+  vtkMRGIFullScreenStep steps(window, in.FrameBuffer);
+  vtkOpenGLState* ostate = steps.GetState();
+  steps.Target(in.FlatIrradiance, nullptr, 0, 0, layout.total_width, layout.total_height);
+  steps.BeginStencilRead(stencil);
+  vpls->Activate();
+  if (area)
+  {
+    const mrgi_area_light_uniforms& light = *term->Light;
+    gather->SetUniformi("mrgiAreaSamples", vpls->GetTextureUnit());
+    // mrgiAreaSampleFirst/Count: set per draw below.
+    gather->SetUniform3f("mrgiAreaCenter", light.center);
+    gather->SetUniform3f("mrgiAreaNormal", light.normal);
+    gather->SetUniform3fv("mrgiAreaCorners", 4, light.corners);
+    gather->SetUniformi("mrgiAreaTwoSided", light.two_sided);
+    if (visibility)
+    {
+      double worldToView[16];
+      if (!term->Voxels->GetLastWorldToView(worldToView) || !term->Voxels->SetMarchUniforms(gather))
+      {
+        vpls->Deactivate();
+        return false;
+      }
+      float m[16];
+      std::copy(worldToView, worldToView + 16, m);
+      gather->SetUniformMatrix4x4("mrgiWCToVC", m);
+    }
+  }
+  else
+  {
+    gather->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
+    gather->SetUniformi("mrgiVPLCount", vplCount);
+  }
+  gather->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
+  // Marching every sample in one fragment can run past the total loop
+  // iterations a fragment may take on llvmpipe (gallivm stops every loop of
+  // an invocation after 65535 iterations in all, silently: samples went
+  // missing, measured), and long draws trip GPU watchdogs elsewhere: with
+  // visibility, the samples are gathered in batches whose marches fit the
+  // budget, each batch one draw added to the previous ones (RGB summed,
+  // alpha kept at 1). The sums change order only by batch.
+  const int batch = visibility
+    ? mrgi_voxel_samples_per_batch(term->Voxels->GetMaxSteps())
+    : std::max(vplCount, 1);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
+  if (area)
+  {
+    gather->SetUniformi("mrgiAreaSampleFirst", 0);
+    gather->SetUniformi("mrgiAreaSampleCount", std::min(batch, vplCount));
+  }
+  if (vplCount > batch)
+  {
+    ostate->vtkglEnable(GL_BLEND);
+    ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+    ostate->vtkglBlendEquationSeparate(GL_FUNC_ADD, GL_MAX);
+  }
+  for (int i = finest; i < levels; ++i)
+  {
+    const std::array<vtkTextureObject*, 2> receivers = buffer->BindReceivers(gather, i);
+    std::vector<vtkTextureObject*> maskTextures;
+    if (masked)
+    {
+      // Missing words (fewer than 384 samples) read the first texture:
+      // their bits are never asked for. One texture activated once.
+      vtkTextureObject* first = term->Masks->GetMaskTexture(i, 0);
+      first->Activate();
+      maskTextures.push_back(first);
+      for (int w = 0; w < 4; ++w)
+      {
+        vtkTextureObject* t = term->Masks->GetMaskTexture(i, w);
+        if (t && t != first)
+        {
+          t->Activate();
+          maskTextures.push_back(t);
+        }
+        gather->SetUniformi(("mrgiVisibilityMask" + std::to_string(w)).c_str(),
+          (t ? t : first)->GetTextureUnit());
+      }
+      const int maskOffset[2] = { -layout.level_offset[i], 0 };
+      gather->SetUniform2i("mrgiMaskOffset", maskOffset);
+    }
+    ostate->vtkglViewport(layout.level_offset[i], 0, layout.level_width[i], layout.level_height[i]);
+    if (this->CollectStatistics)
+    {
+      glBeginQuery(GL_SAMPLES_PASSED, in.Queries[static_cast<size_t>(i)]);
+    }
+    quad->Render();
+    if (this->CollectStatistics)
+    {
+      glEndQuery(GL_SAMPLES_PASSED);
+    }
+    for (int first = batch; first < vplCount; first += batch)
+    {
+      gather->SetUniformi("mrgiAreaSampleFirst", first);
+      gather->SetUniformi("mrgiAreaSampleCount", std::min(batch, vplCount - first));
+      quad->Render();
+    }
+    if (area && vplCount > batch)
+    {
+      gather->SetUniformi("mrgiAreaSampleFirst", 0);
+      gather->SetUniformi("mrgiAreaSampleCount", batch);
+    }
+    for (vtkTextureObject* t : maskTextures)
+    {
+      t->Deactivate();
+    }
+    receivers[1]->Deactivate();
+    receivers[0]->Deactivate();
+  }
+  vpls->Deactivate();
+  if (vplCount > batch)
+  {
+    ostate->vtkglBlendEquationSeparate(GL_FUNC_ADD, GL_FUNC_ADD);
+  }
+  if (visibility)
+  {
+    term->Voxels->GetVoxelTexture()->Deactivate();
+  }
+  steps.EndStencilRead();
+  if (this->CollectStatistics)
+  {
+    // Blocking reads, which is why statistics are opt-in.
+    for (int i = 0; i < levels; ++i)
+    {
+      GLuint passed = 0;
+      if (i >= finest)
+      {
+        glGetQueryObjectuiv(in.Queries[static_cast<size_t>(i)], GL_QUERY_RESULT, &passed);
+      }
+      in.GatheredTexels[static_cast<size_t>(i)] = static_cast<long long>(passed);
+    }
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIGather::RunSplatting(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
+  const mrgi_multires_layout& layout, vtkTextureObject* vpls, int vplCount)
+{
+  vtkOpenGLRenderWindow* window = frame.Window;
+  const int levels = layout.level_count;
+  const int finest = buffer->GetFinestGatherLevel();
+  // Multiresolution splatting (nichols-wyman-2009 section 3.4), the method
+  // the stenciled gather replaced (nichols-shopf-wyman-2009 section 3.2.2,
+  // table 1): every VPL draws one point per selected texel ("subsplat"),
+  // additive blending sums them.
+  Internals& in = *this->Internal;
+  using vtkMRGIShaderUtilities::ScopedStage;
+  // 1. The subsplat list: the selected texels, level by level. The paper
+  // streams it out on the GPU; here the selection is read back, which is
+  // its own timed step ("gather.subsplats") so that the splatting itself
+  // ("gather.vpls") compares with the stenciled gather's step of that name.
+  {
+    ScopedStage listStep(frame.Timer, "gather.subsplats");
+    std::vector<float> selection;
+    if (!vtkMRGIShaderUtilities::ReadTextureRGBA(window, buffer->GetSelectionTexture(), selection))
+    {
+      return false;
+    }
+    const size_t width = static_cast<size_t>(layout.total_width);
+    in.SplatTexels.clear();
+    in.SplatFirst.assign(static_cast<size_t>(levels), 0);
+    in.SplatCount.assign(static_cast<size_t>(levels), 0);
+    for (int i = finest; i < levels; ++i)
+    {
+      in.SplatFirst[static_cast<size_t>(i)] = static_cast<long long>(in.SplatTexels.size() / 2);
+      for (int y = 0; y < layout.level_height[i]; ++y)
+      {
+        for (int x = layout.level_offset[i]; x < layout.level_offset[i] + layout.level_width[i]; ++x)
+        {
+          if (selection[4 * (static_cast<size_t>(y) * width + static_cast<size_t>(x))] > 0.5f)
+          {
+            in.SplatTexels.push_back(x);
+            in.SplatTexels.push_back(y);
+          }
+        }
+      }
+      in.SplatCount[static_cast<size_t>(i)] =
+        static_cast<long long>(in.SplatTexels.size() / 2) - in.SplatFirst[static_cast<size_t>(i)];
+    }
+    if (!in.SplatArray)
+    {
+      glGenVertexArrays(1, &in.SplatArray);
+      glGenBuffers(1, &in.SplatBuffer);
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, in.SplatBuffer);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(in.SplatTexels.size() * sizeof(int)),
+      in.SplatTexels.empty() ? nullptr : in.SplatTexels.data(), GL_STREAM_DRAW);
+  }
+  // 2. The splats.
+  ScopedStage splatStep(frame.Timer, "gather.vpls");
+  static const std::string vertexShader =
+    "//VTK::System::Dec\n" + vtkMRGIShaderUtilities::Defines() + vtkMRGIVPLIrradiance + vtkMRGIMultiresSplatVS;
+  vtkShaderProgram* splat =
+    window->GetShaderCache()->ReadyShaderProgram(vertexShader.c_str(), vtkMRGIMultiresSplatFS, "");
+  if (!splat || !splat->GetCompiled())
+  {
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    return false;
+  }
+  const GLint texelAttribute = glGetAttribLocation(splat->GetHandle(), "mrgiTexel");
+  if (texelAttribute < 0)
+  {
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    return false;
+  }
+  glBindVertexArray(in.SplatArray);
+  glEnableVertexAttribArray(static_cast<GLuint>(texelAttribute));
+  glVertexAttribIPointer(static_cast<GLuint>(texelAttribute), 2, GL_INT, 0, nullptr);
+  vtkMRGIFullScreenStep steps(window, in.FrameBuffer);
+  vtkOpenGLState* ostate = steps.GetState();
+  steps.Target(in.FlatIrradiance, nullptr, 0, 0, layout.total_width, layout.total_height);
+  ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
+  ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
+  ostate->vtkglEnable(GL_BLEND);
+  ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+  // RGB sums the VPLs; alpha stays 1 where a texel got subsplats.
+  ostate->vtkglBlendEquationSeparate(GL_FUNC_ADD, GL_MAX);
+  vpls->Activate();
+  splat->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
+  splat->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
+  const float targetSize[2] = { static_cast<float>(layout.total_width),
+    static_cast<float>(layout.total_height) };
+  splat->SetUniform2f("mrgiTargetSize", targetSize);
+  for (int i = finest; i < levels; ++i)
+  {
+    const long long count = in.SplatCount[static_cast<size_t>(i)];
+    in.GatheredTexels[static_cast<size_t>(i)] = count;
+    if (count == 0)
+    {
+      continue;
+    }
+    const std::array<vtkTextureObject*, 2> receivers = buffer->BindReceivers(splat, i);
+    glDrawArraysInstanced(GL_POINTS, static_cast<GLint>(in.SplatFirst[static_cast<size_t>(i)]),
+      static_cast<GLsizei>(count), vplCount);
+    receivers[1]->Deactivate();
+    receivers[0]->Deactivate();
+  }
+  for (int i = 0; i < finest; ++i)
+  {
+    in.GatheredTexels[static_cast<size_t>(i)] = 0;
+  }
+  vpls->Deactivate();
+  ostate->vtkglBlendEquationSeparate(GL_FUNC_ADD, GL_FUNC_ADD);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIGather::GatherSpecular(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
+  vtkMRGISpecularStencil* stencil, vtkShaderProgram* program,
+  const std::function<bool(int level)>& draw)
+{
+  // NPW10 3.2.1: "we separate diffuse and Phong components into separate
+  // gather passes": the specular gather at the texels of the specular
+  // stencil, one draw per level (early stencil culling).
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  mrgi_multires_layout layout;
+  if (!window || !program || !buffer || !stencil || !buffer->HasReceivers() ||
+    !buffer->GetLayout(&layout) || !stencil->GetStencilTexture() ||
+    !stencil->GetMaterialTexture(buffer->GetFinestGatherLevel()))
+  {
+    vtkErrorMacro("GatherSpecular needs a program, the buffer's receivers and its specular stencil of this frame");
+    return false;
+  }
+  if (!in.Prepare(window, layout))
+  {
+    vtkErrorMacro("could not allocate the flattened irradiance (" << layout.total_width << " x "
+                                                                 << layout.total_height << ")");
+    return false;
+  }
+  const int levels = layout.level_count;
+  const int finest = buffer->GetFinestGatherLevel();
+  vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "gather.specular");
+  bool ok = true;
+  {
+    vtkMRGIFullScreenStep steps(window, in.FrameBuffer);
+    vtkOpenGLState* ostate = steps.GetState();
+    vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
+    steps.Target(in.FlatIrradiance, nullptr, 0, 0, layout.total_width, layout.total_height);
+    steps.BeginStencilRead(stencil->GetStencilTexture());
+    for (int i = finest; i < levels && ok; ++i)
+    {
+      const std::array<vtkTextureObject*, 2> receivers = buffer->BindReceivers(program, i);
+      vtkTextureObject* material = stencil->GetMaterialTexture(i);
+      material->Activate();
+      program->SetUniformi("mrgiMaterial", material->GetTextureUnit());
+      const int origin[2] = { layout.level_offset[i], 0 };
+      program->SetUniform2i("mrgiLevelOrigin", origin);
+      program->SetUniformi("mrgiLevelScale", 1 << i);
+      ostate->vtkglDisable(GL_BLEND);
+      ostate->vtkglViewport(layout.level_offset[i], 0, layout.level_width[i], layout.level_height[i]);
+      ok = draw(i);
+      material->Deactivate();
+      receivers[1]->Deactivate();
+      receivers[0]->Deactivate();
+    }
+    steps.EndStencilRead();
+  }
+  return ok && glGetError() == GL_NO_ERROR;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIGather::ReadIrradiance(vtkRenderWindow* window, vtkFloatArray* irradiance)
+{
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  Internals& in = *this->Internal;
+  std::vector<float> rgba;
+  if (!renWin || !irradiance || !in.FlatIrradiance ||
+    !vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.FlatIrradiance, rgba))
+  {
+    vtkErrorMacro("ReadIrradiance: nothing gathered yet");
+    return false;
+  }
+  irradiance->SetNumberOfComponents(4);
+  irradiance->SetNumberOfTuples(static_cast<vtkIdType>(rgba.size() / 4));
+  std::copy(rgba.begin(), rgba.end(), irradiance->GetPointer(0));
+  return true;
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkMRGIGather::GetNumberOfGatheredTexels(int level) const
+{
+  const Internals& in = *this->Internal;
+  if (level < 0 || static_cast<size_t>(level) >= in.GatheredTexels.size())
+  {
+    return -1;
+  }
+  return static_cast<vtkIdType>(in.GatheredTexels[static_cast<size_t>(level)]);
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkMRGIGather::GetNumberOfValidPixels() const
+{
+  return static_cast<vtkIdType>(this->Internal->ValidPixels);
+}
+
+//------------------------------------------------------------------------------
+double vtkMRGIGather::GetGatherWorkFraction() const
+{
+  const Internals& in = *this->Internal;
+  long long total = 0;
+  for (long long n : in.GatheredTexels)
+  {
+    if (n < 0)
+    {
+      return -1.0;
+    }
+    total += n;
+  }
+  if (in.GatheredTexels.empty() || in.ValidPixels < 0)
+  {
+    return -1.0;
+  }
+  return in.ValidPixels > 0 ? static_cast<double>(total) / static_cast<double>(in.ValidPixels) : 0.0;
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIGather::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "GatherMode: " << (this->GatherMode == GatherSplatting ? "Splatting" : "Stenciled") << "\n";
+  os << indent << "CollectStatistics: " << (this->CollectStatistics ? "On" : "Off") << "\n";
+}

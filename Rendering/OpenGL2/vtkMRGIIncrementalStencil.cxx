@@ -1,0 +1,253 @@
+#include "vtk_glew.h"
+
+#include "vtkMRGIIncrementalStencil.h"
+
+#include "vtkMRGIFrameContext.h"
+#include "vtkMRGIFullScreenStep.h"
+#include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIProgramCache.h"
+#include "vtkMRGIShaderUtilities.h"
+#include "vtkMRGIVisibilityPyramid.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "vtkMRGIIncrementalStencilFS.h"
+#include "vtkMRGIVisibilityBits.h"
+
+#include "mrgi_multires.h"
+#include "mrgi_voxel_incremental.h"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkMRGIIncrementalStencil);
+
+struct vtkMRGIIncrementalStencil::Internals
+{
+  // The texels the area-light gather renders, as colour and stencil
+  // (flattened layout), and the layout they were built for.
+  vtkTextureObject* FlatIncremental = nullptr;
+  vtkTextureObject* IncrementalDepthStencil = nullptr;
+  mrgi_multires_layout Layout{};
+  bool Built = false;
+  vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
+  vtkMRGIProgramCache Programs;
+
+  void ReleaseTextures(vtkWindow* w)
+  {
+    vtkMRGIShaderUtilities::ReleaseTexture(this->FlatIncremental, w);
+    vtkMRGIShaderUtilities::ReleaseTexture(this->IncrementalDepthStencil, w);
+    this->Built = false;
+  }
+
+  // The targets for `layout`; false when they cannot be allocated.
+  bool Prepare(vtkOpenGLRenderWindow* window, const mrgi_multires_layout& layout)
+  {
+    this->Built = false;
+    if (this->FlatIncremental &&
+      (this->Layout.total_width != layout.total_width || this->Layout.total_height != layout.total_height))
+    {
+      this->ReleaseTextures(window);
+    }
+    if (!this->FlatIncremental)
+    {
+      this->FlatIncremental =
+        vtkMRGIShaderUtilities::NewTexture(window, GL_RGBA32F, layout.total_width, layout.total_height);
+      this->IncrementalDepthStencil =
+        vtkMRGIShaderUtilities::NewDepthStencil(window, layout.total_width, layout.total_height);
+    }
+    this->Layout = layout;
+    if (!this->FrameBuffer)
+    {
+      this->FrameBuffer = vtkOpenGLFramebufferObject::New();
+      this->FrameBuffer->SetContext(window);
+    }
+    if (!this->FlatIncremental || !this->IncrementalDepthStencil)
+    {
+      this->ReleaseTextures(window);
+      return false;
+    }
+    return true;
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkMRGIIncrementalStencil::vtkMRGIIncrementalStencil()
+  : Internal(new Internals)
+{
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIIncrementalStencil::~vtkMRGIIncrementalStencil()
+{
+  if (this->Internal->FrameBuffer || this->Internal->FlatIncremental)
+  {
+    vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
+  }
+  this->Internal->ReleaseTextures(nullptr);
+  if (this->Internal->FrameBuffer)
+  {
+    this->Internal->FrameBuffer->Delete();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIIncrementalStencil::ReleaseGraphicsResources(vtkWindow* w)
+{
+  Internals& in = *this->Internal;
+  in.ReleaseTextures(w);
+  in.Programs.ReleaseGraphicsResources(w);
+  if (in.FrameBuffer)
+  {
+    in.FrameBuffer->ReleaseGraphicsResources(w);
+    in.FrameBuffer->Delete();
+    in.FrameBuffer = nullptr;
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIIncrementalStencil::Build(const vtkMRGIFrameContext& frame,
+  vtkMRGIMultiresolution* buffer, vtkMRGIVisibilityPyramid* masks)
+{
+  // NPW10 3.4, one draw per level into its rectangle of the flattened
+  // layout: a texel is rendered when selected, or when its parent's 3x3
+  // masks show a light discontinuity (mrgi_incremental_stencil_build()).
+  // Each draw reads the coarser level's masks and receivers only, so the
+  // levels are independent and the order does not matter.
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  mrgi_multires_layout layout;
+  in.Built = false;
+  if (!window || !buffer || !masks || !buffer->HasReceivers() || !buffer->GetLayout(&layout))
+  {
+    vtkErrorMacro("the incremental stencil needs the buffer's selection and receivers of this frame and its visibility masks");
+    return false;
+  }
+  if (!in.Prepare(window, layout))
+  {
+    vtkErrorMacro("could not allocate the incremental stencil (" << layout.total_width << " x "
+                                                                 << layout.total_height << ")");
+    return false;
+  }
+  const int levels = layout.level_count;
+  const int finest = buffer->GetFinestGatherLevel();
+  const int words = masks->GetNumberOfMaskWords();
+  const int targets = masks->GetNumberOfMaskTextures();
+  const int threshold =
+    mrgi_voxel_refine_threshold(static_cast<float>(this->Fraction),
+      masks->GetNumberOfSamples());
+  if (masks->GetNumberOfLevels() != levels || words < 1 || targets < 1 || targets > 4 ||
+    threshold < 0)
+  {
+    vtkErrorMacro("the incremental stencil needs visibility masks of this frame's "
+      << levels << " levels (they have " << masks->GetNumberOfLevels() << " levels, " << words
+      << " words)");
+    return false;
+  }
+  vtkOpenGLQuadHelper* quad = in.Programs.Ready(window, "incremental",
+    "#define MRGI_STENCIL_WORDS " + std::to_string(words) + "\n#define MRGI_STENCIL_TARGETS " +
+      std::to_string(targets) + "\n",
+    [] { return std::string(vtkMRGIVisibilityBits) + vtkMRGIIncrementalStencilFS; });
+  vtkShaderProgram* program = quad ? quad->Program : nullptr;
+  if (!program)
+  {
+    vtkErrorMacro("could not build the incremental stencil shader");
+    return false;
+  }
+  using vtkMRGIShaderUtilities::ScopedStage;
+  ScopedStage step(frame.Timer, "select.incremental");
+  vtkMRGIFullScreenStep steps(window, in.FrameBuffer);
+  vtkOpenGLState* ostate = steps.GetState();
+  steps.Target(in.FlatIncremental, nullptr, 0, 0, layout.total_width, layout.total_height);
+  steps.BeginMaskWrite(in.IncrementalDepthStencil);
+  program->SetUniformi("mrgiThreshold", threshold);
+  program->SetUniformi("mrgiMetric", masks->GetMetric());
+  bool ok = true;
+  for (int i = finest; i < levels && ok; ++i)
+  {
+    // The coarsest level has no parent: its own receivers and masks stand
+    // in, unread.
+    const int parent = std::min(i + 1, levels - 1);
+    std::vector<vtkTextureObject*> inputs = { buffer->GetFlagsTexture(i), buffer->GetSelectionTexture(),
+      buffer->GetReceiverTexture(parent, 0) };
+    const char* names[7] = { "mrgiFlags", "mrgiSelection", "mrgiParentPosition", "mrgiParentMask0",
+      "mrgiParentMask1", "mrgiParentMask2", "mrgiParentMask3" };
+    for (int k = 0; k < targets; ++k)
+    {
+      vtkTextureObject* m = masks->GetMaskTexture(parent, k);
+      ok = ok && m != nullptr;
+      inputs.push_back(m);
+    }
+    if (!ok)
+    {
+      vtkErrorMacro("the visibility masks of level " << parent << " are missing");
+      break;
+    }
+    for (size_t k = 0; k < inputs.size(); ++k)
+    {
+      inputs[k]->Activate();
+      program->SetUniformi(names[k], inputs[k]->GetTextureUnit());
+    }
+    const int parentSize[2] = { layout.level_width[parent], layout.level_height[parent] };
+    program->SetUniformi("mrgiLevelOffset", layout.level_offset[i]);
+    program->SetUniform2i("mrgiParentSize", parentSize);
+    program->SetUniformi("mrgiFinest", i == finest ? 1 : 0);
+    program->SetUniformi("mrgiCoarsest", i == levels - 1 ? 1 : 0);
+    ostate->vtkglViewport(layout.level_offset[i], 0, layout.level_width[i], layout.level_height[i]);
+    quad->Render();
+    for (vtkTextureObject* t : inputs)
+    {
+      t->Deactivate();
+    }
+  }
+  steps.EndMaskWrite();
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("OpenGL error 0x" << std::hex << error << " in the incremental stencil");
+    return false;
+  }
+  in.Built = ok;
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+vtkTextureObject* vtkMRGIIncrementalStencil::GetSelectionTexture() const
+{
+  return this->Internal->Built ? this->Internal->FlatIncremental : nullptr;
+}
+
+//------------------------------------------------------------------------------
+vtkTextureObject* vtkMRGIIncrementalStencil::GetStencilTexture() const
+{
+  return this->Internal->Built ? this->Internal->IncrementalDepthStencil : nullptr;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIIncrementalStencil::ReadStencil(vtkRenderWindow* window, vtkUnsignedCharArray* mask)
+{
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  Internals& in = *this->Internal;
+  if (!renWin || !mask || !in.Built)
+  {
+    vtkErrorMacro("ReadStencil: no incremental stencil built");
+    return false;
+  }
+  return vtkMRGIFullScreenStep::ReadMask(renWin, in.FrameBuffer, in.Layout, in.FlatIncremental,
+    in.IncrementalDepthStencil, false, mask);
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIIncrementalStencil::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Fraction: " << this->Fraction << "\n";
+}

@@ -1,0 +1,90 @@
+/**
+ * @class   vtkMRGIIncrementalStencil
+ * @brief   Incremental stencil rendering for area lights with visibility
+ *          masks (nichols-penmatsa-wyman-2010 section 3.4): the texels an
+ *          area-light gather renders, as a flattened mask and its stencil.
+ *
+ * A texel is rendered when the buffer's geometric selection has it, or when
+ * it lies below the geometric cut, is not refined, and its parent's 3x3
+ * visibility masks disagree on at least ceil(Fraction N) of the N samples
+ * (the masks' refinement metric), so that penumbrae are gathered at the
+ * resolution the shadow needs instead of the coarse texel the flat
+ * geometry asks for. One draw per level into its rectangle of the
+ * flattened layout; each reads the coarser level's masks and receivers
+ * only, so the levels are independent.
+ *
+ * Inputs are arguments: the vtkMRGIMultiresolution buffer (flags,
+ * selection, receivers of this frame) and the vtkMRGIVisibilityPyramid
+ * updated on it. C twin and contract: mrgi_incremental_stencil_build()
+ * (mrgi_incremental_stencil.h); shader vtkMRGIIncrementalStencilFS.glsl.
+ */
+#ifndef vtkMRGIIncrementalStencil_h
+#define vtkMRGIIncrementalStencil_h
+
+#include "MRGIRenderingModule.h" // For export macro
+#include "vtkObject.h"
+
+#include <memory> // For std::unique_ptr
+
+struct vtkMRGIFrameContext;
+class vtkMRGIMultiresolution;
+class vtkMRGIVisibilityPyramid;
+class vtkRenderWindow;
+class vtkTextureObject;
+class vtkUnsignedCharArray;
+class vtkWindow;
+
+class MRGIRENDERING_EXPORT vtkMRGIIncrementalStencil : public vtkObject
+{
+public:
+  static vtkMRGIIncrementalStencil* New();
+  vtkTypeMacro(vtkMRGIIncrementalStencil, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Share of a light's samples on which the parent's 3x3 masks must
+   * disagree for a texel below the geometric cut to be rendered
+   * (mrgi_voxel_refine_threshold(); default 0.25).
+   */
+  vtkSetClampMacro(Fraction, double, 0.0, 1.0);
+  vtkGetMacro(Fraction, double);
+  ///@}
+
+#ifndef __VTK_WRAP__
+  /**
+   * Build the stencil from `buffer` (selection and receivers of this frame)
+   * and `masks` (updated on it this frame). Timer step
+   * "select.incremental". False on error.
+   */
+  bool Build(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
+    vtkMRGIVisibilityPyramid* masks);
+#endif
+
+  /** The rendered texels as colour (flattened layout; 1 = rendered) after Build(); null before. */
+  vtkTextureObject* GetSelectionTexture() const;
+
+  /** The depth-stencil texture of the rendered texels after Build(); null before. */
+  vtkTextureObject* GetStencilTexture() const;
+
+  /** Read the last Build() back: one byte per flattened texel, 1 = rendered. False before. */
+  bool ReadStencil(vtkRenderWindow* window, vtkUnsignedCharArray* mask);
+
+  /** Free every GL resource. */
+  void ReleaseGraphicsResources(vtkWindow* w);
+
+protected:
+  vtkMRGIIncrementalStencil();
+  ~vtkMRGIIncrementalStencil() override;
+
+  double Fraction = 0.25;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+
+private:
+  vtkMRGIIncrementalStencil(const vtkMRGIIncrementalStencil&) = delete;
+  void operator=(const vtkMRGIIncrementalStencil&) = delete;
+};
+
+#endif

@@ -1,0 +1,258 @@
+#include "vtk_glew.h"
+
+#include "vtkMRGIUpsample.h"
+
+#include "vtkFloatArray.h"
+#include "vtkMRGIFrameContext.h"
+#include "vtkMRGIFullScreenStep.h"
+#include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIProgramCache.h"
+#include "vtkMRGIShaderUtilities.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+
+#include "vtkMRGIMultiresUpsampleFS.h"
+
+#include "mrgi_multires.h"
+
+#include <algorithm>
+#include <array>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkMRGIUpsample);
+
+struct vtkMRGIUpsample::Internals
+{
+  // Per level (state/value, filtered), sized to the buffer's layout.
+  std::vector<std::array<vtkTextureObject*, 2>> Upsampled;
+  int Size[2] = { 0, 0 };
+  vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
+  vtkMRGIProgramCache Programs;
+
+  vtkOpenGLQuadHelper* Ready(vtkOpenGLRenderWindow* window, int stage)
+  {
+    return this->Programs.Ready(window, "upsample", "#define MRGI_MR_STAGE " + std::to_string(stage) + "\n",
+      [] { return vtkMRGIMultiresUpsampleFS; });
+  }
+
+  void ReleaseTextures(vtkWindow* w)
+  {
+    for (auto& level : this->Upsampled)
+    {
+      for (auto*& t : level)
+      {
+        vtkMRGIShaderUtilities::ReleaseTexture(t, w);
+      }
+    }
+    this->Upsampled.clear();
+    this->Size[0] = this->Size[1] = 0;
+  }
+
+  // The level textures and framebuffer for `layout`; false when they cannot be allocated.
+  bool Prepare(vtkOpenGLRenderWindow* window, const mrgi_multires_layout& layout)
+  {
+    if (this->Size[0] != layout.width || this->Size[1] != layout.height ||
+      this->Upsampled.size() != static_cast<size_t>(layout.level_count))
+    {
+      this->ReleaseTextures(window);
+      this->Upsampled.resize(static_cast<size_t>(layout.level_count));
+      bool allocated = true;
+      for (int i = 0; i < layout.level_count; ++i)
+      {
+        for (auto*& t : this->Upsampled[static_cast<size_t>(i)])
+        {
+          t = vtkMRGIShaderUtilities::NewTexture(
+            window, GL_RGBA32F, layout.level_width[i], layout.level_height[i]);
+          allocated = allocated && t;
+        }
+      }
+      if (!allocated)
+      {
+        this->ReleaseTextures(window);
+        return false;
+      }
+      this->Size[0] = layout.width;
+      this->Size[1] = layout.height;
+    }
+    if (!this->FrameBuffer)
+    {
+      this->FrameBuffer = vtkOpenGLFramebufferObject::New();
+      this->FrameBuffer->SetContext(window);
+    }
+    return true;
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkMRGIUpsample::vtkMRGIUpsample()
+  : Internal(new Internals)
+{
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIUpsample::~vtkMRGIUpsample()
+{
+  if (this->Internal->FrameBuffer || !this->Internal->Upsampled.empty())
+  {
+    vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
+  }
+  this->Internal->ReleaseTextures(nullptr);
+  if (this->Internal->FrameBuffer)
+  {
+    this->Internal->FrameBuffer->Delete();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIUpsample::ReleaseGraphicsResources(vtkWindow* w)
+{
+  Internals& in = *this->Internal;
+  in.ReleaseTextures(w);
+  in.Programs.ReleaseGraphicsResources(w);
+  if (in.FrameBuffer)
+  {
+    in.FrameBuffer->ReleaseGraphicsResources(w);
+    in.FrameBuffer->Delete();
+    in.FrameBuffer = nullptr;
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIUpsample::Upsample(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
+  vtkTextureObject* irradiance, vtkTextureObject* rendered, int mode, double maskWeight)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  mrgi_multires_layout layout;
+  if (!window || !buffer || !irradiance || !rendered || !buffer->GetLayout(&layout))
+  {
+    vtkErrorMacro("Upsample needs the buffer's selection, a gather's irradiance and the mask it rendered");
+    return false;
+  }
+  if (!in.Prepare(window, layout))
+  {
+    vtkErrorMacro("could not allocate the upsampling buffers (" << layout.width << " x " << layout.height << ")");
+    return false;
+  }
+  vtkOpenGLQuadHelper* stateQuad = in.Ready(window, 0);
+  vtkOpenGLQuadHelper* filterQuad = in.Ready(window, 1);
+  if (!stateQuad || !filterQuad)
+  {
+    vtkErrorMacro("could not build the multiresolution upsampling shaders");
+    return false;
+  }
+  vtkShaderProgram* state = stateQuad->Program;
+  vtkShaderProgram* filter = filterQuad->Program;
+  const int coarsest = layout.level_count - 1;
+  vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "upsample.levels");
+  vtkMRGIFullScreenStep steps(window, in.FrameBuffer);
+  for (int i = coarsest; i >= 0; --i)
+  {
+    const int w = layout.level_width[i], h = layout.level_height[i];
+    vtkTextureObject* value = in.Upsampled[i][0];
+    vtkTextureObject* filtered = in.Upsampled[i][1];
+    // The coarsest level has no parent: its own flags stand in, unread.
+    vtkTextureObject* parent = in.Upsampled[std::min(i + 1, coarsest)][1];
+    if (i == coarsest)
+    {
+      parent = buffer->GetMipmapTexture(i, MRGI_MULTIRES_TEX_DEPTH);
+    }
+    vtkTextureObject* flags = buffer->GetFlagsTexture(i);
+    window->GetShaderCache()->ReadyShaderProgram(state);
+    steps.Target(value, nullptr, 0, 0, w, h);
+    // The texels the gather rendered: the selection, the incremental
+    // stencil (NPW10 3.4 step 3: upsample where not rendered) or the
+    // specular stencil (NPW10 3.2.1).
+    vtkMRGIFullScreenStep::BindInputs(state, { rendered, flags, irradiance, parent });
+    const int offset[2] = { layout.level_offset[i], 0 };
+    state->SetUniform2i("mrgiOffset", offset);
+    state->SetUniformi("mrgiCoarsest", i == coarsest ? 1 : 0);
+    stateQuad->Render();
+    vtkMRGIFullScreenStep::UnbindInputs({ rendered, flags, irradiance, parent });
+
+    window->GetShaderCache()->ReadyShaderProgram(filter);
+    steps.Target(filtered, nullptr, 0, 0, w, h);
+    vtkMRGIFullScreenStep::BindInputs(filter, { value });
+    const int size[2] = { w, h };
+    filter->SetUniform2i("mrgiSize", size);
+    filter->SetUniformi("mrgiMode", mode == UpsampleMaskWeighted ? 1 : 0);
+    filter->SetUniformf("mrgiMaskWeight", static_cast<float>(maskWeight));
+    filterQuad->Render();
+    vtkMRGIFullScreenStep::UnbindInputs({ value });
+  }
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("OpenGL error " << error << " in the multiresolution upsampling");
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIUpsample::Resolve(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
+  vtkTextureObject* albedo, vtkTextureObject* irradianceTarget, vtkTextureObject* target,
+  double strength, double surfaceDetail)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  vtkOpenGLQuadHelper* resolveQuad = window ? in.Ready(window, 2) : nullptr;
+  vtkShaderProgram* resolve = resolveQuad ? resolveQuad->Program : nullptr;
+  vtkTextureObject* position = frame.Position;
+  vtkTextureObject* normal = frame.Normal;
+  const int x0 = frame.Viewport[0], y0 = frame.Viewport[1];
+  const bool parallel = frame.Parallel;
+  mrgi_multires_layout layout;
+  if (!resolve || !buffer || !buffer->GetLayout(&layout) || in.Size[0] != layout.width ||
+    in.Size[1] != layout.height || !albedo || !position || !normal || !irradianceTarget || !target)
+  {
+    vtkErrorMacro("Resolve needs Upsample() first, the G-buffer and both targets");
+    return false;
+  }
+  {
+    vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "upsample.resolve");
+    vtkMRGIFullScreenStep steps(window, in.FrameBuffer);
+    steps.Target(irradianceTarget, target, x0, y0, layout.width, layout.height);
+    vtkTextureObject* flags = buffer->GetFlagsTexture(0);
+    vtkMRGIFullScreenStep::BindInputs(resolve, { in.Upsampled[0][1], flags, albedo, position, normal });
+    const int offset[2] = { x0, y0 };
+    resolve->SetUniform2i("mrgiOffset", offset);
+    resolve->SetUniformf("mrgiStrength", static_cast<float>(strength));
+    resolve->SetUniformf("mrgiSurfaceDetail", static_cast<float>(surfaceDetail));
+    resolve->SetUniformi("mrgiParallel", parallel ? 1 : 0);
+    resolveQuad->Render();
+    vtkMRGIFullScreenStep::UnbindInputs({ in.Upsampled[0][1], flags, albedo, position, normal });
+  }
+  return glGetError() == GL_NO_ERROR;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIUpsample::ReadUpsampled(vtkRenderWindow* window, vtkFloatArray* upsampled)
+{
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  Internals& in = *this->Internal;
+  std::vector<float> rgba;
+  if (!renWin || !upsampled || in.Upsampled.empty() ||
+    !vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.Upsampled[0][1], rgba))
+  {
+    vtkErrorMacro("ReadUpsampled: nothing upsampled yet");
+    return false;
+  }
+  upsampled->SetNumberOfComponents(4);
+  upsampled->SetNumberOfTuples(static_cast<vtkIdType>(rgba.size() / 4));
+  std::copy(rgba.begin(), rgba.end(), upsampled->GetPointer(0));
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIUpsample::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Levels: " << this->Internal->Upsampled.size() << "\n";
+}
