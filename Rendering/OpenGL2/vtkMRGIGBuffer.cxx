@@ -2,9 +2,12 @@
 
 #include "vtkMRGIGBuffer.h"
 
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkPointData.h"
 #include "vtkTextureObject.h"
 
 //------------------------------------------------------------------------------
@@ -86,4 +89,33 @@ void vtkMRGIGBuffer::Release(vtkWindow* w)
 bool vtkMRGIGBuffer::HoldsResources() const
 {
   return this->FrameBuffer || this->Color || this->Depth || this->Position;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIGBuffer::ReadViewport(vtkOpenGLRenderWindow* window, vtkTextureObject* texture,
+  const int viewport[4], int components, vtkImageData* image)
+{
+  std::vector<float> rgba;
+  if (!image || !texture || !vtkMRGIShaderUtilities::ReadTextureRGBA(window, texture, rgba))
+  {
+    return false;
+  }
+  const int fullWidth = static_cast<int>(texture->GetWidth());
+  const int x0 = viewport[0], y0 = viewport[1];
+  const int w = viewport[2], h = viewport[3];
+  image->SetDimensions(w, h, 1);
+  image->AllocateScalars(VTK_FLOAT, components);
+  float* out = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars())->GetPointer(0);
+  for (int y = 0; y < h; ++y)
+  {
+    for (int x = 0; x < w; ++x)
+    {
+      const float* src = rgba.data() + 4 * (static_cast<size_t>(y + y0) * fullWidth + (x + x0));
+      for (int c = 0; c < components; ++c)
+      {
+        out[(static_cast<size_t>(y) * w + x) * components + c] = src[c];
+      }
+    }
+  }
+  return true;
 }

@@ -13,6 +13,7 @@
 #ifndef vtkMRGIGBuffer_h
 #define vtkMRGIGBuffer_h
 
+class vtkImageData;
 class vtkOpenGLFramebufferObject;
 class vtkOpenGLRenderWindow;
 class vtkTextureObject;
@@ -33,6 +34,14 @@ public:
 
   /** Free every buffer (their GL objects too when `w` is given). */
   void Release(vtkWindow* w);
+
+  /**
+   * Read `viewport` (x, y, w, h) of a window-sized `texture` into `image`
+   * (float, bottom-up rows, the first `components` of RGBA). False when
+   * the read-back fails.
+   */
+  static bool ReadViewport(vtkOpenGLRenderWindow* window, vtkTextureObject* texture,
+    const int viewport[4], int components, vtkImageData* image);
 
   /** Whether any GL object is held. */
   bool HoldsResources() const;

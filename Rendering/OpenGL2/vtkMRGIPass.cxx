@@ -16,6 +16,7 @@
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIProgramCache.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
+#include "vtkMRGIRenderSteps.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIUpsample.h"
 #include "vtkMRGIVPLSelection.h"
@@ -62,104 +63,9 @@ vtkStandardNewMacro(vtkMRGIPass);
 
 namespace
 {
-// First step of the opaque sequence: VTK's camera pass has just cleared
-// every draw buffer to the background colour; the G-buffer attachments must
-// say "no geometry" (0) instead. Respects the renderer's scissor.
-class vtkMRGIClearGBufferPass : public vtkRenderPass
-{
-public:
-  static vtkMRGIClearGBufferPass* New();
-  vtkTypeMacro(vtkMRGIClearGBufferPass, vtkRenderPass);
-  void Render(const vtkRenderState*) override
-  {
-    const float zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
-    for (int a = MRGI_GBUFFER_POSITION; a < MRGI_GBUFFER_ATTACHMENTS; ++a)
-    {
-      glClearBufferfv(GL_COLOR, a, zero);
-    }
-  }
-
-protected:
-  vtkMRGIClearGBufferPass() = default;
-  ~vtkMRGIClearGBufferPass() override = default;
-};
-vtkStandardNewMacro(vtkMRGIClearGBufferPass);
-
-// Hardware selection (vtkHardwareSelector, vtkPropPicker, vtkRenderer::PickProp)
-// through a vtkRenderStepsPass: VTK 9.1's opaque/translucent passes draw the
-// props without telling the selector which prop is drawn (only the renderer's
-// own UpdateGeometry does), so every pick misses. This step hands the props
-// to the selector as the renderer would.
-class vtkMRGISelectionPass : public vtkRenderPass
-{
-public:
-  static vtkMRGISelectionPass* New();
-  vtkTypeMacro(vtkMRGISelectionPass, vtkRenderPass);
-  void Render(const vtkRenderState* s) override
-  {
-    vtkRenderer* renderer = s->GetRenderer();
-    this->NumberOfRenderedProps = renderer->GetSelector()->Render(
-      renderer, s->GetPropArray(), s->GetPropArrayCount());
-  }
-
-protected:
-  vtkMRGISelectionPass() = default;
-  ~vtkMRGISelectionPass() override = default;
-};
-vtkStandardNewMacro(vtkMRGISelectionPass);
-
-// Runs `camera` (a vtkRenderStepsPass's camera pass) with `delegate` in place
-// of its usual delegate, then puts the usual one back: the same
-// vtkRenderStepsPass may also be installed on its own (a GI on/off switch),
-// and would otherwise keep drawing MRGI's steps only.
-void RenderCameraWith(vtkCameraPass* camera, vtkRenderPass* delegate, const vtkRenderState* s)
-{
-  vtkSmartPointer<vtkRenderPass> usual = camera->GetDelegatePass();
-  camera->SetDelegatePass(delegate);
-  camera->Render(s);
-  camera->SetDelegatePass(usual);
-}
-}
-
-namespace
-{
 using vtkMRGIShaderUtilities::ScopedStage;
 using vtkMRGIShaderUtilities::StagePrefix;
 
-void CollectStages(const vtkRenderTimerLog::Event& event, std::vector<std::string>& names,
-  std::vector<double>& times)
-{
-  if (event.Name.compare(0, std::strlen(StagePrefix), StagePrefix) == 0)
-  {
-    // A step drawn once per level logs one event per level: their sum.
-    const std::string name = event.Name.substr(std::strlen(StagePrefix));
-    const double ms = static_cast<double>(event.ElapsedTimeNanoseconds()) * 1e-6;
-    const auto found = std::find(names.begin(), names.end(), name);
-    if (found != names.end())
-    {
-      times[static_cast<size_t>(found - names.begin())] += ms;
-    }
-    else
-    {
-      names.push_back(name);
-      times.push_back(ms);
-    }
-  }
-  for (const auto& child : event.Events)
-  {
-    CollectStages(child, names, times);
-  }
-}
-
-vtkRenderTimerLog* TimerFor(vtkRenderer* renderer, bool enabled)
-{
-  vtkRenderWindow* window = renderer ? renderer->GetRenderWindow() : nullptr;
-  vtkRenderTimerLog* timer = window ? window->GetRenderTimer() : nullptr;
-  // Logging is switched on between frames only (FetchStageTimings, or the
-  // application): VTK brackets its own rendering with timer events, and
-  // switching mid-frame would leave those unbalanced.
-  return (timer && enabled && timer->GetLoggingEnabled()) ? timer : nullptr;
-}
 
 }
 
@@ -442,7 +348,7 @@ void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
   {
     vtkRenderStepsPass* steps = vtkRenderStepsPass::SafeDownCast(this->DelegatePass);
     vtkNew<vtkRenderPassCollection> passes;
-    vtkNew<vtkMRGIClearGBufferPass> clear;
+    vtkSmartPointer<vtkRenderPass> clear = vtkMRGIRenderSteps::NewClearGBufferPass();
     if (capture)
     {
       passes->AddItem(clear);
@@ -450,7 +356,7 @@ void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
     passes->AddItem(steps->GetLightsPass());
     passes->AddItem(steps->GetOpaquePass());
     this->OpaqueSequence->SetPasses(passes);
-    RenderCameraWith(steps->GetCameraPass(), this->OpaqueSequence, s);
+    vtkMRGIRenderSteps::RenderCameraWith(steps->GetCameraPass(), this->OpaqueSequence, s);
     this->NumberOfRenderedProps += steps->GetCameraPass()->GetNumberOfRenderedProps();
   }
   else
@@ -478,95 +384,12 @@ void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
 //------------------------------------------------------------------------------
 void vtkMRGIPass::RenderForward(const vtkRenderState* s)
 {
-  Internals& in = *this->Internal;
   // Translucent props, volumes and overlays, over the lit opaque scene, into
   // the colour buffer only (the G-buffer is for opaque surfaces).
-  vtkRenderStepsPass* steps = vtkRenderStepsPass::SafeDownCast(this->DelegatePass);
-  vtkOpenGLFramebufferObject* fbo = in.GBuffer.FrameBuffer;
-  fbo->SaveCurrentBindingsAndBuffers();
-  fbo->Bind();
-  fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
-  fbo->AddColorAttachment(MRGI_GBUFFER_DIRECT, in.GBuffer.Color);
-  fbo->ActivateDrawBuffers(1);
-  fbo->AddDepthAttachment(in.GBuffer.Depth);
-  vtkOpenGLRenderWindow* renWin =
-    static_cast<vtkOpenGLRenderWindow*>(s->GetRenderer()->GetRenderWindow());
-  vtkOpenGLState* ostate = renWin->GetState();
-  vtkOpenGLState::ScopedglViewport viewport(ostate);
-  vtkOpenGLState::ScopedglScissor scissor(ostate);
-  ostate->vtkglViewport(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
-  ostate->vtkglScissor(this->Viewport[0], this->Viewport[1], this->Viewport[2], this->Viewport[3]);
-  vtkRenderer* renderer = s->GetRenderer();
-  vtkOpenGLRenderer* glRenderer = vtkOpenGLRenderer::SafeDownCast(renderer);
-  vtkRenderState forward(renderer);
-  forward.SetPropArrayAndCount(s->GetPropArray(), s->GetPropArrayCount());
-  forward.SetFrameBuffer(fbo);
-  auto render = [&](vtkRenderPass* pass) {
-    if (pass)
-    {
-      pass->Render(&forward);
-      this->NumberOfRenderedProps += pass->GetNumberOfRenderedProps();
-    }
-  };
-
-  // Translucent polygonal geometry. The stock vtkTranslucentPass of a
-  // vtkRenderStepsPass blends in draw order and ignores the renderer's depth
-  // peeling settings; without passes, vtkOpenGLRenderer draws translucency
-  // order-independently, or with (dual) depth peeling when asked
-  // (SetUseDepthPeeling, also for volumes). MRGI lets the renderer do exactly
-  // that, so translucent props look as they do without MRGI. A translucent
-  // pass the application set on the vtkRenderStepsPass is used as it is.
-  vtkRenderPass* translucent = steps->GetTranslucentPass();
-  bool volumesPeeled = false;
-  if (translucent && glRenderer && std::strcmp(translucent->GetClassName(), "vtkTranslucentPass") == 0)
-  {
-    // The renderer's own test (vtkOpenGLRenderer::UpdateGeometry).
-    bool translucentGeometry =
-      renderer->GetUseDepthPeeling() && renderer->GetUseDepthPeelingForVolumes();
-    for (int i = 0; !translucentGeometry && i < s->GetPropArrayCount(); ++i)
-    {
-      translucentGeometry = s->GetPropArray()[i]->HasTranslucentPolygonalGeometry() != 0;
-    }
-    if (translucentGeometry)
-    {
-      // No framebuffer argument: "the one bound now" (MRGI's), drawn in the
-      // renderer's viewport, as the renderer does without passes.
-      glRenderer->DeviceRenderTranslucentPolygonalGeometry(nullptr);
-      // Dual depth peeling drew the volumes too (the renderer switches this
-      // off when dual depth peeling is unsupported).
-      volumesPeeled = renderer->GetUseDepthPeeling() && renderer->GetUseDepthPeelingForVolumes();
-    }
-  }
-  else
-  {
-    render(translucent);
-  }
-
-  // FXAA (renderer->UseFXAAOn()): VTK 9.1 applies it only when a renderer has
-  // no pass, after translucent geometry and before volumes and overlays
-  // (text is antialiased already). MRGI does the same at the same point, on
-  // its colour buffer (FXAA works on 8-bit colour: values above 1 are clamped
-  // there). The filter and its buffers live as long as the pass's resources.
-  if (glRenderer && renderer->GetUseFXAA())
-  {
-    if (!this->FXAAFilter)
-    {
-      this->FXAAFilter = vtkOpenGLFXAAFilter::New();
-    }
-    if (renderer->GetFXAAOptions())
-    {
-      this->FXAAFilter->UpdateConfiguration(renderer->GetFXAAOptions());
-    }
-    this->FXAAFilter->Execute(glRenderer);
-  }
-
-  if (!volumesPeeled)
-  {
-    render(steps->GetVolumetricPass());
-  }
-  render(steps->GetOverlayPass());
-  fbo->UnBind();
-  fbo->RestorePreviousBindingsAndBuffers();
+  Internals& in = *this->Internal;
+  this->NumberOfRenderedProps += vtkMRGIRenderSteps::RenderForward(s,
+    vtkRenderStepsPass::SafeDownCast(this->DelegatePass), in.GBuffer.FrameBuffer, in.GBuffer.Color,
+    in.GBuffer.Depth, this->Viewport, this->FXAAFilter);
 }
 
 //------------------------------------------------------------------------------
@@ -773,14 +596,14 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
     if (steps && steps->GetCameraPass())
     {
       vtkNew<vtkRenderPassCollection> passes;
-      vtkNew<vtkMRGISelectionPass> select;
+      vtkSmartPointer<vtkRenderPass> select = vtkMRGIRenderSteps::NewSelectionPass();
       if (steps->GetLightsPass())
       {
         passes->AddItem(steps->GetLightsPass());
       }
       passes->AddItem(select);
       this->OpaqueSequence->SetPasses(passes);
-      RenderCameraWith(steps->GetCameraPass(), this->OpaqueSequence, s);
+      vtkMRGIRenderSteps::RenderCameraWith(steps->GetCameraPass(), this->OpaqueSequence, s);
       this->NumberOfRenderedProps += steps->GetCameraPass()->GetNumberOfRenderedProps();
     }
     else
@@ -798,7 +621,7 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   const bool indirect = this->IndirectMode != IndirectOff && this->GetNumberOfVPLs() > 0;
   const bool capture = indirect || areaLights;
   const bool split = vtkRenderStepsPass::SafeDownCast(this->DelegatePass) != nullptr;
-  vtkRenderTimerLog* timer = TimerFor(renderer, this->StageTimingEnabled);
+  vtkRenderTimerLog* timer = vtkMRGIShaderUtilities::StageTimer(renderer, this->StageTimingEnabled);
   this->IndirectComputed = false;
   this->AreaLightsComputed = false;
   this->Captured = capture;
@@ -935,31 +758,9 @@ int vtkMRGIPass::FetchStageTimings(vtkRenderWindow* window, bool wait)
       glFinish();
     }
   }
-  bool found = false;
-  std::vector<std::string> names;
-  std::vector<double> times;
-  while (timer->FrameReady())
-  {
-    vtkRenderTimerLog::Frame frame = timer->PopFirstReadyFrame();
-    std::vector<std::string> frameNames;
-    std::vector<double> frameTimes;
-    for (const auto& event : frame.Events)
-    {
-      CollectStages(event, frameNames, frameTimes);
-    }
-    if (!frameNames.empty())
-    {
-      names.swap(frameNames);
-      times.swap(frameTimes);
-      found = true;
-    }
-  }
-  if (found)
-  {
-    this->StageNames.swap(names);
-    this->StageTimes.swap(times);
-  }
-  return found ? this->GetNumberOfStages() : 0;
+  return vtkMRGIShaderUtilities::CollectStageTimes(timer, this->StageNames, this->StageTimes)
+    ? this->GetNumberOfStages()
+    : 0;
 }
 
 //------------------------------------------------------------------------------
@@ -997,28 +798,10 @@ bool vtkMRGIPass::ReadViewport(vtkRenderWindow* window, vtkTextureObject* textur
     vtkErrorMacro("no " << what << " buffer: nothing rendered yet, or not computed this frame");
     return false;
   }
-  std::vector<float> rgba;
-  if (!vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, texture, rgba))
+  if (!vtkMRGIGBuffer::ReadViewport(renWin, texture, this->Viewport, components, image))
   {
     vtkErrorMacro("reading the " << what << " buffer back failed");
     return false;
-  }
-  const int fullWidth = static_cast<int>(texture->GetWidth());
-  const int x0 = this->Viewport[0], y0 = this->Viewport[1];
-  const int w = this->Viewport[2], h = this->Viewport[3];
-  image->SetDimensions(w, h, 1);
-  image->AllocateScalars(VTK_FLOAT, components);
-  float* out = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars())->GetPointer(0);
-  for (int y = 0; y < h; ++y)
-  {
-    for (int x = 0; x < w; ++x)
-    {
-      const float* src = rgba.data() + 4 * (static_cast<size_t>(y + y0) * fullWidth + (x + x0));
-      for (int c = 0; c < components; ++c)
-      {
-        out[(static_cast<size_t>(y) * w + x) * components + c] = src[c];
-      }
-    }
   }
   image->GetPointData()->GetScalars()->SetName(what);
   return true;

@@ -4,6 +4,8 @@
 #include "vtkOpenGLRenderUtilities.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 #include "vtkShaderProgram.h"
@@ -11,6 +13,9 @@
 #include "mrgi_buffers.h"
 #include "mrgi_glsl_defines.h"
 
+#include <algorithm>
+#include <cstring>
+#include <string>
 #include <vector>
 
 #include "vtkNew.h"
@@ -200,4 +205,69 @@ vtkMRGIShaderUtilities::ScopedStage::ScopedStage(vtkRenderTimerLog* timer, const
   {
     this->Logger = timer->StartScopedEvent(std::string(StagePrefix) + stage);
   }
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+void CollectStages(const vtkRenderTimerLog::Event& event, std::vector<std::string>& names,
+  std::vector<double>& times)
+{
+  if (event.Name.compare(0, std::strlen(vtkMRGIShaderUtilities::StagePrefix), vtkMRGIShaderUtilities::StagePrefix) == 0)
+  {
+    // A step drawn once per level logs one event per level: their sum.
+    const std::string name = event.Name.substr(std::strlen(vtkMRGIShaderUtilities::StagePrefix));
+    const double ms = static_cast<double>(event.ElapsedTimeNanoseconds()) * 1e-6;
+    const auto found = std::find(names.begin(), names.end(), name);
+    if (found != names.end())
+    {
+      times[static_cast<size_t>(found - names.begin())] += ms;
+    }
+    else
+    {
+      names.push_back(name);
+      times.push_back(ms);
+    }
+  }
+  for (const auto& child : event.Events)
+  {
+    CollectStages(child, names, times);
+  }
+}
+
+}
+
+//------------------------------------------------------------------------------
+vtkRenderTimerLog* vtkMRGIShaderUtilities::StageTimer(vtkRenderer* renderer, bool enabled)
+{
+  vtkRenderWindow* window = renderer ? renderer->GetRenderWindow() : nullptr;
+  vtkRenderTimerLog* timer = window ? window->GetRenderTimer() : nullptr;
+  // Logging is switched on between frames only (FetchStageTimings, or the
+  // application): VTK brackets its own rendering with timer events, and
+  // switching mid-frame would leave those unbalanced.
+  return (timer && enabled && timer->GetLoggingEnabled()) ? timer : nullptr;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIShaderUtilities::CollectStageTimes(
+  vtkRenderTimerLog* timer, std::vector<std::string>& names, std::vector<double>& times)
+{
+  bool found = false;
+  while (timer->FrameReady())
+  {
+    vtkRenderTimerLog::Frame frame = timer->PopFirstReadyFrame();
+    std::vector<std::string> frameNames;
+    std::vector<double> frameTimes;
+    for (const auto& event : frame.Events)
+    {
+      CollectStages(event, frameNames, frameTimes);
+    }
+    if (!frameNames.empty())
+    {
+      names.swap(frameNames);
+      times.swap(frameTimes);
+      found = true;
+    }
+  }
+  return found;
 }

@@ -13,6 +13,7 @@
 #include <vector>
 
 class vtkOpenGLRenderWindow;
+class vtkRenderer;
 class vtkTextureObject;
 class vtkWindow;
 
@@ -84,6 +85,21 @@ bool ReadTextureRGBA(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, s
  * other passes log on the same window.
  */
 extern const char* const StagePrefix;
+
+/**
+ * The window's timer log when stage timing is `enabled` and the log is
+ * logging; null otherwise (logging is switched on between frames only:
+ * VTK brackets its own rendering with timer events).
+ */
+vtkRenderTimerLog* StageTimer(vtkRenderer* renderer, bool enabled);
+
+/**
+ * The MRGI stages (events named StagePrefix + stage) of the newest frame
+ * whose queries have completed, in render order, with their times in ms
+ * (a step drawn once per level: the sum). False, `names` and `times`
+ * untouched, when no completed frame has MRGI stages.
+ */
+bool CollectStageTimes(vtkRenderTimerLog* timer, std::vector<std::string>& names, std::vector<double>& times);
 
 /**
  * Opens a GPU timer event for one stage (nested events are sub-stages,
