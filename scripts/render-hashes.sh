@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Renders a fixed set of configurations with mrgi-render (160x120) and prints the
 # SHA-256 of each EXR (HDR floats) and PNG: run before and after a refactor,
-# diff the two lists. Usage: render-set.sh BUILD_DIR OUT_DIR
+# diff the two lists. Usage: render-hashes.sh BUILD_DIR OUT_DIR
 set -euo pipefail
 build="$1"; out="$2"; mkdir -p "$out"
 bin="$build/bin/mrgi-render"

@@ -4,7 +4,7 @@
  *        the geometric refinement plus the Phong lobe-size metric, with the
  *        material pyramid it reads. C twin of the GPU stage "specular
  *        stencil" (vtkMRGISpecularStencilFS.glsl, driven by
- *        vtkMRGIMultiresolution::BuildSpecularStencil()).
+ *        vtkMRGISpecularStencil::Build()).
  *
  * Paper: Nichols, Penmatsa and Wyman 2010 (NPW10), section 3.2.1 ("when we
  * create our depth and normal mipmaps, we also compute the cross-sectional

@@ -30,7 +30,7 @@
 #include "vtk_glew.h"
 
 // The area-light GLSL libraries (embedded by vtk_encode_string).
-#include "vtkMRGIAreaLightDiffuse.h"
+#include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIAreaLightSpecular.h"
 
 #include "mrgi_area_light.h"
@@ -1289,20 +1289,12 @@ const char* vtkMRGIAreaLight::GetSpecularShaderSource()
 //------------------------------------------------------------------------------
 std::string vtkMRGIAreaLight::GetShaderSource(bool diffuse, bool specular)
 {
-  std::string source;
-  if (diffuse)
-  {
-    source += vtkMRGIAreaLightDiffuse;
-  }
-  if (diffuse && specular)
-  {
-    source += "\n#define MRGI_AREA_LIGHT_DIFFUSE_DECLARED\n";
-  }
-  if (specular)
-  {
-    source += vtkMRGIAreaLightSpecular;
-  }
-  return source;
+  // The diffuse library first: it ends with MRGI_AREA_LIGHT_DIFFUSE_DECLARED.
+  return diffuse && specular
+    ? vtkMRGIShaderLibraries::Compose({ "vtkMRGIAreaLightDiffuse", "vtkMRGIAreaLightSpecular" })
+    : diffuse ? vtkMRGIShaderLibraries::Compose({ "vtkMRGIAreaLightDiffuse" })
+    : specular ? vtkMRGIShaderLibraries::Compose({ "vtkMRGIAreaLightSpecular" })
+               : std::string();
 }
 
 //------------------------------------------------------------------------------

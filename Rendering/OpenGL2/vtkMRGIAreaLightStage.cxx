@@ -12,6 +12,7 @@
 #include "vtkMRGIIncrementalStencil.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIProgramCache.h"
+#include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGISpecularStencil.h"
 #include "vtkMRGIUpsample.h"
@@ -35,8 +36,6 @@
 #include "vtkTexture.h"
 #include "vtkTextureObject.h"
 
-#include "vtkMRGIAreaSpecularFS.h"
-#include "vtkMRGIVPLIrradiance.h"
 
 #include "mrgi_area_light.h"
 #include "mrgi_multires.h"
@@ -72,6 +71,25 @@ void RenderSampleBatches(vtkOpenGLState* ostate, vtkShaderProgram* program,
     program->SetUniformi("mrgiSpecularBatchCount", std::min(batch, sampleCount - first));
     quad->Render();
   }
+}
+
+// The highlight's program (vtkMRGIAreaSpecularFS.glsl): at every pixel or
+// at the specular stencil's texels (`multires`); unshadowed, shadowed with
+// the masks' bits (`masked`) or with a march per sample in batches
+// (`marched`), the lobe grid by the variance shadow query when shadowed.
+vtkOpenGLQuadHelper* ReadySpecular(vtkMRGIProgramCache& programs, vtkOpenGLRenderWindow* window,
+  bool multires, bool masked, bool marched)
+{
+  const std::string defines = std::string(multires ? "#define MRGI_AREA_SPECULAR_MULTIRES 1\n" : "") +
+    (masked ? "#define MRGI_AREA_SPECULAR_VISIBILITY 1\n#define MRGI_AREA_SPECULAR_MASKS 1\n" : "") +
+    (marched ? "#define MRGI_AREA_SPECULAR_VISIBILITY 1\n#define MRGI_AREA_SPECULAR_BATCHES 1\n" : "");
+  return programs.Ready(window, "specular", defines, [masked, marched] {
+    return marched ? vtkMRGIShaderLibraries::Compose({ "vtkMRGIVoxelMarch", "vtkMRGIVPLIrradiance",
+                       "vtkMRGIVarianceShadowResolve", "vtkMRGIAreaSpecularFS" })
+      : masked ? vtkMRGIShaderLibraries::Compose(
+                   { "vtkMRGIVPLIrradiance", "vtkMRGIVarianceShadowResolve", "vtkMRGIAreaSpecularFS" })
+               : vtkMRGIShaderLibraries::Compose({ "vtkMRGIAreaSpecularFS" });
+  });
 }
 }
 
@@ -499,20 +517,7 @@ bool vtkMRGIAreaLightStage::RenderSpecular(const vtkMRGIFrameContext& frame,
   }
   const bool masked = shadowed && masks != nullptr;
   const bool marched = shadowed && !masked;
-  static const std::string unshadowedBody = std::string(vtkMRGIVPLIrradiance) +
-    vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
-  static const std::string maskedBody =
-    std::string("#define MRGI_AREA_SPECULAR_VISIBILITY 1\n#define MRGI_AREA_SPECULAR_MASKS 1\n") +
-    vtkMRGIVPLIrradiance + vtkMRGIVarianceShadowQuery::GetResolveShaderSource() +
-    vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
-  static const std::string marchedBody =
-    std::string("#define MRGI_AREA_SPECULAR_VISIBILITY 1\n#define MRGI_AREA_SPECULAR_BATCHES 1\n") +
-    vtkMRGIVoxelization::GetMarchShaderSource() + vtkMRGIVPLIrradiance +
-    vtkMRGIVarianceShadowQuery::GetResolveShaderSource() +
-    vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
-  vtkOpenGLQuadHelper* quad = this->Internal->Programs.Ready(renWin,
-    masked ? "specular.masked" : marched ? "specular.marched" : "specular", "",
-    [&] { return masked ? maskedBody : marched ? marchedBody : unshadowedBody; });
+  vtkOpenGLQuadHelper* quad = ReadySpecular(this->Internal->Programs, renWin, false, masked, marched);
   vtkShaderProgram* program = quad ? quad->Program : nullptr;
   if (!program)
   {
@@ -643,21 +648,7 @@ bool vtkMRGIAreaLightStage::RenderSpecularMultiresolution(const vtkMRGIFrameCont
   const bool masked = shadowed && masks != nullptr &&
     masks->GetNumberOfLevels() == layout.level_count;
   const bool marched = shadowed && !masked;
-  static const std::string prefix = "#define MRGI_AREA_SPECULAR_MULTIRES 1\n";
-  static const std::string unshadowedBody = prefix + vtkMRGIVPLIrradiance +
-    vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
-  static const std::string maskedBody = prefix +
-    "#define MRGI_AREA_SPECULAR_VISIBILITY 1\n#define MRGI_AREA_SPECULAR_MASKS 1\n" +
-    vtkMRGIVPLIrradiance + vtkMRGIVarianceShadowQuery::GetResolveShaderSource() +
-    vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
-  static const std::string marchedBody = prefix +
-    "#define MRGI_AREA_SPECULAR_VISIBILITY 1\n#define MRGI_AREA_SPECULAR_BATCHES 1\n" +
-    vtkMRGIVoxelization::GetMarchShaderSource() + vtkMRGIVPLIrradiance +
-    vtkMRGIVarianceShadowQuery::GetResolveShaderSource() +
-    vtkMRGIAreaLight::GetShaderSource(true, true) + vtkMRGIAreaSpecularFS;
-  vtkOpenGLQuadHelper* quad = this->Internal->Programs.Ready(renWin,
-    masked ? "specular.multires.masked" : marched ? "specular.multires.marched" : "specular.multires", "",
-    [&] { return masked ? maskedBody : marched ? marchedBody : unshadowedBody; });
+  vtkOpenGLQuadHelper* quad = ReadySpecular(this->Internal->Programs, renWin, true, masked, marched);
   vtkShaderProgram* program = quad ? quad->Program : nullptr;
   if (!program || !light->SetShaderUniforms(program, renWin))
   {

@@ -7,6 +7,7 @@
 #include "vtkMRGIFullScreenStep.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIProgramCache.h"
+#include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGISpecularStencil.h"
 #include "vtkMRGIVisibilityPyramid.h"
@@ -20,11 +21,7 @@
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 
-#include "vtkMRGIAreaLightDiffuse.h"
-#include "vtkMRGIGatherFS.h"
 #include "vtkMRGIMultiresSplatFS.h"
-#include "vtkMRGIMultiresSplatVS.h"
-#include "vtkMRGIVPLIrradiance.h"
 
 #include "mrgi_area_light.h"
 #include "mrgi_multires.h"
@@ -258,17 +255,15 @@ bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultir
   const bool visibility = area && !masked && term->Voxels != nullptr;
   ScopedStage gatherStep(frame.Timer, area ? "gather.samples" : "gather.vpls");
   const std::string defines = std::string("#define MRGI_GATHER_IRRADIANCE_ONLY 1\n") +
-    (masked ? "#define MRGI_AREA_VISIBILITY_MASKS 1\n" : "");
-  vtkOpenGLQuadHelper* quad = in.Programs.Ready(window,
-    visibility ? "gather.area.march" : masked ? "gather.area.masks" : area ? "gather.area" : "gather",
-    defines, [&] {
-      return (visibility ? std::string("#define MRGI_AREA_VISIBILITY 1\n") +
-            vtkMRGIVoxelization::GetMarchShaderSource()
-                         : std::string()) +
-        (area ? std::string("#define MRGI_GATHER_AREA_LIGHT 1\n") + vtkMRGIAreaLightDiffuse
-              : std::string()) +
-        vtkMRGIVPLIrradiance + vtkMRGIGatherFS;
-    });
+    (masked ? "#define MRGI_AREA_VISIBILITY_MASKS 1\n" : "") +
+    (visibility ? "#define MRGI_AREA_VISIBILITY 1\n" : "") +
+    (area ? "#define MRGI_GATHER_AREA_LIGHT 1\n" : "");
+  vtkOpenGLQuadHelper* quad = in.Programs.Ready(window, "gather", defines, [&] {
+    return visibility ? vtkMRGIShaderLibraries::Compose(
+                          { "vtkMRGIVoxelMarch", "vtkMRGIAreaLightDiffuse", "vtkMRGIGatherFS" })
+      : area ? vtkMRGIShaderLibraries::Compose({ "vtkMRGIAreaLightDiffuse", "vtkMRGIGatherFS" })
+             : vtkMRGIShaderLibraries::Compose({ "vtkMRGIGatherFS" });
+  });
   vtkShaderProgram* gather = quad ? quad->Program : nullptr;
   if (!gather)
   {
@@ -470,8 +465,8 @@ bool vtkMRGIGather::RunSplatting(const vtkMRGIFrameContext& frame, vtkMRGIMultir
   }
   // 2. The splats.
   ScopedStage splatStep(frame.Timer, "gather.vpls");
-  static const std::string vertexShader =
-    "//VTK::System::Dec\n" + vtkMRGIShaderUtilities::Defines() + vtkMRGIVPLIrradiance + vtkMRGIMultiresSplatVS;
+  static const std::string vertexShader = "//VTK::System::Dec\n" + vtkMRGIShaderUtilities::Defines() +
+    vtkMRGIShaderLibraries::Compose({ "vtkMRGIMultiresSplatVS" });
   vtkShaderProgram* splat =
     window->GetShaderCache()->ReadyShaderProgram(vertexShader.c_str(), vtkMRGIMultiresSplatFS, "");
   if (!splat || !splat->GetCompiled())

@@ -6,6 +6,7 @@
 #include "vtkMRGIFullScreenStep.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIProgramCache.h"
+#include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIVisibilityPyramid.h"
 #include "vtkObjectFactory.h"
@@ -18,8 +19,6 @@
 #include "vtkTextureObject.h"
 #include "vtkUnsignedCharArray.h"
 
-#include "vtkMRGIIncrementalStencilFS.h"
-#include "vtkMRGIVisibilityBits.h"
 
 #include "mrgi_multires.h"
 #include "mrgi_voxel_incremental.h"
@@ -155,7 +154,7 @@ bool vtkMRGIIncrementalStencil::Build(const vtkMRGIFrameContext& frame,
   vtkOpenGLQuadHelper* quad = in.Programs.Ready(window, "incremental",
     "#define MRGI_STENCIL_WORDS " + std::to_string(words) + "\n#define MRGI_STENCIL_TARGETS " +
       std::to_string(targets) + "\n",
-    [] { return std::string(vtkMRGIVisibilityBits) + vtkMRGIIncrementalStencilFS; });
+    [] { return vtkMRGIShaderLibraries::Compose({ "vtkMRGIIncrementalStencilFS" }); });
   vtkShaderProgram* program = quad ? quad->Program : nullptr;
   if (!program)
   {

@@ -17,6 +17,7 @@
 #include "vtkMRGIProgramCache.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIRenderSteps.h"
+#include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIUpsample.h"
 #include "vtkMRGIVPLSelection.h"
@@ -47,8 +48,6 @@
 
 #include "vtkMRGICompositeFS.h"
 #include "vtkMRGIGBufferCapture.h"
-#include "vtkMRGIGatherFS.h"
-#include "vtkMRGIVPLIrradiance.h"
 
 #include "mrgi_buffers.h"
 #include "mrgi_multires.h"
@@ -398,7 +397,7 @@ bool vtkMRGIPass::RenderGather(const vtkMRGIFrameContext& frame, int vplCount)
   Internals& in = *this->Internal;
   vtkOpenGLRenderWindow* renWin = frame.Window;
   vtkOpenGLQuadHelper* quad = in.Programs.Ready(
-    renWin, "gather.full", "", [] { return std::string(vtkMRGIVPLIrradiance) + vtkMRGIGatherFS; });
+    renWin, "gather.full", "", [] { return vtkMRGIShaderLibraries::Compose({ "vtkMRGIGatherFS" }); });
   if (!quad)
   {
     vtkErrorMacro("could not build the MRGI gather shader");

@@ -7,6 +7,7 @@
 #include "vtkMRGIFullScreenStep.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIProgramCache.h"
+#include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFramebufferObject.h"
@@ -18,9 +19,6 @@
 #include "vtkTextureObject.h"
 #include "vtkUnsignedCharArray.h"
 
-#include "vtkMRGIAreaLightDiffuse.h"
-#include "vtkMRGIAreaLightSpecular.h"
-#include "vtkMRGISpecularStencilFS.h"
 
 #include "mrgi_area_light.h"
 #include "mrgi_multires.h"
@@ -172,10 +170,10 @@ bool vtkMRGISpecularStencil::Build(const vtkMRGIFrameContext& frame,
   {
     quads[stage] = in.Programs.Ready(window, "specular.stencil",
       "#define MRGI_SPEC_STAGE " + std::to_string(stage) + "\n", [stage] {
-        return (stage == 2 ? std::string(vtkMRGIAreaLightDiffuse) +
-               "\n#define MRGI_AREA_LIGHT_DIFFUSE_DECLARED\n" + vtkMRGIAreaLightSpecular
-                           : std::string()) +
-          vtkMRGISpecularStencilFS;
+        // Stage 2 (the refinement bits) evaluates the lobe at the light.
+        return stage == 2 ? vtkMRGIShaderLibraries::Compose({ "vtkMRGIAreaLightDiffuse",
+                              "vtkMRGIAreaLightSpecular", "vtkMRGISpecularStencilFS" })
+                          : vtkMRGIShaderLibraries::Compose({ "vtkMRGISpecularStencilFS" });
       });
     programs[stage] = quads[stage] ? quads[stage]->Program : nullptr;
     if (!programs[stage])

@@ -4,6 +4,7 @@
 
 #include "vtkFloatArray.h"
 #include "vtkMRGIAreaLight.h"
+#include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIVoxelization.h"
 #include "vtkObjectFactory.h"
@@ -177,9 +178,7 @@ bool vtkMRGIVarianceShadowQuery::ComputeMoments(vtkOpenGLRenderWindow* window,
   }
   if (!in.Quad)
   {
-    const std::string body = std::string(vtkMRGIVoxelization::GetMarchShaderSource()) +
-      vtkMRGIVPLIrradiance + vtkMRGIAreaLight::GetShaderSource(false, true) +
-      vtkMRGIVarianceShadowMomentsFS;
+    const std::string body = vtkMRGIShaderLibraries::Compose({ "vtkMRGIVarianceShadowMomentsFS" });
     in.Quad = new vtkOpenGLQuadHelper(window,
       vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
       vtkMRGIShaderUtilities::FullScreenShader(body.c_str()).c_str(), "");

@@ -3,6 +3,7 @@
 #include "vtkMRGIVisibilityPyramid.h"
 
 #include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIVoxelization.h"
 #include "vtkObjectFactory.h"
@@ -300,7 +301,7 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
       body += "\n#define MRGI_VIS_STAGE " + std::to_string(stage) + "\n#define MRGI_VIS_WORDS " +
         std::to_string(words) + "\n#define MRGI_VIS_TARGETS " + std::to_string(targets) +
         "\n#define MRGI_VIS_OUTPUTS " + std::to_string(outputs) + "\n" +
-        vtkMRGIVoxelization::GetMarchShaderSource() + vtkMRGIVisibilityBits + vtkMRGIVisibilityPyramidFS;
+        vtkMRGIShaderLibraries::Compose({ "vtkMRGIVisibilityPyramidFS" });
       quad = new vtkOpenGLQuadHelper(window,
         vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(),
         vtkMRGIShaderUtilities::FullScreenShader(body.c_str()).c_str(), "");

@@ -7,6 +7,7 @@
 #include "vtkAssemblyPath.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
+#include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
@@ -439,7 +440,7 @@ void vtkMRGIVoxelization::GetMarchParams(mrgi_voxel_march_params* params) const
 const char* vtkMRGIVoxelization::GetMarchShaderSource()
 {
   // The slicing and masks first (shared with the voxelization), then the march.
-  static const std::string source = std::string(vtkMRGIVoxelBits) + vtkMRGIVoxelMarch;
+  static const std::string source = vtkMRGIShaderLibraries::Compose({ "vtkMRGIVoxelMarch" });
   return source.c_str();
 }
 
@@ -775,7 +776,7 @@ bool vtkMRGIVoxelization::Voxelize(vtkRenderer* ren, double nearDepth, double fa
   const std::string header = "//VTK::System::Dec\n" + vtkMRGIShaderUtilities::Defines();
   const std::string vs = header + vtkMRGIVoxelizeVS;
   const std::string gs = header + vtkMRGIVoxelizeGS;
-  const std::string fs = header + vtkMRGIVoxelBits + vtkMRGIVoxelizeFS;
+  const std::string fs = header + vtkMRGIShaderLibraries::Compose({ "vtkMRGIVoxelizeFS" });
   vtkShaderProgram* program =
     window->GetShaderCache()->ReadyShaderProgram(vs.c_str(), fs.c_str(), gs.c_str());
   if (!program || !program->GetCompiled())

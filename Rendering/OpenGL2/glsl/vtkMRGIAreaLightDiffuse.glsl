@@ -92,3 +92,5 @@ vec3 mrgiAreaLightDiffuse(vec3 P, vec3 N, vec3 Pvc, vec3 Nvc)
   }
   return X;
 }
+
+#define MRGI_AREA_LIGHT_DIFFUSE_DECLARED

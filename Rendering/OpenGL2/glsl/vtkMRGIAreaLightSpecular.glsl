@@ -12,9 +12,9 @@
 // in these comments: VTK would replace it.)
 //
 // With vtkMRGIAreaLightDiffuse.glsl in the same shader: put the diffuse
-// library FIRST and `#define MRGI_AREA_LIGHT_DIFFUSE_DECLARED` between the
-// two (vtkMRGIAreaLight::GetShaderSource(true, true) does both), so that
-// the uniforms both use (same names, same quantities) are declared once.
+// library FIRST; it ends with `#define MRGI_AREA_LIGHT_DIFFUSE_DECLARED`,
+// so that the uniforms both use (same names, same quantities) are declared
+// once (vtkMRGIShaderLibraries composes them in that order).
 //
 // Known difference: for 0 < n < 1/126, C's exp2f(-1/n) is a subnormal float
 // (tan(theta_h) huge or infinite there), which GPUs flush to 0 (tanHalf =

@@ -8,7 +8,7 @@
 // keeps their cost at 25 lookups.
 //
 // Shadows (3.3.3), with MRGI_AREA_SPECULAR_VISIBILITY defined before the
-// libraries (vtkMRGIPass::RenderAreaSpecular()):
+// libraries (vtkMRGIAreaLightStage::RenderSpecular()):
 // - sample path: sample j counts where it is visible, either bit j of this
 //   pixel's level-0 mask of the incremental visibility
 //   (MRGI_AREA_SPECULAR_MASKS: vtkMRGIVisibilityPyramid, word w in texture
@@ -23,7 +23,7 @@
 //
 // Multiresolution (MRGI_AREA_SPECULAR_MULTIRES: vtkMRGIPass
 // AreaLightSpecularResolution = SpecularMultiresolution, drawn by
-// vtkMRGIMultiresolution::GatherAreaSpecular() once per level at the texels
+// vtkMRGIGather::GatherSpecular() once per level at the texels
 // of the specular stencil, mrgi_specular_stencil.h): the receiver is the
 // texel's (mean position and normal, mrgiPosition/mrgiNormal at
 // gl_FragCoord + mrgiReceiverOffset), the exponent the largest of its

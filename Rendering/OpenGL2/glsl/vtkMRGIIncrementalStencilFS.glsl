@@ -7,7 +7,7 @@
 // visibility pyramid computes it (mrgiVisPopcount from
 // vtkMRGIVisibilityBits.glsl, prepended).
 //
-// vtkMRGIMultiresolution prepends MRGI_STENCIL_WORDS (W = ceil(N / 32)) and
+// vtkMRGIIncrementalStencil prepends MRGI_STENCIL_WORDS (W = ceil(N / 32)) and
 // MRGI_STENCIL_TARGETS (ceil(W / 4) mask textures per level). One draw per
 // level i, into level i's rectangle of the flattened layout: a rendered
 // texel writes 1 (and the stencil), any other is discarded (the target is
