@@ -249,17 +249,12 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
   ScopedStage stage(timer, "area");
   // Steps: "voxelize", "visibility.pyramid" and "gather.samples" (the
   // gathers; receivers are this frame's, built once).
-  this->VisibilityPyramid->SetStageTimer(timer);
   this->Voxelization->SetStageTimer(timer);
-  struct ClearTimers
+  struct ClearTimer
   {
-    vtkMRGIAreaLightStage* Stage;
-    ~ClearTimers()
-    {
-      this->Stage->VisibilityPyramid->SetStageTimer(nullptr);
-      this->Stage->Voxelization->SetStageTimer(nullptr);
-    }
-  } clearTimers{ this };
+    vtkMRGIVoxelization* Voxels;
+    ~ClearTimer() { this->Voxels->SetStageTimer(nullptr); }
+  } clearTimer{ this->Voxelization };
   if (!buffer->HasReceivers() &&
     !buffer->BuildReceivers(renWin, frame.Position, frame.Normal, frame.Viewport[0], frame.Viewport[1], timer))
   {
@@ -342,7 +337,7 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
       voxels->GetLastWorldToView(w2v);
       std::copy(w2v, w2v + 16, worldToView);
       if (this->VisibilityPyramid->Update(
-            renWin, buffer, voxels, texture, count, uniforms.two_sided != 0, worldToView))
+            renWin, buffer, voxels, texture, count, uniforms.two_sided != 0, worldToView, timer))
       {
         masks = this->VisibilityPyramid;
       }
@@ -501,11 +496,7 @@ bool vtkMRGIAreaLightStage::RenderSpecular(const vtkMRGIFrameContext& frame,
   bool shadowed = voxels != nullptr;
   if (shadowed)
   {
-    this->VarianceShadowQuery->SetStageTimer(timer);
-    shadowed = this->VarianceShadowQuery->ComputeMoments(renWin, frame.Position,
-      frame.Normal, frame.Specular, frame.Shininess, frame.Viewport, light,
-      voxels, viewToWorld, frame.Parallel);
-    this->VarianceShadowQuery->SetStageTimer(nullptr);
+    shadowed = this->VarianceShadowQuery->ComputeMoments(frame, light, voxels);
     if (!shadowed)
     {
       vtkErrorMacro("area lights: no variance shadow query; drawing the highlights without shadows");

@@ -4,6 +4,7 @@
 
 #include "vtkFloatArray.h"
 #include "vtkMRGIAreaLight.h"
+#include "vtkMRGIFrameContext.h"
 #include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIVoxelization.h"
@@ -131,11 +132,17 @@ void vtkMRGIVarianceShadowQuery::ReleaseGraphicsResources(vtkWindow* w)
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIVarianceShadowQuery::ComputeMoments(vtkOpenGLRenderWindow* window,
-  vtkTextureObject* position, vtkTextureObject* normal, vtkTextureObject* specular,
-  vtkTextureObject* shininess, const int viewport[4], vtkMRGIAreaLight* light,
-  vtkMRGIVoxelization* voxels, const float viewToWorld[16], bool parallel)
+bool vtkMRGIVarianceShadowQuery::ComputeMoments(
+  const vtkMRGIFrameContext& frame, vtkMRGIAreaLight* light, vtkMRGIVoxelization* voxels)
 {
+  vtkOpenGLRenderWindow* window = frame.Window;
+  vtkTextureObject* position = frame.Position;
+  vtkTextureObject* normal = frame.Normal;
+  vtkTextureObject* specular = frame.Specular;
+  vtkTextureObject* shininess = frame.Shininess;
+  const int* viewport = frame.Viewport;
+  const float* viewToWorld = frame.ViewToWorld;
+  const bool parallel = frame.Parallel;
   Internals& in = *this->Internal;
   in.Valid = false;
   double worldToView[16];
@@ -153,7 +160,7 @@ bool vtkMRGIVarianceShadowQuery::ComputeMoments(vtkOpenGLRenderWindow* window,
     this->ReleaseGraphicsResources(in.Window);
   }
   in.Window = window;
-  vtkMRGIShaderUtilities::ScopedStage step(this->StageTimer, "specular.moments");
+  vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "specular.moments");
   const int w = viewport[2], h = viewport[3];
   for (auto*& t : in.Moments)
   {

@@ -41,6 +41,7 @@
 #include <memory> // For std::unique_ptr
 
 class vtkFloatArray;
+struct vtkMRGIFrameContext;
 class vtkMRGIAreaLight;
 class vtkMRGIVoxelization;
 class vtkOpenGLRenderWindow;
@@ -81,17 +82,15 @@ public:
   ///@}
 
   /**
-   * The moments pass: draws the viewport's moments (layout in the class
-   * notes) for `light`, marching through `voxels` (voxelized this frame).
-   * `position`, `normal`, `specular`, `shininess`: the G-buffer (window
-   * sized); `viewport`: x, y, width, height of the renderer's tile;
-   * `viewToWorld`: column-major eye -> world. False, with an error, on bad
+   * The moments pass: draws the frame viewport's moments (layout in the
+   * class notes) for `light`, marching through `voxels` (voxelized this
+   * frame), from the frame's G-buffer (position, normal and the specular
+   * targets), eye -> world transform and projection. Timer step
+   * "specular.moments" on the frame's timer. False, with an error, on bad
    * input or a shader failure.
    */
-  bool ComputeMoments(vtkOpenGLRenderWindow* window, vtkTextureObject* position,
-    vtkTextureObject* normal, vtkTextureObject* specular, vtkTextureObject* shininess,
-    const int viewport[4], vtkMRGIAreaLight* light, vtkMRGIVoxelization* voxels,
-    const float viewToWorld[16], bool parallel);
+  bool ComputeMoments(
+    const vtkMRGIFrameContext& frame, vtkMRGIAreaLight* light, vtkMRGIVoxelization* voxels);
 
   /**
    * Bind the last moments to a program that includes
@@ -126,9 +125,6 @@ public:
   /** Moments texture `target` (0..MRGI_VOXEL_VSM_TARGETS-1) of the last pass, or null. */
   vtkTextureObject* GetMomentsTexture(int target) const;
 
-  /** Log the moments pass as a GPU timer event ("specular.moments"); null logs nothing. Not reference counted. */
-  void SetStageTimer(vtkRenderTimerLog* timer) { this->StageTimer = timer; }
-
   /** Free every GL resource (textures, framebuffer, program). */
   void ReleaseGraphicsResources(vtkWindow* w);
 
@@ -138,7 +134,6 @@ protected:
 
   int BlurRadius = 2;         // MRGI_VOXEL_VSM_DEFAULT_RADIUS, set by the constructor
   double MinVariance = 1e-4;  // MRGI_VOXEL_VSM_DEFAULT_MIN_VARIANCE, set by the constructor
-  vtkRenderTimerLog* StageTimer = nullptr;
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

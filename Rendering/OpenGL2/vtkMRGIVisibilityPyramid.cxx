@@ -192,7 +192,7 @@ void vtkMRGIVisibilityPyramid::ReleaseGraphicsResources(vtkWindow* w)
 //------------------------------------------------------------------------------
 bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
   vtkMRGIMultiresolution* multires, vtkMRGIVoxelization* voxels, vtkTextureObject* samples,
-  int sampleCount, bool twoSided, const float worldToView[16])
+  int sampleCount, bool twoSided, const float worldToView[16], vtkRenderTimerLog* timer)
 {
   Internals& in = *this->Internal;
   in.Valid = false;
@@ -311,7 +311,7 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
   };
 
   using vtkMRGIShaderUtilities::ScopedStage;
-  ScopedStage step(this->StageTimer, "visibility.pyramid");
+  ScopedStage step(timer, "visibility.pyramid");
   vtkOpenGLState* ostate = window->GetState();
   vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND), depth(ostate, GL_DEPTH_TEST),
     scissor(ostate, GL_SCISSOR_TEST), stencil(ostate, GL_STENCIL_TEST);

@@ -149,12 +149,13 @@ public:
    * BuildReceivers() done this frame) for `sampleCount` light samples
    * (texture described in the class notes), coarse to fine, marching
    * through `voxels` (voxelized this frame, its own march knobs).
-   * `worldToView` is column-major. False, with an error, on bad input or an
-   * OpenGL failure.
+   * `worldToView` is column-major. Timer step "visibility.pyramid" on
+   * `timer` when given. False, with an error, on bad input or an OpenGL
+   * failure.
    */
   bool Update(vtkOpenGLRenderWindow* window, vtkMRGIMultiresolution* multires,
     vtkMRGIVoxelization* voxels, vtkTextureObject* samples, int sampleCount, bool twoSided,
-    const float worldToView[16]);
+    const float worldToView[16], vtkRenderTimerLog* timer = nullptr);
 
   /** Levels, samples and words of the last successful Update() (0 before). */
   int GetNumberOfLevels() const;
@@ -195,8 +196,6 @@ public:
   /** Draws of the last Update() (passes x batches). */
   int GetNumberOfDraws() const;
 
-  /** Log the pass as a GPU timer event ("visibility.pyramid"); null logs nothing. Not reference counted. */
-  void SetStageTimer(vtkRenderTimerLog* timer) { this->StageTimer = timer; }
 
   /** Free every GL resource. */
   void ReleaseGraphicsResources(vtkWindow* w);
@@ -211,7 +210,6 @@ protected:
   bool Interleave = true;
   bool RefineSelected = false;
   bool CollectStatistics = false;
-  vtkRenderTimerLog* StageTimer = nullptr;
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
