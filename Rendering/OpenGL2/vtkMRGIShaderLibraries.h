@@ -1,7 +1,7 @@
 /**
  * @file    vtkMRGIShaderLibraries.h
  * @brief   Internal: the composition table of MRGI's GLSL. Each library
- *          (glsl/*.glsl without main()) and entry point (with main())
+ *          (files in glsl/ without main()) and entry point (with main())
  *          declares the libraries it needs once, here; a program's source
  *          is composed from the names it uses. Not wrapped, not installed.
  *
