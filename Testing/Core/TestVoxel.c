@@ -1248,7 +1248,7 @@ static void test_incremental(void)
   const mrgi_voxel_projection p = perspective_projection(50.0, 1.0);
   float lp[3 * 64], ln[3 * 64];
   light_samples(8, lp, ln);
-  const mrgi_voxel_samples samples = { 64, lp, ln };
+  const mrgi_voxel_samples samples = { 64, lp, ln, 0 };
   MRGI_CHECK(mrgi_voxel_samples_check(&samples, &err) == MRGI_OK);
   const int32_t size = 64;
 
@@ -1534,7 +1534,7 @@ static void test_incremental_guard(void)
   mrgi_error err;
   float lp[3 * 64], ln[3 * 64];
   light_samples(8, lp, ln);
-  const mrgi_voxel_samples samples = { 64, lp, ln };
+  const mrgi_voxel_samples samples = { 64, lp, ln, 0 };
   scene s = { 0 };
   scene_add(&s, -12, -2.5, -30, 12, -2, -3); /* floor */
   scene_add(&s, -3, -2, -12, 3, -0.5, -9);   /* the box: top y = -0.5, front z = -9 */
@@ -1688,7 +1688,7 @@ static void test_vsm(void)
     qn[3 * j + 1] = -1.0f;
     qn[3 * j + 2] = 0.0f;
   }
-  const mrgi_voxel_samples queries = { MRGI_VOXEL_VSM_QUERIES, qp, qn };
+  const mrgi_voxel_samples queries = { MRGI_VOXEL_VSM_QUERIES, qp, qn, 0 };
   enum { ROW = 48 };
   float* row_moments = (float*)malloc(sizeof(float) * ROW * 2 * MRGI_VOXEL_VSM_QUERIES);
   float* row_vis = (float*)malloc(sizeof(float) * ROW * MRGI_VOXEL_VSM_QUERIES);
