@@ -1928,23 +1928,24 @@ static void test_samples_per_batch(void)
   MRGI_CHECK(mrgi_voxel_samples_per_batch(1) > mrgi_voxel_samples_per_batch(2));
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_samples_per_batch();
-  test_layout();
-  test_grid_errors();
-  test_voxelize();
-  test_march_walls();
-  test_march_thin_wall();
-  test_march_grazing();
-  test_march_extremes();
-  test_march_symmetry();
-  test_masks_and_metric();
-  test_incremental();
-  test_incremental_guard();
-  test_vsm();
-  test_vsm_specular_moments();
-  test_random_scenes();
-  printf("TestVoxel: all checks passed\n");
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_samples_per_batch),
+    MRGI_TEST_CASE(test_layout),
+    MRGI_TEST_CASE(test_grid_errors),
+    MRGI_TEST_CASE(test_voxelize),
+    MRGI_TEST_CASE(test_march_walls),
+    MRGI_TEST_CASE(test_march_thin_wall),
+    MRGI_TEST_CASE(test_march_grazing),
+    MRGI_TEST_CASE(test_march_extremes),
+    MRGI_TEST_CASE(test_march_symmetry),
+    MRGI_TEST_CASE(test_masks_and_metric),
+    MRGI_TEST_CASE(test_incremental),
+    MRGI_TEST_CASE(test_incremental_guard),
+    MRGI_TEST_CASE(test_vsm),
+    MRGI_TEST_CASE(test_vsm_specular_moments),
+    MRGI_TEST_CASE(test_random_scenes),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }
