@@ -5,6 +5,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 bash "$root/scripts/install-deps.sh"
-bash "$root/scripts/build.sh"
+# Warnings are errors here (CI); a plain build.sh leaves them warnings.
+bash "$root/scripts/build.sh" -DMRGI_WARNINGS_AS_ERRORS=ON
 cd "${MRGI_BUILD_DIR:-$root/build}"
 ctest --output-on-failure --timeout 1200 -j "${MRGI_TEST_JOBS:-2}" "$@"

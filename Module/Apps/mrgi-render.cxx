@@ -2,7 +2,8 @@
 // and/or OpenEXR, printing GPU time per stage on request.
 //
 // The command line is a contract users script against: options are only ever
-// added, never renamed. Run `mrgi-render --help` for the list.
+// added, never renamed. Run `mrgi-render --help` for the list; it is printed
+// from the same table (OptionTable) that the parser reads.
 
 #include "vtkCamera.h"
 #include "vtkImageData.h"
@@ -49,10 +50,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <string>
-#include <vector>
 #include <strings.h>
+#include <utility>
+#include <vector>
 
 #ifndef MRGI_VERSION_STRING
 #define MRGI_VERSION_STRING "unknown"
@@ -60,114 +63,6 @@
 
 namespace
 {
-const char* const Usage = R"(usage: mrgi-render SCENE -o OUT.png|OUT.exr [options]
-
-Renders SCENE headless (no X server, no GPU needed) and writes the image.
-
-SCENE   a built-in scene: cornell, cornell-spot, cornell-area, living-room, scaling
-        or a data file: .vtp .vtu .vti .vts .vtr .vtm .vtk .ply .obj .stl .gltf .glb
-
-Output
-  -o, --output FILE      .png (what the window shows, 8-bit) or .exr (the HDR
-                         float buffer); repeat to write several files
-  --half                 write EXR channels as 16-bit half floats (default 32-bit)
-  --size WxH             image size in pixels (default 512x512)
-  --background R,G,B     background colour (default 0,0,0)
-
-Camera (built-in scenes bring theirs; files are framed automatically)
-  --camera-position X,Y,Z
-  --camera-focal-point X,Y,Z
-  --camera-view-up X,Y,Z
-  --camera-view-angle DEG   vertical field of view, degrees
-  --auto-camera          frame the whole scene (keeps the view direction)
-  --parallel             parallel (orthographic) projection
-
-Lights (replace the scene's lights when given; repeatable)
-  --light positional:X,Y,Z
-  --light spot:X,Y,Z:FX,FY,FZ:CONE      CONE = half angle in degrees
-  --light directional:DX,DY,DZ          direction the light travels
-  --light headlight
-  --light-intensity S    multiply every light's intensity by S
-
-Area lights (direct light from textured rectangles, nichols-penmatsa-wyman-2010;
-Documentation/AreaLights.md; drawn whatever --gi says)
-  --area-light CX,CY,CZ:UX,UY,UZ:VX,VY,VZ[:R,G,B[:I]]
-                         add a rectangle: centre, full edge vectors u and v
-                         (perpendicular; it emits towards u x v), colour, intensity
-                         (radiance = I x colour; default 1,1,1 and 1); repeatable;
-                         cornell-area brings the Cornell box's emitter
-  --area-light-two-sided emit on both sides (every area light)
-  --area-light-samples N light samples per area light, 1..4096 (default 256)
-  --area-lights off      ignore the scene's and the command line's area lights
-  --area-light-visibility off|naive|incremental
-                         shadows: none; a march through screen-space voxels per texel and
-                         light sample; or coarse to fine, reusing agreeing coarse samples
-                         (default incremental; nichols-penmatsa-wyman-2010 3.3)
-  --voxel-size N         voxel buffer side for the visibility, 1..4096 (default 128)
-  --visibility-interleave on|off
-                         incremental visibility: 2x2 interleaved light samples (default off)
-  --incremental-stencil on|off
-                         incremental visibility: also gather below the geometric selection where
-                         the coarser level's visibility changes, e.g. penumbrae (default on;
-                         nichols-penmatsa-wyman-2010 3.4)
-  --area-light-specular on|off
-                         Phong highlights of the area lights on specular materials (default on)
-  --area-light-specular-resolution full|multires
-                         where the highlights are gathered: every pixel (default), or the
-                         multiresolution texels refined where the Phong lobe is narrower than
-                         the texel spacing, then upsampled (nichols-penmatsa-wyman-2010 3.2.1;
-                         experimental: up to ~34% error on the highlight on flat scenes)
-  --specular KS:POWER    give every opaque surface VTK's Specular KS (0..1) and SpecularPower
-                         POWER (0..128), e.g. 0.5:40, to see the highlights
-
-Scaling scene
-  --triangles N          total triangle count (default 100000)
-  --objects N            number of objects (default 64)
-  --seed N               random seed (default 1)
-
-Indirect light (one bounce; Documentation/IndirectLight.md)
-  --gi on|multires|full|off
-                         on = multires (default): the stencil-selected multiresolution gather;
-                         full: every pixel gathers every VPL; off: VTK's direct light only
-  --preset fast|balanced|accurate
-                         multires settings from the measured speed/accuracy frontier
-                         (default balanced; Documentation/Multiresolution.md); the options
-                         below override single knobs
-  --depth-threshold T    multires: depth change per pixel width that refines (inf: never)
-  --normal-threshold T   multires: normal-component spread that refines (inf: never)
-  --finest-level N       multires: finest level that gathers (0 = full resolution)
-  --upsample tent|mask   multires: tent (default) or mask-weighted (Besenthal) upsampling
-  --gather stencil|splat multires: stenciled gather (default) or multiresolution splatting
-                         (nichols-wyman-2009; same image, slower: for comparisons)
-  --surface-detail A     multires: modulate by the view angle, nichols-wyman-2009 eq. 2 (0..1, default 0)
-  --vpls N               virtual point lights, 0..4096 (default 256 = 16x16)
-  --vpl-selection grid|importance
-                         regular grid over the light's view (default) or flux importance sampling
-  --rsm-size N           reflective shadow map texels per side, 16..2048 (default 256)
-  --indirect-strength S  factor on the indirect light (default 1)
-  --indirect-only        write only the indirect light (EXR: float RGB)
-  --tone-mapping         filmic tone mapping of the result (vtkToneMappingPass)
-
-Ground truth (CPU, Embree: direct light and one bounce with exact visibility)
-  --reference            render the ground truth instead of the GPU image
-  --reference-visibility on|off
-                         exact visibility between bounce points (default on); off = the RSM assumption
-  --reference-shadows on|off
-                         shadows in the direct part (default on; VTK's direct light has none)
-  --reference-error E    stop at this relative standard error of the indirect part (default 0.01)
-  --reference-passes N   at most N passes of 16 bounce rays per pixel (default 64)
-
-Measurement
-  --timings              print the GPU time of each stage (vtkRenderTimerLog)
-  --frames N             render N frames; timings are medians (default 1)
-
-Other
-  --interactive          open a window to look around (needs DISPLAY)
-  -q, --quiet            no progress lines
-  --version              print the version
-  -h, --help             this text
-)";
-
 struct Options
 {
   std::string Scene;
@@ -400,374 +295,526 @@ bool ParseLight(const std::string& spec, vtkSmartPointer<vtkLight>& light, std::
   return false;
 }
 
+// Splits help text into lines ('\n'); none for "".
+std::vector<std::string> SplitLines(const char* text)
+{
+  std::vector<std::string> lines;
+  std::string line;
+  for (const char* c = text; *c; ++c)
+  {
+    if (*c == '\n')
+    {
+      lines.push_back(line);
+      line.clear();
+    }
+    else
+    {
+      line += *c;
+    }
+  }
+  if (!line.empty())
+  {
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+// ---- Options: one table. ----------------------------------------------------
+//
+// Every option is one row of OptionTable(): its names, the form of its value
+// (none for a switch), its help text and what it does with the value. The
+// parser (ParseArguments) and the usage text (PrintUsage) are both made from
+// the rows, so an option cannot be accepted and undocumented, or the
+// reverse.
+
+// What an option does with its value (nullptr for options without one),
+// `option` being the name as typed. Returns -1 to go on, or the exit code
+// (after Fail() for bad values).
+using OptionHandler = std::function<int(Options& o, const std::string& option, const char* value)>;
+
+struct OptionRow
+{
+  std::vector<std::string> Names; // "-o", "--output"
+  const char* Value;              // what follows, e.g. "WxH"; nullptr: none
+  const char* Help;               // '\n' starts a new help line
+  OptionHandler Handle;
+};
+
+struct OptionSection
+{
+  const char* Title; // '\n' starts a new line
+  std::vector<OptionRow> Rows;
+};
+
+const std::vector<OptionSection>& OptionTable();
+
+const char* const UsageHead = R"(usage: mrgi-render SCENE -o OUT.png|OUT.exr [options]
+
+Renders SCENE headless (no X server, no GPU needed) and writes the image.
+
+SCENE   a built-in scene: cornell, cornell-spot, cornell-area, living-room, scaling
+        or a data file: .vtp .vtu .vti .vts .vtr .vtm .vtk .ply .obj .stl .gltf .glb
+)";
+
+// The usage text: the head, then each section's rows. A row's help starts in
+// column 25, on the row's own line when its names and value leave a space.
+void PrintUsage(FILE* out)
+{
+  const size_t helpColumn = 25;
+  std::string text = UsageHead;
+  for (const OptionSection& section : OptionTable())
+  {
+    text += std::string("\n") + section.Title + "\n";
+    for (const OptionRow& row : section.Rows)
+    {
+      std::string left = "  ";
+      for (size_t n = 0; n < row.Names.size(); ++n)
+      {
+        left += (n ? ", " : "") + row.Names[n];
+      }
+      if (row.Value)
+      {
+        left += std::string(" ") + row.Value;
+      }
+      std::vector<std::string> help = SplitLines(row.Help);
+      if (help.empty())
+      {
+        text += left + "\n";
+        continue;
+      }
+      if (left.size() < helpColumn)
+      {
+        text += left + std::string(helpColumn - left.size(), ' ') + help[0] + "\n";
+        help.erase(help.begin());
+      }
+      else
+      {
+        text += left + "\n";
+      }
+      for (const std::string& line : help)
+      {
+        text += std::string(helpColumn, ' ') + line + "\n";
+      }
+    }
+  }
+  std::fputs(text.c_str(), out);
+}
+
+// ---- Handlers of the common kinds of values. ----
+
+// A switch without a value: sets `field`.
+OptionHandler Set(bool Options::*field)
+{
+  return [field](Options& o, const std::string&, const char*) {
+    o.*field = true;
+    return -1;
+  };
+}
+
+// on | off.
+OptionHandler OnOff(bool Options::*field)
+{
+  return [field](Options& o, const std::string& option, const char* v) {
+    if (!ParseSwitch(v, "on", o.*field))
+    {
+      return Fail(option + " '" + v + "': expected on or off");
+    }
+    return -1;
+  };
+}
+
+// A whole number in [lo, hi] (mrgi_parse_int64's message on failure).
+OptionHandler Integer(long long Options::*field, int64_t lo, int64_t hi)
+{
+  return [field, lo, hi](Options& o, const std::string& option, const char* v) {
+    int64_t value = 0;
+    mrgi_error err;
+    if (mrgi_parse_int64(v, lo, hi, &value, &err) != MRGI_OK)
+    {
+      return Fail(option + ": " + err.message);
+    }
+    o.*field = value;
+    return -1;
+  };
+}
+
+// A finite number that `accept` takes; `expected` ("expected ...") names the
+// range in the error. `given`, when not null, is set too.
+OptionHandler Number(double Options::*field, std::function<bool(double)> accept,
+  const char* expected, bool Options::*given = nullptr)
+{
+  return [field, accept, expected, given](Options& o, const std::string& option, const char* v) {
+    double value = 0;
+    mrgi_error err;
+    if (mrgi_parse_double(v, &value, &err) != MRGI_OK || !accept(value))
+    {
+      return Fail(option + " '" + v + "': " + expected);
+    }
+    o.*field = value;
+    if (given)
+    {
+      o.*given = true;
+    }
+    return -1;
+  };
+}
+
+// X,Y,Z (mrgi_parse_vec3's message on failure); `given`, when not null, is set too.
+OptionHandler Vector(double (Options::*field)[3], bool Options::*given = nullptr)
+{
+  return [field, given](Options& o, const std::string& option, const char* v) {
+    std::string why;
+    if (!ParseVec3(option, v, o.*field, why))
+    {
+      return Fail(why);
+    }
+    if (given)
+    {
+      o.*given = true;
+    }
+    return -1;
+  };
+}
+
+// One of a few words, each standing for a value of `field`.
+template <typename T>
+OptionHandler Choice(T Options::*field, std::vector<std::pair<std::string, T>> choices)
+{
+  std::string expected;
+  for (size_t c = 0; c < choices.size(); ++c)
+  {
+    expected += (c == 0 ? "" : c + 1 == choices.size() ? " or " : ", ") + choices[c].first;
+  }
+  return [field, choices, expected](Options& o, const std::string& option, const char* v) {
+    for (const auto& choice : choices)
+    {
+      if (choice.first == v)
+      {
+        o.*field = choice.second;
+        return -1;
+      }
+    }
+    return Fail(option + " '" + v + "': expected " + expected);
+  };
+}
+
+// Appends the value to a list checked later (lights, area lights).
+OptionHandler Append(std::vector<std::string> Options::*field)
+{
+  return [field](Options& o, const std::string&, const char* v) {
+    (o.*field).emplace_back(v);
+    return -1;
+  };
+}
+
+// --depth-threshold / --normal-threshold: a number >= 0, or inf (never
+// refines; the pass takes -1 for it).
+OptionHandler Threshold(double Options::*field)
+{
+  return [field](Options& o, const std::string& option, const char* v) {
+    double value = 0;
+    mrgi_error err;
+    if (std::strcmp(v, "inf") == 0)
+    {
+      value = -1.0; // off
+    }
+    else if (mrgi_parse_double(v, &value, &err) != MRGI_OK || value < 0)
+    {
+      return Fail(option + " '" + v + "': expected a number >= 0 or inf");
+    }
+    o.*field = value;
+    return -1;
+  };
+}
+
+std::vector<std::pair<std::string, long long>> PresetChoices()
+{
+  std::vector<std::pair<std::string, long long>> choices;
+  for (int p = 0; p < MRGI_MULTIRES_PRESET_COUNT; ++p)
+  {
+    choices.emplace_back(mrgi_multires_preset_name(p), p);
+  }
+  return choices;
+}
+
+// ---- The table. ----
+
+const std::vector<OptionSection>& OptionTable()
+{
+  static const std::vector<OptionSection> table = {
+    { "Output",
+      {
+        { { "-o", "--output" }, "FILE",
+          ".png (what the window shows, 8-bit) or .exr (the HDR\n"
+          "float buffer); repeat to write several files",
+          [](Options& o, const std::string&, const char* v) {
+            if (!EndsWith(v, ".png") && !EndsWith(v, ".exr"))
+            {
+              return Fail(
+                std::string("output '") + v + "': the file name must end in .png or .exr");
+            }
+            o.Outputs.emplace_back(v);
+            return -1;
+          } },
+        { { "--half" }, nullptr, "write EXR channels as 16-bit half floats (default 32-bit)",
+          Set(&Options::Half) },
+        { { "--size" }, "WxH", "image size in pixels (default 512x512)",
+          [](Options& o, const std::string&, const char* v) {
+            int32_t w = 0, h = 0;
+            mrgi_error err;
+            if (mrgi_parse_size(v, &w, &h, &err) != MRGI_OK)
+            {
+              return Fail(std::string("--size: ") + err.message);
+            }
+            o.Width = w;
+            o.Height = h;
+            return -1;
+          } },
+        { { "--background" }, "R,G,B", "background colour (default 0,0,0)",
+          Vector(&Options::Background) },
+      } },
+    { "Camera (built-in scenes bring theirs; files are framed automatically)",
+      {
+        { { "--camera-position" }, "X,Y,Z", "", Vector(&Options::Position, &Options::HasPosition) },
+        { { "--camera-focal-point" }, "X,Y,Z", "", Vector(&Options::Focal, &Options::HasFocal) },
+        { { "--camera-view-up" }, "X,Y,Z", "", Vector(&Options::Up, &Options::HasUp) },
+        { { "--camera-view-angle" }, "DEG", "vertical field of view, degrees",
+          Number(
+            &Options::Angle, [](double a) { return a > 0 && a < 180; },
+            "expected degrees in (0, 180)", &Options::HasAngle) },
+        { { "--auto-camera" }, nullptr, "frame the whole scene (keeps the view direction)",
+          Set(&Options::AutoCamera) },
+        { { "--parallel" }, nullptr, "parallel (orthographic) projection",
+          Set(&Options::Parallel) },
+      } },
+    { "Lights (replace the scene's lights when given; repeatable)",
+      {
+        { { "--light" }, "SPEC",
+          "add a light; SPEC is one of\n"
+          "  positional:X,Y,Z\n"
+          "  spot:X,Y,Z:FX,FY,FZ:CONE  CONE = half angle in degrees\n"
+          "  directional:DX,DY,DZ      direction the light travels\n"
+          "  headlight",
+          Append(&Options::Lights) },
+        { { "--light-intensity" }, "S", "multiply every light's intensity by S",
+          Number(
+            &Options::LightIntensity, [](double s) { return s >= 0; },
+            "expected a finite number >= 0", &Options::HasLightIntensity) },
+      } },
+    { "Area lights (direct light from textured rectangles, nichols-penmatsa-wyman-2010;\n"
+      "Documentation/AreaLights.md; drawn whatever --gi says)",
+      {
+        { { "--area-light" }, "CX,CY,CZ:UX,UY,UZ:VX,VY,VZ[:R,G,B[:I]]",
+          "add a rectangle: centre, full edge vectors u and v\n"
+          "(perpendicular; it emits towards u x v), colour, intensity\n"
+          "(radiance = I x colour; default 1,1,1 and 1); repeatable;\n"
+          "cornell-area brings the Cornell box's emitter",
+          Append(&Options::AreaLights) },
+        { { "--area-light-two-sided" }, nullptr, "emit on both sides (every area light)",
+          Set(&Options::AreaLightTwoSided) },
+        { { "--area-light-samples" }, "N", "light samples per area light, 1..4096 (default 256)",
+          Integer(
+            &Options::AreaLightSamples, MRGI_AREA_LIGHT_MIN_SAMPLES, MRGI_AREA_LIGHT_MAX_SAMPLES) },
+        { { "--area-lights" }, "on|off",
+          "off: ignore the scene's and the command line's area lights (default on)",
+          OnOff(&Options::AreaLightsOn) },
+        { { "--area-light-visibility" }, "off|naive|incremental",
+          "shadows: none; a march through screen-space voxels per texel and\n"
+          "light sample; or coarse to fine, reusing agreeing coarse samples\n"
+          "(default incremental; nichols-penmatsa-wyman-2010 3.3)",
+          Choice<int>(&Options::AreaLightVisibility,
+            { { "off", vtkMRGIPass::VisibilityOff }, { "naive", vtkMRGIPass::VisibilityNaive },
+              { "incremental", vtkMRGIPass::VisibilityIncremental } }) },
+        { { "--voxel-size" }, "N", "voxel buffer side for the visibility, 1..4096 (default 128)",
+          Integer(&Options::VoxelSize, 1, MRGI_VOXEL_MAX_SIZE) },
+        { { "--visibility-interleave" }, "on|off",
+          "incremental visibility: 2x2 interleaved light samples (default off)",
+          OnOff(&Options::VisibilityInterleave) },
+        { { "--incremental-stencil" }, "on|off",
+          "incremental visibility: also gather below the geometric selection where\n"
+          "the coarser level's visibility changes, e.g. penumbrae (default on;\n"
+          "nichols-penmatsa-wyman-2010 3.4)",
+          OnOff(&Options::IncrementalStencil) },
+        { { "--area-light-specular" }, "on|off",
+          "Phong highlights of the area lights on specular materials (default on)",
+          OnOff(&Options::AreaLightSpecular) },
+        { { "--area-light-specular-resolution" }, "full|multires",
+          "where the highlights are gathered: every pixel (default), or the\n"
+          "multiresolution texels refined where the Phong lobe is narrower than\n"
+          "the texel spacing, then upsampled (nichols-penmatsa-wyman-2010 3.2.1;\n"
+          "experimental: up to ~34% error on the highlight on flat scenes)",
+          Choice<int>(&Options::AreaLightSpecularResolution,
+            { { "full", vtkMRGIPass::SpecularFullResolution },
+              { "multires", vtkMRGIPass::SpecularMultiresolution } }) },
+        { { "--specular" }, "KS:POWER",
+          "give every opaque surface VTK's Specular KS (0..1) and SpecularPower\n"
+          "POWER (0..128), e.g. 0.5:40, to see the highlights",
+          [](Options& o, const std::string&, const char* v) {
+            const std::vector<std::string> parts = SplitColon(v);
+            mrgi_error err;
+            if (parts.size() != 2 ||
+              mrgi_parse_double(parts[0].c_str(), &o.SpecularCoefficient, &err) != MRGI_OK ||
+              mrgi_parse_double(parts[1].c_str(), &o.SpecularPower, &err) != MRGI_OK ||
+              !(o.SpecularCoefficient >= 0 && o.SpecularCoefficient <= 1) ||
+              !(o.SpecularPower >= 0 && o.SpecularPower <= 128))
+            {
+              return Fail(std::string("--specular '") + v +
+                "': expected KS:POWER with KS in [0, 1] and POWER in [0, 128]");
+            }
+            o.HasSpecular = true;
+            return -1;
+          } },
+      } },
+    { "Scaling scene",
+      {
+        { { "--triangles" }, "N", "total triangle count (default 100000)",
+          Integer(&Options::Triangles, 12, 20000000) },
+        { { "--objects" }, "N", "number of objects (default 64)",
+          Integer(&Options::Objects, 1, 4096) },
+        { { "--seed" }, "N", "random seed (default 1)", Integer(&Options::Seed, 0, INT64_MAX) },
+      } },
+    { "Indirect light (one bounce; Documentation/IndirectLight.md)",
+      {
+        { { "--gi" }, "on|multires|full|off",
+          "on = multires (default): the stencil-selected multiresolution gather;\n"
+          "full: every pixel gathers every VPL; off: VTK's direct light only",
+          [](Options& o, const std::string&, const char* v) {
+            o.Multires = std::strcmp(v, "multires") == 0 || std::strcmp(v, "on") == 0;
+            if (!o.Multires && !ParseSwitch(v, "full", o.GI))
+            {
+              return Fail(std::string("--gi '") + v + "': expected off, on, multires or full");
+            }
+            if (o.Multires)
+            {
+              o.GI = true;
+            }
+            return -1;
+          } },
+        { { "--preset" }, "fast|balanced|accurate",
+          "multires settings from the measured speed/accuracy frontier\n"
+          "(default balanced; Documentation/Multiresolution.md); the options\n"
+          "below override single knobs",
+          Choice<long long>(&Options::Preset, PresetChoices()) },
+        { { "--depth-threshold" }, "T",
+          "multires: depth change per pixel width that refines (inf: never)",
+          Threshold(&Options::DepthThreshold) },
+        { { "--normal-threshold" }, "T",
+          "multires: normal-component spread that refines (inf: never)",
+          Threshold(&Options::NormalThreshold) },
+        { { "--finest-level" }, "N", "multires: finest level that gathers (0 = full resolution)",
+          Integer(&Options::FinestLevel, 0, 23) },
+        { { "--upsample" }, "tent|mask",
+          "multires: tent (default) or mask-weighted (Besenthal) upsampling",
+          Choice<bool>(&Options::MaskUpsampling, { { "tent", false }, { "mask", true } }) },
+        { { "--gather" }, "stencil|splat",
+          "multires: stenciled gather (default) or multiresolution splatting\n"
+          "(nichols-wyman-2009; same image, slower: for comparisons)",
+          Choice<bool>(&Options::Splatting, { { "stencil", false }, { "splat", true } }) },
+        { { "--surface-detail" }, "A",
+          "multires: modulate by the view angle, nichols-wyman-2009 eq. 2 (0..1, default 0)",
+          Number(
+            &Options::SurfaceDetail, [](double a) { return a >= 0 && a <= 1; },
+            "expected a number in [0, 1]") },
+        { { "--vpls" }, "N", "virtual point lights, 0..4096 (default 256 = 16x16)",
+          Integer(&Options::VPLs, 0, 4096) },
+        { { "--vpl-selection" }, "grid|importance",
+          "regular grid over the light's view (default) or flux importance sampling",
+          Choice<bool>(&Options::ImportanceVPLs, { { "grid", false }, { "importance", true } }) },
+        { { "--rsm-size" }, "N", "reflective shadow map texels per side, 16..2048 (default 256)",
+          Integer(&Options::RSMSize, 16, 2048) },
+        { { "--indirect-strength" }, "S", "factor on the indirect light (default 1)",
+          Number(
+            &Options::IndirectStrength, [](double s) { return s >= 0 && s <= 1e6; },
+            "expected a number in [0, 1e6]") },
+        { { "--indirect-only" }, nullptr, "write only the indirect light (EXR: float RGB)",
+          Set(&Options::IndirectOnly) },
+        { { "--tone-mapping" }, nullptr, "filmic tone mapping of the result (vtkToneMappingPass)",
+          Set(&Options::ToneMapping) },
+      } },
+    { "Ground truth (CPU, Embree: direct light and one bounce with exact visibility)",
+      {
+        { { "--reference" }, nullptr, "render the ground truth instead of the GPU image",
+          Set(&Options::Reference) },
+        { { "--reference-visibility" }, "on|off",
+          "exact visibility between bounce points (default on); off = the RSM assumption",
+          OnOff(&Options::ReferenceVisibility) },
+        { { "--reference-shadows" }, "on|off",
+          "shadows in the direct part (default on; VTK's direct light has none)",
+          OnOff(&Options::ReferenceShadows) },
+        { { "--reference-error" }, "E",
+          "stop at this relative standard error of the indirect part (default 0.01)",
+          Number(
+            &Options::ReferenceError, [](double e) { return e >= 0 && e <= 1; },
+            "expected a number in [0, 1]") },
+        { { "--reference-passes" }, "N",
+          "at most N passes of 16 bounce rays per pixel (default 64)",
+          Integer(&Options::ReferencePasses, 1, 100000) },
+      } },
+    { "Measurement",
+      {
+        { { "--timings" }, nullptr, "print the GPU time of each stage (vtkRenderTimerLog)",
+          Set(&Options::Timings) },
+        { { "--frames" }, "N", "render N frames; timings are medians (default 1)",
+          Integer(&Options::Frames, 1, 1000000) },
+      } },
+    { "Other",
+      {
+        { { "--interactive" }, nullptr, "open a window to look around (needs DISPLAY)",
+          Set(&Options::Interactive) },
+        { { "-q", "--quiet" }, nullptr, "no progress lines", Set(&Options::Quiet) },
+        { { "--version" }, nullptr, "print the version",
+          [](Options&, const std::string&, const char*) {
+            std::printf("mrgi-render %s\n", MRGI_VERSION_STRING);
+            return 0;
+          } },
+        { { "-h", "--help" }, nullptr, "this text",
+          [](Options&, const std::string&, const char*) {
+            PrintUsage(stdout);
+            return 0;
+          } },
+      } },
+  };
+  return table;
+}
+
+// The row of `name`, or nullptr.
+const OptionRow* FindOption(const std::string& name)
+{
+  for (const OptionSection& section : OptionTable())
+  {
+    for (const OptionRow& row : section.Rows)
+    {
+      if (std::find(row.Names.begin(), row.Names.end(), name) != row.Names.end())
+      {
+        return &row;
+      }
+    }
+  }
+  return nullptr;
+}
+
 // Parses argv into `o`; returns -1 to go on, else the exit code.
 int ParseArguments(int argc, char* argv[], Options& o)
 {
-  auto needValue = [&](int& i, const std::string& option, const char*& value) -> bool {
-    if (i + 1 >= argc)
-    {
-      Fail(option + " needs a value");
-      return false;
-    }
-    value = argv[++i];
-    return true;
-  };
-  mrgi_error err;
-  std::string why;
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
-    const char* v = nullptr;
-    if (arg == "-h" || arg == "--help")
+    if (const OptionRow* row = FindOption(arg))
     {
-      std::fputs(Usage, stdout);
-      return 0;
-    }
-    else if (arg == "--version")
-    {
-      std::printf("mrgi-render %s\n", MRGI_VERSION_STRING);
-      return 0;
-    }
-    else if (arg == "-o" || arg == "--output")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      if (!EndsWith(v, ".png") && !EndsWith(v, ".exr"))
+      const char* value = nullptr;
+      if (row->Value)
       {
-        return Fail(std::string("output '") + v + "': the file name must end in .png or .exr");
+        if (i + 1 >= argc)
+        {
+          return Fail(arg + " needs a value");
+        }
+        value = argv[++i];
       }
-      o.Outputs.emplace_back(v);
-    }
-    else if (arg == "--half")
-    {
-      o.Half = true;
-    }
-    else if (arg == "--size")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      int32_t w = 0, h = 0;
-      if (mrgi_parse_size(v, &w, &h, &err) != MRGI_OK)
+      const int code = row->Handle(o, arg, value);
+      if (code >= 0)
       {
-        return Fail(std::string("--size: ") + err.message);
+        return code;
       }
-      o.Width = w;
-      o.Height = h;
-    }
-    else if (arg == "--background")
-    {
-      if (!needValue(i, arg, v) || !ParseVec3(arg, v, o.Background, why))
-        return why.empty() ? 2 : Fail(why);
-    }
-    else if (arg == "--camera-position")
-    {
-      if (!needValue(i, arg, v) || !ParseVec3(arg, v, o.Position, why))
-        return why.empty() ? 2 : Fail(why);
-      o.HasPosition = true;
-    }
-    else if (arg == "--camera-focal-point")
-    {
-      if (!needValue(i, arg, v) || !ParseVec3(arg, v, o.Focal, why))
-        return why.empty() ? 2 : Fail(why);
-      o.HasFocal = true;
-    }
-    else if (arg == "--camera-view-up")
-    {
-      if (!needValue(i, arg, v) || !ParseVec3(arg, v, o.Up, why))
-        return why.empty() ? 2 : Fail(why);
-      o.HasUp = true;
-    }
-    else if (arg == "--camera-view-angle")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      if (mrgi_parse_double(v, &o.Angle, &err) != MRGI_OK || o.Angle <= 0 || o.Angle >= 180)
-      {
-        return Fail(std::string("--camera-view-angle '") + v + "': expected degrees in (0, 180)");
-      }
-      o.HasAngle = true;
-    }
-    else if (arg == "--auto-camera")
-    {
-      o.AutoCamera = true;
-    }
-    else if (arg == "--parallel")
-    {
-      o.Parallel = true;
-    }
-    else if (arg == "--light")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      o.Lights.emplace_back(v);
-    }
-    else if (arg == "--light-intensity")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      if (mrgi_parse_double(v, &o.LightIntensity, &err) != MRGI_OK || o.LightIntensity < 0)
-      {
-        return Fail(std::string("--light-intensity '") + v + "': expected a finite number >= 0");
-      }
-      o.HasLightIntensity = true;
-    }
-    else if (arg == "--triangles" || arg == "--objects" || arg == "--seed" || arg == "--frames")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      int64_t value = 0;
-      int64_t lo = 1, hi = 1000000;
-      if (arg == "--triangles")
-      {
-        lo = 12;
-        hi = 20000000;
-      }
-      else if (arg == "--objects")
-      {
-        hi = 4096;
-      }
-      else if (arg == "--seed")
-      {
-        lo = 0;
-        hi = INT64_MAX;
-      }
-      if (mrgi_parse_int64(v, lo, hi, &value, &err) != MRGI_OK)
-      {
-        return Fail(arg + ": " + err.message);
-      }
-      (arg == "--triangles" ? o.Triangles
-        : arg == "--objects" ? o.Objects
-        : arg == "--seed"    ? o.Seed
-                             : o.Frames) = value;
-    }
-    else if (arg == "--gi")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      o.Multires = std::strcmp(v, "multires") == 0 || std::strcmp(v, "on") == 0;
-      if (!o.Multires && !ParseSwitch(v, "full", o.GI))
-        return Fail(std::string("--gi '") + v + "': expected off, on, multires or full");
-      if (o.Multires)
-        o.GI = true;
-    }
-    else if (arg == "--preset")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      o.Preset = -1;
-      for (int p = 0; p < MRGI_MULTIRES_PRESET_COUNT; ++p)
-      {
-        if (std::strcmp(v, mrgi_multires_preset_name(p)) == 0)
-          o.Preset = p;
-      }
-      if (o.Preset < 0)
-        return Fail(std::string("--preset '") + v + "': expected fast, balanced or accurate");
-    }
-    else if (arg == "--area-light")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      o.AreaLights.emplace_back(v);
-    }
-    else if (arg == "--area-light-two-sided")
-    {
-      o.AreaLightTwoSided = true;
-    }
-    else if (arg == "--area-lights")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      if (!ParseSwitch(v, "on", o.AreaLightsOn))
-        return Fail(std::string("--area-lights '") + v + "': expected on or off");
-    }
-    else if (arg == "--area-light-visibility")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      if (std::strcmp(v, "off") == 0)
-        o.AreaLightVisibility = vtkMRGIPass::VisibilityOff;
-      else if (std::strcmp(v, "naive") == 0)
-        o.AreaLightVisibility = vtkMRGIPass::VisibilityNaive;
-      else if (std::strcmp(v, "incremental") == 0)
-        o.AreaLightVisibility = vtkMRGIPass::VisibilityIncremental;
-      else
-        return Fail(std::string("--area-light-visibility '") + v + "': expected off, naive or incremental");
-    }
-    else if (arg == "--visibility-interleave")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      if (!ParseSwitch(v, "on", o.VisibilityInterleave))
-        return Fail(std::string("--visibility-interleave '") + v + "': expected on or off");
-    }
-    else if (arg == "--area-light-specular-resolution")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      if (std::strcmp(v, "full") == 0)
-        o.AreaLightSpecularResolution = vtkMRGIPass::SpecularFullResolution;
-      else if (std::strcmp(v, "multires") == 0)
-        o.AreaLightSpecularResolution = vtkMRGIPass::SpecularMultiresolution;
-      else
-        return Fail(std::string("--area-light-specular-resolution '") + v + "': expected full or multires");
-    }
-    else if (arg == "--incremental-stencil")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      if (!ParseSwitch(v, "on", o.IncrementalStencil))
-        return Fail(std::string("--incremental-stencil '") + v + "': expected on or off");
-    }
-    else if (arg == "--area-light-specular")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      if (!ParseSwitch(v, "on", o.AreaLightSpecular))
-        return Fail(std::string("--area-light-specular '") + v + "': expected on or off");
-    }
-    else if (arg == "--specular")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      const std::vector<std::string> parts = SplitColon(v);
-      if (parts.size() != 2 || mrgi_parse_double(parts[0].c_str(), &o.SpecularCoefficient, &err) != MRGI_OK ||
-        mrgi_parse_double(parts[1].c_str(), &o.SpecularPower, &err) != MRGI_OK ||
-        !(o.SpecularCoefficient >= 0 && o.SpecularCoefficient <= 1) ||
-        !(o.SpecularPower >= 0 && o.SpecularPower <= 128))
-        return Fail(std::string("--specular '") + v + "': expected KS:POWER with KS in [0, 1] and POWER in [0, 128]");
-      o.HasSpecular = true;
-    }
-    else if (arg == "--voxel-size")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      int64_t value = 0;
-      if (mrgi_parse_int64(v, 1, MRGI_VOXEL_MAX_SIZE, &value, &err) != MRGI_OK)
-        return Fail(arg + ": " + err.message);
-      o.VoxelSize = value;
-    }
-    else if (arg == "--area-light-samples")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      int64_t value = 0;
-      if (mrgi_parse_int64(v, MRGI_AREA_LIGHT_MIN_SAMPLES, MRGI_AREA_LIGHT_MAX_SAMPLES, &value, &err) != MRGI_OK)
-        return Fail(arg + ": " + err.message);
-      o.AreaLightSamples = value;
-    }
-    else if (arg == "--gather")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      if (std::strcmp(v, "stencil") != 0 && std::strcmp(v, "splat") != 0)
-        return Fail(std::string("--gather '") + v + "': expected stencil or splat");
-      o.Splatting = std::strcmp(v, "splat") == 0;
-    }
-    else if (arg == "--surface-detail")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      if (mrgi_parse_double(v, &o.SurfaceDetail, &err) != MRGI_OK || o.SurfaceDetail < 0 ||
-        o.SurfaceDetail > 1)
-        return Fail(arg + " '" + v + "': expected a number in [0, 1]");
-    }
-    else if (arg == "--depth-threshold" || arg == "--normal-threshold")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      double value = 0;
-      if (std::strcmp(v, "inf") == 0)
-        value = -1.0; // off
-      else if (mrgi_parse_double(v, &value, &err) != MRGI_OK || value < 0)
-        return Fail(arg + " '" + v + "': expected a number >= 0 or inf");
-      (arg == "--depth-threshold" ? o.DepthThreshold : o.NormalThreshold) = value;
-    }
-    else if (arg == "--finest-level")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      int64_t value = 0;
-      if (mrgi_parse_int64(v, 0, 23, &value, &err) != MRGI_OK)
-        return Fail(arg + ": " + err.message);
-      o.FinestLevel = value;
-    }
-    else if (arg == "--upsample")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      if (std::strcmp(v, "tent") == 0)
-        o.MaskUpsampling = false;
-      else if (std::strcmp(v, "mask") == 0)
-        o.MaskUpsampling = true;
-      else
-        return Fail(std::string("--upsample '") + v + "': expected tent or mask");
-    }
-    else if (arg == "--vpls" || arg == "--rsm-size" || arg == "--reference-passes")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      int64_t value = 0;
-      const int64_t lo = arg == "--vpls" ? 0 : arg == "--rsm-size" ? 16 : 1;
-      const int64_t hi = arg == "--vpls" ? 4096 : arg == "--rsm-size" ? 2048 : 100000;
-      if (mrgi_parse_int64(v, lo, hi, &value, &err) != MRGI_OK)
-      {
-        return Fail(arg + ": " + err.message);
-      }
-      (arg == "--vpls" ? o.VPLs : arg == "--rsm-size" ? o.RSMSize : o.ReferencePasses) = value;
-    }
-    else if (arg == "--vpl-selection")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      if (std::strcmp(v, "grid") == 0)
-        o.ImportanceVPLs = false;
-      else if (std::strcmp(v, "importance") == 0)
-        o.ImportanceVPLs = true;
-      else
-        return Fail(std::string("--vpl-selection '") + v + "': expected grid or importance");
-    }
-    else if (arg == "--indirect-strength" || arg == "--reference-error")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      double value = 0;
-      const double hi = arg == "--indirect-strength" ? 1e6 : 1.0;
-      if (mrgi_parse_double(v, &value, &err) != MRGI_OK || value < 0 || value > hi)
-      {
-        return Fail(arg + " '" + v + "': expected a number in [0, " + (hi > 1 ? "1e6" : "1") + "]");
-      }
-      (arg == "--indirect-strength" ? o.IndirectStrength : o.ReferenceError) = value;
-    }
-    else if (arg == "--reference-visibility" || arg == "--reference-shadows")
-    {
-      if (!needValue(i, arg, v))
-        return 2;
-      if (!ParseSwitch(v, "on", arg == "--reference-visibility" ? o.ReferenceVisibility : o.ReferenceShadows))
-        return Fail(arg + " '" + v + "': expected on or off");
-    }
-    else if (arg == "--indirect-only")
-    {
-      o.IndirectOnly = true;
-    }
-    else if (arg == "--tone-mapping")
-    {
-      o.ToneMapping = true;
-    }
-    else if (arg == "--reference")
-    {
-      o.Reference = true;
-    }
-    else if (arg == "--timings")
-    {
-      o.Timings = true;
-    }
-    else if (arg == "--interactive")
-    {
-      o.Interactive = true;
-    }
-    else if (arg == "-q" || arg == "--quiet")
-    {
-      o.Quiet = true;
     }
     else if (!arg.empty() && arg[0] == '-')
     {

@@ -1431,20 +1431,21 @@ static void test_refinement(void)
   printf("refinement metric: ok\n");
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_validation();
-  test_pyramid();
-  test_samples();
-  test_diffuse_convergence();
-  test_point_limit();
-  test_early_outs();
-  test_extremes();
-  test_specular_convergence();
-  test_lobe_peak_and_miss();
-  test_lobe_grid();
-  test_specular_visibility();
-  test_refinement();
-  printf("TestAreaLight passed\n");
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_validation),
+    MRGI_TEST_CASE(test_pyramid),
+    MRGI_TEST_CASE(test_samples),
+    MRGI_TEST_CASE(test_diffuse_convergence),
+    MRGI_TEST_CASE(test_point_limit),
+    MRGI_TEST_CASE(test_early_outs),
+    MRGI_TEST_CASE(test_extremes),
+    MRGI_TEST_CASE(test_specular_convergence),
+    MRGI_TEST_CASE(test_lobe_peak_and_miss),
+    MRGI_TEST_CASE(test_lobe_grid),
+    MRGI_TEST_CASE(test_specular_visibility),
+    MRGI_TEST_CASE(test_refinement),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

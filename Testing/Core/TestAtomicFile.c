@@ -145,12 +145,14 @@ static void test_bad_arguments(void)
   MRGI_CHECK(strstr(err.message, "output path"));
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_commit_replaces_atomically();
-  test_abort_removes_temporary();
-  test_missing_directory_fails_cleanly();
-  test_commit_failure_removes_temporary();
-  test_bad_arguments();
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_commit_replaces_atomically),
+    MRGI_TEST_CASE(test_abort_removes_temporary),
+    MRGI_TEST_CASE(test_missing_directory_fails_cleanly),
+    MRGI_TEST_CASE(test_commit_failure_removes_temporary),
+    MRGI_TEST_CASE(test_bad_arguments),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

@@ -505,18 +505,20 @@ static void test_read_rejects_absurd_data_windows(void)
   free(data);
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_float_round_trip_is_exact();
-  test_half_round_trip_within_half_precision();
-  test_half_conversion_rounding_and_subnormals();
-  test_nonfinite_and_overflow_are_never_written();
-  test_channel_names_and_order();
-  test_write_rejects_bad_input();
-  test_write_to_missing_directory_leaves_nothing();
-  test_read_rejects_missing_and_foreign_files();
-  test_read_rejects_truncated_files();
-  test_read_rejects_corrupt_files();
-  test_read_rejects_absurd_data_windows();
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_float_round_trip_is_exact),
+    MRGI_TEST_CASE(test_half_round_trip_within_half_precision),
+    MRGI_TEST_CASE(test_half_conversion_rounding_and_subnormals),
+    MRGI_TEST_CASE(test_nonfinite_and_overflow_are_never_written),
+    MRGI_TEST_CASE(test_channel_names_and_order),
+    MRGI_TEST_CASE(test_write_rejects_bad_input),
+    MRGI_TEST_CASE(test_write_to_missing_directory_leaves_nothing),
+    MRGI_TEST_CASE(test_read_rejects_missing_and_foreign_files),
+    MRGI_TEST_CASE(test_read_rejects_truncated_files),
+    MRGI_TEST_CASE(test_read_rejects_corrupt_files),
+    MRGI_TEST_CASE(test_read_rejects_absurd_data_windows),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

@@ -76,14 +76,16 @@ static void test_status_names(void)
   MRGI_CHECK(strcmp(mrgi_status_name((mrgi_status)1234), "MRGI_ERR_UNKNOWN") == 0);
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_set_formats_and_returns_status();
-  test_set_accepts_null_error();
-  test_set_with_null_format_leaves_empty_message();
-  test_long_message_is_truncated_and_terminated();
-  test_prefix_keeps_status_and_message();
-  test_clear();
-  test_status_names();
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_set_formats_and_returns_status),
+    MRGI_TEST_CASE(test_set_accepts_null_error),
+    MRGI_TEST_CASE(test_set_with_null_format_leaves_empty_message),
+    MRGI_TEST_CASE(test_long_message_is_truncated_and_terminated),
+    MRGI_TEST_CASE(test_prefix_keeps_status_and_message),
+    MRGI_TEST_CASE(test_clear),
+    MRGI_TEST_CASE(test_status_names),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

@@ -312,11 +312,12 @@ static void test_locale_independent(void)
   check_block(buffer);
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_block();
-  test_buffer_contract();
-  test_locale_independent();
-  printf("TestGLSLDefines: all checks passed\n");
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_block),
+    MRGI_TEST_CASE(test_buffer_contract),
+    MRGI_TEST_CASE(test_locale_independent),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

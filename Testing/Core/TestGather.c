@@ -440,17 +440,18 @@ static void test_bad_input(void)
   free_receivers(&t);
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_one_vpl_by_hand();
-  test_facing_rules();
-  test_vanishing_distance();
-  test_matrix_applied();
-  test_scale_invariance();
-  test_extreme_intensities();
-  test_receiver_flags_and_order();
-  test_malformed_vpls_skipped();
-  test_bad_input();
-  printf("TestGather: all checks passed\n");
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_one_vpl_by_hand),
+    MRGI_TEST_CASE(test_facing_rules),
+    MRGI_TEST_CASE(test_vanishing_distance),
+    MRGI_TEST_CASE(test_matrix_applied),
+    MRGI_TEST_CASE(test_scale_invariance),
+    MRGI_TEST_CASE(test_extreme_intensities),
+    MRGI_TEST_CASE(test_receiver_flags_and_order),
+    MRGI_TEST_CASE(test_malformed_vpls_skipped),
+    MRGI_TEST_CASE(test_bad_input),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

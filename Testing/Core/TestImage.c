@@ -236,16 +236,18 @@ static void test_from_rgba8(void)
   MRGI_CHECK(strstr(err.message, "width 0"));
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_create_zero_filled();
-  test_create_rejects_bad_sizes();
-  test_validate();
-  test_copy();
-  test_count_nonfinite();
-  test_flip_rows();
-  test_srgb_curve();
-  test_to_rgba8();
-  test_from_rgba8();
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_create_zero_filled),
+    MRGI_TEST_CASE(test_create_rejects_bad_sizes),
+    MRGI_TEST_CASE(test_validate),
+    MRGI_TEST_CASE(test_copy),
+    MRGI_TEST_CASE(test_count_nonfinite),
+    MRGI_TEST_CASE(test_flip_rows),
+    MRGI_TEST_CASE(test_srgb_curve),
+    MRGI_TEST_CASE(test_to_rgba8),
+    MRGI_TEST_CASE(test_from_rgba8),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

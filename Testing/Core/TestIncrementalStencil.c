@@ -244,11 +244,12 @@ static void test_bad_input(void)
   scene_free(&s);
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_shadow_edge();
-  test_non_receivers();
-  test_bad_input();
-  printf("TestIncrementalStencil: all checks passed\n");
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_shadow_edge),
+    MRGI_TEST_CASE(test_non_receivers),
+    MRGI_TEST_CASE(test_bad_input),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

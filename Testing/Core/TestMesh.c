@@ -327,15 +327,16 @@ static void test_vertex_normals(void)
   MRGI_CHECK(mrgi_mesh_compute_vertex_normals(NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_create_rejects_bad_sizes();
-  test_create_and_destroy();
-  test_put_polygon();
-  test_warped_quad_gets_newell_normal();
-  test_validate_catches_bad_data();
-  test_bounds_and_area();
-  test_vertex_normals();
-  printf("TestMesh: all checks passed\n");
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_create_rejects_bad_sizes),
+    MRGI_TEST_CASE(test_create_and_destroy),
+    MRGI_TEST_CASE(test_put_polygon),
+    MRGI_TEST_CASE(test_warped_quad_gets_newell_normal),
+    MRGI_TEST_CASE(test_validate_catches_bad_data),
+    MRGI_TEST_CASE(test_bounds_and_area),
+    MRGI_TEST_CASE(test_vertex_normals),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

@@ -329,17 +329,19 @@ static void test_small_images_use_smaller_windows(void)
   mrgi_image_destroy(&one_b);
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_identical_images();
-  test_known_values_on_2x2();
-  test_constant_offset();
-  test_ssim_matches_direct_formula();
-  test_ssim_decreases_with_noise();
-  test_masked_ssim_skips_windows();
-  test_zero_reference_conventions();
-  test_compare_rejects_bad_input();
-  test_difference_image();
-  test_small_images_use_smaller_windows();
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_identical_images),
+    MRGI_TEST_CASE(test_known_values_on_2x2),
+    MRGI_TEST_CASE(test_constant_offset),
+    MRGI_TEST_CASE(test_ssim_matches_direct_formula),
+    MRGI_TEST_CASE(test_ssim_decreases_with_noise),
+    MRGI_TEST_CASE(test_masked_ssim_skips_windows),
+    MRGI_TEST_CASE(test_zero_reference_conventions),
+    MRGI_TEST_CASE(test_compare_rejects_bad_input),
+    MRGI_TEST_CASE(test_difference_image),
+    MRGI_TEST_CASE(test_small_images_use_smaller_windows),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

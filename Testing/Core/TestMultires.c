@@ -1009,16 +1009,17 @@ static void test_bad_input(void)
   gbuffer_free(&g);
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_layout();
-  test_pixel_size();
-  test_mipmap_by_hand();
-  test_threshold_extremes();
-  test_selection_random();
-  test_scale_invariance();
-  test_edge_cases();
-  test_bad_input();
-  printf("TestMultires: all checks passed\n");
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_layout),
+    MRGI_TEST_CASE(test_pixel_size),
+    MRGI_TEST_CASE(test_mipmap_by_hand),
+    MRGI_TEST_CASE(test_threshold_extremes),
+    MRGI_TEST_CASE(test_selection_random),
+    MRGI_TEST_CASE(test_scale_invariance),
+    MRGI_TEST_CASE(test_edge_cases),
+    MRGI_TEST_CASE(test_bad_input),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

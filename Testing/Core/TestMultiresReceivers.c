@@ -7,7 +7,7 @@
 
 #include <string.h>
 
-int main(void)
+static void test_receivers(void)
 {
   enum { W = 5, H = 3 };
   float position[W * H * 4], normal[W * H * 4];
@@ -85,5 +85,12 @@ int main(void)
   MRGI_CHECK(strstr(err.message, "layout is for") != NULL);
   free(rp);
   free(rn);
-  return 0;
+}
+
+int main(int argc, char** argv)
+{
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_receivers),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

@@ -418,17 +418,19 @@ static void test_read_rejects_corrupt_files(void)
   free(data);
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_rgba8_round_trip_all_channel_counts();
-  test_write_image_converts_floats();
-  test_read_16bit_gray_alpha();
-  test_read_palette_with_transparency();
-  test_read_rejects_oversized_header();
-  test_write_rejects_bad_input();
-  test_write_to_missing_directory_leaves_nothing();
-  test_read_rejects_missing_and_foreign_files();
-  test_read_rejects_truncated_files();
-  test_read_rejects_corrupt_files();
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_rgba8_round_trip_all_channel_counts),
+    MRGI_TEST_CASE(test_write_image_converts_floats),
+    MRGI_TEST_CASE(test_read_16bit_gray_alpha),
+    MRGI_TEST_CASE(test_read_palette_with_transparency),
+    MRGI_TEST_CASE(test_read_rejects_oversized_header),
+    MRGI_TEST_CASE(test_write_rejects_bad_input),
+    MRGI_TEST_CASE(test_write_to_missing_directory_leaves_nothing),
+    MRGI_TEST_CASE(test_read_rejects_missing_and_foreign_files),
+    MRGI_TEST_CASE(test_read_rejects_truncated_files),
+    MRGI_TEST_CASE(test_read_rejects_corrupt_files),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

@@ -173,12 +173,14 @@ static void test_locale_independence(void)
   }
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_double();
-  test_int64();
-  test_size();
-  test_vec3();
-  test_locale_independence();
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_double),
+    MRGI_TEST_CASE(test_int64),
+    MRGI_TEST_CASE(test_size),
+    MRGI_TEST_CASE(test_vec3),
+    MRGI_TEST_CASE(test_locale_independence),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

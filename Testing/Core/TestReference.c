@@ -1182,19 +1182,20 @@ static void test_area_cornell(void)
   mrgi_scene_destroy(&scene);
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_direct();
-  test_shadows();
-  test_bounce();
-  test_cornell();
-  test_determinism_and_convergence();
-  test_bad_input();
-  test_area_unoccluded();
-  test_area_penumbra();
-  test_area_no_visibility();
-  test_area_determinism_and_input();
-  test_area_cornell();
-  printf("TestReference passed\n");
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_direct),
+    MRGI_TEST_CASE(test_shadows),
+    MRGI_TEST_CASE(test_bounce),
+    MRGI_TEST_CASE(test_cornell),
+    MRGI_TEST_CASE(test_determinism_and_convergence),
+    MRGI_TEST_CASE(test_bad_input),
+    MRGI_TEST_CASE(test_area_unoccluded),
+    MRGI_TEST_CASE(test_area_penumbra),
+    MRGI_TEST_CASE(test_area_no_visibility),
+    MRGI_TEST_CASE(test_area_determinism_and_input),
+    MRGI_TEST_CASE(test_area_cornell),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

@@ -253,12 +253,13 @@ static void test_images(void)
   MRGI_CHECK(memcmp(&scene, &zero, sizeof(zero)) == 0);
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_lifetime();
-  test_validation();
-  test_area_light_helpers();
-  test_images();
-  printf("TestScene: all checks passed\n");
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_lifetime),
+    MRGI_TEST_CASE(test_validation),
+    MRGI_TEST_CASE(test_area_light_helpers),
+    MRGI_TEST_CASE(test_images),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

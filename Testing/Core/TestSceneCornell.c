@@ -79,7 +79,7 @@ static double dot3(const double a[3], const double b[3])
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-static void test_geometry(const mrgi_scene* scene)
+static void check_geometry(const mrgi_scene* scene)
 {
   mrgi_error err;
   MRGI_CHECK(mrgi_scene_validate(scene, &err) == MRGI_OK);
@@ -126,7 +126,7 @@ static void test_geometry(const mrgi_scene* scene)
 
 /* Walls (and floor, ceiling) face the box's centre; block faces face away
  * from their block's centre; vertex normals agree with the faces. */
-static void test_winding(const mrgi_scene* scene)
+static void check_winding(const mrgi_scene* scene)
 {
   mrgi_error err;
   const double box_centre[3] = { 278.0, 274.4, 279.6 };
@@ -203,7 +203,7 @@ static void test_winding(const mrgi_scene* scene)
   MRGI_CHECK_NEAR(normal[1], 1.0, 1e-12);
 }
 
-static void test_camera(const mrgi_scene* scene)
+static void check_camera(const mrgi_scene* scene)
 {
   const mrgi_camera* camera = &scene->camera;
   MRGI_CHECK_NEAR(camera->view_angle_deg, 39.3, 0.05);
@@ -364,22 +364,44 @@ static void test_names_and_bad_input(void)
   MRGI_CHECK(mrgi_scene_cornell_box(MRGI_CORNELL_POINT, NULL, NULL) == MRGI_ERR_INVALID_ARGUMENT);
 }
 
-int main(void)
+/* Runs `check` on the scene of each variant. */
+static void for_each_variant(void (*check)(const mrgi_scene*))
 {
   for (int i = 0; i < 3; ++i)
   {
     mrgi_error err;
     mrgi_scene scene;
     MRGI_CHECK(mrgi_scene_cornell_box(variants[i], &scene, &err) == MRGI_OK);
-    test_geometry(&scene);
-    test_winding(&scene);
-    test_camera(&scene);
+    check(&scene);
     mrgi_scene_destroy(&scene);
   }
-  test_point_variant();
-  test_spot_variant();
-  test_area_variant();
-  test_names_and_bad_input();
-  printf("TestSceneCornell: all checks passed\n");
-  return 0;
+}
+
+static void test_geometry(void)
+{
+  for_each_variant(check_geometry);
+}
+
+static void test_winding(void)
+{
+  for_each_variant(check_winding);
+}
+
+static void test_camera(void)
+{
+  for_each_variant(check_camera);
+}
+
+int main(int argc, char** argv)
+{
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_geometry),
+    MRGI_TEST_CASE(test_winding),
+    MRGI_TEST_CASE(test_camera),
+    MRGI_TEST_CASE(test_point_variant),
+    MRGI_TEST_CASE(test_spot_variant),
+    MRGI_TEST_CASE(test_area_variant),
+    MRGI_TEST_CASE(test_names_and_bad_input),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

@@ -109,7 +109,7 @@ static int crossings_up(const mrgi_mesh* mesh, const double origin[3])
   return n;
 }
 
-static void test_geometry(const mrgi_scene* scene)
+static void check_geometry(const mrgi_scene* scene)
 {
   mrgi_error err;
   MRGI_CHECK(mrgi_scene_validate(scene, &err) == MRGI_OK);
@@ -205,7 +205,7 @@ static void test_geometry(const mrgi_scene* scene)
   }
 }
 
-static void test_light(const mrgi_scene* scene)
+static void check_light(const mrgi_scene* scene)
 {
   mrgi_error err;
   const mrgi_area_light* light = &scene->area_lights[0];
@@ -333,7 +333,7 @@ static void test_light(const mrgi_scene* scene)
 /* The camera sees the screen: its centre and corners project inside the
  * image (square aspect, the narrowest a landscape window has), and nothing
  * stands between the eye and them. */
-static void test_camera(const mrgi_scene* scene)
+static void check_camera(const mrgi_scene* scene)
 {
   mrgi_error err;
   const mrgi_camera* camera = &scene->camera;
@@ -414,7 +414,7 @@ static void test_camera(const mrgi_scene* scene)
 
 /* Shadows: the sofa, the table and the shelf block some lines from the
  * screen's centre to the floor and walls. */
-static void test_occluders(const mrgi_scene* scene)
+static void check_occluders(const mrgi_scene* scene)
 {
   const mrgi_area_light* light = &scene->area_lights[0];
   const char* occluders[3] = { "table", "sofa", "shelf" };
@@ -500,19 +500,51 @@ static void test_lifetime(void)
   MRGI_CHECK(mrgi_scene_living_room(NULL, NULL) == MRGI_ERR_INVALID_ARGUMENT);
 }
 
-int main(void)
+/* Runs `check` on a freshly built living room. */
+static void with_living_room(void (*check)(const mrgi_scene*))
 {
   mrgi_error err;
   mrgi_scene scene;
   MRGI_CHECK(mrgi_scene_living_room(&scene, &err) == MRGI_OK);
-  printf("living room: %d meshes, %lld triangles\n", (int)scene.mesh_count,
-         (long long)mrgi_scene_triangle_count(&scene));
-  test_geometry(&scene);
-  test_light(&scene);
-  test_camera(&scene);
-  test_occluders(&scene);
+  check(&scene);
   mrgi_scene_destroy(&scene);
-  test_lifetime();
-  printf("TestSceneLivingRoom: all checks passed\n");
-  return 0;
+}
+
+static void print_counts(const mrgi_scene* scene)
+{
+  printf("living room: %d meshes, %lld triangles\n", (int)scene->mesh_count,
+         (long long)mrgi_scene_triangle_count(scene));
+}
+
+static void test_geometry(void)
+{
+  with_living_room(print_counts);
+  with_living_room(check_geometry);
+}
+
+static void test_light(void)
+{
+  with_living_room(check_light);
+}
+
+static void test_camera(void)
+{
+  with_living_room(check_camera);
+}
+
+static void test_occluders(void)
+{
+  with_living_room(check_occluders);
+}
+
+int main(int argc, char** argv)
+{
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_geometry),
+    MRGI_TEST_CASE(test_light),
+    MRGI_TEST_CASE(test_camera),
+    MRGI_TEST_CASE(test_occluders),
+    MRGI_TEST_CASE(test_lifetime),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

@@ -408,16 +408,18 @@ static void test_bad_arguments(void)
   MRGI_CHECK(mrgi_scene_scaling(1, 1000, 1, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_bad_arguments();
-  test_exact_counts_and_validity();
-  test_determinism();
-  test_layout_independent_of_triangle_count();
-  test_coarsest_objects_stay_in_cells();
-  test_objects();
-  test_camera_and_lights();
-  test_golden_hash(); /* last: the checks above say what went wrong, this only that something did */
-  printf("TestSceneScaling: all checks passed\n");
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_bad_arguments),
+    MRGI_TEST_CASE(test_exact_counts_and_validity),
+    MRGI_TEST_CASE(test_determinism),
+    MRGI_TEST_CASE(test_layout_independent_of_triangle_count),
+    MRGI_TEST_CASE(test_coarsest_objects_stay_in_cells),
+    MRGI_TEST_CASE(test_objects),
+    MRGI_TEST_CASE(test_camera_and_lights),
+    /* Last: the checks above say what went wrong, this only that something did. */
+    MRGI_TEST_CASE(test_golden_hash),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

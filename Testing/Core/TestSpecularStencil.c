@@ -302,12 +302,13 @@ static void test_bad_input(void)
   scene_free(&s);
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_material();
-  test_lobe();
-  test_mixed_and_geometric();
-  test_bad_input();
-  printf("TestSpecularStencil: ok\n");
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_material),
+    MRGI_TEST_CASE(test_lobe),
+    MRGI_TEST_CASE(test_mixed_and_geometric),
+    MRGI_TEST_CASE(test_bad_input),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

@@ -537,15 +537,16 @@ static void test_surface_detail(void)
   MRGI_CHECK(fabsf(mrgi_surface_detail_factor(huge, facing, 0, 1.0f) - f) < 1e-6f);
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_surface_detail();
-  test_constant();
-  test_weights_and_empty_neighbours();
-  test_no_leak();
-  test_identity();
-  test_mask_weighted();
-  test_bad_input();
-  printf("TestUpsample: all checks passed\n");
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_surface_detail),
+    MRGI_TEST_CASE(test_constant),
+    MRGI_TEST_CASE(test_weights_and_empty_neighbours),
+    MRGI_TEST_CASE(test_no_leak),
+    MRGI_TEST_CASE(test_identity),
+    MRGI_TEST_CASE(test_mask_weighted),
+    MRGI_TEST_CASE(test_bad_input),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

@@ -537,18 +537,19 @@ static void test_bad_input(void)
   free_rsm(&t);
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_record_layout();
-  test_grid_layout();
-  test_grid_energy_not_divisible();
-  test_grid_representative();
-  test_grid_empty_blocks();
-  test_grid_views();
-  test_importance_unbiased();
-  test_importance_concentrated_and_deterministic();
-  test_zero_and_extreme_rsm();
-  test_bad_input();
-  printf("TestVPL: all checks passed\n");
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_record_layout),
+    MRGI_TEST_CASE(test_grid_layout),
+    MRGI_TEST_CASE(test_grid_energy_not_divisible),
+    MRGI_TEST_CASE(test_grid_representative),
+    MRGI_TEST_CASE(test_grid_empty_blocks),
+    MRGI_TEST_CASE(test_grid_views),
+    MRGI_TEST_CASE(test_importance_unbiased),
+    MRGI_TEST_CASE(test_importance_concentrated_and_deterministic),
+    MRGI_TEST_CASE(test_zero_and_extreme_rsm),
+    MRGI_TEST_CASE(test_bad_input),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

@@ -1248,7 +1248,7 @@ static void test_incremental(void)
   const mrgi_voxel_projection p = perspective_projection(50.0, 1.0);
   float lp[3 * 64], ln[3 * 64];
   light_samples(8, lp, ln);
-  const mrgi_voxel_samples samples = { 64, lp, ln };
+  const mrgi_voxel_samples samples = { 64, lp, ln, 0 };
   MRGI_CHECK(mrgi_voxel_samples_check(&samples, &err) == MRGI_OK);
   const int32_t size = 64;
 
@@ -1534,7 +1534,7 @@ static void test_incremental_guard(void)
   mrgi_error err;
   float lp[3 * 64], ln[3 * 64];
   light_samples(8, lp, ln);
-  const mrgi_voxel_samples samples = { 64, lp, ln };
+  const mrgi_voxel_samples samples = { 64, lp, ln, 0 };
   scene s = { 0 };
   scene_add(&s, -12, -2.5, -30, 12, -2, -3); /* floor */
   scene_add(&s, -3, -2, -12, 3, -0.5, -9);   /* the box: top y = -0.5, front z = -9 */
@@ -1688,7 +1688,7 @@ static void test_vsm(void)
     qn[3 * j + 1] = -1.0f;
     qn[3 * j + 2] = 0.0f;
   }
-  const mrgi_voxel_samples queries = { MRGI_VOXEL_VSM_QUERIES, qp, qn };
+  const mrgi_voxel_samples queries = { MRGI_VOXEL_VSM_QUERIES, qp, qn, 0 };
   enum { ROW = 48 };
   float* row_moments = (float*)malloc(sizeof(float) * ROW * 2 * MRGI_VOXEL_VSM_QUERIES);
   float* row_vis = (float*)malloc(sizeof(float) * ROW * MRGI_VOXEL_VSM_QUERIES);
@@ -1928,23 +1928,24 @@ static void test_samples_per_batch(void)
   MRGI_CHECK(mrgi_voxel_samples_per_batch(1) > mrgi_voxel_samples_per_batch(2));
 }
 
-int main(void)
+int main(int argc, char** argv)
 {
-  test_samples_per_batch();
-  test_layout();
-  test_grid_errors();
-  test_voxelize();
-  test_march_walls();
-  test_march_thin_wall();
-  test_march_grazing();
-  test_march_extremes();
-  test_march_symmetry();
-  test_masks_and_metric();
-  test_incremental();
-  test_incremental_guard();
-  test_vsm();
-  test_vsm_specular_moments();
-  test_random_scenes();
-  printf("TestVoxel: all checks passed\n");
-  return 0;
+  static const mrgi_test_case cases[] = {
+    MRGI_TEST_CASE(test_samples_per_batch),
+    MRGI_TEST_CASE(test_layout),
+    MRGI_TEST_CASE(test_grid_errors),
+    MRGI_TEST_CASE(test_voxelize),
+    MRGI_TEST_CASE(test_march_walls),
+    MRGI_TEST_CASE(test_march_thin_wall),
+    MRGI_TEST_CASE(test_march_grazing),
+    MRGI_TEST_CASE(test_march_extremes),
+    MRGI_TEST_CASE(test_march_symmetry),
+    MRGI_TEST_CASE(test_masks_and_metric),
+    MRGI_TEST_CASE(test_incremental),
+    MRGI_TEST_CASE(test_incremental_guard),
+    MRGI_TEST_CASE(test_vsm),
+    MRGI_TEST_CASE(test_vsm_specular_moments),
+    MRGI_TEST_CASE(test_random_scenes),
+  };
+  return MRGI_TEST_MAIN(argc, argv, cases);
 }

@@ -168,9 +168,8 @@ void ExpectFailure(vtkMRGIAreaLight* light, vtkTest::ErrorObserver* errors, cons
   const bool ok = light->GetSamples(samples);
   if (ok || errors->CheckErrorMessage(expected) != 0)
   {
-    std::fprintf(stderr, "%s: GetSamples %s; error: '%s'\n", what, ok ? "succeeded" : "failed",
+    MRGI_TEST_FAIL("%s: GetSamples %s; error: '%s'", what, ok ? "succeeded" : "failed",
       errors->GetErrorMessage().c_str());
-    std::exit(1);
   }
   MRGI_TEST_CHECK(std::string(light->GetLastErrorMessage()).find(expected) != std::string::npos);
   MRGI_TEST_CHECK(samples->GetNumberOfTuples() == 1 && samples->GetValue(0) == 1 &&
@@ -868,12 +867,9 @@ void TestEmitterUnderPass()
 }
 }
 
-int main()
+int main(int argc, char* argv[])
 {
-  TestSamplesAndCache();
-  TestBadInput();
-  TestGeometryAndRendering();
-  TestEmitterUnderPass();
-  std::printf("TestMRGIAreaLight passed\n");
-  return 0;
+  return mrgitest::RunCases(argc, argv,
+    { MRGI_TEST_CASE(TestSamplesAndCache), MRGI_TEST_CASE(TestBadInput),
+      MRGI_TEST_CASE(TestGeometryAndRendering), MRGI_TEST_CASE(TestEmitterUnderPass) });
 }

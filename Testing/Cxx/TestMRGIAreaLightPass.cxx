@@ -339,7 +339,6 @@ int main()
     const size_t texels = static_cast<size_t>(mrgi_multires_texel_count(&layout));
     std::vector<uint8_t> rendered(texels, 0);
     mrgi_incremental_stencil_stats stats;
-    mrgi_error err;
     const int threshold =
       mrgi_voxel_refine_threshold(static_cast<float>(area->GetIncrementalStencilStage()->GetFraction()), count);
     MRGI_TEST_CHECK(mrgi_incremental_stencil_build(&layout, mr->GetFinestLevel(), flags->GetPointer(0),
@@ -411,8 +410,8 @@ int main()
     vtkSmartPointer<vtkImageData> glossy = AreaBuffer(pass, window);
     vtkNew<vtkImageData> specular, shininess;
     MRGI_TEST_CHECK(pass->GetSpecularGBuffer(window, specular, shininess));
-    const mrgi_area_light_texture_pyramid* pyramid = nullptr;
-    MRGI_TEST_CHECK(light->GetCorePyramid(&pyramid));
+    const mrgi_area_light_texture_pyramid* corePyramid = nullptr;
+    MRGI_TEST_CHECK(light->GetCorePyramid(&corePyramid));
     vtkDataArray* K = specular->GetPointData()->GetScalars();
     vtkDataArray* E = shininess->GetPointData()->GetScalars();
     vtkDataArray* G0 = matte->GetPointData()->GetScalars();
@@ -424,15 +423,15 @@ int main()
       double expected[3] = { 0.0, 0.0, 0.0 };
       if (P->GetComponent(i, 3) > 0.5 && K->GetComponent(i, 0) + K->GetComponent(i, 1) + K->GetComponent(i, 2) > 0)
       {
-        float p[3], n[3], v[3], S[3];
+        float p[3], n[3], v[3], lobe[3];
         ToWorld(m, P, N, i, p, n, v);
-        mrgi_area_light_specular(&uniforms, samples, count, pyramid, p, n, v,
-          static_cast<float>(E->GetComponent(i, 0)), S, nullptr);
+        mrgi_area_light_specular(&uniforms, samples, count, corePyramid, p, n, v,
+          static_cast<float>(E->GetComponent(i, 0)), lobe, nullptr);
         for (int k = 0; k < 3; ++k)
         {
-          expected[k] = K->GetComponent(i, k) * S[k];
+          expected[k] = K->GetComponent(i, k) * lobe[k];
         }
-        highlighted += S[0] + S[1] + S[2] > 0.0f;
+        highlighted += lobe[0] + lobe[1] + lobe[2] > 0.0f;
       }
       for (int k = 0; k < 3; ++k)
       {

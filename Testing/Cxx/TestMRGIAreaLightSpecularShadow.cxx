@@ -242,17 +242,11 @@ bool RunMaterial(const Material& m)
 }
 }
 
-int main()
+int main(int argc, char* argv[])
 {
-  const Material materials[2] = {
-    { "glossy", 50.0, 256, MRGI_AREA_LIGHT_SPECULAR_SAMPLES },
-    { "sharp", 100.0, 4, MRGI_AREA_LIGHT_SPECULAR_LOBE_GRID },
-  };
-  bool ok = true;
-  for (const Material& m : materials)
-  {
-    ok = RunMaterial(m) && ok;
-  }
-  MRGI_TEST_CHECK(ok);
-  return 0;
+  static const Material glossy = { "glossy", 50.0, 256, MRGI_AREA_LIGHT_SPECULAR_SAMPLES };
+  static const Material sharp = { "sharp", 100.0, 4, MRGI_AREA_LIGHT_SPECULAR_LOBE_GRID };
+  return mrgitest::RunCases(argc, argv,
+    { { "Glossy", [] { MRGI_TEST_CHECK(RunMaterial(glossy)); } },
+      { "Sharp", [] { MRGI_TEST_CHECK(RunMaterial(sharp)); } } });
 }

@@ -158,7 +158,7 @@ void RenderFrame(vtkRenderWindow* window, vtkMRGIPass* pass, Frame& frame, const
   }
   if (failed)
   {
-    std::exit(1);
+    MRGI_TEST_FAIL("%s: non-finite values", what);
   }
   for (const mrgi_vpl& vpl : frame.VPLs)
   {
@@ -218,8 +218,7 @@ double CheckBounded(const Frame& frame, const char* what)
       MRGI_TEST_CHECK(E[3 * p + c] >= 0);
       if (E[3 * p + c] > bound[c] * (1 + 1e-5))
       {
-        std::fprintf(stderr, "%s: E %g above the bound sum Phi/A = %g\n", what, E[3 * p + c], bound[c]);
-        std::exit(1);
+        MRGI_TEST_FAIL("%s: E %g above the bound sum Phi/A = %g", what, E[3 * p + c], bound[c]);
       }
       maxE = std::max(maxE, static_cast<double>(E[3 * p + c]));
     }
@@ -249,8 +248,7 @@ double CompareWithC(vtkMRGIPass* pass, const Frame& frame, const char* what)
   if (mrgi_gather_full(&receivers, frame.VPLs.data(), static_cast<int32_t>(frame.VPLs.size()), w2r,
         &c, &info, &err) != MRGI_OK)
   {
-    std::fprintf(stderr, "%s: mrgi_gather_full: %s\n", what, err.message);
-    std::exit(1);
+    MRGI_TEST_FAIL("%s: mrgi_gather_full: %s", what, err.message);
   }
   const float* E = Floats(frame.Irradiance);
   const float* P = Floats(frame.Position);
@@ -996,16 +994,11 @@ void TestNoIndirect()
 }
 }
 
-int main()
+int main(int argc, char* argv[])
 {
-  TestScale();
-  TestContact();
-  TestBackFacing();
-  TestDegenerateInput();
-  TestLightInside();
-  TestIntensity();
-  TestTinyWindows();
-  TestNoIndirect();
-  std::printf("all extremes passed\n");
-  return 0;
+  return mrgitest::RunCases(argc, argv,
+    { MRGI_TEST_CASE(TestScale), MRGI_TEST_CASE(TestContact), MRGI_TEST_CASE(TestBackFacing),
+      MRGI_TEST_CASE(TestDegenerateInput), MRGI_TEST_CASE(TestLightInside),
+      MRGI_TEST_CASE(TestIntensity), MRGI_TEST_CASE(TestTinyWindows),
+      MRGI_TEST_CASE(TestNoIndirect) });
 }

@@ -319,18 +319,18 @@ int main()
     {
       for (int x = 0; x < mx1; ++x)
       {
-        bool cone = false, same = true;
+        bool onCone = false, same = true;
         for (int c = 0; c < 3; ++c)
         {
-          cone = cone ||
+          onCone = onCone ||
             std::fabs(plainWith->GetScalarComponentAsDouble(x, y, 0, c) -
               plainWithout->GetScalarComponentAsDouble(x, y, 0, c)) > 30;
           same = same &&
             std::fabs(withMarker->GetScalarComponentAsDouble(x, y, 0, c) -
               plainWith->GetScalarComponentAsDouble(x, y, 0, c)) <= 1;
         }
-        conePixels += cone ? 1 : 0;
-        wrong += (cone && !same) ? 1 : 0;
+        conePixels += onCone ? 1 : 0;
+        wrong += (onCone && !same) ? 1 : 0;
       }
     }
     std::printf("layer 1 cone: %d pixels, %d of them not as VTK draws them; outside the corner "

@@ -915,17 +915,20 @@ void Api()
 }
 }
 
-int main()
+int main(int argc, char* argv[])
 {
-  Api();
-  CornellBox(false);
-  CornellBox(true);
-  RandomBoxes(false);
-  RandomBoxes(true);
-  std::printf("all cases: %zu marched rays, %zu binary answers differ (%.4f%%; %zu boundary, "
-              "%zu other), %zu fractions differ (%.4f%%)\n",
-    totals.Marched, totals.Mismatch, 100.0 * totals.Mismatch / totals.Marched, totals.Boundary,
-    totals.Mismatch - totals.Boundary, totals.FractionMismatch,
-    100.0 * totals.FractionMismatch / totals.Marched);
-  return 0;
+  const int result = mrgitest::RunCases(argc, argv,
+    { MRGI_TEST_CASE(Api), { "CornellBox", [] { CornellBox(false); } },
+      { "CornellBoxParallel", [] { CornellBox(true); } },
+      { "RandomBoxes", [] { RandomBoxes(false); } },
+      { "RandomBoxesParallel", [] { RandomBoxes(true); } } });
+  if (totals.Marched > 0)
+  {
+    std::printf("cases run: %zu marched rays, %zu binary answers differ (%.4f%%; %zu boundary, "
+                "%zu other), %zu fractions differ (%.4f%%)\n",
+      totals.Marched, totals.Mismatch, 100.0 * totals.Mismatch / totals.Marched, totals.Boundary,
+      totals.Mismatch - totals.Boundary, totals.FractionMismatch,
+      100.0 * totals.FractionMismatch / totals.Marched);
+  }
+  return result;
 }

@@ -670,19 +670,19 @@ void BadInputs()
 }
 }
 
-int main()
+int main(int argc, char* argv[])
 {
-  CornellBox(false);
-  CornellBox(true);
-  RandomBoxes();
-  {
-    vtkNew<vtkMRGIVoxelization> shared;
-    Grazing(false, shared);
-    Grazing(true, shared);
-    // The last window is gone too: forget, then nothing is left to free.
-    shared->ReleaseGraphicsResources(nullptr);
-  }
-  BadInputs();
-  std::printf("TestMRGIVoxelization: all checks passed\n");
-  return 0;
+  return mrgitest::RunCases(argc, argv,
+    { { "CornellBox", [] { CornellBox(false); } },
+      { "CornellBoxParallel", [] { CornellBox(true); } }, MRGI_TEST_CASE(RandomBoxes),
+      { "Grazing",
+        [] {
+          // One voxelization for both projections' windows.
+          vtkNew<vtkMRGIVoxelization> shared;
+          Grazing(false, shared);
+          Grazing(true, shared);
+          // The last window is gone too: forget, then nothing is left to free.
+          shared->ReleaseGraphicsResources(nullptr);
+        } },
+      MRGI_TEST_CASE(BadInputs) });
 }

@@ -169,14 +169,11 @@ void TestLivingRoom()
   renderer->SetPass(nullptr);
   pass->ReleaseGraphicsResources(window);
 }
-}
 
-int main()
+// The built-in scenes: their actors, triangles and lights.
+void TestBuiltInScenes()
 {
   vtkIdType triangles = 0;
-  std::string error;
-
-  // Built-in scenes.
   MRGI_TEST_CHECK(BuildInto("cornell", &triangles) >= 7);
   MRGI_TEST_CHECK(triangles >= 30);
   MRGI_TEST_CHECK(BuildInto("cornell-spot") >= 7);
@@ -193,9 +190,13 @@ int main()
     MRGI_TEST_CHECK(renderer->GetLights()->GetNumberOfItems() == 1);
     MRGI_TEST_CHECK(!renderer->GetAutomaticLightCreation());
   }
-  TestLivingRoom();
+}
 
-  // Files written by VTK's writers.
+// Files written by VTK's writers, OBJ and glTF written by hand.
+void TestWrittenFiles()
+{
+  vtkIdType triangles = 0;
+  std::string error;
   vtkNew<vtkSphereSource> sphere;
   sphere->SetThetaResolution(16);
   sphere->SetPhiResolution(8);
@@ -267,8 +268,12 @@ int main()
     R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","max":[1,1,0],"min":[0,0,0]}]})");
   MRGI_TEST_CHECK(BuildInto(gltf, &triangles, &error) == 1);
   MRGI_TEST_CHECK(triangles == 1);
+}
 
-  // Real third-party data, when it is beside the checkout.
+// Real third-party data, when it is beside the checkout.
+void TestSharedData()
+{
+  vtkIdType triangles = 0;
   const char* shared = std::getenv("MRGI_SHARED_DATA_DIR");
   if (shared)
   {
@@ -281,8 +286,12 @@ int main()
       MRGI_TEST_CHECK(triangles == 6 * 67 * 67);
     }
   }
+}
 
-  // Bad input: each a clear error naming the problem.
+// Bad input: each a clear error naming the problem.
+void TestBadInput()
+{
+  std::string error;
   MRGI_TEST_CHECK(BuildInto("", nullptr, &error) == -1);
   MRGI_TEST_CHECK(error.find("no scene") != std::string::npos);
   MRGI_TEST_CHECK(BuildInto(mrgitest::TempPath("missing.ply"), nullptr, &error) == -1);
@@ -303,5 +312,13 @@ int main()
   WriteText(badVtp, "<VTKFile type=\"PolyData\"><PolyData><Piece NumberOfPoints=\"5\">");
   MRGI_TEST_CHECK(BuildInto(badVtp, nullptr, &error) == -1);
   std::printf("corrupt vtp: %s\n", error.c_str());
-  return 0;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  return mrgitest::RunCases(argc, argv,
+    { MRGI_TEST_CASE(TestBuiltInScenes), MRGI_TEST_CASE(TestLivingRoom),
+      MRGI_TEST_CASE(TestWrittenFiles), MRGI_TEST_CASE(TestSharedData),
+      MRGI_TEST_CASE(TestBadInput) });
 }

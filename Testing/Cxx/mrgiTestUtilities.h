@@ -1,7 +1,14 @@
 /**
  * @file mrgiTestUtilities.h
- * @brief Shared helpers of MRGI's C++ tests: checks, headless windows,
- *        pixel reads and VTK-style image regression against baselines.
+ * @brief Shared helpers of MRGI's C++ tests: checks, named cases, headless
+ *        windows, pixel reads and VTK-style image regression against baselines.
+ *
+ * Checks and cases: MRGI_TEST_CHECK(cond) fails a test. A program that hands
+ * its cases to mrgitest::RunCases() runs every case (a failed check ends its
+ * case only), names the failed ones and exits non-zero if there was one;
+ * `TestX --list` lists the cases, `TestX --case NAME` runs one. Without
+ * RunCases() a failed check exits with status 1 at once. Testing/Core/mrgi_test.h is
+ * the C core tests' twin (same options and output).
  *
  * Regression: a test renders, then compares its image with
  * Testing/Data/Baseline/<name>.png. It passes when the relative RMS error is
@@ -31,20 +38,176 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
+#include <functional>
 #include <string>
+#include <vector>
 
+namespace mrgitest
+{
+/**
+ * Thrown by a failed check inside a case that RunCases() runs: it ends that
+ * case only. Not a std::exception, so that a test's own handlers of those
+ * do not swallow it.
+ */
+struct CheckFailed
+{
+};
+
+/** Whether RunCases() is running a case (then a failed check throws). */
+inline bool InCase = false;
+
+/** A failed check: end the running case, or the program outside a case. */
+[[noreturn]] inline void Fail()
+{
+  std::fflush(stdout);
+  if (InCase)
+  {
+    throw CheckFailed{};
+  }
+  std::exit(1);
+}
+}
+
+/** Check `cond`; when false, print file, line and expression and fail (mrgitest::Fail()). */
 #define MRGI_TEST_CHECK(cond)                                                                      \
   do                                                                                               \
   {                                                                                                \
     if (!(cond))                                                                                   \
     {                                                                                              \
       std::fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond);                \
-      std::exit(1);                                                                                \
+      mrgitest::Fail();                                                                            \
     }                                                                                              \
   } while (0)
 
+/** Fail unconditionally with a printf-style message. */
+#define MRGI_TEST_FAIL(...)                                                                        \
+  do                                                                                               \
+  {                                                                                                \
+    std::fprintf(stderr, "%s:%d: failed: ", __FILE__, __LINE__);                                   \
+    std::fprintf(stderr, __VA_ARGS__);                                                             \
+    std::fputc('\n', stderr);                                                                      \
+    mrgitest::Fail();                                                                              \
+  } while (0)
+
+/** A case named after its function: MRGI_TEST_CASE(TestBadInput). */
+// clang-format off
+#define MRGI_TEST_CASE(function) mrgitest::Case{ #function, function }
+// clang-format on
+
 namespace mrgitest
 {
+/** One named case of a test program. */
+struct Case
+{
+  std::string Name;
+  std::function<void()> Run;
+};
+
+/**
+ * Runs the cases the command line asks for, in the listed order: all by
+ * default, only those named by `--case NAME` (repeatable); `--list` prints
+ * the names. A failed check ends its case, the others still run; a case
+ * that throws anything else fails too. At the end the failed cases are
+ * named. Returns main's exit code: 0 when every case run passed, 1 when one
+ * failed, 2 for a bad command line.
+ *
+ *     int main(int argc, char* argv[])
+ *     {
+ *       return mrgitest::RunCases(argc, argv,
+ *         { MRGI_TEST_CASE(TestBadInput), { "CornellParallel", [] { Cornell(true); } } });
+ *     }
+ */
+inline int RunCases(int argc, char* argv[], const std::vector<Case>& cases)
+{
+  std::string program = argc > 0 && argv[0] ? argv[0] : "test";
+  program = program.substr(program.find_last_of('/') + 1);
+  std::vector<bool> selected(cases.size(), false);
+  bool anySelected = false;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    if (arg == "--list")
+    {
+      for (const Case& c : cases)
+      {
+        std::printf("%s\n", c.Name.c_str());
+      }
+      return 0;
+    }
+    if (arg == "--case" && i + 1 < argc)
+    {
+      const std::string name = argv[++i];
+      size_t c = 0;
+      while (c < cases.size() && cases[c].Name != name)
+      {
+        ++c;
+      }
+      if (c == cases.size())
+      {
+        std::fprintf(
+          stderr, "%s: no case '%s' (--list lists them)\n", program.c_str(), name.c_str());
+        return 2;
+      }
+      selected[c] = true;
+      anySelected = true;
+      continue;
+    }
+    std::fprintf(stderr, "usage: %s [--list] [--case NAME]...\n", program.c_str());
+    return 2;
+  }
+  std::vector<std::string> failed;
+  size_t ran = 0;
+  for (size_t c = 0; c < cases.size(); ++c)
+  {
+    if (anySelected && !selected[c])
+    {
+      continue;
+    }
+    const std::string& name = cases[c].Name;
+    std::printf("[ RUN    ] %s\n", name.c_str());
+    std::fflush(stdout);
+    ++ran;
+    bool ok = false;
+    InCase = true;
+    try
+    {
+      cases[c].Run();
+      ok = true;
+    }
+    catch (const CheckFailed&)
+    {
+    }
+    catch (const std::exception& e)
+    {
+      std::fprintf(stderr, "%s: exception: %s\n", name.c_str(), e.what());
+    }
+    catch (...)
+    {
+      std::fprintf(stderr, "%s: unknown exception\n", name.c_str());
+    }
+    InCase = false;
+    std::printf("%s %s\n", ok ? "[     OK ]" : "[ FAILED ]", name.c_str());
+    std::fflush(stdout);
+    if (!ok)
+    {
+      failed.push_back(name);
+    }
+  }
+  if (!failed.empty())
+  {
+    std::fprintf(stderr, "%s: %zu of %zu cases failed:", program.c_str(), failed.size(), ran);
+    for (const std::string& name : failed)
+    {
+      std::fprintf(stderr, " %s", name.c_str());
+    }
+    std::fprintf(stderr, "\n");
+    return 1;
+  }
+  std::printf("%s: all %zu cases passed\n", program.c_str(), ran);
+  return 0;
+}
+
 /**
  * Catches vtkErrorMacro output (observe ErrorEvent with it) so that expected
  * errors are checked, not printed: Count and the Last message.
@@ -83,7 +246,7 @@ inline vtkSmartPointer<vtkImageData> AreaBuffer(vtkMRGIPass* pass, vtkRenderWind
   return vtkSmartPointer<vtkImageData>(image.GetPointer());
 }
 
-/** A headless window of the given size, or exit(1) with the reason. */
+/** A headless window of the given size; without one, Fail() with the reason. */
 inline vtkSmartPointer<vtkRenderWindow> HeadlessWindow(int width, int height)
 {
   std::string why;
@@ -91,8 +254,7 @@ inline vtkSmartPointer<vtkRenderWindow> HeadlessWindow(int width, int height)
     vtkMRGIRenderWindowFactory::CreateRenderWindow(vtkMRGIRenderWindowFactory::Headless, &why));
   if (!window)
   {
-    std::fprintf(stderr, "no headless window: %s\n", why.c_str());
-    std::exit(1);
+    MRGI_TEST_FAIL("no headless window: %s", why.c_str());
   }
   window->SetSize(width, height);
   window->SetMultiSamples(0);

@@ -2,6 +2,7 @@
 timings, and for bad input it prints a one-line error naming the problem,
 exits non-zero and leaves no output file behind."""
 import os
+import re
 import struct
 import subprocess
 import sys
@@ -44,6 +45,19 @@ def main():
     check(code == 0 and "usage: mrgi-render SCENE" in out, "--help")
     for option in ("--size", "--timings", "--light", "--camera-position", "--half"):
         check(option in out, option + " documented in --help")
+    # The usage text and the parser come from one table: every option the
+    # text lists is accepted (alone, one that takes a value says it needs
+    # one; a switch leaves only "no scene given"; --help and --version exit 0).
+    documented = set()
+    for line in out.splitlines():
+        m = re.match(r"  (-[\w-]+)(?:, (--[\w-]+))?", line)
+        if m:
+            documented.update(n for n in m.groups() if n)
+    check(len(documented) > 50, "options found in --help: %d" % len(documented))
+    for option in sorted(documented):
+        code, _, err = run(option)
+        check("unknown option" not in err, option + " (in --help) is accepted: " + err)
+        check(code == 0 or "mrgi-render: error:" in err, option + " alone: " + err)
 
     # The main job: PNG + EXR of the Cornell box with stage timings.
     png, exr = fresh("cli_cornell.png"), fresh("cli_cornell.exr")
