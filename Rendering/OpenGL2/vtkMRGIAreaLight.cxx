@@ -1,29 +1,15 @@
 #include "vtkMRGIAreaLight.h"
 
-#include "vtkActor.h"
-#include "vtkCellArray.h"
 #include "vtkFloatArray.h"
-#include "vtkImageAlgorithm.h"
 #include "vtkImageData.h"
-#include "vtkInformation.h"
-#include "vtkInformationVector.h"
+#include "vtkMRGIAreaLightEmitter.h"
 #include "vtkMRGIAreaLightUtilities.h"
-#include "vtkMath.h"
-#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
-#include "vtkPointData.h"
-#include "vtkPoints.h"
-#include "vtkPolyData.h"
-#include "vtkPolyDataAlgorithm.h"
-#include "vtkPolyDataMapper.h"
-#include "vtkProperty.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
-#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTexture.h"
 #include "vtkTextureObject.h"
-#include "vtkUnsignedCharArray.h"
 #include "vtkWeakPointer.h"
 
 // The area-light GLSL libraries (embedded by vtk_encode_string).
@@ -64,7 +50,6 @@ struct SampleKey
 };
 }
 
-using vtkMRGIAreaLightUtilities::Sanitized;
 using vtkMRGIAreaLightUtilities::WithPropertyNames;
 
 //------------------------------------------------------------------------------
@@ -101,12 +86,8 @@ struct vtkMRGIAreaLight::vtkInternals
   int SampleTextureBuild = -1; // NumberOfSampleBuilds at upload
   bool TexturesActive = false;
 
-  // The emitter's actor and what feeds it (created on first request).
-  vtkSmartPointer<vtkActor> Actor;
-  vtkSmartPointer<vtkTexture> EmissionTexture;
-  vtkSmartPointer<vtkProperty> BackProperty;
-  // Actors given to ShareGeometryActor(): kept in step with Actor's look.
-  std::vector<vtkWeakPointer<vtkActor>> Views;
+  // What draws the emitter (GetGeometryActor(); created on first request).
+  vtkSmartPointer<vtkMRGIAreaLightEmitter> Emitter;
 
   ~vtkInternals()
   {
@@ -114,128 +95,6 @@ struct vtkMRGIAreaLight::vtkInternals
     mrgi_image_destroy(&this->Image);
   }
 };
-
-//------------------------------------------------------------------------------
-// The emitter quad, regenerated whenever the light's own properties change
-// (not when only its texture image does).
-class vtkMRGIAreaLightGeometrySource : public vtkPolyDataAlgorithm
-{
-public:
-  static vtkMRGIAreaLightGeometrySource* New();
-  vtkTypeMacro(vtkMRGIAreaLightGeometrySource, vtkPolyDataAlgorithm);
-
-  // Weak: the light owns this source (through its actor), while a renderer
-  // may keep the actor after the light is gone.
-  vtkWeakPointer<vtkMRGIAreaLight> Light;
-  // Set for the sources of ShareGeometryActor()'s views only: they keep the
-  // light alive (it holds them weakly, so there is no cycle).
-  vtkSmartPointer<vtkMRGIAreaLight> Owner;
-
-  vtkMTimeType GetMTime() override
-  {
-    vtkMTimeType mtime = this->Superclass::GetMTime();
-    if (this->Light)
-    {
-      mtime = std::max(mtime, this->Light->vtkObject::GetMTime());
-    }
-    return mtime;
-  }
-
-protected:
-  vtkMRGIAreaLightGeometrySource() { this->SetNumberOfInputPorts(0); }
-
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
-  {
-    vtkPolyData* output = vtkPolyData::GetData(out);
-    if (!this->Light || !this->Light->MakeGeometry(output))
-    {
-      output->Initialize(); // an invalid light draws nothing
-    }
-    return 1;
-  }
-
-private:
-  vtkMRGIAreaLightGeometrySource(const vtkMRGIAreaLightGeometrySource&) = delete;
-  void operator=(const vtkMRGIAreaLightGeometrySource&) = delete;
-};
-vtkStandardNewMacro(vtkMRGIAreaLightGeometrySource);
-
-//------------------------------------------------------------------------------
-// The emitter's picture: Intensity * Color * T scaled for display
-// (vtkMRGIAreaLightUtilities::EncodeDisplayPicture()) as 8-bit sRGB RGB,
-// the input of the actor's texture; regenerated when the light or its
-// texture image changes (the next video frame).
-class vtkMRGIAreaLightEmissionSource : public vtkImageAlgorithm
-{
-public:
-  static vtkMRGIAreaLightEmissionSource* New();
-  vtkTypeMacro(vtkMRGIAreaLightEmissionSource, vtkImageAlgorithm);
-
-  vtkWeakPointer<vtkMRGIAreaLight> Light;
-
-  vtkMTimeType GetMTime() override
-  {
-    vtkMTimeType mtime = this->Superclass::GetMTime();
-    if (this->Light)
-    {
-      mtime = std::max(mtime, this->Light->GetMTime());
-    }
-    return mtime;
-  }
-
-protected:
-  vtkMRGIAreaLightEmissionSource() { this->SetNumberOfInputPorts(0); }
-
-  // The picture of the cached texture, or nullptr (then 1 x 1 black).
-  const mrgi_image* Picture()
-  {
-    if (!this->Light || !this->Light->UpdateTexture())
-    {
-      return nullptr;
-    }
-    const auto& internals = *this->Light->Internals;
-    return internals.HasTexture ? &internals.Image : nullptr;
-  }
-
-  int RequestInformation(
-    vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
-  {
-    const mrgi_image* picture = this->Picture();
-    const int width = picture ? picture->width : 1;
-    const int height = picture ? picture->height : 1;
-    vtkInformation* info = out->GetInformationObject(0);
-    int extent[6] = { 0, width - 1, 0, height - 1, 0, 0 };
-    info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-    vtkDataObject::SetPointDataActiveScalarInfo(info, VTK_UNSIGNED_CHAR, 3);
-    return 1;
-  }
-
-  void ExecuteDataWithInformation(vtkDataObject* data, vtkInformation* info) override
-  {
-    vtkImageData* image = this->AllocateOutputData(data, info);
-    auto* rgb = vtkArrayDownCast<vtkUnsignedCharArray>(image->GetPointData()->GetScalars());
-    const mrgi_image* picture = this->Picture();
-    int dims[3];
-    image->GetDimensions(dims);
-    if (!rgb || !picture || picture->width != dims[0] || picture->height != dims[1])
-    {
-      if (rgb)
-      {
-        rgb->FillValue(0);
-      }
-      return;
-    }
-    double color[3];
-    this->Light->GetColor(color);
-    vtkMRGIAreaLightUtilities::EncodeDisplayPicture(
-      picture, this->Light->GetIntensity(), color, rgb->GetPointer(0));
-  }
-
-private:
-  vtkMRGIAreaLightEmissionSource(const vtkMRGIAreaLightEmissionSource&) = delete;
-  void operator=(const vtkMRGIAreaLightEmissionSource&) = delete;
-};
-vtkStandardNewMacro(vtkMRGIAreaLightEmissionSource);
 
 //------------------------------------------------------------------------------
 vtkStandardNewMacro(vtkMRGIAreaLight);
@@ -629,41 +488,7 @@ bool vtkMRGIAreaLight::MakeGeometry(vtkPolyData* quad)
   {
     return false;
   }
-  // Corners in the order of mrgi_area_light_uniforms::corners (counter-
-  // clockwise seen from the emitting side, so VTK's front face is the
-  // emitting one), with texture coordinates (s, t) of the core's mapping.
-  static const double signs[4][2] = { { -0.5, -0.5 }, { 0.5, -0.5 }, { 0.5, 0.5 }, { -0.5, 0.5 } };
-  double normal[3];
-  vtkMath::Cross(this->EdgeU, this->EdgeV, normal);
-  vtkMath::Normalize(normal);
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkFloatArray> normals;
-  normals->SetName("Normals");
-  normals->SetNumberOfComponents(3);
-  vtkNew<vtkFloatArray> tcoords;
-  tcoords->SetName("TCoords");
-  tcoords->SetNumberOfComponents(2);
-  for (const auto& sign : signs)
-  {
-    double corner[3];
-    for (int c = 0; c < 3; ++c)
-    {
-      corner[c] = this->Center[c] + sign[0] * this->EdgeU[c] + sign[1] * this->EdgeV[c];
-    }
-    points->InsertNextPoint(corner);
-    normals->InsertNextTuple(normal);
-    const double st[2] = { sign[0] + 0.5, sign[1] + 0.5 };
-    tcoords->InsertNextTuple(st);
-  }
-  vtkNew<vtkCellArray> polys;
-  const vtkIdType ids[4] = { 0, 1, 2, 3 };
-  polys->InsertNextCell(4, ids);
-  quad->Initialize();
-  quad->SetPoints(points);
-  quad->SetPolys(polys);
-  quad->GetPointData()->SetNormals(normals);
-  quad->GetPointData()->SetTCoords(tcoords);
+  vtkMRGIAreaLightEmitter::MakeQuad(this->Center, this->EdgeU, this->EdgeV, quad);
   return true;
 }
 
@@ -671,127 +496,50 @@ bool vtkMRGIAreaLight::MakeGeometry(vtkPolyData* quad)
 vtkActor* vtkMRGIAreaLight::GetGeometryActor()
 {
   vtkInternals& internals = *this->Internals;
-  if (!internals.Actor)
+  if (!internals.Emitter)
   {
-    vtkNew<vtkMRGIAreaLightGeometrySource> geometry;
-    geometry->Light = this;
-    vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputConnection(geometry->GetOutputPort());
-    mapper->ScalarVisibilityOff();
-    internals.Actor = vtkSmartPointer<vtkActor>::New();
-    internals.Actor->SetMapper(mapper);
-
-    vtkNew<vtkMRGIAreaLightEmissionSource> emission;
-    emission->Light = this;
-    internals.EmissionTexture = vtkSmartPointer<vtkTexture>::New();
-    internals.EmissionTexture->SetInputConnection(emission->GetOutputPort());
-    // 8 bits sRGB-encoded keep dark radiances; GL decodes back to linear.
-    internals.EmissionTexture->UseSRGBColorSpaceOn();
-    internals.EmissionTexture->InterpolateOn();
-    internals.EmissionTexture->MipmapOn(); // a video frame seen small must not alias
-    // Mesa llvmpipe's anisotropic filtering (VTK's default 4x) blends coarser
-    // levels in even where the texture is magnified (measured: a 2 x 2
-    // picture drawn 64 pixels wide mixed all four texels where bilinear
-    // filtering gives one texel's colour): plain trilinear filtering.
-    internals.EmissionTexture->SetMaximumAnisotropicFiltering(1.0f);
-    internals.EmissionTexture->RepeatOff();
-    internals.EmissionTexture->EdgeClampOn();
-
-    // The back of a one-sided emitter emits nothing: black, not see-through.
-    internals.BackProperty = vtkSmartPointer<vtkProperty>::New();
-    internals.BackProperty->LightingOff();
-    internals.BackProperty->SetAmbient(1.0);
-    internals.BackProperty->SetDiffuse(0.0);
-    internals.BackProperty->SetSpecular(0.0);
+    // The emitter asks for the quad and the picture at render time; it holds
+    // the light weakly (a renderer may keep the actor after the light is gone).
+    vtkWeakPointer<vtkMRGIAreaLight> self = this;
+    auto quad = [self](vtkPolyData* output) { return self && self->MakeGeometry(output); };
+    auto picture = [self]() {
+      vtkMRGIAreaLightEmitter::Picture shown;
+      if (self && self->UpdateTexture())
+      {
+        shown.Image = self->Internals->HasTexture ? &self->Internals->Image : nullptr;
+        shown.Intensity = self->Intensity;
+        std::copy(self->Color, self->Color + 3, shown.Color);
+      }
+      return shown;
+    };
+    internals.Emitter = vtkSmartPointer<vtkMRGIAreaLightEmitter>::New();
+    internals.Emitter->SetLight(this, quad, picture);
     this->UpdateGeometryActor();
   }
-  return internals.Actor;
+  return internals.Emitter->GetActor();
 }
 
 //------------------------------------------------------------------------------
 void vtkMRGIAreaLight::UpdateGeometryActor()
 {
-  if (!this->Internals || !this->Internals->Actor)
+  if (!this->Internals || !this->Internals->Emitter)
   {
     return;
   }
-  vtkInternals& internals = *this->Internals;
-  vtkActor* actor = internals.Actor;
-  actor->SetVisibility(this->Visible ? 1 : 0);
-  vtkProperty* property = actor->GetProperty();
-  // An emitter shows its radiance whatever the lights (as the emitters of
-  // vtkMRGISceneBuilder): VTK's ambient term only.
-  property->LightingOff();
-  property->SetAmbient(1.0);
-  property->SetDiffuse(0.0);
-  property->SetSpecular(0.0);
-  const bool textured = this->Texture || this->TextureData;
-  double front[3] = { 1.0, 1.0, 1.0 };
-  if (!textured)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      front[c] = Sanitized(this->Intensity) * Sanitized(this->Color[c]);
-    }
-  }
-  vtkTexture* texture = textured ? internals.EmissionTexture.Get() : nullptr;
-  actor->SetTexture(texture);
-  // With a texture, VTK clamps the colour to [0, 1] before it modulates
-  // the texture: the radiance scale is in the emission picture and the
-  // colour is white. Without one, the colour is the radiance.
-  property->SetAmbientColor(front);
-  property->SetColor(front);
-  // The backface property stays set (VTK 9.1's mapper keeps reading it
-  // once its shader was built with it, even after it is removed): black
-  // for a one-sided light, the front's look for a two-sided one.
-  double back[3];
-  for (int c = 0; c < 3; ++c)
-  {
-    back[c] = this->TwoSided ? front[c] : 0.0;
-  }
-  internals.BackProperty->SetAmbientColor(back);
-  internals.BackProperty->SetColor(back);
-  actor->SetBackfaceProperty(internals.BackProperty);
-  // The shared views follow the texture switch (everything else they share).
-  for (const vtkWeakPointer<vtkActor>& view : internals.Views)
-  {
-    if (view)
-    {
-      view->SetTexture(texture);
-    }
-  }
+  vtkMRGIAreaLightEmitter::Look look;
+  look.Visible = this->Visible;
+  look.Textured = this->Texture || this->TextureData;
+  look.TwoSided = this->TwoSided;
+  look.Intensity = this->Intensity;
+  std::copy(this->Color, this->Color + 3, look.Color);
+  this->Internals->Emitter->UpdateActor(look);
 }
 
 //------------------------------------------------------------------------------
 void vtkMRGIAreaLight::ShareGeometryActor(vtkActor* actor)
 {
-  vtkActor* own = this->GetGeometryActor();
-  if (!actor || actor == own)
-  {
-    return;
-  }
-  // Forget views that are gone; add this one once.
-  auto& views = this->Internals->Views;
-  views.erase(std::remove_if(views.begin(), views.end(),
-                [](const vtkWeakPointer<vtkActor>& view) { return !view; }),
-    views.end());
-  if (std::none_of(views.begin(), views.end(),
-        [actor](const vtkWeakPointer<vtkActor>& view) { return view.Get() == actor; }))
-  {
-    views.emplace_back(actor);
-  }
-  // Its own quad source (the same quad), which keeps the light alive: the
-  // view may outlive whoever made it (a scene builder).
-  vtkNew<vtkMRGIAreaLightGeometrySource> geometry;
-  geometry->Light = this;
-  geometry->Owner = this;
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(geometry->GetOutputPort());
-  mapper->ScalarVisibilityOff();
-  actor->SetMapper(mapper);
-  actor->SetProperty(own->GetProperty());
-  actor->SetBackfaceProperty(own->GetBackfaceProperty());
-  actor->SetTexture(own->GetTexture());
+  this->GetGeometryActor();
+  this->Internals->Emitter->ShareActor(actor);
 }
 
 //------------------------------------------------------------------------------
