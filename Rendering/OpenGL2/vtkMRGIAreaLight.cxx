@@ -1,33 +1,16 @@
 #include "vtkMRGIAreaLight.h"
 
-#include "vtkAOSDataArrayTemplate.h"
-#include "vtkActor.h"
-#include "vtkCellArray.h"
-#include "vtkDataArray.h"
 #include "vtkFloatArray.h"
-#include "vtkImageAlgorithm.h"
 #include "vtkImageData.h"
-#include "vtkInformation.h"
-#include "vtkInformationVector.h"
-#include "vtkMath.h"
-#include "vtkNew.h"
+#include "vtkMRGIAreaLightEmitter.h"
+#include "vtkMRGIAreaLightUtilities.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
-#include "vtkOpenGLState.h"
-#include "vtkPointData.h"
-#include "vtkPoints.h"
-#include "vtkPolyData.h"
-#include "vtkPolyDataAlgorithm.h"
-#include "vtkPolyDataMapper.h"
-#include "vtkProperty.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
-#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTexture.h"
 #include "vtkTextureObject.h"
-#include "vtkUnsignedCharArray.h"
 #include "vtkWeakPointer.h"
-#include "vtk_glew.h"
 
 // The area-light GLSL libraries (embedded by vtk_encode_string).
 #include "vtkMRGIShaderLibraries.h"
@@ -38,7 +21,6 @@
 #include "mrgi_image.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -66,183 +48,9 @@ struct SampleKey
   int NumberOfSamples;
   int Flags;
 };
-
-bool IsWordCharacter(char c)
-{
-  return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
 }
 
-// Core messages name the C fields; a VTK user knows the properties.
-std::string WithPropertyNames(std::string message)
-{
-  static const char* const names[][2] = { { "center", "Center" }, { "edge_u", "EdgeU" },
-    { "edge_v", "EdgeV" }, { "color", "Color" }, { "intensity", "Intensity" } };
-  for (const auto& name : names)
-  {
-    const size_t length = std::strlen(name[0]);
-    for (size_t at = message.find(name[0]); at != std::string::npos;
-         at = message.find(name[0], at + length))
-    {
-      const size_t end = at + length;
-      if ((at == 0 || !IsWordCharacter(message[at - 1])) &&
-        (end == message.size() || !IsWordCharacter(message[end])))
-      {
-        message.replace(at, length, name[1]);
-      }
-    }
-  }
-  return message;
-}
-
-// A value, or 0 when it is not finite and >= 0 (for display only: requests
-// report such values as errors).
-double Sanitized(double value)
-{
-  return std::isfinite(value) && value > 0.0 ? value : 0.0;
-}
-
-// Linear [0, 1] -> 8-bit sRGB, tabulated: the emission texture is encoded
-// per texel per video frame, and powf per channel would dominate that.
-unsigned char EncodeSRGB8(float linear)
-{
-  static const std::vector<unsigned char> table = [] {
-    std::vector<unsigned char> t(65536);
-    for (size_t i = 0; i < t.size(); ++i)
-    {
-      const float encoded = mrgi_srgb_encode(static_cast<float>(i) / 65535.0f);
-      t[i] = static_cast<unsigned char>(std::lround(encoded * 255.0f));
-    }
-    return t;
-  }();
-  const float x = linear > 0.0f ? (linear < 1.0f ? linear : 1.0f) : 0.0f; // NaN -> 0
-  return table[static_cast<size_t>(x * 65535.0f + 0.5f)];
-}
-
-// Copy the colour of a W x H image with `components` components of type T
-// into the core's 3-channel float image (rows flipped: VTK's row 0 is the
-// bottom, the core's the top). `lut` maps unsigned char values; float
-// values are checked to be finite and >= 0.
-template <typename T>
-bool FillTexture(vtkDataArray* scalars, int width, int height, int components, const float* lut,
-  mrgi_image* out, std::string& why)
-{
-  // Direct reads for the usual (array-of-structs) arrays; any other layout
-  // goes through the generic, slower accessor.
-  auto* aos = vtkArrayDownCast<vtkAOSDataArrayTemplate<T>>(scalars);
-  const T* data = aos ? aos->GetPointer(0) : nullptr;
-  // Gray (1 or 2 components) is replicated into RGB; alpha is ignored.
-  const int colorComponents = components < 3 ? 1 : 3;
-  for (int y = 0; y < height; ++y)
-  {
-    float* row = mrgi_image_at(out, 0, height - 1 - y);
-    for (int x = 0; x < width; ++x)
-    {
-      const vtkIdType id = static_cast<vtkIdType>(y) * width + x;
-      float rgb[3];
-      for (int c = 0; c < colorComponents; ++c)
-      {
-        const double raw = data ? static_cast<double>(data[id * components + c])
-                                : scalars->GetComponent(id, c);
-        float value;
-        if (lut)
-        {
-          value = lut[static_cast<unsigned char>(raw)];
-        }
-        else
-        {
-          value = static_cast<float>(raw);
-          if (!(std::isfinite(value) && value >= 0.0f))
-          {
-            why = "texture pixel (" + std::to_string(x) + ", " + std::to_string(y) +
-              ") component " + std::to_string(c) + " = " + std::to_string(raw) +
-              " is not finite and >= 0 (float texels are radiances)";
-            return false;
-          }
-        }
-        rgb[c] = value;
-      }
-      if (colorComponents == 1)
-      {
-        rgb[1] = rgb[2] = rgb[0];
-      }
-      std::memcpy(row + 3 * x, rgb, sizeof(rgb));
-    }
-  }
-  return true;
-}
-
-// The core's float RGB image of a VTK texture image, or false with the reason.
-bool ConvertTexture(vtkImageData* image, bool srgb, mrgi_image* out, std::string& why)
-{
-  int dims[3];
-  image->GetDimensions(dims);
-  if (image->GetNumberOfPoints() <= 0 || dims[0] < 1 || dims[1] < 1 || dims[2] < 1)
-  {
-    why = "the texture image is empty (no points)";
-    return false;
-  }
-  if (dims[2] != 1)
-  {
-    why = "the texture image is 3D (" + std::to_string(dims[0]) + " x " +
-      std::to_string(dims[1]) + " x " + std::to_string(dims[2]) +
-      "); a 2D image (W x H x 1) is needed";
-    return false;
-  }
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
-  if (!scalars)
-  {
-    why = "the texture image has no point scalars";
-    return false;
-  }
-  const int type = scalars->GetDataType();
-  if (type != VTK_UNSIGNED_CHAR && type != VTK_FLOAT)
-  {
-    why = std::string("the texture image has scalars of type ") + scalars->GetDataTypeAsString() +
-      "; unsigned char or float is needed";
-    return false;
-  }
-  const int components = scalars->GetNumberOfComponents();
-  if (components < 1 || components > 4)
-  {
-    why = "the texture image has " + std::to_string(components) +
-      " components; 1 (gray), 2 (gray + alpha), 3 (RGB) or 4 (RGBA) are accepted";
-    return false;
-  }
-  const vtkIdType points = static_cast<vtkIdType>(dims[0]) * dims[1];
-  if (scalars->GetNumberOfTuples() != points)
-  {
-    why = "the texture image has " + std::to_string(scalars->GetNumberOfTuples()) +
-      " scalar tuples for its " + std::to_string(points) + " points";
-    return false;
-  }
-  mrgi_error err;
-  if (mrgi_image_create(out, dims[0], dims[1], 3, &err) != MRGI_OK)
-  {
-    why = std::string("texture: ") + err.message;
-    return false;
-  }
-  bool ok;
-  if (type == VTK_UNSIGNED_CHAR)
-  {
-    float lut[256];
-    for (int v = 0; v < 256; ++v)
-    {
-      const float linear = static_cast<float>(v) / 255.0f;
-      lut[v] = srgb ? mrgi_srgb_decode(linear) : linear;
-    }
-    ok = FillTexture<unsigned char>(scalars, dims[0], dims[1], components, lut, out, why);
-  }
-  else
-  {
-    ok = FillTexture<float>(scalars, dims[0], dims[1], components, nullptr, out, why);
-  }
-  if (!ok)
-  {
-    mrgi_image_destroy(out);
-  }
-  return ok;
-}
-}
+using vtkMRGIAreaLightUtilities::WithPropertyNames;
 
 //------------------------------------------------------------------------------
 struct vtkMRGIAreaLight::vtkInternals
@@ -278,12 +86,8 @@ struct vtkMRGIAreaLight::vtkInternals
   int SampleTextureBuild = -1; // NumberOfSampleBuilds at upload
   bool TexturesActive = false;
 
-  // The emitter's actor and what feeds it (created on first request).
-  vtkSmartPointer<vtkActor> Actor;
-  vtkSmartPointer<vtkTexture> EmissionTexture;
-  vtkSmartPointer<vtkProperty> BackProperty;
-  // Actors given to ShareGeometryActor(): kept in step with Actor's look.
-  std::vector<vtkWeakPointer<vtkActor>> Views;
+  // What draws the emitter (GetGeometryActor(); created on first request).
+  vtkSmartPointer<vtkMRGIAreaLightEmitter> Emitter;
 
   ~vtkInternals()
   {
@@ -291,164 +95,6 @@ struct vtkMRGIAreaLight::vtkInternals
     mrgi_image_destroy(&this->Image);
   }
 };
-
-//------------------------------------------------------------------------------
-// The emitter quad, regenerated whenever the light's own properties change
-// (not when only its texture image does).
-class vtkMRGIAreaLightGeometrySource : public vtkPolyDataAlgorithm
-{
-public:
-  static vtkMRGIAreaLightGeometrySource* New();
-  vtkTypeMacro(vtkMRGIAreaLightGeometrySource, vtkPolyDataAlgorithm);
-
-  // Weak: the light owns this source (through its actor), while a renderer
-  // may keep the actor after the light is gone.
-  vtkWeakPointer<vtkMRGIAreaLight> Light;
-  // Set for the sources of ShareGeometryActor()'s views only: they keep the
-  // light alive (it holds them weakly, so there is no cycle).
-  vtkSmartPointer<vtkMRGIAreaLight> Owner;
-
-  vtkMTimeType GetMTime() override
-  {
-    vtkMTimeType mtime = this->Superclass::GetMTime();
-    if (this->Light)
-    {
-      mtime = std::max(mtime, this->Light->vtkObject::GetMTime());
-    }
-    return mtime;
-  }
-
-protected:
-  vtkMRGIAreaLightGeometrySource() { this->SetNumberOfInputPorts(0); }
-
-  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
-  {
-    vtkPolyData* output = vtkPolyData::GetData(out);
-    if (!this->Light || !this->Light->MakeGeometry(output))
-    {
-      output->Initialize(); // an invalid light draws nothing
-    }
-    return 1;
-  }
-
-private:
-  vtkMRGIAreaLightGeometrySource(const vtkMRGIAreaLightGeometrySource&) = delete;
-  void operator=(const vtkMRGIAreaLightGeometrySource&) = delete;
-};
-vtkStandardNewMacro(vtkMRGIAreaLightGeometrySource);
-
-//------------------------------------------------------------------------------
-// The emitter's picture: Intensity * Color * T scaled for display (divided by
-// P = Intensity * max(Color) * max(1, max texel) when P > 1, see
-// GetGeometryActor()) as 8-bit sRGB RGB, the input of the actor's texture;
-// regenerated when the light or its texture image changes (the next video
-// frame).
-class vtkMRGIAreaLightEmissionSource : public vtkImageAlgorithm
-{
-public:
-  static vtkMRGIAreaLightEmissionSource* New();
-  vtkTypeMacro(vtkMRGIAreaLightEmissionSource, vtkImageAlgorithm);
-
-  vtkWeakPointer<vtkMRGIAreaLight> Light;
-
-  vtkMTimeType GetMTime() override
-  {
-    vtkMTimeType mtime = this->Superclass::GetMTime();
-    if (this->Light)
-    {
-      mtime = std::max(mtime, this->Light->GetMTime());
-    }
-    return mtime;
-  }
-
-protected:
-  vtkMRGIAreaLightEmissionSource() { this->SetNumberOfInputPorts(0); }
-
-  // The picture of the cached texture, or nullptr (then 1 x 1 black).
-  const mrgi_image* Picture()
-  {
-    if (!this->Light || !this->Light->UpdateTexture())
-    {
-      return nullptr;
-    }
-    const auto& internals = *this->Light->Internals;
-    return internals.HasTexture ? &internals.Image : nullptr;
-  }
-
-  int RequestInformation(
-    vtkInformation*, vtkInformationVector**, vtkInformationVector* out) override
-  {
-    const mrgi_image* picture = this->Picture();
-    const int width = picture ? picture->width : 1;
-    const int height = picture ? picture->height : 1;
-    vtkInformation* info = out->GetInformationObject(0);
-    int extent[6] = { 0, width - 1, 0, height - 1, 0, 0 };
-    info->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-    vtkDataObject::SetPointDataActiveScalarInfo(info, VTK_UNSIGNED_CHAR, 3);
-    return 1;
-  }
-
-  void ExecuteDataWithInformation(vtkDataObject* data, vtkInformation* info) override
-  {
-    vtkImageData* image = this->AllocateOutputData(data, info);
-    auto* rgb = vtkArrayDownCast<vtkUnsignedCharArray>(image->GetPointData()->GetScalars());
-    const mrgi_image* picture = this->Picture();
-    int dims[3];
-    image->GetDimensions(dims);
-    if (!rgb || !picture || picture->width != dims[0] || picture->height != dims[1])
-    {
-      if (rgb)
-      {
-        rgb->FillValue(0);
-      }
-      return;
-    }
-    // Display scale: the radiance scale Intensity * Color, divided by the
-    // peak P = Intensity * max(Color) * max(1, max texel) when P > 1. The
-    // max texel counts only above 1 (float HDR pictures): a picture in
-    // [0, 1] keeps one scale from frame to frame (no exposure flicker).
-    float maxTexel = 0.0f;
-    const size_t values = static_cast<size_t>(dims[0]) * static_cast<size_t>(dims[1]) * 3;
-    for (size_t i = 0; i < values; ++i)
-    {
-      maxTexel = std::max(maxTexel, picture->pixels[i]);
-    }
-    const double intensity = Sanitized(this->Light->GetIntensity());
-    double color[3], maxColor = 0.0;
-    for (int c = 0; c < 3; ++c)
-    {
-      color[c] = Sanitized(this->Light->GetColor()[c]);
-      maxColor = std::max(maxColor, color[c]);
-    }
-    const double texturePeak = std::max(1.0, static_cast<double>(maxTexel));
-    const double peak = intensity * maxColor * texturePeak; // may be +inf: handled below
-    float scale[3];
-    for (int c = 0; c < 3; ++c)
-    {
-      // Above 1, Intensity * Color[c] / P, written without the product
-      // (which can overflow for huge finite inputs).
-      scale[c] = static_cast<float>(
-        peak > 1.0 ? color[c] / maxColor / texturePeak : intensity * color[c]);
-    }
-    unsigned char* dst = rgb->GetPointer(0);
-    for (int y = 0; y < dims[1]; ++y)
-    {
-      const float* row = mrgi_image_at(picture, 0, dims[1] - 1 - y); // core rows run top-down
-      for (int x = 0; x < dims[0]; ++x)
-      {
-        for (int c = 0; c < 3; ++c)
-        {
-          *dst++ = EncodeSRGB8(scale[c] * row[3 * x + c]);
-        }
-      }
-    }
-  }
-
-private:
-  vtkMRGIAreaLightEmissionSource(const vtkMRGIAreaLightEmissionSource&) = delete;
-  void operator=(const vtkMRGIAreaLightEmissionSource&) = delete;
-};
-vtkStandardNewMacro(vtkMRGIAreaLightEmissionSource);
 
 //------------------------------------------------------------------------------
 vtkStandardNewMacro(vtkMRGIAreaLight);
@@ -605,7 +251,7 @@ bool vtkMRGIAreaLight::UpdateTexture()
   mrgi_area_light_texture_pyramid pyramid{};
   std::string why;
   mrgi_error err;
-  bool ok = ConvertTexture(image, srgb, &converted, why);
+  bool ok = vtkMRGIAreaLightUtilities::ConvertTexture(image, srgb, &converted, why);
   if (ok && mrgi_area_light_texture_pyramid_create(&pyramid, &converted, &err) != MRGI_OK)
   {
     why = std::string("texture: ") + err.message;
@@ -842,41 +488,7 @@ bool vtkMRGIAreaLight::MakeGeometry(vtkPolyData* quad)
   {
     return false;
   }
-  // Corners in the order of mrgi_area_light_uniforms::corners (counter-
-  // clockwise seen from the emitting side, so VTK's front face is the
-  // emitting one), with texture coordinates (s, t) of the core's mapping.
-  static const double signs[4][2] = { { -0.5, -0.5 }, { 0.5, -0.5 }, { 0.5, 0.5 }, { -0.5, 0.5 } };
-  double normal[3];
-  vtkMath::Cross(this->EdgeU, this->EdgeV, normal);
-  vtkMath::Normalize(normal);
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkFloatArray> normals;
-  normals->SetName("Normals");
-  normals->SetNumberOfComponents(3);
-  vtkNew<vtkFloatArray> tcoords;
-  tcoords->SetName("TCoords");
-  tcoords->SetNumberOfComponents(2);
-  for (const auto& sign : signs)
-  {
-    double corner[3];
-    for (int c = 0; c < 3; ++c)
-    {
-      corner[c] = this->Center[c] + sign[0] * this->EdgeU[c] + sign[1] * this->EdgeV[c];
-    }
-    points->InsertNextPoint(corner);
-    normals->InsertNextTuple(normal);
-    const double st[2] = { sign[0] + 0.5, sign[1] + 0.5 };
-    tcoords->InsertNextTuple(st);
-  }
-  vtkNew<vtkCellArray> polys;
-  const vtkIdType ids[4] = { 0, 1, 2, 3 };
-  polys->InsertNextCell(4, ids);
-  quad->Initialize();
-  quad->SetPoints(points);
-  quad->SetPolys(polys);
-  quad->GetPointData()->SetNormals(normals);
-  quad->GetPointData()->SetTCoords(tcoords);
+  vtkMRGIAreaLightEmitter::MakeQuad(this->Center, this->EdgeU, this->EdgeV, quad);
   return true;
 }
 
@@ -884,127 +496,50 @@ bool vtkMRGIAreaLight::MakeGeometry(vtkPolyData* quad)
 vtkActor* vtkMRGIAreaLight::GetGeometryActor()
 {
   vtkInternals& internals = *this->Internals;
-  if (!internals.Actor)
+  if (!internals.Emitter)
   {
-    vtkNew<vtkMRGIAreaLightGeometrySource> geometry;
-    geometry->Light = this;
-    vtkNew<vtkPolyDataMapper> mapper;
-    mapper->SetInputConnection(geometry->GetOutputPort());
-    mapper->ScalarVisibilityOff();
-    internals.Actor = vtkSmartPointer<vtkActor>::New();
-    internals.Actor->SetMapper(mapper);
-
-    vtkNew<vtkMRGIAreaLightEmissionSource> emission;
-    emission->Light = this;
-    internals.EmissionTexture = vtkSmartPointer<vtkTexture>::New();
-    internals.EmissionTexture->SetInputConnection(emission->GetOutputPort());
-    // 8 bits sRGB-encoded keep dark radiances; GL decodes back to linear.
-    internals.EmissionTexture->UseSRGBColorSpaceOn();
-    internals.EmissionTexture->InterpolateOn();
-    internals.EmissionTexture->MipmapOn(); // a video frame seen small must not alias
-    // Mesa llvmpipe's anisotropic filtering (VTK's default 4x) blends coarser
-    // levels in even where the texture is magnified (measured: a 2 x 2
-    // picture drawn 64 pixels wide mixed all four texels where bilinear
-    // filtering gives one texel's colour): plain trilinear filtering.
-    internals.EmissionTexture->SetMaximumAnisotropicFiltering(1.0f);
-    internals.EmissionTexture->RepeatOff();
-    internals.EmissionTexture->EdgeClampOn();
-
-    // The back of a one-sided emitter emits nothing: black, not see-through.
-    internals.BackProperty = vtkSmartPointer<vtkProperty>::New();
-    internals.BackProperty->LightingOff();
-    internals.BackProperty->SetAmbient(1.0);
-    internals.BackProperty->SetDiffuse(0.0);
-    internals.BackProperty->SetSpecular(0.0);
+    // The emitter asks for the quad and the picture at render time; it holds
+    // the light weakly (a renderer may keep the actor after the light is gone).
+    vtkWeakPointer<vtkMRGIAreaLight> self = this;
+    auto quad = [self](vtkPolyData* output) { return self && self->MakeGeometry(output); };
+    auto picture = [self]() {
+      vtkMRGIAreaLightEmitter::Picture shown;
+      if (self && self->UpdateTexture())
+      {
+        shown.Image = self->Internals->HasTexture ? &self->Internals->Image : nullptr;
+        shown.Intensity = self->Intensity;
+        std::copy(self->Color, self->Color + 3, shown.Color);
+      }
+      return shown;
+    };
+    internals.Emitter = vtkSmartPointer<vtkMRGIAreaLightEmitter>::New();
+    internals.Emitter->SetLight(this, quad, picture);
     this->UpdateGeometryActor();
   }
-  return internals.Actor;
+  return internals.Emitter->GetActor();
 }
 
 //------------------------------------------------------------------------------
 void vtkMRGIAreaLight::UpdateGeometryActor()
 {
-  if (!this->Internals || !this->Internals->Actor)
+  if (!this->Internals || !this->Internals->Emitter)
   {
     return;
   }
-  vtkInternals& internals = *this->Internals;
-  vtkActor* actor = internals.Actor;
-  actor->SetVisibility(this->Visible ? 1 : 0);
-  vtkProperty* property = actor->GetProperty();
-  // An emitter shows its radiance whatever the lights (as the emitters of
-  // vtkMRGISceneBuilder): VTK's ambient term only.
-  property->LightingOff();
-  property->SetAmbient(1.0);
-  property->SetDiffuse(0.0);
-  property->SetSpecular(0.0);
-  const bool textured = this->Texture || this->TextureData;
-  double front[3] = { 1.0, 1.0, 1.0 };
-  if (!textured)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      front[c] = Sanitized(this->Intensity) * Sanitized(this->Color[c]);
-    }
-  }
-  vtkTexture* texture = textured ? internals.EmissionTexture.Get() : nullptr;
-  actor->SetTexture(texture);
-  // With a texture, VTK clamps the colour to [0, 1] before it modulates
-  // the texture: the radiance scale is in the emission picture and the
-  // colour is white. Without one, the colour is the radiance.
-  property->SetAmbientColor(front);
-  property->SetColor(front);
-  // The backface property stays set (VTK 9.1's mapper keeps reading it
-  // once its shader was built with it, even after it is removed): black
-  // for a one-sided light, the front's look for a two-sided one.
-  double back[3];
-  for (int c = 0; c < 3; ++c)
-  {
-    back[c] = this->TwoSided ? front[c] : 0.0;
-  }
-  internals.BackProperty->SetAmbientColor(back);
-  internals.BackProperty->SetColor(back);
-  actor->SetBackfaceProperty(internals.BackProperty);
-  // The shared views follow the texture switch (everything else they share).
-  for (const vtkWeakPointer<vtkActor>& view : internals.Views)
-  {
-    if (view)
-    {
-      view->SetTexture(texture);
-    }
-  }
+  vtkMRGIAreaLightEmitter::Look look;
+  look.Visible = this->Visible;
+  look.Textured = this->Texture || this->TextureData;
+  look.TwoSided = this->TwoSided;
+  look.Intensity = this->Intensity;
+  std::copy(this->Color, this->Color + 3, look.Color);
+  this->Internals->Emitter->UpdateActor(look);
 }
 
 //------------------------------------------------------------------------------
 void vtkMRGIAreaLight::ShareGeometryActor(vtkActor* actor)
 {
-  vtkActor* own = this->GetGeometryActor();
-  if (!actor || actor == own)
-  {
-    return;
-  }
-  // Forget views that are gone; add this one once.
-  auto& views = this->Internals->Views;
-  views.erase(std::remove_if(views.begin(), views.end(),
-                [](const vtkWeakPointer<vtkActor>& view) { return !view; }),
-    views.end());
-  if (std::none_of(views.begin(), views.end(),
-        [actor](const vtkWeakPointer<vtkActor>& view) { return view.Get() == actor; }))
-  {
-    views.emplace_back(actor);
-  }
-  // Its own quad source (the same quad), which keeps the light alive: the
-  // view may outlive whoever made it (a scene builder).
-  vtkNew<vtkMRGIAreaLightGeometrySource> geometry;
-  geometry->Light = this;
-  geometry->Owner = this;
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(geometry->GetOutputPort());
-  mapper->ScalarVisibilityOff();
-  actor->SetMapper(mapper);
-  actor->SetProperty(own->GetProperty());
-  actor->SetBackfaceProperty(own->GetBackfaceProperty());
-  actor->SetTexture(own->GetTexture());
+  this->GetGeometryActor();
+  this->Internals->Emitter->ShareActor(actor);
 }
 
 //------------------------------------------------------------------------------
@@ -1084,36 +619,11 @@ vtkTextureObject* vtkMRGIAreaLight::GetPyramidTexture(vtkOpenGLRenderWindow* win
     internals.PyramidTexture = vtkSmartPointer<vtkTextureObject>::New();
   }
   vtkTextureObject* texture = internals.PyramidTexture;
-  texture->SetContext(window);
-  texture->SetInternalFormat(GL_RGB32F);
-  texture->SetFormat(GL_RGB);
-  texture->SetDataType(GL_FLOAT);
-  texture->SetWrapS(vtkTextureObject::ClampToEdge);
-  texture->SetWrapT(vtkTextureObject::ClampToEdge);
-  texture->SetMinificationFilter(vtkTextureObject::LinearMipmapLinear);
-  texture->SetMagnificationFilter(vtkTextureObject::Linear);
-  texture->SetBaseLevel(0);
-  texture->SetMaxLevel(pyramid->level_count - 1);
-  texture->SetGenerateMipmap(false);
-  // Level 0 through VTK (it creates and sizes the texture), the others as
-  // GL mip levels of the same texture: the core's sizes are GL's chain.
-  if (!texture->Create2DFromRaw(static_cast<unsigned int>(pyramid->width[0]),
-        static_cast<unsigned int>(pyramid->height[0]), 3, VTK_FLOAT,
-        pyramid->texels + pyramid->offset[0]))
+  if (!vtkMRGIAreaLightUtilities::UploadPyramid(texture, window, pyramid))
   {
     this->Fail("GetPyramidTexture: could not create the GL texture");
     return nullptr;
   }
-  texture->Activate();
-  vtkOpenGLState* state = window->GetState();
-  state->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 4); // RGB32F rows are whole words
-  for (int32_t k = 1; k < pyramid->level_count; ++k)
-  {
-    glTexImage2D(GL_TEXTURE_2D, k, GL_RGB32F, pyramid->width[k], pyramid->height[k], 0, GL_RGB,
-      GL_FLOAT, pyramid->texels + pyramid->offset[k]);
-  }
-  texture->SendParameters(); // base/max level, filters, wrap
-  texture->Deactivate();
   internals.PyramidTextureGeneration = internals.TextureGeneration;
   ++this->NumberOfPyramidUploads;
   this->LastErrorMessage.clear();
@@ -1144,18 +654,8 @@ vtkTextureObject* vtkMRGIAreaLight::GetSampleTexture(vtkOpenGLRenderWindow* wind
     {
       internals.SampleTexture = vtkSmartPointer<vtkTextureObject>::New();
     }
-    vtkTextureObject* texture = internals.SampleTexture;
-    texture->SetContext(window);
-    texture->SetInternalFormat(GL_RGBA32F);
-    texture->SetFormat(GL_RGBA);
-    texture->SetDataType(GL_FLOAT);
-    texture->SetMinificationFilter(vtkTextureObject::Nearest);
-    texture->SetMagnificationFilter(vtkTextureObject::Nearest);
-    texture->SetWrapS(vtkTextureObject::ClampToEdge);
-    texture->SetWrapT(vtkTextureObject::ClampToEdge);
-    if (!texture->Create2DFromRaw(MRGI_AREA_LIGHT_SAMPLE_TEXELS,
-          static_cast<unsigned int>(internals.SampleCount), 4, VTK_FLOAT,
-          const_cast<float*>(mrgi_area_light_sample_texture_data(internals.Samples.data()))))
+    if (!vtkMRGIAreaLightUtilities::UploadSamples(
+          internals.SampleTexture, window, internals.Samples.data(), internals.SampleCount))
     {
       this->Fail("GetSampleTexture: could not create the GL texture");
       return nullptr;

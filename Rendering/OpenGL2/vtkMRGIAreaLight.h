@@ -339,10 +339,6 @@ protected:
   vtkMRGIAreaLight();
   ~vtkMRGIAreaLight() override;
 
-  // The two private pipeline sources behind the geometry actor.
-  friend class vtkMRGIAreaLightGeometrySource;
-  friend class vtkMRGIAreaLightEmissionSource;
-
   /** Refresh the texture cache; false (error reported) when unusable. */
   bool UpdateTexture();
   /** Refresh the sample cache (and the texture cache first). */
@@ -352,6 +348,7 @@ protected:
   /** The image the texture comes from (nullptr: none); updates a vtkTexture's pipeline. */
   vtkImageData* ResolveTextureImage(bool updatePipeline);
   bool Fail(const std::string& why);
+  /** Keep the geometry actor (if made) in step with the light (vtkMRGIAreaLightEmitter). */
   void UpdateGeometryActor();
 
   double Center[3] = { 0.0, 0.0, 0.0 };

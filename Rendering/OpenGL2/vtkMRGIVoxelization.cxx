@@ -2,31 +2,20 @@
 
 #include "vtkMRGIVoxelization.h"
 
-#include "vtkActor.h"
-#include "vtkAssemblyNode.h"
-#include "vtkAssemblyPath.h"
 #include "vtkCamera.h"
-#include "vtkCellArray.h"
 #include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
+#include "vtkMRGIVoxelGeometry.h"
 #include "vtkMatrix4x4.h"
-#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
-#include "vtkPoints.h"
-#include "vtkPolyData.h"
-#include "vtkPolyDataMapper.h"
-#include "vtkProp.h"
-#include "vtkPropCollection.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
-#include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
-#include "vtkTriangleFilter.h"
 #include "vtkTypeUInt32Array.h"
 #include "vtkWeakPointer.h"
 
@@ -41,7 +30,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -49,95 +37,6 @@ vtkStandardNewMacro(vtkMRGIVoxelization);
 
 namespace
 {
-// One polydata's triangles in a vertex buffer: three float vertices per
-// triangle (no index buffer: GL_TRIANGLES over the whole buffer), each the
-// point minus `Centre` so that data far from the origin keeps float precision.
-struct Geometry
-{
-  vtkMTimeType DataTime = 0;
-  GLuint Buffer = 0;
-  GLsizei Vertices = 0;
-  double Centre[3] = { 0, 0, 0 };
-  bool Seen = false;
-};
-
-// What one Voxelize() draws: a geometry with its object -> world matrix.
-struct DrawItem
-{
-  Geometry* Geom;
-  double ObjectToWorld[16]; // row-major (vtkMatrix4x4 order)
-};
-
-// The triangles of `data` (polygons and strips; vtkTriangleFilter where they
-// are not all triangles already), as float xyz relative to `centre`.
-void Triangulate(vtkPolyData* data, std::vector<float>& xyz, double centre[3])
-{
-  xyz.clear();
-  vtkSmartPointer<vtkPolyData> tri = data;
-  bool allTriangles = data->GetNumberOfStrips() == 0;
-  if (allTriangles)
-  {
-    vtkCellArray* polys = data->GetPolys();
-    allTriangles = polys->GetNumberOfCells() == 0 || polys->IsHomogeneous() == 3;
-  }
-  if (!allTriangles)
-  {
-    vtkNew<vtkTriangleFilter> filter;
-    filter->SetInputData(data);
-    filter->PassVertsOff();
-    filter->PassLinesOff();
-    filter->Update();
-    tri = filter->GetOutput();
-  }
-  vtkPoints* points = tri->GetPoints();
-  vtkCellArray* polys = tri->GetPolys();
-  if (!points || polys->GetNumberOfCells() == 0)
-  {
-    centre[0] = centre[1] = centre[2] = 0;
-    return;
-  }
-  double bounds[6];
-  points->GetBounds(bounds);
-  for (int k = 0; k < 3; ++k)
-  {
-    centre[k] = 0.5 * (bounds[2 * k] + bounds[2 * k + 1]);
-    if (!std::isfinite(centre[k]))
-    {
-      centre[k] = 0;
-    }
-  }
-  xyz.reserve(static_cast<size_t>(polys->GetNumberOfCells()) * 9);
-  vtkIdType n = 0;
-  const vtkIdType* ids = nullptr;
-  for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
-  {
-    if (n != 3)
-    {
-      continue; // vtkTriangleFilter leaves only triangles; degenerate input cells
-    }
-    for (vtkIdType k = 0; k < 3; ++k)
-    {
-      double p[3];
-      points->GetPoint(ids[k], p);
-      for (int c = 0; c < 3; ++c)
-      {
-        xyz.push_back(static_cast<float>(p[c] - centre[c]));
-      }
-    }
-  }
-}
-
-// The assembly path's world matrix: a lone actor's own matrix (its path's
-// node holds none, or a snapshot), an assembly part's concatenated one.
-void PathMatrix(vtkAssemblyPath* path, vtkActor* actor, double m[16])
-{
-  vtkAssemblyNode* last = path->GetLastNode();
-  vtkMatrix4x4* matrix = (path->GetNumberOfItems() > 1 && last->GetMatrix())
-    ? last->GetMatrix()
-    : actor->GetMatrix();
-  std::copy(matrix->GetData(), matrix->GetData() + 16, m);
-}
-
 // Errors left by earlier GL calls are not ours (vtkOpenGLClearErrorMacro is
 // compiled out in release builds of VTK).
 void ClearGLErrors()
@@ -145,25 +44,6 @@ void ClearGLErrors()
   for (int k = 0; k < 16 && glGetError() != GL_NO_ERROR; ++k)
   {
   }
-}
-
-// a * b for row-major 4x4 matrices.
-void Multiply(const double a[16], const double b[16], double out[16])
-{
-  double r[16];
-  for (int i = 0; i < 4; ++i)
-  {
-    for (int j = 0; j < 4; ++j)
-    {
-      double s = 0;
-      for (int k = 0; k < 4; ++k)
-      {
-        s += a[4 * i + k] * b[4 * k + j];
-      }
-      r[4 * i + j] = s;
-    }
-  }
-  std::copy(r, r + 16, out);
 }
 
 // Restores what vtkOpenGLState does not track: logic op, depth clamp,
@@ -212,8 +92,8 @@ struct vtkMRGIVoxelization::Internals
   vtkWeakPointer<vtkOpenGLRenderWindow> Window;
   vtkTextureObject* Voxels = nullptr;
   vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
-  GLuint VertexArray = 0;
-  std::map<vtkPolyData*, Geometry> Geometries;
+  // What is drawn: vertex buffers per polydata, the vertex array.
+  vtkMRGIVoxelGeometry Geometry;
   // The last successful voxelization.
   bool HasGrid = false;
   mrgi_voxel_grid Grid{};
@@ -225,24 +105,7 @@ struct vtkMRGIVoxelization::Internals
 
   bool HasResources() const
   {
-    return this->Voxels || this->FrameBuffer || this->VertexArray || !this->Geometries.empty();
-  }
-
-  void ReleaseBuffers(bool haveContext)
-  {
-    for (auto& entry : this->Geometries)
-    {
-      if (haveContext && entry.second.Buffer)
-      {
-        glDeleteBuffers(1, &entry.second.Buffer);
-      }
-    }
-    this->Geometries.clear();
-    if (haveContext && this->VertexArray)
-    {
-      glDeleteVertexArrays(1, &this->VertexArray);
-    }
-    this->VertexArray = 0;
+    return this->Voxels || this->FrameBuffer || this->Geometry.HoldsResources();
   }
 };
 
@@ -267,7 +130,7 @@ vtkMRGIVoxelization::~vtkMRGIVoxelization()
   {
     vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
   }
-  in.ReleaseBuffers(false);
+  in.Geometry.Release(false);
   if (in.Voxels)
   {
     in.Voxels->Delete();
@@ -282,7 +145,7 @@ vtkMRGIVoxelization::~vtkMRGIVoxelization()
 void vtkMRGIVoxelization::ReleaseGraphicsResources(vtkWindow* w)
 {
   Internals& in = *this->Internal;
-  in.ReleaseBuffers(w != nullptr);
+  in.Geometry.Release(w != nullptr);
   if (in.Voxels)
   {
     if (w)
@@ -642,96 +505,7 @@ bool vtkMRGIVoxelization::Voxelize(vtkRenderer* ren, double nearDepth, double fa
   std::copy(view->GetData(), view->GetData() + 16, worldToView);
   window->MakeCurrent();
   ClearGLErrors();
-  for (auto& entry : in.Geometries)
-  {
-    entry.second.Seen = false;
-  }
-  std::vector<DrawItem> items;
-  int skipped = 0;
-  std::vector<float> xyz;
-  vtkPropCollection* props = ren->GetViewProps();
-  vtkCollectionSimpleIterator pit;
-  props->InitTraversal(pit);
-  while (vtkProp* prop = props->GetNextProp(pit))
-  {
-    if (!prop->GetVisibility())
-    {
-      continue;
-    }
-    prop->InitPathTraversal();
-    while (vtkAssemblyPath* path = prop->GetNextPath())
-    {
-      vtkActor* actor = vtkActor::SafeDownCast(path->GetLastNode()->GetViewProp());
-      if (!actor)
-      {
-        ++skipped; // volumes, 2D props, ...
-        continue;
-      }
-      if (!actor->GetVisibility())
-      {
-        continue;
-      }
-      vtkPolyDataMapper* mapper = vtkPolyDataMapper::SafeDownCast(actor->GetMapper());
-      // Translucent actors do not block the light in MRGI's opaque passes:
-      // left out so that visibility agrees with what is shaded.
-      if (!mapper || !actor->HasOpaqueGeometry())
-      {
-        ++skipped;
-        continue;
-      }
-      if (mapper->GetNumberOfInputConnections(0) > 0)
-      {
-        mapper->Update();
-      }
-      vtkPolyData* data = vtkPolyData::SafeDownCast(mapper->GetInputDataObject(0, 0));
-      if (!data)
-      {
-        ++skipped; // composite data and other non-polydata inputs
-        continue;
-      }
-      Geometry& geom = in.Geometries[data];
-      const vtkMTimeType dataTime = data->GetMTime();
-      if (geom.Buffer == 0 || geom.DataTime != dataTime)
-      {
-        Triangulate(data, xyz, geom.Centre);
-        if (geom.Buffer == 0)
-        {
-          glGenBuffers(1, &geom.Buffer);
-        }
-        glBindBuffer(GL_ARRAY_BUFFER, geom.Buffer);
-        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(xyz.size() * sizeof(float)),
-          xyz.empty() ? nullptr : xyz.data(), GL_STATIC_DRAW);
-        glBindBuffer(GL_ARRAY_BUFFER, 0);
-        geom.Vertices = static_cast<GLsizei>(xyz.size() / 3);
-        geom.DataTime = dataTime;
-      }
-      geom.Seen = true;
-      if (geom.Vertices == 0)
-      {
-        continue;
-      }
-      DrawItem item;
-      item.Geom = &geom;
-      PathMatrix(path, actor, item.ObjectToWorld);
-      items.push_back(item);
-    }
-  }
-  // Data no longer in the scene: free its buffers.
-  for (auto it = in.Geometries.begin(); it != in.Geometries.end();)
-  {
-    if (!it->second.Seen)
-    {
-      if (it->second.Buffer)
-      {
-        glDeleteBuffers(1, &it->second.Buffer);
-      }
-      it = in.Geometries.erase(it);
-    }
-    else
-    {
-      ++it;
-    }
-  }
+  in.Geometry.Collect(ren);
 
   // ---- resources ----
   if (!in.Voxels || static_cast<int>(in.Voxels->GetWidth()) != grid.width ||
@@ -769,10 +543,6 @@ bool vtkMRGIVoxelization::Voxelize(vtkRenderer* ren, double nearDepth, double fa
     in.FrameBuffer = vtkOpenGLFramebufferObject::New();
     in.FrameBuffer->SetContext(window);
   }
-  if (!in.VertexArray)
-  {
-    glGenVertexArrays(1, &in.VertexArray);
-  }
   const std::string header = "//VTK::System::Dec\n" + vtkMRGIShaderUtilities::Defines();
   const std::string vs = header + vtkMRGIVoxelizeVS;
   const std::string gs = header + vtkMRGIVoxelizeGS;
@@ -785,7 +555,6 @@ bool vtkMRGIVoxelization::Voxelize(vtkRenderer* ren, double nearDepth, double fa
       << (program ? ": " + program->GetError() : std::string()));
     return false;
   }
-  const GLint vertexLocation = glGetAttribLocation(program->GetHandle(), "vertexMC");
 
   // ---- the pass ----
   vtkMRGIShaderUtilities::ScopedStage stage(this->StageTimer, "voxelize");
@@ -861,38 +630,7 @@ bool vtkMRGIVoxelization::Voxelize(vtkRenderer* ren, double nearDepth, double fa
       program->SetUniformf("mrgiVoxelFar", grid.far_depth);
       program->SetUniformf("mrgiVoxelSliceScale", grid.slice_scale);
 
-      glBindVertexArray(in.VertexArray);
-      vtkIdType triangles = 0;
-      for (const DrawItem& item : items)
-      {
-        // model-view = view x object->world x translate(centre), in double.
-        double shift[16] = { 1, 0, 0, item.Geom->Centre[0], 0, 1, 0, item.Geom->Centre[1], 0, 0,
-          1, item.Geom->Centre[2], 0, 0, 0, 1 };
-        double mv[16];
-        Multiply(item.ObjectToWorld, shift, mv);
-        Multiply(worldToView, mv, mv);
-        float mvColumns[16];
-        for (int r = 0; r < 4; ++r)
-        {
-          for (int c = 0; c < 4; ++c)
-          {
-            mvColumns[4 * c + r] = static_cast<float>(mv[4 * r + c]);
-          }
-        }
-        program->SetUniformMatrix4x4("mrgiModelView", mvColumns);
-        glBindBuffer(GL_ARRAY_BUFFER, item.Geom->Buffer);
-        if (vertexLocation >= 0)
-        {
-          glEnableVertexAttribArray(static_cast<GLuint>(vertexLocation));
-          glVertexAttribPointer(
-            static_cast<GLuint>(vertexLocation), 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-        }
-        glDrawArrays(GL_TRIANGLES, 0, item.Geom->Vertices);
-        triangles += item.Geom->Vertices / 3;
-      }
-      glBindBuffer(GL_ARRAY_BUFFER, 0);
-      glBindVertexArray(0);
-      in.Triangles = triangles;
+      in.Triangles = in.Geometry.Draw(program, worldToView);
     }
     fbo->RemoveColorAttachments(1);
     fbo->UnBind();
@@ -918,8 +656,8 @@ bool vtkMRGIVoxelization::Voxelize(vtkRenderer* ren, double nearDepth, double fa
       in.WorldToView[4 * c + r] = worldToView[4 * r + c];
     }
   }
-  in.DrawnProps = static_cast<int>(items.size());
-  in.SkippedProps = skipped;
+  in.DrawnProps = in.Geometry.GetNumberOfDrawnProps();
+  in.SkippedProps = in.Geometry.GetNumberOfSkippedProps();
   return true;
 }
 
@@ -988,5 +726,5 @@ void vtkMRGIVoxelization::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Triangles: " << in.Triangles << "\n";
   os << indent << "DrawnProps: " << in.DrawnProps << "\n";
   os << indent << "SkippedProps: " << in.SkippedProps << "\n";
-  os << indent << "CachedGeometries: " << in.Geometries.size() << "\n";
+  os << indent << "CachedGeometries: " << in.Geometry.GetNumberOfCachedGeometries() << "\n";
 }
