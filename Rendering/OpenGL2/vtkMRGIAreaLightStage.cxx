@@ -249,12 +249,6 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
   ScopedStage stage(timer, "area");
   // Steps: "voxelize", "visibility.pyramid" and "gather.samples" (the
   // gathers; receivers are this frame's, built once).
-  this->Voxelization->SetStageTimer(timer);
-  struct ClearTimer
-  {
-    vtkMRGIVoxelization* Voxels;
-    ~ClearTimer() { this->Voxels->SetStageTimer(nullptr); }
-  } clearTimer{ this->Voxelization };
   if (!buffer->HasReceivers() &&
     !buffer->BuildReceivers(renWin, frame.Position, frame.Normal, frame.Viewport[0], frame.Viewport[1], timer))
   {
@@ -305,7 +299,7 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
   {
     double range[2];
     renderer->GetActiveCamera()->GetClippingRange(range);
-    if (this->Voxelization->Voxelize(renderer, range[0], range[1]))
+    if (this->Voxelization->Voxelize(renderer, range[0], range[1], timer))
     {
       voxels = this->Voxelization;
     }

@@ -394,7 +394,8 @@ bool vtkMRGIVoxelization::SetMarchUniforms(
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIVoxelization::Voxelize(vtkRenderer* ren, double nearDepth, double farDepth)
+bool vtkMRGIVoxelization::Voxelize(
+  vtkRenderer* ren, double nearDepth, double farDepth, vtkRenderTimerLog* timer)
 {
   Internals& in = *this->Internal;
   // ---- arguments (nothing touched on error: the previous buffer stays) ----
@@ -557,7 +558,7 @@ bool vtkMRGIVoxelization::Voxelize(vtkRenderer* ren, double nearDepth, double fa
   }
 
   // ---- the pass ----
-  vtkMRGIShaderUtilities::ScopedStage stage(this->StageTimer, "voxelize");
+  vtkMRGIShaderUtilities::ScopedStage stage(timer, "voxelize");
   vtkOpenGLState* ostate = window->GetState();
   bool ok = true;
   {

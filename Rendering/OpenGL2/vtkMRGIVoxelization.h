@@ -103,9 +103,10 @@ public:
    * camera, a renderer of zero size, NaN or infinite depths, nearDepth >=
    * farDepth (also after rounding to float), nearDepth <= 0 with a
    * perspective camera, a camera projection the voxel projection cannot
-   * express (mirrored, sheared or off-axis), or an OpenGL failure.
+   * express (mirrored, sheared or off-axis), or an OpenGL failure. The
+   * pass is a GPU timer event ("voxelize") on `timer` when given.
    */
-  bool Voxelize(vtkRenderer* ren, double nearDepth, double farDepth);
+  bool Voxelize(vtkRenderer* ren, double nearDepth, double farDepth, vtkRenderTimerLog* timer = nullptr);
 
   /**
    * Read the last voxel buffer back: 4 unsigned 32-bit words per voxel pixel
@@ -219,12 +220,6 @@ public:
 #endif
 
   /**
-   * Log the pass as a GPU timer event ("voxelize") on this timer; null (the
-   * default) logs nothing. Not reference counted.
-   */
-  void SetStageTimer(vtkRenderTimerLog* timer) { this->StageTimer = timer; }
-
-  /**
    * Free every GL resource (texture, framebuffer, vertex buffers, vertex
    * array) in `w`'s context (the window last voxelized in). Voxelizing in
    * another window frees them in the old one first (or forgets them when
@@ -240,7 +235,6 @@ protected:
   int MaxSteps;
   double NormalOffset;
   int SkipRadius;
-  vtkRenderTimerLog* StageTimer = nullptr;
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
