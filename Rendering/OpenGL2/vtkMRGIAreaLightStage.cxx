@@ -12,6 +12,7 @@
 #include "vtkMRGIIncrementalStencil.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIProgramCache.h"
+#include "vtkMRGIStageResources.h"
 #include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGISpecularStencil.h"
@@ -95,9 +96,9 @@ vtkOpenGLQuadHelper* ReadySpecular(vtkMRGIProgramCache& programs, vtkOpenGLRende
 
 struct vtkMRGIAreaLightStage::Internals
 {
-  // The highlight programs (full resolution and multiresolution; unshadowed,
-  // masked, marched) and the add program.
-  vtkMRGIProgramCache Programs;
+  // The framebuffer and the programs: the highlight's (full resolution and
+  // multiresolution; unshadowed, masked, marched) and the add.
+  vtkMRGIStageResources GL;
 };
 
 //------------------------------------------------------------------------------
@@ -150,19 +151,10 @@ void vtkMRGIAreaLightStage::ReleaseGraphicsResources(vtkWindow* w)
       light->ReleaseGraphicsResources(w);
     }
   }
-  this->Internal->Programs.ReleaseGraphicsResources(w);
+  this->Internal->GL.Release(w);
   vtkMRGIShaderUtilities::ReleaseTexture(this->IrradianceTexture, w);
   vtkMRGIShaderUtilities::ReleaseTexture(this->DirectTexture, w);
   vtkMRGIShaderUtilities::ReleaseTexture(this->SumTexture, w);
-  if (this->FrameBuffer)
-  {
-    if (w)
-    {
-      this->FrameBuffer->ReleaseGraphicsResources(w);
-    }
-    this->FrameBuffer->Delete();
-    this->FrameBuffer = nullptr;
-  }
   this->Signature.clear(); // the sum it describes is gone
 }
 
@@ -271,16 +263,12 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
     vtkErrorMacro("could not allocate the area lights' buffers (" << w << " x " << h << ")");
     return false;
   }
-  if (!this->FrameBuffer)
-  {
-    this->FrameBuffer = vtkOpenGLFramebufferObject::New();
-    this->FrameBuffer->SetContext(renWin);
-  }
+  this->Internal->GL.Prepare(renWin);
   {
     // Clear the sum over the viewport.
     vtkOpenGLState* ostate = renWin->GetState();
     vtkMRGIViewportStep state(ostate, frame.Viewport);
-    vtkOpenGLFramebufferObject* fbo = this->FrameBuffer;
+    vtkOpenGLFramebufferObject* fbo = this->Internal->GL.FrameBuffer;
     fbo->SaveCurrentBindingsAndBuffers();
     fbo->Bind();
     fbo->AddColorAttachment(0, this->SumTexture);
@@ -502,7 +490,7 @@ bool vtkMRGIAreaLightStage::RenderSpecular(const vtkMRGIFrameContext& frame,
   }
   const bool masked = shadowed && masks != nullptr;
   const bool marched = shadowed && !masked;
-  vtkOpenGLQuadHelper* quad = ReadySpecular(this->Internal->Programs, renWin, false, masked, marched);
+  vtkOpenGLQuadHelper* quad = ReadySpecular(this->Internal->GL.Programs, renWin, false, masked, marched);
   vtkShaderProgram* program = quad ? quad->Program : nullptr;
   if (!program)
   {
@@ -558,7 +546,7 @@ bool vtkMRGIAreaLightStage::RenderSpecular(const vtkMRGIFrameContext& frame,
       active.push_back(voxels->GetVoxelTexture());
     }
   }
-  vtkOpenGLFramebufferObject* fbo = this->FrameBuffer;
+  vtkOpenGLFramebufferObject* fbo = this->Internal->GL.FrameBuffer;
   vtkOpenGLState* ostate = renWin->GetState();
   vtkMRGIViewportStep state(ostate, frame.Viewport);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
@@ -633,7 +621,7 @@ bool vtkMRGIAreaLightStage::RenderSpecularMultiresolution(const vtkMRGIFrameCont
   const bool masked = shadowed && masks != nullptr &&
     masks->GetNumberOfLevels() == layout.level_count;
   const bool marched = shadowed && !masked;
-  vtkOpenGLQuadHelper* quad = ReadySpecular(this->Internal->Programs, renWin, true, masked, marched);
+  vtkOpenGLQuadHelper* quad = ReadySpecular(this->Internal->GL.Programs, renWin, true, masked, marched);
   vtkShaderProgram* program = quad ? quad->Program : nullptr;
   if (!program || !light->SetShaderUniforms(program, renWin))
   {
@@ -730,7 +718,7 @@ bool vtkMRGIAreaLightStage::Add(
   const vtkMRGIFrameContext& frame, vtkTextureObject* source, vtkTextureObject* target)
 {
   if (!vtkMRGIFullScreenStep::AddRGB(
-        frame.Window, this->Internal->Programs, this->FrameBuffer, frame.Viewport, source, target))
+        frame.Window, this->Internal->GL.Programs, this->Internal->GL.FrameBuffer, frame.Viewport, source, target))
   {
     vtkErrorMacro("could not build the MRGI composite shader");
     return false;

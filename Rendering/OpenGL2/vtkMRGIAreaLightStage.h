@@ -50,7 +50,6 @@ class vtkMRGIUpsample;
 class vtkMRGIVarianceShadowQuery;
 class vtkMRGIVisibilityPyramid;
 class vtkMRGIVoxelization;
-class vtkOpenGLFramebufferObject;
 class vtkTextureObject;
 class vtkWindow;
 
@@ -211,7 +210,6 @@ protected:
   vtkTextureObject* IrradianceTexture = nullptr; // the resolves' E (scratch)
   vtkTextureObject* DirectTexture = nullptr;     // one light's term
   vtkTextureObject* SumTexture = nullptr;        // the lights' sum
-  vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

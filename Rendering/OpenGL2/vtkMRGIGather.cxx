@@ -7,6 +7,7 @@
 #include "vtkMRGIFullScreenStep.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIProgramCache.h"
+#include "vtkMRGIStageResources.h"
 #include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGISpecularStencil.h"
@@ -38,8 +39,7 @@ struct vtkMRGIGather::Internals
 {
   // The flattened irradiance (the gathers' output), sized to the buffer's layout.
   vtkTextureObject* FlatIrradiance = nullptr;
-  vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
-  vtkMRGIProgramCache Programs;
+  vtkMRGIStageResources GL; // framebuffer and programs
   // Statistics of the last gather (occlusion queries, one per level).
   std::vector<unsigned int> Queries;
   std::vector<long long> GatheredTexels;
@@ -67,11 +67,7 @@ struct vtkMRGIGather::Internals
       this->FlatIrradiance =
         vtkMRGIShaderUtilities::NewTexture(window, GL_RGBA32F, layout.total_width, layout.total_height);
     }
-    if (!this->FrameBuffer)
-    {
-      this->FrameBuffer = vtkOpenGLFramebufferObject::New();
-      this->FrameBuffer->SetContext(window);
-    }
+    this->GL.Prepare(window);
     return this->FlatIrradiance != nullptr;
   }
 
@@ -109,15 +105,11 @@ vtkMRGIGather::vtkMRGIGather()
 //------------------------------------------------------------------------------
 vtkMRGIGather::~vtkMRGIGather()
 {
-  if (this->Internal->FrameBuffer || this->Internal->FlatIrradiance)
+  if (this->Internal->GL.FrameBuffer || this->Internal->FlatIrradiance)
   {
     vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
   }
   vtkMRGIShaderUtilities::ReleaseTexture(this->Internal->FlatIrradiance, nullptr);
-  if (this->Internal->FrameBuffer)
-  {
-    this->Internal->FrameBuffer->Delete();
-  }
 }
 
 //------------------------------------------------------------------------------
@@ -126,16 +118,22 @@ void vtkMRGIGather::ReleaseGraphicsResources(vtkWindow* w)
   Internals& in = *this->Internal;
   in.ReleaseQueries(w);
   in.ReleaseSplats(w);
-  in.Programs.ReleaseGraphicsResources(w);
+  in.GL.Release(w);
   vtkMRGIShaderUtilities::ReleaseTexture(in.FlatIrradiance, w);
   in.GatheredTexels.clear();
   in.ValidPixels = -1;
-  if (in.FrameBuffer)
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIGather::PrepareTarget(vtkOpenGLRenderWindow* window, const mrgi_multires_layout& layout)
+{
+  if (!this->Internal->Prepare(window, layout))
   {
-    in.FrameBuffer->ReleaseGraphicsResources(w);
-    in.FrameBuffer->Delete();
-    in.FrameBuffer = nullptr;
+    vtkErrorMacro("could not allocate the flattened irradiance (" << layout.total_width << " x "
+                                                                 << layout.total_height << ")");
+    return false;
   }
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -183,10 +181,8 @@ bool vtkMRGIGather::Run(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution
     vtkErrorMacro("the gather needs a window, a stencil, and the buffer's selection and receivers of this frame");
     return false;
   }
-  if (!in.Prepare(window, layout))
+  if (!this->PrepareTarget(window, layout))
   {
-    vtkErrorMacro("could not allocate the flattened irradiance (" << layout.total_width << " x "
-                                                                 << layout.total_height << ")");
     return false;
   }
   const int levels = layout.level_count;
@@ -258,7 +254,7 @@ bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultir
     (masked ? "#define MRGI_AREA_VISIBILITY_MASKS 1\n" : "") +
     (visibility ? "#define MRGI_AREA_VISIBILITY 1\n" : "") +
     (area ? "#define MRGI_GATHER_AREA_LIGHT 1\n" : "");
-  vtkOpenGLQuadHelper* quad = in.Programs.Ready(window, "gather", defines, [&] {
+  vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(window, "gather", defines, [&] {
     return visibility ? vtkMRGIShaderLibraries::Compose(
                           { "vtkMRGIVoxelMarch", "vtkMRGIAreaLightDiffuse", "vtkMRGIGatherFS" })
       : area ? vtkMRGIShaderLibraries::Compose({ "vtkMRGIAreaLightDiffuse", "vtkMRGIGatherFS" })
@@ -275,7 +271,7 @@ bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultir
     in.Queries.resize(static_cast<size_t>(levels));
     glGenQueries(levels, in.Queries.data());
   }
-  vtkMRGIFullScreenStep steps(window, in.FrameBuffer);
+  vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
   vtkOpenGLState* ostate = steps.GetState();
   steps.Target(in.FlatIrradiance, nullptr, 0, 0, layout.total_width, layout.total_height);
   steps.BeginStencilRead(stencil);
@@ -483,7 +479,7 @@ bool vtkMRGIGather::RunSplatting(const vtkMRGIFrameContext& frame, vtkMRGIMultir
   glBindVertexArray(in.SplatArray);
   glEnableVertexAttribArray(static_cast<GLuint>(texelAttribute));
   glVertexAttribIPointer(static_cast<GLuint>(texelAttribute), 2, GL_INT, 0, nullptr);
-  vtkMRGIFullScreenStep steps(window, in.FrameBuffer);
+  vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
   vtkOpenGLState* ostate = steps.GetState();
   steps.Target(in.FlatIrradiance, nullptr, 0, 0, layout.total_width, layout.total_height);
   ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
@@ -542,10 +538,8 @@ bool vtkMRGIGather::GatherSpecular(const vtkMRGIFrameContext& frame, vtkMRGIMult
     vtkErrorMacro("GatherSpecular needs a program, the buffer's receivers and its specular stencil of this frame");
     return false;
   }
-  if (!in.Prepare(window, layout))
+  if (!this->PrepareTarget(window, layout))
   {
-    vtkErrorMacro("could not allocate the flattened irradiance (" << layout.total_width << " x "
-                                                                 << layout.total_height << ")");
     return false;
   }
   const int levels = layout.level_count;
@@ -553,7 +547,7 @@ bool vtkMRGIGather::GatherSpecular(const vtkMRGIFrameContext& frame, vtkMRGIMult
   vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "gather.specular");
   bool ok = true;
   {
-    vtkMRGIFullScreenStep steps(window, in.FrameBuffer);
+    vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
     vtkOpenGLState* ostate = steps.GetState();
     vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
     steps.Target(in.FlatIrradiance, nullptr, 0, 0, layout.total_width, layout.total_height);

@@ -181,6 +181,9 @@ protected:
   bool CollectStatistics = false;
 
 #ifndef __VTK_WRAP__
+  // The flattened irradiance for `layout`; false, with an error, when it
+  // cannot be allocated.
+  bool PrepareTarget(vtkOpenGLRenderWindow* window, const mrgi_multires_layout& layout);
   // The gathers after their inputs are checked: the stenciled one (VPLs, or
   // the area light of `term`) and the splatting (VPLs only).
   bool Run(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer, vtkTextureObject* vpls,

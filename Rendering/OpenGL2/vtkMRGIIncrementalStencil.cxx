@@ -6,6 +6,7 @@
 #include "vtkMRGIFullScreenStep.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIProgramCache.h"
+#include "vtkMRGIStageResources.h"
 #include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIVisibilityPyramid.h"
@@ -37,8 +38,7 @@ struct vtkMRGIIncrementalStencil::Internals
   vtkTextureObject* IncrementalDepthStencil = nullptr;
   mrgi_multires_layout Layout{};
   bool Built = false;
-  vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
-  vtkMRGIProgramCache Programs;
+  vtkMRGIStageResources GL; // framebuffer and programs
 
   void ReleaseTextures(vtkWindow* w)
   {
@@ -64,11 +64,7 @@ struct vtkMRGIIncrementalStencil::Internals
         vtkMRGIShaderUtilities::NewDepthStencil(window, layout.total_width, layout.total_height);
     }
     this->Layout = layout;
-    if (!this->FrameBuffer)
-    {
-      this->FrameBuffer = vtkOpenGLFramebufferObject::New();
-      this->FrameBuffer->SetContext(window);
-    }
+    this->GL.Prepare(window);
     if (!this->FlatIncremental || !this->IncrementalDepthStencil)
     {
       this->ReleaseTextures(window);
@@ -87,15 +83,11 @@ vtkMRGIIncrementalStencil::vtkMRGIIncrementalStencil()
 //------------------------------------------------------------------------------
 vtkMRGIIncrementalStencil::~vtkMRGIIncrementalStencil()
 {
-  if (this->Internal->FrameBuffer || this->Internal->FlatIncremental)
+  if (this->Internal->GL.FrameBuffer || this->Internal->FlatIncremental)
   {
     vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
   }
   this->Internal->ReleaseTextures(nullptr);
-  if (this->Internal->FrameBuffer)
-  {
-    this->Internal->FrameBuffer->Delete();
-  }
 }
 
 //------------------------------------------------------------------------------
@@ -103,13 +95,7 @@ void vtkMRGIIncrementalStencil::ReleaseGraphicsResources(vtkWindow* w)
 {
   Internals& in = *this->Internal;
   in.ReleaseTextures(w);
-  in.Programs.ReleaseGraphicsResources(w);
-  if (in.FrameBuffer)
-  {
-    in.FrameBuffer->ReleaseGraphicsResources(w);
-    in.FrameBuffer->Delete();
-    in.FrameBuffer = nullptr;
-  }
+  in.GL.Release(w);
 }
 
 //------------------------------------------------------------------------------
@@ -151,7 +137,7 @@ bool vtkMRGIIncrementalStencil::Build(const vtkMRGIFrameContext& frame,
       << " words)");
     return false;
   }
-  vtkOpenGLQuadHelper* quad = in.Programs.Ready(window, "incremental",
+  vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(window, "incremental",
     "#define MRGI_STENCIL_WORDS " + std::to_string(words) + "\n#define MRGI_STENCIL_TARGETS " +
       std::to_string(targets) + "\n",
     [] { return vtkMRGIShaderLibraries::Compose({ "vtkMRGIIncrementalStencilFS" }); });
@@ -163,7 +149,7 @@ bool vtkMRGIIncrementalStencil::Build(const vtkMRGIFrameContext& frame,
   }
   using vtkMRGIShaderUtilities::ScopedStage;
   ScopedStage step(frame.Timer, "select.incremental");
-  vtkMRGIFullScreenStep steps(window, in.FrameBuffer);
+  vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
   vtkOpenGLState* ostate = steps.GetState();
   steps.Target(in.FlatIncremental, nullptr, 0, 0, layout.total_width, layout.total_height);
   steps.BeginMaskWrite(in.IncrementalDepthStencil);
@@ -240,7 +226,7 @@ bool vtkMRGIIncrementalStencil::ReadStencil(vtkRenderWindow* window, vtkUnsigned
     vtkErrorMacro("ReadStencil: no incremental stencil built");
     return false;
   }
-  return vtkMRGIFullScreenStep::ReadMask(renWin, in.FrameBuffer, in.Layout, in.FlatIncremental,
+  return vtkMRGIFullScreenStep::ReadMask(renWin, in.GL.FrameBuffer, in.Layout, in.FlatIncremental,
     in.IncrementalDepthStencil, false, mask);
 }
 

@@ -5,6 +5,7 @@
 #include "vtkFloatArray.h"
 #include "vtkMRGIFullScreenStep.h"
 #include "vtkMRGIProgramCache.h"
+#include "vtkMRGIStageResources.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFramebufferObject.h"
@@ -75,8 +76,7 @@ struct vtkMRGIMultiresolution::Internals
   vtkTextureObject* DepthStencil = nullptr;
   // Pixel size coefficients of the last Update().
   double PixelSize[2] = { 0.0, 0.0 };
-  vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
-  vtkMRGIProgramCache Programs;
+  vtkMRGIStageResources GL; // framebuffer and programs
 
   // Slot `slot` (MRGI_MULTIRES_TEX_*, or MRGI_MULTIRES_TEX_COUNT: the flags) of every level.
   std::vector<vtkTextureObject*> LevelTextures(int slot) const
@@ -164,28 +164,18 @@ bool vtkMRGIMultiresolution::SetPreset(int preset)
 //------------------------------------------------------------------------------
 vtkMRGIMultiresolution::~vtkMRGIMultiresolution()
 {
-  if (this->Internal->FrameBuffer || this->Internal->DepthStencil)
+  if (this->Internal->GL.FrameBuffer || this->Internal->DepthStencil)
   {
     vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
   }
   this->Internal->ReleaseTextures(nullptr);
-  if (this->Internal->FrameBuffer)
-  {
-    this->Internal->FrameBuffer->Delete();
-  }
 }
 
 //------------------------------------------------------------------------------
 void vtkMRGIMultiresolution::ReleaseGraphicsResources(vtkWindow* w)
 {
   this->Internal->ReleaseTextures(w);
-  this->Internal->Programs.ReleaseGraphicsResources(w);
-  if (this->Internal->FrameBuffer)
-  {
-    this->Internal->FrameBuffer->ReleaseGraphicsResources(w);
-    this->Internal->FrameBuffer->Delete();
-    this->Internal->FrameBuffer = nullptr;
-  }
+  this->Internal->GL.Release(w);
 }
 
 int vtkMRGIMultiresolution::GetFlattenedWidth() const
@@ -287,11 +277,7 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
   }
   in.Layout = layout;
   in.HasLayout = true;
-  if (!in.FrameBuffer)
-  {
-    in.FrameBuffer = vtkOpenGLFramebufferObject::New();
-    in.FrameBuffer->SetContext(window);
-  }
+  in.GL.Prepare(window);
 
   // Programs, one per stage.
   vtkOpenGLQuadHelper* quads[StageCount];
@@ -301,7 +287,7 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     const int stage = s == MipmapReduceLevel0 ? MipmapReduce : s == FlagsLevel0 ? Flags : s;
     const std::string defines = "#define MRGI_MR_STAGE " + std::to_string(stage) + "\n" +
       (s >= MipmapReduceLevel0 ? "#define MRGI_MR_LEVEL0 1\n" : "");
-    quads[s] = in.Programs.Ready(window, "select", defines, [] { return vtkMRGIMultiresSelectFS; });
+    quads[s] = in.GL.Programs.Ready(window, "select", defines, [] { return vtkMRGIMultiresSelectFS; });
     if (!quads[s])
     {
       vtkErrorMacro("could not build the multiresolution selection shader (stage " << s << ")");
@@ -310,7 +296,7 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     programs[s] = quads[s]->Program;
   }
 
-  vtkMRGIFullScreenStep steps(window, in.FrameBuffer);
+  vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
   vtkOpenGLState* ostate = steps.GetState();
 
   auto bind = [&](vtkShaderProgram* program, std::initializer_list<vtkTextureObject*> textures) {
@@ -467,7 +453,7 @@ bool vtkMRGIMultiresolution::BuildReceivers(vtkOpenGLRenderWindow* window,
   // G-buffer; the gather reads level 0 from the G-buffer itself).
   {
     ScopedStage receiverStep(timer, "gather.receivers");
-    vtkMRGIFullScreenStep steps(window, in.FrameBuffer);
+    vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
     auto target = [&](vtkTextureObject* a, vtkTextureObject* b, int w, int h) {
       steps.Target(a, b, 0, 0, w, h);
     };
@@ -480,7 +466,7 @@ bool vtkMRGIMultiresolution::BuildReceivers(vtkOpenGLRenderWindow* window,
     for (int i = 1; i < levels && ok; ++i)
     {
       const int stage = i == 1 ? 2 : 1;
-      vtkOpenGLQuadHelper* quad = ReadyReceiverStage(in.Programs, window, stage);
+      vtkOpenGLQuadHelper* quad = ReadyReceiverStage(in.GL.Programs, window, stage);
       if (!quad)
       {
         ok = false;
@@ -560,7 +546,7 @@ bool vtkMRGIMultiresolution::ReadReceivers(
   // Level 0 is the G-buffer of the last BuildReceivers(), turned into
   // receivers here (the gathers read the G-buffer itself).
   renWin->MakeCurrent();
-  vtkOpenGLQuadHelper* quad = ReadyReceiverStage(in.Programs, renWin, 0);
+  vtkOpenGLQuadHelper* quad = ReadyReceiverStage(in.GL.Programs, renWin, 0);
   if (!quad)
   {
     vtkErrorMacro("could not build the multiresolution receivers shader");
@@ -568,7 +554,7 @@ bool vtkMRGIMultiresolution::ReadReceivers(
   }
   vtkShaderProgram* p = quad->Program;
   {
-    vtkMRGIFullScreenStep steps(renWin, in.FrameBuffer);
+    vtkMRGIFullScreenStep steps(renWin, in.GL.FrameBuffer);
     steps.Target(in.Receivers[0][0], in.Receivers[0][1], 0, 0, in.Layout.width, in.Layout.height);
     vtkMRGIFullScreenStep::BindInputs(p, { in.LastPosition, in.LastNormal });
     p->SetUniform2i("mrgiOffset", in.LastOffset);
@@ -607,7 +593,7 @@ bool vtkMRGIMultiresolution::ReadSelection(
     vtkErrorMacro("ReadSelection: nothing selected yet");
     return false;
   }
-  return vtkMRGIFullScreenStep::ReadMask(renWin, in.FrameBuffer, in.Layout, in.FlatSelection, in.DepthStencil, fromStencil, mask);
+  return vtkMRGIFullScreenStep::ReadMask(renWin, in.GL.FrameBuffer, in.Layout, in.FlatSelection, in.DepthStencil, fromStencil, mask);
 }
 
 //------------------------------------------------------------------------------

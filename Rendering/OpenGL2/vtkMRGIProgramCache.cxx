@@ -39,11 +39,11 @@ void vtkMRGIProgramCache::ReleaseGraphicsResources(vtkWindow* w)
 {
   for (auto& entry : this->Quads)
   {
-    if (entry.second)
+    if (entry.second && w)
     {
       entry.second->ReleaseGraphicsResources(w);
-      delete entry.second;
     }
+    delete entry.second;
   }
   this->Quads.clear();
 }

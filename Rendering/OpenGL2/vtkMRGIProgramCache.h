@@ -33,7 +33,7 @@ public:
   vtkOpenGLQuadHelper* Ready(vtkOpenGLRenderWindow* window, const std::string& stage,
     const std::string& defines, const std::function<std::string()>& source);
 
-  /** Free every program's GL resources and forget them. */
+  /** Forget every program, freeing its GL resources when `w` is given. */
   void ReleaseGraphicsResources(vtkWindow* w);
 
 private:

@@ -7,6 +7,7 @@
 #include "vtkMRGIFullScreenStep.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIProgramCache.h"
+#include "vtkMRGIStageResources.h"
 #include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkObjectFactory.h"
@@ -41,8 +42,7 @@ struct vtkMRGISpecularStencil::Internals
   vtkTextureObject* SpecularDepthStencil = nullptr;
   mrgi_multires_layout Layout{};
   bool SpecularStencilValid = false;
-  vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
-  vtkMRGIProgramCache Programs;
+  vtkMRGIStageResources GL; // framebuffer and programs
 
   void ReleaseTextures(vtkWindow* w)
   {
@@ -75,15 +75,11 @@ vtkMRGISpecularStencil::vtkMRGISpecularStencil()
 //------------------------------------------------------------------------------
 vtkMRGISpecularStencil::~vtkMRGISpecularStencil()
 {
-  if (this->Internal->FrameBuffer || this->Internal->FlatSpecularBits)
+  if (this->Internal->GL.FrameBuffer || this->Internal->FlatSpecularBits)
   {
     vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
   }
   this->Internal->ReleaseTextures(nullptr);
-  if (this->Internal->FrameBuffer)
-  {
-    this->Internal->FrameBuffer->Delete();
-  }
 }
 
 //------------------------------------------------------------------------------
@@ -91,13 +87,7 @@ void vtkMRGISpecularStencil::ReleaseGraphicsResources(vtkWindow* w)
 {
   Internals& in = *this->Internal;
   in.ReleaseTextures(w);
-  in.Programs.ReleaseGraphicsResources(w);
-  if (in.FrameBuffer)
-  {
-    in.FrameBuffer->ReleaseGraphicsResources(w);
-    in.FrameBuffer->Delete();
-    in.FrameBuffer = nullptr;
-  }
+  in.GL.Release(w);
 }
 
 //------------------------------------------------------------------------------
@@ -133,11 +123,7 @@ bool vtkMRGISpecularStencil::Build(const vtkMRGIFrameContext& frame,
     in.ReleaseTextures(window);
   }
   in.Layout = layout;
-  if (!in.FrameBuffer)
-  {
-    in.FrameBuffer = vtkOpenGLFramebufferObject::New();
-    in.FrameBuffer->SetContext(window);
-  }
+  in.GL.Prepare(window);
   if (in.SpecularMaterial.size() != static_cast<size_t>(levels))
   {
     for (auto*& t : in.SpecularMaterial)
@@ -168,7 +154,7 @@ bool vtkMRGISpecularStencil::Build(const vtkMRGIFrameContext& frame,
   vtkShaderProgram* programs[4];
   for (int stage = 0; stage < 4; ++stage)
   {
-    quads[stage] = in.Programs.Ready(window, "specular.stencil",
+    quads[stage] = in.GL.Programs.Ready(window, "specular.stencil",
       "#define MRGI_SPEC_STAGE " + std::to_string(stage) + "\n", [stage] {
         // Stage 2 (the refinement bits) evaluates the lobe at the light.
         return stage == 2 ? vtkMRGIShaderLibraries::Compose({ "vtkMRGIAreaLightDiffuse",
@@ -184,7 +170,7 @@ bool vtkMRGISpecularStencil::Build(const vtkMRGIFrameContext& frame,
   }
   using vtkMRGIShaderUtilities::ScopedStage;
   ScopedStage step(frame.Timer, "select.specular");
-  vtkMRGIFullScreenStep steps(window, in.FrameBuffer);
+  vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
   vtkOpenGLState* ostate = steps.GetState();
   // 1. Material pyramid.
   for (int i = 0; i < levels; ++i)
@@ -334,7 +320,7 @@ bool vtkMRGISpecularStencil::ReadStencil(vtkRenderWindow* window,
       bits->SetValue(i, static_cast<unsigned char>(rgba[4 * static_cast<size_t>(i)]));
     }
   }
-  return vtkMRGIFullScreenStep::ReadMask(renWin, in.FrameBuffer, in.Layout, in.FlatSpecularSelection,
+  return vtkMRGIFullScreenStep::ReadMask(renWin, in.GL.FrameBuffer, in.Layout, in.FlatSpecularSelection,
     in.SpecularDepthStencil, fromStencil, selection);
 }
 

@@ -7,6 +7,7 @@
 #include "vtkMRGIFullScreenStep.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIProgramCache.h"
+#include "vtkMRGIStageResources.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFramebufferObject.h"
@@ -32,12 +33,11 @@ struct vtkMRGIUpsample::Internals
   // Per level (state/value, filtered), sized to the buffer's layout.
   std::vector<std::array<vtkTextureObject*, 2>> Upsampled;
   int Size[2] = { 0, 0 };
-  vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
-  vtkMRGIProgramCache Programs;
+  vtkMRGIStageResources GL; // framebuffer and programs
 
   vtkOpenGLQuadHelper* Ready(vtkOpenGLRenderWindow* window, int stage)
   {
-    return this->Programs.Ready(window, "upsample", "#define MRGI_MR_STAGE " + std::to_string(stage) + "\n",
+    return this->GL.Programs.Ready(window, "upsample", "#define MRGI_MR_STAGE " + std::to_string(stage) + "\n",
       [] { return vtkMRGIMultiresUpsampleFS; });
   }
 
@@ -80,11 +80,7 @@ struct vtkMRGIUpsample::Internals
       this->Size[0] = layout.width;
       this->Size[1] = layout.height;
     }
-    if (!this->FrameBuffer)
-    {
-      this->FrameBuffer = vtkOpenGLFramebufferObject::New();
-      this->FrameBuffer->SetContext(window);
-    }
+    this->GL.Prepare(window);
     return true;
   }
 };
@@ -98,15 +94,11 @@ vtkMRGIUpsample::vtkMRGIUpsample()
 //------------------------------------------------------------------------------
 vtkMRGIUpsample::~vtkMRGIUpsample()
 {
-  if (this->Internal->FrameBuffer || !this->Internal->Upsampled.empty())
+  if (this->Internal->GL.FrameBuffer || !this->Internal->Upsampled.empty())
   {
     vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
   }
   this->Internal->ReleaseTextures(nullptr);
-  if (this->Internal->FrameBuffer)
-  {
-    this->Internal->FrameBuffer->Delete();
-  }
 }
 
 //------------------------------------------------------------------------------
@@ -114,13 +106,7 @@ void vtkMRGIUpsample::ReleaseGraphicsResources(vtkWindow* w)
 {
   Internals& in = *this->Internal;
   in.ReleaseTextures(w);
-  in.Programs.ReleaseGraphicsResources(w);
-  if (in.FrameBuffer)
-  {
-    in.FrameBuffer->ReleaseGraphicsResources(w);
-    in.FrameBuffer->Delete();
-    in.FrameBuffer = nullptr;
-  }
+  in.GL.Release(w);
 }
 
 //------------------------------------------------------------------------------
@@ -151,7 +137,7 @@ bool vtkMRGIUpsample::Upsample(const vtkMRGIFrameContext& frame, vtkMRGIMultires
   vtkShaderProgram* filter = filterQuad->Program;
   const int coarsest = layout.level_count - 1;
   vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "upsample.levels");
-  vtkMRGIFullScreenStep steps(window, in.FrameBuffer);
+  vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
   for (int i = coarsest; i >= 0; --i)
   {
     const int w = layout.level_width[i], h = layout.level_height[i];
@@ -217,7 +203,7 @@ bool vtkMRGIUpsample::Resolve(const vtkMRGIFrameContext& frame, vtkMRGIMultireso
   }
   {
     vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "upsample.resolve");
-    vtkMRGIFullScreenStep steps(window, in.FrameBuffer);
+    vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
     steps.Target(irradianceTarget, target, x0, y0, layout.width, layout.height);
     vtkTextureObject* flags = buffer->GetFlagsTexture(0);
     vtkMRGIFullScreenStep::BindInputs(resolve, { in.Upsampled[0][1], flags, albedo, position, normal });
