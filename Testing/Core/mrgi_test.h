@@ -1,6 +1,6 @@
 /**
  * @file mrgi_test.h
- * @brief Assertion macros and a runner of named cases for MRGICore unit tests.
+ * @brief Assertion macros and a runner of named cases for the core unit tests.
  *
  * A test program lists its cases and hands them to mrgi_test_main():
  *

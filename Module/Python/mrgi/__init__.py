@@ -17,3 +17,6 @@ import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 import vtkmodules.vtkInteractionStyle  # noqa: F401
 
 from .MRGIRendering import *  # noqa: F401,F403
+from .MRGIRenderingHeadless import *  # noqa: F401,F403
+from .MRGIRenderingIO import *  # noqa: F401,F403
+from .MRGIRenderingValidation import *  # noqa: F401,F403

@@ -34,7 +34,7 @@
 #ifndef vtkMRGISceneBuilder_h
 #define vtkMRGISceneBuilder_h
 
-#include "MRGIRenderingModule.h" // For export macro
+#include "MRGIRenderingIOModule.h" // For export macro
 #include "vtkObject.h"
 
 #include "vtkSmartPointer.h" // For vtkSmartPointer
@@ -47,7 +47,7 @@ class vtkRenderer;
 struct mrgi_mesh;
 struct mrgi_scene;
 
-class MRGIRENDERING_EXPORT vtkMRGISceneBuilder : public vtkObject
+class MRGIRENDERINGIO_EXPORT vtkMRGISceneBuilder : public vtkObject
 {
 public:
   static vtkMRGISceneBuilder* New();

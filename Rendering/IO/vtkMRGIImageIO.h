@@ -18,7 +18,7 @@
 #ifndef vtkMRGIImageIO_h
 #define vtkMRGIImageIO_h
 
-#include "MRGIRenderingModule.h" // For export macro
+#include "MRGIRenderingIOModule.h" // For export macro
 #include "vtkObject.h"
 
 #include <string> // For std::string
@@ -26,7 +26,7 @@
 class vtkImageData;
 struct mrgi_image;
 
-class MRGIRENDERING_EXPORT vtkMRGIImageIO : public vtkObject
+class MRGIRENDERINGIO_EXPORT vtkMRGIImageIO : public vtkObject
 {
 public:
   static vtkMRGIImageIO* New();

@@ -30,13 +30,13 @@
 #ifndef vtkMRGIEGLRenderWindow_h
 #define vtkMRGIEGLRenderWindow_h
 
-#include "MRGIRenderingModule.h" // For export macro
+#include "MRGIRenderingHeadlessModule.h" // For export macro
 #include "vtkGenericOpenGLRenderWindow.h"
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 
-class MRGIRENDERING_EXPORT vtkMRGIEGLRenderWindow : public vtkGenericOpenGLRenderWindow
+class MRGIRENDERINGHEADLESS_EXPORT vtkMRGIEGLRenderWindow : public vtkGenericOpenGLRenderWindow
 {
 public:
   static vtkMRGIEGLRenderWindow* New();

@@ -12,7 +12,7 @@
 #ifndef vtkMRGIRenderWindowFactory_h
 #define vtkMRGIRenderWindowFactory_h
 
-#include "MRGIRenderingModule.h" // For export macro
+#include "MRGIRenderingHeadlessModule.h" // For export macro
 #include "vtkObject.h"
 #include "vtkWrappingHints.h" // For VTK_NEWINSTANCE
 
@@ -20,7 +20,7 @@
 
 class vtkRenderWindow;
 
-class MRGIRENDERING_EXPORT vtkMRGIRenderWindowFactory : public vtkObject
+class MRGIRENDERINGHEADLESS_EXPORT vtkMRGIRenderWindowFactory : public vtkObject
 {
 public:
   static vtkMRGIRenderWindowFactory* New();

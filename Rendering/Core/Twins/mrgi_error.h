@@ -1,6 +1,6 @@
 /**
  * @file mrgi_error.h
- * @brief Status codes and error messages shared by every MRGICore function.
+ * @brief Status codes and error messages shared by every core function.
  *
  * Convention for the whole core: a function that can fail returns an
  * ::mrgi_status and takes a trailing `mrgi_error* err` as its last argument.

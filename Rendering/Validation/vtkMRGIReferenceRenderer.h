@@ -21,7 +21,7 @@
 #ifndef vtkMRGIReferenceRenderer_h
 #define vtkMRGIReferenceRenderer_h
 
-#include "MRGIRenderingModule.h" // For export macro
+#include "MRGIRenderingValidationModule.h" // For export macro
 #include "vtkObject.h"
 
 #include "vtkSmartPointer.h" // For vtkSmartPointer
@@ -33,7 +33,7 @@ class vtkMRGIAreaLight;
 class vtkRenderer;
 struct mrgi_scene;
 
-class MRGIRENDERING_EXPORT vtkMRGIReferenceRenderer : public vtkObject
+class MRGIRENDERINGVALIDATION_EXPORT vtkMRGIReferenceRenderer : public vtkObject
 {
 public:
   static vtkMRGIReferenceRenderer* New();
