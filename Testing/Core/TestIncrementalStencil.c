@@ -8,7 +8,7 @@
  */
 #include "mrgi_incremental_stencil.h"
 #include "mrgi_test.h"
-#include "mrgi_voxel_incremental.h"
+#include "mrgi_visibility_pyramid.h"
 
 #include <string.h>
 

@@ -7,7 +7,8 @@
  * refinement metric, the variance shadow query, bad input, and random box
  * scenes against exact ray-box visibility at voxel resolutions 128/256/512. */
 #include "mrgi_voxel.h"
-#include "mrgi_voxel_incremental.h"
+#include "mrgi_variance_shadow.h"
+#include "mrgi_visibility_pyramid.h"
 #include "mrgi_voxel_march.h"
 
 #include "mrgi_buffers.h"
@@ -1521,7 +1522,7 @@ static void test_incremental(void)
   free(t.voxels);
 }
 
-/* The same-surface guard (mrgi_voxel_incremental.h section 3): the top of a
+/* The same-surface guard (mrgi_visibility_pyramid.h section 3): the top of a
  * box (y = -0.5, normal up), lit from above, at level 0 (8 x 8); level 1
  * (4 x 4) holds coarse receivers as a texel averaging the top and the front
  * face across the box's front edge gets them: the mean normal halfway

@@ -25,7 +25,7 @@
 #include "mrgi_voxel_march.h"
 #include "mrgi_incremental_stencil.h"
 #include "mrgi_multires.h"
-#include "mrgi_voxel_incremental.h"
+#include "mrgi_visibility_pyramid.h"
 #include "vtkFloatArray.h"
 #include "vtkActor.h"
 #include "vtkActorCollection.h"

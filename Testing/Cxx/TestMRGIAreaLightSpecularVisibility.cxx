@@ -68,7 +68,8 @@
 
 #include "mrgi_area_light.h"
 #include "mrgi_glsl_defines.h"
-#include "mrgi_voxel_incremental.h"
+#include "mrgi_variance_shadow.h"
+#include "mrgi_visibility_pyramid.h"
 #include "mrgi_voxel_march.h"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 // The GPU's incremental voxel-space visibility (vtkMRGIVisibilityPyramid,
 // nichols-penmatsa-wyman-2010 sections 3.3.2 and 3.4) against its C twin
-// mrgi_voxel_visibility_pyramid() (mrgi_voxel_incremental.h) on the same
+// mrgi_voxel_visibility_pyramid() (mrgi_visibility_pyramid.h) on the same
 // receivers (vtkMRGIMultiresolution::ReadReceivers()), the same voxels
 // (vtkMRGIVoxelization::ReadVoxels(), GetGrid(), GetMarchParams()) and the
 // same light samples (mrgi_area_light_make_samples(), taken to eye space as
@@ -38,7 +38,7 @@
 
 #include "mrgi_area_light.h"
 #include "mrgi_multires.h"
-#include "mrgi_voxel_incremental.h"
+#include "mrgi_visibility_pyramid.h"
 #include "mrgi_voxel_march.h"
 
 #include <chrono>

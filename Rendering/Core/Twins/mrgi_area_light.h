@@ -245,7 +245,7 @@
  * mrgi_area_light_specular_visible() is mrgi_area_light_specular() with
  * visibility; the visibility itself is computed elsewhere (voxel marches,
  * mrgi_voxel_march.h; incremental masks and the variance shadow query,
- * mrgi_voxel_incremental.h) and passed in, so that this stays the twin of
+ * mrgi_visibility_pyramid.h) and passed in, so that this stays the twin of
  * the specular shader alone:
  *
  * - the path (samples or lobe grid) is decided exactly as without
@@ -254,7 +254,7 @@
  *   how densely the light is sampled inside the lobe);
  * - sample path (glossy lobes): sample j's term is multiplied by its
  *   visibility bit, bit j & 31 of word j >> 5 of `sample_mask` (the layout
- *   of mrgi_voxel_incremental.h section 1; "visibility from a fixed set of
+ *   of mrgi_visibility_pyramid.h section 1; "visibility from a fixed set of
  *   256 VPLs", 3.3.3);
  * - lobe-grid path (sharp lobes): cell (a, b)'s term is multiplied by a
  *   visibility in [0, 1] from `query_visibility`, G G - 1 floats (the

@@ -5,7 +5,8 @@
 #include "mrgi_multires.h"
 #include "mrgi_specular_stencil.h"
 #include "mrgi_upsample.h"
-#include "mrgi_voxel_incremental.h"
+#include "mrgi_variance_shadow.h"
+#include "mrgi_visibility_pyramid.h"
 #include "mrgi_vpl.h"
 
 #include <locale.h>

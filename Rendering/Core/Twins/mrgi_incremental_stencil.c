@@ -1,7 +1,7 @@
 #include "mrgi_incremental_stencil.h"
 
 #include "mrgi_buffers.h"
-#include "mrgi_voxel_incremental.h"
+#include "mrgi_visibility_pyramid.h"
 
 #include <math.h>
 #include <string.h>

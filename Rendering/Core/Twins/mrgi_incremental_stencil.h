@@ -30,7 +30,7 @@
  *     F_j(p) = mrgi_voxel_needs_refinement(metric over p's 3x3, kind, threshold)
  *
  * the same test that makes the visibility pyramid COMPUTE p's children
- * (mrgi_voxel_incremental.h section 5), so a re-rendered texel is one whose
+ * (mrgi_visibility_pyramid.h section 5), so a re-rendered texel is one whose
  * visibility was also recomputed. Level-i texel t (parent p) is RENDERED when
  *
  *     i >= f && NONEMPTY_i(t) && ( S_i(t)

@@ -11,7 +11,7 @@
  * and Decoret 2006 [ED06]; Figure 2) and section 4.2 ("All our results use
  * 128 bits of depth, via a 32-bit per channel buffer"; a 128^2 x 128 buffer
  * is "almost indistinguishable" from 1024^2 x 128). The ray march is in
- * mrgi_voxel_march.h, the incremental visibility in mrgi_voxel_incremental.h.
+ * mrgi_voxel_march.h, the incremental visibility in mrgi_visibility_pyramid.h.
  * Every rule below is the GPU contract (OpenGL 3.2 core, GLSL 1.50: RGBA32UI
  * targets, integer and bitwise ops; no image load/store, no atomics); the
  * constants reach GLSL through mrgi_glsl_defines().

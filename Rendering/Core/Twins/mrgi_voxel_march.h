@@ -19,7 +19,7 @@
  * Nl (the light's surface normal), each normal optional: NULL or a zero
  * vector means "none" (no offset, no horizon test at that end). Normals
  * need not be unit. All inputs finite (the batch functions in
- * mrgi_voxel_incremental.h check them; this per-ray function does not).
+ * mrgi_visibility_pyramid.h check them; this per-ray function does not).
  *
  * ## The march, step by step
  *

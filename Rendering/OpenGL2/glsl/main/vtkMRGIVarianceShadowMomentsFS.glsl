@@ -6,7 +6,7 @@
 // (ignoring one corner on the 5 x 5 grid) [...] Using 2 x 2 interleaving,
 // this requires only 12 floats per pixel, which fits in three 4-channel
 // render targets"). C twin: mrgi_voxel_vsm_specular_moments()
-// (mrgi_voxel_incremental.h section 6).
+// (mrgi_variance_shadow.h section 6).
 //
 // Drawn over the viewport into MRGI_VOXEL_VSM_TARGETS RGBA32F targets of its
 // size (gl_FragCoord is viewport-local; the G-buffer is read at

@@ -7,7 +7,7 @@
  *          where its 3x3 neighbours agree.
  *
  * The contract is the C twin mrgi_voxel_visibility_pyramid()
- * (Rendering/Core/mrgi_voxel_incremental.h): sample j is bit j & 31 of word
+ * (Rendering/Core/Twins/mrgi_visibility_pyramid.h): sample j is bit j & 31 of word
  * j >> 5; from the coarsest level down, a receiver texel is COMPUTED (coarsest
  * level, refinement metric of its parent's 3x3 at or above the threshold, or
  * forced by the selection, or its parent not on its surface) with the

@@ -14,7 +14,7 @@
  * [0, 1] per cell ("it essentially performs per-query percentage closer
  * filtering").
  *
- * The contract is the C core's (mrgi_voxel_incremental.h section 6):
+ * The contract is the C core's (mrgi_variance_shadow.h section 6):
  * ComputeMoments() is the twin of mrgi_voxel_vsm_specular_moments() at every
  * viewport pixel with a specular material (2x2 interleaving, 6 queries and
  * 12 floats per pixel in MRGI_VOXEL_VSM_TARGETS RGBA32F textures of the

@@ -22,7 +22,7 @@
 
 
 #include "mrgi_multires.h"
-#include "mrgi_voxel_incremental.h"
+#include "mrgi_visibility_pyramid.h"
 
 #include <algorithm>
 #include <string>

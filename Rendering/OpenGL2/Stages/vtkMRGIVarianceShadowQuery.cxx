@@ -23,7 +23,8 @@
 #include "vtkMRGIVarianceShadowMomentsFS.h"
 #include "vtkMRGIVarianceShadowResolve.h"
 
-#include "mrgi_voxel_incremental.h"
+#include "mrgi_variance_shadow.h"
+#include "mrgi_visibility_pyramid.h"
 
 #include <algorithm>
 #include <array>

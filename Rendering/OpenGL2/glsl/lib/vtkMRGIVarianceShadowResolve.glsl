@@ -3,7 +3,7 @@
 // per-query moments (z, z^2) over the pixels that computed each query, and
 // the one-tailed Chebyshev bound with the receiver at 1. C twins:
 // mrgi_voxel_vsm_resolve() and mrgi_voxel_vsm_chebyshev()
-// (mrgi_voxel_incremental.h section 6), translated in the same order: a
+// (mrgi_variance_shadow.h section 6), translated in the same order: a
 // query's sum runs over the window row by row, bottom to top, left to right.
 // A function library: no #version, no main(); after VTK's system
 // declarations and the core's constants block. (No VTK shader tag may

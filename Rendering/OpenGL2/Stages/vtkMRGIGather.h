@@ -17,7 +17,7 @@
  * C twins: the VPL gather is mrgi_gather_full() (mrgi_gather.h) on the same
  * receivers, the area-light term mrgi_area_light_diffuse()
  * (mrgi_area_light.h), its visibility mrgi_voxel_march() (naive) or the
- * incremental masks (mrgi_voxel_incremental.h). Shaders:
+ * incremental masks (mrgi_visibility_pyramid.h). Shaders:
  * vtkMRGIGatherFS.glsl with vtkMRGIVPLIrradiance.glsl and
  * vtkMRGIAreaLightDiffuse.glsl; multiresolution splatting
  * vtkMRGIMultiresSplat{VS,FS}.glsl.
