@@ -2,7 +2,7 @@
  * @class   vtkMRGIAreaLight
  * @brief   A rectangular, optionally textured (e.g. video) area light.
  *
- * The VTK face of the C core's ::mrgi_area_light (Rendering/Core/
+ * The VTK face of the C core's ::mrgi_area_light (Rendering/Core/Twins/
  * mrgi_area_light.h, whose file comment is the reference for geometry,
  * units and sampling). This class holds the light's properties, turns them
  * into the core's structs, caches the texture pyramid and the light samples

@@ -7,7 +7,7 @@
 // supplies MRGI_VOXEL_SLICES, _CHANNELS, _CHANNEL_BITS and _MAX_STEPS.
 //
 // This is the GLSL twin of mrgi_voxel_march() and
-// mrgi_voxel_march_occluder_fraction() (Rendering/Core/mrgi_voxel_march.c);
+// mrgi_voxel_march_occluder_fraction() (Rendering/Core/Twins/mrgi_voxel_march.c);
 // the bit layout, slice() and range_mask() are mrgi_voxel.h's (sections 1, 2
 // and 5). Every function below translates its C counterpart statement by
 // statement, in float and in the same order of operations, so that the GPU

@@ -2,7 +2,7 @@
 // area-light gather's stencil, where a level also renders below the
 // geometric cut when its parent's 3x3 of visibility masks shows a light
 // discontinuity. GPU side of mrgi_incremental_stencil_build()
-// (Rendering/Core/mrgi_incremental_stencil.h, whose file comment is the
+// (Rendering/Core/Twins/mrgi_incremental_stencil.h, whose file comment is the
 // contract); the metric is mrgi_voxel_neighbourhood_metric() as the
 // visibility pyramid computes it (mrgiVisPopcount from
 // vtkMRGIVisibilityBits.glsl, prepended).

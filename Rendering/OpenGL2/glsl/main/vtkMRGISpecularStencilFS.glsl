@@ -2,7 +2,7 @@
 // sample spacing must be denser than the lobe width, which we add as a
 // Phong-specific refinement metric"; 3.4: the stencil from depth, normal and
 // BRDF frequency metrics). GPU side of mrgi_specular_material_build() and
-// mrgi_specular_stencil_build() (Rendering/Core/mrgi_specular_stencil.h,
+// mrgi_specular_stencil_build() (Rendering/Core/Twins/mrgi_specular_stencil.h,
 // whose file comment is the contract). MRGI_SPEC_STAGE
 // 0: material pyramid, level 0 from the G-buffer (viewport at mrgiOffset);
 // 1: material pyramid, level i from level i-1 (2x2, clamped);

@@ -1,6 +1,6 @@
 // MRGI incremental voxel-space visibility, coarse to fine over the
 // multiresolution levels (nichols-penmatsa-wyman-2010 sections 3.3.2 and
-// 3.4). GPU side of mrgi_voxel_visibility_pyramid() (Rendering/Core/
+// 3.4). GPU side of mrgi_voxel_visibility_pyramid() (Rendering/Core/Twins/
 // mrgi_visibility_pyramid.h, whose file comment is the contract: sample masks,
 // the naive and incremental rules, COMPUTED/INHERITED texels, the bit-count
 // metric, 2x2 interleaving with the same-surface test); every function below
