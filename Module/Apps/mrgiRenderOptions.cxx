@@ -1,0 +1,776 @@
+#include "mrgiRenderOptions.h"
+
+#include "vtkCamera.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMRGIEGLRenderWindow.h"
+#include "vtkMRGIImageIO.h"
+#include "vtkActor.h"
+#include "vtkActorCollection.h"
+#include "vtkProperty.h"
+#include "vtkMRGIAreaLight.h"
+#include "vtkMRGIAreaLightStage.h"
+#include "vtkMRGIGather.h"
+#include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIUpsample.h"
+#include "vtkMRGIVisibilityPyramid.h"
+#include "vtkMRGIVoxelization.h"
+#include "vtkMRGIPass.h"
+#include "vtkMRGIReferenceRenderer.h"
+#include "vtkMRGIVPLSelection.h"
+#include "vtkMRGIRenderWindowFactory.h"
+#include "vtkMRGISceneBuilder.h"
+#include "vtkNew.h"
+#include "vtkOutputWindow.h"
+#include "vtkRenderStepsPass.h"
+#include "vtkToneMappingPass.h"
+#include "vtkDataArray.h"
+#include "vtkRenderTimerLog.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderWindowInteractor.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkPointData.h"
+#include "mrgi_error.h"
+#include "mrgi_area_light.h"
+#include "mrgi_voxel.h"
+#include "mrgi_multires.h"
+#include "mrgi_parse.h"
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <map>
+#include <string>
+#include <strings.h>
+#include <utility>
+#include <vector>
+#ifndef MRGI_VERSION_STRING
+#define MRGI_VERSION_STRING "unknown"
+#endif
+
+namespace mrgirender
+{
+// Parses "on"/"off" (and "full"/"off" for --gi); false for anything else.
+bool ParseSwitch(const char* text, const char* on, bool& value)
+{
+  if (std::strcmp(text, on) == 0)
+  {
+    value = true;
+    return true;
+  }
+  if (std::strcmp(text, "off") == 0)
+  {
+    value = false;
+    return true;
+  }
+  return false;
+}
+
+int Fail(const std::string& message)
+{
+  std::fprintf(stderr, "mrgi-render: error: %s\n", message.c_str());
+  return 2;
+}
+
+bool EndsWith(const std::string& s, const char* extension)
+{
+  const size_t e = std::strlen(extension);
+  return s.size() > e && strcasecmp(s.c_str() + s.size() - e, extension) == 0;
+}
+
+// Splits "a:b:c" on ':'.
+std::vector<std::string> SplitColon(const std::string& text)
+{
+  std::vector<std::string> parts;
+  size_t start = 0;
+  while (true)
+  {
+    const size_t colon = text.find(':', start);
+    parts.push_back(text.substr(start, colon == std::string::npos ? std::string::npos : colon - start));
+    if (colon == std::string::npos)
+    {
+      break;
+    }
+    start = colon + 1;
+  }
+  return parts;
+}
+
+bool ParseVec3(const std::string& option, const char* text, double out[3], std::string& why)
+{
+  mrgi_error err;
+  if (mrgi_parse_vec3(text, out, &err) != MRGI_OK)
+  {
+    why = option + ": " + err.message;
+    return false;
+  }
+  return true;
+}
+
+// --area-light CX,CY,CZ:UX,UY,UZ:VX,VY,VZ[:R,G,B[:I]]; the light checks the
+// geometry itself (perpendicular, non-zero edges) when it is used.
+bool ParseAreaLight(const std::string& spec, vtkMRGIAreaLight* light, std::string& why)
+{
+  const std::vector<std::string> parts = SplitColon(spec);
+  const std::string option = "--area-light '" + spec + "'";
+  if (parts.size() < 3 || parts.size() > 5)
+  {
+    why = option + ": expected CX,CY,CZ:UX,UY,UZ:VX,VY,VZ[:R,G,B[:I]]";
+    return false;
+  }
+  double c[3], u[3], v[3], rgb[3] = { 1.0, 1.0, 1.0 }, intensity = 1.0;
+  if (!ParseVec3(option + " centre", parts[0].c_str(), c, why) ||
+    !ParseVec3(option + " edge u", parts[1].c_str(), u, why) ||
+    !ParseVec3(option + " edge v", parts[2].c_str(), v, why) ||
+    (parts.size() > 3 && !ParseVec3(option + " colour", parts[3].c_str(), rgb, why)))
+  {
+    return false;
+  }
+  mrgi_error err;
+  if (parts.size() > 4 &&
+    (mrgi_parse_double(parts[4].c_str(), &intensity, &err) != MRGI_OK || intensity < 0))
+  {
+    why = option + ": the intensity must be a number >= 0";
+    return false;
+  }
+  const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  const double uv = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+  if (!(uu > 0) || !(vv > 0) || std::fabs(uv) > MRGI_AREA_LIGHT_PERPENDICULAR_TOLERANCE * std::sqrt(uu * vv))
+  {
+    why = option + ": the edges must be non-zero and perpendicular";
+    return false;
+  }
+  if (rgb[0] < 0 || rgb[1] < 0 || rgb[2] < 0)
+  {
+    why = option + ": the colour must be >= 0";
+    return false;
+  }
+  light->SetCenter(c);
+  light->SetEdgeU(u);
+  light->SetEdgeV(v);
+  light->SetColor(rgb);
+  light->SetIntensity(intensity);
+  return true;
+}
+
+bool ParseLight(const std::string& spec, vtkSmartPointer<vtkLight>& light, std::string& why)
+{
+  const std::vector<std::string> parts = SplitColon(spec);
+  light = vtkSmartPointer<vtkLight>::New();
+  const std::string option = "--light '" + spec + "'";
+  const std::string& kind = parts[0];
+  if (kind == "headlight" && parts.size() == 1)
+  {
+    light->SetLightTypeToHeadlight();
+    return true;
+  }
+  light->SetLightTypeToSceneLight();
+  double a[3], b[3];
+  if (kind == "positional" && parts.size() == 2)
+  {
+    if (!ParseVec3(option, parts[1].c_str(), a, why))
+    {
+      return false;
+    }
+    light->SetPositional(true);
+    light->SetConeAngle(90.0);
+    light->SetPosition(a);
+    light->SetFocalPoint(a[0], a[1] - 1.0, a[2]);
+    return true;
+  }
+  if (kind == "spot" && parts.size() == 4)
+  {
+    double cone = 0;
+    mrgi_error err;
+    if (!ParseVec3(option, parts[1].c_str(), a, why) || !ParseVec3(option, parts[2].c_str(), b, why))
+    {
+      return false;
+    }
+    if (mrgi_parse_double(parts[3].c_str(), &cone, &err) != MRGI_OK || cone <= 0 || cone >= 90)
+    {
+      why = option + ": the cone half angle must be a number in (0, 90) degrees";
+      return false;
+    }
+    if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
+    {
+      why = option + ": the spot light's position and focal point coincide";
+      return false;
+    }
+    light->SetPositional(true);
+    light->SetPosition(a);
+    light->SetFocalPoint(b);
+    light->SetConeAngle(cone);
+    return true;
+  }
+  if (kind == "directional" && parts.size() == 2)
+  {
+    if (!ParseVec3(option, parts[1].c_str(), a, why))
+    {
+      return false;
+    }
+    if (a[0] == 0 && a[1] == 0 && a[2] == 0)
+    {
+      why = option + ": the direction is the zero vector";
+      return false;
+    }
+    // vtkLight: light travels from Position towards FocalPoint.
+    light->SetPositional(false);
+    light->SetPosition(0, 0, 0);
+    light->SetFocalPoint(a);
+    return true;
+  }
+  why = option + ": expected positional:X,Y,Z | spot:X,Y,Z:FX,FY,FZ:CONE | "
+                 "directional:DX,DY,DZ | headlight";
+  return false;
+}
+
+// Splits help text into lines ('\n'); none for "".
+std::vector<std::string> SplitLines(const char* text)
+{
+  std::vector<std::string> lines;
+  std::string line;
+  for (const char* c = text; *c; ++c)
+  {
+    if (*c == '\n')
+    {
+      lines.push_back(line);
+      line.clear();
+    }
+    else
+    {
+      line += *c;
+    }
+  }
+  if (!line.empty())
+  {
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+// ---- Options: one table. ----------------------------------------------------
+//
+// Every option is one row of OptionTable(): its names, the form of its value
+// (none for a switch), its help text and what it does with the value. The
+// parser (ParseArguments) and the usage text (PrintUsage) are both made from
+// the rows, so an option cannot be accepted and undocumented, or the
+// reverse.
+
+// What an option does with its value (nullptr for options without one),
+// `option` being the name as typed. Returns -1 to go on, or the exit code
+// (after Fail() for bad values).
+using OptionHandler = std::function<int(Options& o, const std::string& option, const char* value)>;
+
+struct OptionRow
+{
+  std::vector<std::string> Names; // "-o", "--output"
+  const char* Value;              // what follows, e.g. "WxH"; nullptr: none
+  const char* Help;               // '\n' starts a new help line
+  OptionHandler Handle;
+};
+
+struct OptionSection
+{
+  const char* Title; // '\n' starts a new line
+  std::vector<OptionRow> Rows;
+};
+
+const std::vector<OptionSection>& OptionTable();
+
+const char* const UsageHead = R"(usage: mrgi-render SCENE -o OUT.png|OUT.exr [options]
+
+Renders SCENE headless (no X server, no GPU needed) and writes the image.
+
+SCENE   a built-in scene: cornell, cornell-spot, cornell-area, living-room, scaling
+        or a data file: .vtp .vtu .vti .vts .vtr .vtm .vtk .ply .obj .stl .gltf .glb
+)";
+
+// The usage text: the head, then each section's rows. A row's help starts in
+// column 25, on the row's own line when its names and value leave a space.
+void PrintUsage(FILE* out)
+{
+  const size_t helpColumn = 25;
+  std::string text = UsageHead;
+  for (const OptionSection& section : OptionTable())
+  {
+    text += std::string("\n") + section.Title + "\n";
+    for (const OptionRow& row : section.Rows)
+    {
+      std::string left = "  ";
+      for (size_t n = 0; n < row.Names.size(); ++n)
+      {
+        left += (n ? ", " : "") + row.Names[n];
+      }
+      if (row.Value)
+      {
+        left += std::string(" ") + row.Value;
+      }
+      std::vector<std::string> help = SplitLines(row.Help);
+      if (help.empty())
+      {
+        text += left + "\n";
+        continue;
+      }
+      if (left.size() < helpColumn)
+      {
+        text += left + std::string(helpColumn - left.size(), ' ') + help[0] + "\n";
+        help.erase(help.begin());
+      }
+      else
+      {
+        text += left + "\n";
+      }
+      for (const std::string& line : help)
+      {
+        text += std::string(helpColumn, ' ') + line + "\n";
+      }
+    }
+  }
+  std::fputs(text.c_str(), out);
+}
+
+// ---- Handlers of the common kinds of values. ----
+
+// A switch without a value: sets `field`.
+OptionHandler Set(bool Options::*field)
+{
+  return [field](Options& o, const std::string&, const char*) {
+    o.*field = true;
+    return -1;
+  };
+}
+
+// on | off.
+OptionHandler OnOff(bool Options::*field)
+{
+  return [field](Options& o, const std::string& option, const char* v) {
+    if (!ParseSwitch(v, "on", o.*field))
+    {
+      return Fail(option + " '" + v + "': expected on or off");
+    }
+    return -1;
+  };
+}
+
+// A whole number in [lo, hi] (mrgi_parse_int64's message on failure).
+OptionHandler Integer(long long Options::*field, int64_t lo, int64_t hi)
+{
+  return [field, lo, hi](Options& o, const std::string& option, const char* v) {
+    int64_t value = 0;
+    mrgi_error err;
+    if (mrgi_parse_int64(v, lo, hi, &value, &err) != MRGI_OK)
+    {
+      return Fail(option + ": " + err.message);
+    }
+    o.*field = value;
+    return -1;
+  };
+}
+
+// A finite number that `accept` takes; `expected` ("expected ...") names the
+// range in the error. `given`, when not null, is set too.
+OptionHandler Number(double Options::*field, std::function<bool(double)> accept,
+  const char* expected, bool Options::*given = nullptr)
+{
+  return [field, accept, expected, given](Options& o, const std::string& option, const char* v) {
+    double value = 0;
+    mrgi_error err;
+    if (mrgi_parse_double(v, &value, &err) != MRGI_OK || !accept(value))
+    {
+      return Fail(option + " '" + v + "': " + expected);
+    }
+    o.*field = value;
+    if (given)
+    {
+      o.*given = true;
+    }
+    return -1;
+  };
+}
+
+// X,Y,Z (mrgi_parse_vec3's message on failure); `given`, when not null, is set too.
+OptionHandler Vector(double (Options::*field)[3], bool Options::*given = nullptr)
+{
+  return [field, given](Options& o, const std::string& option, const char* v) {
+    std::string why;
+    if (!ParseVec3(option, v, o.*field, why))
+    {
+      return Fail(why);
+    }
+    if (given)
+    {
+      o.*given = true;
+    }
+    return -1;
+  };
+}
+
+// One of a few words, each standing for a value of `field`.
+template <typename T>
+OptionHandler Choice(T Options::*field, std::vector<std::pair<std::string, T>> choices)
+{
+  std::string expected;
+  for (size_t c = 0; c < choices.size(); ++c)
+  {
+    expected += (c == 0 ? "" : c + 1 == choices.size() ? " or " : ", ") + choices[c].first;
+  }
+  return [field, choices, expected](Options& o, const std::string& option, const char* v) {
+    for (const auto& choice : choices)
+    {
+      if (choice.first == v)
+      {
+        o.*field = choice.second;
+        return -1;
+      }
+    }
+    return Fail(option + " '" + v + "': expected " + expected);
+  };
+}
+
+// Appends the value to a list checked later (lights, area lights).
+OptionHandler Append(std::vector<std::string> Options::*field)
+{
+  return [field](Options& o, const std::string&, const char* v) {
+    (o.*field).emplace_back(v);
+    return -1;
+  };
+}
+
+// --depth-threshold / --normal-threshold: a number >= 0, or inf (never
+// refines; the pass takes -1 for it).
+OptionHandler Threshold(double Options::*field)
+{
+  return [field](Options& o, const std::string& option, const char* v) {
+    double value = 0;
+    mrgi_error err;
+    if (std::strcmp(v, "inf") == 0)
+    {
+      value = -1.0; // off
+    }
+    else if (mrgi_parse_double(v, &value, &err) != MRGI_OK || value < 0)
+    {
+      return Fail(option + " '" + v + "': expected a number >= 0 or inf");
+    }
+    o.*field = value;
+    return -1;
+  };
+}
+
+std::vector<std::pair<std::string, long long>> PresetChoices()
+{
+  std::vector<std::pair<std::string, long long>> choices;
+  for (int p = 0; p < MRGI_MULTIRES_PRESET_COUNT; ++p)
+  {
+    choices.emplace_back(mrgi_multires_preset_name(p), p);
+  }
+  return choices;
+}
+
+// ---- The table. ----
+
+const std::vector<OptionSection>& OptionTable()
+{
+  static const std::vector<OptionSection> table = {
+    { "Output",
+      {
+        { { "-o", "--output" }, "FILE",
+          ".png (what the window shows, 8-bit) or .exr (the HDR\n"
+          "float buffer); repeat to write several files",
+          [](Options& o, const std::string&, const char* v) {
+            if (!EndsWith(v, ".png") && !EndsWith(v, ".exr"))
+            {
+              return Fail(
+                std::string("output '") + v + "': the file name must end in .png or .exr");
+            }
+            o.Outputs.emplace_back(v);
+            return -1;
+          } },
+        { { "--half" }, nullptr, "write EXR channels as 16-bit half floats (default 32-bit)",
+          Set(&Options::Half) },
+        { { "--size" }, "WxH", "image size in pixels (default 512x512)",
+          [](Options& o, const std::string&, const char* v) {
+            int32_t w = 0, h = 0;
+            mrgi_error err;
+            if (mrgi_parse_size(v, &w, &h, &err) != MRGI_OK)
+            {
+              return Fail(std::string("--size: ") + err.message);
+            }
+            o.Width = w;
+            o.Height = h;
+            return -1;
+          } },
+        { { "--background" }, "R,G,B", "background colour (default 0,0,0)",
+          Vector(&Options::Background) },
+      } },
+    { "Camera (built-in scenes bring theirs; files are framed automatically)",
+      {
+        { { "--camera-position" }, "X,Y,Z", "", Vector(&Options::Position, &Options::HasPosition) },
+        { { "--camera-focal-point" }, "X,Y,Z", "", Vector(&Options::Focal, &Options::HasFocal) },
+        { { "--camera-view-up" }, "X,Y,Z", "", Vector(&Options::Up, &Options::HasUp) },
+        { { "--camera-view-angle" }, "DEG", "vertical field of view, degrees",
+          Number(
+            &Options::Angle, [](double a) { return a > 0 && a < 180; },
+            "expected degrees in (0, 180)", &Options::HasAngle) },
+        { { "--auto-camera" }, nullptr, "frame the whole scene (keeps the view direction)",
+          Set(&Options::AutoCamera) },
+        { { "--parallel" }, nullptr, "parallel (orthographic) projection",
+          Set(&Options::Parallel) },
+      } },
+    { "Lights (replace the scene's lights when given; repeatable)",
+      {
+        { { "--light" }, "SPEC",
+          "add a light; SPEC is one of\n"
+          "  positional:X,Y,Z\n"
+          "  spot:X,Y,Z:FX,FY,FZ:CONE  CONE = half angle in degrees\n"
+          "  directional:DX,DY,DZ      direction the light travels\n"
+          "  headlight",
+          Append(&Options::Lights) },
+        { { "--light-intensity" }, "S", "multiply every light's intensity by S",
+          Number(
+            &Options::LightIntensity, [](double s) { return s >= 0; },
+            "expected a finite number >= 0", &Options::HasLightIntensity) },
+      } },
+    { "Area lights (direct light from textured rectangles, nichols-penmatsa-wyman-2010;\n"
+      "Documentation/AreaLights.md; drawn whatever --gi says)",
+      {
+        { { "--area-light" }, "CX,CY,CZ:UX,UY,UZ:VX,VY,VZ[:R,G,B[:I]]",
+          "add a rectangle: centre, full edge vectors u and v\n"
+          "(perpendicular; it emits towards u x v), colour, intensity\n"
+          "(radiance = I x colour; default 1,1,1 and 1); repeatable;\n"
+          "cornell-area brings the Cornell box's emitter",
+          Append(&Options::AreaLights) },
+        { { "--area-light-two-sided" }, nullptr, "emit on both sides (every area light)",
+          Set(&Options::AreaLightTwoSided) },
+        { { "--area-light-samples" }, "N", "light samples per area light, 1..4096 (default 256)",
+          Integer(
+            &Options::AreaLightSamples, MRGI_AREA_LIGHT_MIN_SAMPLES, MRGI_AREA_LIGHT_MAX_SAMPLES) },
+        { { "--area-lights" }, "on|off",
+          "off: ignore the scene's and the command line's area lights (default on)",
+          OnOff(&Options::AreaLightsOn) },
+        { { "--area-light-visibility" }, "off|naive|incremental",
+          "shadows: none; a march through screen-space voxels per texel and\n"
+          "light sample; or coarse to fine, reusing agreeing coarse samples\n"
+          "(default incremental; nichols-penmatsa-wyman-2010 3.3)",
+          Choice<int>(&Options::AreaLightVisibility,
+            { { "off", vtkMRGIPass::VisibilityOff }, { "naive", vtkMRGIPass::VisibilityNaive },
+              { "incremental", vtkMRGIPass::VisibilityIncremental } }) },
+        { { "--voxel-size" }, "N", "voxel buffer side for the visibility, 1..4096 (default 128)",
+          Integer(&Options::VoxelSize, 1, MRGI_VOXEL_MAX_SIZE) },
+        { { "--visibility-interleave" }, "on|off",
+          "incremental visibility: 2x2 interleaved light samples (default off)",
+          OnOff(&Options::VisibilityInterleave) },
+        { { "--incremental-stencil" }, "on|off",
+          "incremental visibility: also gather below the geometric selection where\n"
+          "the coarser level's visibility changes, e.g. penumbrae (default on;\n"
+          "nichols-penmatsa-wyman-2010 3.4)",
+          OnOff(&Options::IncrementalStencil) },
+        { { "--area-light-specular" }, "on|off",
+          "Phong highlights of the area lights on specular materials (default on)",
+          OnOff(&Options::AreaLightSpecular) },
+        { { "--area-light-specular-resolution" }, "full|multires",
+          "where the highlights are gathered: every pixel (default), or the\n"
+          "multiresolution texels refined where the Phong lobe is narrower than\n"
+          "the texel spacing, then upsampled (nichols-penmatsa-wyman-2010 3.2.1;\n"
+          "experimental: up to ~34% error on the highlight on flat scenes)",
+          Choice<int>(&Options::AreaLightSpecularResolution,
+            { { "full", vtkMRGIPass::SpecularFullResolution },
+              { "multires", vtkMRGIPass::SpecularMultiresolution } }) },
+        { { "--specular" }, "KS:POWER",
+          "give every opaque surface VTK's Specular KS (0..1) and SpecularPower\n"
+          "POWER (0..128), e.g. 0.5:40, to see the highlights",
+          [](Options& o, const std::string&, const char* v) {
+            const std::vector<std::string> parts = SplitColon(v);
+            mrgi_error err;
+            if (parts.size() != 2 ||
+              mrgi_parse_double(parts[0].c_str(), &o.SpecularCoefficient, &err) != MRGI_OK ||
+              mrgi_parse_double(parts[1].c_str(), &o.SpecularPower, &err) != MRGI_OK ||
+              !(o.SpecularCoefficient >= 0 && o.SpecularCoefficient <= 1) ||
+              !(o.SpecularPower >= 0 && o.SpecularPower <= 128))
+            {
+              return Fail(std::string("--specular '") + v +
+                "': expected KS:POWER with KS in [0, 1] and POWER in [0, 128]");
+            }
+            o.HasSpecular = true;
+            return -1;
+          } },
+      } },
+    { "Scaling scene",
+      {
+        { { "--triangles" }, "N", "total triangle count (default 100000)",
+          Integer(&Options::Triangles, 12, 20000000) },
+        { { "--objects" }, "N", "number of objects (default 64)",
+          Integer(&Options::Objects, 1, 4096) },
+        { { "--seed" }, "N", "random seed (default 1)", Integer(&Options::Seed, 0, INT64_MAX) },
+      } },
+    { "Indirect light (one bounce; Documentation/IndirectLight.md)",
+      {
+        { { "--gi" }, "on|multires|full|off",
+          "on = multires (default): the stencil-selected multiresolution gather;\n"
+          "full: every pixel gathers every VPL; off: VTK's direct light only",
+          [](Options& o, const std::string&, const char* v) {
+            o.Multires = std::strcmp(v, "multires") == 0 || std::strcmp(v, "on") == 0;
+            if (!o.Multires && !ParseSwitch(v, "full", o.GI))
+            {
+              return Fail(std::string("--gi '") + v + "': expected off, on, multires or full");
+            }
+            if (o.Multires)
+            {
+              o.GI = true;
+            }
+            return -1;
+          } },
+        { { "--preset" }, "fast|balanced|accurate",
+          "multires settings from the measured speed/accuracy frontier\n"
+          "(default balanced; Documentation/Multiresolution.md); the options\n"
+          "below override single knobs",
+          Choice<long long>(&Options::Preset, PresetChoices()) },
+        { { "--depth-threshold" }, "T",
+          "multires: depth change per pixel width that refines (inf: never)",
+          Threshold(&Options::DepthThreshold) },
+        { { "--normal-threshold" }, "T",
+          "multires: normal-component spread that refines (inf: never)",
+          Threshold(&Options::NormalThreshold) },
+        { { "--finest-level" }, "N", "multires: finest level that gathers (0 = full resolution)",
+          Integer(&Options::FinestLevel, 0, 23) },
+        { { "--upsample" }, "tent|mask",
+          "multires: tent (default) or mask-weighted (Besenthal) upsampling",
+          Choice<bool>(&Options::MaskUpsampling, { { "tent", false }, { "mask", true } }) },
+        { { "--gather" }, "stencil|splat",
+          "multires: stenciled gather (default) or multiresolution splatting\n"
+          "(nichols-wyman-2009; same image, slower: for comparisons)",
+          Choice<bool>(&Options::Splatting, { { "stencil", false }, { "splat", true } }) },
+        { { "--surface-detail" }, "A",
+          "multires: modulate by the view angle, nichols-wyman-2009 eq. 2 (0..1, default 0)",
+          Number(
+            &Options::SurfaceDetail, [](double a) { return a >= 0 && a <= 1; },
+            "expected a number in [0, 1]") },
+        { { "--vpls" }, "N", "virtual point lights, 0..4096 (default 256 = 16x16)",
+          Integer(&Options::VPLs, 0, 4096) },
+        { { "--vpl-selection" }, "grid|importance",
+          "regular grid over the light's view (default) or flux importance sampling",
+          Choice<bool>(&Options::ImportanceVPLs, { { "grid", false }, { "importance", true } }) },
+        { { "--rsm-size" }, "N", "reflective shadow map texels per side, 16..2048 (default 256)",
+          Integer(&Options::RSMSize, 16, 2048) },
+        { { "--indirect-strength" }, "S", "factor on the indirect light (default 1)",
+          Number(
+            &Options::IndirectStrength, [](double s) { return s >= 0 && s <= 1e6; },
+            "expected a number in [0, 1e6]") },
+        { { "--indirect-only" }, nullptr, "write only the indirect light (EXR: float RGB)",
+          Set(&Options::IndirectOnly) },
+        { { "--tone-mapping" }, nullptr, "filmic tone mapping of the result (vtkToneMappingPass)",
+          Set(&Options::ToneMapping) },
+      } },
+    { "Ground truth (CPU, Embree: direct light and one bounce with exact visibility)",
+      {
+        { { "--reference" }, nullptr, "render the ground truth instead of the GPU image",
+          Set(&Options::Reference) },
+        { { "--reference-visibility" }, "on|off",
+          "exact visibility between bounce points (default on); off = the RSM assumption",
+          OnOff(&Options::ReferenceVisibility) },
+        { { "--reference-shadows" }, "on|off",
+          "shadows in the direct part (default on; VTK's direct light has none)",
+          OnOff(&Options::ReferenceShadows) },
+        { { "--reference-error" }, "E",
+          "stop at this relative standard error of the indirect part (default 0.01)",
+          Number(
+            &Options::ReferenceError, [](double e) { return e >= 0 && e <= 1; },
+            "expected a number in [0, 1]") },
+        { { "--reference-passes" }, "N",
+          "at most N passes of 16 bounce rays per pixel (default 64)",
+          Integer(&Options::ReferencePasses, 1, 100000) },
+      } },
+    { "Measurement",
+      {
+        { { "--timings" }, nullptr, "print the GPU time of each stage (vtkRenderTimerLog)",
+          Set(&Options::Timings) },
+        { { "--frames" }, "N", "render N frames; timings are medians (default 1)",
+          Integer(&Options::Frames, 1, 1000000) },
+      } },
+    { "Other",
+      {
+        { { "--interactive" }, nullptr, "open a window to look around (needs DISPLAY)",
+          Set(&Options::Interactive) },
+        { { "-q", "--quiet" }, nullptr, "no progress lines", Set(&Options::Quiet) },
+        { { "--version" }, nullptr, "print the version",
+          [](Options&, const std::string&, const char*) {
+            std::printf("mrgi-render %s\n", MRGI_VERSION_STRING);
+            return 0;
+          } },
+        { { "-h", "--help" }, nullptr, "this text",
+          [](Options&, const std::string&, const char*) {
+            PrintUsage(stdout);
+            return 0;
+          } },
+      } },
+  };
+  return table;
+}
+
+// The row of `name`, or nullptr.
+const OptionRow* FindOption(const std::string& name)
+{
+  for (const OptionSection& section : OptionTable())
+  {
+    for (const OptionRow& row : section.Rows)
+    {
+      if (std::find(row.Names.begin(), row.Names.end(), name) != row.Names.end())
+      {
+        return &row;
+      }
+    }
+  }
+  return nullptr;
+}
+
+// Parses argv into `o`; returns -1 to go on, else the exit code.
+int ParseArguments(int argc, char* argv[], Options& o)
+{
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    if (const OptionRow* row = FindOption(arg))
+    {
+      const char* value = nullptr;
+      if (row->Value)
+      {
+        if (i + 1 >= argc)
+        {
+          return Fail(arg + " needs a value");
+        }
+        value = argv[++i];
+      }
+      const int code = row->Handle(o, arg, value);
+      if (code >= 0)
+      {
+        return code;
+      }
+    }
+    else if (!arg.empty() && arg[0] == '-')
+    {
+      return Fail("unknown option '" + arg + "' (see mrgi-render --help)");
+    }
+    else if (o.Scene.empty())
+    {
+      o.Scene = arg;
+    }
+    else
+    {
+      return Fail("more than one scene given ('" + o.Scene + "' and '" + arg + "')");
+    }
+  }
+  if (o.Scene.empty())
+  {
+    return Fail("no scene given (see mrgi-render --help)");
+  }
+  if (o.Outputs.empty() && !o.Interactive && !o.Timings)
+  {
+    return Fail("no output given: use -o OUT.png or -o OUT.exr (or --timings / --interactive)");
+  }
+  return -1;
+}
+}

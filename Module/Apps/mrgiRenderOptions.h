@@ -1,0 +1,96 @@
+// mrgiRenderOptions: mrgi-render's command line. One table (OptionTable in
+// the .cxx) gives every option's names, value form, help text and handler;
+// both the parser and `--help` are built from it.
+//
+// The command line is a contract users script against: options are only ever
+// added, never renamed.
+#ifndef mrgiRenderOptions_h
+#define mrgiRenderOptions_h
+
+#include "vtkMRGIPass.h"     // For the area-light defaults
+#include "vtkSmartPointer.h" // For vtkSmartPointer
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+class vtkLight;
+class vtkMRGIAreaLight;
+
+namespace mrgirender
+{
+// What the command line asks for; defaults as --help states them.
+struct Options
+{
+  std::string Scene;
+  std::vector<std::string> Outputs;
+  bool Half = false;
+  int Width = 512;
+  int Height = 512;
+  double Background[3] = { 0, 0, 0 };
+  bool HasPosition = false, HasFocal = false, HasUp = false, HasAngle = false;
+  double Position[3], Focal[3], Up[3], Angle = 30;
+  bool AutoCamera = false;
+  bool Parallel = false;
+  std::vector<std::string> Lights;
+  double LightIntensity = 1.0;
+  bool HasLightIntensity = false;
+  long long Triangles = 100000;
+  long long Objects = 64;
+  long long Seed = 1;
+  bool Timings = false;
+  long long Frames = 1;
+  bool Interactive = false;
+  bool Quiet = false;
+  bool GI = true;
+  bool Multires = true; // Balanced whenever indirect light is on
+  long long Preset = 1;
+  double SurfaceDetail = 0.0;
+  // NaN / -1: not given, the preset's value stands.
+  double DepthThreshold = std::nan("");
+  double NormalThreshold = std::nan("");
+  long long FinestLevel = -1;
+  bool MaskUpsampling = false;
+  bool Splatting = false;
+  std::vector<std::string> AreaLights;
+  bool AreaLightsOn = true;
+  bool AreaLightTwoSided = false;
+  long long AreaLightSamples = 256;
+  int AreaLightVisibility = vtkMRGIPass::VisibilityIncremental;
+  long long VoxelSize = 128;
+  bool AreaLightSpecular = true;
+  int AreaLightSpecularResolution = vtkMRGIPass::SpecularFullResolution;
+  bool VisibilityInterleave = false;
+  bool IncrementalStencil = true;
+  bool HasSpecular = false;
+  double SpecularCoefficient = 0.0;
+  double SpecularPower = 1.0;
+  long long VPLs = 256;
+  bool ImportanceVPLs = false;
+  long long RSMSize = 256;
+  double IndirectStrength = 1.0;
+  bool IndirectOnly = false;
+  bool ToneMapping = false;
+  bool Reference = false;
+  bool ReferenceVisibility = true;
+  bool ReferenceShadows = true;
+  double ReferenceError = 0.01;
+  long long ReferencePasses = 64;
+};
+
+// Parses argv into `o`; returns -1 to go on, else the exit code (0 after
+// --help / --version, 2 with the error printed).
+int ParseArguments(int argc, char* argv[], Options& o);
+
+// Prints "mrgi-render: error: MESSAGE" and returns 2 (the usage exit code).
+int Fail(const std::string& message);
+
+// Whether `s` ends with `extension`, ignoring case.
+bool EndsWith(const std::string& s, const char* extension);
+
+// An --area-light / --light value into a light; false with `why` on error.
+bool ParseAreaLight(const std::string& spec, vtkMRGIAreaLight* light, std::string& why);
+bool ParseLight(const std::string& spec, vtkSmartPointer<vtkLight>& light, std::string& why);
+}
+
+#endif
