@@ -324,7 +324,13 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
         masks = this->VisibilityPyramid;
       }
     }
-    if (!this->RenderDiffuse(frame, buffer, light, voxels, masks))
+    vtkMRGIAreaLightTerm term;
+    term.Samples = texture;
+    term.SampleCount = count;
+    term.Light = &uniforms;
+    term.Voxels = masks ? nullptr : voxels;
+    term.Masks = masks;
+    if (!this->RenderDiffuse(frame, buffer, term))
     {
       break;
     }
@@ -346,25 +352,13 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIAreaLightStage::RenderDiffuse(const vtkMRGIFrameContext& frame,
-  vtkMRGIMultiresolution* buffer, vtkMRGIAreaLight* light, vtkMRGIVoxelization* voxels,
-  vtkMRGIVisibilityPyramid* masks)
+bool vtkMRGIAreaLightStage::RenderDiffuse(
+  const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer, const vtkMRGIAreaLightTerm& term)
 {
   // NPW10 3.2 (the same multiresolution framework as the indirect light),
   // visibility 3.3.1 (voxels: a march per texel and sample) or 3.3.2 (the
   // masks); with masks, 3.4's incremental stencil chooses the texels.
-  int count = 0;
-  mrgi_area_light_uniforms uniforms;
-  vtkMRGIAreaLightTerm term;
-  term.Samples = light->GetSampleTexture(frame.Window, &count);
-  term.SampleCount = count;
-  term.Light = &uniforms;
-  term.Voxels = masks ? nullptr : voxels;
-  term.Masks = masks;
-  if (!term.Samples || !light->GetCoreUniforms(&uniforms))
-  {
-    return false;
-  }
+  vtkMRGIVisibilityPyramid* masks = term.Masks;
   vtkTextureObject* stencil = buffer->GetStencilTexture();
   vtkTextureObject* rendered = buffer->GetSelectionTexture();
   if (masks && this->IncrementalStencil)

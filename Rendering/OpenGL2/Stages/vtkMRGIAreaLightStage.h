@@ -40,6 +40,7 @@
 #include <string> // For std::string
 #include <vector> // For std::vector
 
+struct vtkMRGIAreaLightTerm;
 struct vtkMRGIFrameContext;
 class vtkMRGIAreaLight;
 class vtkMRGIGather;
@@ -171,10 +172,10 @@ protected:
 #ifndef __VTK_WRAP__
   // What the lights' sum depends on; empty when it must be computed anyway.
   std::string Inputs(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer);
-  // One light's diffuse term into DirectTexture; `masks` its visibility
-  // masks when incremental visibility updated them.
-  bool RenderDiffuse(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
-    vtkMRGIAreaLight* light, vtkMRGIVoxelization* voxels, vtkMRGIVisibilityPyramid* masks);
+  // One light's diffuse term (its samples, uniforms and visibility) into
+  // DirectTexture.
+  bool RenderDiffuse(
+    const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer, const vtkMRGIAreaLightTerm& term);
   // One light's highlight into DirectTexture: at every pixel, or at the
   // texels of the specular stencil (upsampled, times k_s c_s).
   bool RenderSpecular(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,

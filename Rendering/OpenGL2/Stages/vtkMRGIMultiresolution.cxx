@@ -302,19 +302,9 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
   auto bind = [&](vtkShaderProgram* program, std::initializer_list<vtkTextureObject*> textures) {
     // Uniforms go to the bound program: bind this stage's first.
     window->GetShaderCache()->ReadyShaderProgram(program);
-    int k = 0;
-    for (vtkTextureObject* t : textures)
-    {
-      t->Activate();
-      program->SetUniformi(("mrgiInput" + std::to_string(k++)).c_str(), t->GetTextureUnit());
-    }
+    vtkMRGIFullScreenStep::BindInputs(program, textures);
   };
-  auto unbind = [](std::initializer_list<vtkTextureObject*> textures) {
-    for (vtkTextureObject* t : textures)
-    {
-      t->Deactivate();
-    }
-  };
+  const auto unbind = vtkMRGIFullScreenStep::UnbindInputs;
   const float pixelSize[2] = { static_cast<float>(a), static_cast<float>(b) };
 
   using vtkMRGIShaderUtilities::ScopedStage;
@@ -454,15 +444,6 @@ bool vtkMRGIMultiresolution::BuildReceivers(vtkOpenGLRenderWindow* window,
   {
     ScopedStage receiverStep(timer, "gather.receivers");
     vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
-    auto target = [&](vtkTextureObject* a, vtkTextureObject* b, int w, int h) {
-      steps.Target(a, b, 0, 0, w, h);
-    };
-    auto inputs = [&](vtkShaderProgram* p, vtkTextureObject* a, vtkTextureObject* b) {
-      a->Activate();
-      b->Activate();
-      p->SetUniformi("mrgiInput0", a->GetTextureUnit());
-      p->SetUniformi("mrgiInput1", b->GetTextureUnit());
-    };
     for (int i = 1; i < levels && ok; ++i)
     {
       const int stage = i == 1 ? 2 : 1;
@@ -473,10 +454,10 @@ bool vtkMRGIMultiresolution::BuildReceivers(vtkOpenGLRenderWindow* window,
         break;
       }
       vtkShaderProgram* p = quad->Program;
-      target(in.Receivers[i][0], in.Receivers[i][1], layout.level_width[i], layout.level_height[i]);
+      steps.Target(in.Receivers[i][0], in.Receivers[i][1], 0, 0, layout.level_width[i], layout.level_height[i]);
       vtkTextureObject* srcP = i == 1 ? position : in.Receivers[i - 1][0];
       vtkTextureObject* srcN = i == 1 ? normal : in.Receivers[i - 1][1];
-      inputs(p, srcP, srcN);
+      vtkMRGIFullScreenStep::BindInputs(p, { srcP, srcN });
       const int offset[2] = { x0, y0 };
       const int size[2] = { layout.level_width[i - 1], layout.level_height[i - 1] };
       p->SetUniform2i("mrgiOffset", offset);
