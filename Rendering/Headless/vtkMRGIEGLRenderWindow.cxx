@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkMRGIEGLRenderWindow);
@@ -19,6 +20,8 @@ struct vtkMRGIEGLRenderWindow::EGLState
 {
   EGLDisplay Display = EGL_NO_DISPLAY;
   EGLContext Context = EGL_NO_CONTEXT;
+  // What PushContext() found current, for PopContext() to restore.
+  std::vector<std::pair<EGLDisplay, EGLContext>> ContextStack;
 };
 
 namespace
@@ -338,6 +341,41 @@ void vtkMRGIEGLRenderWindow::MakeCurrent()
   if (this->EGL->Context != EGL_NO_CONTEXT && eglGetCurrentContext() != this->EGL->Context)
   {
     eglMakeCurrent(this->EGL->Display, EGL_NO_SURFACE, EGL_NO_SURFACE, this->EGL->Context);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIEGLRenderWindow::PushContext()
+{
+  // VTK frees a resource of this window from inside another window's render
+  // (a mapper shared by two windows, a texture moved between them): it
+  // pushes this context, frees, and pops. The base class's PopContext() does
+  // nothing, which would leave this context current under the other
+  // window's draw calls.
+  this->EGL->ContextStack.emplace_back(eglGetCurrentDisplay(), eglGetCurrentContext());
+  this->MakeCurrent();
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIEGLRenderWindow::PopContext()
+{
+  if (this->EGL->ContextStack.empty())
+  {
+    return;
+  }
+  const std::pair<EGLDisplay, EGLContext> previous = this->EGL->ContextStack.back();
+  this->EGL->ContextStack.pop_back();
+  if (previous.second == eglGetCurrentContext())
+  {
+    return;
+  }
+  if (previous.second == EGL_NO_CONTEXT)
+  {
+    this->ReleaseCurrent();
+  }
+  else
+  {
+    eglMakeCurrent(previous.first, EGL_NO_SURFACE, EGL_NO_SURFACE, previous.second);
   }
 }
 

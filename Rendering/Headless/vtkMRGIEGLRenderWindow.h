@@ -72,6 +72,16 @@ public:
   void MakeCurrent() override;
   void ReleaseCurrent() override;
   bool IsCurrent() override;
+
+  ///@{
+  /**
+   * Make this context current and restore the previous one afterwards, as
+   * VTK does when it frees a resource of this window while another window
+   * renders (e.g. a mapper shared by two windows).
+   */
+  void PushContext() override;
+  void PopContext() override;
+  ///@}
   int SupportsOpenGL() override;
   void OpenGLInitContext() override;
   void* GetGenericContext() override;

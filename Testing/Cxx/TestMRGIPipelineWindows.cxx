@@ -10,6 +10,8 @@
 //    marker uses) and a real vtkOrientationMarkerWidget with a vtkAxesActor:
 //    the marker's pixels appear as VTK draws them, the rest of the image is
 //    unchanged by them.
+// 4. two windows sharing their actors, each with its own pass, rendered in
+//    turn: each shows what a window of its own shows.
 // With IndirectMode Off every image is VTK's own (max difference 1/255).
 //
 // The widget and axes actor live in VTK modules the C++ tests do not link
@@ -23,6 +25,8 @@
 #include "vtkConeSource.h"
 #include "vtkCubeSource.h"
 #include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkActorCollection.h"
 #include "vtkOrientationMarkerWidget.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRendererCollection.h"
@@ -380,6 +384,55 @@ int main()
     MRGI_TEST_CHECK(MaxDifference(offAxes, plainAxes) <= 1.0);
     widget->SetEnabled(0);
     pass->ReleaseGraphicsResources(window);
+  }
+
+  // 4. Two windows sharing their actors, each with its own vtkMRGIPass,
+  //    rendered in turn: VTK moves a shared mapper's buffers from one
+  //    context to the other, freeing them in the first window's context
+  //    (PushContext/PopContext). Each window shows what a window of its own
+  //    shows, frame after frame.
+  {
+    const int w = 160, h = 120;
+    vtkSmartPointer<vtkImageData> fresh = Fresh(w, h, vtkMRGIPass::IndirectFull, 0.9, 0.2, 0.1);
+    vtkSmartPointer<vtkRenderWindow> first = mrgitest::HeadlessWindow(w, h);
+    vtkSmartPointer<vtkRenderWindow> second = mrgitest::HeadlessWindow(w, h);
+    vtkNew<vtkRenderer> firstRenderer, secondRenderer;
+    first->AddRenderer(firstRenderer);
+    second->AddRenderer(secondRenderer);
+    BuildScene(firstRenderer, 0.9, 0.2, 0.1);
+    vtkActorCollection* actors = firstRenderer->GetActors();
+    actors->InitTraversal();
+    while (vtkActor* actor = actors->GetNextActor())
+    {
+      secondRenderer->AddActor(actor);
+    }
+    firstRenderer->GetLights()->InitTraversal();
+    while (vtkLight* light = firstRenderer->GetLights()->GetNextItem())
+    {
+      secondRenderer->AddLight(light);
+    }
+    secondRenderer->SetBackground(firstRenderer->GetBackground());
+    secondRenderer->SetActiveCamera(firstRenderer->GetActiveCamera());
+    vtkSmartPointer<vtkMRGIPass> firstPass = Install(firstRenderer);
+    vtkSmartPointer<vtkMRGIPass> secondPass = Install(secondRenderer);
+    for (vtkMRGIPass* p : { firstPass.Get(), secondPass.Get() })
+    {
+      p->SetRSMResolution(64);
+      p->SetIndirectMode(vtkMRGIPass::IndirectFull);
+    }
+    double worst = 0.0;
+    for (int frame = 0; frame < 3; ++frame)
+    {
+      first->Render();
+      worst = std::max(worst, MaxDifference(fresh, mrgitest::GrabRGB(first)));
+      second->Render();
+      worst = std::max(worst, MaxDifference(fresh, mrgitest::GrabRGB(second)));
+    }
+    std::printf("two windows sharing actors: max difference to a window of its own %.0f\n", worst);
+    MRGI_TEST_CHECK(firstPass->GetIndirectComputed() && secondPass->GetIndirectComputed());
+    MRGI_TEST_CHECK(worst <= 1.0);
+    firstPass->ReleaseGraphicsResources(first);
+    secondPass->ReleaseGraphicsResources(second);
   }
   return 0;
 }
