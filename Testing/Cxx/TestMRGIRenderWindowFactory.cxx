@@ -15,6 +15,8 @@
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
 
+#include <dlfcn.h>
+
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
@@ -49,6 +51,9 @@ bool Contains(const std::string& text, const char* fragment)
   return true;
 }
 
+void AddSphere(vtkRenderer* renderer);
+void CheckSphereImage(vtkRenderWindow* window, int width, int height);
+
 vtkSmartPointer<vtkRenderWindow> Make(int kind, const char* backend, std::string& why)
 {
   why.clear();
@@ -56,7 +61,36 @@ vtkSmartPointer<vtkRenderWindow> Make(int kind, const char* backend, std::string
     vtkMRGIRenderWindowFactory::CreateRenderWindow(kind, backend, &why));
 }
 
-// Runs first: once libOSMesa is loaded it stays loaded for the process.
+// Runs first: the EGL backend renders without ever loading libOSMesa (so
+// ParaView and EGL programs never see its GL symbols).
+void TestEGLDoesNotLoadOSMesa()
+{
+  Environment env;
+  std::string why;
+  vtkSmartPointer<vtkRenderWindow> window = Make(vtkMRGIRenderWindowFactory::Headless, "egl", why);
+  if (!window)
+  {
+    MRGI_TEST_FAIL("no EGL window: %s", why.c_str());
+  }
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  AddSphere(renderer);
+  window->SetSize(32, 32);
+  window->SetMultiSamples(0);
+  window->Render();
+  CheckSphereImage(window, 32, 32);
+  for (const char* name : { "libOSMesa.so.8", "libOSMesa.so.6" })
+  {
+    void* loaded = dlopen(name, RTLD_NOW | RTLD_NOLOAD);
+    MRGI_TEST_CHECK(loaded == nullptr);
+    if (loaded)
+    {
+      dlclose(loaded);
+    }
+  }
+}
+
+// Before any OSMesa window: once libOSMesa is loaded it stays loaded.
 void TestOSMesaLibraryMissing()
 {
   Environment env;
@@ -319,7 +353,8 @@ void TestEGLAndOSMesaAlternate()
 int main(int argc, char* argv[])
 {
   return mrgitest::RunCases(argc, argv,
-    { MRGI_TEST_CASE(TestOSMesaLibraryMissing), MRGI_TEST_CASE(TestUnknownBackend),
-      MRGI_TEST_CASE(TestXWithoutDisplay), MRGI_TEST_CASE(TestBackendChoice),
-      MRGI_TEST_CASE(TestOSMesaWindow), MRGI_TEST_CASE(TestEGLAndOSMesaAlternate) });
+    { MRGI_TEST_CASE(TestEGLDoesNotLoadOSMesa), MRGI_TEST_CASE(TestOSMesaLibraryMissing),
+      MRGI_TEST_CASE(TestUnknownBackend), MRGI_TEST_CASE(TestXWithoutDisplay),
+      MRGI_TEST_CASE(TestBackendChoice), MRGI_TEST_CASE(TestOSMesaWindow),
+      MRGI_TEST_CASE(TestEGLAndOSMesaAlternate) });
 }
