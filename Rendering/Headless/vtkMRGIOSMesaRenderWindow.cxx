@@ -259,7 +259,12 @@ bool vtkMRGIOSMesaRenderWindow::InitializeHeadlessContext()
   int version = 0;
   for (const auto& v : versions)
   {
-    const int attributes[] = { kOSMesaFormat, GL_RGBA, kOSMesaDepthBits, 24, kOSMesaStencilBits, 8,
+    // Framebuffer 0 gets no depth or stencil: nothing draws into it, and
+    // vtkRenderer asks its depth bits (GetDepthBufferSize) to pick the near
+    // plane tolerance (0.001 with more than 16 bits, else 0.01). With none,
+    // as on the surfaceless EGL context, both windows frame alike; with 24
+    // bits the living room differed from EGL by 0.565 (max) in HDR.
+    const int attributes[] = { kOSMesaFormat, GL_RGBA, kOSMesaDepthBits, 0, kOSMesaStencilBits, 0,
       kOSMesaProfile, kOSMesaCoreProfile, kOSMesaContextMajorVersion, v[0],
       kOSMesaContextMinorVersion, v[1], 0 };
     context = lib->CreateContextAttribs(attributes, nullptr);

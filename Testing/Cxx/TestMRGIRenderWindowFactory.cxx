@@ -264,20 +264,20 @@ void TestOSMesaWindow()
   MRGI_TEST_CHECK(errors->Caught("at least 1"));
 }
 
-// The Cornell box through vtkMRGIPass into `window`; its RGB image.
-struct CornellView
+// A built-in scene through vtkMRGIPass in `window`.
+struct SceneView
 {
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkRenderStepsPass> Steps;
   vtkNew<vtkMRGIPass> Pass;
 
-  explicit CornellView(vtkRenderWindow* window)
+  SceneView(vtkRenderWindow* window, const char* scene)
   {
     window->SetSize(128, 128);
     window->SetMultiSamples(0);
     window->AddRenderer(this->Renderer);
     vtkNew<vtkMRGISceneBuilder> builder;
-    builder->SetScene("cornell");
+    builder->SetScene(scene);
     MRGI_TEST_CHECK(builder->Build(this->Renderer));
     this->Pass->SetDelegatePass(this->Steps);
     this->Renderer->SetPass(this->Pass);
@@ -321,8 +321,8 @@ void TestEGLAndOSMesaAlternate()
   {
     MRGI_TEST_FAIL("no OSMesa window: %s", why.c_str());
   }
-  CornellView eglView(egl);
-  CornellView osmesaView(osmesa);
+  SceneView eglView(egl, "cornell");
+  SceneView osmesaView(osmesa, "cornell");
   egl->Render();
   vtkSmartPointer<vtkImageData> eglFirst = mrgitest::GrabRGB(egl);
   osmesa->Render();
@@ -347,6 +347,26 @@ void TestEGLAndOSMesaAlternate()
     d.Metrics.psnr_db);
   // The baselines' tolerance: both are Mesa's llvmpipe, so far closer in practice.
   MRGI_TEST_CHECK(d.Metrics.relative_rms <= 0.02);
+
+  // vtkRenderer picks its near plane from the window's depth bits (of
+  // framebuffer 0): the two windows must answer alike, or scenes with a deep
+  // view (the living room) are framed differently.
+  MRGI_TEST_CHECK(egl->GetDepthBufferSize() == osmesa->GetDepthBufferSize());
+  MRGI_TEST_CHECK(eglView.Renderer->GetNearClippingPlaneTolerance() ==
+    osmesaView.Renderer->GetNearClippingPlaneTolerance());
+  vtkSmartPointer<vtkRenderWindow> eglRoom = Make(vtkMRGIRenderWindowFactory::Headless, "egl", why);
+  vtkSmartPointer<vtkRenderWindow> osmesaRoom =
+    Make(vtkMRGIRenderWindowFactory::Headless, "osmesa", why);
+  MRGI_TEST_CHECK(eglRoom && osmesaRoom);
+  SceneView eglRoomView(eglRoom, "living-room");
+  SceneView osmesaRoomView(osmesaRoom, "living-room");
+  eglRoom->Render();
+  osmesaRoom->Render();
+  const Difference room = Compare(mrgitest::GrabRGB(osmesaRoom), mrgitest::GrabRGB(eglRoom));
+  std::printf("OSMesa vs EGL, living room 128x128 (area light, voxel shadows): relative RMS %.5f, "
+              "max %.4f\n",
+    room.Metrics.relative_rms, room.Metrics.max_abs_error);
+  MRGI_TEST_CHECK(room.Metrics.relative_rms <= 0.02);
 }
 }
 
