@@ -247,7 +247,7 @@ bool vtkMRGIOSMesaRenderWindow::InitializeHeadlessContext()
   OSMesaLibrary* lib = Library(why);
   if (!lib)
   {
-    this->LastErrorMessage = "no OSMesa context: " + why;
+    this->LastErrorMessage = why;
     return false;
   }
   this->OSMesa->Library = lib;

@@ -8,7 +8,8 @@
  * OSMesa offers, tried in the order 4.5, 3.3, 3.2. Like vtkMRGIEGLRenderWindow it
  * always renders into VTK's own offscreen framebuffers (OffScreenRendering is
  * forced on), which follow the window's size; OSMesa's own colour buffer
- * (framebuffer 0) is a single pixel that VTK never reads.
+ * (framebuffer 0) is a single pixel without depth or stencil, which VTK
+ * never draws into.
  *
  * **How GL calls reach OSMesa.** VTK calls OpenGL through libglvnd
  * (libOpenGL/libGL, whose entry points dispatch to the vendor of the current
