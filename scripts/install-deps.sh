@@ -10,6 +10,7 @@ PACKAGES=(
   paraview-dev
   libopenexr-dev libembree-dev libpng-dev zlib1g-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev libglew-dev
+  libosmesa6 # vtkMRGIOSMesaRenderWindow dlopens libOSMesa.so.8; no header needed
   python3 python3-numpy
 )
 # `install-deps.sh --benchmarks` adds what Testing/Benchmarks needs (plots).

@@ -105,15 +105,16 @@ int main(int argc, char* argv[])
   vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
 
   std::string why;
-  vtkSmartPointer<vtkRenderWindow> window = vtkSmartPointer<vtkRenderWindow>::Take(
-    vtkMRGIRenderWindowFactory::CreateRenderWindow(o.Interactive
-        ? vtkMRGIRenderWindowFactory::Interactive
-        : vtkMRGIRenderWindowFactory::Headless,
-      &why));
+  vtkSmartPointer<vtkRenderWindow> window =
+    vtkSmartPointer<vtkRenderWindow>::Take(vtkMRGIRenderWindowFactory::CreateRenderWindow(
+      o.Interactive ? vtkMRGIRenderWindowFactory::Interactive
+                    : vtkMRGIRenderWindowFactory::Headless,
+      o.Backend.c_str(), &why));
   if (!window)
   {
     return Fail("no render window: " + why);
   }
+  Progress(o, "render window: " + vtkMRGIRenderWindowFactory::DescribeRenderWindow(window));
   window->SetSize(o.Width, o.Height);
   window->SetMultiSamples(0);
 

@@ -695,6 +695,11 @@ const std::vector<OptionSection>& OptionTable()
       {
         { { "--interactive" }, nullptr, "open a window to look around (needs DISPLAY)",
           Set(&Options::Interactive) },
+        { { "--backend" }, "auto|egl|osmesa|x",
+          "render window backend; a named one that fails is an error (default: MRGI_BACKEND, "
+          "else auto: EGL, then OSMesa)",
+          Choice<std::string>(&Options::Backend,
+            { { "auto", "auto" }, { "egl", "egl" }, { "osmesa", "osmesa" }, { "x", "x" } }) },
         { { "-q", "--quiet" }, nullptr, "no progress lines", Set(&Options::Quiet) },
         { { "--version" }, nullptr, "print the version",
           [](Options&, const std::string&, const char*) {

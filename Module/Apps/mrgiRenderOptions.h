@@ -41,6 +41,7 @@ struct Options
   bool Timings = false;
   long long Frames = 1;
   bool Interactive = false;
+  std::string Backend; // empty: MRGI_BACKEND, else automatic
   bool Quiet = false;
   bool GI = true;
   bool Multires = true; // Balanced whenever indirect light is on

@@ -2,6 +2,8 @@
 
 #include "vtkMRGIEGLRenderWindow.h"
 
+#include "vtkMRGIOSMesaRenderWindow.h"
+
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLState.h"
 
@@ -128,6 +130,7 @@ bool vtkMRGIEGLRenderWindow::InitializeHeadlessContext()
     return true;
   }
   this->LastErrorMessage.clear();
+  vtkMRGIOSMesaRenderWindow::ReleaseCurrentOSMesaContext(); // see MakeCurrent()
 
   const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
@@ -340,6 +343,9 @@ void vtkMRGIEGLRenderWindow::MakeCurrent()
 {
   if (this->EGL->Context != EGL_NO_CONTEXT && eglGetCurrentContext() != this->EGL->Context)
   {
+    // libglvnd refuses eglMakeCurrent while an OSMesa window's context is
+    // current on this thread (a no-op when libOSMesa was never loaded).
+    vtkMRGIOSMesaRenderWindow::ReleaseCurrentOSMesaContext();
     eglMakeCurrent(this->EGL->Display, EGL_NO_SURFACE, EGL_NO_SURFACE, this->EGL->Context);
   }
 }

@@ -1,13 +1,11 @@
 #include "vtkMRGIRenderWindowFactory.h"
 
 #include "vtkMRGIEGLRenderWindow.h"
+#include "vtkMRGIOSMesaRenderWindow.h"
 #include "vtkObjectFactory.h"
 #include "vtkRenderWindow.h"
-#include "vtkRenderingOpenGLConfigure.h" // VTK_OPENGL_HAS_OSMESA
 
-#ifdef VTK_OPENGL_HAS_OSMESA
-#include "vtkOSOpenGLRenderWindow.h"
-#endif
+#include <dlfcn.h>
 
 #include <cstdlib>
 #include <cstring>
@@ -19,36 +17,81 @@ namespace
 enum class Choice
 {
   X,
-  OSMesa,
   EGL,
+  OSMesa,
+  HeadlessAuto, // EGL, else OSMesa
   None
 };
 
-Choice Choose(int kind, std::string& why)
+// Whether an X display opens. libX11 is already loaded with VTK's X window;
+// looked up at run time so that this module does not link it.
+bool XDisplayWorks()
 {
-  const char* forced = std::getenv("MRGI_WINDOW");
+  void* x11 = dlopen("libX11.so.6", RTLD_NOW | RTLD_LOCAL);
+  if (!x11)
+  {
+    return false;
+  }
+  using OpenDisplay = void* (*)(const char*);
+  using CloseDisplay = int (*)(void*);
+  auto openDisplay = reinterpret_cast<OpenDisplay>(dlsym(x11, "XOpenDisplay"));
+  auto closeDisplay = reinterpret_cast<CloseDisplay>(dlsym(x11, "XCloseDisplay"));
+  bool works = false;
+  if (openDisplay && closeDisplay)
+  {
+    if (void* display = openDisplay(nullptr))
+    {
+      closeDisplay(display);
+      works = true;
+    }
+  }
+  dlclose(x11);
+  return works;
+}
+
+// The backend to use for `kind`: from `backend`, else MRGI_BACKEND, else
+// MRGI_WINDOW, else automatic. `source` names where a named backend came from.
+Choice Choose(int kind, const char* backend, std::string& why)
+{
+  std::string source = "backend";
+  const char* name = backend;
+  if (!name || !name[0])
+  {
+    name = std::getenv("MRGI_BACKEND");
+    source = "MRGI_BACKEND";
+  }
+  if (!name || !name[0])
+  {
+    name = std::getenv("MRGI_WINDOW");
+    source = "MRGI_WINDOW";
+  }
   const char* display = std::getenv("DISPLAY");
   const bool haveDisplay = display && display[0];
-  if (forced && forced[0])
+  if (name && name[0] && std::strcmp(name, "auto") != 0)
   {
-    if (std::strcmp(forced, "x") == 0)
+    if (std::strcmp(name, "x") == 0)
     {
+      if (!haveDisplay)
+      {
+        why = source + "=x, but DISPLAY is not set: the X backend needs an X display";
+        return Choice::None;
+      }
+      if (!XDisplayWorks())
+      {
+        why = source + "=x, but the X display '" + display + "' cannot be opened";
+        return Choice::None;
+      }
       return Choice::X;
     }
-    if (std::strcmp(forced, "egl") == 0)
+    if (std::strcmp(name, "egl") == 0)
     {
       return Choice::EGL;
     }
-    if (std::strcmp(forced, "osmesa") == 0)
+    if (std::strcmp(name, "osmesa") == 0)
     {
-#ifdef VTK_OPENGL_HAS_OSMESA
       return Choice::OSMesa;
-#else
-      why = "MRGI_WINDOW=osmesa, but this VTK was built without OSMesa";
-      return Choice::None;
-#endif
     }
-    why = std::string("MRGI_WINDOW='") + forced + "' is not one of x, osmesa, egl";
+    why = source + "='" + name + "' is not one of auto, egl, osmesa, x";
     return Choice::None;
   }
   if (kind == vtkMRGIRenderWindowFactory::Interactive)
@@ -60,40 +103,71 @@ Choice Choose(int kind, std::string& why)
     }
     return Choice::X;
   }
-#ifdef VTK_OPENGL_HAS_OSMESA
-  return Choice::OSMesa;
-#else
-  return Choice::EGL;
-#endif
+  if (kind == vtkMRGIRenderWindowFactory::Automatic && haveDisplay && XDisplayWorks())
+  {
+    return Choice::X;
+  }
+  return Choice::HeadlessAuto;
+}
+
+vtkRenderWindow* MakeEGL(std::string& why)
+{
+  vtkMRGIEGLRenderWindow* egl = vtkMRGIEGLRenderWindow::New();
+  if (!egl->InitializeHeadlessContext())
+  {
+    why = std::string("EGL: ") + egl->GetLastErrorMessage();
+    egl->Delete();
+    return nullptr;
+  }
+  return egl;
+}
+
+vtkRenderWindow* MakeOSMesa(std::string& why)
+{
+  vtkMRGIOSMesaRenderWindow* osmesa = vtkMRGIOSMesaRenderWindow::New();
+  if (!osmesa->InitializeHeadlessContext())
+  {
+    why = std::string("OSMesa: ") + osmesa->GetLastErrorMessage();
+    osmesa->Delete();
+    return nullptr;
+  }
+  return osmesa;
 }
 }
 
 //------------------------------------------------------------------------------
 vtkRenderWindow* vtkMRGIRenderWindowFactory::CreateRenderWindow(int kind, std::string* why)
 {
+  return CreateRenderWindow(kind, nullptr, why);
+}
+
+//------------------------------------------------------------------------------
+vtkRenderWindow* vtkMRGIRenderWindowFactory::CreateRenderWindow(
+  int kind, const char* backend, std::string* why)
+{
   std::string reason;
   vtkRenderWindow* window = nullptr;
-  switch (Choose(kind, reason))
+  switch (Choose(kind, backend, reason))
   {
     case Choice::X:
       window = vtkRenderWindow::New();
       break;
-    case Choice::OSMesa:
-#ifdef VTK_OPENGL_HAS_OSMESA
-      window = vtkOSOpenGLRenderWindow::New();
-#endif
-      break;
     case Choice::EGL:
+      window = MakeEGL(reason);
+      break;
+    case Choice::OSMesa:
+      window = MakeOSMesa(reason);
+      break;
+    case Choice::HeadlessAuto:
     {
-      vtkMRGIEGLRenderWindow* egl = vtkMRGIEGLRenderWindow::New();
-      if (!egl->InitializeHeadlessContext())
+      // Not asked for by name: OSMesa stands in when EGL has no context.
+      std::string eglWhy;
+      window = MakeEGL(eglWhy);
+      if (!window)
       {
-        reason = egl->GetLastErrorMessage();
-        egl->Delete();
-      }
-      else
-      {
-        window = egl;
+        std::string osmesaWhy;
+        window = MakeOSMesa(osmesaWhy);
+        reason = eglWhy + "; " + osmesaWhy;
       }
       break;
     }
@@ -110,8 +184,14 @@ vtkRenderWindow* vtkMRGIRenderWindowFactory::CreateRenderWindow(int kind, std::s
 //------------------------------------------------------------------------------
 vtkRenderWindow* vtkMRGIRenderWindowFactory::NewRenderWindow(int kind)
 {
+  return NewRenderWindow(kind, nullptr);
+}
+
+//------------------------------------------------------------------------------
+vtkRenderWindow* vtkMRGIRenderWindowFactory::NewRenderWindow(int kind, const char* backend)
+{
   std::string why;
-  vtkRenderWindow* window = CreateRenderWindow(kind, &why);
+  vtkRenderWindow* window = CreateRenderWindow(kind, backend, &why);
   if (!window)
   {
     vtkGenericWarningMacro("no " << GetWindowKindName(kind) << " render window: " << why);
@@ -129,18 +209,61 @@ vtkRenderWindow* vtkMRGIRenderWindowFactory::CreateHeadlessRenderWindow()
 const char* vtkMRGIRenderWindowFactory::GetWindowKindName(int kind)
 {
   std::string why;
-  switch (Choose(kind, why))
+  switch (Choose(kind, nullptr, why))
   {
     case Choice::X:
       return "x";
+    case Choice::EGL:
+    case Choice::HeadlessAuto:
+      return "egl";
     case Choice::OSMesa:
       return "osmesa";
-    case Choice::EGL:
-      return "egl";
     case Choice::None:
       break;
   }
   return "none";
+}
+
+//------------------------------------------------------------------------------
+const char* vtkMRGIRenderWindowFactory::GetBackendName(vtkRenderWindow* window)
+{
+  if (!window)
+  {
+    return "none";
+  }
+  if (vtkMRGIEGLRenderWindow::SafeDownCast(window))
+  {
+    return "egl";
+  }
+  if (vtkMRGIOSMesaRenderWindow::SafeDownCast(window))
+  {
+    return "osmesa";
+  }
+  return "x";
+}
+
+//------------------------------------------------------------------------------
+std::string vtkMRGIRenderWindowFactory::DescribeRenderWindow(vtkRenderWindow* window)
+{
+  std::string line = GetBackendName(window);
+  const char* platform = nullptr;
+  if (auto* egl = vtkMRGIEGLRenderWindow::SafeDownCast(window))
+  {
+    platform = egl->GetPlatformDescription();
+  }
+  else if (auto* osmesa = vtkMRGIOSMesaRenderWindow::SafeDownCast(window))
+  {
+    platform = osmesa->GetPlatformDescription();
+  }
+  else if (window)
+  {
+    platform = window->GetClassName();
+  }
+  if (platform && platform[0])
+  {
+    line += std::string(" (") + platform + ")";
+  }
+  return line;
 }
 
 //------------------------------------------------------------------------------

@@ -256,6 +256,16 @@ inline vtkSmartPointer<vtkRenderWindow> HeadlessWindow(int width, int height)
   {
     MRGI_TEST_FAIL("no headless window: %s", why.c_str());
   }
+  // The tests registered again with MRGI_BACKEND=osmesa must not run on EGL.
+  const char* backend = std::getenv("MRGI_BACKEND");
+  if (backend && backend[0] && std::string(backend) != "auto" &&
+    std::string(backend) != vtkMRGIRenderWindowFactory::GetBackendName(window))
+  {
+    MRGI_TEST_FAIL("MRGI_BACKEND=%s, but the factory made a %s window", backend,
+      vtkMRGIRenderWindowFactory::GetBackendName(window));
+  }
+  std::printf(
+    "headless window: %s\n", vtkMRGIRenderWindowFactory::DescribeRenderWindow(window).c_str());
   window->SetSize(width, height);
   window->SetMultiSamples(0);
   return window;
@@ -391,9 +401,12 @@ inline bool CompareWithBaseline(vtkImageData* image, const std::string& name, do
       metrics.ssim);
     ok = metrics.relative_rms <= tolerance;
   }
+  // Runs on another backend (cxx.X.osmesa) keep their own files.
+  const char* backend = std::getenv("MRGI_BACKEND");
+  const std::string kept = name + (backend && backend[0] ? std::string(".") + backend : "");
   if (!ok)
   {
-    io->WritePNG(image, TempPath(name + ".test.png").c_str());
+    io->WritePNG(image, TempPath(kept + ".test.png").c_str());
     if (test.pixels && ref.pixels &&
       mrgi_metrics_difference_image(&test, &ref, nullptr, &diff, &err) == MRGI_OK)
     {
@@ -404,11 +417,11 @@ inline bool CompareWithBaseline(vtkImageData* image, const std::string& name, do
       vtkNew<vtkImageData> diffImage;
       if (vtkMRGIImageIO::FromCoreImage(&diff, diffImage, why))
       {
-        io->WritePNG(diffImage, TempPath(name + ".diff.png").c_str());
+        io->WritePNG(diffImage, TempPath(kept + ".diff.png").c_str());
       }
     }
-    std::fprintf(stderr, "kept %s and %s\n", TempPath(name + ".test.png").c_str(),
-      TempPath(name + ".diff.png").c_str());
+    std::fprintf(stderr, "kept %s and %s\n", TempPath(kept + ".test.png").c_str(),
+      TempPath(kept + ".diff.png").c_str());
   }
   mrgi_image_destroy(&test);
   mrgi_image_destroy(&ref);

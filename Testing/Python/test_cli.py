@@ -18,9 +18,10 @@ def check(condition, what):
         sys.exit(1)
 
 
-def run(*args):
+def run(*args, extra_env=None):
     env = dict(os.environ)
     env.pop("DISPLAY", None)
+    env.update(extra_env or {})
     p = subprocess.run([RENDER, *args], capture_output=True, text=True, env=env, timeout=600)
     return p.returncode, p.stdout, p.stderr
 
@@ -68,6 +69,27 @@ def main():
     with open(exr, "rb") as f:
         check(f.read(4) == b"\x76\x2f\x31\x01", "EXR magic")
     check("scene" in out and "gather" in out and "output" in out and "total (GPU)" in out, "stage table")
+
+    # Render window backends: the progress names the one used and its GL; a
+    # named backend is used or is an error (never another one), as is an
+    # unknown name from --backend or MRGI_BACKEND.
+    for backend, platform in (("egl", "egl ("), ("osmesa", "osmesa (OSMesa, OpenGL")):
+        path = fresh("cli_backend_%s.png" % backend)
+        code, _, err = run("cornell", "-o", path, "--size", "32x24", "--backend", backend)
+        check(code == 0 and png_size(path) == (32, 24), "--backend %s: %s" % (backend, err))
+        check("render window: " + platform in err, "--backend %s in the progress: %s" % (backend, err))
+        code, _, err = run("cornell", "-o", path, "--size", "32x24", extra_env={"MRGI_BACKEND": backend})
+        check(code == 0 and "render window: " + platform in err, "MRGI_BACKEND=%s: %s" % (backend, err))
+    bad = fresh("cli_backend_bad.png")
+    for args, env, message in (
+            (("--backend", "vulkan"), None, "--backend 'vulkan': expected auto, egl, osmesa or x"),
+            ((), {"MRGI_BACKEND": "vulkan"}, "MRGI_BACKEND='vulkan' is not one of auto, egl, osmesa, x"),
+            (("--backend", "x"), None, "DISPLAY is not set"),
+            (("--backend", "osmesa"), {"MRGI_OSMESA_LIBRARY": "/nonexistent/libOSMesa.so"},
+             "/nonexistent/libOSMesa.so")):
+        code, _, err = run("cornell", "-o", bad, "--size", "32x24", *args, extra_env=env)
+        check(code != 0 and message in err and not os.path.exists(bad),
+              "%s %s refused: %s" % (" ".join(args), env, err))
 
     # Indirect light options: --gi off gives VTK's direct image, darker than
     # with GI; --indirect-only writes the indirect buffer; the ground truth runs.
