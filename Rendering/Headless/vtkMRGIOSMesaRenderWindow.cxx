@@ -207,8 +207,25 @@ GLdispatchThreadState* CurrentThreadState(OSMesaLibrary* lib)
 }
 }
 
+namespace
+{
+// The OSMesa window whose context this thread made current last, so that
+// PopContext() can make it current again: like GL's own current context, a
+// per-thread fact, kept here because an OSMesa context alone cannot be made
+// current without its window's dispatch state and pixel buffer.
+thread_local vtkMRGIOSMesaRenderWindow* CurrentOSMesaWindow = nullptr;
+}
+
 struct vtkMRGIOSMesaRenderWindow::OSMesaState
 {
+  // What PushContext() found current, for PopContext() to restore.
+  struct Previous
+  {
+    vtkMRGIOSMesaRenderWindow* OSMesaWindow;
+    EGLDisplay Display;
+    EGLContext Context;
+  };
+  std::vector<Previous> ContextStack;
   OSMesaLibrary* Library = nullptr;
   OSMesaContext Context = nullptr;
   GLdispatchThreadState Thread = { kTagOSMesa, ThreadDestroyed, nullptr };
@@ -452,11 +469,60 @@ void vtkMRGIOSMesaRenderWindow::MakeCurrent()
     this->LastErrorMessage = "libGLdispatch refused to make the OSMesa dispatch table current";
     return;
   }
+  CurrentOSMesaWindow = this;
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIOSMesaRenderWindow::PushContext()
+{
+  // VTK frees a resource of this window from inside another window's render
+  // (a mapper shared by two windows): it pushes this context, frees, and
+  // pops. The base class's PopContext() does nothing, which would leave this
+  // context current under the other window's draw calls.
+  OSMesaState::Previous previous = { nullptr, eglGetCurrentDisplay(), eglGetCurrentContext() };
+  if (CurrentOSMesaWindow && CurrentOSMesaWindow->IsCurrent())
+  {
+    previous.OSMesaWindow = CurrentOSMesaWindow;
+  }
+  this->OSMesa->ContextStack.push_back(previous);
+  this->MakeCurrent();
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIOSMesaRenderWindow::PopContext()
+{
+  if (this->OSMesa->ContextStack.empty())
+  {
+    return;
+  }
+  const OSMesaState::Previous previous = this->OSMesa->ContextStack.back();
+  this->OSMesa->ContextStack.pop_back();
+  if (previous.OSMesaWindow == this)
+  {
+    return;
+  }
+  if (previous.OSMesaWindow)
+  {
+    previous.OSMesaWindow->MakeCurrent();
+  }
+  else if (previous.Context != EGL_NO_CONTEXT)
+  {
+    this->ReleaseCurrent();
+    eglMakeCurrent(previous.Display, EGL_NO_SURFACE, EGL_NO_SURFACE, previous.Context);
+  }
+  else
+  {
+    this->ReleaseCurrent();
+  }
 }
 
 //------------------------------------------------------------------------------
 void vtkMRGIOSMesaRenderWindow::ReleaseCurrent()
 {
+  if (CurrentOSMesaWindow == this)
+  {
+    CurrentOSMesaWindow = nullptr;
+  }
   if (this->IsCurrent())
   {
     this->OSMesa->Library->LoseCurrent();

@@ -104,6 +104,16 @@ public:
   using Superclass::GetZbufferData;
   ///@}
 
+  ///@{
+  /**
+   * Make this context current and restore the previous one (OSMesa or EGL)
+   * afterwards, as VTK does when it frees a resource of this window while
+   * another window renders (e.g. a mapper shared by two windows).
+   */
+  void PushContext() override;
+  void PopContext() override;
+  ///@}
+
 protected:
   vtkMRGIOSMesaRenderWindow();
   ~vtkMRGIOSMesaRenderWindow() override;
