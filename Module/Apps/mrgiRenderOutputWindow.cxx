@@ -5,6 +5,7 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 
+#include <cctype>
 #include <cstdio>
 #include <cstring>
 
@@ -35,15 +36,32 @@ std::string mrgiRenderOutputWindow::Plain(const char* text)
     const size_t eol = s.find('\n');
     s = eol == std::string::npos ? std::string() : s.substr(eol + 1);
   }
-  // "vtkClass (0x55d0...): message" -> "vtkClass: message".
-  const size_t open = s.find(" (0x");
-  if (open != std::string::npos)
+  // "vtkClass (0x55d0...): message" -> "vtkClass: message": addresses
+  // differ from run to run and mean nothing outside a debugger.
+  for (size_t open = s.find("(0x"); open != std::string::npos; open = s.find("(0x", open))
   {
-    const size_t close = s.find("): ", open);
-    if (close != std::string::npos && s.find_first_of(" \n", open + 1) > close)
+    size_t close = open + 3;
+    while (close < s.size() && std::isxdigit(static_cast<unsigned char>(s[close])))
     {
-      s.erase(open, close + 1 - open);
+      ++close;
     }
+    if (close < s.size() && s[close] == ')')
+    {
+      const size_t from = open > 0 && s[open - 1] == ' ' ? open - 1 : open;
+      s.erase(from, close + 1 - from);
+      open = from;
+    }
+    else
+    {
+      open = close;
+    }
+  }
+  // The executive's "returned failure for request: vtkInformation ..." is
+  // followed by a dump of the request: keep the sentence only.
+  const size_t request = s.find("for request: vtkInformation");
+  if (request != std::string::npos)
+  {
+    s.erase(request + std::strlen("for request"));
   }
   std::string out;
   for (char c : s)
