@@ -5,7 +5,9 @@
 // added, never renamed. Run `mrgi-render --help` for the list; it is printed
 // from the same table (mrgiRenderOptions.cxx) that the parser reads.
 
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCommand.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
@@ -516,6 +518,35 @@ int main(int argc, char* argv[])
     }
     reference->SetAreaLightSamples(static_cast<int>(std::min<long long>(o.AreaLightSamples, 64)));
     Progress(o, "rendering the ground truth (CPU)");
+    // A progress line after the first pass, then at most one a second, and
+    // after the last pass.
+    Clock::time_point lastLine = Clock::now();
+    vtkNew<vtkCallbackCommand> progress;
+    progress->SetCallback([](vtkObject* caller, unsigned long, void* clientData, void*) {
+      auto* last = static_cast<Clock::time_point*>(clientData);
+      auto* r = static_cast<vtkMRGIReferenceRenderer*>(caller);
+      const double since = std::chrono::duration<double>(Clock::now() - *last).count();
+      if (r->GetProgressPasses() > 1 && since < 1.0 && r->GetProgress() < 1.0)
+      {
+        return;
+      }
+      *last = Clock::now();
+      char text[256];
+      std::snprintf(text, sizeof(text),
+        "mrgi-render: ground truth: pass %d, %.0f%%, relative error %s (target %g), about %.0f s "
+        "left\n",
+        r->GetProgressPasses(), 100.0 * r->GetProgress(),
+        std::isfinite(r->GetProgressRelativeError())
+          ? std::to_string(r->GetProgressRelativeError()).c_str()
+          : "unknown",
+        r->GetTargetRelativeError(), r->GetProgressSecondsLeft());
+      std::fputs(text, stderr);
+    });
+    progress->SetClientData(&lastLine);
+    if (!o.Quiet)
+    {
+      reference->AddObserver(vtkCommand::ProgressEvent, progress);
+    }
     if (!reference->Render(renderer))
     {
       return Fail(std::string("ground truth: ") + reference->GetLastErrorMessage());

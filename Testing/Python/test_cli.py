@@ -152,6 +152,9 @@ def main():
                        "--reference-passes", "2", "--reference-error", "0")
     check(code == 0 and os.path.getsize(ref_exr) > 0, "--reference: " + err)
     check("ground truth:" in err, "--reference reports passes and error")
+    check(re.search(r"ground truth: pass 1, \d+%, relative error unknown", err) and
+          re.search(r"ground truth: pass 2, 100%, relative error [0-9.]+ .*s left", err),
+          "--reference prints a progress line per pass here: " + err)
 
     # Scaling scene and a file scene.
     out_png = fresh("cli_scaling.png")
