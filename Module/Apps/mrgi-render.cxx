@@ -118,8 +118,8 @@ bool ReadWindowRGB(vtkRenderWindow* window, int width, int height, vtkImageData*
 // every texture in host memory), with and without MRGI's buffers; measured
 // with /usr/bin/time -v, see Documentation/reliability/cli.md. Rounded up:
 // the check refuses only what cannot fit.
-const double SoftwareBytesPerPixelLit = 400;
-const double SoftwareBytesPerPixelDirect = 80;
+const double SoftwareBytesPerPixelLit = 450;
+const double SoftwareBytesPerPixelDirect = 100;
 
 // The memory the kernel says new allocations can have, in bytes (0: unknown).
 double AvailableMemory()
