@@ -46,7 +46,8 @@ static mrgi_status read_image(const char* path, mrgi_image* out, mrgi_error* err
 }
 
 static const char* const usage =
-  "usage: mrgi-compare IMAGE REFERENCE [--all] [--peak P] [--diff OUT.exr|OUT.png] [--diff-scale S]\n"
+  "usage: mrgi-compare IMAGE REFERENCE [--all] [--peak P] [--diff OUT.exr|OUT.png]\n"
+  "                    [--diff-scale S]\n"
   "\n"
   "Compares IMAGE with REFERENCE (each .exr or .png, same size) and prints\n"
   "  relative_rms=... rms=... max=... psnr_db=... ssim=... pixels=... channels=N\n"
@@ -70,7 +71,7 @@ static int fail(const char* message)
 static int usage_error(const char* message, const char* value)
 {
   fprintf(stderr, "mrgi-compare: error: %s%s%s%s\n", message, value ? " '" : "", value ? value : "",
-          value ? "'" : "");
+    value ? "'" : "");
   fputs(usage, stderr);
   return 2;
 }
@@ -112,11 +113,14 @@ int main(int argc, char** argv)
       double* target = strcmp(option, "--peak") == 0 ? &peak : &diff_scale;
       double value = 0.0;
       if (!has_value)
-        return usage_error(strcmp(option, "--peak") == 0 ? "--peak needs a value" : "--diff-scale needs a value", NULL);
-      if (mrgi_parse_double(argv[++i], &value, &err) != MRGI_OK || !(value > 0) || !(value <= 3.4e38))
+        return usage_error(
+          strcmp(option, "--peak") == 0 ? "--peak needs a value" : "--diff-scale needs a value",
+          NULL);
+      if (mrgi_parse_double(argv[++i], &value, &err) != MRGI_OK || !(value > 0) ||
+        !(value <= 3.4e38))
         return usage_error(strcmp(option, "--peak") == 0 ? "--peak needs a number > 0, not"
-                                                          : "--diff-scale needs a number > 0, not",
-                           argv[i]);
+                                                         : "--diff-scale needs a number > 0, not",
+          argv[i]);
       *target = value;
     }
     else if (strcmp(argv[i], "--diff") == 0)
@@ -150,7 +154,7 @@ int main(int argc, char** argv)
   {
     char message[1024];
     snprintf(message, sizeof message, "the images differ in size: '%s' is %d x %d, '%s' is %d x %d",
-             paths[0], image.width, image.height, paths[1], reference.width, reference.height);
+      paths[0], image.width, image.height, paths[1], reference.width, reference.height);
     code = fail(message);
     goto done;
   }
@@ -161,14 +165,15 @@ int main(int argc, char** argv)
     {
       char message[1024];
       snprintf(message, sizeof message,
-               "the images differ in channels: '%s' has %d, '%s' has %d (RGB and RGBA mix, "
-               "others do not)",
-               paths[0], image.channels, paths[1], reference.channels);
+        "the images differ in channels: '%s' has %d, '%s' has %d (RGB and RGBA mix, "
+        "others do not)",
+        paths[0], image.channels, paths[1], reference.channels);
       code = fail(message);
       goto done;
     }
-    fprintf(stderr, "mrgi-compare: note: '%s' has %d channels, '%s' %d: comparing RGB, alpha ignored\n",
-            paths[0], image.channels, paths[1], reference.channels);
+    fprintf(stderr,
+      "mrgi-compare: note: '%s' has %d channels, '%s' %d: comparing RGB, alpha ignored\n", paths[0],
+      image.channels, paths[1], reference.channels);
     keep_channels(&image, 3);
     keep_channels(&reference, 3);
   }

@@ -5,44 +5,44 @@
 // added, never renamed. Run `mrgi-render --help` for the list; it is printed
 // from the same table (mrgiRenderOptions.cxx) that the parser reads.
 
+#include "vtkActor.h"
+#include "vtkActorCollection.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
+#include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
-#include "vtkMRGIEGLRenderWindow.h"
-#include "vtkMRGIImageIO.h"
-#include "vtkActor.h"
-#include "vtkActorCollection.h"
-#include "vtkProperty.h"
 #include "vtkMRGIAreaLight.h"
 #include "vtkMRGIAreaLightStage.h"
+#include "vtkMRGIEGLRenderWindow.h"
 #include "vtkMRGIGather.h"
+#include "vtkMRGIImageIO.h"
 #include "vtkMRGIMultiresolution.h"
-#include "vtkMRGIUpsample.h"
-#include "vtkMRGIVisibilityPyramid.h"
-#include "vtkMRGIVoxelization.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGIReferenceRenderer.h"
-#include "vtkMRGIVPLSelection.h"
 #include "vtkMRGIRenderWindowFactory.h"
 #include "vtkMRGISceneBuilder.h"
+#include "vtkMRGIUpsample.h"
+#include "vtkMRGIVPLSelection.h"
+#include "vtkMRGIVisibilityPyramid.h"
+#include "vtkMRGIVoxelization.h"
 #include "vtkNew.h"
+#include "vtkOpenGLRenderWindow.h"
 #include "vtkOutputWindow.h"
+#include "vtkPointData.h"
+#include "vtkProperty.h"
+#include "vtkRenderPass.h"
 #include "vtkRenderStepsPass.h"
-#include "vtkToneMappingPass.h"
-#include "vtkDataArray.h"
 #include "vtkRenderTimerLog.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
-#include "vtkOpenGLRenderWindow.h"
-#include "vtkRenderPass.h"
 #include "vtkRenderer.h"
-#include "vtk_glew.h"
 #include "vtkSmartPointer.h"
+#include "vtkToneMappingPass.h"
 #include "vtkUnsignedCharArray.h"
-#include "vtkPointData.h"
+#include "vtk_glew.h"
 
 #include "mrgi_error.h"
 #include "mrgi_area_light.h"
@@ -147,7 +147,8 @@ double AvailableMemory()
 // Refuses, before anything is rendered, an image this OpenGL or this
 // machine cannot hold; false with `why` naming --size, the limit and what
 // to do. Without this, buffers GL cannot make fail inside the frame.
-bool CheckImageLimits(vtkRenderWindow* window, const Options& o, vtkMRGIPass* mrgi, std::string& why)
+bool CheckImageLimits(
+  vtkRenderWindow* window, const Options& o, vtkMRGIPass* mrgi, std::string& why)
 {
   vtkOpenGLRenderWindow* gl = vtkOpenGLRenderWindow::SafeDownCast(window);
   if (!gl)
@@ -648,8 +649,8 @@ int main(int argc, char* argv[])
   }
   if (!o.Interactive)
   {
-    ReleasePasses(renderer, window, o.ToneMapping ? static_cast<vtkRenderPass*>(toneMapping)
-                                                  : static_cast<vtkRenderPass*>(mrgi));
+    ReleasePasses(renderer, window,
+      o.ToneMapping ? static_cast<vtkRenderPass*>(toneMapping) : static_cast<vtkRenderPass*>(mrgi));
   }
   for (size_t i = 0; i < o.Outputs.size(); ++i)
   {
@@ -685,8 +686,8 @@ int main(int argc, char* argv[])
   }
   if (o.Interactive)
   {
-    ReleasePasses(renderer, window, o.ToneMapping ? static_cast<vtkRenderPass*>(toneMapping)
-                                                  : static_cast<vtkRenderPass*>(mrgi));
+    ReleasePasses(renderer, window,
+      o.ToneMapping ? static_cast<vtkRenderPass*>(toneMapping) : static_cast<vtkRenderPass*>(mrgi));
   }
   return 0;
 }

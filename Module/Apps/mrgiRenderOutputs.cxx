@@ -121,8 +121,8 @@ bool Outputs::Check(const std::vector<std::string>& paths, std::string& why)
     const std::string& path = paths[i];
     const std::string quoted = "output '" + path + "'";
     const char* extension = EndsWithNoCase(path, ".png") ? ".png"
-      : EndsWithNoCase(path, ".exr")                      ? ".exr"
-                                                          : nullptr;
+      : EndsWithNoCase(path, ".exr")                     ? ".exr"
+                                                         : nullptr;
     if (!extension)
     {
       why = quoted + ": the file name must end in .png or .exr";
@@ -144,7 +144,8 @@ bool Outputs::Check(const std::vector<std::string>& paths, std::string& why)
     struct stat st;
     if (stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
     {
-      why = quoted + (S_ISDIR(st.st_mode) ? ": is a directory" : ": exists and is not a regular file");
+      why =
+        quoted + (S_ISDIR(st.st_mode) ? ": is a directory" : ": exists and is not a regular file");
       return false;
     }
     const size_t slash = path.find_last_of('/');

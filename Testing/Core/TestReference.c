@@ -603,9 +603,8 @@ static int log_progress(void* user_data, const mrgi_reference_progress* p)
   progress_log* log = (progress_log*)user_data;
   ++log->calls;
   log->ok = log->ok && p->passes == log->last_passes + 1 && p->fraction > 0.0 &&
-            p->fraction <= 1.0 && p->passes_expected >= p->passes &&
-            p->passes_expected <= p->max_passes && p->seconds_left >= 0.0 &&
-            isfinite(p->seconds_left) && p->seconds >= 0.0;
+    p->fraction <= 1.0 && p->passes_expected >= p->passes && p->passes_expected <= p->max_passes &&
+    p->seconds_left >= 0.0 && isfinite(p->seconds_left) && p->seconds >= 0.0;
   log->last_passes = p->passes;
   log->last_fraction = p->fraction;
   return log->cancel_after > 0 && p->passes >= log->cancel_after;
@@ -637,7 +636,8 @@ static void test_progress_and_cancel(void)
   MRGI_CHECK(r.cancelled == 1 && r.passes == 2 && isfinite(r.relative_error));
   MRGI_CHECK(cancel.last_fraction < 0.1); /* 2 of 50 passes expected */
   int64_t nonfinite = -1;
-  MRGI_CHECK(mrgi_image_count_nonfinite(&r.indirect, &nonfinite, NULL) == MRGI_OK && nonfinite == 0);
+  MRGI_CHECK(
+    mrgi_image_count_nonfinite(&r.indirect, &nonfinite, NULL) == MRGI_OK && nonfinite == 0);
   MRGI_CHECK(mrgi_image_count_nonfinite(&r.direct, &nonfinite, NULL) == MRGI_OK && nonfinite == 0);
   double sum = 0.0;
   for (size_t i = 0; i < mrgi_image_value_count(&r.indirect); ++i)
@@ -651,7 +651,7 @@ static void test_progress_and_cancel(void)
   o.max_passes = 2;
   render(&scene, &o, &two);
   MRGI_CHECK(memcmp(two.indirect.pixels, r.indirect.pixels,
-                    mrgi_image_value_count(&r.indirect) * sizeof(float)) == 0);
+               mrgi_image_value_count(&r.indirect) * sizeof(float)) == 0);
   mrgi_reference_result_destroy(&two);
   mrgi_reference_result_destroy(&r);
   mrgi_scene_destroy(&scene);

@@ -173,6 +173,6 @@ void TestSignalDuringWrite()
 int main(int argc, char* argv[])
 {
   return mrgitest::RunCases(argc, argv,
-    { MRGI_TEST_CASE(TestCheckRefuses), MRGI_TEST_CASE(TestCommit), MRGI_TEST_CASE(TestAllOrNothing),
-      MRGI_TEST_CASE(TestSignalDuringWrite) });
+    { MRGI_TEST_CASE(TestCheckRefuses), MRGI_TEST_CASE(TestCommit),
+      MRGI_TEST_CASE(TestAllOrNothing), MRGI_TEST_CASE(TestSignalDuringWrite) });
 }

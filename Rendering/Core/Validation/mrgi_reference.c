@@ -1182,8 +1182,7 @@ static void ref_run_pass(ref_call* c, int32_t thread_count)
  * (the Embree build not included). The error falls as 1/sqrt(passes): the
  * target is expected after passes * (worst / target)^2 passes. */
 static void ref_progress(const mrgi_reference_options* o, int32_t passes, double relative,
-                         double direct_relative, double seconds, double pass_seconds,
-                         mrgi_reference_progress* p)
+  double direct_relative, double seconds, double pass_seconds, mrgi_reference_progress* p)
 {
   const double worst = direct_relative > relative ? direct_relative : relative;
   double expected = (double)o->max_passes;
@@ -1452,7 +1451,7 @@ mrgi_status mrgi_reference_render_area_lights(const mrgi_scene* scene,
     {
       mrgi_reference_progress p;
       ref_progress(options, passes, relative, direct_relative, ref_seconds_now() - start,
-                   ref_seconds_now() - passes_start, &p);
+        ref_seconds_now() - passes_start, &p);
       if (options->progress(options->progress_user_data, &p) != 0)
       {
         cancelled = 1;

@@ -157,17 +157,25 @@ extern "C" {
 /** Where a render stands, handed to ::mrgi_reference_progress_fn after each pass. */
 typedef struct mrgi_reference_progress
 {
-  int32_t passes;               /**< Passes done, 1..max_passes. */
-  int32_t max_passes;           /**< The options' max_passes. */
-  double relative_error;        /**< As ::mrgi_reference_result::relative_error after these passes (+inf after one). */
-  double direct_relative_error; /**< As ::mrgi_reference_result::direct_relative_error. */
-  double target_relative_error; /**< The options' target_relative_error. */
-  double seconds;               /**< Wall time since the call began (Embree build included). */
-  double passes_expected;       /**< Passes the render is expected to take in all: max_passes, or
-                                     fewer where the error, falling as 1/sqrt(passes), reaches
-                                     the target sooner; >= passes. */
-  double fraction;              /**< passes / passes_expected, in (0, 1]. */
-  double seconds_left;          /**< Estimated wall time to the end, from the mean pass time; >= 0. */
+  /** Passes done, 1..max_passes. */
+  int32_t passes;
+  /** The options' max_passes. */
+  int32_t max_passes;
+  /** As ::mrgi_reference_result::relative_error after these passes (+inf after one). */
+  double relative_error;
+  /** As ::mrgi_reference_result::direct_relative_error. */
+  double direct_relative_error;
+  /** The options' target_relative_error. */
+  double target_relative_error;
+  /** Wall time since the call began (Embree build included). */
+  double seconds;
+  /** Passes the render is expected to take in all: max_passes, or fewer where the error,
+   *  falling as 1/sqrt(passes), reaches the target sooner; >= passes. */
+  double passes_expected;
+  /** passes / passes_expected, in (0, 1]. */
+  double fraction;
+  /** Estimated wall time to the end, from the mean pass time; >= 0. */
+  double seconds_left;
 } mrgi_reference_progress;
 
 /**
