@@ -248,12 +248,25 @@ bool CheckImageLimits(
 }
 
 // Detaches the passes and frees their GL resources (the outermost pass
-// releases its delegates' too).
-void ReleasePasses(vtkRenderer* renderer, vtkRenderWindow* window, vtkRenderPass* outermost)
+// releases its delegates' too): by Now(), or on any return from main, so
+// that a pass is never destroyed holding them (which VTK reports as an
+// error after the program's own error line).
+struct PassRelease
 {
-  renderer->SetPass(nullptr);
-  outermost->ReleaseGraphicsResources(window);
-}
+  vtkRenderer* Renderer;
+  vtkRenderWindow* Window;
+  vtkRenderPass* Outermost;
+  void Now()
+  {
+    if (this->Outermost)
+    {
+      this->Renderer->SetPass(nullptr);
+      this->Outermost->ReleaseGraphicsResources(this->Window);
+      this->Outermost = nullptr;
+    }
+  }
+  ~PassRelease() { this->Now(); }
+};
 
 void Progress(const Options& o, const std::string& line)
 {
@@ -459,11 +472,16 @@ int main(int argc, char* argv[])
   {
     renderer->SetPass(mrgi);
   }
+  PassRelease release{ renderer, window,
+    o.ToneMapping ? static_cast<vtkRenderPass*>(toneMapping) : static_cast<vtkRenderPass*>(mrgi) };
 
   if (!CheckImageLimits(window, o, mrgi, why))
   {
     return Fail(why);
   }
+  // VTK errors while the scene was built did not stop the builder (it fails
+  // by itself when they matter) and were shown; from here on one fails the run.
+  messages->ResetErrors();
 
   std::map<std::string, std::vector<double>> stageTimes;
   std::vector<std::string> stageOrder;
@@ -649,8 +667,7 @@ int main(int argc, char* argv[])
   }
   if (!o.Interactive)
   {
-    ReleasePasses(renderer, window,
-      o.ToneMapping ? static_cast<vtkRenderPass*>(toneMapping) : static_cast<vtkRenderPass*>(mrgi));
+    release.Now();
   }
   for (size_t i = 0; i < o.Outputs.size(); ++i)
   {
@@ -658,6 +675,9 @@ int main(int argc, char* argv[])
     const std::string& staging = outputs.StagingPath(i);
     vtkNew<vtkMRGIImageIO> io;
     io->SetHalfFloat(o.Half);
+    // Its errors come back in GetLastErrorMessage(), for the one error line.
+    vtkNew<vtkCallbackCommand> ignore;
+    io->AddObserver(vtkCommand::ErrorEvent, ignore);
     const bool ok = (o.Reference || o.IndirectOnly) ? io->Write(images[i], staging.c_str())
       : EndsWith(path, ".exr")                      ? io->WriteEXR(images[i], staging.c_str())
                                                     : io->WritePNG(images[i], staging.c_str());
@@ -684,10 +704,6 @@ int main(int argc, char* argv[])
     interactor->Initialize();
     interactor->Start();
   }
-  if (o.Interactive)
-  {
-    ReleasePasses(renderer, window,
-      o.ToneMapping ? static_cast<vtkRenderPass*>(toneMapping) : static_cast<vtkRenderPass*>(mrgi));
-  }
+  release.Now();
   return 0;
 }
