@@ -1,6 +1,7 @@
 // mrgi-render's outputs (Module/Apps/mrgiRenderOutputs): paths are checked
-// before rendering, outputs are all written or none is left, and SIGTERM
-// removes what a write had staged and exits 128 + 15. No OpenGL needed.
+// before rendering, outputs are all written or none is left, and SIGTERM or
+// SIGINT removes what a write had staged and exits 128 + the signal. No
+// OpenGL needed.
 #include "mrgiRenderOutputs.h"
 #include "mrgiTestUtilities.h"
 
@@ -136,7 +137,7 @@ void TestAllOrNothing()
   MRGI_TEST_CHECK(Listing().empty());
 }
 
-void TestSignalDuringWrite()
+void SignalDuringWrite(int signal)
 {
   Clean();
   const std::string dir = Directory();
@@ -154,13 +155,13 @@ void TestSignalDuringWrite()
     // writer (its own temporary, "STAGING.tmp-PID-0").
     WriteFile(outputs.StagingPath(0), "image");
     WriteFile(outputs.StagingPath(1) + ".tmp-" + std::to_string(getpid()) + "-0", "half");
-    kill(getpid(), SIGTERM);
+    kill(getpid(), signal);
     _exit(4); // not reached: the handler exits
   }
   int status = 0;
   MRGI_TEST_CHECK(waitpid(child, &status, 0) == child);
   std::printf("child: exited %d, status %d\n", WIFEXITED(status), WEXITSTATUS(status));
-  MRGI_TEST_CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 128 + SIGTERM);
+  MRGI_TEST_CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 128 + signal);
   const std::vector<std::string> left = Listing();
   for (const std::string& name : left)
   {
@@ -168,11 +169,22 @@ void TestSignalDuringWrite()
   }
   MRGI_TEST_CHECK(left.empty());
 }
+
+void TestSigtermDuringWrite()
+{
+  SignalDuringWrite(SIGTERM);
+}
+
+void TestSigintDuringWrite()
+{
+  SignalDuringWrite(SIGINT);
+}
 }
 
 int main(int argc, char* argv[])
 {
   return mrgitest::RunCases(argc, argv,
     { MRGI_TEST_CASE(TestCheckRefuses), MRGI_TEST_CASE(TestCommit),
-      MRGI_TEST_CASE(TestAllOrNothing), MRGI_TEST_CASE(TestSignalDuringWrite) });
+      MRGI_TEST_CASE(TestAllOrNothing), MRGI_TEST_CASE(TestSigtermDuringWrite),
+      MRGI_TEST_CASE(TestSigintDuringWrite) });
 }
