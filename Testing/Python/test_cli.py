@@ -302,6 +302,10 @@ def signal_during_write():
             check(p.returncode == 0, "the render itself succeeds: %s" % err)
             continue  # the write was too quick to catch: a bigger image
         check(p.returncode == 128 + signal.SIGTERM, "exit 143 after SIGTERM, got %d" % p.returncode)
+        if sorted(left) == sorted(os.path.basename(o) for o in outputs):
+            # The signal landed just after the last rename: the run was
+            # complete. Not what is tested here: a bigger image.
+            continue
         check(not left, "nothing left after SIGTERM during the write: %s" % left)
         return
     check(False, "never caught the write in progress")
