@@ -5,39 +5,44 @@
 // added, never renamed. Run `mrgi-render --help` for the list; it is printed
 // from the same table (mrgiRenderOptions.cxx) that the parser reads.
 
+#include "vtkActor.h"
+#include "vtkActorCollection.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
-#include "vtkMRGIEGLRenderWindow.h"
-#include "vtkMRGIImageIO.h"
-#include "vtkActor.h"
-#include "vtkActorCollection.h"
-#include "vtkProperty.h"
 #include "vtkMRGIAreaLight.h"
 #include "vtkMRGIAreaLightStage.h"
+#include "vtkMRGIEGLRenderWindow.h"
 #include "vtkMRGIGather.h"
+#include "vtkMRGIImageIO.h"
 #include "vtkMRGIMultiresolution.h"
-#include "vtkMRGIUpsample.h"
-#include "vtkMRGIVisibilityPyramid.h"
-#include "vtkMRGIVoxelization.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGIReferenceRenderer.h"
-#include "vtkMRGIVPLSelection.h"
 #include "vtkMRGIRenderWindowFactory.h"
 #include "vtkMRGISceneBuilder.h"
+#include "vtkMRGIUpsample.h"
+#include "vtkMRGIVPLSelection.h"
+#include "vtkMRGIVisibilityPyramid.h"
+#include "vtkMRGIVoxelization.h"
 #include "vtkNew.h"
+#include "vtkOpenGLRenderWindow.h"
 #include "vtkOutputWindow.h"
+#include "vtkPointData.h"
+#include "vtkProperty.h"
+#include "vtkRenderPass.h"
 #include "vtkRenderStepsPass.h"
-#include "vtkToneMappingPass.h"
-#include "vtkDataArray.h"
 #include "vtkRenderTimerLog.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
+#include "vtkToneMappingPass.h"
 #include "vtkUnsignedCharArray.h"
-#include "vtkPointData.h"
+#include "vtk_glew.h"
 
 #include "mrgi_error.h"
 #include "mrgi_area_light.h"
@@ -46,6 +51,8 @@
 #include "mrgi_parse.h"
 
 #include "mrgiRenderOptions.h"
+#include "mrgiRenderOutputWindow.h"
+#include "mrgiRenderOutputs.h"
 
 #include <algorithm>
 #include <chrono>
@@ -78,6 +85,189 @@ double Median(std::vector<double> v)
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// The window's 8-bit colour as an RGB image (what the window shows).
+bool ReadWindowRGB(vtkRenderWindow* window, int width, int height, vtkImageData* image)
+{
+  vtkNew<vtkUnsignedCharArray> pixels;
+  if (!window->GetRGBACharPixelData(0, 0, width - 1, height - 1, 0, pixels))
+  {
+    return false;
+  }
+  const vtkIdType count = static_cast<vtkIdType>(width) * height;
+  if (pixels->GetNumberOfValues() < 4 * count)
+  {
+    return false;
+  }
+  // RGBA -> RGB in place: each pixel moves to a lower or equal index.
+  unsigned char* p = pixels->GetPointer(0);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    p[3 * i] = p[4 * i];
+    p[3 * i + 1] = p[4 * i + 1];
+    p[3 * i + 2] = p[4 * i + 2];
+  }
+  pixels->SetNumberOfComponents(3);
+  pixels->Resize(count);
+  pixels->SetNumberOfTuples(count);
+  image->SetDimensions(width, height, 1);
+  image->GetPointData()->SetScalars(pixels);
+  return true;
+}
+
+// Host memory a frame takes per pixel on a software OpenGL (llvmpipe keeps
+// every texture in host memory), with and without MRGI's buffers; measured
+// with /usr/bin/time -v, see Documentation/reliability/cli.md. Rounded up:
+// the check refuses only what cannot fit.
+const double SoftwareBytesPerPixelLit = 450;
+const double SoftwareBytesPerPixelDirect = 100;
+
+// The memory the kernel says new allocations can have, in bytes (0: unknown).
+double AvailableMemory()
+{
+  FILE* f = std::fopen("/proc/meminfo", "r");
+  if (!f)
+  {
+    return 0;
+  }
+  char key[64];
+  double kib = 0, available = 0;
+  char unit[16];
+  while (std::fscanf(f, "%63s %lf %15s", key, &kib, unit) == 3)
+  {
+    if (std::strcmp(key, "MemAvailable:") == 0)
+    {
+      available = kib * 1024.0;
+      break;
+    }
+  }
+  std::fclose(f);
+  return available;
+}
+
+// Refuses, before anything is rendered, an image this OpenGL or this
+// machine cannot hold; false with `why` naming --size, the limit and what
+// to do. Without this, buffers GL cannot make fail inside the frame.
+bool CheckImageLimits(
+  vtkRenderWindow* window, const Options& o, vtkMRGIPass* mrgi, std::string& why)
+{
+  vtkOpenGLRenderWindow* gl = vtkOpenGLRenderWindow::SafeDownCast(window);
+  if (!gl)
+  {
+    return true;
+  }
+  gl->Initialize();
+  gl->MakeCurrent();
+  while (glGetError() != GL_NO_ERROR)
+  {
+  }
+  GLint maxTexture = 0, maxRenderbuffer = 0, maxViewport[2] = { 0, 0 };
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbuffer);
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
+  if (glGetError() != GL_NO_ERROR || maxTexture < 1 || maxRenderbuffer < 1 || maxViewport[0] < 1)
+  {
+    why = "no OpenGL context to check --size against (is an OpenGL 3.2 context available?)";
+    return false;
+  }
+  const char* rendererName = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const std::string glName = rendererName ? rendererName : "this OpenGL";
+  const int w = o.Width, h = o.Height;
+  char text[512];
+  const std::string size = "--size " + std::to_string(w) + "x" + std::to_string(h);
+  struct Limit
+  {
+    const char* Name;
+    GLint Width, Height;
+  };
+  for (const Limit& limit : { Limit{ "GL_MAX_VIEWPORT_DIMS", maxViewport[0], maxViewport[1] },
+         Limit{ "GL_MAX_TEXTURE_SIZE", maxTexture, maxTexture },
+         Limit{ "GL_MAX_RENDERBUFFER_SIZE", maxRenderbuffer, maxRenderbuffer } })
+  {
+    if (w > limit.Width || h > limit.Height)
+    {
+      std::snprintf(text, sizeof(text), "%s: %s takes at most %d x %d pixels (%s)", size.c_str(),
+        glName.c_str(), limit.Width, limit.Height, limit.Name);
+      why = text;
+      return false;
+    }
+  }
+  // The multiresolution buffer lays its levels side by side (mrgi_multires.h):
+  // about twice the width in one texture. It serves the multires gather and
+  // every area light.
+  const bool lit = o.GI && o.VPLs > 0;
+  const bool multires = (lit && o.Multires) || mrgi->GetNumberOfAreaLights() > 0;
+  vtkMRGIMultiresolution* mr = mrgi->GetMultiresolution();
+  mrgi_multires_layout layout;
+  mrgi_error err;
+  if (multires &&
+    (mrgi_multires_layout_init(&layout, w, h, mr->GetCoarsestSide(), &err) != MRGI_OK ||
+      layout.total_width > maxTexture))
+  {
+    int widest = 1; // the widest image whose layout fits, by bisection
+    for (int lo = 1, hi = w; lo <= hi;)
+    {
+      const int mid = lo + (hi - lo) / 2;
+      if (mrgi_multires_layout_init(&layout, mid, h, mr->GetCoarsestSide(), &err) == MRGI_OK &&
+        layout.total_width <= maxTexture)
+      {
+        widest = mid;
+        lo = mid + 1;
+      }
+      else
+      {
+        hi = mid - 1;
+      }
+    }
+    std::snprintf(text, sizeof(text),
+      "%s: the multiresolution buffer (indirect light and area lights) puts its levels side by "
+      "side, wider than %s's GL_MAX_TEXTURE_SIZE %d; at most %d pixels wide here (or --gi full "
+      "or --gi off without area lights)",
+      size.c_str(), glName.c_str(), maxTexture, widest);
+    why = text;
+    return false;
+  }
+  // A software OpenGL keeps every buffer in host memory: refuse what cannot fit.
+  const bool software = glName.find("llvmpipe") != std::string::npos ||
+    glName.find("softpipe") != std::string::npos || glName.find("swrast") != std::string::npos;
+  const double available = AvailableMemory();
+  if (software && available > 0)
+  {
+    const double perPixel =
+      (lit || multires) ? SoftwareBytesPerPixelLit : SoftwareBytesPerPixelDirect;
+    const double needed = perPixel * static_cast<double>(w) * static_cast<double>(h);
+    if (needed > available)
+    {
+      std::snprintf(text, sizeof(text),
+        "%s: needs about %.1f GiB of memory on %s (%.0f bytes per pixel), %.1f GiB available",
+        size.c_str(), needed / 1073741824.0, glName.c_str(), perPixel, available / 1073741824.0);
+      why = text;
+      return false;
+    }
+  }
+  return true;
+}
+
+// Detaches the passes and frees their GL resources (the outermost pass
+// releases its delegates' too): by Now(), or on any return from main, so
+// that a pass is never destroyed holding them (which VTK reports as an
+// error after the program's own error line).
+struct PassRelease
+{
+  vtkRenderer* Renderer;
+  vtkRenderWindow* Window;
+  vtkRenderPass* Outermost;
+  void Now()
+  {
+    if (this->Outermost)
+    {
+      this->Renderer->SetPass(nullptr);
+      this->Outermost->ReleaseGraphicsResources(this->Window);
+      this->Outermost = nullptr;
+    }
+  }
+  ~PassRelease() { this->Now(); }
+};
+
 void Progress(const Options& o, const std::string& line)
 {
   if (!o.Quiet)
@@ -100,11 +290,21 @@ int main(int argc, char* argv[])
     return std::chrono::duration<double>(Clock::now() - a).count();
   };
 
-  // Errors are reported once, as one line, by this program; VTK's own error
-  // output would repeat them with file/line noise.
-  vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
+  // VTK's messages come through the CLI: plain lines (none with -q), and an
+  // error VTK reports fails the run instead of being lost in the log.
+  mrgiRenderOutputWindow* messages = mrgiRenderOutputWindow::Install(o.Quiet);
+  auto vtkFailed = [messages](const std::string& what) {
+    return Fail(what + ": " + messages->GetFirstError());
+  };
 
+  // Every output is checked before the (possibly long) render; the images
+  // are written only when all of them can be, and none is left otherwise.
   std::string why;
+  Outputs outputs;
+  if (!outputs.Check(o.Outputs, why))
+  {
+    return Fail(why);
+  }
   vtkSmartPointer<vtkRenderWindow> window =
     vtkSmartPointer<vtkRenderWindow>::Take(vtkMRGIRenderWindowFactory::CreateRenderWindow(
       o.Interactive ? vtkMRGIRenderWindowFactory::Interactive
@@ -273,6 +473,16 @@ int main(int argc, char* argv[])
   {
     renderer->SetPass(mrgi);
   }
+  PassRelease release{ renderer, window,
+    o.ToneMapping ? static_cast<vtkRenderPass*>(toneMapping) : static_cast<vtkRenderPass*>(mrgi) };
+
+  if (!CheckImageLimits(window, o, mrgi, why))
+  {
+    return Fail(why);
+  }
+  // VTK errors while the scene was built did not stop the builder (it fails
+  // by itself when they matter) and were shown; from here on one fails the run.
+  messages->ResetErrors();
 
   std::map<std::string, std::vector<double>> stageTimes;
   std::vector<std::string> stageOrder;
@@ -281,6 +491,10 @@ int main(int argc, char* argv[])
   {
     const Clock::time_point frameStart = Clock::now();
     window->Render();
+    if (messages->GetNumberOfErrors() > 0)
+    {
+      return vtkFailed("rendering failed, nothing written");
+    }
     if (o.Timings)
     {
       const int n = mrgi->FetchStageTimings(window, true);
@@ -324,6 +538,35 @@ int main(int argc, char* argv[])
     }
     reference->SetAreaLightSamples(static_cast<int>(std::min<long long>(o.AreaLightSamples, 64)));
     Progress(o, "rendering the ground truth (CPU)");
+    // A progress line after the first pass, then at most one a second, and
+    // after the last pass.
+    Clock::time_point lastLine = Clock::now();
+    vtkNew<vtkCallbackCommand> progress;
+    progress->SetCallback([](vtkObject* caller, unsigned long, void* clientData, void*) {
+      auto* last = static_cast<Clock::time_point*>(clientData);
+      auto* r = static_cast<vtkMRGIReferenceRenderer*>(caller);
+      const double since = std::chrono::duration<double>(Clock::now() - *last).count();
+      if (r->GetProgressPasses() > 1 && since < 1.0 && r->GetProgress() < 1.0)
+      {
+        return;
+      }
+      *last = Clock::now();
+      char text[256];
+      std::snprintf(text, sizeof(text),
+        "mrgi-render: ground truth: pass %d, %.0f%%, relative error %s (target %g), about %.0f s "
+        "left\n",
+        r->GetProgressPasses(), 100.0 * r->GetProgress(),
+        std::isfinite(r->GetProgressRelativeError())
+          ? std::to_string(r->GetProgressRelativeError()).c_str()
+          : "unknown",
+        r->GetTargetRelativeError(), r->GetProgressSecondsLeft());
+      std::fputs(text, stderr);
+    });
+    progress->SetClientData(&lastLine);
+    if (!o.Quiet)
+    {
+      reference->AddObserver(vtkCommand::ProgressEvent, progress);
+    }
     if (!reference->Render(renderer))
     {
       return Fail(std::string("ground truth: ") + reference->GetLastErrorMessage());
@@ -343,51 +586,6 @@ int main(int argc, char* argv[])
         sum->SetVariantValue(i, sum->GetVariantValue(i).ToDouble() + direct->GetVariantValue(i).ToDouble());
       }
     }
-  }
-
-  for (const std::string& path : o.Outputs)
-  {
-    vtkNew<vtkImageData> image;
-    vtkNew<vtkMRGIImageIO> io;
-    io->SetHalfFloat(o.Half);
-    bool ok = false;
-    if (o.Reference)
-    {
-      ok = io->Write(referenceImage, path.c_str());
-    }
-    else if (o.IndirectOnly)
-    {
-      ok = mrgi->GetIndirectBuffer(window, image) && io->Write(image, path.c_str());
-    }
-    else if (EndsWith(path, ".exr"))
-    {
-      ok = mrgi->GetColorBuffer(window, image) && io->WriteEXR(image, path.c_str());
-    }
-    else
-    {
-      vtkNew<vtkUnsignedCharArray> pixels;
-      window->GetRGBACharPixelData(0, 0, o.Width - 1, o.Height - 1, 0, pixels);
-      pixels->SetNumberOfComponents(4);
-      vtkNew<vtkUnsignedCharArray> rgb;
-      rgb->SetNumberOfComponents(3);
-      rgb->SetNumberOfTuples(pixels->GetNumberOfTuples());
-      for (vtkIdType p = 0; p < pixels->GetNumberOfTuples(); ++p)
-      {
-        for (int c = 0; c < 3; ++c)
-        {
-          rgb->SetValue(3 * p + c, pixels->GetValue(4 * p + c));
-        }
-      }
-      image->SetDimensions(o.Width, o.Height, 1);
-      image->GetPointData()->SetScalars(rgb);
-      ok = io->WritePNG(image, path.c_str());
-    }
-    if (!ok)
-    {
-      return Fail(std::string("cannot write '") + path + "': " +
-        (io->GetLastErrorMessage()[0] ? io->GetLastErrorMessage() : "reading the image back failed"));
-    }
-    Progress(o, "wrote " + path);
   }
 
   if (o.Timings)
@@ -431,6 +629,75 @@ int main(int argc, char* argv[])
     std::fflush(stdout);
   }
 
+  // Read every image back, then (unless a window stays open) free the
+  // pass's buffers before the images are converted and written, so that
+  // the writers' copies do not add to the render's peak memory.
+  vtkSmartPointer<vtkImageData> hdr, png;
+  std::vector<vtkSmartPointer<vtkImageData>> images;
+  for (const std::string& path : o.Outputs)
+  {
+    const bool exr = EndsWith(path, ".exr");
+    vtkSmartPointer<vtkImageData>& shared = exr ? hdr : png;
+    if (!shared)
+    {
+      shared = vtkSmartPointer<vtkImageData>::New();
+      bool ok = true;
+      if (o.Reference)
+      {
+        shared = referenceImage;
+      }
+      else if (o.IndirectOnly)
+      {
+        ok = mrgi->GetIndirectBuffer(window, shared);
+      }
+      else if (exr)
+      {
+        ok = mrgi->GetColorBuffer(window, shared);
+      }
+      else
+      {
+        ok = ReadWindowRGB(window, o.Width, o.Height, shared);
+      }
+      if (!ok || messages->GetNumberOfErrors() > 0)
+      {
+        return Fail("cannot write '" + path + "': reading the image back failed" +
+          (messages->GetNumberOfErrors() > 0 ? ": " + messages->GetFirstError() : std::string()));
+      }
+    }
+    images.push_back(shared);
+  }
+  if (!o.Interactive)
+  {
+    release.Now();
+  }
+  for (size_t i = 0; i < o.Outputs.size(); ++i)
+  {
+    const std::string& path = o.Outputs[i];
+    const std::string& staging = outputs.StagingPath(i);
+    vtkNew<vtkMRGIImageIO> io;
+    io->SetHalfFloat(o.Half);
+    // Its errors come back in GetLastErrorMessage(), for the one error line.
+    vtkNew<vtkCallbackCommand> ignore;
+    io->AddObserver(vtkCommand::ErrorEvent, ignore);
+    const bool ok = (o.Reference || o.IndirectOnly) ? io->Write(images[i], staging.c_str())
+      : EndsWith(path, ".exr")                      ? io->WriteEXR(images[i], staging.c_str())
+                                                    : io->WritePNG(images[i], staging.c_str());
+    if (!ok)
+    {
+      // ~Outputs removes what was staged: no output of this run is left.
+      return Fail(std::string("cannot write '") + path + "': " + io->GetLastErrorMessage());
+    }
+    images[i] = nullptr; // the last holder of a shared image frees it now
+  }
+  if (!outputs.Commit(why))
+  {
+    return Fail(why + " (no output of this run is left)");
+  }
+  for (const std::string& path : o.Outputs)
+  {
+    Progress(o, "wrote " + path);
+  }
+
   if (o.Interactive)
   {
     vtkNew<vtkRenderWindowInteractor> interactor;
@@ -438,15 +705,6 @@ int main(int argc, char* argv[])
     interactor->Initialize();
     interactor->Start();
   }
-  renderer->SetPass(nullptr);
-  // The outermost pass releases its delegates' resources too.
-  if (o.ToneMapping)
-  {
-    toneMapping->ReleaseGraphicsResources(window);
-  }
-  else
-  {
-    mrgi->ReleaseGraphicsResources(window);
-  }
+  release.Now();
   return 0;
 }

@@ -83,6 +83,13 @@ bool EndsWith(const std::string& s, const char* extension)
   return s.size() > e && strcasecmp(s.c_str() + s.size() - e, extension) == 0;
 }
 
+// The largest magnitude a float holds; values sent to the GPU stay below it.
+const double MaxFloatValue = 3.4028234663852886e38;
+
+// --voxel-size's documented range ends here; the core takes up to
+// MRGI_VOXEL_MAX_SIZE, but a 16384^2 buffer of RGBA32UI texels is 4 GiB.
+const long long MaxVoxelSize = 4096;
+
 // Splits "a:b:c" on ':'.
 std::vector<std::string> SplitColon(const std::string& text)
 {
@@ -101,14 +108,26 @@ std::vector<std::string> SplitColon(const std::string& text)
   return parts;
 }
 
+// X,Y,Z, each finite and within the float range: the GPU takes floats, so a
+// larger double would become infinite there (and NaN pixels downstream).
 bool ParseVec3(const std::string& option, const char* text, double out[3], std::string& why)
 {
   mrgi_error err;
-  if (mrgi_parse_vec3(text, out, &err) != MRGI_OK)
+  double v[3];
+  if (mrgi_parse_vec3(text, v, &err) != MRGI_OK)
   {
     why = option + ": " + err.message;
     return false;
   }
+  for (int c = 0; c < 3; ++c)
+  {
+    if (!(std::fabs(v[c]) <= MaxFloatValue))
+    {
+      why = option + " '" + text + "': each number must be within the float range (|x| <= 3.4e38)";
+      return false;
+    }
+  }
+  std::copy(v, v + 3, out);
   return true;
 }
 
@@ -133,9 +152,10 @@ bool ParseAreaLight(const std::string& spec, vtkMRGIAreaLight* light, std::strin
   }
   mrgi_error err;
   if (parts.size() > 4 &&
-    (mrgi_parse_double(parts[4].c_str(), &intensity, &err) != MRGI_OK || intensity < 0))
+    (mrgi_parse_double(parts[4].c_str(), &intensity, &err) != MRGI_OK || !(intensity >= 0) ||
+      !(intensity <= 1e6)))
   {
-    why = option + ": the intensity must be a number >= 0";
+    why = option + ": the intensity must be a number in [0, 1e6]";
     return false;
   }
   const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
@@ -148,6 +168,19 @@ bool ParseAreaLight(const std::string& spec, vtkMRGIAreaLight* light, std::strin
   if (rgb[0] < 0 || rgb[1] < 0 || rgb[2] < 0)
   {
     why = option + ": the colour must be >= 0";
+    return false;
+  }
+  // The light's own check (finite float area, radiance in float range, ...),
+  // now rather than as a VTK error at the first frame.
+  mrgi_area_light core = {};
+  std::copy(c, c + 3, core.center);
+  std::copy(u, u + 3, core.edge_u);
+  std::copy(v, v + 3, core.edge_v);
+  std::copy(rgb, rgb + 3, core.color);
+  core.intensity = intensity;
+  if (mrgi_area_light_check(&core, &err) != MRGI_OK)
+  {
+    why = option + ": " + err.message;
     return false;
   }
   light->SetCenter(c);
@@ -432,15 +465,6 @@ OptionHandler Choice(T Options::*field, std::vector<std::pair<std::string, T>> c
   };
 }
 
-// Appends the value to a list checked later (lights, area lights).
-OptionHandler Append(std::vector<std::string> Options::*field)
-{
-  return [field](Options& o, const std::string&, const char* v) {
-    (o.*field).emplace_back(v);
-    return -1;
-  };
-}
-
 // --depth-threshold / --normal-threshold: a number >= 0, or inf (never
 // refines; the pass takes -1 for it).
 OptionHandler Threshold(double Options::*field)
@@ -452,9 +476,9 @@ OptionHandler Threshold(double Options::*field)
     {
       value = -1.0; // off
     }
-    else if (mrgi_parse_double(v, &value, &err) != MRGI_OK || value < 0)
+    else if (mrgi_parse_double(v, &value, &err) != MRGI_OK || !(value >= 0) || !(value <= 1e30))
     {
-      return Fail(option + " '" + v + "': expected a number >= 0 or inf");
+      return Fail(option + " '" + v + "': expected a number in [0, 1e30] or inf");
     }
     o.*field = value;
     return -1;
@@ -504,8 +528,21 @@ const std::vector<OptionSection>& OptionTable()
             o.Height = h;
             return -1;
           } },
-        { { "--background" }, "R,G,B", "background colour (default 0,0,0)",
-          Vector(&Options::Background) },
+        { { "--background" }, "R,G,B", "background colour, each >= 0 (default 0,0,0)",
+          [](Options& o, const std::string& option, const char* v) {
+            double rgb[3];
+            std::string why;
+            if (!ParseVec3(option, v, rgb, why))
+            {
+              return Fail(why);
+            }
+            if (!(rgb[0] >= 0 && rgb[1] >= 0 && rgb[2] >= 0))
+            {
+              return Fail(option + " '" + v + "': each component must be >= 0");
+            }
+            std::copy(rgb, rgb + 3, o.Background);
+            return -1;
+          } },
       } },
     { "Camera (built-in scenes bring theirs; files are framed automatically)",
       {
@@ -529,11 +566,21 @@ const std::vector<OptionSection>& OptionTable()
           "  spot:X,Y,Z:FX,FY,FZ:CONE  CONE = half angle in degrees\n"
           "  directional:DX,DY,DZ      direction the light travels\n"
           "  headlight",
-          Append(&Options::Lights) },
-        { { "--light-intensity" }, "S", "multiply every light's intensity by S",
+          [](Options& o, const std::string&, const char* v) {
+            // Checked now, so that nothing is built before a bad value is refused.
+            vtkSmartPointer<vtkLight> light;
+            std::string why;
+            if (!ParseLight(v, light, why))
+            {
+              return Fail(why);
+            }
+            o.Lights.emplace_back(v);
+            return -1;
+          } },
+        { { "--light-intensity" }, "S", "multiply every light's intensity by S, 0..1e6",
           Number(
-            &Options::LightIntensity, [](double s) { return s >= 0; },
-            "expected a finite number >= 0", &Options::HasLightIntensity) },
+            &Options::LightIntensity, [](double s) { return s >= 0 && s <= 1e6; },
+            "expected a number in [0, 1e6]", &Options::HasLightIntensity) },
       } },
     { "Area lights (direct light from textured rectangles, nichols-penmatsa-wyman-2010;\n"
       "Documentation/AreaLights.md; drawn whatever --gi says)",
@@ -541,9 +588,18 @@ const std::vector<OptionSection>& OptionTable()
         { { "--area-light" }, "CX,CY,CZ:UX,UY,UZ:VX,VY,VZ[:R,G,B[:I]]",
           "add a rectangle: centre, full edge vectors u and v\n"
           "(perpendicular; it emits towards u x v), colour, intensity\n"
-          "(radiance = I x colour; default 1,1,1 and 1); repeatable;\n"
+          "(radiance = I x colour, I in 0..1e6; default 1,1,1 and 1); repeatable;\n"
           "cornell-area brings the Cornell box's emitter",
-          Append(&Options::AreaLights) },
+          [](Options& o, const std::string&, const char* v) {
+            vtkNew<vtkMRGIAreaLight> light;
+            std::string why;
+            if (!ParseAreaLight(v, light, why))
+            {
+              return Fail(why);
+            }
+            o.AreaLights.emplace_back(v);
+            return -1;
+          } },
         { { "--area-light-two-sided" }, nullptr, "emit on both sides (every area light)",
           Set(&Options::AreaLightTwoSided) },
         { { "--area-light-samples" }, "N", "light samples per area light, 1..4096 (default 256)",
@@ -560,7 +616,7 @@ const std::vector<OptionSection>& OptionTable()
             { { "off", vtkMRGIPass::VisibilityOff }, { "naive", vtkMRGIPass::VisibilityNaive },
               { "incremental", vtkMRGIPass::VisibilityIncremental } }) },
         { { "--voxel-size" }, "N", "voxel buffer side for the visibility, 1..4096 (default 128)",
-          Integer(&Options::VoxelSize, 1, MRGI_VOXEL_MAX_SIZE) },
+          Integer(&Options::VoxelSize, 1, MaxVoxelSize) },
         { { "--visibility-interleave" }, "on|off",
           "incremental visibility: 2x2 interleaved light samples (default off)",
           OnOff(&Options::VisibilityInterleave) },
@@ -601,11 +657,12 @@ const std::vector<OptionSection>& OptionTable()
       } },
     { "Scaling scene",
       {
-        { { "--triangles" }, "N", "total triangle count (default 100000)",
+        { { "--triangles" }, "N", "total triangle count, 12..20000000 (default 100000)",
           Integer(&Options::Triangles, 12, 20000000) },
-        { { "--objects" }, "N", "number of objects (default 64)",
+        { { "--objects" }, "N", "number of objects, 1..4096 (default 64)",
           Integer(&Options::Objects, 1, 4096) },
-        { { "--seed" }, "N", "random seed (default 1)", Integer(&Options::Seed, 0, INT64_MAX) },
+        { { "--seed" }, "N", "random seed, >= 0 (default 1)",
+          Integer(&Options::Seed, 0, INT64_MAX) },
       } },
     { "Indirect light (one bounce; Documentation/IndirectLight.md)",
       {
@@ -630,13 +687,14 @@ const std::vector<OptionSection>& OptionTable()
           "below override single knobs",
           Choice<long long>(&Options::Preset, PresetChoices()) },
         { { "--depth-threshold" }, "T",
-          "multires: depth change per pixel width that refines (inf: never)",
+          "multires: depth change per pixel width that refines, 0..1e30 (inf: never)",
           Threshold(&Options::DepthThreshold) },
         { { "--normal-threshold" }, "T",
-          "multires: normal-component spread that refines (inf: never)",
+          "multires: normal-component spread that refines, 0..1e30 (inf: never)",
           Threshold(&Options::NormalThreshold) },
-        { { "--finest-level" }, "N", "multires: finest level that gathers (0 = full resolution)",
-          Integer(&Options::FinestLevel, 0, 23) },
+        { { "--finest-level" }, "N",
+          "multires: finest level that gathers, 0..23 (0 = full resolution)",
+          Integer(&Options::FinestLevel, 0, MRGI_MULTIRES_MAX_LEVELS - 1) },
         { { "--upsample" }, "tent|mask",
           "multires: tent (default) or mask-weighted (Besenthal) upsampling",
           Choice<bool>(&Options::MaskUpsampling, { { "tent", false }, { "mask", true } }) },
@@ -688,7 +746,7 @@ const std::vector<OptionSection>& OptionTable()
       {
         { { "--timings" }, nullptr, "print the GPU time of each stage (vtkRenderTimerLog)",
           Set(&Options::Timings) },
-        { { "--frames" }, "N", "render N frames; timings are medians (default 1)",
+        { { "--frames" }, "N", "render N frames, 1..1000000; timings are medians (default 1)",
           Integer(&Options::Frames, 1, 1000000) },
       } },
     { "Other",
@@ -775,6 +833,16 @@ int ParseArguments(int argc, char* argv[], Options& o)
   if (o.Outputs.empty() && !o.Interactive && !o.Timings)
   {
     return Fail("no output given: use -o OUT.png or -o OUT.exr (or --timings / --interactive)");
+  }
+  // A camera VTK cannot make a view from: NaN pixels or VTK's own warnings.
+  if (o.HasUp && o.Up[0] == 0 && o.Up[1] == 0 && o.Up[2] == 0)
+  {
+    return Fail("--camera-view-up: the view-up vector is the zero vector");
+  }
+  if (o.HasPosition && o.HasFocal && o.Position[0] == o.Focal[0] && o.Position[1] == o.Focal[1] &&
+    o.Position[2] == o.Focal[2])
+  {
+    return Fail("--camera-position and --camera-focal-point coincide: no view direction");
   }
   return -1;
 }

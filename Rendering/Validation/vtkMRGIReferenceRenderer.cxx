@@ -3,6 +3,7 @@
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
 #include "vtkCamera.h"
+#include "vtkCommand.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkCompositePolyDataMapper2.h"
@@ -298,6 +299,8 @@ bool vtkMRGIReferenceRenderer::Render(vtkRenderer* renderer)
   options.area_light_samples = this->AreaLightSamples;
   options.seed = this->Seed;
   options.threads = this->Threads;
+  options.progress = &vtkMRGIReferenceRenderer::ReportProgress;
+  options.progress_user_data = this;
   vtkCamera* camera = renderer->GetActiveCamera();
   if (camera->GetParallelProjection())
   {
@@ -318,9 +321,17 @@ bool vtkMRGIReferenceRenderer::Render(vtkRenderer* renderer)
     }
     areaLights.push_back(core);
   }
+  this->AbortRender = false;
+  this->Cancelled = false;
+  this->Progress = 0;
+  this->ProgressPasses = 0;
+  this->ProgressRelativeError = 0;
+  this->ProgressSecondsLeft = 0;
+  this->InvokeEvent(vtkCommand::StartEvent, nullptr);
   const mrgi_status status = mrgi_reference_render_area_lights(&scene, &options,
     areaLights.empty() ? nullptr : areaLights.data(), static_cast<int32_t>(areaLights.size()), &result, &err);
   mrgi_scene_destroy(&scene);
+  this->InvokeEvent(vtkCommand::EndEvent, nullptr);
   if (status != MRGI_OK)
   {
     this->LastErrorMessage = err.message;
@@ -331,9 +342,24 @@ bool vtkMRGIReferenceRenderer::Render(vtkRenderer* renderer)
   this->RelativeError = result.relative_error;
   this->Passes = result.passes;
   this->Seconds = result.seconds;
+  this->Cancelled = result.cancelled != 0;
   mrgi_reference_result_destroy(&result);
   this->Modified();
   return ok;
+}
+
+//------------------------------------------------------------------------------
+int vtkMRGIReferenceRenderer::ReportProgress(void* self, const mrgi_reference_progress* progress)
+{
+  // Called by the core on the thread that called Render(), between passes.
+  vtkMRGIReferenceRenderer* renderer = static_cast<vtkMRGIReferenceRenderer*>(self);
+  renderer->Progress = progress->fraction;
+  renderer->ProgressPasses = progress->passes;
+  renderer->ProgressRelativeError = progress->relative_error;
+  renderer->ProgressSecondsLeft = progress->seconds_left;
+  double fraction = progress->fraction;
+  renderer->InvokeEvent(vtkCommand::ProgressEvent, &fraction);
+  return renderer->AbortRender ? 1 : 0;
 }
 
 //------------------------------------------------------------------------------
@@ -369,4 +395,7 @@ void vtkMRGIReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RelativeError: " << this->RelativeError << "\n";
   os << indent << "Passes: " << this->Passes << "\n";
   os << indent << "Seconds: " << this->Seconds << "\n";
+  os << indent << "AbortRender: " << this->AbortRender << "\n";
+  os << indent << "Cancelled: " << this->Cancelled << "\n";
+  os << indent << "Progress: " << this->Progress << "\n";
 }

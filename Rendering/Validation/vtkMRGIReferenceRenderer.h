@@ -17,6 +17,15 @@
  *
  * Images are float RGB vtkImageData with VTK's bottom-up rows, the size of
  * the renderer's viewport unless Width/Height are set.
+ *
+ * Progress and cancel: Render() fires StartEvent, then after each pass
+ * vtkCommand::ProgressEvent (call data: a double, the fraction done; also
+ * GetProgress()), with GetProgressPasses(), GetProgressRelativeError() and
+ * GetProgressSecondsLeft() up to date, then EndEvent. An observer (or another
+ * thread) that sets AbortRender stops the render after the current pass:
+ * Render() then returns true with the images of the passes done (consistent:
+ * every pixel has the same number of passes) and GetCancelled() is true.
+ * Render() clears AbortRender when it starts.
  */
 #ifndef vtkMRGIReferenceRenderer_h
 #define vtkMRGIReferenceRenderer_h
@@ -32,6 +41,7 @@ class vtkImageData;
 class vtkMRGIAreaLight;
 class vtkRenderer;
 struct mrgi_scene;
+struct mrgi_reference_progress;
 
 class MRGIRENDERINGVALIDATION_EXPORT vtkMRGIReferenceRenderer : public vtkObject
 {
@@ -88,8 +98,38 @@ public:
   vtkGetMacro(Threads, int);
   ///@}
 
-  /** Render the ground truth of `renderer`; false with GetLastErrorMessage() on error. */
+  /**
+   * Render the ground truth of `renderer`; false with GetLastErrorMessage()
+   * on error. A cancelled render (AbortRender) returns true: see GetCancelled().
+   */
   bool Render(vtkRenderer* renderer);
+
+  ///@{
+  /**
+   * Set (e.g. from a ProgressEvent observer) to stop after the current pass.
+   * Render() sets it to false when it starts.
+   */
+  vtkSetMacro(AbortRender, bool);
+  vtkGetMacro(AbortRender, bool);
+  vtkBooleanMacro(AbortRender, bool);
+  ///@}
+
+  /** Whether the last Render() was stopped by AbortRender (its images hold GetPasses() passes). */
+  vtkGetMacro(Cancelled, bool);
+
+  ///@{
+  /**
+   * The render in progress (after the pass last reported; ProgressEvent):
+   * fraction done in [0, 1] (passes done over the passes expected, fewer
+   * than MaxPasses when the error falls to the target sooner), passes done,
+   * the relative error so far (+inf after one pass) and the estimated
+   * seconds left.
+   */
+  vtkGetMacro(Progress, double);
+  vtkGetMacro(ProgressPasses, int);
+  vtkGetMacro(ProgressRelativeError, double);
+  vtkGetMacro(ProgressSecondsLeft, double);
+  ///@}
 
   ///@{
   /**
@@ -149,8 +189,16 @@ protected:
   std::string LastErrorMessage;
   std::vector<vtkSmartPointer<vtkMRGIAreaLight>> AreaLights;
   int AreaLightSamples = 16;
+  bool AbortRender = false;
+  bool Cancelled = false;
+  double Progress = 0;
+  int ProgressPasses = 0;
+  double ProgressRelativeError = 0;
+  double ProgressSecondsLeft = 0;
 
 private:
+  static int ReportProgress(void* self, const struct mrgi_reference_progress* progress);
+
   vtkMRGIReferenceRenderer(const vtkMRGIReferenceRenderer&) = delete;
   void operator=(const vtkMRGIReferenceRenderer&) = delete;
 };

@@ -587,6 +587,76 @@ static void test_determinism_and_convergence(void)
   mrgi_scene_destroy(&scene);
 }
 
+/* Progress: one report per pass with growing passes and a fraction in
+ * (0, 1]; a non-zero return stops after that pass with the passes' images. */
+typedef struct progress_log
+{
+  int32_t calls;
+  int32_t cancel_after;
+  int32_t last_passes;
+  double last_fraction;
+  int ok;
+} progress_log;
+
+static int log_progress(void* user_data, const mrgi_reference_progress* p)
+{
+  progress_log* log = (progress_log*)user_data;
+  ++log->calls;
+  log->ok = log->ok && p->passes == log->last_passes + 1 && p->fraction > 0.0 &&
+    p->fraction <= 1.0 && p->passes_expected >= p->passes && p->passes_expected <= p->max_passes &&
+    p->seconds_left >= 0.0 && isfinite(p->seconds_left) && p->seconds >= 0.0;
+  log->last_passes = p->passes;
+  log->last_fraction = p->fraction;
+  return log->cancel_after > 0 && p->passes >= log->cancel_after;
+}
+
+static void test_progress_and_cancel(void)
+{
+  mrgi_scene scene;
+  MRGI_CHECK(mrgi_scene_cornell_box(MRGI_CORNELL_SPOT, &scene, NULL) == MRGI_OK);
+  mrgi_reference_options o = base_options(24, 16);
+  o.indirect_samples = 4;
+  o.max_passes = 5;
+  o.target_relative_error = 0.0; /* run every pass */
+  progress_log log = { 0, 0, 0, 0.0, 1 };
+  o.progress = log_progress;
+  o.progress_user_data = &log;
+  mrgi_reference_result r;
+  render(&scene, &o, &r);
+  MRGI_CHECK(log.ok && log.calls == 5 && r.passes == 5 && r.cancelled == 0);
+  MRGI_CHECK_NEAR(log.last_fraction, 1.0, 1e-12);
+  mrgi_reference_result_destroy(&r);
+
+  /* cancelled after pass 2 of 50: two passes' images, finite, error known */
+  progress_log cancel = { 0, 2, 0, 0.0, 1 };
+  o.max_passes = 50;
+  o.progress_user_data = &cancel;
+  render(&scene, &o, &r);
+  MRGI_CHECK(cancel.ok && cancel.calls == 2);
+  MRGI_CHECK(r.cancelled == 1 && r.passes == 2 && isfinite(r.relative_error));
+  MRGI_CHECK(cancel.last_fraction < 0.1); /* 2 of 50 passes expected */
+  int64_t nonfinite = -1;
+  MRGI_CHECK(
+    mrgi_image_count_nonfinite(&r.indirect, &nonfinite, NULL) == MRGI_OK && nonfinite == 0);
+  MRGI_CHECK(mrgi_image_count_nonfinite(&r.direct, &nonfinite, NULL) == MRGI_OK && nonfinite == 0);
+  double sum = 0.0;
+  for (size_t i = 0; i < mrgi_image_value_count(&r.indirect); ++i)
+  {
+    sum += r.indirect.pixels[i];
+  }
+  MRGI_CHECK(sum > 0.0); /* the passes run are in the image, scaled as passes */
+  /* the same two passes without cancelling give the same image */
+  mrgi_reference_result two;
+  o.progress = NULL;
+  o.max_passes = 2;
+  render(&scene, &o, &two);
+  MRGI_CHECK(memcmp(two.indirect.pixels, r.indirect.pixels,
+               mrgi_image_value_count(&r.indirect) * sizeof(float)) == 0);
+  mrgi_reference_result_destroy(&two);
+  mrgi_reference_result_destroy(&r);
+  mrgi_scene_destroy(&scene);
+}
+
 static void expect_failure(const mrgi_scene* scene, const mrgi_reference_options* o,
                            mrgi_status status, const char* text)
 {
@@ -1190,6 +1260,7 @@ int main(int argc, char** argv)
     MRGI_TEST_CASE(test_bounce),
     MRGI_TEST_CASE(test_cornell),
     MRGI_TEST_CASE(test_determinism_and_convergence),
+    MRGI_TEST_CASE(test_progress_and_cancel),
     MRGI_TEST_CASE(test_bad_input),
     MRGI_TEST_CASE(test_area_unoccluded),
     MRGI_TEST_CASE(test_area_penumbra),

@@ -3,9 +3,11 @@ timings, and for bad input it prints a one-line error naming the problem,
 exits non-zero and leaves no output file behind."""
 import os
 import re
+import signal
 import struct
 import subprocess
 import sys
+import time
 import zlib
 
 RENDER = os.environ["MRGI_RENDER"]
@@ -172,6 +174,9 @@ def main():
                        "--reference-passes", "2", "--reference-error", "0")
     check(code == 0 and os.path.getsize(ref_exr) > 0, "--reference: " + err)
     check("ground truth:" in err, "--reference reports passes and error")
+    check(re.search(r"ground truth: pass 1, \d+%, relative error unknown", err) and
+          re.search(r"ground truth: pass 2, 100%, relative error [0-9.]+ .*s left", err),
+          "--reference prints a progress line per pass here: " + err)
 
     # Scaling scene and a file scene.
     out_png = fresh("cli_scaling.png")
@@ -218,7 +223,41 @@ def main():
         (["cornell", "-o", target, "--gi", "off", "--indirect-only"], "--indirect-only"),
         (["cornell", "-o", target, "--reference-visibility", "maybe"], "--reference-visibility"),
         (["cornell", "-o", "/nonexistent-dir/out.png", "--size", "8x8"], "nonexistent-dir"),
+        # Every value outside its documented range is refused, naming the option.
+        (["cornell", "-o", target, "--voxel-size", "16384"], "[1, 4096]"),
+        (["cornell", "-o", target, "--area-light", "0,0,0:1e39,0,0:0,1,0"], "float range"),
+        (["cornell", "-o", target, "--area-light", "0,0,0:1e20,0,0:0,1e20,0"], "float range"),
+        (["cornell", "-o", target, "--area-light", "0,0,0:1,0,0:0,1,0:1,1,1:1e7"], "intensity"),
+        (["cornell", "-o", target, "--light-intensity", "1e300"], "--light-intensity"),
+        (["cornell", "-o", target, "--light", "positional:1e39,0,0"], "float range"),
+        (["cornell", "-o", target, "--background", "-1,0,0"], "--background"),
+        (["cornell", "-o", target, "--camera-position", "1e39,0,0"], "--camera-position"),
+        (["cornell", "-o", target, "--camera-view-up", "0,0,0"], "--camera-view-up"),
+        (["cornell", "-o", target, "--camera-position", "1,2,3", "--camera-focal-point", "1,2,3"],
+         "coincide"),
+        (["cornell", "-o", target, "--size", "64x64junk"], "--size"),
+        (["cornell", "-o", target, "--frames", "3x"], "--frames"),
+        (["cornell", "-o", target, "--vpls", "1e3"], "--vpls"),
+        (["cornell", "-o", target, "--triangles", "99999999999999999999"], "--triangles"),
+        (["cornell", "-o", target, "--seed", "-1"], "--seed"),
+        (["cornell", "-o", target, "--depth-threshold", "1e300"], "--depth-threshold"),
+        (["cornell", "-o", target, "--normal-threshold", "inff"], "--normal-threshold"),
+        (["cornell", "-o", target, "--camera-view-angle", "180"], "--camera-view-angle"),
+        (["cornell", "-o", target, "--specular", "0.5:nan"], "--specular"),
+        (["cornell", "-o", target, "--reference-error", "1.5"], "--reference-error"),
+        (["cornell", "-o", target, "--finest-level", "24"], "--finest-level"),
+        # Outputs are checked before rendering: a bad second output leaves
+        # no first one; an output given twice; a directory as output.
+        (["cornell", "-o", target, "-o", "/nonexistent-dir/second.exr", "--size", "8x8"],
+         "second.exr"),
+        (["cornell", "-o", target, "-o", target, "--size", "8x8"], "given twice"),
+        (["cornell", "-o", os.path.join(TMP, "cli_dir.png"), "--size", "8x8"], "is a directory"),
+        # Sizes this OpenGL cannot hold are refused before rendering, never
+        # rendered without indirect light: the multiresolution buffer is about
+        # twice the width (llvmpipe: GL_MAX_TEXTURE_SIZE 16384).
+        (["cornell", "-o", target, "--size", "9000x16"], "GL_MAX_TEXTURE_SIZE"),
     ]
+    os.makedirs(os.path.join(TMP, "cli_dir.png"), exist_ok=True)
     unreadable = os.path.join(TMP, "corrupt.stl")
     with open(unreadable, "wb") as f:
         f.write(b"solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0\n")
@@ -233,7 +272,65 @@ def main():
         check(not os.path.exists(target), "no output left for %s" % args)
     leftovers = [n for n in os.listdir(TMP) if n.startswith("cli_bad.png.tmp")]
     check(not leftovers, "no temporary files left: %s" % leftovers)
+
+    quiet_and_plain(unreadable)
+    signal_during_write()
     print("ok")
+
+
+def quiet_and_plain(unreadable):
+    """-q leaves only the CLI's one error line, even when VTK complains; without
+    -q, VTK's messages come as plain lines (no colour codes, no file:line)."""
+    target = fresh("cli_quiet.png")
+    code, out, err = run(unreadable, "-o", target, "-q")
+    print("-q:", repr(err))
+    check(code != 0, "-q: a corrupt file fails")
+    check(len(err.splitlines()) == 1 and err.startswith("mrgi-render: error:"),
+          "-q: exactly the one error line: %r" % err)
+    code, out, err = run(unreadable, "-o", target)
+    check(code != 0 and "\x1b" not in err, "no colour codes without -q: %r" % err)
+    vtk_lines = [l for l in err.splitlines() if l.startswith("mrgi-render: VTK error:")]
+    check(vtk_lines, "VTK's complaint is shown without -q: %r" % err)
+    check(all(l.startswith("mrgi-render: ") for l in err.splitlines()),
+          "every line is the CLI's: %r" % err)
+    check(not any(re.search(r"\.cxx[:,]|line \d+\n|0x[0-9a-f]{6,}", l) for l in vtk_lines),
+          "plain VTK lines (no source file, line or address): %r" % vtk_lines)
+    check(not os.path.exists(target), "no output after VTK's error")
+
+
+def signal_during_write():
+    """SIGTERM while the outputs are being written: exit 128 + 15, and neither
+    the outputs nor any temporary file is left."""
+    env = dict(os.environ)
+    env.pop("DISPLAY", None)
+    prefix = "cli_signal"
+    for attempt, size in enumerate(("1024x1024", "2048x2048", "4096x2048")):
+        outputs = [fresh(prefix + ".exr"), fresh(prefix + ".png")]
+        p = subprocess.Popen([RENDER, "cornell", "--gi", "off", "--size", size, "-q",
+                              "-o", outputs[0], "-o", outputs[1]],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
+        caught = False
+        while p.poll() is None:
+            # The first staging or writer temporary file: the write has begun.
+            if any(n.startswith(prefix) and ".tmp-" in n for n in os.listdir(TMP)):
+                p.send_signal(signal.SIGTERM)
+                caught = True
+                break
+            time.sleep(0.001)
+        _, err = p.communicate(timeout=600)
+        left = sorted(n for n in os.listdir(TMP) if n.startswith(prefix))
+        print("SIGTERM at", size, "caught:", caught, "exit:", p.returncode, "left:", left)
+        if not caught:
+            check(p.returncode == 0, "the render itself succeeds: %s" % err)
+            continue  # the write was too quick to catch: a bigger image
+        check(p.returncode == 128 + signal.SIGTERM, "exit 143 after SIGTERM, got %d" % p.returncode)
+        if sorted(left) == sorted(os.path.basename(o) for o in outputs):
+            # The signal landed just after the last rename: the run was
+            # complete. Not what is tested here: a bigger image.
+            continue
+        check(not left, "nothing left after SIGTERM during the write: %s" % left)
+        return
+    check(False, "never caught the write in progress")
 
 
 if __name__ == "__main__":

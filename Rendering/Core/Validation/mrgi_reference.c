@@ -1178,6 +1178,38 @@ static void ref_run_pass(ref_call* c, int32_t thread_count)
   }
 }
 
+/* Fills a progress report after `passes` passes that took `pass_seconds`
+ * (the Embree build not included). The error falls as 1/sqrt(passes): the
+ * target is expected after passes * (worst / target)^2 passes. */
+static void ref_progress(const mrgi_reference_options* o, int32_t passes, double relative,
+  double direct_relative, double seconds, double pass_seconds, mrgi_reference_progress* p)
+{
+  const double worst = direct_relative > relative ? direct_relative : relative;
+  double expected = (double)o->max_passes;
+  if (o->target_relative_error > 0.0 && isfinite(worst))
+  {
+    const double ratio = worst / o->target_relative_error;
+    const double needed = worst == 0.0 ? (double)passes : (double)passes * ratio * ratio;
+    /* The loop stops after pass 2 at the earliest (file comment). */
+    const double at_least = worst == 0.0 ? (double)passes : 2.0;
+    expected = needed < expected ? needed : expected;
+    expected = expected < at_least ? at_least : expected;
+  }
+  if (expected < (double)passes)
+  {
+    expected = (double)passes;
+  }
+  p->passes = passes;
+  p->max_passes = o->max_passes;
+  p->relative_error = relative;
+  p->direct_relative_error = direct_relative;
+  p->target_relative_error = o->target_relative_error;
+  p->seconds = seconds;
+  p->passes_expected = expected;
+  p->fraction = (double)passes / expected;
+  p->seconds_left = (expected - (double)passes) * (pass_seconds / (double)passes);
+}
+
 static mrgi_status ref_write_images(const ref_call* c, int32_t passes, mrgi_reference_result* out,
                                     mrgi_error* err)
 {
@@ -1404,7 +1436,9 @@ mrgi_status mrgi_reference_render_area_lights(const mrgi_scene* scene,
   }
 
   int32_t passes = 0;
+  int32_t cancelled = 0;
   double relative = INFINITY, per_pixel = INFINITY, direct_relative = INFINITY;
+  const double passes_start = ref_seconds_now();
   while (passes < options->max_passes)
   {
     c.shared.pass = passes;
@@ -1413,6 +1447,17 @@ mrgi_status mrgi_reference_render_area_lights(const mrgi_scene* scene,
     ref_noise(&c.shared, passes, &relative, &per_pixel);
     direct_relative = ref_direct_noise(&c.shared, passes); /* 0 without area lights */
     const double worst = direct_relative > relative ? direct_relative : relative;
+    if (options->progress)
+    {
+      mrgi_reference_progress p;
+      ref_progress(options, passes, relative, direct_relative, ref_seconds_now() - start,
+        ref_seconds_now() - passes_start, &p);
+      if (options->progress(options->progress_user_data, &p) != 0)
+      {
+        cancelled = 1;
+        break;
+      }
+    }
     if (options->target_relative_error > 0.0 && worst <= options->target_relative_error &&
         (passes >= 2 || worst == 0.0))
     {
@@ -1446,6 +1491,7 @@ mrgi_status mrgi_reference_render_area_lights(const mrgi_scene* scene,
   out->pixel_relative_error = per_pixel;
   out->direct_relative_error = direct_relative;
   out->passes = passes;
+  out->cancelled = cancelled;
   out->threads = thread_count;
   out->seconds = ref_seconds_now() - start;
   return MRGI_OK;

@@ -154,6 +154,38 @@ extern "C" {
  */
 #define MRGI_REFERENCE_MAX_RAY_HITS 256
 
+/** Where a render stands, handed to ::mrgi_reference_progress_fn after each pass. */
+typedef struct mrgi_reference_progress
+{
+  /** Passes done, 1..max_passes. */
+  int32_t passes;
+  /** The options' max_passes. */
+  int32_t max_passes;
+  /** As ::mrgi_reference_result::relative_error after these passes (+inf after one). */
+  double relative_error;
+  /** As ::mrgi_reference_result::direct_relative_error. */
+  double direct_relative_error;
+  /** The options' target_relative_error. */
+  double target_relative_error;
+  /** Wall time since the call began (Embree build included). */
+  double seconds;
+  /** Passes the render is expected to take in all: max_passes, or fewer where the error,
+   *  falling as 1/sqrt(passes), reaches the target sooner; >= passes. */
+  double passes_expected;
+  /** passes / passes_expected, in (0, 1]. */
+  double fraction;
+  /** Estimated wall time to the end, from the mean pass time; >= 0. */
+  double seconds_left;
+} mrgi_reference_progress;
+
+/**
+ * @brief Called on the calling thread after each pass (never concurrently).
+ * @return 0 to go on; non-zero to stop after this pass: the images of the
+ *         passes done so far are returned as usual, with
+ *         ::mrgi_reference_result::cancelled set to 1.
+ */
+typedef int (*mrgi_reference_progress_fn)(void* user_data, const mrgi_reference_progress* progress);
+
 /** How to render. Start from mrgi_reference_options_default(). */
 typedef struct mrgi_reference_options
 {
@@ -172,6 +204,8 @@ typedef struct mrgi_reference_options
   uint64_t seed;                /**< Any value. Default 1. */
   int32_t threads;              /**< Worker threads, 0..MRGI_REFERENCE_MAX_THREADS; 0 = online CPUs. Default 0. */
   int32_t area_light_samples;   /**< Points (shadow rays) per area light per primary hit per pass, 0..MRGI_REFERENCE_MAX_AREA_LIGHT_SAMPLES; at least 1 when area lights are rendered (0 suits point-light renders only). The light's sample grid for this count is used (<= this many). Default 16. */
+  mrgi_reference_progress_fn progress; /**< NULL (default) or called after each pass; may cancel. */
+  void* progress_user_data;     /**< Handed to `progress`. Default NULL. */
 } mrgi_reference_options;
 
 /** @brief Fill `options` with the defaults listed on each field. NULL is a no-op. */
@@ -200,6 +234,8 @@ typedef struct mrgi_reference_result
   int64_t skipped_triangles;  /**< Zero-area or non-finite triangles left out of the Embree scene. */
   int64_t hit_list_overflows; /**< Bounce rays that crossed more than MRGI_REFERENCE_MAX_RAY_HITS surfaces (RSM mode). */
   int32_t passes;             /**< Passes run. */
+  int32_t cancelled;          /**< 1 when options->progress stopped the render early (the images
+                                   hold the passes run, with their errors); else 0. */
   int32_t threads;            /**< Worker threads used. */
   double seconds;             /**< Wall time of the whole call (Embree build included). */
   double build_seconds;       /**< Wall time of building the Embree scene. */

@@ -73,6 +73,10 @@ struct vtkMRGIPass::Internals
   vtkMRGIGBuffer GBuffer;
   // The full-resolution gather, the add and the output programs.
   vtkMRGIProgramCache Programs;
+  // A stage that fails (e.g. a buffer larger than GL_MAX_TEXTURE_SIZE) fails
+  // every frame: the pass says so once, until the light is computed again.
+  bool IndirectFailureReported = false;
+  bool AreaLightFailureReported = false;
 };
 
 //------------------------------------------------------------------------------
@@ -670,6 +674,14 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
         ScopedStage stage(timer, "add");
         this->RenderAdd(frame, in.GBuffer.Indirect, in.GBuffer.Color);
         this->IndirectComputed = true;
+        in.IndirectFailureReported = false;
+      }
+      else if (!in.IndirectFailureReported)
+      {
+        // Never a silent fallback: the image has no indirect light.
+        in.IndirectFailureReported = true;
+        vtkErrorMacro("the indirect light could not be computed at "
+          << w << " x " << h << " pixels: this frame has direct light only");
       }
     }
   }
@@ -677,6 +689,16 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   {
     this->AreaLightsComputed =
       this->AreaLightStage->Render(frame, this->Multiresolution, selected, in.GBuffer.Color);
+    if (this->AreaLightsComputed)
+    {
+      in.AreaLightFailureReported = false;
+    }
+    else if (!in.AreaLightFailureReported)
+    {
+      in.AreaLightFailureReported = true;
+      vtkErrorMacro("the area lights could not be computed at "
+        << w << " x " << h << " pixels: this frame has none of their light");
+    }
   }
   if (split)
   {

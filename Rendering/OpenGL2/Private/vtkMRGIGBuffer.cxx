@@ -95,17 +95,29 @@ bool vtkMRGIGBuffer::HoldsResources() const
 bool vtkMRGIGBuffer::ReadViewport(vtkOpenGLRenderWindow* window, vtkTextureObject* texture,
   const int viewport[4], int components, vtkImageData* image)
 {
-  std::vector<float> rgba;
-  if (!image || !texture || !vtkMRGIShaderUtilities::ReadTextureRGBA(window, texture, rgba))
+  if (!image || !texture || viewport[2] < 1 || viewport[3] < 1)
+  {
+    return false;
+  }
+  // Straight into the image, with no whole-texture copy beside it: a
+  // read-back runs while every GL buffer is still allocated, i.e. at the
+  // peak of a program's memory (llvmpipe keeps textures in host memory).
+  image->SetDimensions(viewport[2], viewport[3], 1);
+  image->AllocateScalars(VTK_FLOAT, components);
+  float* out = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars())->GetPointer(0);
+  if (components == 3 || components == 4)
+  {
+    return vtkMRGIShaderUtilities::ReadTextureRegion(
+      window, texture, viewport[0], viewport[1], viewport[2], viewport[3], components, out);
+  }
+  std::vector<float> rgba; // other channel counts: through a whole RGBA copy
+  if (!vtkMRGIShaderUtilities::ReadTextureRGBA(window, texture, rgba))
   {
     return false;
   }
   const int fullWidth = static_cast<int>(texture->GetWidth());
   const int x0 = viewport[0], y0 = viewport[1];
   const int w = viewport[2], h = viewport[3];
-  image->SetDimensions(w, h, 1);
-  image->AllocateScalars(VTK_FLOAT, components);
-  float* out = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars())->GetPointer(0);
   for (int y = 0; y < h; ++y)
   {
     for (int x = 0; x < w; ++x)

@@ -193,6 +193,34 @@ bool ReadTextureRGBA(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, s
   fbo->ReleaseGraphicsResources(window);
   return glGetError() == GL_NO_ERROR;
 }
+
+bool ReadTextureRegion(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, int x, int y,
+  int w, int h, int components, float* out)
+{
+  if (!window || !texture || texture->GetHandle() == 0 || !out || w < 1 || h < 1 || x < 0 ||
+    y < 0 || x + w > static_cast<int>(texture->GetWidth()) ||
+    y + h > static_cast<int>(texture->GetHeight()) || (components != 3 && components != 4))
+  {
+    return false;
+  }
+  window->MakeCurrent();
+  while (glGetError() != GL_NO_ERROR)
+  {
+  }
+  vtkOpenGLState* ostate = window->GetState();
+  ostate->PushReadFramebufferBinding();
+  vtkNew<vtkOpenGLFramebufferObject> fbo;
+  fbo->SetContext(window);
+  fbo->Bind(GL_READ_FRAMEBUFFER);
+  fbo->AddColorAttachment(0, texture);
+  fbo->ActivateReadBuffer(0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(x, y, w, h, components == 4 ? GL_RGBA : GL_RGB, GL_FLOAT, out);
+  fbo->RemoveColorAttachments(1);
+  ostate->PopReadFramebufferBinding();
+  fbo->ReleaseGraphicsResources(window);
+  return glGetError() == GL_NO_ERROR;
+}
 }
 
 //------------------------------------------------------------------------------

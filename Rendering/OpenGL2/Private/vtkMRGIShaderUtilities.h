@@ -79,6 +79,13 @@ vtkTextureObject* NewDepthStencil(vtkOpenGLRenderWindow* window, int w, int h);
  */
 bool ReadTextureRGBA(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, std::vector<float>& rgba);
 
+// Reads the w x h region at (x, y) of a float colour texture into `out`
+// (rows bottom-up, `components` = 3 (RGB) or 4 (RGBA) floats a pixel, w * h *
+// components values), with no copy of the whole texture in between; false
+// on a GL error or a region outside the texture.
+bool ReadTextureRegion(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, int x, int y,
+  int w, int h, int components, float* out);
+
 /**
  * Every MRGI timer event carries this prefix so that
  * vtkMRGIPass::FetchStageTimings() finds MRGI's stages among the events
