@@ -696,6 +696,9 @@ const std::vector<OptionSection>& OptionTable()
         { { "--interactive" }, nullptr, "open a window to look around (needs DISPLAY)",
           Set(&Options::Interactive) },
         { { "-q", "--quiet" }, nullptr, "no progress lines", Set(&Options::Quiet) },
+        { { "--allow-empty" }, nullptr,
+          "accept an image that shows only the background (default: an error, exit 1)",
+          Set(&Options::AllowEmpty) },
         { { "--version" }, nullptr, "print the version",
           [](Options&, const std::string&, const char*) {
             std::printf("mrgi-render %s\n", MRGI_VERSION_STRING);

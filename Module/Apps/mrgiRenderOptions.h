@@ -42,6 +42,7 @@ struct Options
   long long Frames = 1;
   bool Interactive = false;
   bool Quiet = false;
+  bool AllowEmpty = false;
   bool GI = true;
   bool Multires = true; // Balanced whenever indirect light is on
   long long Preset = 1;
