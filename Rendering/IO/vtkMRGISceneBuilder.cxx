@@ -46,6 +46,7 @@
 #include "mrgi_obj_check.h"
 #include "mrgi_ply_check.h"
 #include "mrgi_vtk_check.h"
+#include "mrgi_xml_check.h"
 #include "mrgi_scene.h"
 #include "mrgi_scene_cornell.h"
 #include "mrgi_scene_living_room.h"
@@ -728,6 +729,12 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
   else if (EndsWith(path, ".vtp") || EndsWith(path, ".vtu") || EndsWith(path, ".vti") ||
     EndsWith(path, ".vts") || EndsWith(path, ".vtr") || EndsWith(path, ".vtm"))
   {
+    // VTK's XML readers allocate what the attributes declare.
+    mrgi_error err;
+    if (mrgi_xml_check(path.c_str(), &err) != MRGI_OK)
+    {
+      return this->Fail(err.message);
+    }
     auto r = vtkSmartPointer<vtkXMLGenericDataObjectReader>::New();
     r->SetFileName(path.c_str());
     reader = r;
