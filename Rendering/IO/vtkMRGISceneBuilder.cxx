@@ -850,8 +850,16 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
       }
       else
       {
+        // The range of the whole data set, as ParaView shows it: a volume's
+        // outer surface alone may hold a single value (ironProt.vtk's zeros).
         double range[2];
         scalars->GetRange(range, -1);
+        auto* input = vtkDataSet::SafeDownCast(data);
+        vtkDataArray* all = input ? input->GetPointData()->GetScalars() : nullptr;
+        if (all && all->GetNumberOfComponents() == scalars->GetNumberOfComponents())
+        {
+          all->GetRange(range, -1);
+        }
         if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
         {
           range[0] = 0;
