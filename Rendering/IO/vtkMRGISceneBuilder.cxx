@@ -205,7 +205,7 @@ bool CellsInRange(vtkCellArray* cells, vtkIdType npoints, const char* what, std:
     {
       if (ids[i] < 0 || ids[i] >= npoints)
       {
-        why = std::string(what) + " cell " + std::to_string(c) + " refers to point " +
+        why = std::string(what) + (what[0] ? " cell " : "cell ") + std::to_string(c) + " refers to point " +
           std::to_string(ids[i]) + ", outside [0, " + std::to_string(npoints) + ")";
         return false;
       }
@@ -815,6 +815,24 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
   else
   {
     return this->Fail("'" + path + "' holds a " + data->GetClassName() + ", which has no surface to draw");
+  }
+  if (auto* cloud = vtkPolyData::SafeDownCast(geometry))
+  {
+    if (cloud->GetNumberOfCells() == 0 && cloud->GetNumberOfPoints() > 0)
+    {
+      // Points without cells (an OBJ or PLY point cloud) draw nothing in
+      // VTK: give each point a vertex cell, as point-cloud viewers show them.
+      auto withVerts = vtkSmartPointer<vtkPolyData>::New();
+      withVerts->ShallowCopy(cloud);
+      vtkNew<vtkCellArray> verts;
+      verts->AllocateExact(cloud->GetNumberOfPoints(), cloud->GetNumberOfPoints());
+      for (vtkIdType i = 0; i < cloud->GetNumberOfPoints(); ++i)
+      {
+        verts->InsertNextCell(1, &i);
+      }
+      withVerts->SetVerts(verts);
+      geometry = withVerts;
+    }
   }
   if (auto* poly = vtkPolyData::SafeDownCast(geometry))
   {
