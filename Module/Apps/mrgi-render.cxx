@@ -27,6 +27,7 @@
 #include "vtkMRGIRenderWindowFactory.h"
 #include "vtkMRGISceneBuilder.h"
 #include "vtkNew.h"
+#include "vtkLogger.h"
 #include "vtkOutputWindow.h"
 #include "vtkRenderStepsPass.h"
 #include "vtkToneMappingPass.h"
@@ -141,6 +142,9 @@ int main(int argc, char* argv[])
   // Errors are reported once, as one line, by this program; VTK's own error
   // output would repeat them with file/line noise.
   vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
+  // VTK's readers also log through vtkLogger (loguru) to stderr, colour codes
+  // included: the builder reports their errors in its own line instead.
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
 
   std::string why;
   vtkSmartPointer<vtkRenderWindow> window = vtkSmartPointer<vtkRenderWindow>::Take(

@@ -249,6 +249,9 @@ def vtk_cases():
     case("vtk_image_nan_spacing.vtk", vtk_points(spacing="nan 1 1"))
     case("vtk_image_zero_spacing.vtk", vtk_points(spacing="0 0 0"))
     case("vtk_image_nan_values.vtk", vtk_points(values=[NAN] * 64))
+    # ironProt.vtk's silent failure: unsigned-char density, zero on the outer surface.
+    inner = [0 if 0 in (x, y, z) or 3 in (x, y, z) else 200 for z in range(4) for y in range(4) for x in range(4)]
+    case("vtk_image_uchar_zero_surface.vtk", vtk_points(typ="unsigned_char", values=inner))
     case("vtk_image_uchar_ncomp3.vtk", vtk_points(typ="unsigned_char", ncomp=3, values=[i % 250 for i in range(192)]))
     case("vtk_sgrid_huge_dims.vtk", "# vtk DataFile Version 3.0\ng\nASCII\nDATASET STRUCTURED_GRID\n"
          "DIMENSIONS 100000 100000 100000\nPOINTS 8 float\n" + "0 0 0\n" * 8)
