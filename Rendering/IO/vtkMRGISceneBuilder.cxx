@@ -8,19 +8,16 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
+#include "vtkCellTypes.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
-#include "vtkCellTypes.h"
-#include "vtkDataObjectTreeIterator.h"
-#include "vtkInformation.h"
-#include "vtkStreamingDemandDrivenPipeline.h"
-#include "vtkUnstructuredGrid.h"
-#include "vtkUnsignedCharArray.h"
 #include "vtkCompositePolyDataMapper2.h"
+#include "vtkDataObjectTreeIterator.h"
 #include "vtkDataSetSurfaceFilter.h"
 #include "vtkFloatArray.h"
 #include "vtkGLTFImporter.h"
 #include "vtkGenericDataObjectReader.h"
+#include "vtkInformation.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMath.h"
@@ -37,7 +34,10 @@
 #include "vtkRenderer.h"
 #include "vtkSTLReader.h"
 #include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTypeInt32Array.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnstructuredGrid.h"
 #include "vtkXMLGenericDataObjectReader.h"
 
 #include "mrgi_error.h"
@@ -45,12 +45,12 @@
 #include "mrgi_input.h"
 #include "mrgi_obj_check.h"
 #include "mrgi_ply_check.h"
-#include "mrgi_vtk_check.h"
-#include "mrgi_xml_check.h"
 #include "mrgi_scene.h"
 #include "mrgi_scene_cornell.h"
 #include "mrgi_scene_living_room.h"
 #include "mrgi_scene_scaling.h"
+#include "mrgi_vtk_check.h"
+#include "mrgi_xml_check.h"
 
 #include <algorithm>
 #include <cmath>
@@ -205,8 +205,9 @@ bool CellsInRange(vtkCellArray* cells, vtkIdType npoints, const char* what, std:
     {
       if (ids[i] < 0 || ids[i] >= npoints)
       {
-        why = std::string(what) + (what[0] ? " cell " : "cell ") + std::to_string(c) + " refers to point " +
-          std::to_string(ids[i]) + ", outside [0, " + std::to_string(npoints) + ")";
+        why = std::string(what) + (what[0] ? " cell " : "cell ") + std::to_string(c) +
+          " refers to point " + std::to_string(ids[i]) + ", outside [0, " +
+          std::to_string(npoints) + ")";
         return false;
       }
     }
@@ -219,27 +220,51 @@ int CellPoints(int type)
 {
   switch (type)
   {
-    case VTK_VERTEX: return 1;
-    case VTK_POLY_VERTEX: return -1;
-    case VTK_LINE: return 2;
-    case VTK_POLY_LINE: return -2;
-    case VTK_TRIANGLE: return 3;
-    case VTK_TRIANGLE_STRIP: return -3;
-    case VTK_POLYGON: return -3;
-    case VTK_PIXEL: case VTK_QUAD: case VTK_TETRA: return 4;
-    case VTK_VOXEL: case VTK_HEXAHEDRON: return 8;
-    case VTK_WEDGE: return 6;
-    case VTK_PYRAMID: return 5;
-    case VTK_PENTAGONAL_PRISM: return 10;
-    case VTK_HEXAGONAL_PRISM: return 12;
-    case VTK_QUADRATIC_EDGE: return 3;
-    case VTK_QUADRATIC_TRIANGLE: return 6;
-    case VTK_QUADRATIC_QUAD: return 8;
-    case VTK_QUADRATIC_TETRA: return 10;
-    case VTK_QUADRATIC_HEXAHEDRON: return 20;
-    case VTK_QUADRATIC_WEDGE: return 15;
-    case VTK_QUADRATIC_PYRAMID: return 13;
-    default: return 0;
+    case VTK_VERTEX:
+      return 1;
+    case VTK_POLY_VERTEX:
+      return -1;
+    case VTK_LINE:
+      return 2;
+    case VTK_POLY_LINE:
+      return -2;
+    case VTK_TRIANGLE:
+      return 3;
+    case VTK_TRIANGLE_STRIP:
+      return -3;
+    case VTK_POLYGON:
+      return -3;
+    case VTK_PIXEL:
+    case VTK_QUAD:
+    case VTK_TETRA:
+      return 4;
+    case VTK_VOXEL:
+    case VTK_HEXAHEDRON:
+      return 8;
+    case VTK_WEDGE:
+      return 6;
+    case VTK_PYRAMID:
+      return 5;
+    case VTK_PENTAGONAL_PRISM:
+      return 10;
+    case VTK_HEXAGONAL_PRISM:
+      return 12;
+    case VTK_QUADRATIC_EDGE:
+      return 3;
+    case VTK_QUADRATIC_TRIANGLE:
+      return 6;
+    case VTK_QUADRATIC_QUAD:
+      return 8;
+    case VTK_QUADRATIC_TETRA:
+      return 10;
+    case VTK_QUADRATIC_HEXAHEDRON:
+      return 20;
+    case VTK_QUADRATIC_WEDGE:
+      return 15;
+    case VTK_QUADRATIC_PYRAMID:
+      return 13;
+    default:
+      return 0;
   }
 }
 
@@ -251,7 +276,8 @@ bool ValidDataSet(vtkDataSet* ds, std::string& why)
   const vtkIdType np = ds->GetNumberOfPoints();
   if (np > MaxPoints)
   {
-    why = "it has " + std::to_string(np) + " points, more than MRGI draws (" + std::to_string(MaxPoints) + ")";
+    why = "it has " + std::to_string(np) + " points, more than MRGI draws (" +
+      std::to_string(MaxPoints) + ")";
     return false;
   }
   if (auto* image = vtkImageData::SafeDownCast(ds))
@@ -768,8 +794,8 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
       if (points > static_cast<double>(MaxPoints))
       {
         return this->Fail("cannot read '" + path + "': its extent " + std::to_string(e[0]) + ".." +
-          std::to_string(e[1]) + " x " + std::to_string(e[2]) + ".." + std::to_string(e[3]) + " x " +
-          std::to_string(e[4]) + ".." + std::to_string(e[5]) + " is too large to draw");
+          std::to_string(e[1]) + " x " + std::to_string(e[2]) + ".." + std::to_string(e[3]) +
+          " x " + std::to_string(e[4]) + ".." + std::to_string(e[5]) + " is too large to draw");
       }
     }
   }

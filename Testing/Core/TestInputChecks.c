@@ -7,9 +7,9 @@
 #include "mrgi_input.h"
 #include "mrgi_obj_check.h"
 #include "mrgi_ply_check.h"
+#include "mrgi_test.h"
 #include "mrgi_vtk_check.h"
 #include "mrgi_xml_check.h"
-#include "mrgi_test.h"
 
 #include <string.h>
 #include <sys/stat.h>
@@ -17,15 +17,25 @@
 
 typedef mrgi_status (*check_fn)(const char* text, mrgi_error* err);
 
-static mrgi_status obj(const char* t, mrgi_error* e) { return mrgi_obj_check_buffer(t, strlen(t), "t.obj", NULL, e); }
-static mrgi_status vtk(const char* t, mrgi_error* e) { return mrgi_vtk_check_buffer(t, strlen(t), "t.vtk", NULL, e); }
-static mrgi_status ply(const char* t, mrgi_error* e) { return mrgi_ply_check_buffer(t, strlen(t), "t.ply", NULL, e); }
+static mrgi_status obj(const char* t, mrgi_error* e)
+{
+  return mrgi_obj_check_buffer(t, strlen(t), "t.obj", NULL, e);
+}
+static mrgi_status vtk(const char* t, mrgi_error* e)
+{
+  return mrgi_vtk_check_buffer(t, strlen(t), "t.vtk", NULL, e);
+}
+static mrgi_status ply(const char* t, mrgi_error* e)
+{
+  return mrgi_ply_check_buffer(t, strlen(t), "t.ply", NULL, e);
+}
 static mrgi_status gltf(const char* t, mrgi_error* e)
 {
   return mrgi_gltf_check_buffer(t, strlen(t), "t.gltf", NULL, NULL, e);
 }
 
-/* "HHHH" in the text stands for a raw UInt32 little-endian block header of 12 bytes (it holds NULs). */
+/* "HHHH" in the text stands for a raw UInt32 little-endian block header of 12 bytes (it holds
+ * NULs). */
 static mrgi_status xml(const char* t, mrgi_error* e)
 {
   char copy[1024];
@@ -77,9 +87,11 @@ static void test_obj(void)
 
 static void test_vtk(void)
 {
-  const char* h = "# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n";
+  const char* h =
+    "# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n";
   char t[512];
-  snprintf(t, sizeof(t), "%sPOLYGONS 1 4\n3 0 1 2\nPOINT_DATA 3\nSCALARS s float\nLOOKUP_TABLE default\n1 2 3\n", h);
+  snprintf(t, sizeof(t),
+    "%sPOLYGONS 1 4\n3 0 1 2\nPOINT_DATA 3\nSCALARS s float\nLOOKUP_TABLE default\n1 2 3\n", h);
   expect(vtk, t, NULL);
   snprintf(t, sizeof(t), "%sPOLYGONS 1 4\n3 0 1 3\n", h);
   expect(vtk, t, "outside [0, 3)");
@@ -89,20 +101,31 @@ static void test_vtk(void)
   expect(vtk, t, "more than the file holds");
   snprintf(t, sizeof(t), "%sPOLYGONS 1 4\n3 0 1 2\nPOINT_DATA 7\n", h);
   expect(vtk, t, "POINT_DATA 7");
-  expect(vtk, "# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\nPOINTS 2000000000 float\n0 0 0\n", "POINTS declares");
-  expect(vtk, "# vtk DataFile Version 3.0\nt\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 100000 100000 100000\n",
+  expect(vtk,
+    "# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\nPOINTS 2000000000 float\n0 0 0\n",
+    "POINTS declares");
+  expect(vtk,
+    "# vtk DataFile Version 3.0\nt\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 100000 100000 "
+    "100000\n",
     "too large");
-  expect(vtk, "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n"
-              "CELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n12\n", "needs 8");
-  expect(vtk, "# vtk DataFile Version 5.1\nt\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n"
-              "POLYGONS 2 3\nOFFSETS vtktypeint64\n0 300\nCONNECTIVITY vtktypeint64\n0 1 2\n", "offsets must");
+  expect(vtk,
+    "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 float\n0 0 0 1 0 0 "
+    "0 1 0\n"
+    "CELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n12\n",
+    "needs 8");
+  expect(vtk,
+    "# vtk DataFile Version 5.1\nt\nASCII\nDATASET POLYDATA\nPOINTS 3 float\n0 0 0 1 0 0 0 1 0\n"
+    "POLYGONS 2 3\nOFFSETS vtktypeint64\n0 300\nCONNECTIVITY vtktypeint64\n0 1 2\n",
+    "offsets must");
   expect(vtk, "not vtk\n", "not a legacy VTK file");
 }
 
 static void test_ply(void)
 {
-  const char* h = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                  "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+  const char* h =
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float "
+    "z\n"
+    "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
   char t[512];
   snprintf(t, sizeof(t), "%s3 0 1 2\n", h);
   expect(ply, t, NULL);
@@ -112,16 +135,21 @@ static void test_ply(void)
   expect(ply, t, "outside [0, 3)");
   snprintf(t, sizeof(t), "%s9 0 1 2\n", h);
   expect(ply, t, "fewer list items");
-  expect(ply, "ply\nformat ascii 1.0\ncomment xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx", "end_header");
+  expect(ply,
+    "ply\nformat ascii 1.0\ncomment xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx",
+    "end_header");
 }
 
 static void test_gltf(void)
 {
   /* One triangle: 3 float positions (36 bytes) as a base64 data URI. */
   static const char* const ok =
-    "{\"asset\":{\"version\":\"2.0\"},\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
-    "\"nodes\":[{\"mesh\":0%s}],%s\"buffers\":[{\"byteLength\":36,\"uri\":\"data:application/octet-stream;base64,"
-    "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA\"}],\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],"
+    "{\"asset\":{\"version\":\"2.0\"},\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}"
+    "}]}],"
+    "\"nodes\":[{\"mesh\":0%s}],%s\"buffers\":[{\"byteLength\":36,\"uri\":\"data:application/"
+    "octet-stream;base64,"
+    "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA\"}],\"bufferViews\":[{\"buffer\":0,"
+    "\"byteLength\":36}],"
     "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":%s,\"type\":\"VEC3\"}]}";
   char t[1024];
   snprintf(t, sizeof(t), ok, "", "", "3");
@@ -133,18 +161,24 @@ static void test_gltf(void)
   snprintf(t, sizeof(t), ok, ",\"children\":[1]", "\"scene\":0,", "3");
   expect(gltf, t, "does not exist");
   expect(gltf, "{\"asset\":{\"version\":\"2.0\"}}", "no meshes");
-  expect(gltf, "[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]", "not valid");
-  expect(gltf, "{\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],\"buffers\":[{\"byteLength\":4}]}",
+  expect(gltf,
+    "[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[]]]]]]]]]]]]]]]]]]]]]]]]]]"
+    "]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]",
+    "not valid");
+  expect(gltf,
+    "{\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],\"buffers\":[{"
+    "\"byteLength\":4}]}",
     "no 'uri'");
 }
 
 static void test_xml(void)
 {
   char t[1024];
-  static const char* const piece = "<?xml version=\"1.0\"?><VTKFile type=\"PolyData\" header_type=\"UInt32\">"
-                                   "<PolyData><Piece NumberOfPoints=\"%s\"><Points><DataArray type=\"Float32\" "
-                                   "NumberOfComponents=\"%s\" format=\"%s\" offset=\"%s\"/></Points></Piece>"
-                                   "</PolyData><AppendedData encoding=\"raw\">_%s</AppendedData></VTKFile>";
+  static const char* const piece =
+    "<?xml version=\"1.0\"?><VTKFile type=\"PolyData\" header_type=\"UInt32\">"
+    "<PolyData><Piece NumberOfPoints=\"%s\"><Points><DataArray type=\"Float32\" "
+    "NumberOfComponents=\"%s\" format=\"%s\" offset=\"%s\"/></Points></Piece>"
+    "</PolyData><AppendedData encoding=\"raw\">_%s</AppendedData></VTKFile>";
   snprintf(t, sizeof(t), piece, "1", "3", "appended", "0", "HHHHabcdefghijkl");
   expect(xml, t, NULL);
   snprintf(t, sizeof(t), piece, "1", "3", "appended", "0", "\377\377\377\177abcdefghijkl");
@@ -155,7 +189,8 @@ static void test_xml(void)
   expect(xml, t, "NumberOfPoints");
   snprintf(t, sizeof(t), piece, "1", "2000000000", "appended", "0", "HHHHabcdefghijkl");
   expect(xml, t, "NumberOfComponents");
-  expect(xml, "<VTKFile type=\"ImageData\"><ImageData WholeExtent=\"0 99999 0 99999 0 99999\">", "WholeExtent");
+  expect(xml, "<VTKFile type=\"ImageData\"><ImageData WholeExtent=\"0 99999 0 99999 0 99999\">",
+    "WholeExtent");
   expect(xml, "<VTKFile type=\"ImageData\"><ImageData WholeExtent=\"3 0 0 1 0 1\">", "WholeExtent");
   expect(xml, "no xml", "no VTKFile");
 }
@@ -169,10 +204,13 @@ static void test_not_regular_files(void)
   mkdir(dir, 0700);
   unlink(fifo);
   MRGI_CHECK(mkfifo(fifo, 0600) == 0);
-  MRGI_CHECK(mrgi_ply_check(dir, NULL, &err) == MRGI_ERR_IO && strstr(err.message, "is a directory"));
+  MRGI_CHECK(
+    mrgi_ply_check(dir, NULL, &err) == MRGI_ERR_IO && strstr(err.message, "is a directory"));
   MRGI_CHECK(mrgi_obj_check(fifo, NULL, &err) == MRGI_ERR_IO && strstr(err.message, "FIFO"));
-  MRGI_CHECK(mrgi_vtk_check("/dev/zero", NULL, &err) == MRGI_ERR_IO && strstr(err.message, "device"));
-  MRGI_CHECK(mrgi_gltf_check("/nonexistent/x.gltf", NULL, &err) == MRGI_ERR_IO && strstr(err.message, "cannot open"));
+  MRGI_CHECK(
+    mrgi_vtk_check("/dev/zero", NULL, &err) == MRGI_ERR_IO && strstr(err.message, "device"));
+  MRGI_CHECK(mrgi_gltf_check("/nonexistent/x.gltf", NULL, &err) == MRGI_ERR_IO &&
+    strstr(err.message, "cannot open"));
   unlink(fifo);
   rmdir(dir);
 }

@@ -11,16 +11,25 @@
 #include <sys/stat.h>
 
 /* ---- a small JSON parser: values in one array, children linked ---------- */
-enum { J_NULL, J_FALSE, J_TRUE, J_NUMBER, J_STRING, J_ARRAY, J_OBJECT };
+enum
+{
+  J_NULL,
+  J_FALSE,
+  J_TRUE,
+  J_NUMBER,
+  J_STRING,
+  J_ARRAY,
+  J_OBJECT
+};
 
 typedef struct jvalue
 {
   int32_t type;
-  int32_t first;  /* first child (arrays: elements; objects: keys, each followed by its value) */
-  int32_t next;   /* next sibling */
-  int32_t count;  /* elements (arrays) or members (objects) */
-  size_t start;   /* strings: offset of the first character after the quote */
-  size_t length;  /* strings: raw length */
+  int32_t first; /* first child (arrays: elements; objects: keys, each followed by its value) */
+  int32_t next;  /* next sibling */
+  int32_t count; /* elements (arrays) or members (objects) */
+  size_t start;  /* strings: offset of the first character after the quote */
+  size_t length; /* strings: raw length */
   double number;
 } jvalue;
 
@@ -37,7 +46,8 @@ typedef struct jparser
 
 static void j_ws(jparser* p)
 {
-  while (p->pos < p->n && (p->d[p->pos] == ' ' || p->d[p->pos] == '\t' || p->d[p->pos] == '\n' || p->d[p->pos] == '\r'))
+  while (p->pos < p->n &&
+    (p->d[p->pos] == ' ' || p->d[p->pos] == '\t' || p->d[p->pos] == '\n' || p->d[p->pos] == '\r'))
     ++p->pos;
 }
 
@@ -173,7 +183,8 @@ static int32_t j_value(jparser* p, int depth)
   }
   char buffer[64];
   size_t k = 0;
-  while (p->pos < p->n && k + 1 < sizeof(buffer) && strchr("+-0123456789.eE", p->d[p->pos]) && p->d[p->pos])
+  while (p->pos < p->n && k + 1 < sizeof(buffer) && strchr("+-0123456789.eE", p->d[p->pos]) &&
+    p->d[p->pos])
     buffer[k++] = (char)p->d[p->pos++];
   buffer[k] = '\0';
   char* end = NULL;
@@ -196,7 +207,8 @@ typedef struct gltf
   int64_t bin_size; /* GLB BIN chunk bytes, -1 without */
   double* buffer_length;
   double* view_length;
-  int32_t buffers, views, accessors, meshes, nodes, materials, textures, images, samplers, skins, scenes;
+  int32_t buffers, views, accessors, meshes, nodes, materials, textures, images, samplers, skins,
+    scenes;
 } gltf;
 
 static int j_key_is(const gltf* g, int32_t key, const char* name)
@@ -233,8 +245,10 @@ static mrgi_status fail(gltf* g, const char* fmt, ...)
   return mrgi_error_set(g->err, MRGI_ERR_FORMAT, "'%s': %s", g->name, text);
 }
 
-/* An optional integer member; `*out` = dflt when absent. 0 when present but not an integer in [lo, hi]. */
-static int j_int(const gltf* g, int32_t obj, const char* name, double lo, double hi, double dflt, double* out)
+/* An optional integer member; `*out` = dflt when absent. 0 when present but not an integer in [lo,
+ * hi]. */
+static int j_int(
+  const gltf* g, int32_t obj, const char* name, double lo, double hi, double dflt, double* out)
 {
   const int32_t x = j_get(g, obj, name);
   if (x < 0)
@@ -250,7 +264,8 @@ static int j_int(const gltf* g, int32_t obj, const char* name, double lo, double
 }
 
 /* A reference member: absent is fine unless `required`; else an index in [0, limit). */
-static mrgi_status j_ref(gltf* g, int32_t obj, const char* member, int32_t limit, int required, const char* what, long long i)
+static mrgi_status j_ref(gltf* g, int32_t obj, const char* member, int32_t limit, int required,
+  const char* what, long long i)
 {
   double v = 0;
   const int32_t x = j_get(g, obj, member);
@@ -258,13 +273,14 @@ static mrgi_status j_ref(gltf* g, int32_t obj, const char* member, int32_t limit
     return required ? fail(g, "%s %lld has no '%s'", what, (long long)i, member) : MRGI_OK;
   if (!j_int(g, obj, member, 0, (double)limit - 1, 0, &v) || limit == 0)
   {
-    return mrgi_error_set(g->err, MRGI_ERR_FORMAT, "'%s': %s %lld: '%s' is not an index below %d", g->name, what, i,
-      member, (int)limit);
+    return mrgi_error_set(g->err, MRGI_ERR_FORMAT, "'%s': %s %lld: '%s' is not an index below %d",
+      g->name, what, i, member, (int)limit);
   }
   return MRGI_OK;
 }
 
-/* Whether a URI names a readable regular file next to the document (or a data URI); its size in *size. */
+/* Whether a URI names a readable regular file next to the document (or a data URI); its size in
+ * *size. */
 static mrgi_status uri_size(gltf* g, int32_t uri, const char* what, long long i, double* size)
 {
   const jvalue* u = &g->j.v[uri];
@@ -281,14 +297,16 @@ static mrgi_status uri_size(gltf* g, int32_t uri, const char* what, long long i,
     for (size_t k = 0; k < n; ++k)
     {
       const char c = comma[1 + k];
-      const int ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '+' ||
-        c == '/' || (c == '=' && k + 2 >= n);
+      const int ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
+        c == '+' || c == '/' || (c == '=' && k + 2 >= n);
       if (!ok)
-        return fail(g, "%s %lld: bad base64 in its data URI (at character %lld)", what, (long long)i, (long long)k);
+        return fail(g, "%s %lld: bad base64 in its data URI (at character %lld)", what,
+          (long long)i, (long long)k);
       pad += c == '=';
     }
     if (n % 4)
-      return fail(g, "%s %lld: a base64 data URI whose length (%lld) is not a multiple of 4", what, (long long)i, (long long)n);
+      return fail(g, "%s %lld: a base64 data URI whose length (%lld) is not a multiple of 4", what,
+        (long long)i, (long long)n);
     *size = (double)(n / 4 * 3 - pad);
     return MRGI_OK;
   }
@@ -303,7 +321,8 @@ static mrgi_status uri_size(gltf* g, int32_t uri, const char* what, long long i,
     snprintf(path, sizeof(path), "%s/%.*s", g->base_dir, (int)u->length, s);
   mrgi_error inner;
   if (mrgi_input_check_regular(path, &inner) != MRGI_OK)
-    return mrgi_error_set(g->err, MRGI_ERR_FORMAT, "'%s': %s %lld: %s", g->name, what, i, inner.message);
+    return mrgi_error_set(
+      g->err, MRGI_ERR_FORMAT, "'%s': %s %lld: %s", g->name, what, i, inner.message);
   struct stat st;
   if (stat(path, &st) != 0)
     return fail(g, "%s %lld: its URI cannot be read", what, (long long)i);
@@ -322,7 +341,8 @@ static int type_components(const gltf* g, int32_t t)
   {
     const char* name;
     int n;
-  } types[] = { { "SCALAR", 1 }, { "VEC2", 2 }, { "VEC3", 3 }, { "VEC4", 4 }, { "MAT2", 4 }, { "MAT3", 9 }, { "MAT4", 16 } };
+  } types[] = { { "SCALAR", 1 }, { "VEC2", 2 }, { "VEC3", 3 }, { "VEC4", 4 }, { "MAT2", 4 },
+    { "MAT3", 9 }, { "MAT4", 16 } };
   if (t < 0 || g->j.v[t].type != J_STRING)
     return 0;
   for (size_t k = 0; k < sizeof(types) / sizeof(types[0]); ++k)
@@ -332,7 +352,8 @@ static int type_components(const gltf* g, int32_t t)
 }
 
 /* A range of `bytes` at `offset` within bufferView `view`. */
-static mrgi_status view_range(gltf* g, int32_t obj, const char* member, double offset, double bytes, const char* what, long long i)
+static mrgi_status view_range(gltf* g, int32_t obj, const char* member, double offset, double bytes,
+  const char* what, long long i)
 {
   mrgi_status s = j_ref(g, obj, member, g->views, 1, what, i);
   if (s)
@@ -340,7 +361,8 @@ static mrgi_status view_range(gltf* g, int32_t obj, const char* member, double o
   double view = 0;
   j_int(g, obj, member, 0, 1e18, 0, &view);
   if (offset + bytes > g->view_length[(int32_t)view])
-    return fail(g, "%s %lld needs %lld bytes more than its bufferView holds", what, (long long)i, (long long)(offset + bytes - g->view_length[(int32_t)view]));
+    return fail(g, "%s %lld needs %lld bytes more than its bufferView holds", what, (long long)i,
+      (long long)(offset + bytes - g->view_length[(int32_t)view]));
   return MRGI_OK;
 }
 
@@ -348,15 +370,16 @@ static mrgi_status check_document(gltf* g, int32_t root)
 {
   mrgi_status s = MRGI_OK;
   if (root < 0 || g->j.v[root].type != J_OBJECT)
-    return mrgi_error_set(g->err, MRGI_ERR_FORMAT, "'%s': the glTF document is not a JSON object", g->name);
+    return mrgi_error_set(
+      g->err, MRGI_ERR_FORMAT, "'%s': the glTF document is not a JSON object", g->name);
   const int32_t buffers = j_get(g, root, "buffers"), views = j_get(g, root, "bufferViews");
   const int32_t accessors = j_get(g, root, "accessors"), meshes = j_get(g, root, "meshes");
   const int32_t nodes = j_get(g, root, "nodes"), scenes = j_get(g, root, "scenes");
   const int32_t images = j_get(g, root, "images"), textures = j_get(g, root, "textures");
   const int32_t materials = j_get(g, root, "materials"), skins = j_get(g, root, "skins");
   const int32_t animations = j_get(g, root, "animations"), samplers = j_get(g, root, "samplers");
-  const char* const arrays[] = { "buffers", "bufferViews", "accessors", "meshes", "nodes", "scenes", "images",
-    "textures", "materials", "skins", "animations", "samplers", "cameras" };
+  const char* const arrays[] = { "buffers", "bufferViews", "accessors", "meshes", "nodes", "scenes",
+    "images", "textures", "materials", "skins", "animations", "samplers", "cameras" };
   for (size_t k = 0; k < sizeof(arrays) / sizeof(arrays[0]); ++k)
   {
     const int32_t a = j_get(g, root, arrays[k]);
@@ -386,7 +409,8 @@ static mrgi_status check_document(gltf* g, int32_t root)
   if (!g->buffer_length || !g->view_length)
     return mrgi_error_set(g->err, MRGI_ERR_OUT_OF_MEMORY, "'%s': out of memory", g->name);
   long long i = 0;
-  for (int32_t b = j_count(g, buffers) ? g->j.v[buffers].first : -1; b >= 0; b = g->j.v[b].next, ++i)
+  for (int32_t b = j_count(g, buffers) ? g->j.v[buffers].first : -1; b >= 0;
+       b = g->j.v[b].next, ++i)
   {
     double length = 0, have = 0;
     if (!j_int(g, b, "byteLength", 1, 1e18, -1, &length) || length < 1)
@@ -402,7 +426,8 @@ static mrgi_status check_document(gltf* g, int32_t root)
     else
       return fail(g, "buffer %lld has no 'uri' (and no GLB binary chunk)", (long long)i);
     if (have < length)
-      return fail(g, "buffer %lld: byteLength %lld is more than its data hold", (long long)i, (long long)length);
+      return fail(g, "buffer %lld: byteLength %lld is more than its data hold", (long long)i,
+        (long long)length);
     g->buffer_length[(int32_t)i] = length;
   }
   i = 0;
@@ -412,15 +437,19 @@ static mrgi_status check_document(gltf* g, int32_t root)
     if ((s = j_ref(g, v, "buffer", g->buffers, 1, "bufferView", i)))
       return s;
     j_int(g, v, "buffer", 0, 1e18, 0, &buffer);
-    if (!j_int(g, v, "byteOffset", 0, 1e18, 0, &offset) || !j_int(g, v, "byteLength", 1, 1e18, -1, &length) ||
-      length < 1 || !j_int(g, v, "byteStride", 4, 252, 0, &stride))
-      return fail(g, "bufferView %lld: byteOffset, byteLength or byteStride is not valid", (long long)i);
+    if (!j_int(g, v, "byteOffset", 0, 1e18, 0, &offset) ||
+      !j_int(g, v, "byteLength", 1, 1e18, -1, &length) || length < 1 ||
+      !j_int(g, v, "byteStride", 4, 252, 0, &stride))
+      return fail(
+        g, "bufferView %lld: byteOffset, byteLength or byteStride is not valid", (long long)i);
     if (offset + length > g->buffer_length[(int32_t)buffer])
-      return fail(g, "bufferView %lld reaches beyond its buffer (byte %lld)", (long long)i, (long long)(offset + length));
+      return fail(g, "bufferView %lld reaches beyond its buffer (byte %lld)", (long long)i,
+        (long long)(offset + length));
     g->view_length[(int32_t)i] = length;
   }
   i = 0;
-  for (int32_t a = j_count(g, accessors) ? g->j.v[accessors].first : -1; a >= 0; a = g->j.v[a].next, ++i)
+  for (int32_t a = j_count(g, accessors) ? g->j.v[accessors].first : -1; a >= 0;
+       a = g->j.v[a].next, ++i)
   {
     double ctype = 0, count = 0, offset = 0;
     if (!j_int(g, a, "componentType", 0, 1e9, -1, &ctype) || component_size(ctype) == 0)
@@ -445,7 +474,8 @@ static mrgi_status check_document(gltf* g, int32_t root)
         vv = g->j.v[vv].next;
       j_int(g, vv, "byteStride", 4, 252, element, &stride);
       if (offset + (count - 1) * stride + element > g->view_length[(int32_t)view])
-        return fail(g, "accessor %lld: %lld elements do not fit in its bufferView", (long long)i, (long long)count);
+        return fail(g, "accessor %lld: %lld elements do not fit in its bufferView", (long long)i,
+          (long long)count);
     }
     else if (count * element > (double)(1 << 28))
       return fail(g, "accessor %lld: %lld elements without data", (long long)i, (long long)count);
@@ -459,11 +489,13 @@ static mrgi_status check_document(gltf* g, int32_t root)
       if (!j_int(g, idx, "componentType", 0, 1e9, -1, &sctype) || component_size(sctype) == 0 ||
         !j_int(g, idx, "byteOffset", 0, 1e18, 0, &soff))
         return fail(g, "accessor %lld: bad sparse indices", (long long)i);
-      if ((s = view_range(g, idx, "bufferView", soff, scount * component_size(sctype), "sparse indices of accessor", i)))
+      if ((s = view_range(g, idx, "bufferView", soff, scount * component_size(sctype),
+             "sparse indices of accessor", i)))
         return s;
       if (!j_int(g, val, "byteOffset", 0, 1e18, 0, &soff))
         return fail(g, "accessor %lld: bad sparse values", (long long)i);
-      if ((s = view_range(g, val, "bufferView", soff, scount * element, "sparse values of accessor", i)))
+      if ((s = view_range(
+             g, val, "bufferView", soff, scount * element, "sparse values of accessor", i)))
         return s;
     }
   }
@@ -478,23 +510,30 @@ static mrgi_status check_document(gltf* g, int32_t root)
       if (g->j.v[p].type != J_OBJECT)
         return fail(g, "mesh %lld: a primitive is not an object", (long long)i);
       const int32_t attributes = j_get(g, p, "attributes");
-      if (attributes < 0 || g->j.v[attributes].type != J_OBJECT || j_get(g, attributes, "POSITION") < 0)
+      if (attributes < 0 || g->j.v[attributes].type != J_OBJECT ||
+        j_get(g, attributes, "POSITION") < 0)
         return fail(g, "mesh %lld: a primitive without a POSITION attribute", (long long)i);
       for (int32_t k = g->j.v[attributes].first; k >= 0; k = g->j.v[g->j.v[k].next].next)
       {
         const jvalue* x = &g->j.v[g->j.v[k].next];
-        if (x->type != J_NUMBER || x->number != floor(x->number) || x->number < 0 || x->number >= g->accessors)
-          return fail(g, "mesh %lld: an attribute names accessor %lld, which does not exist", (long long)i, (long long)(x->type == J_NUMBER ? (long long)x->number : -1));
+        if (x->type != J_NUMBER || x->number != floor(x->number) || x->number < 0 ||
+          x->number >= g->accessors)
+          return fail(g, "mesh %lld: an attribute names accessor %lld, which does not exist",
+            (long long)i, (long long)(x->type == J_NUMBER ? (long long)x->number : -1));
       }
-      if ((s = j_ref(g, p, "indices", g->accessors, 0, "mesh", i)) || (s = j_ref(g, p, "material", g->materials, 0, "mesh", i)))
+      if ((s = j_ref(g, p, "indices", g->accessors, 0, "mesh", i)) ||
+        (s = j_ref(g, p, "material", g->materials, 0, "mesh", i)))
         return s;
       const int32_t targets = j_get(g, p, "targets");
       for (int32_t t = j_count(g, targets) ? g->j.v[targets].first : -1; t >= 0; t = g->j.v[t].next)
-        for (int32_t k = g->j.v[t].type == J_OBJECT ? g->j.v[t].first : -1; k >= 0; k = g->j.v[g->j.v[k].next].next)
+        for (int32_t k = g->j.v[t].type == J_OBJECT ? g->j.v[t].first : -1; k >= 0;
+             k = g->j.v[g->j.v[k].next].next)
         {
           const jvalue* x = &g->j.v[g->j.v[k].next];
-          if (x->type != J_NUMBER || x->number < 0 || x->number >= g->accessors || x->number != floor(x->number))
-            return fail(g, "mesh %lld: a morph target names an accessor that does not exist", (long long)i);
+          if (x->type != J_NUMBER || x->number < 0 || x->number >= g->accessors ||
+            x->number != floor(x->number))
+            return fail(
+              g, "mesh %lld: a morph target names an accessor that does not exist", (long long)i);
         }
     }
   }
@@ -509,7 +548,8 @@ static mrgi_status check_document(gltf* g, int32_t root)
   for (int32_t n = g->nodes ? g->j.v[nodes].first : -1; n >= 0 && !s; n = g->j.v[n].next, ++i)
   {
     node_value[(int32_t)i] = n;
-    if ((s = j_ref(g, n, "mesh", g->meshes, 0, "node", i)) || (s = j_ref(g, n, "skin", g->skins, 0, "node", i)) ||
+    if ((s = j_ref(g, n, "mesh", g->meshes, 0, "node", i)) ||
+      (s = j_ref(g, n, "skin", g->skins, 0, "node", i)) ||
       (s = j_ref(g, n, "camera", j_count(g, j_get(g, root, "cameras")), 0, "node", i)))
       break;
     const int32_t children = j_get(g, n, "children");
@@ -518,8 +558,10 @@ static mrgi_status check_document(gltf* g, int32_t root)
     for (int32_t c = children >= 0 ? g->j.v[children].first : -1; c >= 0 && !s; c = g->j.v[c].next)
     {
       const jvalue* x = &g->j.v[c];
-      if (x->type != J_NUMBER || x->number < 0 || x->number >= g->nodes || x->number != floor(x->number))
-        s = fail(g, "node %lld has a child that does not exist (%lld)", (long long)i, (long long)(x->type == J_NUMBER ? (long long)x->number : -1));
+      if (x->type != J_NUMBER || x->number < 0 || x->number >= g->nodes ||
+        x->number != floor(x->number))
+        s = fail(g, "node %lld has a child that does not exist (%lld)", (long long)i,
+          (long long)(x->type == J_NUMBER ? (long long)x->number : -1));
     }
   }
   for (int32_t start = 0; start < g->nodes && !s; ++start)
@@ -543,7 +585,8 @@ static mrgi_status check_document(gltf* g, int32_t root)
       cursor[top] = g->j.v[c].next;
       const int32_t child = (int32_t)g->j.v[c].number;
       if (state[child] == 1)
-        s = fail(g, "the node graph has a cycle (node %lld is its own ancestor, through node %lld)", (long long)child, (long long)stack[top]);
+        s = fail(g, "the node graph has a cycle (node %lld is its own ancestor, through node %lld)",
+          (long long)child, (long long)stack[top]);
       else if (state[child] == 0)
       {
         state[child] = 1;
@@ -568,13 +611,16 @@ static mrgi_status check_document(gltf* g, int32_t root)
     for (int32_t c = j_count(g, list) ? g->j.v[list].first : -1; c >= 0; c = g->j.v[c].next)
     {
       const jvalue* x = &g->j.v[c];
-      if (x->type != J_NUMBER || x->number < 0 || x->number >= g->nodes || x->number != floor(x->number))
-        return fail(g, "scene %lld names a node that does not exist (%lld)", (long long)i, (long long)(x->type == J_NUMBER ? (long long)x->number : -1));
+      if (x->type != J_NUMBER || x->number < 0 || x->number >= g->nodes ||
+        x->number != floor(x->number))
+        return fail(g, "scene %lld names a node that does not exist (%lld)", (long long)i,
+          (long long)(x->type == J_NUMBER ? (long long)x->number : -1));
     }
   }
   i = 0;
   for (int32_t t = g->textures ? g->j.v[textures].first : -1; t >= 0; t = g->j.v[t].next, ++i)
-    if ((s = j_ref(g, t, "source", g->images, 0, "texture", i)) || (s = j_ref(g, t, "sampler", g->samplers, 0, "texture", i)))
+    if ((s = j_ref(g, t, "source", g->images, 0, "texture", i)) ||
+      (s = j_ref(g, t, "sampler", g->samplers, 0, "texture", i)))
       return s;
   i = 0;
   for (int32_t im = g->images ? g->j.v[images].first : -1; im >= 0; im = g->j.v[im].next, ++i)
@@ -593,8 +639,9 @@ static mrgi_status check_document(gltf* g, int32_t root)
   for (int32_t m = g->materials ? g->j.v[materials].first : -1; m >= 0; m = g->j.v[m].next, ++i)
   {
     const int32_t pbr = j_get(g, m, "pbrMetallicRoughness");
-    const int32_t refs[5] = { j_get(g, pbr, "baseColorTexture"), j_get(g, pbr, "metallicRoughnessTexture"),
-      j_get(g, m, "normalTexture"), j_get(g, m, "occlusionTexture"), j_get(g, m, "emissiveTexture") };
+    const int32_t refs[5] = { j_get(g, pbr, "baseColorTexture"),
+      j_get(g, pbr, "metallicRoughnessTexture"), j_get(g, m, "normalTexture"),
+      j_get(g, m, "occlusionTexture"), j_get(g, m, "emissiveTexture") };
     for (int k = 0; k < 5; ++k)
       if (refs[k] >= 0 && (s = j_ref(g, refs[k], "index", g->textures, 1, "material", i)))
         return s;
@@ -602,7 +649,8 @@ static mrgi_status check_document(gltf* g, int32_t root)
   i = 0;
   for (int32_t sk = g->skins ? g->j.v[skins].first : -1; sk >= 0; sk = g->j.v[sk].next, ++i)
   {
-    if ((s = j_ref(g, sk, "inverseBindMatrices", g->accessors, 0, "skin", i)) || (s = j_ref(g, sk, "skeleton", g->nodes, 0, "skin", i)))
+    if ((s = j_ref(g, sk, "inverseBindMatrices", g->accessors, 0, "skin", i)) ||
+      (s = j_ref(g, sk, "skeleton", g->nodes, 0, "skin", i)))
       return s;
     const int32_t joints = j_get(g, sk, "joints");
     if (j_count(g, joints) == 0)
@@ -610,17 +658,21 @@ static mrgi_status check_document(gltf* g, int32_t root)
     for (int32_t c = g->j.v[joints].first; c >= 0; c = g->j.v[c].next)
     {
       const jvalue* x = &g->j.v[c];
-      if (x->type != J_NUMBER || x->number < 0 || x->number >= g->nodes || x->number != floor(x->number))
-        return fail(g, "skin %lld names a joint that does not exist (%lld)", (long long)i, (long long)(x->type == J_NUMBER ? (long long)x->number : -1));
+      if (x->type != J_NUMBER || x->number < 0 || x->number >= g->nodes ||
+        x->number != floor(x->number))
+        return fail(g, "skin %lld names a joint that does not exist (%lld)", (long long)i,
+          (long long)(x->type == J_NUMBER ? (long long)x->number : -1));
     }
   }
   i = 0;
-  for (int32_t an = j_count(g, animations) ? g->j.v[animations].first : -1; an >= 0; an = g->j.v[an].next, ++i)
+  for (int32_t an = j_count(g, animations) ? g->j.v[animations].first : -1; an >= 0;
+       an = g->j.v[an].next, ++i)
   {
     const int32_t smp = j_get(g, an, "samplers"), channels = j_get(g, an, "channels");
     const int32_t nsamplers = j_count(g, smp);
     for (int32_t x = nsamplers ? g->j.v[smp].first : -1; x >= 0; x = g->j.v[x].next)
-      if ((s = j_ref(g, x, "input", g->accessors, 1, "animation", i)) || (s = j_ref(g, x, "output", g->accessors, 1, "animation", i)))
+      if ((s = j_ref(g, x, "input", g->accessors, 1, "animation", i)) ||
+        (s = j_ref(g, x, "output", g->accessors, 1, "animation", i)))
         return s;
     for (int32_t x = j_count(g, channels) ? g->j.v[channels].first : -1; x >= 0; x = g->j.v[x].next)
     {
@@ -657,14 +709,17 @@ mrgi_status mrgi_gltf_check_buffer(const void* data, size_t size, const char* na
   if (binary)
   {
     if (size < 20 || le32(d + 4) != 2)
-      return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': not a version 2 GLB file (or truncated)", g.name);
+      return mrgi_error_set(
+        err, MRGI_ERR_FORMAT, "'%s': not a version 2 GLB file (or truncated)", g.name);
     const uint32_t total = le32(d + 8);
     if (total > size || total < 20)
-      return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': the GLB header declares %u bytes, the file has %llu",
-        g.name, total, (unsigned long long)size);
+      return mrgi_error_set(err, MRGI_ERR_FORMAT,
+        "'%s': the GLB header declares %u bytes, the file has %llu", g.name, total,
+        (unsigned long long)size);
     const uint32_t jlen = le32(d + 12);
     if (le32(d + 16) != 0x4E4F534Au || jlen > total - 20)
-      return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': the GLB JSON chunk is missing or longer than the file", g.name);
+      return mrgi_error_set(err, MRGI_ERR_FORMAT,
+        "'%s': the GLB JSON chunk is missing or longer than the file", g.name);
     json = d + 20;
     json_size = jlen;
     const size_t next = 20 + (size_t)jlen;
@@ -674,7 +729,8 @@ mrgi_status mrgi_gltf_check_buffer(const void* data, size_t size, const char* na
       if (le32(d + next + 4) == 0x004E4942u)
       {
         if (blen > total - next - 8)
-          return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': the GLB binary chunk is longer than the file", g.name);
+          return mrgi_error_set(
+            err, MRGI_ERR_FORMAT, "'%s': the GLB binary chunk is longer than the file", g.name);
         g.bin_size = blen;
       }
     }

@@ -36,8 +36,8 @@ typedef struct mrgi_input
  *        links are followed) and map it.
  * @return ::MRGI_OK; ::MRGI_ERR_IO when it does not exist, cannot be read,
  *         is a directory, FIFO, device or socket ("is a directory", ...);
- *         ::MRGI_ERR_FORMAT when it is empty; ::MRGI_ERR_INVALID_ARGUMENT for NULL arguments. The message
- *         names the path. On failure `in` is left empty.
+ *         ::MRGI_ERR_FORMAT when it is empty; ::MRGI_ERR_INVALID_ARGUMENT for NULL arguments. The
+ * message names the path. On failure `in` is left empty.
  */
 mrgi_status mrgi_input_map(const char* path, mrgi_input* in, mrgi_error* err);
 

@@ -73,9 +73,9 @@ mrgi_status mrgi_obj_check_buffer(
     return mrgi_error_set(err, MRGI_ERR_OUT_OF_MEMORY, "'%s': out of memory", name);
   mrgi_line_cursor c;
   mrgi_line_cursor_init(&c, data, size);
-  int64_t counts[3] = { 0, 0, 0 };     /* v, vt, vn so far */
-  int64_t max_index[3] = { 0, 0, 0 };  /* largest positive index used */
-  int64_t max_line[3] = { 0, 0, 0 };   /* where it was used */
+  int64_t counts[3] = { 0, 0, 0 };    /* v, vt, vn so far */
+  int64_t max_index[3] = { 0, 0, 0 }; /* largest positive index used */
+  int64_t max_line[3] = { 0, 0, 0 };  /* where it was used */
   int64_t faces = 0;
   mrgi_status status = MRGI_OK;
   int r = 0;
@@ -87,7 +87,8 @@ mrgi_status mrgi_obj_check_buffer(
     {
       if (count_numbers(s + 1, 3) < 3)
       {
-        status = mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s' line %lld: a vertex needs 3 numbers", name, (long long)ln);
+        status = mrgi_error_set(
+          err, MRGI_ERR_FORMAT, "'%s' line %lld: a vertex needs 3 numbers", name, (long long)ln);
         break;
       }
       ++counts[0];
@@ -96,7 +97,8 @@ mrgi_status mrgi_obj_check_buffer(
     {
       if (count_numbers(s + 2, 1) < 1)
       {
-        status = mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s' line %lld: a texture coordinate needs a number", name, (long long)ln);
+        status = mrgi_error_set(err, MRGI_ERR_FORMAT,
+          "'%s' line %lld: a texture coordinate needs a number", name, (long long)ln);
         break;
       }
       ++counts[1];
@@ -105,12 +107,14 @@ mrgi_status mrgi_obj_check_buffer(
     {
       if (count_numbers(s + 2, 3) < 3)
       {
-        status = mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s' line %lld: a normal needs 3 numbers", name, (long long)ln);
+        status = mrgi_error_set(
+          err, MRGI_ERR_FORMAT, "'%s' line %lld: a normal needs 3 numbers", name, (long long)ln);
         break;
       }
       ++counts[2];
     }
-    else if ((s[0] == 'f' || s[0] == 'l' || s[0] == 'p') && (s[1] == ' ' || s[1] == '\t' || s[1] == '\0'))
+    else if ((s[0] == 'f' || s[0] == 'l' || s[0] == 'p') &&
+      (s[1] == ' ' || s[1] == '\t' || s[1] == '\0'))
     {
       const char kind = s[0];
       const int need = kind == 'f' ? 3 : kind == 'l' ? 2 : 1;
@@ -124,15 +128,16 @@ mrgi_status mrgi_obj_check_buffer(
           const int got = parse_index(&s, &v);
           if (got < 0 || (k == 0 && got == 0))
           {
-            status = mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s' line %lld: bad index in '%c' line", name, (long long)ln, kind);
+            status = mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s' line %lld: bad index in '%c' line",
+              name, (long long)ln, kind);
             break;
           }
           if (got > 0 && !index_ok(v, counts[k], &max_index[k]))
           {
             static const char* const what[3] = { "vertex", "texture coordinate", "normal" };
             status = mrgi_error_set(err, MRGI_ERR_FORMAT,
-              "'%s' line %lld: %s index %lld out of range (%lld declared so far)", name, (long long)ln,
-              what[k], (long long)v, (long long)counts[k]);
+              "'%s' line %lld: %s index %lld out of range (%lld declared so far)", name,
+              (long long)ln, what[k], (long long)v, (long long)counts[k]);
             break;
           }
           if (got > 0 && v == max_index[k])
@@ -145,7 +150,8 @@ mrgi_status mrgi_obj_check_buffer(
           break;
         if (*s != '\0' && *s != ' ' && *s != '\t')
         {
-          status = mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s' line %lld: bad reference in '%c' line", name, (long long)ln, kind);
+          status = mrgi_error_set(err, MRGI_ERR_FORMAT,
+            "'%s' line %lld: bad reference in '%c' line", name, (long long)ln, kind);
           break;
         }
         ++refs;
@@ -155,8 +161,9 @@ mrgi_status mrgi_obj_check_buffer(
         break;
       if (refs < need)
       {
-        status = mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s' line %lld: a '%c' line needs at least %d vertices, it has %d",
-          name, (long long)ln, kind, need, refs);
+        status = mrgi_error_set(err, MRGI_ERR_FORMAT,
+          "'%s' line %lld: a '%c' line needs at least %d vertices, it has %d", name, (long long)ln,
+          kind, need, refs);
         break;
       }
       faces += kind == 'f';
@@ -172,8 +179,9 @@ mrgi_status mrgi_obj_check_buffer(
     if (max_index[k] > counts[k])
     {
       static const char* const what[3] = { "vertex", "texture coordinate", "normal" };
-      status = mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s' line %lld: %s index %lld out of range (the file has %lld)",
-        name, (long long)max_line[k], what[k], (long long)max_index[k], (long long)counts[k]);
+      status = mrgi_error_set(err, MRGI_ERR_FORMAT,
+        "'%s' line %lld: %s index %lld out of range (the file has %lld)", name,
+        (long long)max_line[k], what[k], (long long)max_index[k], (long long)counts[k]);
     }
   }
   if (status == MRGI_OK && counts[0] == 0)

@@ -32,8 +32,8 @@ extern "C" {
 /** What the file declared. */
 typedef struct mrgi_obj_info
 {
-  int64_t vertex_count;   /**< "v" lines. */
-  int64_t face_count;     /**< "f" lines. */
+  int64_t vertex_count; /**< "v" lines. */
+  int64_t face_count;   /**< "f" lines. */
 } mrgi_obj_info;
 
 /**

@@ -46,13 +46,13 @@ static int ply_is_integer_type(const char* name)
 /* One property of an element. */
 typedef struct ply_property
 {
-  int32_t size;       /* bytes of the scalar, or of a list's items */
-  int32_t is_float;   /* scalar or list items are floating point */
+  int32_t size;     /* bytes of the scalar, or of a list's items */
+  int32_t is_float; /* scalar or list items are floating point */
   int32_t is_unsigned;
   int32_t is_list;
   int32_t count_size; /* bytes of a list's count */
   int32_t count_unsigned;
-  int32_t is_index;   /* the face element's vertex_indices / vertex_index */
+  int32_t is_index; /* the face element's vertex_indices / vertex_index */
 } ply_property;
 
 #define PLY_MAX_ELEMENTS 32
@@ -97,9 +97,11 @@ static mrgi_status ply_parse_header(
     if (r < 0)
     {
       if (c.line_number == 0)
-        return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s' is not a PLY file (no 'ply' magic line)", name);
-      return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': PLY header line %lld is longer than %d bytes",
-        name, (long long)c.line_number + 1, PLY_MAX_HEADER_LINE - 1);
+        return mrgi_error_set(
+          err, MRGI_ERR_FORMAT, "'%s' is not a PLY file (no 'ply' magic line)", name);
+      return mrgi_error_set(err, MRGI_ERR_FORMAT,
+        "'%s': PLY header line %lld is longer than %d bytes", name, (long long)c.line_number + 1,
+        PLY_MAX_HEADER_LINE - 1);
     }
     size_t n = strlen(line);
     while (n > 0 && (line[n - 1] == ' ' || line[n - 1] == '\t'))
@@ -109,7 +111,8 @@ static mrgi_status ply_parse_header(
     if (c.line_number == 1)
     {
       if (strcmp(line, "ply") != 0)
-        return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s' is not a PLY file (no 'ply' magic line)", name);
+        return mrgi_error_set(
+          err, MRGI_ERR_FORMAT, "'%s' is not a PLY file (no 'ply' magic line)", name);
       continue;
     }
     if (fields <= 0 || strcmp(word, "comment") == 0 || strcmp(word, "obj_info") == 0)
@@ -117,7 +120,8 @@ static mrgi_status ply_parse_header(
     if (strcmp(word, "format") == 0)
     {
       if (fields < 3 || strcmp(b, "1.0") != 0)
-        return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': unsupported PLY format line '%s'", name, line);
+        return mrgi_error_set(
+          err, MRGI_ERR_FORMAT, "'%s': unsupported PLY format line '%s'", name, line);
       if (strcmp(a, "ascii") == 0)
         h->binary = 0;
       else if (strcmp(a, "binary_little_endian") == 0)
@@ -134,7 +138,8 @@ static mrgi_status ply_parse_header(
       if (fields < 3 || !end || *end != '\0' || count < 0 || count >= INT32_MAX)
         return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': bad element line '%s'", name, line);
       if (h->element_count == PLY_MAX_ELEMENTS)
-        return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': more than %d PLY elements", name, PLY_MAX_ELEMENTS);
+        return mrgi_error_set(
+          err, MRGI_ERR_FORMAT, "'%s': more than %d PLY elements", name, PLY_MAX_ELEMENTS);
       ply_element* e = &h->elements[h->element_count++];
       memset(e, 0, sizeof(*e));
       snprintf(e->name, sizeof(e->name), "%s", a);
@@ -146,8 +151,8 @@ static mrgi_status ply_parse_header(
         return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': property before any element", name);
       ply_element* e = &h->elements[h->element_count - 1];
       if (e->property_count == PLY_MAX_PROPERTIES)
-        return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': more than %d properties in element '%s'", name,
-          PLY_MAX_PROPERTIES, e->name);
+        return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': more than %d properties in element '%s'",
+          name, PLY_MAX_PROPERTIES, e->name);
       ply_property* p = &e->properties[e->property_count++];
       memset(p, 0, sizeof(*p));
       const char* pname = NULL;
@@ -166,7 +171,8 @@ static mrgi_status ply_parse_header(
           (strcmp(pname, "vertex_indices") == 0 || strcmp(pname, "vertex_index") == 0))
         {
           if (p->is_float)
-            return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': face indices of a floating-point type ('%s')", name, line);
+            return mrgi_error_set(err, MRGI_ERR_FORMAT,
+              "'%s': face indices of a floating-point type ('%s')", name, line);
           p->is_index = 1;
         }
       }
@@ -193,7 +199,8 @@ static mrgi_status ply_parse_header(
     }
   }
   if (!ended)
-    return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': the PLY header never ends (no end_header)", name);
+    return mrgi_error_set(
+      err, MRGI_ERR_FORMAT, "'%s': the PLY header never ends (no end_header)", name);
   if (h->binary < 0)
     return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': the PLY header has no format line", name);
   h->body = c.pos;
@@ -201,7 +208,8 @@ static mrgi_status ply_parse_header(
 }
 
 /* Reads a binary scalar of `size` bytes at p (byte order: big when `big`). */
-static double ply_read_binary(const unsigned char* p, int32_t size, int32_t is_float, int32_t is_unsigned, int big)
+static double ply_read_binary(
+  const unsigned char* p, int32_t size, int32_t is_float, int32_t is_unsigned, int big)
 {
   unsigned char b[8];
   for (int32_t i = 0; i < size; ++i)
@@ -229,8 +237,8 @@ static double ply_read_binary(const unsigned char* p, int32_t size, int32_t is_f
   return (double)((int64_t)(u << shift) >> shift);
 }
 
-static mrgi_status ply_check_binary(
-  const unsigned char* data, size_t size, const char* name, const ply_header* h, int64_t nv, mrgi_error* err)
+static mrgi_status ply_check_binary(const unsigned char* data, size_t size, const char* name,
+  const ply_header* h, int64_t nv, mrgi_error* err)
 {
   size_t pos = h->body;
   const int big = h->binary == 2;
@@ -254,8 +262,9 @@ static mrgi_status ply_check_binary(
         const double count = ply_read_binary(data + pos, p->count_size, 0, p->count_unsigned, big);
         pos += (size_t)p->count_size;
         if (count < 0)
-          return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': element '%s' %lld has a negative list count (%.0f)",
-            name, e->name, (long long)i, count);
+          return mrgi_error_set(err, MRGI_ERR_FORMAT,
+            "'%s': element '%s' %lld has a negative list count (%.0f)", name, e->name, (long long)i,
+            count);
         if (count > (double)((size - pos) / (size_t)p->size))
           goto truncated;
         const size_t items = (size_t)count;
@@ -263,10 +272,12 @@ static mrgi_status ply_check_binary(
         {
           for (size_t k = 0; k < items; ++k)
           {
-            const double v = ply_read_binary(data + pos + k * (size_t)p->size, p->size, 0, p->is_unsigned, big);
+            const double v =
+              ply_read_binary(data + pos + k * (size_t)p->size, p->size, 0, p->is_unsigned, big);
             if (v < 0 || v >= (double)nv)
               return mrgi_error_set(err, MRGI_ERR_FORMAT,
-                "'%s': face %lld refers to vertex %.0f, outside [0, %lld)", name, (long long)i, v, (long long)nv);
+                "'%s': face %lld refers to vertex %.0f, outside [0, %lld)", name, (long long)i, v,
+                (long long)nv);
           }
         }
         pos += items * (size_t)p->size;
@@ -276,7 +287,8 @@ static mrgi_status ply_check_binary(
   return MRGI_OK;
 truncated:
   return mrgi_error_set(err, MRGI_ERR_FORMAT,
-    "'%s' is truncated: the PLY header declares more data than the file's %lld bytes", name, (long long)size);
+    "'%s' is truncated: the PLY header declares more data than the file's %lld bytes", name,
+    (long long)size);
 }
 
 /* Next blank-separated token of `*s`, NUL-terminated in place; NULL when none. */
@@ -307,8 +319,8 @@ static int ply_number(const char* token, double* value)
   return end != token && *end == '\0';
 }
 
-static mrgi_status ply_check_ascii(
-  const unsigned char* data, size_t size, const char* name, const ply_header* h, int64_t nv, mrgi_error* err)
+static mrgi_status ply_check_ascii(const unsigned char* data, size_t size, const char* name,
+  const ply_header* h, int64_t nv, mrgi_error* err)
 {
   char* line = (char*)malloc(MRGI_INPUT_MAX_LINE + 1);
   if (!line)
@@ -336,7 +348,8 @@ static mrgi_status ply_check_ascii(
       }
       if (r < 0)
       {
-        status = mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': a PLY data line is longer than %d bytes", name, MRGI_INPUT_MAX_LINE);
+        status = mrgi_error_set(err, MRGI_ERR_FORMAT,
+          "'%s': a PLY data line is longer than %d bytes", name, MRGI_INPUT_MAX_LINE);
         break;
       }
       if (r == 0)
@@ -354,16 +367,16 @@ static mrgi_status ply_check_ascii(
         char* t = ply_token(&s);
         if (!t || !ply_number(t, &v))
         {
-          status = mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': element '%s' %lld: %s", name, e->name,
-            (long long)i, t ? "a value is not a number" : "too few values on its line");
+          status = mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': element '%s' %lld: %s", name,
+            e->name, (long long)i, t ? "a value is not a number" : "too few values on its line");
           break;
         }
         if (!p->is_list)
           continue;
         if (!(v >= 0) || v != floor(v))
         {
-          status = mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': element '%s' %lld: bad list count '%s'", name,
-            e->name, (long long)i, t);
+          status = mrgi_error_set(err, MRGI_ERR_FORMAT,
+            "'%s': element '%s' %lld: bad list count '%s'", name, e->name, (long long)i, t);
           break;
         }
         for (double k = 0; k < v; ++k)
@@ -372,14 +385,16 @@ static mrgi_status ply_check_ascii(
           t = ply_token(&s);
           if (!t || !ply_number(t, &item))
           {
-            status = mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': element '%s' %lld: %s", name, e->name,
-              (long long)i, t ? "a list item is not a number" : "fewer list items than its count");
+            status = mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': element '%s' %lld: %s", name,
+              e->name, (long long)i,
+              t ? "a list item is not a number" : "fewer list items than its count");
             break;
           }
           if (p->is_index && (!(item >= 0) || item >= (double)nv || item != floor(item)))
           {
-            status = mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': face %lld refers to vertex %s, outside [0, %lld)",
-              name, (long long)i, t, (long long)nv);
+            status = mrgi_error_set(err, MRGI_ERR_FORMAT,
+              "'%s': face %lld refers to vertex %s, outside [0, %lld)", name, (long long)i, t,
+              (long long)nv);
             break;
           }
         }
@@ -406,7 +421,8 @@ mrgi_status mrgi_ply_check_buffer(
     if (strcmp(h->elements[i].name, "vertex") == 0)
     {
       if (vertex)
-        status = mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': the PLY file has two vertex elements", name);
+        status =
+          mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': the PLY file has two vertex elements", name);
       vertex = &h->elements[i];
     }
     if (strcmp(h->elements[i].name, "face") == 0)
@@ -424,8 +440,9 @@ mrgi_status mrgi_ply_check_buffer(
   }
   if (status == MRGI_OK)
   {
-    status = h->binary ? ply_check_binary((const unsigned char*)data, size, name, h, vertex->count, err)
-                       : ply_check_ascii((const unsigned char*)data, size, name, h, vertex->count, err);
+    status = h->binary
+      ? ply_check_binary((const unsigned char*)data, size, name, h, vertex->count, err)
+      : ply_check_ascii((const unsigned char*)data, size, name, h, vertex->count, err);
   }
   if (status == MRGI_OK && info)
   {

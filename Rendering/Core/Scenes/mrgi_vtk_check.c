@@ -54,8 +54,8 @@ static mrgi_status vtk_fail(vtk_reader* r, const char* what)
 
 static mrgi_status vtk_truncated(vtk_reader* r, const char* section)
 {
-  return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s' is truncated or malformed: %s data missing or not numbers",
-    r->name, section);
+  return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
+    "'%s' is truncated or malformed: %s data missing or not numbers", r->name, section);
 }
 
 /* Reads a token that must be there; an error naming `what` otherwise. */
@@ -63,7 +63,8 @@ static mrgi_status vtk_need_token(vtk_reader* r, const char* what)
 {
   const int t = vtk_token(r);
   if (t < 0)
-    return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': a word longer than 255 bytes where %s belongs", r->name, what);
+    return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
+      "'%s': a word longer than 255 bytes where %s belongs", r->name, what);
   if (t == 0)
     return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s' is truncated: %s missing", r->name, what);
   return MRGI_OK;
@@ -78,7 +79,8 @@ static mrgi_status vtk_need_int(vtk_reader* r, const char* what, int64_t* v)
   errno = 0;
   const long long x = strtoll(r->tok, &end, 10);
   if (end == r->tok || *end || errno == ERANGE)
-    return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': %s is not an integer ('%s')", r->name, what, r->tok);
+    return mrgi_error_set(
+      r->err, MRGI_ERR_FORMAT, "'%s': %s is not an integer ('%s')", r->name, what, r->tok);
   *v = x;
   return MRGI_OK;
 }
@@ -110,10 +112,10 @@ static int vtk_type_size(const char* t)
     const char* name;
     int size;
   } types[] = { { "unsigned_char", 1 }, { "char", 1 }, { "signed_char", 1 }, { "short", 2 },
-    { "unsigned_short", 2 }, { "int", 4 }, { "unsigned_int", 4 }, { "long", 8 }, { "unsigned_long", 8 },
-    { "vtktypeint64", 8 }, { "vtktypeuint64", 8 }, { "vtktypeint32", 4 }, { "vtktypeuint32", 4 },
-    { "vtkidtype", 4 }, { "float", 4 }, { "double", 8 }, { "bit", -1 }, { "string", -1 },
-    { "utf8_string", -1 }, { "variant", -1 } };
+    { "unsigned_short", 2 }, { "int", 4 }, { "unsigned_int", 4 }, { "long", 8 },
+    { "unsigned_long", 8 }, { "vtktypeint64", 8 }, { "vtktypeuint64", 8 }, { "vtktypeint32", 4 },
+    { "vtktypeuint32", 4 }, { "vtkidtype", 4 }, { "float", 4 }, { "double", 8 }, { "bit", -1 },
+    { "string", -1 }, { "utf8_string", -1 }, { "variant", -1 } };
   for (size_t i = 0; i < sizeof(types) / sizeof(types[0]); ++i)
     if (strcasecmp(types[i].name, t) == 0)
       return types[i].size;
@@ -151,7 +153,8 @@ static int vtk_get_int(vtk_reader* r, int size, int uns, int64_t* v)
   return 1;
 }
 
-/* Skips `count` values of `size` bytes; ASCII values must be numbers. Returns 1 when all present. */
+/* Skips `count` values of `size` bytes; ASCII values must be numbers. Returns 1 when all present.
+ */
 static int vtk_skip_values(vtk_reader* r, int64_t count, int size, double* first_bad_finite)
 {
   if (count < 0)
@@ -183,8 +186,8 @@ static int vtk_skip_values(vtk_reader* r, int64_t count, int size, double* first
 typedef struct vtk_state
 {
   double version;
-  int kind; /* 0 polydata, 1 ugrid, 2 structured points, 3 structured grid, 4 rectilinear */
-  int64_t points;   /* -1 until known */
+  int kind;       /* 0 polydata, 1 ugrid, 2 structured points, 3 structured grid, 4 rectilinear */
+  int64_t points; /* -1 until known */
   int64_t cells;
   int64_t dims[3];
   int has_dims;
@@ -211,7 +214,8 @@ static mrgi_status vtk_cells(vtk_reader* r, vtk_state* st, const char* kw)
   {
     if ((uint64_t)size > bound || (uint64_t)n > (uint64_t)size)
       return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
-        "'%s': %s declares %lld cells in %lld values, more than the file holds", r->name, kw, (long long)n, (long long)size);
+        "'%s': %s declares %lld cells in %lld values, more than the file holds", r->name, kw,
+        (long long)n, (long long)size);
     if ((s = vtk_end_line(r)))
       return s;
     if (ugrid)
@@ -230,8 +234,8 @@ static mrgi_status vtk_cells(vtk_reader* r, vtk_state* st, const char* kw)
         return vtk_truncated(r, kw);
       if (k < 0 || k > size - used - 1)
         return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
-          "'%s': %s cell %lld has %lld points, which does not fit the declared size %lld", r->name, kw,
-          (long long)c, (long long)k, (long long)size);
+          "'%s': %s cell %lld has %lld points, which does not fit the declared size %lld", r->name,
+          kw, (long long)c, (long long)k, (long long)size);
       if (ugrid)
         st->cell_sizes[c] = (int32_t)k;
       for (int64_t i = 0; i < k; ++i)
@@ -248,15 +252,16 @@ static mrgi_status vtk_cells(vtk_reader* r, vtk_state* st, const char* kw)
     }
     if (used != size)
       return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
-        "'%s': %s declares a size of %lld values, its %lld cells use %lld", r->name, kw, (long long)size,
-        (long long)n, (long long)used);
+        "'%s': %s declares a size of %lld values, its %lld cells use %lld", r->name, kw,
+        (long long)size, (long long)n, (long long)used);
     st->cells += n;
     return MRGI_OK;
   }
   /* Version 5: "KW nOffsets nConnectivity", OFFSETS type, CONNECTIVITY type. */
   const int64_t noff = n, nconn = size;
   if ((uint64_t)noff > bound || (uint64_t)nconn > bound)
-    return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': %s declares more values than the file holds", r->name, kw);
+    return mrgi_error_set(
+      r->err, MRGI_ERR_FORMAT, "'%s': %s declares more values than the file holds", r->name, kw);
   if ((s = vtk_need_token(r, "OFFSETS")))
     return s;
   if (strcasecmp(r->tok, "OFFSETS") != 0)
@@ -285,8 +290,8 @@ static mrgi_status vtk_cells(vtk_reader* r, vtk_state* st, const char* kw)
       return vtk_truncated(r, "OFFSETS");
     if ((i == 0 && o != 0) || o < prev || o > nconn || (i == noff - 1 && o != nconn))
       return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
-        "'%s': %s offset %lld is %lld: offsets must start at 0, never decrease and end at %lld", r->name,
-        kw, (long long)i, (long long)o, (long long)nconn);
+        "'%s': %s offset %lld is %lld: offsets must start at 0, never decrease and end at %lld",
+        r->name, kw, (long long)i, (long long)o, (long long)nconn);
     if (i > 0 && ugrid)
       st->cell_sizes[i - 1] = (int32_t)(o - prev > INT32_MAX ? INT32_MAX : o - prev);
     prev = o;
@@ -301,7 +306,8 @@ static mrgi_status vtk_cells(vtk_reader* r, vtk_state* st, const char* kw)
     return s;
   const int csize = vtk_type_size(r->tok);
   if (csize <= 0)
-    return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': bad CONNECTIVITY type '%s'", r->name, r->tok);
+    return mrgi_error_set(
+      r->err, MRGI_ERR_FORMAT, "'%s': bad CONNECTIVITY type '%s'", r->name, r->tok);
   if ((s = vtk_end_line(r)))
     return s;
   for (int64_t i = 0; i < nconn; ++i)
@@ -310,8 +316,9 @@ static mrgi_status vtk_cells(vtk_reader* r, vtk_state* st, const char* kw)
     if (!vtk_get_int(r, csize, 0, &id))
       return vtk_truncated(r, "CONNECTIVITY");
     if (id < 0 || id >= st->points)
-      return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': %s refers to point %lld, outside [0, %lld)",
-        r->name, kw, (long long)id, (long long)st->points);
+      return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
+        "'%s': %s refers to point %lld, outside [0, %lld)", r->name, kw, (long long)id,
+        (long long)st->points);
   }
   st->cells += ncells;
   return MRGI_OK;
@@ -322,36 +329,69 @@ static int vtk_cell_points(int64_t type)
 {
   switch (type)
   {
-    case 0: return -0; /* empty cell: handled by the caller */
-    case 1: return 1;
-    case 2: return -1;
-    case 3: return 2;
-    case 4: return -2;
-    case 5: return 3;
-    case 6: return -3;
-    case 7: return -3;
-    case 8: case 9: case 10: return 4;
-    case 11: case 12: return 8;
-    case 13: return 6;
-    case 14: return 5;
-    case 15: return 10;
-    case 16: return 12;
-    case 21: return 3;
-    case 22: return 6;
-    case 23: return 8;
-    case 24: return 10;
-    case 25: return 20;
-    case 26: return 15;
-    case 27: return 13;
-    case 28: return 9;
-    case 29: return 27;
-    case 30: return 6;
-    case 31: return 12;
-    case 32: return 18;
-    case 33: return 24;
-    case 34: return 7;
-    case 35: return 4;
-    default: return 0;
+    case 0:
+      return -0; /* empty cell: handled by the caller */
+    case 1:
+      return 1;
+    case 2:
+      return -1;
+    case 3:
+      return 2;
+    case 4:
+      return -2;
+    case 5:
+      return 3;
+    case 6:
+      return -3;
+    case 7:
+      return -3;
+    case 8:
+    case 9:
+    case 10:
+      return 4;
+    case 11:
+    case 12:
+      return 8;
+    case 13:
+      return 6;
+    case 14:
+      return 5;
+    case 15:
+      return 10;
+    case 16:
+      return 12;
+    case 21:
+      return 3;
+    case 22:
+      return 6;
+    case 23:
+      return 8;
+    case 24:
+      return 10;
+    case 25:
+      return 20;
+    case 26:
+      return 15;
+    case 27:
+      return 13;
+    case 28:
+      return 9;
+    case 29:
+      return 27;
+    case 30:
+      return 6;
+    case 31:
+      return 12;
+    case 32:
+      return 18;
+    case 33:
+      return 24;
+    case 34:
+      return 7;
+    case 35:
+      return 4;
+    default:
+      return 0;
   }
 }
 
@@ -362,8 +402,9 @@ static mrgi_status vtk_cell_types(vtk_reader* r, vtk_state* st)
   if (s)
     return s;
   if (!st->cell_sizes || n != st->cell_sizes_count)
-    return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': CELL_TYPES declares %lld types for %lld cells",
-      r->name, (long long)n, (long long)(st->cell_sizes ? st->cell_sizes_count : 0));
+    return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
+      "'%s': CELL_TYPES declares %lld types for %lld cells", r->name, (long long)n,
+      (long long)(st->cell_sizes ? st->cell_sizes_count : 0));
   if ((s = vtk_end_line(r)))
     return s;
   for (int64_t c = 0; c < n; ++c)
@@ -376,21 +417,25 @@ static mrgi_status vtk_cell_types(vtk_reader* r, vtk_state* st)
     if (t == 0 && have == 0)
       continue;
     if (need == 0)
-      return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': cell %lld has type %lld, which MRGI does not read%s",
-        r->name, (long long)c, (long long)t, t == 42 ? " (polyhedron)" : "");
+      return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
+        "'%s': cell %lld has type %lld, which MRGI does not read%s", r->name, (long long)c,
+        (long long)t, t == 42 ? " (polyhedron)" : "");
     if ((need > 0 && have != need) || (need < 0 && have < -need))
-      return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': cell %lld of type %lld has %d points, it needs %s%d",
-        r->name, (long long)c, (long long)t, (int)have, need < 0 ? "at least " : "", need < 0 ? -need : need);
+      return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
+        "'%s': cell %lld of type %lld has %d points, it needs %s%d", r->name, (long long)c,
+        (long long)t, (int)have, need < 0 ? "at least " : "", need < 0 ? -need : need);
   }
   return MRGI_OK;
 }
 
 /* Reads the values of one attribute array: `count` tuples of `ncomp` values of type `t`. */
-static mrgi_status vtk_array(vtk_reader* r, const char* kw, int64_t count, int64_t ncomp, const char* t)
+static mrgi_status vtk_array(
+  vtk_reader* r, const char* kw, int64_t count, int64_t ncomp, const char* t)
 {
   const int size = vtk_type_size(t);
   if (size == 0)
-    return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': %s has an unknown type '%s'", r->name, kw, t);
+    return mrgi_error_set(
+      r->err, MRGI_ERR_FORMAT, "'%s': %s has an unknown type '%s'", r->name, kw, t);
   if (size < 0)
     return VTK_STOP;
   if (ncomp < 1 || count < 0 || ncomp > INT32_MAX || count > INT64_MAX / ncomp)
@@ -437,8 +482,8 @@ static mrgi_status vtk_attributes(vtk_reader* r, vtk_state* st, int64_t count)
         if ((s = vtk_need_int(r, "a SCALARS component count", &ncomp)))
           return s;
         if (ncomp < 1 || ncomp > 4)
-          return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': SCALARS with %lld components (1 to 4 allowed)",
-            r->name, (long long)ncomp);
+          return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
+            "'%s': SCALARS with %lld components (1 to 4 allowed)", r->name, (long long)ncomp);
       }
       if ((s = vtk_end_line(r)))
         return s;
@@ -458,13 +503,15 @@ static mrgi_status vtk_attributes(vtk_reader* r, vtk_state* st, int64_t count)
     else if (strcasecmp(kw, "LOOKUP_TABLE") == 0)
     {
       int64_t n = 0;
-      if ((s = vtk_need_token(r, "a LOOKUP_TABLE name")) || (s = vtk_need_int(r, "a LOOKUP_TABLE size", &n)))
+      if ((s = vtk_need_token(r, "a LOOKUP_TABLE name")) ||
+        (s = vtk_need_int(r, "a LOOKUP_TABLE size", &n)))
         return s;
       s = vtk_array(r, kw, n, 4, r->binary ? "unsigned_char" : "float");
     }
     else if (strcasecmp(kw, "COLOR_SCALARS") == 0)
     {
-      if ((s = vtk_need_token(r, "a COLOR_SCALARS name")) || (s = vtk_need_int(r, "a component count", &ncomp)))
+      if ((s = vtk_need_token(r, "a COLOR_SCALARS name")) ||
+        (s = vtk_need_int(r, "a component count", &ncomp)))
         return s;
       s = vtk_array(r, kw, count, ncomp, r->binary ? "unsigned_char" : "float");
     }
@@ -474,8 +521,10 @@ static mrgi_status vtk_attributes(vtk_reader* r, vtk_state* st, int64_t count)
     {
       if ((s = vtk_need_token(r, "an array name")) || (s = vtk_need_token(r, "an array type")))
         return s;
-      ncomp = strcasecmp(kw, "TENSORS") == 0 ? 9 : strcasecmp(kw, "TENSORS6") == 0 ? 6
-        : (strcasecmp(kw, "VECTORS") == 0 || strcasecmp(kw, "NORMALS") == 0) ? 3 : 1;
+      ncomp = strcasecmp(kw, "TENSORS") == 0                                 ? 9
+        : strcasecmp(kw, "TENSORS6") == 0                                    ? 6
+        : (strcasecmp(kw, "VECTORS") == 0 || strcasecmp(kw, "NORMALS") == 0) ? 3
+                                                                             : 1;
       snprintf(type, sizeof(type), "%s", r->tok);
       s = vtk_array(r, kw, count, ncomp, type);
     }
@@ -492,7 +541,8 @@ static mrgi_status vtk_attributes(vtk_reader* r, vtk_state* st, int64_t count)
     else if (strcasecmp(kw, "FIELD") == 0)
     {
       int64_t arrays = 0;
-      if ((s = vtk_need_token(r, "a FIELD name")) || (s = vtk_need_int(r, "a FIELD array count", &arrays)))
+      if ((s = vtk_need_token(r, "a FIELD name")) ||
+        (s = vtk_need_int(r, "a FIELD array count", &arrays)))
         return s;
       if (arrays < 0 || (uint64_t)arrays > r->n - r->pos)
         return vtk_fail(r, "a FIELD with a bad array count");
@@ -503,7 +553,8 @@ static mrgi_status vtk_attributes(vtk_reader* r, vtk_state* st, int64_t count)
           return s;
         if (strcasecmp(r->tok, "NULL_ARRAY") == 0)
           continue;
-        if ((s = vtk_need_int(r, "a component count", &ncomp)) || (s = vtk_need_int(r, "a tuple count", &tuples)) ||
+        if ((s = vtk_need_int(r, "a component count", &ncomp)) ||
+          (s = vtk_need_int(r, "a tuple count", &tuples)) ||
           (s = vtk_need_token(r, "an array type")))
           return s;
         snprintf(type, sizeof(type), "%s", r->tok);
@@ -525,7 +576,8 @@ static mrgi_status vtk_check(vtk_reader* r, vtk_state* st)
   mrgi_line_cursor c;
   mrgi_line_cursor_init(&c, r->d, r->n);
   char line[512];
-  if (mrgi_line_next(&c, line, sizeof(line)) != 1 || strncmp(line, "# vtk DataFile Version", 22) != 0)
+  if (mrgi_line_next(&c, line, sizeof(line)) != 1 ||
+    strncmp(line, "# vtk DataFile Version", 22) != 0)
     return vtk_fail(r, "not a legacy VTK file (no '# vtk DataFile Version' line)");
   st->version = atof(line + 22);
   if (!(st->version > 0) || st->version > 100)
@@ -548,14 +600,15 @@ static mrgi_status vtk_check(vtk_reader* r, vtk_state* st)
     return VTK_STOP; /* a FIELD file or other: nothing to draw, the reader says so */
   if ((s = vtk_need_token(r, "the data set type")))
     return s;
-  static const char* const kinds[] = { "POLYDATA", "UNSTRUCTURED_GRID", "STRUCTURED_POINTS", "STRUCTURED_GRID",
-    "RECTILINEAR_GRID" };
+  static const char* const kinds[] = { "POLYDATA", "UNSTRUCTURED_GRID", "STRUCTURED_POINTS",
+    "STRUCTURED_GRID", "RECTILINEAR_GRID" };
   st->kind = -1;
   for (int k = 0; k < 5; ++k)
     if (strcasecmp(r->tok, kinds[k]) == 0)
       st->kind = k;
   if (st->kind < 0)
-    return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': unsupported data set type '%s'", r->name, r->tok);
+    return mrgi_error_set(
+      r->err, MRGI_ERR_FORMAT, "'%s': unsupported data set type '%s'", r->name, r->tok);
   st->points = st->kind == 2 ? 0 : -1;
   for (;;)
   {
@@ -569,26 +622,31 @@ static mrgi_status vtk_check(vtk_reader* r, vtk_state* st)
     if (strcasecmp(kw, "POINTS") == 0)
     {
       int64_t n = 0;
-      if ((s = vtk_need_int(r, "the POINTS count", &n)) || (s = vtk_need_token(r, "the POINTS type")))
+      if ((s = vtk_need_int(r, "the POINTS count", &n)) ||
+        (s = vtk_need_token(r, "the POINTS type")))
         return s;
       if (n < 0)
         return vtk_fail(r, "a negative POINTS count");
       if (st->has_dims && st->kind == 3 && n != st->dims[0] * st->dims[1] * st->dims[2])
-        return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': POINTS %lld does not match DIMENSIONS (%lld points)",
-          r->name, (long long)n, (long long)(st->dims[0] * st->dims[1] * st->dims[2]));
+        return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
+          "'%s': POINTS %lld does not match DIMENSIONS (%lld points)", r->name, (long long)n,
+          (long long)(st->dims[0] * st->dims[1] * st->dims[2]));
       const int size = vtk_type_size(r->tok);
       if (size <= 0)
-        return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': bad POINTS type '%s'", r->name, r->tok);
+        return mrgi_error_set(
+          r->err, MRGI_ERR_FORMAT, "'%s': bad POINTS type '%s'", r->name, r->tok);
       if (n > INT64_MAX / 3 || (s = vtk_end_line(r)))
         return s ? s : vtk_fail(r, "a POINTS count too large");
       if (!vtk_skip_values(r, 3 * n, size, NULL))
         return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
-          "'%s' is truncated or malformed: POINTS declares %lld points, the file does not hold them as numbers",
+          "'%s' is truncated or malformed: POINTS declares %lld points, the file does not hold "
+          "them as numbers",
           r->name, (long long)n);
       st->points = n;
     }
-    else if (strcasecmp(kw, "VERTICES") == 0 || strcasecmp(kw, "LINES") == 0 || strcasecmp(kw, "POLYGONS") == 0 ||
-      strcasecmp(kw, "TRIANGLE_STRIPS") == 0 || strcasecmp(kw, "CELLS") == 0)
+    else if (strcasecmp(kw, "VERTICES") == 0 || strcasecmp(kw, "LINES") == 0 ||
+      strcasecmp(kw, "POLYGONS") == 0 || strcasecmp(kw, "TRIANGLE_STRIPS") == 0 ||
+      strcasecmp(kw, "CELLS") == 0)
     {
       if ((s = vtk_cells(r, st, kw)))
         return s;
@@ -606,21 +664,25 @@ static mrgi_status vtk_check(vtk_reader* r, vtk_state* st)
         if ((s = vtk_need_int(r, "a dimension", &st->dims[k])))
           return s;
         if (st->dims[k] < 1 || st->dims[k] > INT32_MAX)
-          return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': DIMENSIONS must be at least 1 (got %lld)", r->name,
-            (long long)st->dims[k]);
+          return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
+            "'%s': DIMENSIONS must be at least 1 (got %lld)", r->name, (long long)st->dims[k]);
         prod = prod > INT32_MAX ? prod : prod * st->dims[k];
       }
-      const int64_t *d = st->dims;
-      if (prod > INT32_MAX || 2 * (d[0] * d[1] + d[1] * d[2] + d[0] * d[2]) > MRGI_VTK_MAX_SURFACE_POINTS)
+      const int64_t* d = st->dims;
+      if (prod > INT32_MAX ||
+        2 * (d[0] * d[1] + d[1] * d[2] + d[0] * d[2]) > MRGI_VTK_MAX_SURFACE_POINTS)
         return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
-          "'%s': DIMENSIONS %lld x %lld x %lld is too large to draw (more than %lld surface points)", r->name,
-          (long long)d[0], (long long)d[1], (long long)d[2], (long long)MRGI_VTK_MAX_SURFACE_POINTS);
+          "'%s': DIMENSIONS %lld x %lld x %lld is too large to draw (more than %lld surface "
+          "points)",
+          r->name, (long long)d[0], (long long)d[1], (long long)d[2],
+          (long long)MRGI_VTK_MAX_SURFACE_POINTS);
       st->has_dims = 1;
       if (st->kind == 2)
         st->points = prod;
       st->cells = (d[0] > 1 ? d[0] - 1 : 1) * (d[1] > 1 ? d[1] - 1 : 1) * (d[2] > 1 ? d[2] - 1 : 1);
     }
-    else if (strcasecmp(kw, "ORIGIN") == 0 || strcasecmp(kw, "SPACING") == 0 || strcasecmp(kw, "ASPECT_RATIO") == 0)
+    else if (strcasecmp(kw, "ORIGIN") == 0 || strcasecmp(kw, "SPACING") == 0 ||
+      strcasecmp(kw, "ASPECT_RATIO") == 0)
     {
       for (int k = 0; k < 3; ++k)
       {
@@ -629,18 +691,21 @@ static mrgi_status vtk_check(vtk_reader* r, vtk_state* st)
         char* end = NULL;
         const double v = strtod(r->tok, &end);
         if (end == r->tok || *end || !isfinite(v))
-          return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': %s value '%s' is not a finite number", r->name, kw, r->tok);
+          return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
+            "'%s': %s value '%s' is not a finite number", r->name, kw, r->tok);
       }
     }
     else if (strcasecmp(kw, "X_COORDINATES") == 0 || strcasecmp(kw, "Y_COORDINATES") == 0 ||
       strcasecmp(kw, "Z_COORDINATES") == 0)
     {
       int64_t n = 0;
-      if ((s = vtk_need_int(r, "a coordinate count", &n)) || (s = vtk_need_token(r, "a coordinate type")))
+      if ((s = vtk_need_int(r, "a coordinate count", &n)) ||
+        (s = vtk_need_token(r, "a coordinate type")))
         return s;
       const int axis = kw[0] == 'X' || kw[0] == 'x' ? 0 : kw[0] == 'Y' || kw[0] == 'y' ? 1 : 2;
       if (!st->has_dims || n != st->dims[axis])
-        return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': %s count %lld does not match DIMENSIONS", r->name, kw, (long long)n);
+        return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
+          "'%s': %s count %lld does not match DIMENSIONS", r->name, kw, (long long)n);
       char type[256];
       snprintf(type, sizeof(type), "%s", r->tok);
       if ((s = vtk_array(r, kw, n, 1, type)))
@@ -656,8 +721,9 @@ static mrgi_status vtk_check(vtk_reader* r, vtk_state* st)
       const int pointData = kw[0] == 'P' || kw[0] == 'p';
       const int64_t expect = pointData ? st->points : st->cells;
       if (n != expect)
-        return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': %s %lld, but the data set has %lld %s", r->name, kw,
-          (long long)n, (long long)expect, pointData ? "points" : "cells");
+        return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
+          "'%s': %s %lld, but the data set has %lld %s", r->name, kw, (long long)n,
+          (long long)expect, pointData ? "points" : "cells");
       if ((s = vtk_attributes(r, st, n)))
         return s;
     }

@@ -13,7 +13,8 @@ static int xml_attribute(const char* t, size_t n, const char* key, char* out, si
   const size_t k = strlen(key);
   for (size_t i = 0; i + k + 2 < n; ++i)
   {
-    const int boundary = i > 0 && (t[i - 1] == ' ' || t[i - 1] == '\t' || t[i - 1] == '\n' || t[i - 1] == '\r');
+    const int boundary =
+      i > 0 && (t[i - 1] == ' ' || t[i - 1] == '\t' || t[i - 1] == '\n' || t[i - 1] == '\r');
     if (!boundary || memcmp(t + i, key, k) != 0)
       continue;
     size_t j = i + k;
@@ -65,8 +66,8 @@ static int xml_integers(const char* text, int64_t* v, int count)
 static int tag_is(const char* t, size_t n, const char* name)
 {
   const size_t k = strlen(name);
-  return n > k && memcmp(t, name, k) == 0 && (t[k] == ' ' || t[k] == '\t' || t[k] == '\n' || t[k] == '\r' ||
-                                               t[k] == '/' || t[k] == '>');
+  return n > k && memcmp(t, name, k) == 0 &&
+    (t[k] == ' ' || t[k] == '\t' || t[k] == '\n' || t[k] == '\r' || t[k] == '/' || t[k] == '>');
 }
 
 typedef struct appended_ref
@@ -107,7 +108,8 @@ mrgi_status mrgi_xml_check_buffer(const void* data, size_t size, const char* nam
       return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s' is truncated: an XML tag never ends", name);
     const size_t n = (size_t)(gt - (d + start));
     if (n > MRGI_XML_MAX_TAG)
-      return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': an XML tag longer than %d bytes", name, MRGI_XML_MAX_TAG);
+      return mrgi_error_set(
+        err, MRGI_ERR_FORMAT, "'%s': an XML tag longer than %d bytes", name, MRGI_XML_MAX_TAG);
     const char* t = d + start;
     pos = start + n + 1;
     if (n > 0 && (t[0] == '?' || t[0] == '!'))
@@ -119,7 +121,8 @@ mrgi_status mrgi_xml_check_buffer(const void* data, size_t size, const char* nam
     }
     const int closed = n > 0 && t[n - 1] == '/';
     if (!closed && ++depth > MRGI_XML_MAX_DEPTH)
-      return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': XML elements nest deeper than %d", name, MRGI_XML_MAX_DEPTH);
+      return mrgi_error_set(
+        err, MRGI_ERR_FORMAT, "'%s': XML elements nest deeper than %d", name, MRGI_XML_MAX_DEPTH);
     if (tag_is(t, n, "VTKFile"))
     {
       has_vtkfile = 1;
@@ -130,7 +133,8 @@ mrgi_status mrgi_xml_check_buffer(const void* data, size_t size, const char* nam
         if (strcmp(value, "UInt64") == 0)
           header64 = 1;
         else if (strcmp(value, "UInt32") != 0)
-          return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': unknown header_type '%s'", name, value);
+          return mrgi_error_set(
+            err, MRGI_ERR_FORMAT, "'%s': unknown header_type '%s'", name, value);
       }
       if (xml_attribute(t, n, "byte_order", value, sizeof(value)))
       {
@@ -141,18 +145,18 @@ mrgi_status mrgi_xml_check_buffer(const void* data, size_t size, const char* nam
       }
       compressed = xml_attribute(t, n, "compressor", value, sizeof(value));
     }
-    else if (tag_is(t, n, "Piece") || tag_is(t, n, "ImageData") || tag_is(t, n, "RectilinearGrid") ||
-      tag_is(t, n, "StructuredGrid"))
+    else if (tag_is(t, n, "Piece") || tag_is(t, n, "ImageData") ||
+      tag_is(t, n, "RectilinearGrid") || tag_is(t, n, "StructuredGrid"))
     {
-      static const char* const counts[] = { "NumberOfPoints", "NumberOfCells", "NumberOfVerts", "NumberOfLines",
-        "NumberOfStrips", "NumberOfPolys" };
+      static const char* const counts[] = { "NumberOfPoints", "NumberOfCells", "NumberOfVerts",
+        "NumberOfLines", "NumberOfStrips", "NumberOfPolys" };
       for (size_t k = 0; k < sizeof(counts) / sizeof(counts[0]); ++k)
       {
         int64_t v = 0;
         if (xml_attribute(t, n, counts[k], value, sizeof(value)) &&
           (xml_integers(value, &v, 1) != 1 || v < 0 || v > MRGI_XML_MAX_ITEMS))
-          return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': %s=\"%s\" is not a count in [0, %lld]", name, counts[k],
-            value, (long long)MRGI_XML_MAX_ITEMS);
+          return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': %s=\"%s\" is not a count in [0, %lld]",
+            name, counts[k], value, (long long)MRGI_XML_MAX_ITEMS);
       }
       static const char* const extents[] = { "Extent", "WholeExtent" };
       for (size_t k = 0; k < 2; ++k)
@@ -169,14 +173,14 @@ mrgi_status mrgi_xml_check_buffer(const void* data, size_t size, const char* nam
         }
         if (!ok || points > (double)MRGI_XML_MAX_ITEMS)
           return mrgi_error_set(err, MRGI_ERR_FORMAT,
-            "'%s': %s=\"%s\" is not 6 increasing integers spanning at most %lld points", name, extents[k], value,
-            (long long)MRGI_XML_MAX_ITEMS);
+            "'%s': %s=\"%s\" is not 6 increasing integers spanning at most %lld points", name,
+            extents[k], value, (long long)MRGI_XML_MAX_ITEMS);
       }
     }
     else if (tag_is(t, n, "DataArray"))
     {
-      static const char* const types[] = { "Int8", "UInt8", "Int16", "UInt16", "Int32", "UInt32", "Int64", "UInt64",
-        "Float32", "Float64", "String", "Bit", "Char", "IdType" };
+      static const char* const types[] = { "Int8", "UInt8", "Int16", "UInt16", "Int32", "UInt32",
+        "Int64", "UInt64", "Float32", "Float64", "String", "Bit", "Char", "IdType" };
       int known = 0;
       if (xml_attribute(t, n, "type", value, sizeof(value)))
         for (size_t k = 0; k < sizeof(types) / sizeof(types[0]); ++k)
@@ -186,50 +190,61 @@ mrgi_status mrgi_xml_check_buffer(const void* data, size_t size, const char* nam
       int64_t v = 0;
       if (xml_attribute(t, n, "NumberOfComponents", value, sizeof(value)) &&
         (xml_integers(value, &v, 1) != 1 || v < 1 || v > 4096))
-        return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': NumberOfComponents=\"%s\" is not in [1, 4096]", name, value);
+        return mrgi_error_set(
+          err, MRGI_ERR_FORMAT, "'%s': NumberOfComponents=\"%s\" is not in [1, 4096]", name, value);
       if (xml_attribute(t, n, "NumberOfTuples", value, sizeof(value)) &&
         (xml_integers(value, &v, 1) != 1 || v < 0 || v > MRGI_XML_MAX_ITEMS))
-        return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': NumberOfTuples=\"%s\" is not a count in [0, %lld]", name,
-          value, (long long)MRGI_XML_MAX_ITEMS);
+        return mrgi_error_set(err, MRGI_ERR_FORMAT,
+          "'%s': NumberOfTuples=\"%s\" is not a count in [0, %lld]", name, value,
+          (long long)MRGI_XML_MAX_ITEMS);
       if (xml_attribute(t, n, "format", value, sizeof(value)))
       {
         if (strcmp(value, "appended") == 0)
         {
-          if (!xml_attribute(t, n, "offset", value, sizeof(value)) || xml_integers(value, &v, 1) != 1 || v < 0)
-            return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': an appended DataArray without a valid offset", name);
+          if (!xml_attribute(t, n, "offset", value, sizeof(value)) ||
+            xml_integers(value, &v, 1) != 1 || v < 0)
+            return mrgi_error_set(
+              err, MRGI_ERR_FORMAT, "'%s': an appended DataArray without a valid offset", name);
           ++offsets_seen;
           if (v > max_offset)
             max_offset = v;
         }
         else if (strcmp(value, "ascii") != 0 && strcmp(value, "binary") != 0)
-          return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': unknown DataArray format '%s'", name, value);
+          return mrgi_error_set(
+            err, MRGI_ERR_FORMAT, "'%s': unknown DataArray format '%s'", name, value);
       }
     }
     else if (tag_is(t, n, "AppendedData"))
     {
-      appended_raw = !xml_attribute(t, n, "encoding", value, sizeof(value)) || strcmp(value, "raw") == 0;
+      appended_raw =
+        !xml_attribute(t, n, "encoding", value, sizeof(value)) || strcmp(value, "raw") == 0;
       const char* underscore = memchr(d + pos, '_', size - pos);
       if (!underscore)
-        return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': AppendedData without its '_' marker", name);
+        return mrgi_error_set(
+          err, MRGI_ERR_FORMAT, "'%s': AppendedData without its '_' marker", name);
       appended_start = (int64_t)(underscore - d) + 1;
       break; /* binary data follow: stop scanning tags */
     }
   }
   if (!has_vtkfile)
-    return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s' is not a VTK XML file (no VTKFile element)", name);
+    return mrgi_error_set(
+      err, MRGI_ERR_FORMAT, "'%s' is not a VTK XML file (no VTKFile element)", name);
   if (offsets_seen > 0)
   {
     if (appended_start < 0)
-      return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': appended DataArrays but no AppendedData", name);
+      return mrgi_error_set(
+        err, MRGI_ERR_FORMAT, "'%s': appended DataArrays but no AppendedData", name);
     const int64_t available = (int64_t)size - appended_start;
     const int64_t header = header64 ? 8 : 4;
     if (max_offset + (appended_raw ? header : 1) > available)
       return mrgi_error_set(err, MRGI_ERR_FORMAT,
-        "'%s' is truncated or corrupt: an appended DataArray starts at offset %lld, the appended data hold %lld bytes",
+        "'%s' is truncated or corrupt: an appended DataArray starts at offset %lld, the appended "
+        "data hold %lld bytes",
         name, (long long)max_offset, (long long)available);
     if (appended_raw && !compressed)
     {
-      /* Each raw block: a header with its byte count, then the bytes. Check the last one declared. */
+      /* Each raw block: a header with its byte count, then the bytes. Check the last one declared.
+       */
       const unsigned char* h = (const unsigned char*)d + appended_start + max_offset;
       uint64_t bytes = 0;
       for (int64_t i = 0; i < header; ++i)
