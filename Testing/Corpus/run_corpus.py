@@ -8,8 +8,8 @@ A case passes when mrgi-render either
   - exits 1 with an error line on stderr that names the case's file, or
   - exits 0 and writes a PNG that is not empty (some pixel differs from the
     black background).
-A signal, a timeout, any other exit code, an error line without the file's
-name or an empty image fails the case. Prints one line per failed case and a
+A signal, a timeout, a sanitizer report, any other exit code, an error line
+without the file's name or an empty image fails the case. Prints one line per failed case and a
 summary of the outcomes; exits 1 when a case failed.
 """
 import argparse
@@ -80,6 +80,9 @@ def run_case(args, name):
     lines = [l for l in err.splitlines() if l.startswith("mrgi-render: error:")]
     if p.returncode < 0:
         return name, "signal", "killed by signal %d: %s" % (-p.returncode, err[-300:])
+    # Under ASan/UBSan a report may end in exit status 1 like a refusal.
+    if "Sanitizer" in err or "runtime error:" in err:
+        return name, "sanitizer", err[-600:]
     if p.returncode == 0:
         if not os.path.exists(out):
             return name, "bad", "exit 0 without an image"
