@@ -30,6 +30,7 @@
 #include "vtkMRGIVoxelization.h"
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkLogger.h"
 #include "vtkOutputWindow.h"
 #include "vtkPointData.h"
 #include "vtkProperty.h"
@@ -43,6 +44,7 @@
 #include "vtkToneMappingPass.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtk_glew.h"
+#include "vtkMath.h"
 
 #include "mrgi_error.h"
 #include "mrgi_area_light.h"
@@ -268,6 +270,43 @@ struct PassRelease
   ~PassRelease() { this->Now(); }
 };
 
+// An error in the input (the scene file, an empty picture): exit status 1,
+// apart from the command-line errors' 2.
+int FailInput(const std::string& message)
+{
+  Fail(message);
+  return 1;
+}
+
+// Why a picture that shows only the background is empty, as far as the
+// renderer can tell.
+std::string WhyEmpty(vtkRenderer* renderer, vtkIdType triangles)
+{
+  if (renderer->VisibleActorCount() == 0)
+  {
+    return "the scene has nothing to draw";
+  }
+  double b[6];
+  renderer->ComputeVisiblePropBounds(b);
+  if (!vtkMath::AreBoundsInitialized(b))
+  {
+    return "the scene has no geometry with finite bounds";
+  }
+  bool lit = false;
+  vtkLightCollection* lights = renderer->GetLights();
+  lights->InitTraversal();
+  while (vtkLight* light = lights->GetNextItem())
+  {
+    lit = lit || (light->GetSwitch() && light->GetIntensity() > 0);
+  }
+  if (!lit && renderer->GetLights()->GetNumberOfItems() > 0)
+  {
+    return "no light is on";
+  }
+  return triangles == 0 ? "the data has no surfaces, and its points or lines are not in view"
+                        : "the geometry is outside the view, clipped, seen edge-on or unlit";
+}
+
 void Progress(const Options& o, const std::string& line)
 {
   if (!o.Quiet)
@@ -331,7 +370,7 @@ int main(int argc, char* argv[])
   builder->SetSeed(static_cast<vtkTypeUInt64>(o.Seed));
   if (!builder->Build(renderer))
   {
-    return Fail(builder->GetLastErrorMessage());
+    return FailInput(builder->GetLastErrorMessage());
   }
   char line[256];
   std::snprintf(line, sizeof(line), "scene ready: %lld triangles in %.2f s",
@@ -518,6 +557,31 @@ int main(int argc, char* argv[])
   if (mrgi->GetBufferSize()[0] < 1)
   {
     return Fail("nothing was rendered (is the window size valid and an OpenGL context available?)");
+  }
+  if (!o.AllowEmpty && !o.Reference)
+  {
+    // A picture of the background alone is a failure, not a result: say why.
+    vtkNew<vtkUnsignedCharArray> shown;
+    window->GetRGBACharPixelData(0, 0, o.Width - 1, o.Height - 1, 0, shown);
+    int background[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      background[c] = static_cast<int>(std::lround(255.0 * std::min(1.0, std::max(0.0, o.Background[c]))));
+    }
+    bool empty = true;
+    const vtkIdType n = shown->GetNumberOfValues() / 4;
+    for (vtkIdType p = 0; p < n && empty; ++p)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        empty = empty && std::abs(static_cast<int>(shown->GetValue(4 * p + c)) - background[c]) <= 1;
+      }
+    }
+    if (empty)
+    {
+      return FailInput("'" + o.Scene + "' renders an empty image (background only): " +
+        WhyEmpty(renderer, builder->GetBuiltTriangleCount()) + "; --allow-empty accepts it");
+    }
   }
 
   // Ground truth: the CPU reference of the same scene (lights as placed by

@@ -759,6 +759,9 @@ const std::vector<OptionSection>& OptionTable()
           Choice<std::string>(&Options::Backend,
             { { "auto", "auto" }, { "egl", "egl" }, { "osmesa", "osmesa" }, { "x", "x" } }) },
         { { "-q", "--quiet" }, nullptr, "no progress lines", Set(&Options::Quiet) },
+        { { "--allow-empty" }, nullptr,
+          "accept an image that shows only the background (default: an error, exit 1)",
+          Set(&Options::AllowEmpty) },
         { { "--version" }, nullptr, "print the version",
           [](Options&, const std::string&, const char*) {
             std::printf("mrgi-render %s\n", MRGI_VERSION_STRING);

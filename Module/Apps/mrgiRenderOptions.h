@@ -43,6 +43,7 @@ struct Options
   bool Interactive = false;
   std::string Backend; // empty: MRGI_BACKEND, else automatic
   bool Quiet = false;
+  bool AllowEmpty = false;
   bool GI = true;
   bool Multires = true; // Balanced whenever indirect light is on
   long long Preset = 1;

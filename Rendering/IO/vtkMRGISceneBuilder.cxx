@@ -8,12 +8,16 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
+#include "vtkCellTypes.h"
+#include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkCompositePolyDataMapper2.h"
+#include "vtkDataObjectTreeIterator.h"
 #include "vtkDataSetSurfaceFilter.h"
 #include "vtkFloatArray.h"
 #include "vtkGLTFImporter.h"
 #include "vtkGenericDataObjectReader.h"
+#include "vtkInformation.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMath.h"
@@ -30,15 +34,23 @@
 #include "vtkRenderer.h"
 #include "vtkSTLReader.h"
 #include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkTypeInt32Array.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnstructuredGrid.h"
 #include "vtkXMLGenericDataObjectReader.h"
 
 #include "mrgi_error.h"
+#include "mrgi_gltf_check.h"
+#include "mrgi_input.h"
+#include "mrgi_obj_check.h"
 #include "mrgi_ply_check.h"
 #include "mrgi_scene.h"
 #include "mrgi_scene_cornell.h"
 #include "mrgi_scene_living_room.h"
 #include "mrgi_scene_scaling.h"
+#include "mrgi_vtk_check.h"
+#include "mrgi_xml_check.h"
 
 #include <algorithm>
 #include <cmath>
@@ -147,6 +159,258 @@ bool InRectangle(const mrgi_mesh& mesh, const mrgi_area_light& light)
     }
   }
   return true;
+}
+
+// Largest data set MRGI draws from a file: its outer surface must fit in
+// memory, whatever a header claims (the readers allocate what it says).
+constexpr vtkIdType MaxPoints = vtkIdType(1) << 28;
+
+// Whether every cell of `cells` has only point ids in [0, npoints); `why`
+// names the first bad one.
+bool CellsInRange(vtkCellArray* cells, vtkIdType npoints, const char* what, std::string& why)
+{
+  if (!cells)
+  {
+    return true;
+  }
+  // The offsets first: cells are read through them.
+  vtkDataArray* offsets = cells->GetOffsetsArray();
+  vtkDataArray* connectivity = cells->GetConnectivityArray();
+  const vtkIdType noff = offsets ? offsets->GetNumberOfValues() : 0;
+  const double nconn = connectivity ? static_cast<double>(connectivity->GetNumberOfValues()) : 0.0;
+  double previous = 0;
+  for (vtkIdType i = 0; i < noff; ++i)
+  {
+    const double o = offsets->GetComponent(i, 0);
+    if ((i == 0 && o != 0) || o < previous || o > nconn || (i == noff - 1 && o != nconn))
+    {
+      why = std::string(what) + " offsets are not valid (offset " + std::to_string(i) + " is " +
+        std::to_string(static_cast<long long>(o)) + ")";
+      return false;
+    }
+    previous = o;
+  }
+  if (noff == 0 && nconn > 0)
+  {
+    why = std::string(what) + " connectivity without offsets";
+    return false;
+  }
+  const vtkIdType n = cells->GetNumberOfCells();
+  for (vtkIdType c = 0; c < n; ++c)
+  {
+    vtkIdType size = 0;
+    const vtkIdType* ids = nullptr;
+    cells->GetCellAtId(c, size, ids);
+    for (vtkIdType i = 0; i < size; ++i)
+    {
+      if (ids[i] < 0 || ids[i] >= npoints)
+      {
+        why = std::string(what) + (what[0] ? " cell " : "cell ") + std::to_string(c) +
+          " refers to point " + std::to_string(ids[i]) + ", outside [0, " +
+          std::to_string(npoints) + ")";
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+// Points of a linear or quadratic cell type; -k: at least k; 0: not drawn by MRGI.
+int CellPoints(int type)
+{
+  switch (type)
+  {
+    case VTK_VERTEX:
+      return 1;
+    case VTK_POLY_VERTEX:
+      return -1;
+    case VTK_LINE:
+      return 2;
+    case VTK_POLY_LINE:
+      return -2;
+    case VTK_TRIANGLE:
+      return 3;
+    case VTK_TRIANGLE_STRIP:
+      return -3;
+    case VTK_POLYGON:
+      return -3;
+    case VTK_PIXEL:
+    case VTK_QUAD:
+    case VTK_TETRA:
+      return 4;
+    case VTK_VOXEL:
+    case VTK_HEXAHEDRON:
+      return 8;
+    case VTK_WEDGE:
+      return 6;
+    case VTK_PYRAMID:
+      return 5;
+    case VTK_PENTAGONAL_PRISM:
+      return 10;
+    case VTK_HEXAGONAL_PRISM:
+      return 12;
+    case VTK_QUADRATIC_EDGE:
+      return 3;
+    case VTK_QUADRATIC_TRIANGLE:
+      return 6;
+    case VTK_QUADRATIC_QUAD:
+      return 8;
+    case VTK_QUADRATIC_TETRA:
+      return 10;
+    case VTK_QUADRATIC_HEXAHEDRON:
+      return 20;
+    case VTK_QUADRATIC_WEDGE:
+      return 15;
+    case VTK_QUADRATIC_PYRAMID:
+      return 13;
+    default:
+      return 0;
+  }
+}
+
+// What a reader returned, checked before any filter or mapper touches it:
+// point ids in range (VTK's filters index with them unchecked), cell types
+// with their point counts, finite coordinates, bounded sizes.
+bool ValidDataSet(vtkDataSet* ds, std::string& why)
+{
+  const vtkIdType np = ds->GetNumberOfPoints();
+  if (np > MaxPoints)
+  {
+    why = "it has " + std::to_string(np) + " points, more than MRGI draws (" +
+      std::to_string(MaxPoints) + ")";
+    return false;
+  }
+  if (auto* image = vtkImageData::SafeDownCast(ds))
+  {
+    int dims[3];
+    image->GetDimensions(dims);
+    double spacing[3];
+    image->GetSpacing(spacing);
+    for (int k = 0; k < 3; ++k)
+    {
+      if (dims[k] < 0 || !std::isfinite(spacing[k]) || !std::isfinite(image->GetOrigin()[k]))
+      {
+        why = "its image extent, origin or spacing is not valid";
+        return false;
+      }
+    }
+    return true;
+  }
+  if (auto* pointSet = vtkPointSet::SafeDownCast(ds))
+  {
+    if (vtkPoints* points = pointSet->GetPoints())
+    {
+      for (vtkIdType i = 0; i < np; ++i)
+      {
+        double p[3];
+        points->GetPoint(i, p);
+        if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+        {
+          why = "point " + std::to_string(i) + " has a coordinate that is not a finite number";
+          return false;
+        }
+      }
+    }
+  }
+  if (auto* poly = vtkPolyData::SafeDownCast(ds))
+  {
+    return CellsInRange(poly->GetVerts(), np, "vertex", why) &&
+      CellsInRange(poly->GetLines(), np, "line", why) &&
+      CellsInRange(poly->GetPolys(), np, "polygon", why) &&
+      CellsInRange(poly->GetStrips(), np, "strip", why);
+  }
+  if (auto* grid = vtkUnstructuredGrid::SafeDownCast(ds))
+  {
+    vtkCellArray* cells = grid->GetCells();
+    if (!CellsInRange(cells, np, "", why))
+    {
+      return false;
+    }
+    const vtkIdType n = cells ? cells->GetNumberOfCells() : 0;
+    vtkUnsignedCharArray* types = grid->GetCellTypesArray();
+    if (n > 0 && (!types || types->GetNumberOfValues() != n))
+    {
+      why = "its cell types do not match its cells";
+      return false;
+    }
+    for (vtkIdType c = 0; c < n; ++c)
+    {
+      const int type = types->GetValue(c);
+      const int need = CellPoints(type);
+      const vtkIdType have = cells->GetCellSize(c);
+      if (type == VTK_EMPTY_CELL && have == 0)
+      {
+        continue;
+      }
+      if (need == 0 || (need > 0 && have != need) || (need < 0 && have < -need))
+      {
+        why = "cell " + std::to_string(c) + " has type " + std::to_string(type) + " and " +
+          std::to_string(have) + " points, which MRGI cannot draw";
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+// ValidDataSet on a data set or on every leaf of a composite data set.
+bool ValidData(vtkDataObject* data, std::string& why)
+{
+  if (auto* ds = vtkDataSet::SafeDownCast(data))
+  {
+    return ValidDataSet(ds, why);
+  }
+  if (auto* composite = vtkCompositeDataSet::SafeDownCast(data))
+  {
+    vtkSmartPointer<vtkCompositeDataIterator> it;
+    it.TakeReference(composite->NewIterator());
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      if (auto* leaf = vtkDataSet::SafeDownCast(it->GetCurrentDataObject()))
+      {
+        if (!ValidDataSet(leaf, why))
+        {
+          return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
+// Flat data (one extent of its bounds much smaller than the others, such as
+// a floor) seen along its plane draws nothing: look at it face on instead.
+void FaceFlatData(vtkRenderer* renderer)
+{
+  double b[6];
+  renderer->ComputeVisiblePropBounds(b);
+  if (!vtkMath::AreBoundsInitialized(b))
+  {
+    return;
+  }
+  const double size[3] = { b[1] - b[0], b[3] - b[2], b[5] - b[4] };
+  const double largest = std::max(size[0], std::max(size[1], size[2]));
+  int thin = -1;
+  for (int k = 0; k < 3; ++k)
+  {
+    if (size[k] <= 1e-3 * largest && (thin < 0 || size[k] < size[thin]))
+    {
+      thin = k;
+    }
+  }
+  if (thin < 0 || !(largest > 0))
+  {
+    return;
+  }
+  vtkCamera* camera = renderer->GetActiveCamera();
+  double focal[3] = { 0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]) };
+  double position[3] = { focal[0], focal[1], focal[2] };
+  position[thin] += largest;
+  double up[3] = { 0, 0, 0 };
+  up[thin == 1 ? 2 : 1] = 1; // y up, or z up for data in the xz plane (a floor)
+  camera->SetFocalPoint(focal);
+  camera->SetPosition(position);
+  camera->SetViewUp(up);
 }
 
 vtkSmartPointer<vtkLight> MakeLight(const mrgi_light& in)
@@ -376,19 +640,24 @@ bool vtkMRGISceneBuilder::BuildCoreScene(const mrgi_scene* scene, vtkRenderer* r
 bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* renderer)
 {
   {
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe.good())
+    // Regular files only: a directory, FIFO or device (/dev/zero) would make
+    // a reader fail obscurely, hang or read forever.
+    mrgi_error err;
+    if (mrgi_input_check_regular(path.c_str(), &err) != MRGI_OK)
     {
-      return this->Fail("cannot open '" + path + "': no such file or not readable");
-    }
-    if (probe.peek() == std::ifstream::traits_type::eof())
-    {
-      return this->Fail("'" + path + "' is empty");
+      return this->Fail(err.message);
     }
   }
 
   if (EndsWith(path, ".gltf") || EndsWith(path, ".glb"))
   {
+    // VTK 9.1's glTF loader trusts accessors, buffer sizes, URIs and the
+    // node graph: check them first.
+    mrgi_error err;
+    if (mrgi_gltf_check(path.c_str(), nullptr, &err) != MRGI_OK)
+    {
+      return this->Fail(err.message);
+    }
     // The importer fills the first renderer of a window: import into a
     // scratch renderer, then move what it made into ours.
     vtkNew<vtkRenderWindow> scratchWindow;
@@ -404,6 +673,16 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
     {
       return this->Fail("cannot read glTF '" + path + "': " +
         (errors.HasError() ? errors.GetMessage() : std::string("it holds no meshes")));
+    }
+    imported->InitTraversal();
+    while (vtkActor* actor = imported->GetNextActor())
+    {
+      std::string why;
+      auto* mapper = vtkPolyDataMapper::SafeDownCast(actor->GetMapper());
+      if (mapper && mapper->GetInput() && !ValidData(mapper->GetInput(), why))
+      {
+        return this->Fail("cannot draw glTF '" + path + "': " + why);
+      }
     }
     vtkIdType triangles = 0;
     imported->InitTraversal();
@@ -423,6 +702,7 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
     {
       renderer->AddLight(light);
     }
+    FaceFlatData(renderer);
     renderer->ResetCamera();
     this->BuiltTriangleCount = triangles;
     return true;
@@ -444,6 +724,12 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
   }
   else if (EndsWith(path, ".obj"))
   {
+    // VTK's OBJ reader indexes with the face indices unchecked.
+    mrgi_error err;
+    if (mrgi_obj_check(path.c_str(), nullptr, &err) != MRGI_OK)
+    {
+      return this->Fail(err.message);
+    }
     auto r = vtkSmartPointer<vtkOBJReader>::New();
     r->SetFileName(path.c_str());
     reader = r;
@@ -456,6 +742,12 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
   }
   else if (EndsWith(path, ".vtk"))
   {
+    // VTK's legacy readers trust declared counts, sizes and cell types.
+    mrgi_error err;
+    if (mrgi_vtk_check(path.c_str(), nullptr, &err) != MRGI_OK)
+    {
+      return this->Fail(err.message);
+    }
     auto r = vtkSmartPointer<vtkGenericDataObjectReader>::New();
     r->SetFileName(path.c_str());
     reader = r;
@@ -463,6 +755,12 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
   else if (EndsWith(path, ".vtp") || EndsWith(path, ".vtu") || EndsWith(path, ".vti") ||
     EndsWith(path, ".vts") || EndsWith(path, ".vtr") || EndsWith(path, ".vtm"))
   {
+    // VTK's XML readers allocate what the attributes declare.
+    mrgi_error err;
+    if (mrgi_xml_check(path.c_str(), &err) != MRGI_OK)
+    {
+      return this->Fail(err.message);
+    }
     auto r = vtkSmartPointer<vtkXMLGenericDataObjectReader>::New();
     r->SetFileName(path.c_str());
     reader = r;
@@ -479,12 +777,46 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
   vtkNew<vtkDataSetSurfaceFilter> surface;
   ErrorCatcher readerErrors(reader);
   ErrorCatcher surfaceErrors(surface);
+  // Structured XML data announce their extent before reading: refuse one
+  // whose points alone would not fit in memory (VTK allocates it whole).
+  reader->UpdateInformation();
+  if (vtkInformation* outInfo = reader->GetOutputInformation(0))
+  {
+    if (outInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    {
+      int e[6];
+      outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), e);
+      double points = 1;
+      for (int k = 0; k < 3; ++k)
+      {
+        points *= std::max(0.0, static_cast<double>(e[2 * k + 1]) - e[2 * k] + 1.0);
+      }
+      if (points > static_cast<double>(MaxPoints))
+      {
+        return this->Fail("cannot read '" + path + "': its extent " + std::to_string(e[0]) + ".." +
+          std::to_string(e[1]) + " x " + std::to_string(e[2]) + ".." + std::to_string(e[3]) +
+          " x " + std::to_string(e[4]) + ".." + std::to_string(e[5]) + " is too large to draw");
+      }
+    }
+  }
+  if (readerErrors.HasError())
+  {
+    return this->Fail("cannot read '" + path + "': " + readerErrors.GetMessage());
+  }
   reader->Update();
   vtkDataObject* data = reader->GetOutputDataObject(0);
   if (readerErrors.HasError() || !data)
   {
     return this->Fail("cannot read '" + path + "': " +
       (readerErrors.HasError() ? readerErrors.GetMessage() : std::string("the reader produced nothing")));
+  }
+
+  {
+    std::string why;
+    if (!ValidData(data, why))
+    {
+      return this->Fail("cannot draw '" + path + "': " + why);
+    }
   }
 
   vtkNew<vtkCompositePolyDataMapper2> mapper;
@@ -500,10 +832,33 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
     surface->SetInputData(data);
     surface->Update();
     geometry = surface->GetOutputDataObject(0);
+    if (surfaceErrors.HasError() || !geometry)
+    {
+      return this->Fail("cannot draw '" + path + "': " +
+        (surfaceErrors.HasError() ? surfaceErrors.GetMessage() : std::string("no surface")));
+    }
   }
   else
   {
     return this->Fail("'" + path + "' holds a " + data->GetClassName() + ", which has no surface to draw");
+  }
+  if (auto* cloud = vtkPolyData::SafeDownCast(geometry))
+  {
+    if (cloud->GetNumberOfCells() == 0 && cloud->GetNumberOfPoints() > 0)
+    {
+      // Points without cells (an OBJ or PLY point cloud) draw nothing in
+      // VTK: give each point a vertex cell, as point-cloud viewers show them.
+      auto withVerts = vtkSmartPointer<vtkPolyData>::New();
+      withVerts->ShallowCopy(cloud);
+      vtkNew<vtkCellArray> verts;
+      verts->AllocateExact(cloud->GetNumberOfPoints(), cloud->GetNumberOfPoints());
+      for (vtkIdType i = 0; i < cloud->GetNumberOfPoints(); ++i)
+      {
+        verts->InsertNextCell(1, &i);
+      }
+      withVerts->SetVerts(verts);
+      geometry = withVerts;
+    }
   }
   if (auto* poly = vtkPolyData::SafeDownCast(geometry))
   {
@@ -522,16 +877,41 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
 
   mapper->SetInputDataObject(geometry);
   // Active scalars colour through a lookup table over their range (ParaView's
-  // default); unsigned-char RGB(A) scalars are used as colours directly.
-  mapper->SetColorModeToDefault();
+  // default); only 3- and 4-component unsigned-char scalars are colours used
+  // directly. VTK's default colour mode would also take 1- and 2-component
+  // unsigned chars as luminance(-alpha): ironProt.vtk's 0..255 density would
+  // draw as a near-black grey.
   mapper->SetScalarModeToDefault();
   if (auto* ds = vtkDataSet::SafeDownCast(geometry))
   {
     if (vtkDataArray* scalars = ds->GetPointData()->GetScalars())
     {
-      double range[2];
-      scalars->GetRange(range, -1);
-      mapper->SetScalarRange(range);
+      const bool colours = scalars->GetDataType() == VTK_UNSIGNED_CHAR &&
+        (scalars->GetNumberOfComponents() == 3 || scalars->GetNumberOfComponents() == 4);
+      if (colours)
+      {
+        mapper->SetColorModeToDirectScalars();
+      }
+      else
+      {
+        // The range of the whole data set, as ParaView shows it: a volume's
+        // outer surface alone may hold a single value (ironProt.vtk's zeros).
+        double range[2];
+        scalars->GetRange(range, -1);
+        auto* input = vtkDataSet::SafeDownCast(data);
+        vtkDataArray* all = input ? input->GetPointData()->GetScalars() : nullptr;
+        if (all && all->GetNumberOfComponents() == scalars->GetNumberOfComponents())
+        {
+          all->GetRange(range, -1);
+        }
+        if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
+        {
+          range[0] = 0;
+          range[1] = 1;
+        }
+        mapper->SetColorModeToMapScalars();
+        mapper->SetScalarRange(range);
+      }
       mapper->ScalarVisibilityOn();
     }
     else
@@ -544,6 +924,7 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
   actor->GetProperty()->SetColor(0.8, 0.8, 0.8);
   actor->GetProperty()->SetPointSize(2.0f);
   renderer->AddActor(actor);
+  FaceFlatData(renderer);
   renderer->ResetCamera();
   this->BuiltTriangleCount = triangles;
   return true;

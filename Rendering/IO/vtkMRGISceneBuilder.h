@@ -22,14 +22,23 @@
  * .vts .vtr .vtm (XML), .vtk (legacy), .ply, .obj, .stl, .gltf/.glb
  * (vtkGLTFImporter). Data sets that are not polygonal are reduced to their
  * outer surface as ParaView's Surface representation does
- * (vtkDataSetSurfaceFilter); active scalars are coloured through a lookup
- * table over their range, RGB(A) unsigned-char scalars are used directly.
- * Files bring no camera (ResetCamera frames them) and no lights (VTK's
- * headlight lights them unless lights are added).
+ * (vtkDataSetSurfaceFilter); active point scalars of 1 or 2 components
+ * (unsigned char included) are coloured through a lookup table over the data
+ * set's range, 3- and 4-component unsigned-char scalars are used directly.
+ * Files bring no camera (ResetCamera frames them; flat data is seen face on)
+ * and no lights (VTK's headlight lights them unless lights are added).
+ * Points without cells get a vertex cell each.
+ *
+ * Only regular files are read. Before a VTK reader sees a PLY, OBJ, legacy
+ * VTK, VTK XML or glTF file, the core's structure check of that format
+ * (mrgi_ply_check.h and its siblings) refuses what would crash or exhaust
+ * the reader; what a reader returns is checked before any filter runs (point
+ * ids and offsets in range, known cell types with their point counts, finite
+ * coordinates, at most 2^28 points).
  *
  * Errors (unknown scene, missing/unreadable/corrupt file, a file with no
  * geometry) leave the renderer unchanged and are reported by a false return
- * and GetLastErrorMessage().
+ * and GetLastErrorMessage(), a line that names the file and the problem.
  */
 #ifndef vtkMRGISceneBuilder_h
 #define vtkMRGISceneBuilder_h

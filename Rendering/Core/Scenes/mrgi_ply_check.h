@@ -15,18 +15,25 @@
  *   int8..float64 aliases; lists with an integer count type);
  * - a "vertex" element exists and has x, y and z properties;
  * - the header ends with "end_header" within MRGI_PLY_MAX_HEADER_BYTES;
- * - the body is long enough: for binary files at least the bytes that the
- *   fixed-size properties need (each list counts its count field only, so the
- *   check is a lower bound); for ASCII files at least one non-empty line per
- *   element instance.
+ * - header lines are at most 4096 bytes (a file without newlines, such as
+ *   /dev/zero's contents, is refused, not read forever);
+ * - the body is read element by element: every value is present (ASCII: one
+ *   non-empty line per instance holding numbers for every property, lists
+ *   included; binary: the bytes of every property, lists by their count,
+ *   within the file), list counts are not negative, and every entry of the
+ *   face element's "vertex_indices" (or "vertex_index") lists lies in
+ *   [0, vertex count): VTK 9.1's reader and the filters after it crash on
+ *   out-of-range indices and on list counts beyond the data.
  *
- * It does not validate property values or list indices (the reader does).
+ * mrgi_ply_check() maps the file with mrgi_input_map() (regular files only)
+ * and calls mrgi_ply_check_buffer(), which a fuzzer can call directly.
  */
 #ifndef MRGI_PLY_CHECK_H
 #define MRGI_PLY_CHECK_H
 
 #include "mrgi_error.h"
 
+#include <stddef.h>
 #include <stdint.h>
 
 #ifdef __cplusplus
@@ -53,6 +60,15 @@ typedef struct mrgi_ply_info
  *         ::MRGI_ERR_INVALID_ARGUMENT for a NULL path.
  */
 mrgi_status mrgi_ply_check(const char* path, mrgi_ply_info* info, mrgi_error* err);
+
+/**
+ * @brief The same check on a PLY file held in memory.
+ * @param data The file's bytes (need not be NUL-terminated); may be NULL when size is 0.
+ * @param name Name used in messages; NULL reads "PLY data".
+ * @return ::MRGI_OK; ::MRGI_ERR_FORMAT naming the first problem found.
+ */
+mrgi_status mrgi_ply_check_buffer(
+  const void* data, size_t size, const char* name, mrgi_ply_info* info, mrgi_error* err);
 
 #ifdef __cplusplus
 }
