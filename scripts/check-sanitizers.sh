@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# The sanitizer tree: MRGI built with clang, -fsanitize=address,undefined and
+# libFuzzer coverage, in its own build directory. Run by ctest (sanitize.*,
+# Testing/Fuzz/CMakeLists.txt); see Documentation/reliability/fuzzing.md.
+# Usage: scripts/check-sanitizers.sh build DIR [cmake arguments]
+#          configure DIR and build what the tests below and fuzz.* run
+#        scripts/check-sanitizers.sh core DIR
+#          the C core's tests (and the C replays) with ASan, UBSan and LSan
+#        scripts/check-sanitizers.sh cli DIR
+#          mrgi-render on bad input (python.test_cli's bad-input cases, and
+#          ctest label badinput) with ASan and UBSan, leak checks off
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+what="${1:?usage: check-sanitizers.sh build|core|cli DIR}"
+dir="${2:?usage: check-sanitizers.sh build|core|cli DIR}"
+shift 2
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+unset DISPLAY
+
+case "$what" in
+  build)
+    start=$(date +%s)
+    # -O1: sanitizer reports keep their stack traces readable; no -Werror
+    # (warnings are the gcc build's job, clang warns differently).
+    cmake -S "$root" -B "$dir" -G Ninja \
+      -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+      -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS_RELEASE=-O1 -DCMAKE_CXX_FLAGS_RELEASE=-O1 \
+      -DMRGI_SANITIZE=address,undefined -DMRGI_FUZZ=ON -DMRGI_WARNINGS_AS_ERRORS=OFF \
+      -DMRGI_WRAP_PYTHON=OFF -DMRGI_BUILD_EXAMPLES=OFF "$@" > "$dir.configure.log" 2>&1 ||
+      { cat "$dir.configure.log"; exit 1; }
+    cmake --build "$dir" --target mrgi_sanitize_all --parallel "${MRGI_JOBS:-$(nproc)}"
+    echo "check-sanitizers: sanitizer tree built in $(( $(date +%s) - start )) s"
+    ;;
+  core)
+    # Leak detection on: the C core owns all of its memory.
+    export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1"
+    ctest --test-dir "$dir" -L core --output-on-failure --no-tests=error
+    ;;
+  cli)
+    # VTK and Mesa (llvmpipe) keep allocations until exit that LSan would
+    # report; they are not MRGI's, so leak detection is off for programs that
+    # load them. Everything else (overflows, use after free, UB) still aborts.
+    export ASAN_OPTIONS="detect_leaks=0"
+    render="$dir/bin/mrgi-render"
+    tmp="$dir/Testing/Temporary/sanitize-cli"
+    rm -rf "$tmp"
+    mkdir -p "$tmp"
+    MRGI_RENDER="$render" MRGI_TEST_TMP="$tmp" \
+      /usr/bin/python3 "$root/Testing/Python/test_cli.py" --bad-input
+    # Tests labelled badinput (crafted files fed to the programs) when the
+    # tree has them.
+    ctest --test-dir "$dir" -L badinput --output-on-failure
+    ;;
+  *)
+    echo "check-sanitizers: unknown step '$what' (build, core or cli)" >&2
+    exit 2
+    ;;
+esac
