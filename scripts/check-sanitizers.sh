@@ -14,6 +14,10 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 what="${1:?usage: check-sanitizers.sh build|core|cli DIR}"
 dir="${2:?usage: check-sanitizers.sh build|core|cli DIR}"
 shift 2
+# Symbolized stack traces in sanitizer reports (llvm-14, scripts/install-deps.sh).
+if [ -z "${ASAN_SYMBOLIZER_PATH:-}" ] && [ -x /usr/lib/llvm-14/bin/llvm-symbolizer ]; then
+  export ASAN_SYMBOLIZER_PATH=/usr/lib/llvm-14/bin/llvm-symbolizer
+fi
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 unset DISPLAY
 

@@ -11,6 +11,10 @@ fuzzer="${1:?usage: run-fuzzer.sh FUZZER SECONDS WORK_DIR INPUT_DIR...}"
 seconds="${2:?}"
 work="${3:?}"
 shift 3
+# Symbolized stack traces in sanitizer reports (llvm-14, scripts/install-deps.sh).
+if [ -z "${ASAN_SYMBOLIZER_PATH:-}" ] && [ -x /usr/lib/llvm-14/bin/llvm-symbolizer ]; then
+  export ASAN_SYMBOLIZER_PATH=/usr/lib/llvm-14/bin/llvm-symbolizer
+fi
 name="$(basename "$fuzzer")"
 mkdir -p "$work/corpus" "$work/artifacts"
 log="$work/fuzz.log"
