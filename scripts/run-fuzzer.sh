@@ -15,6 +15,11 @@ shift 3
 if [ -z "${ASAN_SYMBOLIZER_PATH:-}" ] && [ -x /usr/lib/llvm-14/bin/llvm-symbolizer ]; then
   export ASAN_SYMBOLIZER_PATH=/usr/lib/llvm-14/bin/llvm-symbolizer
 fi
+# The harnesses hand readers that take a path a scratch file per process
+# (Testing/Fuzz/mrgi_fuzz.h): in memory, that is 40 times the executions.
+if [ -z "${TMPDIR:-}" ] && [ -d /dev/shm ] && [ -w /dev/shm ]; then
+  export TMPDIR=/dev/shm
+fi
 name="$(basename "$fuzzer")"
 mkdir -p "$work/corpus" "$work/artifacts"
 log="$work/fuzz.log"
