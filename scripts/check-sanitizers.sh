@@ -7,8 +7,9 @@
 #        scripts/check-sanitizers.sh core DIR
 #          the C core's tests (and the C replays) with ASan, UBSan and LSan
 #        scripts/check-sanitizers.sh cli DIR
-#          mrgi-render on bad input (python.test_cli's bad-input cases, and
-#          ctest label badinput) with ASan and UBSan, leak checks off
+#          mrgi-render on bad input (python.test_cli's bad-input cases,
+#          crafted scene files, ctest labels badinput and fuzzreplay) with
+#          ASan and UBSan, leak checks off
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 what="${1:?usage: check-sanitizers.sh build|core|cli DIR}"
@@ -76,8 +77,8 @@ case "$what" in
       echo "check-sanitizers: $scene: $(grep '^mrgi-render: error:' "$tmp/$scene.log")"
     done
     # Tests labelled badinput (crafted files fed to the programs) when the
-    # tree has them.
-    ctest --test-dir "$dir" -L badinput --output-on-failure
+    # tree has them, and the fuzz replays (fuzz.ReplayRenderOptions loads VTK).
+    ctest --test-dir "$dir" -L 'badinput|fuzzreplay' --output-on-failure
     if [ -n "$(ls -A "$tmp/reports")" ]; then
       cat "$tmp"/reports/*
       echo "check-sanitizers: sanitizer reports above (in $tmp/reports)" >&2
