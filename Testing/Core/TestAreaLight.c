@@ -861,9 +861,8 @@ static void test_early_outs(void)
      * test must check the same points whichever compiled it. This is the
      * order gcc used, so the points are those the test has always checked. */
     const double cz = random_unit(&state), cy = random_unit(&state), cx = random_unit(&state);
-    mrgi_area_light light =
-      make_light(cx, cy, cz, u[0] * su / lu,
-                 u[1] * su / lu, u[2] * su / lu, v[0] * sv / lv, v[1] * sv / lv, v[2] * sv / lv, 1.5);
+    mrgi_area_light light = make_light(cx, cy, cz, u[0] * su / lu, u[1] * su / lu, u[2] * su / lu,
+      v[0] * sv / lv, v[1] * sv / lv, v[2] * sv / lv, 1.5);
     light.two_sided = trial % 3 == 0;
     light_samples t = make_samples(&light, 64 + 50 * trial, trial % 2, (uint64_t)trial);
     for (int r = 0; r < 400; ++r)

@@ -14,7 +14,8 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
   memset(names, 0x7f, sizeof(names));
   mrgi_error err;
   memset(&err, 0, sizeof(err));
-  const mrgi_status status = mrgi_exr_read_channels(path, &img, names, MRGI_IMAGE_MAX_CHANNELS, &err);
+  const mrgi_status status =
+    mrgi_exr_read_channels(path, &img, names, MRGI_IMAGE_MAX_CHANNELS, &err);
   if (status == MRGI_OK)
   {
     MRGI_FUZZ_REQUIRE(img.pixels != NULL);

@@ -68,8 +68,8 @@ static void read_and_check(const uint8_t* data, size_t size)
   }
   else
   {
-    MRGI_FUZZ_REQUIRE(status == MRGI_ERR_FORMAT || status == MRGI_ERR_IO ||
-      status == MRGI_ERR_OUT_OF_MEMORY);
+    MRGI_FUZZ_REQUIRE(
+      status == MRGI_ERR_FORMAT || status == MRGI_ERR_IO || status == MRGI_ERR_OUT_OF_MEMORY);
     MRGI_FUZZ_REQUIRE_ERROR(status, err);
     MRGI_FUZZ_REQUIRE(img.pixels == NULL && img.width == 0 && img.height == 0);
   }

@@ -39,7 +39,7 @@ int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size);
 /** Abort with file, line and the failed condition: libFuzzer keeps the input as a crash.
  *  The message goes straight to file descriptor 2, like the sanitizers' reports,
  *  so a harness may silence the reader's own messages (stdio's stderr). */
-#define MRGI_FUZZ_REQUIRE(condition)                                                              \
+#define MRGI_FUZZ_REQUIRE(condition)                                                               \
   do                                                                                               \
   {                                                                                                \
     if (!(condition))                                                                              \
@@ -94,7 +94,7 @@ static inline const char* mrgi_fuzz_file(const uint8_t* data, size_t size, const
 }
 
 /** Whether a failed call left a status and a non-empty, terminated message. */
-#define MRGI_FUZZ_REQUIRE_ERROR(status, err)                                                      \
+#define MRGI_FUZZ_REQUIRE_ERROR(status, err)                                                       \
   do                                                                                               \
   {                                                                                                \
     MRGI_FUZZ_REQUIRE((err).status == (status));                                                   \

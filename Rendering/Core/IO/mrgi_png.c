@@ -252,7 +252,8 @@ static int mrgi_png_decode(mrgi_png_reader* r)
   const size_t stored_row_bytes = png_get_rowbytes(r->png, r->info);
   const uint32_t declared_height = png_get_image_height(r->png, r->info);
   if (r->file_size >= 0 && stored_row_bytes > 0 &&
-      (size_t)declared_height > (MRGI_PNG_MAX_EXPANSION * ((size_t)r->file_size + 1)) / stored_row_bytes)
+    (size_t)declared_height >
+      (MRGI_PNG_MAX_EXPANSION * ((size_t)r->file_size + 1)) / stored_row_bytes)
   {
     png_error(r->png, "the header declares more pixel data than the file can hold");
   }
