@@ -22,8 +22,8 @@ for spec in "$@"; do
     PNG) sources=("$core/IO/mrgi_png.c" "$core/IO/mrgi_atomic_file.c"); libs=(-lpng -lz)
          shown=("$core/IO/mrgi_png.c") ;;
     EXR) sources=("$core/IO/mrgi_exr.c" "$core/IO/mrgi_atomic_file.c")
-         libs=($(pkg-config --libs OpenEXR)); shown=("$core/IO/mrgi_exr.c")
-         includes+=($(pkg-config --cflags OpenEXR)) ;;
+         read -r -a libs <<<"$(pkg-config --libs OpenEXR)"; shown=("$core/IO/mrgi_exr.c")
+         read -r -a exr_flags <<<"$(pkg-config --cflags OpenEXR)"; includes+=("${exr_flags[@]}") ;;
     Parse) sources=(); libs=(); shown=("$core/Twins/mrgi_parse.c") ;;
     *) echo "fuzz-coverage: no coverage build for '$name'" >&2; exit 2 ;;
   esac
