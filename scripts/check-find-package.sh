@@ -40,6 +40,11 @@ import sys
 
 import mrgi
 
+# The prefix's package, not another one on the path (an installed .deb).
+where = pathlib.Path(mrgi.__file__).resolve()
+if pathlib.Path(sys.argv[1]).resolve() not in where.parents:
+    sys.exit(f"check-find-package: import mrgi found {where}, outside the prefix {sys.argv[1]}")
+
 declared = re.compile(r"^class\s+\w+_EXPORT\s+(vtkMRGI\w+)", re.M)
 classes = sorted(
     c for h in pathlib.Path(sys.argv[1]).rglob("vtkMRGI*.h") for c in declared.findall(h.read_text())

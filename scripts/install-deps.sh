@@ -12,6 +12,12 @@ PACKAGES=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev libglew-dev
   libosmesa6 # vtkMRGIOSMesaRenderWindow dlopens libOSMesa.so.8; no header needed
   python3 python3-numpy
+  # The sanitizer and fuzzing tree (sanitize.*, fuzz.*): clang, libFuzzer and
+  # the sanitizer runtimes, llvm-symbolizer for readable reports.
+  clang libclang-rt-14-dev llvm-14
+  # install.DebPackage: cpack -G DEB computes Depends with dpkg-shlibdeps,
+  # which CPack runs only when `file` is there.
+  dpkg-dev file
 )
 # `install-deps.sh --benchmarks` adds what Testing/Benchmarks needs (plots).
 if [ "${1:-}" = "--benchmarks" ]; then

@@ -484,6 +484,14 @@ static void test_read_rejects_absurd_data_windows(void)
   mrgi_test_write_file(path, data, size);
   expect_read_fails(path, MRGI_ERR_FORMAT, "data window 1000000x1000000");
 
+  /* Within the per-side limit and few enough chunks, but more pixel data
+   * than any codec can decode from a file this small (found by reading the
+   * reader: a 597-byte file made it allocate 7 GiB). */
+  put_le32(box + 8, (1 << 20) - 1);
+  put_le32(box + 12, (int32_t)(size / 16) * 16 - 1);
+  mrgi_test_write_file(path, data, size);
+  expect_read_fails(path, MRGI_ERR_FORMAT, "more than a file of");
+
   /* Beyond the per-side limit. */
   put_le32(box + 8, 2000000000);
   put_le32(box + 12, 20);

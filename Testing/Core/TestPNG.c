@@ -237,6 +237,30 @@ static void test_read_rejects_oversized_header(void)
   expect_read_fails(path, MRGI_ERR_FORMAT, "width exceeds user limit");
 }
 
+/* A header whose sides pass the limit but whose rows no file this small can
+ * hold (found by fuzz.PNG: the reader allocated 144 GiB for 88 bytes). */
+static void test_read_rejects_more_rows_than_the_file_holds(void)
+{
+  char path[1024];
+  mrgi_test_tmp_path("png_more_rows.png", path, sizeof(path));
+  const uint8_t raw[7] = { 0, 1, 2, 3, 4, 5, 6 };
+  byte_buffer png;
+  /* 131072 x 196608 16-bit RGB: 144 GiB of rows declared, 7 bytes present. */
+  build_png(&png, 1u << 17, 3u << 16, 16, 2, raw, sizeof(raw), NULL, 0, NULL, 0);
+  mrgi_test_write_file(path, png.data, png.size);
+  expect_read_fails(path, MRGI_ERR_FORMAT, "more pixel data than the file can hold");
+  /* The largest image a file can hold at all still gets to the pixel data:
+   * rows of 1032 bytes per file byte are allowed, then found missing. */
+  const uint32_t height = (uint32_t)(png.size * 1032u / 3u);
+  build_png(&png, 1, height, 8, 2, raw, sizeof(raw), NULL, 0, NULL, 0);
+  mrgi_test_write_file(path, png.data, png.size);
+  mrgi_image img;
+  mrgi_error err;
+  MRGI_CHECK(mrgi_png_read(path, &img, &err) == MRGI_ERR_FORMAT);
+  MRGI_CHECK(strstr(err.message, "more pixel data") == NULL);
+  MRGI_CHECK(img.pixels == NULL);
+}
+
 /* ---- bad input on write -------------------------------------------------- */
 
 static void test_write_rejects_bad_input(void)
@@ -426,6 +450,7 @@ int main(int argc, char** argv)
     MRGI_TEST_CASE(test_read_16bit_gray_alpha),
     MRGI_TEST_CASE(test_read_palette_with_transparency),
     MRGI_TEST_CASE(test_read_rejects_oversized_header),
+    MRGI_TEST_CASE(test_read_rejects_more_rows_than_the_file_holds),
     MRGI_TEST_CASE(test_write_rejects_bad_input),
     MRGI_TEST_CASE(test_write_to_missing_directory_leaves_nothing),
     MRGI_TEST_CASE(test_read_rejects_missing_and_foreign_files),

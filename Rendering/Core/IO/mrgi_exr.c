@@ -619,6 +619,12 @@ static mrgi_status mrgi_exr_open_for_read(mrgi_exr_reader* r, const char* path, 
   return MRGI_OK;
 }
 
+/* The most pixel data one byte of an OpenEXR file can decode to, with margin.
+ * Deflate (ZIP, ZIPS, PXR24) expands at most 1032:1; RLE 64:1; B44 about
+ * 11:1; DWAA/DWAB store one DC coefficient per 8x8 block, deflated, so a
+ * flat image reaches about 64 x 1032 = 66048:1. 2^17 is above all of them. */
+#define MRGI_EXR_MAX_EXPANSION ((int64_t)1 << 17)
+
 /* Layout facts gathered from the header before any pixel is read. */
 typedef struct mrgi_exr_layout
 {
@@ -720,6 +726,27 @@ static mrgi_status mrgi_exr_read_layout(mrgi_exr_reader* r, const char* path,
       return mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': channel '%s' has unknown pixel type %d",
                             path, entry->name.str, (int)entry->pixel_type);
     }
+  }
+  /* No OpenEXR codec expands its data more than MRGI_EXR_MAX_EXPANSION
+   * times, so a header that declares more pixel data than that many times
+   * the file size is corrupt (or the file truncated): refused here, before
+   * the image is allocated (a 597-byte file declaring a 1048576 x 592 data
+   * window asked for 7 GiB). */
+  int64_t bytes_per_pixel = 0;
+  for (int32_t c = 0; c < list->num_channels; ++c)
+  {
+    bytes_per_pixel += list->entries[c].pixel_type == EXR_PIXEL_HALF ? 2 : 4;
+  }
+  /* width, height <= 2^20 and bytes_per_pixel <= 256: no overflow in int64. */
+  const int64_t pixel_bytes = width * height * bytes_per_pixel;
+  if (r->stream.size >= 0 && pixel_bytes / MRGI_EXR_MAX_EXPANSION > r->stream.size)
+  {
+    return mrgi_error_set(err, MRGI_ERR_FORMAT,
+                          "'%s': data window %lldx%lld of %d channels declares %lld bytes of "
+                          "pixel data, more than a file of %lld bytes can hold (corrupt or "
+                          "truncated header)",
+                          path, (long long)width, (long long)height, list->num_channels,
+                          (long long)pixel_bytes, (long long)r->stream.size);
   }
   /* Known names first (R, G, B, A, Y), then the rest in file order. */
   int32_t next = 0;

@@ -52,6 +52,9 @@ static void mrgi_png_on_warning(png_structp png, png_const_charp msg)
   }
 }
 
+/* The most a deflate stream can expand (bytes out per byte in, rounded up). */
+#define MRGI_PNG_MAX_EXPANSION ((size_t)1032)
+
 static int mrgi_png_mul_size(size_t a, size_t b, size_t* out)
 {
   if (a != 0 && b > SIZE_MAX / a)
@@ -223,6 +226,7 @@ typedef struct mrgi_png_reader
   int32_t channels;    /* after expansion: 1..4 */
   int32_t bit_depth;   /* after expansion: 8 or 16 */
   size_t row_bytes;
+  long file_size;      /* bytes in the file, -1 when it cannot be told (a pipe) */
   int out_of_memory;   /* set before a longjmp caused by a failed allocation */
   mrgi_png_message message;
 } mrgi_png_reader;
@@ -239,6 +243,20 @@ static int mrgi_png_decode(mrgi_png_reader* r)
   /* Refuse absurd headers before libpng sizes anything from them. */
   png_set_user_limits(r->png, MRGI_IMAGE_MAX_DIMENSION, MRGI_IMAGE_MAX_DIMENSION);
   png_read_info(r->png, r->info);
+
+  /* Deflate expands at most 1032:1 (a 258-byte match in two bits), so a file
+   * of N bytes holds at most about 1032 N bytes of rows as stored (before
+   * any expansion). A header that declares more is corrupt or the file is
+   * truncated: refuse it before allocating rows for it (an 88-byte file
+   * declaring 131072 x 196608 16-bit RGB pixels asked for 144 GiB). */
+  const size_t stored_row_bytes = png_get_rowbytes(r->png, r->info);
+  const uint32_t declared_height = png_get_image_height(r->png, r->info);
+  if (r->file_size >= 0 && stored_row_bytes > 0 &&
+    (size_t)declared_height >
+      (MRGI_PNG_MAX_EXPANSION * ((size_t)r->file_size + 1)) / stored_row_bytes)
+  {
+    png_error(r->png, "the header declares more pixel data than the file can hold");
+  }
 
   const int color_type = png_get_color_type(r->png, r->info);
   const int depth = png_get_bit_depth(r->png, r->info);
@@ -333,6 +351,15 @@ mrgi_status mrgi_png_read(const char* path, mrgi_image* out, mrgi_error* err)
                ? mrgi_error_set(err, MRGI_ERR_IO, "cannot read '%s': %s", path, strerror(errno))
                : mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s' is not a PNG file (bad signature)",
                                 path);
+  }
+  reader.file_size = -1;
+  if (status == MRGI_OK && fseek(reader.file, 0, SEEK_END) == 0)
+  {
+    reader.file_size = ftell(reader.file);
+    if (fseek(reader.file, (long)sizeof(signature), SEEK_SET) != 0)
+    {
+      status = mrgi_error_set(err, MRGI_ERR_IO, "cannot seek in '%s': %s", path, strerror(errno));
+    }
   }
   if (status == MRGI_OK)
   {

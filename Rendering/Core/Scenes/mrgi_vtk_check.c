@@ -759,7 +759,8 @@ mrgi_status mrgi_vtk_check_buffer(
     s = MRGI_OK;
   if (s == MRGI_OK && info)
   {
-    info->point_count = st.points;
+    /* A file that stops (an unknown keyword) before POINTS declared none. */
+    info->point_count = st.points < 0 ? 0 : st.points;
     info->cell_count = st.cells;
     info->binary = r.binary;
   }

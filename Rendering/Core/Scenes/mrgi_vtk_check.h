@@ -53,7 +53,7 @@ extern "C" {
 /** What the file declared. */
 typedef struct mrgi_vtk_info
 {
-  int64_t point_count; /**< Points (for structured data: nx*ny*nz). */
+  int64_t point_count; /**< Points (for structured data: nx*ny*nz); 0 when none are declared. */
   int64_t cell_count;  /**< Cells of all cell sections. */
   int32_t binary;      /**< 1 for BINARY files. */
 } mrgi_vtk_info;
