@@ -29,7 +29,6 @@
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
 #include "vtkRenderStepsPass.h"
-#include "vtkToneMappingPass.h"
 #include "vtkDataArray.h"
 #include "vtkRenderTimerLog.h"
 #include "vtkRenderWindow.h"
@@ -39,6 +38,7 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkPointData.h"
 
+#include "mrgi_box_filter.h"
 #include "mrgi_error.h"
 #include "mrgi_area_light.h"
 #include "mrgi_voxel.h"
@@ -78,6 +78,54 @@ double Median(std::vector<double> v)
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// --aa ssaa:N: the N x N blocks of `image` (any scalar type, rows in
+// either order) averaged into one pixel each (mrgi_box_downsample); 8-bit
+// images are rounded back to 8 bits. False with `why` on failure.
+bool Downsample(vtkImageData* image, int factor, std::string& why)
+{
+  if (factor <= 1)
+  {
+    return true;
+  }
+  int dims[3];
+  image->GetDimensions(dims);
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  const int channels = scalars->GetNumberOfComponents();
+  mrgi_image full, small;
+  mrgi_error err;
+  if (mrgi_image_create(&full, dims[0], dims[1], channels, &err) != MRGI_OK)
+  {
+    why = std::string("supersampling: ") + err.message;
+    return false;
+  }
+  const vtkIdType values = scalars->GetNumberOfValues();
+  for (vtkIdType i = 0; i < values; ++i)
+  {
+    full.pixels[i] = static_cast<float>(scalars->GetVariantValue(i).ToDouble());
+  }
+  const mrgi_status status = mrgi_box_downsample(&full, factor, &small, &err);
+  mrgi_image_destroy(&full);
+  if (status != MRGI_OK)
+  {
+    why = std::string("supersampling: ") + err.message;
+    return false;
+  }
+  vtkSmartPointer<vtkDataArray> out = vtkSmartPointer<vtkDataArray>::Take(scalars->NewInstance());
+  out->SetNumberOfComponents(channels);
+  out->SetNumberOfTuples(static_cast<vtkIdType>(small.width) * small.height);
+  out->SetName(scalars->GetName());
+  const bool bytes = scalars->GetDataType() == VTK_UNSIGNED_CHAR;
+  for (vtkIdType i = 0; i < out->GetNumberOfValues(); ++i)
+  {
+    const double v = small.pixels[i];
+    out->SetVariantValue(i, bytes ? vtkVariant(static_cast<unsigned char>(std::lround(std::min(std::max(v, 0.0), 255.0)))) : vtkVariant(v));
+  }
+  image->SetDimensions(small.width, small.height, 1);
+  image->GetPointData()->SetScalars(out);
+  mrgi_image_destroy(&small);
+  return true;
+}
+
 void Progress(const Options& o, const std::string& line)
 {
   if (!o.Quiet)
@@ -114,11 +162,15 @@ int main(int argc, char* argv[])
   {
     return Fail("no render window: " + why);
   }
-  window->SetSize(o.Width, o.Height);
+  // Supersampling renders every pixel N x N times; the outputs are averaged back.
+  const int ssaa = o.AntiAliasing == Options::AASSAA ? o.SSAAFactor : 1;
+  window->SetSize(o.Width * ssaa, o.Height * ssaa);
+  // MRGI's buffers are single-sample (vtkMRGIPass refuses MSAA); FXAA is --aa's.
   window->SetMultiSamples(0);
 
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(o.Background);
+  renderer->SetUseFXAA(o.AntiAliasing == Options::AAFXAA);
   window->AddRenderer(renderer);
 
   const Clock::time_point buildStart = Clock::now();
@@ -253,6 +305,10 @@ int main(int argc, char* argv[])
   mrgi->SetVPLSelectionMode(o.ImportanceVPLs ? vtkMRGIVPLSelection::FluxImportance : vtkMRGIVPLSelection::Grid);
   mrgi->SetRSMResolution(static_cast<int>(o.RSMSize));
   mrgi->SetIndirectStrength(o.IndirectStrength);
+  mrgi->SetToneMapping(o.ToneMapping);
+  mrgi->SetAutoExposure(o.AutoExposure);
+  mrgi->SetAutoExposureKey(o.ExposureKey);
+  mrgi->SetExposure(o.Exposure);
   if (o.IndirectOnly && !o.GI && !o.Reference)
   {
     return Fail("--indirect-only needs indirect light (--gi full) or --reference");
@@ -262,16 +318,7 @@ int main(int argc, char* argv[])
     // Logging must be on before the window opens the first frame.
     window->GetRenderTimer()->SetLoggingEnabled(true);
   }
-  vtkNew<vtkToneMappingPass> toneMapping;
-  if (o.ToneMapping)
-  {
-    toneMapping->SetDelegatePass(mrgi);
-    renderer->SetPass(toneMapping);
-  }
-  else
-  {
-    renderer->SetPass(mrgi);
-  }
+  renderer->SetPass(mrgi);
 
   std::map<std::string, std::vector<double>> stageTimes;
   std::vector<std::string> stageOrder;
@@ -304,6 +351,12 @@ int main(int argc, char* argv[])
   {
     return Fail("nothing was rendered (is the window size valid and an OpenGL context available?)");
   }
+  std::snprintf(line, sizeof(line), "exposure %+.2f EV (%s)%s%s", mrgi->GetLastExposure(),
+    o.AutoExposure ? "auto" : "fixed", o.ToneMapping ? ", tone mapped" : "",
+    o.AntiAliasing == Options::AAFXAA ? ", FXAA"
+      : ssaa > 1                       ? (", SSAA " + std::to_string(ssaa) + "x" + std::to_string(ssaa)).c_str()
+                                       : "");
+  Progress(o, line);
 
   // Ground truth: the CPU reference of the same scene (lights as placed by
   // the frame just rendered), instead of the GPU image.
@@ -344,6 +397,7 @@ int main(int argc, char* argv[])
     }
   }
 
+  why.clear();
   for (const std::string& path : o.Outputs)
   {
     vtkNew<vtkImageData> image;
@@ -356,16 +410,18 @@ int main(int argc, char* argv[])
     }
     else if (o.IndirectOnly)
     {
-      ok = mrgi->GetIndirectBuffer(window, image) && io->Write(image, path.c_str());
+      ok = mrgi->GetIndirectBuffer(window, image) && Downsample(image, ssaa, why) &&
+        io->Write(image, path.c_str());
     }
     else if (EndsWith(path, ".exr"))
     {
-      ok = mrgi->GetColorBuffer(window, image) && io->WriteEXR(image, path.c_str());
+      ok = mrgi->GetColorBuffer(window, image) && Downsample(image, ssaa, why) &&
+        io->WriteEXR(image, path.c_str());
     }
     else
     {
       vtkNew<vtkUnsignedCharArray> pixels;
-      window->GetRGBACharPixelData(0, 0, o.Width - 1, o.Height - 1, 0, pixels);
+      window->GetRGBACharPixelData(0, 0, o.Width * ssaa - 1, o.Height * ssaa - 1, 0, pixels);
       pixels->SetNumberOfComponents(4);
       vtkNew<vtkUnsignedCharArray> rgb;
       rgb->SetNumberOfComponents(3);
@@ -377,14 +433,16 @@ int main(int argc, char* argv[])
           rgb->SetValue(3 * p + c, pixels->GetValue(4 * p + c));
         }
       }
-      image->SetDimensions(o.Width, o.Height, 1);
+      image->SetDimensions(o.Width * ssaa, o.Height * ssaa, 1);
       image->GetPointData()->SetScalars(rgb);
-      ok = io->WritePNG(image, path.c_str());
+      ok = Downsample(image, ssaa, why) && io->WritePNG(image, path.c_str());
     }
     if (!ok)
     {
       return Fail(std::string("cannot write '") + path + "': " +
-        (io->GetLastErrorMessage()[0] ? io->GetLastErrorMessage() : "reading the image back failed"));
+        (io->GetLastErrorMessage()[0] ? io->GetLastErrorMessage()
+            : !why.empty()            ? why.c_str()
+                                      : "reading the image back failed"));
     }
     Progress(o, "wrote " + path);
   }
@@ -438,14 +496,6 @@ int main(int argc, char* argv[])
     interactor->Start();
   }
   renderer->SetPass(nullptr);
-  // The outermost pass releases its delegates' resources too.
-  if (o.ToneMapping)
-  {
-    toneMapping->ReleaseGraphicsResources(window);
-  }
-  else
-  {
-    mrgi->ReleaseGraphicsResources(window);
-  }
+  mrgi->ReleaseGraphicsResources(window);
   return 0;
 }

@@ -84,7 +84,7 @@ static void test_log_average(void)
   MRGI_CHECK(used == N - N / 4 - 2);
   MRGI_CHECK_NEAR(lw, 0.045 + MRGI_EXPOSURE_DELTA, 1e-6);
   /* two stops below the key */
-  MRGI_CHECK_NEAR(mrgi_exposure_auto_ev(lw, MRGI_EXPOSURE_KEY), 2.0, 0.01);
+  MRGI_CHECK_NEAR(mrgi_exposure_auto_ev(lw, 0.0, MRGI_EXPOSURE_KEY), 2.0, 0.01);
   /* without depth every finite pixel counts: the background dominates */
   MRGI_CHECK(mrgi_exposure_log_average(rgba, 4, NULL, N, &lw, &used, NULL) == MRGI_OK);
   MRGI_CHECK(used == N - 2);
@@ -103,18 +103,55 @@ static void test_auto_ev_edges(void)
   const float rgb[6] = { 1, 1, 1, 1, 1, 1 };
   MRGI_CHECK(mrgi_exposure_log_average(rgb, 3, depth, 2, &lw, &used, NULL) == MRGI_OK);
   MRGI_CHECK(lw == 0.0 && used == 0);
-  MRGI_CHECK(mrgi_exposure_auto_ev(0.0, MRGI_EXPOSURE_KEY) == 0.0);
-  MRGI_CHECK(mrgi_exposure_auto_ev(NAN, MRGI_EXPOSURE_KEY) == 0.0);
-  MRGI_CHECK(mrgi_exposure_auto_ev(INFINITY, MRGI_EXPOSURE_KEY) == 0.0);
-  MRGI_CHECK(mrgi_exposure_auto_ev(1e-30, MRGI_EXPOSURE_KEY) == MRGI_EXPOSURE_MAX_EV);
-  MRGI_CHECK(mrgi_exposure_auto_ev(1e30, MRGI_EXPOSURE_KEY) == MRGI_EXPOSURE_MIN_EV);
-  MRGI_CHECK(mrgi_exposure_auto_ev(0.18, 0.18) == 0.0);
+  MRGI_CHECK(mrgi_exposure_auto_ev(0.0, 0.0, MRGI_EXPOSURE_KEY) == 0.0);
+  MRGI_CHECK(mrgi_exposure_auto_ev(NAN, NAN, MRGI_EXPOSURE_KEY) == 0.0);
+  MRGI_CHECK(mrgi_exposure_auto_ev(INFINITY, 0.0, MRGI_EXPOSURE_KEY) == 0.0);
+  MRGI_CHECK(mrgi_exposure_auto_ev(1e-30, 0.0, MRGI_EXPOSURE_KEY) == MRGI_EXPOSURE_MAX_EV);
+  MRGI_CHECK(mrgi_exposure_auto_ev(1e30, 0.0, MRGI_EXPOSURE_KEY) == MRGI_EXPOSURE_MIN_EV);
+  MRGI_CHECK(mrgi_exposure_auto_ev(0.18, 0.0, 0.18) == 0.0);
+  /* the highlight cap wins when it is lower; alone it still decides */
+  MRGI_CHECK_NEAR(mrgi_exposure_auto_ev(0.01, 0.25, 0.18), 2.0, 1e-12);
+  MRGI_CHECK_NEAR(mrgi_exposure_auto_ev(0.09, 0.25, 0.18), 1.0, 1e-12);
+  MRGI_CHECK_NEAR(mrgi_exposure_auto_ev(0.0, 4.0, 0.18), -2.0, 1e-12);
+  MRGI_CHECK(mrgi_exposure_auto_ev(0.09, 0.25, 0.0) == 0.0);
   mrgi_error err;
   MRGI_CHECK(mrgi_exposure_log_average(NULL, 3, NULL, 4, &lw, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(mrgi_exposure_log_average(rgb, 2, NULL, 2, &lw, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(mrgi_exposure_log_average(rgb, 3, NULL, -1, &lw, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(mrgi_exposure_log_average(rgb, 3, NULL, 2, NULL, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "mrgi_exposure_log_average") != NULL);
+}
+
+/* The histogram quantile is never below the true quantile and within one
+ * bin (1/MRGI_EXPOSURE_HISTOGRAM_BINS stop) above it; background ignored. */
+static void test_quantile(void)
+{
+  enum { N = 1000 };
+  static float rgb[N * 3];
+  static float depth[N];
+  for (int i = 0; i < N; ++i)
+  {
+    /* luminances 0.001 .. 1.0, grey so L = the value */
+    rgb[3 * i + 0] = rgb[3 * i + 1] = rgb[3 * i + 2] = (float)(i + 1) * 0.001f;
+    depth[i] = i >= 900 ? 1.0f : 0.3f; /* the brightest 100 are background */
+  }
+  double q = 0.0;
+  MRGI_CHECK(mrgi_exposure_quantile(rgb, 3, depth, N, 0.5, &q, NULL) == MRGI_OK);
+  MRGI_CHECK(q >= 0.45 && q <= 0.45 * exp2(1.0 / MRGI_EXPOSURE_HISTOGRAM_BINS) * 1.0001);
+  MRGI_CHECK(mrgi_exposure_quantile(rgb, 3, NULL, N, 0.97, &q, NULL) == MRGI_OK);
+  MRGI_CHECK(q >= 0.97 && q <= 0.97 * exp2(1.0 / MRGI_EXPOSURE_HISTOGRAM_BINS) * 1.0001);
+  MRGI_CHECK(mrgi_exposure_quantile(rgb, 3, NULL, N, 1.0, &q, NULL) == MRGI_OK);
+  MRGI_CHECK(q >= 1.0 && q <= exp2(1.0 / MRGI_EXPOSURE_HISTOGRAM_BINS) * 1.0001);
+  /* black pixels land in the first bin; no foreground gives 0 */
+  const float black[3] = { 0, 0, 0 };
+  MRGI_CHECK(mrgi_exposure_quantile(black, 3, NULL, 1, 1.0, &q, NULL) == MRGI_OK);
+  MRGI_CHECK(q > 0.0 && q < 1e-6);
+  const float far[1] = { 1.0f };
+  MRGI_CHECK(mrgi_exposure_quantile(black, 3, far, 1, 1.0, &q, NULL) == MRGI_OK && q == 0.0);
+  mrgi_error err;
+  MRGI_CHECK(mrgi_exposure_quantile(rgb, 3, NULL, N, 0.0, &q, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_exposure_quantile(rgb, 3, NULL, N, 1.5, &q, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_exposure_quantile(rgb, 3, NULL, N, 0.5, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
 }
 
 /* Box filter: exact block means, flat regions stay flat, bad input refused. */
@@ -155,6 +192,7 @@ int main(int argc, char** argv)
 {
   static const mrgi_test_case cases[] = { MRGI_TEST_CASE(test_tone_curve_shape),
     MRGI_TEST_CASE(test_scale_and_apply), MRGI_TEST_CASE(test_log_average),
-    MRGI_TEST_CASE(test_auto_ev_edges), MRGI_TEST_CASE(test_box_downsample) };
+    MRGI_TEST_CASE(test_auto_ev_edges), MRGI_TEST_CASE(test_quantile),
+    MRGI_TEST_CASE(test_box_downsample) };
   return MRGI_TEST_MAIN(argc, argv, cases);
 }

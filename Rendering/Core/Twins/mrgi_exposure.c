@@ -3,6 +3,7 @@
 #include "mrgi_vpl.h"
 
 #include <math.h>
+#include <string.h>
 
 float mrgi_tone_curve(float x)
 {
@@ -48,6 +49,18 @@ void mrgi_exposure_apply(const float rgb_in[3], float scale, int tone_map, float
   }
 }
 
+/* Luminance of pixel i, or -1 when it does not count (background, not finite, negative). */
+static double foreground_luminance(const float* rgb, int32_t stride, const float* depth, int64_t i)
+{
+  if (depth && !(depth[i] < 1.0f))
+  {
+    return -1.0; /* background (or NaN depth) */
+  }
+  const float* p = rgb + (size_t)i * (size_t)stride;
+  const double l = MRGI_LUMINANCE_R * p[0] + MRGI_LUMINANCE_G * p[1] + MRGI_LUMINANCE_B * p[2];
+  return (l >= 0.0 && !isinf(l)) ? l : -1.0;
+}
+
 mrgi_status mrgi_exposure_log_average(const float* rgb, int32_t stride, const float* depth,
   int64_t count, double* log_average, int64_t* used, mrgi_error* err)
 {
@@ -60,13 +73,8 @@ mrgi_status mrgi_exposure_log_average(const float* rgb, int32_t stride, const fl
   int64_t n = 0;
   for (int64_t i = 0; i < count; ++i)
   {
-    if (depth && !(depth[i] < 1.0f))
-    {
-      continue; /* background (or NaN depth) */
-    }
-    const float* p = rgb + (size_t)i * (size_t)stride;
-    const double l = MRGI_LUMINANCE_R * p[0] + MRGI_LUMINANCE_G * p[1] + MRGI_LUMINANCE_B * p[2];
-    if (!(l >= 0.0) || isinf(l))
+    const double l = foreground_luminance(rgb, stride, depth, i);
+    if (l < 0.0)
     {
       continue;
     }
@@ -81,13 +89,77 @@ mrgi_status mrgi_exposure_log_average(const float* rgb, int32_t stride, const fl
   return MRGI_OK;
 }
 
-double mrgi_exposure_auto_ev(double log_average, double key)
+mrgi_status mrgi_exposure_quantile(const float* rgb, int32_t stride, const float* depth,
+  int64_t count, double fraction, double* quantile, mrgi_error* err)
 {
-  if (!(log_average > 0.0) || !(key > 0.0) || isinf(log_average) || isinf(key))
+  enum
+  {
+    BINS = (MRGI_EXPOSURE_HISTOGRAM_MAX_LOG2 - MRGI_EXPOSURE_HISTOGRAM_MIN_LOG2) *
+      MRGI_EXPOSURE_HISTOGRAM_BINS
+  };
+  if (!quantile || count < 0 || (count > 0 && !rgb) || stride < 3 || stride > 64 ||
+    !(fraction > 0.0 && fraction <= 1.0))
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+      "mrgi_exposure_quantile: needs pixels, a stride in 3..64, a count >= 0 and a fraction "
+      "in (0, 1]");
+  }
+  int64_t histogram[BINS];
+  memset(histogram, 0, sizeof(histogram));
+  int64_t n = 0;
+  for (int64_t i = 0; i < count; ++i)
+  {
+    const double l = foreground_luminance(rgb, stride, depth, i);
+    if (l < 0.0)
+    {
+      continue;
+    }
+    double bin = l > 0.0
+      ? floor((log2(l) - MRGI_EXPOSURE_HISTOGRAM_MIN_LOG2) * MRGI_EXPOSURE_HISTOGRAM_BINS)
+      : 0.0;
+    bin = bin < 0.0 ? 0.0 : bin > BINS - 1 ? BINS - 1 : bin;
+    ++histogram[(int)bin];
+    ++n;
+  }
+  *quantile = 0.0;
+  if (n == 0)
+  {
+    return MRGI_OK;
+  }
+  const double target = fraction * (double)n;
+  int64_t cumulative = 0;
+  for (int b = 0; b < BINS; ++b)
+  {
+    cumulative += histogram[b];
+    if ((double)cumulative >= target)
+    {
+      *quantile = exp2(MRGI_EXPOSURE_HISTOGRAM_MIN_LOG2 + (double)(b + 1) / MRGI_EXPOSURE_HISTOGRAM_BINS);
+      break;
+    }
+  }
+  return MRGI_OK;
+}
+
+static int usable(double v)
+{
+  return v > 0.0 && !isinf(v);
+}
+
+double mrgi_exposure_auto_ev(double log_average, double highlight, double key)
+{
+  if (!usable(key) || (!usable(log_average) && !usable(highlight)))
   {
     return 0.0;
   }
-  double ev = log2(key / log_average);
+  double ev = MRGI_EXPOSURE_MAX_EV;
+  if (usable(log_average))
+  {
+    ev = log2(key / log_average);
+  }
+  if (usable(highlight) && log2(1.0 / highlight) < ev)
+  {
+    ev = log2(1.0 / highlight);
+  }
   if (ev < MRGI_EXPOSURE_MIN_EV)
   {
     ev = MRGI_EXPOSURE_MIN_EV;

@@ -32,7 +32,8 @@
  * Reproduction for Digital Images", eq. 1 and 2)
  *
  *     Lw  = exp( (1/N) sum log(delta + L(x, y)) )   over the N foreground pixels
- *     EV  = log2(key / Lw)                          clamped to [MRGI_EXPOSURE_MIN_EV, MRGI_EXPOSURE_MAX_EV]
+ *     Lh  = the MRGI_EXPOSURE_HIGHLIGHT_FRACTION quantile of L over the same pixels
+ *     EV  = min( log2(key / Lw), log2(1 / Lh) )     clamped to [MRGI_EXPOSURE_MIN_EV, MRGI_EXPOSURE_MAX_EV]
  *
  * L = MRGI_LUMINANCE_R r + MRGI_LUMINANCE_G g + MRGI_LUMINANCE_B b
  * (mrgi_vpl.h); delta = MRGI_EXPOSURE_DELTA keeps black pixels finite.
@@ -40,6 +41,17 @@
  * whose luminance is not finite or negative do not count: a small object
  * on a black background is exposed for the object. With no foreground
  * pixel, EV = 0.
+ *
+ * The second term is ours, not Reinhard's: scenes lit only by MRGI's
+ * lights have large areas in shadow (no ambient term), whose near-black
+ * pixels pull Lw down by several stops (cornell-area: +5 EV from the key
+ * alone, half of the image clipped). The cap keeps all but the brightest
+ * (1 - MRGI_EXPOSURE_HIGHLIGHT_FRACTION) of the foreground at or below 1
+ * before tone mapping. Lh is read from a histogram of log2 L with
+ * MRGI_EXPOSURE_HISTOGRAM_BINS bins per stop over
+ * [MRGI_EXPOSURE_HISTOGRAM_MIN_LOG2, MRGI_EXPOSURE_HISTOGRAM_MAX_LOG2)
+ * (values outside go to the end bins) as the upper edge of the bin where
+ * the cumulative count reaches the fraction: never below the true quantile.
  *
  * The GPU computes the transform in float in the order above; the
  * automatic EV is computed on the CPU by these functions (double sums) and
@@ -63,6 +75,12 @@ extern "C" {
 #define MRGI_EXPOSURE_KEY 0.18
 /** Reinhard's delta: luminance added before the log (black pixels stay finite). */
 #define MRGI_EXPOSURE_DELTA 1e-4
+/** Fraction of the foreground kept at or below 1 by the automatic exposure. */
+#define MRGI_EXPOSURE_HIGHLIGHT_FRACTION 0.97
+/** Histogram of log2 luminance: bins per stop and range, in stops. */
+#define MRGI_EXPOSURE_HISTOGRAM_BINS 8
+#define MRGI_EXPOSURE_HISTOGRAM_MIN_LOG2 -24
+#define MRGI_EXPOSURE_HISTOGRAM_MAX_LOG2 8
 /** Range of exposure values accepted and produced, in stops. */
 #define MRGI_EXPOSURE_MIN_EV -20.0
 #define MRGI_EXPOSURE_MAX_EV 20.0
@@ -98,11 +116,23 @@ mrgi_status mrgi_exposure_log_average(const float* rgb, int32_t stride, const fl
   int64_t count, double* log_average, int64_t* used, mrgi_error* err);
 
 /**
- * @brief Exposure value that maps `log_average` to `key` (Reinhard eq. 2):
- *        log2(key / log_average), clamped to the EV range; 0 when
- *        log_average or key is not a finite number > 0.
+ * @brief Luminance quantile of the foreground from the histogram of the
+ *        file comment (same pixel rules as mrgi_exposure_log_average).
+ * @param fraction  In (0, 1].
+ * @param quantile  Receives Lh: the upper edge of the bin where the
+ *                  cumulative count reaches fraction x N; 0 when no pixel counts.
+ * @return ::MRGI_ERR_INVALID_ARGUMENT as mrgi_exposure_log_average, or a
+ *         fraction outside (0, 1].
  */
-double mrgi_exposure_auto_ev(double log_average, double key);
+mrgi_status mrgi_exposure_quantile(const float* rgb, int32_t stride, const float* depth,
+  int64_t count, double fraction, double* quantile, mrgi_error* err);
+
+/**
+ * @brief The automatic EV of the file comment: min(log2(key / log_average),
+ *        log2(1 / highlight)), clamped to the EV range. A term whose
+ *        input is not a finite number > 0 is left out; 0 when both are.
+ */
+double mrgi_exposure_auto_ev(double log_average, double highlight, double key);
 
 #ifdef __cplusplus
 }

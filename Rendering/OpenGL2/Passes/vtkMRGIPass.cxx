@@ -50,10 +50,12 @@
 #include "vtkMRGIGBufferCapture.h"
 
 #include "mrgi_buffers.h"
+#include "mrgi_exposure.h"
 #include "mrgi_multires.h"
 #include "mrgi_vpl.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -77,7 +79,8 @@ struct vtkMRGIPass::Internals
 
 //------------------------------------------------------------------------------
 vtkMRGIPass::vtkMRGIPass()
-  : Internal(new Internals)
+  : AutoExposureKey(MRGI_EXPOSURE_KEY)
+  , Internal(new Internals)
 {
   this->RSMPass = vtkMRGIReflectiveShadowMapPass::New();
   this->VPLSelection = vtkMRGIVPLSelection::New();
@@ -260,6 +263,34 @@ double vtkMRGIPass::GetUpsampleMaskWeight()
 }
 
 //------------------------------------------------------------------------------
+void vtkMRGIPass::SetExposure(double ev)
+{
+  const double clamped = std::isnan(ev) ? 0.0
+                                        : std::min(std::max(ev, double(MRGI_EXPOSURE_MIN_EV)),
+                                            double(MRGI_EXPOSURE_MAX_EV));
+  if (clamped != this->Exposure)
+  {
+    this->Exposure = clamped;
+    this->Modified();
+  }
+}
+
+void vtkMRGIPass::SetAutoExposureKey(double key)
+{
+  if (!(key > 0.0) || std::isinf(key))
+  {
+    vtkErrorMacro("AutoExposureKey must be a finite number > 0 (got " << key << "); kept "
+                                                                     << this->AutoExposureKey);
+    return;
+  }
+  if (key != this->AutoExposureKey)
+  {
+    this->AutoExposureKey = key;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
 vtkTextureObject* vtkMRGIPass::GetPositionTexture()
 {
   return this->Internal->GBuffer.Position;
@@ -388,7 +419,7 @@ void vtkMRGIPass::RenderForward(const vtkRenderState* s)
   Internals& in = *this->Internal;
   this->NumberOfRenderedProps += vtkMRGIRenderSteps::RenderForward(s,
     vtkRenderStepsPass::SafeDownCast(this->DelegatePass), in.GBuffer.FrameBuffer, in.GBuffer.Color,
-    in.GBuffer.Depth, this->Viewport, this->FXAAFilter);
+    in.GBuffer.Depth, this->Viewport);
 }
 
 //------------------------------------------------------------------------------
@@ -525,12 +556,13 @@ void vtkMRGIPass::RenderAdd(
 }
 
 //------------------------------------------------------------------------------
-void vtkMRGIPass::RenderOutput(const vtkMRGIFrameContext& frame)
+void vtkMRGIPass::RenderOutput(const vtkMRGIFrameContext& frame, vtkTextureObject* source,
+  float scale, bool toneMap, bool depth)
 {
   Internals& in = *this->Internal;
   vtkOpenGLRenderWindow* renWin = frame.Window;
-  vtkOpenGLQuadHelper* quad =
-    in.Programs.Ready(renWin, "output", "", [] { return vtkMRGICompositeFS; });
+  vtkOpenGLQuadHelper* quad = in.Programs.Ready(renWin, "output",
+    depth ? "" : "#define MRGI_OUTPUT_NO_DEPTH\n", [] { return vtkMRGICompositeFS; });
   if (!quad)
   {
     vtkErrorMacro("could not build the MRGI output shader");
@@ -541,16 +573,92 @@ void vtkMRGIPass::RenderOutput(const vtkMRGIFrameContext& frame)
   vtkMRGIViewportStep state(ostate, frame.Viewport);
   vtkOpenGLState::ScopedglDepthFunc depthFunc(ostate);
   vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
-  ostate->vtkglEnable(GL_DEPTH_TEST); // writes the scene's depth (GL_ALWAYS)
-  ostate->vtkglDepthFunc(GL_ALWAYS);
-  ostate->vtkglDepthMask(GL_TRUE);
-  in.GBuffer.Color->Activate();
-  in.GBuffer.Depth->Activate();
-  program->SetUniformi("mrgiColor", in.GBuffer.Color->GetTextureUnit());
-  program->SetUniformi("mrgiDepth", in.GBuffer.Depth->GetTextureUnit());
+  if (depth)
+  {
+    ostate->vtkglEnable(GL_DEPTH_TEST); // writes the scene's depth (GL_ALWAYS)
+    ostate->vtkglDepthFunc(GL_ALWAYS);
+    ostate->vtkglDepthMask(GL_TRUE);
+    in.GBuffer.Depth->Activate();
+    program->SetUniformi("mrgiDepth", in.GBuffer.Depth->GetTextureUnit());
+  }
+  else
+  {
+    ostate->vtkglDisable(GL_DEPTH_TEST);
+    ostate->vtkglDepthMask(GL_FALSE);
+  }
+  source->Activate();
+  program->SetUniformi("mrgiColor", source->GetTextureUnit());
+  program->SetUniformf("mrgiExposureScale", scale);
+  program->SetUniformi("mrgiToneMap", toneMap ? 1 : 0);
   quad->Render();
-  in.GBuffer.Depth->Deactivate();
-  in.GBuffer.Color->Deactivate();
+  source->Deactivate();
+  if (depth)
+  {
+    in.GBuffer.Depth->Deactivate();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIPass::RenderOutputFXAA(const vtkMRGIFrameContext& frame, float scale)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLFramebufferObject* fbo = in.GBuffer.FrameBuffer;
+  fbo->SaveCurrentBindingsAndBuffers();
+  fbo->Bind();
+  fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
+  fbo->AddColorAttachment(0, in.GBuffer.Display);
+  fbo->ActivateDrawBuffers(1);
+  this->RenderOutput(frame, in.GBuffer.Color, scale, this->ToneMapping, false);
+  fbo->UnBind();
+  fbo->RestorePreviousBindingsAndBuffers();
+  vtkMRGIRenderSteps::RenderFXAA(
+    frame.Renderer, fbo, in.GBuffer.Display, frame.Viewport, this->FXAAFilter);
+  // The display image is final: copied as it is.
+  this->RenderOutput(frame, in.GBuffer.Display, 1.0f, false, true);
+}
+
+//------------------------------------------------------------------------------
+double vtkMRGIPass::MeasureAutoExposure(vtkOpenGLRenderWindow* renWin)
+{
+  Internals& in = *this->Internal;
+  std::vector<float> rgba;
+  if (!vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.GBuffer.Color, rgba))
+  {
+    vtkErrorMacro("automatic exposure: reading the colour back failed; EV 0 used");
+    return 0.0;
+  }
+  const int x0 = this->Viewport[0], y0 = this->Viewport[1];
+  const int w = this->Viewport[2], h = this->Viewport[3];
+  const size_t fullWidth = in.GBuffer.Color->GetWidth();
+  std::vector<float> depth(static_cast<size_t>(w) * h);
+  vtkOpenGLFramebufferObject* fbo = in.GBuffer.FrameBuffer;
+  fbo->SaveCurrentBindingsAndBuffers();
+  fbo->Bind();
+  fbo->AddDepthAttachment(in.GBuffer.Depth);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(x0, y0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+  fbo->UnBind();
+  fbo->RestorePreviousBindingsAndBuffers();
+  // The viewport's pixels, in the depth's order.
+  std::vector<float> colour(static_cast<size_t>(w) * h * 4);
+  for (int y = 0; y < h; ++y)
+  {
+    std::copy(rgba.begin() + static_cast<long>(4 * ((y + y0) * fullWidth + x0)),
+      rgba.begin() + static_cast<long>(4 * ((y + y0) * fullWidth + x0 + w)),
+      colour.begin() + static_cast<long>(4 * static_cast<size_t>(y) * w));
+  }
+  double logAverage = 0.0, highlight = 0.0;
+  mrgi_error err;
+  const int64_t count = static_cast<int64_t>(w) * h;
+  if (mrgi_exposure_log_average(colour.data(), 4, depth.data(), count, &logAverage, nullptr, &err) !=
+      MRGI_OK ||
+    mrgi_exposure_quantile(colour.data(), 4, depth.data(), count, MRGI_EXPOSURE_HIGHLIGHT_FRACTION,
+      &highlight, &err) != MRGI_OK)
+  {
+    vtkErrorMacro(<< "automatic exposure: " << err.message);
+    return 0.0;
+  }
+  return mrgi_exposure_auto_ev(logAverage, highlight, this->AutoExposureKey);
 }
 
 //------------------------------------------------------------------------------
@@ -572,6 +680,17 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
     vtkWarningMacro("vtkMRGIPass has no delegate pass: nothing to render "
                     "(SetDelegatePass(vtkRenderStepsPass) is the usual choice)");
     return;
+  }
+
+  if (renWin->GetMultiSamples() > 1 && !this->MultiSamplesReported)
+  {
+    this->MultiSamplesReported = true;
+    vtkErrorMacro("the render window asks for " << renWin->GetMultiSamples()
+                                                << " multisamples (MSAA), which vtkMRGIPass cannot "
+                                                   "honour: it renders into single-sample float "
+                                                   "buffers. Rendering without MSAA; call "
+                                                   "window->SetMultiSamples(0) and use "
+                                                   "renderer->UseFXAAOn() for anti-aliasing.");
   }
 
   int x = 0, y = 0, w = 0, h = 0;
@@ -629,7 +748,8 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   this->SpecularCaptured =
     capture && areaLights && this->AreaLightStage->GetSpecular() && AnySpecularProp(renderer);
 
-  in.GBuffer.Prepare(renWin, x + w, y + h, capture, this->SpecularCaptured);
+  const bool fxaa = renderer->GetUseFXAA();
+  in.GBuffer.Prepare(renWin, x + w, y + h, capture, this->SpecularCaptured, fxaa);
   this->BufferSize[0] = w;
   this->BufferSize[1] = h;
   {
@@ -685,7 +805,21 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   }
   {
     ScopedStage stage(timer, "output");
-    this->RenderOutput(frame);
+    this->LastExposure = this->AutoExposure ? this->MeasureAutoExposure(renWin) : this->Exposure;
+    const float scale = mrgi_exposure_scale(this->LastExposure);
+    if (fxaa)
+    {
+      this->RenderOutputFXAA(frame, scale);
+    }
+    else
+    {
+      this->RenderOutput(frame, in.GBuffer.Color, scale, this->ToneMapping, true);
+    }
+    if (split)
+    {
+      this->NumberOfRenderedProps += vtkMRGIRenderSteps::RenderOverlays(
+        s, vtkRenderStepsPass::SafeDownCast(this->DelegatePass), this->Viewport);
+    }
   }
   vtkOpenGLCheckErrorMacro("failed after vtkMRGIPass::Render");
 }
@@ -881,6 +1015,11 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfVPLs: " << this->VPLSelection->GetNumberOfVPLs() << "\n";
   os << indent << "VPLSelectionMode: " << this->VPLSelection->GetMode() << "\n";
   os << indent << "RSMResolution: " << this->RSMPass->GetResolution() << "\n";
+  os << indent << "Exposure: " << this->Exposure << " EV\n";
+  os << indent << "AutoExposure: " << (this->AutoExposure ? "On" : "Off") << "\n";
+  os << indent << "AutoExposureKey: " << this->AutoExposureKey << "\n";
+  os << indent << "LastExposure: " << this->LastExposure << " EV\n";
+  os << indent << "ToneMapping: " << (this->ToneMapping ? "On" : "Off") << "\n";
   os << indent << "StageTimingEnabled: " << (this->StageTimingEnabled ? "On" : "Off") << "\n";
   os << indent << "Multiresolution:\n";
   this->Multiresolution->PrintSelf(os, indent.GetNextIndent());
