@@ -373,6 +373,7 @@ void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
   if (capture)
   {
     this->PreRender(s);
+    this->Capturing = true;
   }
   if (split)
   {
@@ -405,6 +406,7 @@ void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
   }
   if (capture)
   {
+    this->Capturing = false;
     this->PostRender(s);
   }
   fbo->UnBind();
@@ -561,8 +563,13 @@ void vtkMRGIPass::RenderOutput(const vtkMRGIFrameContext& frame, vtkTextureObjec
 {
   Internals& in = *this->Internal;
   vtkOpenGLRenderWindow* renWin = frame.Window;
+  // The enclosing pass's G-buffer (vtkSSAOPass) is written with the depth.
+  const bool gbuffer = depth && this->OuterGBuffer && this->Captured;
   vtkOpenGLQuadHelper* quad = in.Programs.Ready(renWin, "output",
-    depth ? "" : "#define MRGI_OUTPUT_NO_DEPTH\n", [] { return vtkMRGICompositeFS; });
+    !depth      ? "#define MRGI_OUTPUT_NO_DEPTH\n"
+      : gbuffer ? "#define MRGI_OUTPUT_GBUFFER\n"
+                : "",
+    [] { return vtkMRGICompositeFS; });
   if (!quad)
   {
     vtkErrorMacro("could not build the MRGI output shader");
@@ -586,12 +593,24 @@ void vtkMRGIPass::RenderOutput(const vtkMRGIFrameContext& frame, vtkTextureObjec
     ostate->vtkglDisable(GL_DEPTH_TEST);
     ostate->vtkglDepthMask(GL_FALSE);
   }
+  if (gbuffer)
+  {
+    in.GBuffer.Position->Activate();
+    in.GBuffer.Normal->Activate();
+    program->SetUniformi("mrgiPosition", in.GBuffer.Position->GetTextureUnit());
+    program->SetUniformi("mrgiNormal", in.GBuffer.Normal->GetTextureUnit());
+  }
   source->Activate();
   program->SetUniformi("mrgiColor", source->GetTextureUnit());
   program->SetUniformf("mrgiExposureScale", scale);
   program->SetUniformi("mrgiToneMap", toneMap ? 1 : 0);
   quad->Render();
   source->Deactivate();
+  if (gbuffer)
+  {
+    in.GBuffer.Normal->Deactivate();
+    in.GBuffer.Position->Deactivate();
+  }
   if (depth)
   {
     in.GBuffer.Depth->Deactivate();
@@ -682,15 +701,55 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
     return;
   }
 
-  if (renWin->GetMultiSamples() > 1 && !this->MultiSamplesReported)
+  // MSAA cannot reach MRGI's single-sample float buffers, and VTK 9.1's
+  // FXAA filter gives a black image in a multisampled window (measured:
+  // also with MRGI's own buffer as its input): FXAA is skipped there.
+  const bool multisampled = renWin->GetMultiSamples() > 1;
+  if (multisampled && !this->MultiSamplesReported)
   {
     this->MultiSamplesReported = true;
-    vtkErrorMacro("the render window asks for " << renWin->GetMultiSamples()
-                                                << " multisamples (MSAA), which vtkMRGIPass cannot "
-                                                   "honour: it renders into single-sample float "
-                                                   "buffers. Rendering without MSAA; call "
-                                                   "window->SetMultiSamples(0) and use "
-                                                   "renderer->UseFXAAOn() for anti-aliasing.");
+    vtkErrorMacro("the render window asks for "
+      << renWin->GetMultiSamples()
+      << " multisamples (MSAA), which vtkMRGIPass cannot honour: it renders into single-sample "
+         "float buffers. Rendering without MSAA"
+      << (renderer->GetUseFXAA() ? " and without FXAA (black in a multisampled window)" : "")
+      << "; call window->SetMultiSamples(0) and use renderer->UseFXAAOn() for anti-aliasing.");
+  }
+
+  // An image-processing delegate (vtkSSAOPass, vtkToneMappingPass,
+  // vtkOpenGLFXAAPass, vtkEDLShading, vtkDepthOfFieldPass, another
+  // vtkMRGIPass) draws the scene into its own buffers: MRGI's G-buffer
+  // capture never reaches MRGI's targets, and the image would silently lose
+  // the indirect light. Refused once, with the nesting that works; the
+  // delegate then renders on its own (its effect without MRGI's).
+  if (vtkImageProcessingPass::SafeDownCast(this->DelegatePass))
+  {
+    if (!this->NestingReported)
+    {
+      this->NestingReported = true;
+      const char* name = this->DelegatePass->GetClassName();
+      vtkErrorMacro(<< name << " as the delegate of vtkMRGIPass is not supported: it draws the "
+                    << "scene into its own buffers, out of MRGI's reach, so no indirect or area "
+                    << "light would be added. Nest it the other way round: " << name
+                    << "->SetDelegatePass(mrgi) and mrgi->SetDelegatePass(vtkRenderStepsPass) "
+                    << "(Documentation/Composition.md). Rendering the " << name
+                    << " alone.");
+    }
+    this->IndirectComputed = false;
+    this->AreaLightsComputed = false;
+    this->DelegatePass->Render(s);
+    this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
+    return;
+  }
+
+  // An enclosing pass that reads VTK's G-buffer convention (vtkSSAOPass:
+  // view-space position and normal in draw buffers 1 and 2) gets them from
+  // MRGI's output: the scene is drawn into MRGI's buffers, not its.
+  {
+    GLint drawBuffer1 = GL_NONE, drawBuffer2 = GL_NONE;
+    glGetIntegerv(GL_DRAW_BUFFER1, &drawBuffer1);
+    glGetIntegerv(GL_DRAW_BUFFER2, &drawBuffer2);
+    this->OuterGBuffer = drawBuffer1 == GL_COLOR_ATTACHMENT1 && drawBuffer2 == GL_COLOR_ATTACHMENT2;
   }
 
   int x = 0, y = 0, w = 0, h = 0;
@@ -736,8 +795,23 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   // when indirect light is off or cannot contribute.
   Internals& in = *this->Internal;
   const bool areaLights = this->AreaLightStage->GetNumberOfLights() > 0;
-  const bool indirect = this->IndirectMode != IndirectOff && this->GetNumberOfVPLs() > 0;
-  const bool capture = indirect || areaLights;
+  bool indirect = this->IndirectMode != IndirectOff && this->GetNumberOfVPLs() > 0;
+  if (indirect && this->OuterGBuffer)
+  {
+    // Measured on VTK 9.1 (TestMRGIComposition): inside vtkSSAOPass the
+    // reflective shadow maps come out empty, so the gather would add
+    // nothing. Said once, and not computed.
+    if (!this->OuterGBufferReported)
+    {
+      this->OuterGBufferReported = true;
+      vtkErrorMacro("vtkMRGIPass inside vtkSSAOPass: the ambient occlusion and MRGI's area "
+                    "lights work, the indirect light does not (its light views come out empty "
+                    "there) and is left out. Use vtkMRGIPass alone for indirect light "
+                    "(Documentation/Composition.md).");
+    }
+    indirect = false;
+  }
+  const bool capture = indirect || areaLights || this->OuterGBuffer;
   const bool split = vtkRenderStepsPass::SafeDownCast(this->DelegatePass) != nullptr;
   vtkRenderTimerLog* timer = vtkMRGIShaderUtilities::StageTimer(renderer, this->StageTimingEnabled);
   this->IndirectComputed = false;
@@ -748,7 +822,7 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   this->SpecularCaptured =
     capture && areaLights && this->AreaLightStage->GetSpecular() && AnySpecularProp(renderer);
 
-  const bool fxaa = renderer->GetUseFXAA();
+  const bool fxaa = renderer->GetUseFXAA() && !multisampled;
   in.GBuffer.Prepare(renWin, x + w, y + h, capture, this->SpecularCaptured, fxaa);
   this->BufferSize[0] = w;
   this->BufferSize[1] = h;
@@ -862,6 +936,20 @@ bool vtkMRGIPass::PostReplaceShaderValues(std::string&, std::string&, std::strin
       "  gl_FragData[MRGI_GBUFFER_ALBEDO] = vec4(0.0);\n"
       "  gl_FragData[MRGI_GBUFFER_SPECULAR] = vec4(0.0);\n"
       "  gl_FragData[MRGI_GBUFFER_SHININESS] = vec4(0.0);\n");
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIPass::SetShaderParameters(
+  vtkShaderProgram*, vtkAbstractMapper* mapper, vtkProp*, vtkOpenGLVertexArrayObject*)
+{
+  // The mapper calls every pass in the order they were entered, outermost
+  // first: this runs after an enclosing pass changed the draw buffers.
+  if (this->Capturing && vtkOpenGLPolyDataMapper::SafeDownCast(mapper))
+  {
+    this->Internal->GBuffer.FrameBuffer->ActivateDrawBuffers(
+      this->SpecularCaptured ? MRGI_GBUFFER_ATTACHMENTS : MRGI_GBUFFER_SPECULAR);
   }
   return true;
 }

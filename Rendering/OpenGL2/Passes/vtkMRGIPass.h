@@ -440,6 +440,12 @@ public:
     std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop) override;
   bool PostReplaceShaderValues(std::string& vertexShader, std::string& geometryShader,
     std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop) override;
+  /**
+   * Re-selects MRGI's G-buffer targets for each draw of the capture: an
+   * enclosing vtkSSAOPass selects its own three targets there.
+   */
+  bool SetShaderParameters(vtkShaderProgram* program, vtkAbstractMapper* mapper, vtkProp* prop,
+    vtkOpenGLVertexArrayObject* VAO = nullptr) override;
   ///@}
 
 protected:
@@ -490,6 +496,10 @@ protected:
   double LastExposure = 0.0;
   bool ToneMapping = false;
   bool MultiSamplesReported = false; // the MSAA error is given once
+  bool NestingReported = false;      // so is the unsupported-delegate error
+  bool OuterGBuffer = false;         // the enclosing framebuffer takes position and normal
+  bool OuterGBufferReported = false; // the no-indirect-inside-SSAO error is given once
+  bool Capturing = false;            // the scene is being drawn into the G-buffer
   bool Captured = false;         // the last frame captured the G-buffer
   bool SpecularCaptured = false; // ... with its specular attachments
   double LastViewToWorld[16];
