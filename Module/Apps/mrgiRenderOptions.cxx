@@ -694,10 +694,10 @@ const std::vector<OptionSection>& OptionTable()
           } },
         { { "--tone-mapping" }, nullptr,
           "roll highlights off smoothly instead of clipping them; values up to\n"
-          "0.5, mid-grey included, are kept (never darkens)",
+          "0.5, mid-grey included, are kept (never darkens the mid-tones)",
           Set(&Options::ToneMapping) },
         { { "--aa" }, "off|fxaa|ssaa:N",
-          "anti-aliasing: none; FXAA on the final image (default: one cheap\n"
+          "anti-aliasing: none; FXAA on the final image (default: one\n"
           "full-screen pass); or render N x N times the pixels (N = 2..8) and\n"
           "average each N x N block (N^2 times the cost; also for EXR)",
           [](Options& o, const std::string& option, const char* v) {
