@@ -118,7 +118,9 @@ bool Downsample(vtkImageData* image, int factor, std::string& why)
   for (vtkIdType i = 0; i < out->GetNumberOfValues(); ++i)
   {
     const double v = small.pixels[i];
-    out->SetVariantValue(i, bytes ? vtkVariant(static_cast<unsigned char>(std::lround(std::min(std::max(v, 0.0), 255.0)))) : vtkVariant(v));
+    out->SetVariantValue(i,
+      bytes ? vtkVariant(static_cast<unsigned char>(std::lround(std::min(std::max(v, 0.0), 255.0))))
+            : vtkVariant(v));
   }
   image->SetDimensions(small.width, small.height, 1);
   image->GetPointData()->SetScalars(out);
@@ -354,8 +356,8 @@ int main(int argc, char* argv[])
   std::snprintf(line, sizeof(line), "exposure %+.2f EV (%s)%s%s", mrgi->GetLastExposure(),
     o.AutoExposure ? "auto" : "fixed", o.ToneMapping ? ", tone mapped" : "",
     o.AntiAliasing == Options::AAFXAA ? ", FXAA"
-      : ssaa > 1                       ? (", SSAA " + std::to_string(ssaa) + "x" + std::to_string(ssaa)).c_str()
-                                       : "");
+      : ssaa > 1 ? (", SSAA " + std::to_string(ssaa) + "x" + std::to_string(ssaa)).c_str()
+                 : "");
   Progress(o, line);
 
   // Ground truth: the CPU reference of the same scene (lights as placed by

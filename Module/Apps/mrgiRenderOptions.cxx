@@ -675,9 +675,10 @@ const std::vector<OptionSection>& OptionTable()
             const std::string text = v;
             mrgi_error err;
             if (text.compare(0, 4, "auto") == 0 &&
-              (text.size() == 4 || (text[4] == ':' &&
-                mrgi_parse_double(text.c_str() + 5, &o.ExposureKey, &err) == MRGI_OK &&
-                o.ExposureKey > 0 && o.ExposureKey <= 1)))
+              (text.size() == 4 ||
+                (text[4] == ':' &&
+                  mrgi_parse_double(text.c_str() + 5, &o.ExposureKey, &err) == MRGI_OK &&
+                  o.ExposureKey > 0 && o.ExposureKey <= 1)))
             {
               o.AutoExposure = true;
               return -1;
@@ -829,8 +830,8 @@ int ParseArguments(int argc, char* argv[], Options& o)
     return Fail("--aa ssaa:" + std::to_string(o.SSAAFactor) + " with --size " +
       std::to_string(o.Width) + "x" + std::to_string(o.Height) + " renders " +
       std::to_string(static_cast<int64_t>(o.Width) * o.SSAAFactor) + "x" +
-      std::to_string(static_cast<int64_t>(o.Height) * o.SSAAFactor) +
-      " pixels, more than the " + std::to_string(MRGI_SSAA_MAX_SIDE) +
+      std::to_string(static_cast<int64_t>(o.Height) * o.SSAAFactor) + " pixels, more than the " +
+      std::to_string(MRGI_SSAA_MAX_SIDE) +
       " per side OpenGL windows take: use a smaller N or size");
   }
   if (o.Outputs.empty() && !o.Interactive && !o.Timings)

@@ -61,7 +61,10 @@ static void test_scale_and_apply(void)
  * background (depth 1) does not count; NaN/inf/negative pixels do not count. */
 static void test_log_average(void)
 {
-  enum { N = 64 };
+  enum
+  {
+    N = 64
+  };
   float rgba[N * 4];
   float depth[N];
   for (int i = 0; i < N; ++i)
@@ -115,10 +118,14 @@ static void test_auto_ev_edges(void)
   MRGI_CHECK_NEAR(mrgi_exposure_auto_ev(0.0, 4.0, 0.18), -2.0, 1e-12);
   MRGI_CHECK(mrgi_exposure_auto_ev(0.09, 0.25, 0.0) == 0.0);
   mrgi_error err;
-  MRGI_CHECK(mrgi_exposure_log_average(NULL, 3, NULL, 4, &lw, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
-  MRGI_CHECK(mrgi_exposure_log_average(rgb, 2, NULL, 2, &lw, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
-  MRGI_CHECK(mrgi_exposure_log_average(rgb, 3, NULL, -1, &lw, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
-  MRGI_CHECK(mrgi_exposure_log_average(rgb, 3, NULL, 2, NULL, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(
+    mrgi_exposure_log_average(NULL, 3, NULL, 4, &lw, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(
+    mrgi_exposure_log_average(rgb, 2, NULL, 2, &lw, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(
+    mrgi_exposure_log_average(rgb, 3, NULL, -1, &lw, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(
+    mrgi_exposure_log_average(rgb, 3, NULL, 2, NULL, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "mrgi_exposure_log_average") != NULL);
 }
 
@@ -126,7 +133,10 @@ static void test_auto_ev_edges(void)
  * bin (1/MRGI_EXPOSURE_HISTOGRAM_BINS stop) above it; background ignored. */
 static void test_quantile(void)
 {
-  enum { N = 1000 };
+  enum
+  {
+    N = 1000
+  };
   static float rgb[N * 3];
   static float depth[N];
   for (int i = 0; i < N; ++i)

@@ -148,17 +148,16 @@ void ExpectBoth(const char* what, vtkImageData* image, vtkImageData* mrgiAlone,
   vtkImageData* xAlone, bool xDarkens)
 {
   const int indirect = Darker(image, xAlone, kStep);
-  const int effect =
-    xDarkens ? Darker(mrgiAlone, image, kStep) : Differ(mrgiAlone, image, 2.0);
-  std::printf("%-22s %5d pixels brighter than X alone (indirect light), %5d %s MRGI alone\n",
-    what, indirect, effect, xDarkens ? "darker than" : "differ from");
+  const int effect = xDarkens ? Darker(mrgiAlone, image, kStep) : Differ(mrgiAlone, image, 2.0);
+  std::printf("%-22s %5d pixels brighter than X alone (indirect light), %5d %s MRGI alone\n", what,
+    indirect, effect, xDarkens ? "darker than" : "differ from");
   MRGI_TEST_CHECK(indirect >= kEffectPixels);
   MRGI_TEST_CHECK(effect >= (xDarkens ? kEffectPixels : kEdgePixels));
 }
 
 // X alone's image and one error naming `fragment`.
-void ExpectRefused(const char* what, Scene& s, vtkImageData* image, vtkImageData* xAlone,
-  const char* fragment)
+void ExpectRefused(
+  const char* what, Scene& s, vtkImageData* image, vtkImageData* xAlone, const char* fragment)
 {
   double worst = 0;
   Differ(image, xAlone, 2.0, &worst);
@@ -270,8 +269,9 @@ void TestToneMapping()
     }
     rolledOff += mine > plainValue + 1 ? 1 : 0; // must stay 0
   }
-  std::printf("own tone curve: %d of %d mid-tone values kept; vtkToneMappingPass darkens %d of them\n",
-    kept, midtones, vtkDarker);
+  std::printf(
+    "own tone curve: %d of %d mid-tone values kept; vtkToneMappingPass darkens %d of them\n", kept,
+    midtones, vtkDarker);
   MRGI_TEST_CHECK(midtones > 1000 && kept == midtones && rolledOff == 0);
   MRGI_TEST_CHECK(vtkDarker > midtones / 2);
 }
@@ -343,7 +343,8 @@ void TestUseFXAA()
       }
     }
   }
-  std::printf("FXAA: %d pixels changed; flat pixels %d, changed %d; distinct edge values %zu -> %zu\n",
+  std::printf(
+    "FXAA: %d pixels changed; flat pixels %d, changed %d; distinct edge values %zu -> %zu\n",
     changed, flat, flatChanged, edgeValuesBefore.size(), edgeValuesAfter.size());
   MRGI_TEST_CHECK(changed >= kEdgePixels);
   MRGI_TEST_CHECK(flat > 1000 && flatChanged == 0);
@@ -435,7 +436,8 @@ void TestExposureParity()
   MRGI_TEST_CHECK(gi->GetColorBuffer(s.Window, hdr));
   auto ldr = mrgitest::GrabRGB(s.Window);
   MRGI_TEST_CHECK(gi->GetLastExposure() == 1.5);
-  const float* colour = vtkFloatArray::SafeDownCast(hdr->GetPointData()->GetScalars())->GetPointer(0);
+  const float* colour =
+    vtkFloatArray::SafeDownCast(hdr->GetPointData()->GetScalars())->GetPointer(0);
   vtkDataArray* out = ldr->GetPointData()->GetScalars();
   const float scale = mrgi_exposure_scale(1.5);
   double worst = 0;

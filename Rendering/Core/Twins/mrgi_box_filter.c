@@ -2,7 +2,8 @@
 
 #include <string.h>
 
-mrgi_status mrgi_box_downsample(const mrgi_image* src, int32_t factor, mrgi_image* dst, mrgi_error* err)
+mrgi_status mrgi_box_downsample(
+  const mrgi_image* src, int32_t factor, mrgi_image* dst, mrgi_error* err)
 {
   if (!dst)
   {

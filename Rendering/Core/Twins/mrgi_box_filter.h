@@ -34,7 +34,8 @@ extern "C" {
  * @return ::MRGI_ERR_INVALID_ARGUMENT for an invalid image, a factor out of
  *         range or a size that is not a multiple of it; ::MRGI_ERR_OUT_OF_MEMORY.
  */
-mrgi_status mrgi_box_downsample(const mrgi_image* src, int32_t factor, mrgi_image* dst, mrgi_error* err);
+mrgi_status mrgi_box_downsample(
+  const mrgi_image* src, int32_t factor, mrgi_image* dst, mrgi_error* err);
 
 #ifdef __cplusplus
 }

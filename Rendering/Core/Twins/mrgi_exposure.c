@@ -133,7 +133,8 @@ mrgi_status mrgi_exposure_quantile(const float* rgb, int32_t stride, const float
     cumulative += histogram[b];
     if ((double)cumulative >= target)
     {
-      *quantile = exp2(MRGI_EXPOSURE_HISTOGRAM_MIN_LOG2 + (double)(b + 1) / MRGI_EXPOSURE_HISTOGRAM_BINS);
+      *quantile =
+        exp2(MRGI_EXPOSURE_HISTOGRAM_MIN_LOG2 + (double)(b + 1) / MRGI_EXPOSURE_HISTOGRAM_BINS);
       break;
     }
   }

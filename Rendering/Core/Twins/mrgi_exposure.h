@@ -33,7 +33,8 @@
  *
  *     Lw  = exp( (1/N) sum log(delta + L(x, y)) )   over the N foreground pixels
  *     Lh  = the MRGI_EXPOSURE_HIGHLIGHT_FRACTION quantile of L over the same pixels
- *     EV  = min( log2(key / Lw), log2(1 / Lh) )     clamped to [MRGI_EXPOSURE_MIN_EV, MRGI_EXPOSURE_MAX_EV]
+ *     EV  = min( log2(key / Lw), log2(1 / Lh) )     clamped to [MRGI_EXPOSURE_MIN_EV,
+ * MRGI_EXPOSURE_MAX_EV]
  *
  * L = MRGI_LUMINANCE_R r + MRGI_LUMINANCE_G g + MRGI_LUMINANCE_B b
  * (mrgi_vpl.h); delta = MRGI_EXPOSURE_DELTA keeps black pixels finite.
@@ -88,7 +89,8 @@ extern "C" {
 /** @brief The tone curve T of the file comment: [0, 1) for every input, NaN -> 0. */
 float mrgi_tone_curve(float x);
 
-/** @brief 2^ev as float; ev is clamped to [MRGI_EXPOSURE_MIN_EV, MRGI_EXPOSURE_MAX_EV], NaN -> 1. */
+/** @brief 2^ev as float; ev is clamped to [MRGI_EXPOSURE_MIN_EV, MRGI_EXPOSURE_MAX_EV], NaN -> 1.
+ */
 float mrgi_exposure_scale(double ev);
 
 /**

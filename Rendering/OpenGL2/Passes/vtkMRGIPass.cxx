@@ -265,9 +265,9 @@ double vtkMRGIPass::GetUpsampleMaskWeight()
 //------------------------------------------------------------------------------
 void vtkMRGIPass::SetExposure(double ev)
 {
-  const double clamped = std::isnan(ev) ? 0.0
-                                        : std::min(std::max(ev, double(MRGI_EXPOSURE_MIN_EV)),
-                                            double(MRGI_EXPOSURE_MAX_EV));
+  const double clamped = std::isnan(ev)
+    ? 0.0
+    : std::min(std::max(ev, double(MRGI_EXPOSURE_MIN_EV)), double(MRGI_EXPOSURE_MAX_EV));
   if (clamped != this->Exposure)
   {
     this->Exposure = clamped;
@@ -280,7 +280,7 @@ void vtkMRGIPass::SetAutoExposureKey(double key)
   if (!(key > 0.0) || std::isinf(key))
   {
     vtkErrorMacro("AutoExposureKey must be a finite number > 0 (got " << key << "); kept "
-                                                                     << this->AutoExposureKey);
+                                                                      << this->AutoExposureKey);
     return;
   }
   if (key != this->AutoExposureKey)
@@ -416,12 +416,12 @@ void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
 //------------------------------------------------------------------------------
 void vtkMRGIPass::RenderForward(const vtkRenderState* s)
 {
-  // Translucent props, volumes and overlays, over the lit opaque scene, into
+  // Translucent props and volumes, over the lit opaque scene, into
   // the colour buffer only (the G-buffer is for opaque surfaces).
   Internals& in = *this->Internal;
-  this->NumberOfRenderedProps += vtkMRGIRenderSteps::RenderForward(s,
-    vtkRenderStepsPass::SafeDownCast(this->DelegatePass), in.GBuffer.FrameBuffer, in.GBuffer.Color,
-    in.GBuffer.Depth, this->Viewport);
+  this->NumberOfRenderedProps +=
+    vtkMRGIRenderSteps::RenderForward(s, vtkRenderStepsPass::SafeDownCast(this->DelegatePass),
+      in.GBuffer.FrameBuffer, in.GBuffer.Color, in.GBuffer.Depth, this->Viewport);
 }
 
 //------------------------------------------------------------------------------
@@ -558,8 +558,8 @@ void vtkMRGIPass::RenderAdd(
 }
 
 //------------------------------------------------------------------------------
-void vtkMRGIPass::RenderOutput(const vtkMRGIFrameContext& frame, vtkTextureObject* source,
-  float scale, bool toneMap, bool depth)
+void vtkMRGIPass::RenderOutput(
+  const vtkMRGIFrameContext& frame, vtkTextureObject* source, float scale, bool toneMap, bool depth)
 {
   Internals& in = *this->Internal;
   vtkOpenGLRenderWindow* renWin = frame.Window;
@@ -669,8 +669,8 @@ double vtkMRGIPass::MeasureAutoExposure(vtkOpenGLRenderWindow* renWin)
   double logAverage = 0.0, highlight = 0.0;
   mrgi_error err;
   const int64_t count = static_cast<int64_t>(w) * h;
-  if (mrgi_exposure_log_average(colour.data(), 4, depth.data(), count, &logAverage, nullptr, &err) !=
-      MRGI_OK ||
+  if (mrgi_exposure_log_average(
+        colour.data(), 4, depth.data(), count, &logAverage, nullptr, &err) != MRGI_OK ||
     mrgi_exposure_quantile(colour.data(), 4, depth.data(), count, MRGI_EXPOSURE_HIGHLIGHT_FRACTION,
       &highlight, &err) != MRGI_OK)
   {
@@ -732,8 +732,7 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
                     << "scene into its own buffers, out of MRGI's reach, so no indirect or area "
                     << "light would be added. Nest it the other way round: " << name
                     << "->SetDelegatePass(mrgi) and mrgi->SetDelegatePass(vtkRenderStepsPass) "
-                    << "(Documentation/Composition.md). Rendering the " << name
-                    << " alone.");
+                    << "(Documentation/Composition.md). Rendering the " << name << " alone.");
     }
     this->IndirectComputed = false;
     this->AreaLightsComputed = false;

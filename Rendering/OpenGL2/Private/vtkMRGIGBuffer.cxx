@@ -84,9 +84,9 @@ void vtkMRGIGBuffer::Release(vtkWindow* w)
     this->FrameBuffer->Delete();
     this->FrameBuffer = nullptr;
   }
-  for (vtkTextureObject** t : { &this->Color, &this->Depth, &this->Position, &this->Normal,
-         &this->Albedo, &this->Specular, &this->Shininess, &this->Irradiance, &this->Indirect,
-         &this->Display })
+  for (vtkTextureObject** t :
+    { &this->Color, &this->Depth, &this->Position, &this->Normal, &this->Albedo, &this->Specular,
+      &this->Shininess, &this->Irradiance, &this->Indirect, &this->Display })
   {
     vtkMRGIShaderUtilities::ReleaseTexture(*t, w);
   }

@@ -31,8 +31,8 @@ public:
    * the specular attachments; with `display` the display image (FXAA's
    * input and output). Buffers are created once and resized.
    */
-  void Prepare(vtkOpenGLRenderWindow* window, int w, int h, bool capture, bool specular,
-    bool display = false);
+  void Prepare(
+    vtkOpenGLRenderWindow* window, int w, int h, bool capture, bool specular, bool display = false);
 
   /** Free every buffer (their GL objects too when `w` is given). */
   void Release(vtkWindow* w);
