@@ -798,14 +798,15 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   if (indirect && this->OuterGBuffer)
   {
     // Measured on VTK 9.1 (TestMRGIComposition): inside vtkSSAOPass the
-    // reflective shadow maps come out empty, so the gather would add
+    // VPL selection comes out empty (vtkSSAOPass leaves vtkOpenGLState's
+    // draw-buffer cache out of step with OpenGL), so the gather would add
     // nothing. Said once, and not computed.
     if (!this->OuterGBufferReported)
     {
       this->OuterGBufferReported = true;
       vtkErrorMacro("vtkMRGIPass inside vtkSSAOPass: the ambient occlusion and MRGI's area "
-                    "lights work, the indirect light does not (its light views come out empty "
-                    "there) and is left out. Use vtkMRGIPass alone for indirect light "
+                    "lights work, the indirect light does not (its VPLs come out empty there) "
+                    "and is left out. Use vtkMRGIPass alone for indirect light "
                     "(Documentation/Composition.md).");
     }
     indirect = false;

@@ -634,6 +634,21 @@ bool vtkMRGIReflectiveShadowMapPass::SetShaderParameters(
   vtkShaderProgram* program, vtkAbstractMapper*, vtkProp*, vtkOpenGLVertexArrayObject*)
 {
   const View* view = this->Internal->Current;
+  if (view)
+  {
+    // The maps' three targets, selected for every draw, directly: measured
+    // inside vtkSSAOPass, only the first one was selected while
+    // vtkOpenGLState's cache believed all three were (SSAO selects draw
+    // buffers through a framebuffer object that is not the bound one), so
+    // the normal and flux maps stayed empty and ActivateDrawBuffers() would
+    // skip the call.
+    GLenum buffers[MRGI_RSM_ATTACHMENTS];
+    for (int a = 0; a < MRGI_RSM_ATTACHMENTS; ++a)
+    {
+      buffers[a] = static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + a);
+    }
+    glDrawBuffers(MRGI_RSM_ATTACHMENTS, buffers);
+  }
   if (!view || !program->IsUniformUsed("mrgiLightVCToWC"))
   {
     return true;
