@@ -203,10 +203,19 @@ void TestSSAO()
   auto plain = s.Render(nullptr, "plain");
   auto ssaoAlone = s.Render(NewSSAO(steps), "ssao");
   MRGI_TEST_CHECK(Darker(plain, ssaoAlone, kStep) >= kEffectPixels / 2); // SSAO does something
-  // SSAO(MRGI): the occlusion over MRGI's image (MRGI hands SSAO its
-  // position and normal), the indirect light refused with one error.
+  // SSAO(MRGI): the occlusion over MRGI's image, indirect light included
+  // (MRGI hands SSAO its position and normal).
   auto around = s.Render(NewSSAO(s.NewMRGI(steps)), "ssao(mrgi)", 2);
-  ExpectRefused("ssao(mrgi)", s, around, ssaoAlone, "inside vtkSSAOPass");
+  ExpectBoth("ssao(mrgi)", around, mrgiAlone, ssaoAlone, true);
+  // The same with the multiresolution gather (every stage of it inside SSAO).
+  auto multires = s.NewMRGI(steps);
+  multires->SetIndirectMode(vtkMRGIPass::IndirectMultires);
+  auto multiresAlone = s.Render(multires, "mrgi-multires");
+  auto inner = s.NewMRGI(steps);
+  inner->SetIndirectMode(vtkMRGIPass::IndirectMultires);
+  auto aroundMultires = s.Render(NewSSAO(inner), "ssao(mrgi-multires)", 2);
+  ExpectBoth("ssao(mrgi multires)", aroundMultires, multiresAlone, ssaoAlone, true);
+  MRGI_TEST_CHECK(s.Errors->Count == 0);
   // MRGI(SSAO): refused; SSAO alone.
   auto inside = s.Render(s.NewMRGI(NewSSAO(steps)), "mrgi(ssao)", 2);
   ExpectRefused("mrgi(ssao)", s, inside, ssaoAlone, "vtkSSAOPass as the delegate of vtkMRGIPass");

@@ -357,13 +357,13 @@ void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
       fbo->AddColorAttachment(MRGI_GBUFFER_SPECULAR, in.GBuffer.Specular);
       fbo->AddColorAttachment(MRGI_GBUFFER_SHININESS, in.GBuffer.Shininess);
     }
-    fbo->ActivateDrawBuffers(this->SpecularCaptured ? MRGI_GBUFFER_ATTACHMENTS : MRGI_GBUFFER_SPECULAR);
+    vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, this->SpecularCaptured ? MRGI_GBUFFER_ATTACHMENTS : MRGI_GBUFFER_SPECULAR);
   }
   else
   {
     fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
     fbo->AddColorAttachment(MRGI_GBUFFER_DIRECT, in.GBuffer.Color);
-    fbo->ActivateDrawBuffers(1);
+    vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
   }
   fbo->AddDepthAttachment(in.GBuffer.Depth);
 
@@ -445,7 +445,7 @@ bool vtkMRGIPass::RenderGather(const vtkMRGIFrameContext& frame, int vplCount)
   fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
   fbo->AddColorAttachment(0, in.GBuffer.Irradiance);
   fbo->AddColorAttachment(1, in.GBuffer.Indirect);
-  fbo->ActivateDrawBuffers(2);
+  vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 2);
   in.GBuffer.Position->Activate();
   in.GBuffer.Normal->Activate();
   in.GBuffer.Albedo->Activate();
@@ -626,7 +626,7 @@ void vtkMRGIPass::RenderOutputFXAA(const vtkMRGIFrameContext& frame, float scale
   fbo->Bind();
   fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
   fbo->AddColorAttachment(0, in.GBuffer.Display);
-  fbo->ActivateDrawBuffers(1);
+  vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
   this->RenderOutput(frame, in.GBuffer.Color, scale, this->ToneMapping, false);
   fbo->UnBind();
   fbo->RestorePreviousBindingsAndBuffers();
@@ -794,23 +794,7 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   // when indirect light is off or cannot contribute.
   Internals& in = *this->Internal;
   const bool areaLights = this->AreaLightStage->GetNumberOfLights() > 0;
-  bool indirect = this->IndirectMode != IndirectOff && this->GetNumberOfVPLs() > 0;
-  if (indirect && this->OuterGBuffer)
-  {
-    // Measured on VTK 9.1 (TestMRGIComposition): inside vtkSSAOPass the
-    // VPL selection comes out empty (vtkSSAOPass leaves vtkOpenGLState's
-    // draw-buffer cache out of step with OpenGL), so the gather would add
-    // nothing. Said once, and not computed.
-    if (!this->OuterGBufferReported)
-    {
-      this->OuterGBufferReported = true;
-      vtkErrorMacro("vtkMRGIPass inside vtkSSAOPass: the ambient occlusion and MRGI's area "
-                    "lights work, the indirect light does not (its VPLs come out empty there) "
-                    "and is left out. Use vtkMRGIPass alone for indirect light "
-                    "(Documentation/Composition.md).");
-    }
-    indirect = false;
-  }
+  const bool indirect = this->IndirectMode != IndirectOff && this->GetNumberOfVPLs() > 0;
   const bool capture = indirect || areaLights || this->OuterGBuffer;
   const bool split = vtkRenderStepsPass::SafeDownCast(this->DelegatePass) != nullptr;
   vtkRenderTimerLog* timer = vtkMRGIShaderUtilities::StageTimer(renderer, this->StageTimingEnabled);
@@ -945,10 +929,11 @@ bool vtkMRGIPass::SetShaderParameters(
   vtkShaderProgram*, vtkAbstractMapper* mapper, vtkProp*, vtkOpenGLVertexArrayObject*)
 {
   // The mapper calls every pass in the order they were entered, outermost
-  // first: this runs after an enclosing pass changed the draw buffers.
+  // first: this runs after an enclosing pass (vtkSSAOPass) changed the draw
+  // buffers.
   if (this->Capturing && vtkOpenGLPolyDataMapper::SafeDownCast(mapper))
   {
-    this->Internal->GBuffer.FrameBuffer->ActivateDrawBuffers(
+    vtkMRGIShaderUtilities::SelectDrawBuffers(this->Internal->GBuffer.FrameBuffer, 
       this->SpecularCaptured ? MRGI_GBUFFER_ATTACHMENTS : MRGI_GBUFFER_SPECULAR);
   }
   return true;

@@ -498,7 +498,6 @@ protected:
   bool MultiSamplesReported = false; // the MSAA error is given once
   bool NestingReported = false;      // so is the unsupported-delegate error
   bool OuterGBuffer = false;         // the enclosing framebuffer takes position and normal
-  bool OuterGBufferReported = false; // the no-indirect-inside-SSAO error is given once
   bool Capturing = false;            // the scene is being drawn into the G-buffer
   bool Captured = false;         // the last frame captured the G-buffer
   bool SpecularCaptured = false; // ... with its specular attachments

@@ -537,7 +537,7 @@ void vtkMRGIReflectiveShadowMapPass::Render(const vtkRenderState* s)
       {
         fbo->AddColorAttachment(a, view->Textures[a]);
       }
-      fbo->ActivateDrawBuffers(MRGI_RSM_ATTACHMENTS);
+      vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, MRGI_RSM_ATTACHMENTS);
       fbo->AddDepthAttachment();
       // Explicit viewport: StartNonOrtho leaves it alone, and VTK's camera
       // pass restores whatever it found (0 x 0 on a surfaceless context).
@@ -636,18 +636,10 @@ bool vtkMRGIReflectiveShadowMapPass::SetShaderParameters(
   const View* view = this->Internal->Current;
   if (view)
   {
-    // The maps' three targets, selected for every draw, directly: measured
-    // inside vtkSSAOPass, only the first one was selected while
-    // vtkOpenGLState's cache believed all three were (SSAO selects draw
-    // buffers through a framebuffer object that is not the bound one), so
-    // the normal and flux maps stayed empty and ActivateDrawBuffers() would
-    // skip the call.
-    GLenum buffers[MRGI_RSM_ATTACHMENTS];
-    for (int a = 0; a < MRGI_RSM_ATTACHMENTS; ++a)
-    {
-      buffers[a] = static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + a);
-    }
-    glDrawBuffers(MRGI_RSM_ATTACHMENTS, buffers);
+    // The maps' three targets, for every draw: measured inside
+    // vtkSSAOPass, only the first one was selected (SelectDrawBuffers says
+    // why), and the normal and flux maps stayed empty.
+    vtkMRGIShaderUtilities::SelectDrawBuffers(this->Internal->FrameBuffer, MRGI_RSM_ATTACHMENTS);
   }
   if (!view || !program->IsUniformUsed("mrgiLightVCToWC"))
   {

@@ -2,6 +2,8 @@
 
 #include "vtkMRGIRenderSteps.h"
 
+#include "vtkMRGIShaderUtilities.h"
+
 #include "vtkCameraPass.h"
 #include "vtkHardwareSelector.h"
 #include "vtkObjectFactory.h"
@@ -104,7 +106,7 @@ int RenderForward(const vtkRenderState* s, vtkRenderStepsPass* steps,
   fbo->Bind();
   fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
   fbo->AddColorAttachment(MRGI_GBUFFER_DIRECT, color);
-  fbo->ActivateDrawBuffers(1);
+  vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
   fbo->AddDepthAttachment(depth);
   vtkOpenGLRenderWindow* renWin =
     static_cast<vtkOpenGLRenderWindow*>(s->GetRenderer()->GetRenderWindow());
@@ -210,7 +212,7 @@ void RenderFXAA(vtkRenderer* renderer, vtkOpenGLFramebufferObject* fbo, vtkTextu
   fbo->Bind();
   fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
   fbo->AddColorAttachment(0, display);
-  fbo->ActivateDrawBuffers(1);
+  vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
   fbo->ActivateReadBuffer(0);
   vtkOpenGLState::ScopedglViewport savedViewport(ostate);
   vtkOpenGLState::ScopedglScissor savedScissor(ostate);
