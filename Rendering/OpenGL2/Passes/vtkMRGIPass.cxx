@@ -357,7 +357,8 @@ void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
       fbo->AddColorAttachment(MRGI_GBUFFER_SPECULAR, in.GBuffer.Specular);
       fbo->AddColorAttachment(MRGI_GBUFFER_SHININESS, in.GBuffer.Shininess);
     }
-    vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, this->SpecularCaptured ? MRGI_GBUFFER_ATTACHMENTS : MRGI_GBUFFER_SPECULAR);
+    vtkMRGIShaderUtilities::SelectDrawBuffers(
+      fbo, this->SpecularCaptured ? MRGI_GBUFFER_ATTACHMENTS : MRGI_GBUFFER_SPECULAR);
   }
   else
   {
@@ -933,7 +934,7 @@ bool vtkMRGIPass::SetShaderParameters(
   // buffers.
   if (this->Capturing && vtkOpenGLPolyDataMapper::SafeDownCast(mapper))
   {
-    vtkMRGIShaderUtilities::SelectDrawBuffers(this->Internal->GBuffer.FrameBuffer, 
+    vtkMRGIShaderUtilities::SelectDrawBuffers(this->Internal->GBuffer.FrameBuffer,
       this->SpecularCaptured ? MRGI_GBUFFER_ATTACHMENTS : MRGI_GBUFFER_SPECULAR);
   }
   return true;
