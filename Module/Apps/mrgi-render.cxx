@@ -36,16 +36,17 @@
 #include "vtkProperty.h"
 #include "vtkRenderPass.h"
 #include "vtkRenderStepsPass.h"
+#include "vtkDataArray.h"
 #include "vtkRenderTimerLog.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
-#include "vtkToneMappingPass.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtk_glew.h"
 #include "vtkMath.h"
 
+#include "mrgi_box_filter.h"
 #include "mrgi_error.h"
 #include "mrgi_area_light.h"
 #include "mrgi_voxel.h"
@@ -173,9 +174,14 @@ bool CheckImageLimits(
   }
   const char* rendererName = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   const std::string glName = rendererName ? rendererName : "this OpenGL";
-  const int w = o.Width, h = o.Height;
+  // The window's size: --size, times N with --aa ssaa:N.
+  const int w = window->GetSize()[0], h = window->GetSize()[1];
   char text[512];
-  const std::string size = "--size " + std::to_string(w) + "x" + std::to_string(h);
+  std::string size = "--size " + std::to_string(o.Width) + "x" + std::to_string(o.Height);
+  if (w != o.Width || h != o.Height)
+  {
+    size += " (rendered at " + std::to_string(w) + "x" + std::to_string(h) + " by --aa ssaa)";
+  }
   struct Limit
   {
     const char* Name;
@@ -307,6 +313,56 @@ std::string WhyEmpty(vtkRenderer* renderer, vtkIdType triangles)
                         : "the geometry is outside the view, clipped, seen edge-on or unlit";
 }
 
+// --aa ssaa:N: the N x N blocks of `image` (any scalar type, rows in
+// either order) averaged into one pixel each (mrgi_box_downsample); 8-bit
+// images are rounded back to 8 bits. False with `why` on failure.
+bool Downsample(vtkImageData* image, int factor, std::string& why)
+{
+  if (factor <= 1)
+  {
+    return true;
+  }
+  int dims[3];
+  image->GetDimensions(dims);
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  const int channels = scalars->GetNumberOfComponents();
+  mrgi_image full, small;
+  mrgi_error err;
+  if (mrgi_image_create(&full, dims[0], dims[1], channels, &err) != MRGI_OK)
+  {
+    why = std::string("supersampling: ") + err.message;
+    return false;
+  }
+  const vtkIdType values = scalars->GetNumberOfValues();
+  for (vtkIdType i = 0; i < values; ++i)
+  {
+    full.pixels[i] = static_cast<float>(scalars->GetVariantValue(i).ToDouble());
+  }
+  const mrgi_status status = mrgi_box_downsample(&full, factor, &small, &err);
+  mrgi_image_destroy(&full);
+  if (status != MRGI_OK)
+  {
+    why = std::string("supersampling: ") + err.message;
+    return false;
+  }
+  vtkSmartPointer<vtkDataArray> out = vtkSmartPointer<vtkDataArray>::Take(scalars->NewInstance());
+  out->SetNumberOfComponents(channels);
+  out->SetNumberOfTuples(static_cast<vtkIdType>(small.width) * small.height);
+  out->SetName(scalars->GetName());
+  const bool bytes = scalars->GetDataType() == VTK_UNSIGNED_CHAR;
+  for (vtkIdType i = 0; i < out->GetNumberOfValues(); ++i)
+  {
+    const double v = small.pixels[i];
+    out->SetVariantValue(i,
+      bytes ? vtkVariant(static_cast<unsigned char>(std::lround(std::min(std::max(v, 0.0), 255.0))))
+            : vtkVariant(v));
+  }
+  image->SetDimensions(small.width, small.height, 1);
+  image->GetPointData()->SetScalars(out);
+  mrgi_image_destroy(&small);
+  return true;
+}
+
 void Progress(const Options& o, const std::string& line)
 {
   if (!o.Quiet)
@@ -354,11 +410,15 @@ int main(int argc, char* argv[])
     return Fail("no render window: " + why);
   }
   Progress(o, "render window: " + vtkMRGIRenderWindowFactory::DescribeRenderWindow(window));
-  window->SetSize(o.Width, o.Height);
+  // Supersampling renders every pixel N x N times; the outputs are averaged back.
+  const int ssaa = o.AntiAliasing == Options::AASSAA ? o.SSAAFactor : 1;
+  window->SetSize(o.Width * ssaa, o.Height * ssaa);
+  // MRGI's buffers are single-sample (vtkMRGIPass refuses MSAA); FXAA is --aa's.
   window->SetMultiSamples(0);
 
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(o.Background);
+  renderer->SetUseFXAA(o.AntiAliasing == Options::AAFXAA);
   window->AddRenderer(renderer);
 
   const Clock::time_point buildStart = Clock::now();
@@ -493,6 +553,10 @@ int main(int argc, char* argv[])
   mrgi->SetVPLSelectionMode(o.ImportanceVPLs ? vtkMRGIVPLSelection::FluxImportance : vtkMRGIVPLSelection::Grid);
   mrgi->SetRSMResolution(static_cast<int>(o.RSMSize));
   mrgi->SetIndirectStrength(o.IndirectStrength);
+  mrgi->SetToneMapping(o.ToneMapping);
+  mrgi->SetAutoExposure(o.AutoExposure);
+  mrgi->SetAutoExposureKey(o.ExposureKey);
+  mrgi->SetExposure(o.Exposure);
   if (o.IndirectOnly && !o.GI && !o.Reference)
   {
     return Fail("--indirect-only needs indirect light (--gi full) or --reference");
@@ -502,18 +566,8 @@ int main(int argc, char* argv[])
     // Logging must be on before the window opens the first frame.
     window->GetRenderTimer()->SetLoggingEnabled(true);
   }
-  vtkNew<vtkToneMappingPass> toneMapping;
-  if (o.ToneMapping)
-  {
-    toneMapping->SetDelegatePass(mrgi);
-    renderer->SetPass(toneMapping);
-  }
-  else
-  {
-    renderer->SetPass(mrgi);
-  }
-  PassRelease release{ renderer, window,
-    o.ToneMapping ? static_cast<vtkRenderPass*>(toneMapping) : static_cast<vtkRenderPass*>(mrgi) };
+  renderer->SetPass(mrgi);
+  PassRelease release{ renderer, window, mrgi };
 
   if (!CheckImageLimits(window, o, mrgi, why))
   {
@@ -562,7 +616,7 @@ int main(int argc, char* argv[])
   {
     // A picture of the background alone is a failure, not a result: say why.
     vtkNew<vtkUnsignedCharArray> shown;
-    window->GetRGBACharPixelData(0, 0, o.Width - 1, o.Height - 1, 0, shown);
+    window->GetRGBACharPixelData(0, 0, o.Width * ssaa - 1, o.Height * ssaa - 1, 0, shown);
     int background[3];
     for (int c = 0; c < 3; ++c)
     {
@@ -583,6 +637,12 @@ int main(int argc, char* argv[])
         WhyEmpty(renderer, builder->GetBuiltTriangleCount()) + "; --allow-empty accepts it");
     }
   }
+  std::snprintf(line, sizeof(line), "exposure %+.2f EV (%s)%s%s", mrgi->GetLastExposure(),
+    o.AutoExposure ? "auto" : "fixed", o.ToneMapping ? ", tone mapped" : "",
+    o.AntiAliasing == Options::AAFXAA ? ", FXAA"
+      : ssaa > 1 ? (", SSAA " + std::to_string(ssaa) + "x" + std::to_string(ssaa)).c_str()
+                 : "");
+  Progress(o, line);
 
   // Ground truth: the CPU reference of the same scene (lights as placed by
   // the frame just rendered), instead of the GPU image.
@@ -720,12 +780,17 @@ int main(int argc, char* argv[])
       }
       else
       {
-        ok = ReadWindowRGB(window, o.Width, o.Height, shared);
+        ok = ReadWindowRGB(window, o.Width * ssaa, o.Height * ssaa, shared);
       }
       if (!ok || messages->GetNumberOfErrors() > 0)
       {
         return Fail("cannot write '" + path + "': reading the image back failed" +
           (messages->GetNumberOfErrors() > 0 ? ": " + messages->GetFirstError() : std::string()));
+      }
+      // --aa ssaa:N: the N x N blocks averaged back to the asked size.
+      if (!o.Reference && !Downsample(shared, ssaa, why))
+      {
+        return Fail("cannot write '" + path + "': " + why);
       }
     }
     images.push_back(shared);

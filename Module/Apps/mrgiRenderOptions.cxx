@@ -35,6 +35,8 @@
 #include "vtkPointData.h"
 #include "mrgi_error.h"
 #include "mrgi_area_light.h"
+#include "mrgi_box_filter.h"
+#include "mrgi_exposure.h"
 #include "mrgi_voxel.h"
 #include "mrgi_multires.h"
 #include "mrgi_parse.h"
@@ -720,8 +722,62 @@ const std::vector<OptionSection>& OptionTable()
             "expected a number in [0, 1e6]") },
         { { "--indirect-only" }, nullptr, "write only the indirect light (EXR: float RGB)",
           Set(&Options::IndirectOnly) },
-        { { "--tone-mapping" }, nullptr, "filmic tone mapping of the result (vtkToneMappingPass)",
+      } },
+    { "Exposure and anti-aliasing (the PNG; EXR files keep the unscaled HDR radiance)",
+      {
+        { { "--exposure" }, "EV|auto[:KEY]",
+          "scale the image by 2^EV before tone mapping (-20..20), or pick EV per\n"
+          "frame so the log-average luminance of the drawn pixels (background\n"
+          "ignored) becomes KEY (Reinhard 2002; default auto, KEY 0.18)",
+          [](Options& o, const std::string& option, const char* v) {
+            const std::string text = v;
+            mrgi_error err;
+            if (text.compare(0, 4, "auto") == 0 &&
+              (text.size() == 4 ||
+                (text[4] == ':' &&
+                  mrgi_parse_double(text.c_str() + 5, &o.ExposureKey, &err) == MRGI_OK &&
+                  o.ExposureKey > 0 && o.ExposureKey <= 1)))
+            {
+              o.AutoExposure = true;
+              return -1;
+            }
+            if (text.compare(0, 4, "auto") != 0 &&
+              mrgi_parse_double(v, &o.Exposure, &err) == MRGI_OK &&
+              o.Exposure >= MRGI_EXPOSURE_MIN_EV && o.Exposure <= MRGI_EXPOSURE_MAX_EV)
+            {
+              o.AutoExposure = false;
+              return -1;
+            }
+            return Fail(option + " '" + v +
+              "': expected a number of stops in [-20, 20], auto, or auto:KEY with KEY in (0, 1]");
+          } },
+        { { "--tone-mapping" }, nullptr,
+          "roll highlights off smoothly instead of clipping them; values up to\n"
+          "0.5, mid-grey included, are kept (never darkens the mid-tones)",
           Set(&Options::ToneMapping) },
+        { { "--aa" }, "off|fxaa|ssaa:N",
+          "anti-aliasing: none; FXAA on the final image (default: one\n"
+          "full-screen pass); or render N x N times the pixels (N = 2..8) and\n"
+          "average each N x N block (N^2 times the cost; also for EXR)",
+          [](Options& o, const std::string& option, const char* v) {
+            const std::string text = v;
+            int64_t n = 0;
+            mrgi_error err;
+            if (text == "off" || text == "fxaa")
+            {
+              o.AntiAliasing = text == "off" ? Options::AAOff : Options::AAFXAA;
+              o.SSAAFactor = 1;
+              return -1;
+            }
+            if (text.compare(0, 5, "ssaa:") == 0 &&
+              mrgi_parse_int64(text.c_str() + 5, 2, 8, &n, &err) == MRGI_OK)
+            {
+              o.AntiAliasing = Options::AASSAA;
+              o.SSAAFactor = static_cast<int>(n);
+              return -1;
+            }
+            return Fail(option + " '" + v + "': expected off, fxaa or ssaa:N with N in 2..8");
+          } },
       } },
     { "Ground truth (CPU, Embree: direct light and one bounce with exact visibility)",
       {
@@ -832,6 +888,17 @@ int ParseArguments(int argc, char* argv[], Options& o)
   if (o.Scene.empty())
   {
     return Fail("no scene given (see mrgi-render --help)");
+  }
+  if (o.AntiAliasing == Options::AASSAA &&
+    (static_cast<int64_t>(o.Width) * o.SSAAFactor > MRGI_SSAA_MAX_SIDE ||
+      static_cast<int64_t>(o.Height) * o.SSAAFactor > MRGI_SSAA_MAX_SIDE))
+  {
+    return Fail("--aa ssaa:" + std::to_string(o.SSAAFactor) + " with --size " +
+      std::to_string(o.Width) + "x" + std::to_string(o.Height) + " renders " +
+      std::to_string(static_cast<int64_t>(o.Width) * o.SSAAFactor) + "x" +
+      std::to_string(static_cast<int64_t>(o.Height) * o.SSAAFactor) + " pixels, more than the " +
+      std::to_string(MRGI_SSAA_MAX_SIDE) +
+      " per side OpenGL windows take: use a smaller N or size");
   }
   if (o.Outputs.empty() && !o.Interactive && !o.Timings)
   {

@@ -10,6 +10,8 @@
 #include "vtkMRGIPass.h"     // For the area-light defaults
 #include "vtkSmartPointer.h" // For vtkSmartPointer
 
+#include "mrgi_exposure.h" // For MRGI_EXPOSURE_KEY
+
 #include <cmath>
 #include <string>
 #include <vector>
@@ -19,6 +21,10 @@ class vtkMRGIAreaLight;
 
 namespace mrgirender
 {
+// Largest window side --aa ssaa:N may render (GL_MAX_TEXTURE_SIZE of
+// llvmpipe and of common GPUs is 16384; MRGI's buffers are window-sized).
+constexpr int MRGI_SSAA_MAX_SIDE = 16384;
+
 // What the command line asks for; defaults as --help states them.
 struct Options
 {
@@ -73,6 +79,19 @@ struct Options
   double IndirectStrength = 1.0;
   bool IndirectOnly = false;
   bool ToneMapping = false;
+  // --exposure: a fixed EV, or automatic (Reinhard's key value).
+  bool AutoExposure = true;
+  double Exposure = 0.0;
+  double ExposureKey = MRGI_EXPOSURE_KEY;
+  // --aa: off, fxaa, or supersampling by SSAAFactor per axis.
+  enum AntiAliasingMode
+  {
+    AAOff = 0,
+    AAFXAA = 1,
+    AASSAA = 2
+  };
+  int AntiAliasing = AAFXAA;
+  int SSAAFactor = 1;
   bool Reference = false;
   bool ReferenceVisibility = true;
   bool ReferenceShadows = true;

@@ -4,6 +4,7 @@
 #include "mrgi_glsl_defines.h"
 
 #include "mrgi_area_light.h"
+#include "mrgi_exposure.h"
 #include "mrgi_gather.h"
 #include "mrgi_multires.h"
 #include "mrgi_specular_stencil.h"
@@ -80,6 +81,7 @@ static expected_constant expected[] = {
   EXPECT(MRGI_MULTIRES_THRESHOLD_OFF, EXPECT_FLOAT),
   EXPECT(MRGI_UPSAMPLE_TENT, EXPECT_INT),
   EXPECT(MRGI_UPSAMPLE_MASK_WEIGHTED, EXPECT_INT),
+  EXPECT(MRGI_TONE_SHOULDER, EXPECT_FLOAT),
   EXPECT(MRGI_VOXEL_SLICES, EXPECT_INT),
   EXPECT(MRGI_VOXEL_CHANNELS, EXPECT_INT),
   EXPECT(MRGI_VOXEL_CHANNEL_BITS, EXPECT_INT),

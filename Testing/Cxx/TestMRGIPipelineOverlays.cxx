@@ -8,11 +8,12 @@
 //   nothing is added: the image equals the one with indirect light off;
 // - with IndirectMode Off the image is VTK's own (max difference 1/255),
 //   also with dual depth peeling of translucent props and volumes together;
-// - FXAA (renderer->UseFXAAOn()): applied as VTK applies it (after
-//   translucency, before volumes and overlays): IndirectMode Off matches VTK's
-//   FXAA image closely, edges are smoothed with indirect light on, overlays
-//   are not blurred (VTK 9.1 itself applies FXAA only to renderers without a
-//   render pass; vtkMRGIPass applies it in its forward step);
+// - FXAA (renderer->UseFXAAOn()): applied before the overlays as VTK applies
+//   it: IndirectMode Off matches VTK's FXAA image closely, edges are smoothed
+//   with indirect light on, overlays are not blurred (VTK 9.1 itself applies
+//   FXAA only to renderers without a render pass; vtkMRGIPass applies it to
+//   its exposed, tone-mapped display image in its output step, after the
+//   volumes, then draws the overlays);
 // - the lit image (room, volumes, overlays) matches its baseline (relative RMS 0.02).
 //
 // Volume mappers, text rendering and the scalar bar live in VTK modules the

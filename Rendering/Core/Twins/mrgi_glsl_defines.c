@@ -1,6 +1,7 @@
 #include "mrgi_glsl_defines.h"
 
 #include "mrgi_area_light.h"
+#include "mrgi_exposure.h"
 #include "mrgi_gather.h"
 #include "mrgi_multires.h"
 #include "mrgi_specular_stencil.h"
@@ -77,6 +78,7 @@ static const mrgi_glsl_constant mrgi_glsl_constants[] = {
   MRGI_GLSL_CONSTANT(MRGI_MULTIRES_THRESHOLD_OFF, MRGI_GLSL_FLOAT),
   MRGI_GLSL_CONSTANT(MRGI_UPSAMPLE_TENT, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_UPSAMPLE_MASK_WEIGHTED, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_TONE_SHOULDER, MRGI_GLSL_FLOAT),
   MRGI_GLSL_CONSTANT(MRGI_VOXEL_SLICES, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_VOXEL_CHANNELS, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_VOXEL_CHANNEL_BITS, MRGI_GLSL_INT),

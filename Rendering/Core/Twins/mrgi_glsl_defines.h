@@ -25,8 +25,8 @@
  * mrgi_multires.h MRGI_MULTIRES_MAX_LEVELS, the MRGI_MULTIRES_TEX_*, _*_BIT and
  * _FLAG_* numbers, MRGI_MULTIRES_FLT_MAX, MRGI_MULTIRES_MIN_PIXEL_SIZE,
  * MRGI_MULTIRES_THRESHOLD_OFF; from mrgi_upsample.h MRGI_UPSAMPLE_TENT and
- * MRGI_UPSAMPLE_MASK_WEIGHTED; from mrgi_voxel.h, mrgi_voxel_march.h and
- * mrgi_visibility_pyramid.h the voxel layout and visibility numbers
+ * MRGI_UPSAMPLE_MASK_WEIGHTED; from mrgi_exposure.h MRGI_TONE_SHOULDER; from mrgi_voxel.h,
+ * mrgi_voxel_march.h and mrgi_visibility_pyramid.h the voxel layout and visibility numbers
  * MRGI_VOXEL_SLICES, _CHANNELS, _CHANNEL_BITS, _MAX_SIZE, _MAX_STEPS,
  * _MAX_SAMPLES, _MAX_MASK_WORDS, _INTERLEAVE_PHASES, _ALL_PHASES,
  * _NEIGHBOURS, _METRIC_DISAGREE, _METRIC_COUNT_SPREAD, _VSM_QUERIES,

@@ -50,10 +50,12 @@
 #include "vtkMRGIGBufferCapture.h"
 
 #include "mrgi_buffers.h"
+#include "mrgi_exposure.h"
 #include "mrgi_multires.h"
 #include "mrgi_vpl.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -81,7 +83,8 @@ struct vtkMRGIPass::Internals
 
 //------------------------------------------------------------------------------
 vtkMRGIPass::vtkMRGIPass()
-  : Internal(new Internals)
+  : AutoExposureKey(MRGI_EXPOSURE_KEY)
+  , Internal(new Internals)
 {
   this->RSMPass = vtkMRGIReflectiveShadowMapPass::New();
   this->VPLSelection = vtkMRGIVPLSelection::New();
@@ -264,6 +267,34 @@ double vtkMRGIPass::GetUpsampleMaskWeight()
 }
 
 //------------------------------------------------------------------------------
+void vtkMRGIPass::SetExposure(double ev)
+{
+  const double clamped = std::isnan(ev)
+    ? 0.0
+    : std::min(std::max(ev, double(MRGI_EXPOSURE_MIN_EV)), double(MRGI_EXPOSURE_MAX_EV));
+  if (clamped != this->Exposure)
+  {
+    this->Exposure = clamped;
+    this->Modified();
+  }
+}
+
+void vtkMRGIPass::SetAutoExposureKey(double key)
+{
+  if (!(key > 0.0) || std::isinf(key))
+  {
+    vtkErrorMacro("AutoExposureKey must be a finite number > 0 (got " << key << "); kept "
+                                                                      << this->AutoExposureKey);
+    return;
+  }
+  if (key != this->AutoExposureKey)
+  {
+    this->AutoExposureKey = key;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
 vtkTextureObject* vtkMRGIPass::GetPositionTexture()
 {
   return this->Internal->GBuffer.Position;
@@ -330,13 +361,14 @@ void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
       fbo->AddColorAttachment(MRGI_GBUFFER_SPECULAR, in.GBuffer.Specular);
       fbo->AddColorAttachment(MRGI_GBUFFER_SHININESS, in.GBuffer.Shininess);
     }
-    fbo->ActivateDrawBuffers(this->SpecularCaptured ? MRGI_GBUFFER_ATTACHMENTS : MRGI_GBUFFER_SPECULAR);
+    vtkMRGIShaderUtilities::SelectDrawBuffers(
+      fbo, this->SpecularCaptured ? MRGI_GBUFFER_ATTACHMENTS : MRGI_GBUFFER_SPECULAR);
   }
   else
   {
     fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
     fbo->AddColorAttachment(MRGI_GBUFFER_DIRECT, in.GBuffer.Color);
-    fbo->ActivateDrawBuffers(1);
+    vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
   }
   fbo->AddDepthAttachment(in.GBuffer.Depth);
 
@@ -346,6 +378,7 @@ void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
   if (capture)
   {
     this->PreRender(s);
+    this->Capturing = true;
   }
   if (split)
   {
@@ -378,6 +411,7 @@ void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
   }
   if (capture)
   {
+    this->Capturing = false;
     this->PostRender(s);
   }
   fbo->UnBind();
@@ -387,12 +421,12 @@ void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
 //------------------------------------------------------------------------------
 void vtkMRGIPass::RenderForward(const vtkRenderState* s)
 {
-  // Translucent props, volumes and overlays, over the lit opaque scene, into
+  // Translucent props and volumes, over the lit opaque scene, into
   // the colour buffer only (the G-buffer is for opaque surfaces).
   Internals& in = *this->Internal;
-  this->NumberOfRenderedProps += vtkMRGIRenderSteps::RenderForward(s,
-    vtkRenderStepsPass::SafeDownCast(this->DelegatePass), in.GBuffer.FrameBuffer, in.GBuffer.Color,
-    in.GBuffer.Depth, this->Viewport, this->FXAAFilter);
+  this->NumberOfRenderedProps +=
+    vtkMRGIRenderSteps::RenderForward(s, vtkRenderStepsPass::SafeDownCast(this->DelegatePass),
+      in.GBuffer.FrameBuffer, in.GBuffer.Color, in.GBuffer.Depth, this->Viewport);
 }
 
 //------------------------------------------------------------------------------
@@ -416,7 +450,7 @@ bool vtkMRGIPass::RenderGather(const vtkMRGIFrameContext& frame, int vplCount)
   fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
   fbo->AddColorAttachment(0, in.GBuffer.Irradiance);
   fbo->AddColorAttachment(1, in.GBuffer.Indirect);
-  fbo->ActivateDrawBuffers(2);
+  vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 2);
   in.GBuffer.Position->Activate();
   in.GBuffer.Normal->Activate();
   in.GBuffer.Albedo->Activate();
@@ -529,12 +563,18 @@ void vtkMRGIPass::RenderAdd(
 }
 
 //------------------------------------------------------------------------------
-void vtkMRGIPass::RenderOutput(const vtkMRGIFrameContext& frame)
+void vtkMRGIPass::RenderOutput(
+  const vtkMRGIFrameContext& frame, vtkTextureObject* source, float scale, bool toneMap, bool depth)
 {
   Internals& in = *this->Internal;
   vtkOpenGLRenderWindow* renWin = frame.Window;
-  vtkOpenGLQuadHelper* quad =
-    in.Programs.Ready(renWin, "output", "", [] { return vtkMRGICompositeFS; });
+  // The enclosing pass's G-buffer (vtkSSAOPass) is written with the depth.
+  const bool gbuffer = depth && this->OuterGBuffer && this->Captured;
+  vtkOpenGLQuadHelper* quad = in.Programs.Ready(renWin, "output",
+    !depth      ? "#define MRGI_OUTPUT_NO_DEPTH\n"
+      : gbuffer ? "#define MRGI_OUTPUT_GBUFFER\n"
+                : "",
+    [] { return vtkMRGICompositeFS; });
   if (!quad)
   {
     vtkErrorMacro("could not build the MRGI output shader");
@@ -545,16 +585,104 @@ void vtkMRGIPass::RenderOutput(const vtkMRGIFrameContext& frame)
   vtkMRGIViewportStep state(ostate, frame.Viewport);
   vtkOpenGLState::ScopedglDepthFunc depthFunc(ostate);
   vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
-  ostate->vtkglEnable(GL_DEPTH_TEST); // writes the scene's depth (GL_ALWAYS)
-  ostate->vtkglDepthFunc(GL_ALWAYS);
-  ostate->vtkglDepthMask(GL_TRUE);
-  in.GBuffer.Color->Activate();
-  in.GBuffer.Depth->Activate();
-  program->SetUniformi("mrgiColor", in.GBuffer.Color->GetTextureUnit());
-  program->SetUniformi("mrgiDepth", in.GBuffer.Depth->GetTextureUnit());
+  if (depth)
+  {
+    ostate->vtkglEnable(GL_DEPTH_TEST); // writes the scene's depth (GL_ALWAYS)
+    ostate->vtkglDepthFunc(GL_ALWAYS);
+    ostate->vtkglDepthMask(GL_TRUE);
+    in.GBuffer.Depth->Activate();
+    program->SetUniformi("mrgiDepth", in.GBuffer.Depth->GetTextureUnit());
+  }
+  else
+  {
+    ostate->vtkglDisable(GL_DEPTH_TEST);
+    ostate->vtkglDepthMask(GL_FALSE);
+  }
+  if (gbuffer)
+  {
+    in.GBuffer.Position->Activate();
+    in.GBuffer.Normal->Activate();
+    program->SetUniformi("mrgiPosition", in.GBuffer.Position->GetTextureUnit());
+    program->SetUniformi("mrgiNormal", in.GBuffer.Normal->GetTextureUnit());
+  }
+  source->Activate();
+  program->SetUniformi("mrgiColor", source->GetTextureUnit());
+  program->SetUniformf("mrgiExposureScale", scale);
+  program->SetUniformi("mrgiToneMap", toneMap ? 1 : 0);
   quad->Render();
-  in.GBuffer.Depth->Deactivate();
-  in.GBuffer.Color->Deactivate();
+  source->Deactivate();
+  if (gbuffer)
+  {
+    in.GBuffer.Normal->Deactivate();
+    in.GBuffer.Position->Deactivate();
+  }
+  if (depth)
+  {
+    in.GBuffer.Depth->Deactivate();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIPass::RenderOutputFXAA(const vtkMRGIFrameContext& frame, float scale)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLFramebufferObject* fbo = in.GBuffer.FrameBuffer;
+  fbo->SaveCurrentBindingsAndBuffers();
+  fbo->Bind();
+  fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
+  fbo->AddColorAttachment(0, in.GBuffer.Display);
+  vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
+  this->RenderOutput(frame, in.GBuffer.Color, scale, this->ToneMapping, false);
+  fbo->UnBind();
+  fbo->RestorePreviousBindingsAndBuffers();
+  vtkMRGIRenderSteps::RenderFXAA(
+    frame.Renderer, fbo, in.GBuffer.Display, frame.Viewport, this->FXAAFilter);
+  // The display image is final: copied as it is.
+  this->RenderOutput(frame, in.GBuffer.Display, 1.0f, false, true);
+}
+
+//------------------------------------------------------------------------------
+double vtkMRGIPass::MeasureAutoExposure(vtkOpenGLRenderWindow* renWin)
+{
+  Internals& in = *this->Internal;
+  std::vector<float> rgba;
+  if (!vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.GBuffer.Color, rgba))
+  {
+    vtkErrorMacro("automatic exposure: reading the colour back failed; EV 0 used");
+    return 0.0;
+  }
+  const int x0 = this->Viewport[0], y0 = this->Viewport[1];
+  const int w = this->Viewport[2], h = this->Viewport[3];
+  const size_t fullWidth = in.GBuffer.Color->GetWidth();
+  std::vector<float> depth(static_cast<size_t>(w) * h);
+  vtkOpenGLFramebufferObject* fbo = in.GBuffer.FrameBuffer;
+  fbo->SaveCurrentBindingsAndBuffers();
+  fbo->Bind();
+  fbo->AddDepthAttachment(in.GBuffer.Depth);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(x0, y0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+  fbo->UnBind();
+  fbo->RestorePreviousBindingsAndBuffers();
+  // The viewport's pixels, in the depth's order.
+  std::vector<float> colour(static_cast<size_t>(w) * h * 4);
+  for (int y = 0; y < h; ++y)
+  {
+    std::copy(rgba.begin() + static_cast<long>(4 * ((y + y0) * fullWidth + x0)),
+      rgba.begin() + static_cast<long>(4 * ((y + y0) * fullWidth + x0 + w)),
+      colour.begin() + static_cast<long>(4 * static_cast<size_t>(y) * w));
+  }
+  double logAverage = 0.0, highlight = 0.0;
+  mrgi_error err;
+  const int64_t count = static_cast<int64_t>(w) * h;
+  if (mrgi_exposure_log_average(
+        colour.data(), 4, depth.data(), count, &logAverage, nullptr, &err) != MRGI_OK ||
+    mrgi_exposure_quantile(colour.data(), 4, depth.data(), count, MRGI_EXPOSURE_HIGHLIGHT_FRACTION,
+      &highlight, &err) != MRGI_OK)
+  {
+    vtkErrorMacro(<< "automatic exposure: " << err.message);
+    return 0.0;
+  }
+  return mrgi_exposure_auto_ev(logAverage, highlight, this->AutoExposureKey);
 }
 
 //------------------------------------------------------------------------------
@@ -576,6 +704,56 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
     vtkWarningMacro("vtkMRGIPass has no delegate pass: nothing to render "
                     "(SetDelegatePass(vtkRenderStepsPass) is the usual choice)");
     return;
+  }
+
+  // MSAA cannot reach MRGI's single-sample float buffers, and VTK 9.1's
+  // FXAA filter gives a black image in a multisampled window (measured:
+  // also with MRGI's own buffer as its input): FXAA is skipped there.
+  const bool multisampled = renWin->GetMultiSamples() > 1;
+  if (multisampled && !this->MultiSamplesReported)
+  {
+    this->MultiSamplesReported = true;
+    vtkErrorMacro("the render window asks for "
+      << renWin->GetMultiSamples()
+      << " multisamples (MSAA), which vtkMRGIPass cannot honour: it renders into single-sample "
+         "float buffers. Rendering without MSAA"
+      << (renderer->GetUseFXAA() ? " and without FXAA (black in a multisampled window)" : "")
+      << "; call window->SetMultiSamples(0) and use renderer->UseFXAAOn() for anti-aliasing.");
+  }
+
+  // An image-processing delegate (vtkSSAOPass, vtkToneMappingPass,
+  // vtkOpenGLFXAAPass, vtkEDLShading, vtkDepthOfFieldPass, another
+  // vtkMRGIPass) draws the scene into its own buffers: MRGI's G-buffer
+  // capture never reaches MRGI's targets, and the image would silently lose
+  // the indirect light. Refused once, with the nesting that works; the
+  // delegate then renders on its own (its effect without MRGI's).
+  if (vtkImageProcessingPass::SafeDownCast(this->DelegatePass))
+  {
+    if (!this->NestingReported)
+    {
+      this->NestingReported = true;
+      const char* name = this->DelegatePass->GetClassName();
+      vtkErrorMacro(<< name << " as the delegate of vtkMRGIPass is not supported: it draws the "
+                    << "scene into its own buffers, out of MRGI's reach, so no indirect or area "
+                    << "light would be added. Nest it the other way round: " << name
+                    << "->SetDelegatePass(mrgi) and mrgi->SetDelegatePass(vtkRenderStepsPass) "
+                    << "(Documentation/Composition.md). Rendering the " << name << " alone.");
+    }
+    this->IndirectComputed = false;
+    this->AreaLightsComputed = false;
+    this->DelegatePass->Render(s);
+    this->NumberOfRenderedProps += this->DelegatePass->GetNumberOfRenderedProps();
+    return;
+  }
+
+  // An enclosing pass that reads VTK's G-buffer convention (vtkSSAOPass:
+  // view-space position and normal in draw buffers 1 and 2) gets them from
+  // MRGI's output: the scene is drawn into MRGI's buffers, not its.
+  {
+    GLint drawBuffer1 = GL_NONE, drawBuffer2 = GL_NONE;
+    glGetIntegerv(GL_DRAW_BUFFER1, &drawBuffer1);
+    glGetIntegerv(GL_DRAW_BUFFER2, &drawBuffer2);
+    this->OuterGBuffer = drawBuffer1 == GL_COLOR_ATTACHMENT1 && drawBuffer2 == GL_COLOR_ATTACHMENT2;
   }
 
   int x = 0, y = 0, w = 0, h = 0;
@@ -622,7 +800,7 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   Internals& in = *this->Internal;
   const bool areaLights = this->AreaLightStage->GetNumberOfLights() > 0;
   const bool indirect = this->IndirectMode != IndirectOff && this->GetNumberOfVPLs() > 0;
-  const bool capture = indirect || areaLights;
+  const bool capture = indirect || areaLights || this->OuterGBuffer;
   const bool split = vtkRenderStepsPass::SafeDownCast(this->DelegatePass) != nullptr;
   vtkRenderTimerLog* timer = vtkMRGIShaderUtilities::StageTimer(renderer, this->StageTimingEnabled);
   this->IndirectComputed = false;
@@ -633,7 +811,8 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   this->SpecularCaptured =
     capture && areaLights && this->AreaLightStage->GetSpecular() && AnySpecularProp(renderer);
 
-  in.GBuffer.Prepare(renWin, x + w, y + h, capture, this->SpecularCaptured);
+  const bool fxaa = renderer->GetUseFXAA() && !multisampled;
+  in.GBuffer.Prepare(renWin, x + w, y + h, capture, this->SpecularCaptured, fxaa);
   this->BufferSize[0] = w;
   this->BufferSize[1] = h;
   {
@@ -707,7 +886,21 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   }
   {
     ScopedStage stage(timer, "output");
-    this->RenderOutput(frame);
+    this->LastExposure = this->AutoExposure ? this->MeasureAutoExposure(renWin) : this->Exposure;
+    const float scale = mrgi_exposure_scale(this->LastExposure);
+    if (fxaa)
+    {
+      this->RenderOutputFXAA(frame, scale);
+    }
+    else
+    {
+      this->RenderOutput(frame, in.GBuffer.Color, scale, this->ToneMapping, true);
+    }
+    if (split)
+    {
+      this->NumberOfRenderedProps += vtkMRGIRenderSteps::RenderOverlays(
+        s, vtkRenderStepsPass::SafeDownCast(this->DelegatePass), this->Viewport);
+    }
   }
   vtkOpenGLCheckErrorMacro("failed after vtkMRGIPass::Render");
 }
@@ -750,6 +943,21 @@ bool vtkMRGIPass::PostReplaceShaderValues(std::string&, std::string&, std::strin
       "  gl_FragData[MRGI_GBUFFER_ALBEDO] = vec4(0.0);\n"
       "  gl_FragData[MRGI_GBUFFER_SPECULAR] = vec4(0.0);\n"
       "  gl_FragData[MRGI_GBUFFER_SHININESS] = vec4(0.0);\n");
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIPass::SetShaderParameters(
+  vtkShaderProgram*, vtkAbstractMapper* mapper, vtkProp*, vtkOpenGLVertexArrayObject*)
+{
+  // The mapper calls every pass in the order they were entered, outermost
+  // first: this runs after an enclosing pass (vtkSSAOPass) changed the draw
+  // buffers.
+  if (this->Capturing && vtkOpenGLPolyDataMapper::SafeDownCast(mapper))
+  {
+    vtkMRGIShaderUtilities::SelectDrawBuffers(this->Internal->GBuffer.FrameBuffer,
+      this->SpecularCaptured ? MRGI_GBUFFER_ATTACHMENTS : MRGI_GBUFFER_SPECULAR);
   }
   return true;
 }
@@ -903,6 +1111,11 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfVPLs: " << this->VPLSelection->GetNumberOfVPLs() << "\n";
   os << indent << "VPLSelectionMode: " << this->VPLSelection->GetMode() << "\n";
   os << indent << "RSMResolution: " << this->RSMPass->GetResolution() << "\n";
+  os << indent << "Exposure: " << this->Exposure << " EV\n";
+  os << indent << "AutoExposure: " << (this->AutoExposure ? "On" : "Off") << "\n";
+  os << indent << "AutoExposureKey: " << this->AutoExposureKey << "\n";
+  os << indent << "LastExposure: " << this->LastExposure << " EV\n";
+  os << indent << "ToneMapping: " << (this->ToneMapping ? "On" : "Off") << "\n";
   os << indent << "StageTimingEnabled: " << (this->StageTimingEnabled ? "On" : "Off") << "\n";
   os << indent << "Multiresolution:\n";
   this->Multiresolution->PrintSelf(os, indent.GetNextIndent());

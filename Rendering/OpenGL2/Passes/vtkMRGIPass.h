@@ -22,12 +22,16 @@
  * 4. "gather": every pixel gathers every VPL (nichols-shopf-wyman-2009
  *    eq. 1 and 5), giving E and the indirect radiance albedo * E * strength.
  * 5. "add": the indirect radiance is added to the direct light.
- * 6. "forward": translucent props, volumes and 2D overlays are drawn on top
+ * 6. "forward": translucent props and volumes are drawn on top
  *    (not lit indirectly, depth peeling as configured on the renderer),
  *    when the delegate is a vtkRenderStepsPass; other delegates draw
  *    everything in step 1.
- * 7. "output": the HDR result, with depth, goes to the framebuffer VTK was
- *    drawing into.
+ * 7. "output": the HDR result, exposed (Exposure, AutoExposure) and tone
+ *    mapped (ToneMapping), with depth, goes to the framebuffer VTK was
+ *    drawing into; with renderer->UseFXAAOn() FXAA runs on that display
+ *    image first, in MRGI's own single-sample buffer. Then the 2D overlays
+ *    of a vtkRenderStepsPass delegate are drawn over it, untouched by
+ *    exposure, tone mapping and FXAA.
  *
  * With IndirectMode Off, or no VPLs, or no light reaching anything, steps 2-5
  * do not run and nothing is captured: the pass costs one copy.
@@ -36,7 +40,19 @@
  * GetColorBuffer() (final HDR), GetIndirectBuffer() (what was added),
  * GetIrradianceBuffer() (E), GetGBuffer().
  *
- * Tone mapping: wrap this pass as the delegate of a vtkToneMappingPass.
+ * Exposure and tone mapping: SetExposure(EV) scales the HDR image by 2^EV
+ * before the output; AutoExposureOn() picks EV per frame so the
+ * log-average luminance of the drawn pixels lands on AutoExposureKey
+ * (Reinhard et al. 2002); ToneMappingOn() rolls highlights off towards 1
+ * while keeping every value up to 0.5, mid-grey included, as it is
+ * (mrgi_exposure.h). The HDR read-backs (GetColorBuffer, EXR) are never
+ * exposed nor tone mapped. VTK's own vtkToneMappingPass may also wrap this
+ * pass (Documentation/Composition.md lists the nestings that work).
+ *
+ * Anti-aliasing: renderer->UseFXAAOn() (see step 7; works whatever the
+ * window's multisampling). The window's multisamples (MSAA) cannot reach
+ * MRGI's single-sample float buffers: a window with MultiSamples > 1 gets
+ * one error naming the fix, and renders without MSAA.
  */
 #ifndef vtkMRGIPass_h
 #define vtkMRGIPass_h
@@ -277,6 +293,46 @@ public:
    */
   bool GetAreaLightBuffer(vtkRenderWindow* window, vtkImageData* image);
 
+  ///@{
+  /**
+   * Exposure in stops (EV, default 0): the HDR colour is multiplied by
+   * 2^Exposure before tone mapping and output. Clamped to [-20, 20]
+   * (MRGI_EXPOSURE_MIN_EV/MAX_EV). Ignored while AutoExposure is on.
+   */
+  void SetExposure(double ev);
+  vtkGetMacro(Exposure, double);
+  ///@}
+
+  ///@{
+  /**
+   * Automatic exposure (default off): each frame, EV = log2(key / Lw),
+   * Lw the log-average luminance of the pixels something was drawn on
+   * (background ignored; Reinhard et al. 2002 eq. 1), key =
+   * AutoExposureKey (default 0.18), capped so that 97% of those pixels
+   * stay at or below 1 (mrgi_exposure.h says why). Reads the colour and
+   * depth back once per frame.
+   */
+  vtkSetMacro(AutoExposure, bool);
+  vtkGetMacro(AutoExposure, bool);
+  vtkBooleanMacro(AutoExposure, bool);
+  void SetAutoExposureKey(double key);
+  vtkGetMacro(AutoExposureKey, double);
+  ///@}
+
+  /** The EV the last frame was output with (Exposure, or the automatic one). */
+  vtkGetMacro(LastExposure, double);
+
+  ///@{
+  /**
+   * Tone mapping of the output (default off): mrgi_tone_curve per
+   * channel, the identity up to 0.5 and a smooth roll-off to 1 above it,
+   * so mid-grey (0.18) keeps the display value the plain output gives it.
+   */
+  vtkSetMacro(ToneMapping, bool);
+  vtkGetMacro(ToneMapping, bool);
+  vtkBooleanMacro(ToneMapping, bool);
+  ///@}
+
   /** Whether the last frame drew area lights. */
   vtkGetMacro(AreaLightsComputed, bool);
 
@@ -384,6 +440,12 @@ public:
     std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop) override;
   bool PostReplaceShaderValues(std::string& vertexShader, std::string& geometryShader,
     std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop) override;
+  /**
+   * Re-selects MRGI's G-buffer targets for each draw of the capture: an
+   * enclosing vtkSSAOPass selects its own three targets there.
+   */
+  bool SetShaderParameters(vtkShaderProgram* program, vtkAbstractMapper* mapper, vtkProp* prop,
+    vtkOpenGLVertexArrayObject* VAO = nullptr) override;
   ///@}
 
 protected:
@@ -404,7 +466,15 @@ protected:
   bool RenderMultiresolution(const vtkMRGIFrameContext& frame, int vplCount);
   // Adds `source`'s RGB to `target`'s (additive blending, target alpha kept).
   void RenderAdd(const vtkMRGIFrameContext& frame, vtkTextureObject* source, vtkTextureObject* target);
-  void RenderOutput(const vtkMRGIFrameContext& frame);
+  // Writes `source` (window-sized) to the framebuffer bound now: scaled,
+  // tone mapped when asked, with the scene's depth when `depth`.
+  void RenderOutput(const vtkMRGIFrameContext& frame, vtkTextureObject* source, float scale,
+    bool toneMap, bool depth);
+  // The output transform into the display image, FXAA on it, then the
+  // display image with depth to the framebuffer VTK was drawing into.
+  void RenderOutputFXAA(const vtkMRGIFrameContext& frame, float scale);
+  // The automatic EV of this frame's colour (viewport, foreground only).
+  double MeasureAutoExposure(vtkOpenGLRenderWindow* renWin);
 #endif
   bool ReadViewport(vtkRenderWindow* window, vtkTextureObject* texture, int components,
     vtkImageData* image, const char* what);
@@ -420,6 +490,15 @@ protected:
   int Viewport[4] = { 0, 0, 0, 0 };
   bool IndirectComputed = false;
   bool AreaLightsComputed = false;
+  double Exposure = 0.0;
+  bool AutoExposure = false;
+  double AutoExposureKey; // MRGI_EXPOSURE_KEY
+  double LastExposure = 0.0;
+  bool ToneMapping = false;
+  bool MultiSamplesReported = false; // the MSAA error is given once
+  bool NestingReported = false;      // so is the unsupported-delegate error
+  bool OuterGBuffer = false;         // the enclosing framebuffer takes position and normal
+  bool Capturing = false;            // the scene is being drawn into the G-buffer
   bool Captured = false;         // the last frame captured the G-buffer
   bool SpecularCaptured = false; // ... with its specular attachments
   double LastViewToWorld[16];

@@ -15,6 +15,7 @@
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
+#include "vtkInformationObjectBaseVectorKey.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLFramebufferObject.h"
@@ -536,7 +537,7 @@ void vtkMRGIReflectiveShadowMapPass::Render(const vtkRenderState* s)
       {
         fbo->AddColorAttachment(a, view->Textures[a]);
       }
-      fbo->ActivateDrawBuffers(MRGI_RSM_ATTACHMENTS);
+      vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, MRGI_RSM_ATTACHMENTS);
       fbo->AddDepthAttachment();
       // Explicit viewport: StartNonOrtho leaves it alone, and VTK's camera
       // pass restores whatever it found (0 x 0 on a surfaceless context).
@@ -549,12 +550,37 @@ void vtkMRGIReflectiveShadowMapPass::Render(const vtkRenderState* s)
       state.SetPropArrayAndCount(props.data(), static_cast<int>(props.size()));
       state.SetFrameBuffer(fbo);
       this->Internal->Current = view.get();
+      // The maps are drawn with this pass's shader code only: an enclosing
+      // pass's (vtkSSAOPass writing its own targets and selecting its draw
+      // buffers, vtkShadowMapPass's light factors) is set aside meanwhile.
+      std::vector<std::vector<vtkSmartPointer<vtkObjectBase>>> enclosing(props.size());
+      vtkInformationObjectBaseVectorKey* key = vtkOpenGLRenderPass::RenderPasses();
+      for (size_t p = 0; p < props.size(); ++p)
+      {
+        vtkInformation* info = props[p]->GetPropertyKeys();
+        for (int i = 0; info && i < key->Length(info); ++i)
+        {
+          enclosing[p].emplace_back(key->Get(info, i));
+        }
+        if (info)
+        {
+          info->Remove(key);
+        }
+      }
       this->PreRender(&state);
       for (vtkProp* prop : props)
       {
         prop->RenderOpaqueGeometry(renderer);
       }
       this->PostRender(&state);
+      for (size_t p = 0; p < props.size(); ++p)
+      {
+        vtkInformation* info = props[p]->GetPropertyKeys();
+        for (const auto& pass : enclosing[p])
+        {
+          key->Append(info, pass);
+        }
+      }
       this->Internal->Current = nullptr;
     }
     fbo->UnBind();
@@ -608,6 +634,13 @@ bool vtkMRGIReflectiveShadowMapPass::SetShaderParameters(
   vtkShaderProgram* program, vtkAbstractMapper*, vtkProp*, vtkOpenGLVertexArrayObject*)
 {
   const View* view = this->Internal->Current;
+  if (view)
+  {
+    // The maps' three targets, for every draw: measured inside
+    // vtkSSAOPass, only the first one was selected (SelectDrawBuffers says
+    // why), and the normal and flux maps stayed empty.
+    vtkMRGIShaderUtilities::SelectDrawBuffers(this->Internal->FrameBuffer, MRGI_RSM_ATTACHMENTS);
+  }
   if (!view || !program->IsUniformUsed("mrgiLightVCToWC"))
   {
     return true;

@@ -55,7 +55,7 @@ void vtkMRGIFullScreenStep::Target(vtkTextureObject* a, vtkTextureObject* b, int
   {
     this->Fbo->AddColorAttachment(1, b);
   }
-  this->Fbo->ActivateDrawBuffers(b ? 2 : 1);
+  vtkMRGIShaderUtilities::SelectDrawBuffers(this->Fbo, b ? 2 : 1);
   this->State->vtkglViewport(x, y, w, h);
 }
 
@@ -68,7 +68,7 @@ void vtkMRGIFullScreenStep::Targets(std::initializer_list<vtkTextureObject*> tar
   {
     this->Fbo->AddColorAttachment(k++, t);
   }
-  this->Fbo->ActivateDrawBuffers(k);
+  vtkMRGIShaderUtilities::SelectDrawBuffers(this->Fbo, k);
   this->State->vtkglViewport(0, 0, w, h);
 }
 
@@ -228,7 +228,7 @@ bool vtkMRGIFullScreenStep::AddRGB(vtkOpenGLRenderWindow* window, vtkMRGIProgram
   fbo->Bind();
   fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
   fbo->AddColorAttachment(0, target);
-  fbo->ActivateDrawBuffers(1);
+  vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
   source->Activate();
   program->SetUniformi("mrgiIndirect", source->GetTextureUnit());
   quad->Render();

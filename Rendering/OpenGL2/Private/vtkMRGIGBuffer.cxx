@@ -11,7 +11,8 @@
 #include "vtkTextureObject.h"
 
 //------------------------------------------------------------------------------
-void vtkMRGIGBuffer::Prepare(vtkOpenGLRenderWindow* window, int w, int h, bool capture, bool specular)
+void vtkMRGIGBuffer::Prepare(
+  vtkOpenGLRenderWindow* window, int w, int h, bool capture, bool specular, bool display)
 {
   auto ensure = [&](vtkTextureObject*& t, int format) {
     if (!t)
@@ -59,6 +60,11 @@ void vtkMRGIGBuffer::Prepare(vtkOpenGLRenderWindow* window, int w, int h, bool c
       ensure(this->Shininess, GL_RGBA16F);
     }
   }
+  if (display)
+  {
+    // Display values: 16-bit float holds 8-bit precision and more.
+    ensure(this->Display, GL_RGBA16F);
+  }
   if (!this->FrameBuffer)
   {
     this->FrameBuffer = vtkOpenGLFramebufferObject::New();
@@ -78,8 +84,9 @@ void vtkMRGIGBuffer::Release(vtkWindow* w)
     this->FrameBuffer->Delete();
     this->FrameBuffer = nullptr;
   }
-  for (vtkTextureObject** t : { &this->Color, &this->Depth, &this->Position, &this->Normal,
-         &this->Albedo, &this->Specular, &this->Shininess, &this->Irradiance, &this->Indirect })
+  for (vtkTextureObject** t :
+    { &this->Color, &this->Depth, &this->Position, &this->Normal, &this->Albedo, &this->Specular,
+      &this->Shininess, &this->Irradiance, &this->Indirect, &this->Display })
   {
     vtkMRGIShaderUtilities::ReleaseTexture(*t, w);
   }

@@ -28,9 +28,11 @@ public:
   /**
    * Make every buffer a frame of w x h needs: colour and depth always; with
    * `capture` the G-buffer and the indirect targets; with `specular` also
-   * the specular attachments. Buffers are created once and resized.
+   * the specular attachments; with `display` the display image (FXAA's
+   * input and output). Buffers are created once and resized.
    */
-  void Prepare(vtkOpenGLRenderWindow* window, int w, int h, bool capture, bool specular);
+  void Prepare(
+    vtkOpenGLRenderWindow* window, int w, int h, bool capture, bool specular, bool display = false);
 
   /** Free every buffer (their GL objects too when `w` is given). */
   void Release(vtkWindow* w);
@@ -56,6 +58,7 @@ public:
   vtkTextureObject* Shininess = nullptr;
   vtkTextureObject* Irradiance = nullptr; // E of the indirect gather
   vtkTextureObject* Indirect = nullptr;   // strength x albedo x E
+  vtkTextureObject* Display = nullptr;    // exposed, tone-mapped colour (FXAA runs on it)
 
 private:
   vtkMRGIGBuffer(const vtkMRGIGBuffer&) = delete;

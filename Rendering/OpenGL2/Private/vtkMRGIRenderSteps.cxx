@@ -2,6 +2,8 @@
 
 #include "vtkMRGIRenderSteps.h"
 
+#include "vtkMRGIShaderUtilities.h"
+
 #include "vtkCameraPass.h"
 #include "vtkHardwareSelector.h"
 #include "vtkObjectFactory.h"
@@ -97,14 +99,14 @@ void RenderCameraWith(vtkCameraPass* camera, vtkRenderPass* delegate, const vtkR
 //------------------------------------------------------------------------------
 int RenderForward(const vtkRenderState* s, vtkRenderStepsPass* steps,
   vtkOpenGLFramebufferObject* fbo, vtkTextureObject* color, vtkTextureObject* depth,
-  const int viewport[4], vtkOpenGLFXAAFilter*& fxaa)
+  const int viewport[4])
 {
   int rendered = 0;
   fbo->SaveCurrentBindingsAndBuffers();
   fbo->Bind();
   fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
   fbo->AddColorAttachment(MRGI_GBUFFER_DIRECT, color);
-  fbo->ActivateDrawBuffers(1);
+  vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
   fbo->AddDepthAttachment(depth);
   vtkOpenGLRenderWindow* renWin =
     static_cast<vtkOpenGLRenderWindow*>(s->GetRenderer()->GetRenderWindow());
@@ -159,31 +161,67 @@ int RenderForward(const vtkRenderState* s, vtkRenderStepsPass* steps,
     render(translucent);
   }
 
-  // FXAA (renderer->UseFXAAOn()): VTK 9.1 applies it only when a renderer has
-  // no pass, after translucent geometry and before volumes and overlays
-  // (text is antialiased already). MRGI does the same at the same point, on
-  // its colour buffer (FXAA works on 8-bit colour: values above 1 are clamped
-  // there). The filter and its buffers live as long as the pass's resources.
-  if (glRenderer && renderer->GetUseFXAA())
-  {
-    if (!fxaa)
-    {
-      fxaa = vtkOpenGLFXAAFilter::New();
-    }
-    if (renderer->GetFXAAOptions())
-    {
-      fxaa->UpdateConfiguration(renderer->GetFXAAOptions());
-    }
-    fxaa->Execute(glRenderer);
-  }
-
   if (!volumesPeeled)
   {
     render(steps->GetVolumetricPass());
   }
-  render(steps->GetOverlayPass());
   fbo->UnBind();
   fbo->RestorePreviousBindingsAndBuffers();
   return rendered;
+}
+
+//------------------------------------------------------------------------------
+int RenderOverlays(const vtkRenderState* s, vtkRenderStepsPass* steps, const int viewport[4])
+{
+  vtkRenderPass* overlay = steps ? steps->GetOverlayPass() : nullptr;
+  if (!overlay)
+  {
+    return 0;
+  }
+  vtkOpenGLRenderWindow* renWin =
+    static_cast<vtkOpenGLRenderWindow*>(s->GetRenderer()->GetRenderWindow());
+  vtkOpenGLState* ostate = renWin->GetState();
+  vtkOpenGLState::ScopedglViewport savedViewport(ostate);
+  vtkOpenGLState::ScopedglScissor savedScissor(ostate);
+  ostate->vtkglViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+  ostate->vtkglScissor(viewport[0], viewport[1], viewport[2], viewport[3]);
+  overlay->Render(s);
+  return overlay->GetNumberOfRenderedProps();
+}
+
+//------------------------------------------------------------------------------
+void RenderFXAA(vtkRenderer* renderer, vtkOpenGLFramebufferObject* fbo, vtkTextureObject* display,
+  const int viewport[4], vtkOpenGLFXAAFilter*& fxaa)
+{
+  vtkOpenGLRenderer* glRenderer = vtkOpenGLRenderer::SafeDownCast(renderer);
+  if (!glRenderer)
+  {
+    return;
+  }
+  if (!fxaa)
+  {
+    fxaa = vtkOpenGLFXAAFilter::New();
+  }
+  if (renderer->GetFXAAOptions())
+  {
+    fxaa->UpdateConfiguration(renderer->GetFXAAOptions());
+  }
+  vtkOpenGLRenderWindow* renWin = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow());
+  vtkOpenGLState* ostate = renWin->GetState();
+  fbo->SaveCurrentBindingsAndBuffers();
+  fbo->Bind();
+  fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
+  fbo->AddColorAttachment(0, display);
+  vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
+  fbo->ActivateReadBuffer(0);
+  vtkOpenGLState::ScopedglViewport savedViewport(ostate);
+  vtkOpenGLState::ScopedglScissor savedScissor(ostate);
+  ostate->vtkglViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+  ostate->vtkglScissor(viewport[0], viewport[1], viewport[2], viewport[3]);
+  // The filter copies the viewport out of the read buffer (this one) and
+  // draws the filtered image back over it.
+  fxaa->Execute(glRenderer);
+  fbo->UnBind();
+  fbo->RestorePreviousBindingsAndBuffers();
 }
 }

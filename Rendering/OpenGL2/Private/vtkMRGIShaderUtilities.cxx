@@ -23,6 +23,18 @@
 namespace vtkMRGIShaderUtilities
 {
 //------------------------------------------------------------------------------
+void SelectDrawBuffers(vtkOpenGLFramebufferObject* fbo, unsigned int count)
+{
+  fbo->ActivateDrawBuffers(count);
+  std::vector<GLenum> buffers(count);
+  for (unsigned int a = 0; a < count; ++a)
+  {
+    buffers[a] = static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + a);
+  }
+  glDrawBuffers(static_cast<GLsizei>(count), buffers.data());
+}
+
+//------------------------------------------------------------------------------
 const std::string& Defines()
 {
   static const std::string block = []() {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+class vtkOpenGLFramebufferObject;
 class vtkOpenGLRenderWindow;
 class vtkRenderer;
 class vtkTextureObject;
@@ -19,6 +20,17 @@ class vtkWindow;
 
 namespace vtkMRGIShaderUtilities
 {
+/**
+ * Select the first `count` colour attachments of the bound `fbo` as draw
+ * buffers: fbo->ActivateDrawBuffers(count), then glDrawBuffers directly.
+ * VTK 9.1's vtkOpenGLState skips the call when its cache says they are
+ * selected already, and an enclosing vtkSSAOPass puts that cache out of
+ * step with OpenGL (it selects draw buffers through a framebuffer object
+ * that is not the bound one; measured: MRGI's stages then wrote only their
+ * first target inside it).
+ */
+void SelectDrawBuffers(vtkOpenGLFramebufferObject* fbo, unsigned int count);
+
 /**
  * The `#define` block of every constant the core defines for GLSL
  * (mrgi_glsl_defines()), generated once per process.

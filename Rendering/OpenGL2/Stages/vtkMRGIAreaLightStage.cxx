@@ -272,7 +272,7 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
     fbo->SaveCurrentBindingsAndBuffers();
     fbo->Bind();
     fbo->AddColorAttachment(0, this->SumTexture);
-    fbo->ActivateDrawBuffers(1);
+    vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
     vtkOpenGLState::ScopedglClearColor clearColor(ostate);
     ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
     ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
@@ -547,7 +547,7 @@ bool vtkMRGIAreaLightStage::RenderSpecular(const vtkMRGIFrameContext& frame,
   fbo->SaveCurrentBindingsAndBuffers();
   fbo->Bind();
   fbo->AddColorAttachment(0, this->DirectTexture);
-  fbo->ActivateDrawBuffers(1);
+  vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
   vtkTextureObject* inputs[4] = { frame.Position, frame.Normal, frame.Specular,
     frame.Shininess };
   const char* names[4] = { "mrgiPosition", "mrgiNormal", "mrgiSpecular", "mrgiShininess" };

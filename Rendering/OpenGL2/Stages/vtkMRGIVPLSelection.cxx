@@ -310,7 +310,7 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
         window->GetShaderCache()->ReadyShaderProgram(rowsProgram);
         fbo->AddColorAttachment(0, rowSums);
         fbo->AddColorAttachment(1, rowBest);
-        fbo->ActivateDrawBuffers(2);
+        vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 2);
         rowsProgram->SetUniformi("mrgiRSMPosition", position->GetTextureUnit());
         rowsProgram->SetUniformi("mrgiRSMNormal", normal->GetTextureUnit());
         rowsProgram->SetUniformi("mrgiRSMFlux", flux->GetTextureUnit());
@@ -322,7 +322,7 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
         // Stage 1: one fragment per VPL texel.
         fbo->RemoveColorAttachments(2);
         fbo->AddColorAttachment(0, texture);
-        fbo->ActivateDrawBuffers(1);
+        vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
         window->GetShaderCache()->ReadyShaderProgram(program);
         rowSums->Activate();
         rowBest->Activate();

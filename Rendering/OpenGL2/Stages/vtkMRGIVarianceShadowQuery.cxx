@@ -241,7 +241,7 @@ bool vtkMRGIVarianceShadowQuery::ComputeMoments(
     {
       fbo->AddColorAttachment(static_cast<unsigned int>(k), in.Moments[static_cast<size_t>(k)]);
     }
-    fbo->ActivateDrawBuffers(Targets);
+    vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, Targets);
     ostate->vtkglViewport(0, 0, w, h);
     in.Quad->Render();
     fbo->RemoveColorAttachments(Targets);

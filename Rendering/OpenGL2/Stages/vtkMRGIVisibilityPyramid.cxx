@@ -399,7 +399,7 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
             : single ? in.Stats[static_cast<size_t>(i)]
                      : (k < targets ? out[kk] : in.Quarters[kk - static_cast<size_t>(targets)]));
       }
-      fbo->ActivateDrawBuffers(static_cast<unsigned int>(outputs));
+      vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, static_cast<unsigned int>(outputs));
       ostate->vtkglViewport(0, 0, onCopies ? copies * stride : lw, lh);
       if (onCopies && stage == StageMarch)
       {

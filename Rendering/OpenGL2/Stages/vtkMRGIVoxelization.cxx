@@ -588,7 +588,7 @@ bool vtkMRGIVoxelization::Voxelize(
     fbo->SaveCurrentBindingsAndBuffers();
     fbo->Bind();
     fbo->AddColorAttachment(0, in.Voxels);
-    fbo->ActivateDrawBuffers(1);
+    vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     {
       vtkErrorMacro("Voxelize: the RGBA32UI voxel framebuffer is incomplete");
