@@ -153,6 +153,12 @@ vtkTextureObject* NewTexture(vtkOpenGLRenderWindow* window, int internalFormat, 
 }
 
 //------------------------------------------------------------------------------
+vtkTextureObject* NewMaskTexture(vtkOpenGLRenderWindow* window, int w, int h)
+{
+  return NewTexture(window, GL_R8, w, h);
+}
+
+//------------------------------------------------------------------------------
 vtkTextureObject* NewDepthStencil(vtkOpenGLRenderWindow* window, int w, int h)
 {
   vtkTextureObject* t = vtkTextureObject::New();
