@@ -159,6 +159,12 @@ vtkTextureObject* NewMaskTexture(vtkOpenGLRenderWindow* window, int w, int h)
 }
 
 //------------------------------------------------------------------------------
+vtkTextureObject* NewFlagsTexture(vtkOpenGLRenderWindow* window, int w, int h)
+{
+  return NewTexture(window, GL_R16F, w, h);
+}
+
+//------------------------------------------------------------------------------
 vtkTextureObject* NewDepthStencil(vtkOpenGLRenderWindow* window, int w, int h)
 {
   vtkTextureObject* t = vtkTextureObject::New();

@@ -80,6 +80,16 @@ vtkTextureObject* NewTexture(vtkOpenGLRenderWindow* window, int internalFormat, 
  */
 vtkTextureObject* NewMaskTexture(vtkOpenGLRenderWindow* window, int w, int h);
 
+/**
+ * A new w x h texture of per-texel flags: small non-negative integers
+ * (MRGI_MULTIRES_FLAG_*, MRGI_SPECULAR_STENCIL_* bits) that the shaders write
+ * as float(flags) to red and read back with int(texel.r). A half float holds
+ * every integer up to 2048 exactly, so one GL_R16F channel (2 bytes, an
+ * eighth of RGBA32F) keeps the values and the shaders as they are. Null when
+ * the allocation fails.
+ */
+vtkTextureObject* NewFlagsTexture(vtkOpenGLRenderWindow* window, int w, int h);
+
 /** A new w x h depth-stencil texture, nearest filtering; null when the allocation fails. */
 vtkTextureObject* NewDepthStencil(vtkOpenGLRenderWindow* window, int w, int h);
 

@@ -48,15 +48,6 @@ vtkTextureObject* MakeFloatTexture(vtkOpenGLRenderWindow* window, int w, int h)
   return vtkMRGIShaderUtilities::NewTexture(window, GL_RGBA32F, w, h);
 }
 
-// The refinement flags are small integers (MRGI_MULTIRES_FLAG_* bits, < 16)
-// written as float(flag) and read back with int(texel.r): a half float holds
-// every integer up to 2048 exactly, so one R16F channel (2 bytes) keeps the
-// shaders and the values as they were with RGBA32F (16 bytes).
-vtkTextureObject* MakeFlagsTexture(vtkOpenGLRenderWindow* window, int w, int h)
-{
-  return vtkMRGIShaderUtilities::NewTexture(window, GL_R16F, w, h);
-}
-
 // The receivers program of `stage` (vtkMRGIMultiresReceiversFS.glsl: 0 level
 // 0 from the G-buffer, 1 a 2x2 reduction, 2 level 1 from the G-buffer).
 vtkOpenGLQuadHelper* ReadyReceiverStage(vtkMRGIProgramCache& programs, vtkOpenGLRenderWindow* window, int stage)
@@ -261,7 +252,7 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
           ? nullptr
           : MakeFloatTexture(window, layout.level_width[i], layout.level_height[i]);
       }
-      level[MRGI_MULTIRES_TEX_COUNT] = MakeFlagsTexture(window, layout.level_width[i], layout.level_height[i]);
+      level[MRGI_MULTIRES_TEX_COUNT] = vtkMRGIShaderUtilities::NewFlagsTexture(window, layout.level_width[i], layout.level_height[i]);
     }
     in.Receivers.resize(static_cast<size_t>(levels));
     for (int i = 1; i < levels; ++i)

@@ -139,7 +139,7 @@ bool vtkMRGISpecularStencil::Build(const vtkMRGIFrameContext& frame,
   }
   if (!in.FlatSpecularBits)
   {
-    in.FlatSpecularBits = MakeFloatTexture(window, layout.total_width, layout.total_height);
+    in.FlatSpecularBits = vtkMRGIShaderUtilities::NewFlagsTexture(window, layout.total_width, layout.total_height);
     in.FlatSpecularSelection = vtkMRGIShaderUtilities::NewMaskTexture(window, layout.total_width, layout.total_height);
     in.SpecularDepthStencil =
       vtkMRGIShaderUtilities::NewDepthStencil(window, layout.total_width, layout.total_height);
