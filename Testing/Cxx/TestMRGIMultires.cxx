@@ -3,6 +3,8 @@
 // default thresholds it stays within 5% relative RMS of it (the papers report
 // 2-3%); with thresholds off every selected texel is at the coarsest level;
 // its stages are timed; the image is finite.
+#include "vtk_glew.h"
+
 #include "mrgiTestUtilities.h"
 
 #include "vtkDataArray.h"
@@ -17,6 +19,7 @@
 #include "vtkRenderStepsPass.h"
 #include "vtkRenderTimerLog.h"
 #include "vtkRenderer.h"
+#include "vtkTextureObject.h"
 
 #include "mrgi_multires.h"
 #include "mrgi_upsample.h"
@@ -113,6 +116,16 @@ int main()
   }
   std::printf("thresholds off: %d texels at the coarsest level, %d elsewhere\n", coarse, finer);
   MRGI_TEST_CHECK(coarse > 0 && finer == 0);
+
+  // Memory per pixel (Documentation/reliability/memory.md): the flags in one
+  // half-float channel, the selection in one byte, no NORMAL_MAX texture at
+  // level 0 (it stores one normal); level 1 keeps its three mipmap textures.
+  vtkTextureObject* flags0 = mr->GetFlagsTexture(0);
+  vtkTextureObject* selection = mr->GetSelectionTexture();
+  MRGI_TEST_CHECK(flags0 && flags0->GetInternalFormat(VTK_FLOAT, 4, false) == GL_R16F);
+  MRGI_TEST_CHECK(selection && selection->GetInternalFormat(VTK_FLOAT, 4, false) == GL_R8);
+  MRGI_TEST_CHECK(!mr->GetMipmapTexture(0, MRGI_MULTIRES_TEX_NORMAL_MAX));
+  MRGI_TEST_CHECK(mr->GetNumberOfLevels() < 2 || mr->GetMipmapTexture(1, MRGI_MULTIRES_TEX_NORMAL_MAX));
 
   // Statistics: the occlusion-query counts per level equal the stencil's
   // selected texels per level, and the valid pixels those of the G-buffer.

@@ -165,6 +165,18 @@ vtkTextureObject* NewTexture(vtkOpenGLRenderWindow* window, int internalFormat, 
 }
 
 //------------------------------------------------------------------------------
+vtkTextureObject* NewMaskTexture(vtkOpenGLRenderWindow* window, int w, int h)
+{
+  return NewTexture(window, GL_R8, w, h);
+}
+
+//------------------------------------------------------------------------------
+vtkTextureObject* NewFlagsTexture(vtkOpenGLRenderWindow* window, int w, int h)
+{
+  return NewTexture(window, GL_R16F, w, h);
+}
+
+//------------------------------------------------------------------------------
 vtkTextureObject* NewDepthStencil(vtkOpenGLRenderWindow* window, int w, int h)
 {
   vtkTextureObject* t = vtkTextureObject::New();

@@ -76,11 +76,31 @@ void InsertCapture(
 void ReleaseTexture(vtkTextureObject*& t, vtkWindow* w);
 
 /**
- * A new w x h RGBA texture, nearest filtering, clamped to its edge:
- * `internalFormat` a float format (GL_RGBA32F, GL_RGBA16F) or GL_RGBA32UI.
- * Null (nothing left allocated) when the allocation fails.
+ * A new w x h texture, nearest filtering, clamped to its edge:
+ * `internalFormat` a float or normalized format (GL_RGBA32F, GL_RGBA16F,
+ * GL_R16F, GL_R8; shaders read missing channels as 0, alpha as 1) or
+ * GL_RGBA32UI. Null (nothing left allocated) when the allocation fails.
  */
 vtkTextureObject* NewTexture(vtkOpenGLRenderWindow* window, int internalFormat, int w, int h);
+
+/**
+ * A new w x h selection mask (the flattened selections of the
+ * multiresolution, incremental and specular stencils): the selecting shader
+ * writes 1 to red where a texel is selected, the clear leaves 0, and every
+ * reader tests red > 0.5. One normalized byte (GL_R8) holds both exactly,
+ * a sixteenth of RGBA32F. Null when the allocation fails.
+ */
+vtkTextureObject* NewMaskTexture(vtkOpenGLRenderWindow* window, int w, int h);
+
+/**
+ * A new w x h texture of per-texel flags: small non-negative integers
+ * (MRGI_MULTIRES_FLAG_*, MRGI_SPECULAR_STENCIL_* bits) that the shaders write
+ * as float(flags) to red and read back with int(texel.r). A half float holds
+ * every integer up to 2048 exactly, so one GL_R16F channel (2 bytes, an
+ * eighth of RGBA32F) keeps the values and the shaders as they are. Null when
+ * the allocation fails.
+ */
+vtkTextureObject* NewFlagsTexture(vtkOpenGLRenderWindow* window, int w, int h);
 
 /** A new w x h depth-stencil texture, nearest filtering; null when the allocation fails. */
 vtkTextureObject* NewDepthStencil(vtkOpenGLRenderWindow* window, int w, int h);

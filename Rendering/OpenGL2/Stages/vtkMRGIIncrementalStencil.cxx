@@ -59,7 +59,7 @@ struct vtkMRGIIncrementalStencil::Internals
     if (!this->FlatIncremental)
     {
       this->FlatIncremental =
-        vtkMRGIShaderUtilities::NewTexture(window, GL_RGBA32F, layout.total_width, layout.total_height);
+        vtkMRGIShaderUtilities::NewMaskTexture(window, layout.total_width, layout.total_height);
       this->IncrementalDepthStencil =
         vtkMRGIShaderUtilities::NewDepthStencil(window, layout.total_width, layout.total_height);
     }

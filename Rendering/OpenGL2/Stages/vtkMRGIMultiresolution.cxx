@@ -61,10 +61,12 @@ struct vtkMRGIMultiresolution::Internals
 {
   mrgi_multires_layout Layout{};
   bool HasLayout = false;
-  // Per level: mipmap (MRGI_MULTIRES_TEX_*) and flags.
+  // Per level: mipmap (MRGI_MULTIRES_TEX_*) and flags. Level 0 stores one
+  // normal texture (min = max, vtkMRGIMultiresSelectFS.glsl stage 0): its
+  // MRGI_MULTIRES_TEX_NORMAL_MAX slot is null.
   std::vector<std::array<vtkTextureObject*, MRGI_MULTIRES_TEX_COUNT + 1>> Levels;
-  // Receivers: per level (position, normal); level 0 is the G-buffer itself
-  // and its textures are filled only when read back.
+  // Receivers: per level (position, normal); level 0 is the G-buffer itself:
+  // its textures exist only for ReadReceivers(), which allocates them.
   std::vector<std::array<vtkTextureObject*, 2>> Receivers;
   // The G-buffer of the last BuildReceivers() (not owned): level 0's receivers.
   vtkTextureObject* LastPosition = nullptr;
@@ -243,29 +245,36 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     in.Levels.resize(static_cast<size_t>(levels));
     for (int i = 0; i < levels; ++i)
     {
-      for (auto*& t : in.Levels[i])
+      auto& level = in.Levels[static_cast<size_t>(i)];
+      for (int slot = 0; slot < MRGI_MULTIRES_TEX_COUNT; ++slot)
       {
-        t = MakeFloatTexture(window, layout.level_width[i], layout.level_height[i]);
+        level[static_cast<size_t>(slot)] = i == 0 && slot == MRGI_MULTIRES_TEX_NORMAL_MAX
+          ? nullptr
+          : MakeFloatTexture(window, layout.level_width[i], layout.level_height[i]);
       }
+      level[MRGI_MULTIRES_TEX_COUNT] = vtkMRGIShaderUtilities::NewFlagsTexture(window, layout.level_width[i], layout.level_height[i]);
     }
     in.Receivers.resize(static_cast<size_t>(levels));
-    for (int i = 0; i < levels; ++i)
+    for (int i = 1; i < levels; ++i)
     {
-      for (auto*& t : in.Receivers[i])
+      for (auto*& t : in.Receivers[static_cast<size_t>(i)])
       {
         t = MakeFloatTexture(window, layout.level_width[i], layout.level_height[i]);
       }
     }
-    in.FlatSelection = MakeFloatTexture(window, layout.total_width, layout.total_height);
+    in.FlatSelection = vtkMRGIShaderUtilities::NewMaskTexture(window, layout.total_width, layout.total_height);
     in.DepthStencil = vtkMRGIShaderUtilities::NewDepthStencil(window, layout.total_width, layout.total_height);
     bool allocated = in.FlatSelection && in.DepthStencil;
     for (int i = 0; i < levels; ++i)
     {
-      for (auto* list : { in.Levels[i].data(), in.Receivers[i].data() })
+      const auto& level = in.Levels[static_cast<size_t>(i)];
+      for (int slot = 0; slot <= MRGI_MULTIRES_TEX_COUNT; ++slot)
       {
-        allocated = allocated && list[0] && list[1];
+        allocated = allocated &&
+          (level[static_cast<size_t>(slot)] || (i == 0 && slot == MRGI_MULTIRES_TEX_NORMAL_MAX));
       }
-      allocated = allocated && in.Levels[i][2] && in.Levels[i][3];
+      const auto& receivers = in.Receivers[static_cast<size_t>(i)];
+      allocated = allocated && (i == 0 || (receivers[0] && receivers[1]));
     }
     if (!allocated)
     {
@@ -372,9 +381,10 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
       finer = in.Levels[std::min(1, levels - 1)][MRGI_MULTIRES_TEX_DEPTH];
     }
     // Level 0: one normal texture (FlagsLevel0 reads mrgiInput1 only; the
-    // NORMAL_MAX slot stands in for the unread mrgiInput2).
-    bind(p, { level[MRGI_MULTIRES_TEX_DEPTH], level[MRGI_MULTIRES_TEX_NORMAL_MIN],
-              level[MRGI_MULTIRES_TEX_NORMAL_MAX], finer });
+    // selection, neither read nor a target here, stands in for the unread
+    // mrgiInput2 since level 0 has no NORMAL_MAX texture).
+    vtkTextureObject* normalMax = i == 0 ? in.FlatSelection : level[MRGI_MULTIRES_TEX_NORMAL_MAX];
+    bind(p, { level[MRGI_MULTIRES_TEX_DEPTH], level[MRGI_MULTIRES_TEX_NORMAL_MIN], normalMax, finer });
     const int size[2] = { layout.level_width[i], layout.level_height[i] };
     const int childSize[2] = { layout.level_width[i > 0 ? i - 1 : 0],
       layout.level_height[i > 0 ? i - 1 : 0] };
@@ -386,8 +396,7 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     p->SetUniformi("mrgiFinestLevel", finest);
     p->SetUniformi("mrgiBalance", this->Balance ? 1 : 0);
     quads[stage]->Render();
-    unbind({ level[MRGI_MULTIRES_TEX_DEPTH], level[MRGI_MULTIRES_TEX_NORMAL_MIN],
-      level[MRGI_MULTIRES_TEX_NORMAL_MAX], finer });
+    unbind({ level[MRGI_MULTIRES_TEX_DEPTH], level[MRGI_MULTIRES_TEX_NORMAL_MIN], normalMax, finer });
   }
   // 4. Selection (nichols-shopf-wyman-2009 3.2.1): one draw per level from
   // the finest that gathers, into that level's rectangle of the flattened
@@ -525,8 +534,23 @@ bool vtkMRGIMultiresolution::ReadReceivers(
     return false;
   }
   // Level 0 is the G-buffer of the last BuildReceivers(), turned into
-  // receivers here (the gathers read the G-buffer itself).
+  // receivers here (the gathers read the G-buffer itself). Its two
+  // full-size textures serve this read-back only: allocated on the first
+  // call, not by Update().
   renWin->MakeCurrent();
+  for (auto*& t : in.Receivers[0])
+  {
+    if (!t)
+    {
+      t = MakeFloatTexture(renWin, in.Layout.width, in.Layout.height);
+    }
+    if (!t)
+    {
+      vtkErrorMacro("ReadReceivers: could not allocate the level-0 receivers (" << in.Layout.width
+                                                                                << " x " << in.Layout.height << ")");
+      return false;
+    }
+  }
   vtkOpenGLQuadHelper* quad = ReadyReceiverStage(in.GL.Programs, renWin, 0);
   if (!quad)
   {

@@ -138,7 +138,11 @@ public:
    */
   bool ReadSelection(vtkRenderWindow* window, vtkUnsignedCharArray* mask, bool fromStencil);
 
-  /** Read the flattened receivers (position: mean xyz + pixel count; normal) back. */
+  /**
+   * Read the flattened receivers (position: mean xyz + pixel count; normal)
+   * back. Level 0's receiver textures exist for this read-back only: the
+   * first call allocates them (two full-size RGBA32F textures).
+   */
   bool ReadReceivers(vtkRenderWindow* window, vtkFloatArray* position, vtkFloatArray* normal);
 
   /** Read the flags (MRGI_MULTIRES_FLAG_* bits) in the flattened layout. */
@@ -180,14 +184,21 @@ public:
 
   /**
    * Level `level`'s min-max mipmap texture `which` (MRGI_MULTIRES_TEX_*:
-   * depth, normal min, normal max) after Update(); null otherwise.
+   * depth, normal min, normal max) after Update(); null otherwise, and for
+   * normal max at level 0 (level 0 stores one normal: min = max).
    */
   vtkTextureObject* GetMipmapTexture(int level, int which) const;
 
-  /** The flags (MRGI_MULTIRES_FLAG_* bits, red channel) of `level` after Update(); null otherwise. */
+  /**
+   * The flags (MRGI_MULTIRES_FLAG_* bits as float(flags) in red, GL_R16F) of
+   * `level` after Update(); null otherwise.
+   */
   vtkTextureObject* GetFlagsTexture(int level) const;
 
-  /** The selection as colour (flattened layout; 1 where the stencil is set) after Update(). */
+  /**
+   * The selection as colour (flattened layout; red 1 where the stencil is
+   * set, 0 elsewhere; GL_R8) after Update().
+   */
   vtkTextureObject* GetSelectionTexture() const;
 
 #ifndef __VTK_WRAP__

@@ -139,8 +139,8 @@ bool vtkMRGISpecularStencil::Build(const vtkMRGIFrameContext& frame,
   }
   if (!in.FlatSpecularBits)
   {
-    in.FlatSpecularBits = MakeFloatTexture(window, layout.total_width, layout.total_height);
-    in.FlatSpecularSelection = MakeFloatTexture(window, layout.total_width, layout.total_height);
+    in.FlatSpecularBits = vtkMRGIShaderUtilities::NewFlagsTexture(window, layout.total_width, layout.total_height);
+    in.FlatSpecularSelection = vtkMRGIShaderUtilities::NewMaskTexture(window, layout.total_width, layout.total_height);
     in.SpecularDepthStencil =
       vtkMRGIShaderUtilities::NewDepthStencil(window, layout.total_width, layout.total_height);
   }

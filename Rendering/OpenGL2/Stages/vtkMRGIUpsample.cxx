@@ -30,8 +30,17 @@ vtkStandardNewMacro(vtkMRGIUpsample);
 
 struct vtkMRGIUpsample::Internals
 {
-  // Per level (state/value, filtered), sized to the buffer's layout.
-  std::vector<std::array<vtkTextureObject*, 2>> Upsampled;
+  // The state/value and the filtered value, each one level-0-sized texture
+  // that every level uses in its lower-left corner: level i writes its value
+  // (reading level i+1's filtered value as parent), then filters it into
+  // Filtered over level i+1's, which nothing reads any more. Reads stay in
+  // the level's rectangle (the filter clamps to mrgiSize; a parent texel t/2
+  // is inside the coarser level as its sides are ceil(side / 2)), so the
+  // stale texels of other levels around it are never read. Two textures
+  // instead of two per level: 32 instead of about 43 bytes per pixel.
+  vtkTextureObject* Value = nullptr;
+  vtkTextureObject* Filtered = nullptr;
+  int Levels = 0;
   int Size[2] = { 0, 0 };
   vtkMRGIStageResources GL; // framebuffer and programs
 
@@ -43,36 +52,21 @@ struct vtkMRGIUpsample::Internals
 
   void ReleaseTextures(vtkWindow* w)
   {
-    for (auto& level : this->Upsampled)
-    {
-      for (auto*& t : level)
-      {
-        vtkMRGIShaderUtilities::ReleaseTexture(t, w);
-      }
-    }
-    this->Upsampled.clear();
+    vtkMRGIShaderUtilities::ReleaseTexture(this->Value, w);
+    vtkMRGIShaderUtilities::ReleaseTexture(this->Filtered, w);
+    this->Levels = 0;
     this->Size[0] = this->Size[1] = 0;
   }
 
   // The level textures and framebuffer for `layout`; false when they cannot be allocated.
   bool Prepare(vtkOpenGLRenderWindow* window, const mrgi_multires_layout& layout)
   {
-    if (this->Size[0] != layout.width || this->Size[1] != layout.height ||
-      this->Upsampled.size() != static_cast<size_t>(layout.level_count))
+    if (this->Size[0] != layout.width || this->Size[1] != layout.height)
     {
       this->ReleaseTextures(window);
-      this->Upsampled.resize(static_cast<size_t>(layout.level_count));
-      bool allocated = true;
-      for (int i = 0; i < layout.level_count; ++i)
-      {
-        for (auto*& t : this->Upsampled[static_cast<size_t>(i)])
-        {
-          t = vtkMRGIShaderUtilities::NewTexture(
-            window, GL_RGBA32F, layout.level_width[i], layout.level_height[i]);
-          allocated = allocated && t;
-        }
-      }
-      if (!allocated)
+      this->Value = vtkMRGIShaderUtilities::NewTexture(window, GL_RGBA32F, layout.width, layout.height);
+      this->Filtered = vtkMRGIShaderUtilities::NewTexture(window, GL_RGBA32F, layout.width, layout.height);
+      if (!this->Value || !this->Filtered)
       {
         this->ReleaseTextures(window);
         return false;
@@ -80,6 +74,7 @@ struct vtkMRGIUpsample::Internals
       this->Size[0] = layout.width;
       this->Size[1] = layout.height;
     }
+    this->Levels = layout.level_count;
     this->GL.Prepare(window);
     return true;
   }
@@ -94,7 +89,7 @@ vtkMRGIUpsample::vtkMRGIUpsample()
 //------------------------------------------------------------------------------
 vtkMRGIUpsample::~vtkMRGIUpsample()
 {
-  if (this->Internal->GL.FrameBuffer || !this->Internal->Upsampled.empty())
+  if (this->Internal->GL.FrameBuffer || this->Internal->Value)
   {
     vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
   }
@@ -141,14 +136,11 @@ bool vtkMRGIUpsample::Upsample(const vtkMRGIFrameContext& frame, vtkMRGIMultires
   for (int i = coarsest; i >= 0; --i)
   {
     const int w = layout.level_width[i], h = layout.level_height[i];
-    vtkTextureObject* value = in.Upsampled[i][0];
-    vtkTextureObject* filtered = in.Upsampled[i][1];
-    // The coarsest level has no parent: its own flags stand in, unread.
-    vtkTextureObject* parent = in.Upsampled[std::min(i + 1, coarsest)][1];
-    if (i == coarsest)
-    {
-      parent = buffer->GetMipmapTexture(i, MRGI_MULTIRES_TEX_DEPTH);
-    }
+    vtkTextureObject* value = in.Value;
+    vtkTextureObject* filtered = in.Filtered;
+    // The parent is level i+1's filtered value, still in Filtered. The
+    // coarsest level has no parent: its mipmap stands in, unread.
+    vtkTextureObject* parent = i == coarsest ? buffer->GetMipmapTexture(i, MRGI_MULTIRES_TEX_DEPTH) : in.Filtered;
     vtkTextureObject* flags = buffer->GetFlagsTexture(i);
     window->GetShaderCache()->ReadyShaderProgram(state);
     steps.Target(value, nullptr, 0, 0, w, h);
@@ -206,14 +198,14 @@ bool vtkMRGIUpsample::Resolve(const vtkMRGIFrameContext& frame, vtkMRGIMultireso
     vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
     steps.Target(irradianceTarget, target, x0, y0, layout.width, layout.height);
     vtkTextureObject* flags = buffer->GetFlagsTexture(0);
-    vtkMRGIFullScreenStep::BindInputs(resolve, { in.Upsampled[0][1], flags, albedo, position, normal });
+    vtkMRGIFullScreenStep::BindInputs(resolve, { in.Filtered, flags, albedo, position, normal });
     const int offset[2] = { x0, y0 };
     resolve->SetUniform2i("mrgiOffset", offset);
     resolve->SetUniformf("mrgiStrength", static_cast<float>(strength));
     resolve->SetUniformf("mrgiSurfaceDetail", static_cast<float>(surfaceDetail));
     resolve->SetUniformi("mrgiParallel", parallel ? 1 : 0);
     resolveQuad->Render();
-    vtkMRGIFullScreenStep::UnbindInputs({ in.Upsampled[0][1], flags, albedo, position, normal });
+    vtkMRGIFullScreenStep::UnbindInputs({ in.Filtered, flags, albedo, position, normal });
   }
   return glGetError() == GL_NO_ERROR;
 }
@@ -224,8 +216,8 @@ bool vtkMRGIUpsample::ReadUpsampled(vtkRenderWindow* window, vtkFloatArray* upsa
   vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
   Internals& in = *this->Internal;
   std::vector<float> rgba;
-  if (!renWin || !upsampled || in.Upsampled.empty() ||
-    !vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.Upsampled[0][1], rgba))
+  if (!renWin || !upsampled || !in.Filtered ||
+    !vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.Filtered, rgba))
   {
     vtkErrorMacro("ReadUpsampled: nothing upsampled yet");
     return false;
@@ -240,5 +232,5 @@ bool vtkMRGIUpsample::ReadUpsampled(vtkRenderWindow* window, vtkFloatArray* upsa
 void vtkMRGIUpsample::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Levels: " << this->Internal->Upsampled.size() << "\n";
+  os << indent << "Levels: " << this->Internal->Levels << "\n";
 }
