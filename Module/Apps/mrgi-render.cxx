@@ -118,10 +118,12 @@ bool ReadWindowRGB(vtkRenderWindow* window, int width, int height, vtkImageData*
 }
 
 // Host memory a frame takes per pixel on a software OpenGL (llvmpipe keeps
-// every texture in host memory), with and without MRGI's buffers; measured
-// with /usr/bin/time -v, see Documentation/reliability/cli.md. Rounded up:
-// the check refuses only what cannot fit.
-const double SoftwareBytesPerPixelLit = 450;
+// every texture in host memory): with area lights (their own gather and
+// upsample buffers), with indirect light only, and with neither; measured
+// with /usr/bin/time -v, see Documentation/reliability/memory.md. Rounded
+// up: the check refuses only what cannot fit.
+const double SoftwareBytesPerPixelAreaLights = 450;
+const double SoftwareBytesPerPixelIndirect = 300;
 const double SoftwareBytesPerPixelDirect = 100;
 
 // The memory the kernel says new allocations can have, in bytes (0: unknown).
@@ -240,8 +242,9 @@ bool CheckImageLimits(
   const double available = AvailableMemory();
   if (software && available > 0)
   {
-    const double perPixel =
-      (lit || multires) ? SoftwareBytesPerPixelLit : SoftwareBytesPerPixelDirect;
+    const double perPixel = mrgi->GetNumberOfAreaLights() > 0 ? SoftwareBytesPerPixelAreaLights
+      : lit                                                 ? SoftwareBytesPerPixelIndirect
+                                                            : SoftwareBytesPerPixelDirect;
     const double needed = perPixel * static_cast<double>(w) * static_cast<double>(h);
     if (needed > available)
     {
