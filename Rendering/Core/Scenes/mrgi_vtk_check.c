@@ -196,6 +196,19 @@ typedef struct vtk_state
 } vtk_state;
 
 /* Reads a legacy (version < 5) or new (OFFSETS/CONNECTIVITY) cell section. */
+
+/* The sizes of `n` unstructured-grid cells, for CELL_TYPES to check against
+ * (n is bounded by the file's size before this is called). */
+static mrgi_status vtk_alloc_cell_sizes(vtk_reader* r, vtk_state* st, int64_t n)
+{
+  free(st->cell_sizes);
+  st->cell_sizes = (int32_t*)malloc(sizeof(int32_t) * (size_t)(n > 0 ? n : 1));
+  if (!st->cell_sizes)
+    return mrgi_error_set(r->err, MRGI_ERR_OUT_OF_MEMORY, "'%s': out of memory", r->name);
+  st->cell_sizes_count = n;
+  return MRGI_OK;
+}
+
 static mrgi_status vtk_cells(vtk_reader* r, vtk_state* st, const char* kw)
 {
   int64_t n = 0, size = 0;
@@ -218,14 +231,8 @@ static mrgi_status vtk_cells(vtk_reader* r, vtk_state* st, const char* kw)
         (long long)n, (long long)size);
     if ((s = vtk_end_line(r)))
       return s;
-    if (ugrid)
-    {
-      free(st->cell_sizes);
-      st->cell_sizes = (int32_t*)malloc(sizeof(int32_t) * (size_t)(n > 0 ? n : 1));
-      if (!st->cell_sizes)
-        return mrgi_error_set(r->err, MRGI_ERR_OUT_OF_MEMORY, "'%s': out of memory", r->name);
-      st->cell_sizes_count = n;
-    }
+    if (ugrid && (s = vtk_alloc_cell_sizes(r, st, n)))
+      return s;
     int64_t used = 0;
     for (int64_t c = 0; c < n; ++c)
     {
@@ -274,14 +281,8 @@ static mrgi_status vtk_cells(vtk_reader* r, vtk_state* st, const char* kw)
   if ((s = vtk_end_line(r)))
     return s;
   const int64_t ncells = noff > 0 ? noff - 1 : 0;
-  if (ugrid)
-  {
-    free(st->cell_sizes);
-    st->cell_sizes = (int32_t*)malloc(sizeof(int32_t) * (size_t)(ncells > 0 ? ncells : 1));
-    if (!st->cell_sizes)
-      return mrgi_error_set(r->err, MRGI_ERR_OUT_OF_MEMORY, "'%s': out of memory", r->name);
-    st->cell_sizes_count = ncells;
-  }
+  if (ugrid && (s = vtk_alloc_cell_sizes(r, st, ncells)))
+    return s;
   int64_t prev = 0;
   for (int64_t i = 0; i < noff; ++i)
   {

@@ -202,20 +202,7 @@ bool ReadTextureRGBA(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, s
   const int w = static_cast<int>(texture->GetWidth());
   const int h = static_cast<int>(texture->GetHeight());
   rgba.assign(static_cast<size_t>(w) * static_cast<size_t>(h) * 4, 0.0f);
-  window->MakeCurrent();
-  vtkOpenGLState* ostate = window->GetState();
-  ostate->PushReadFramebufferBinding();
-  vtkNew<vtkOpenGLFramebufferObject> fbo;
-  fbo->SetContext(window);
-  fbo->Bind(GL_READ_FRAMEBUFFER);
-  fbo->AddColorAttachment(0, texture);
-  fbo->ActivateReadBuffer(0);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, rgba.data());
-  fbo->RemoveColorAttachments(1);
-  ostate->PopReadFramebufferBinding();
-  fbo->ReleaseGraphicsResources(window);
-  return glGetError() == GL_NO_ERROR;
+  return ReadTextureRegion(window, texture, 0, 0, w, h, 4, rgba.data());
 }
 
 bool ReadTextureRegion(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, int x, int y,
