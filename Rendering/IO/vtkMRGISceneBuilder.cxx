@@ -380,6 +380,9 @@ bool ValidData(vtkDataObject* data, std::string& why)
 
 // Flat data (one extent of its bounds much smaller than the others, such as
 // a floor) seen along its plane draws nothing: look at it face on instead.
+// "Much smaller": at most 5% of the largest extent, so that a slightly skewed
+// wall (the Cornell box's red wall spans 6.4 mm in x over 559 mm) counts.
+constexpr double FlatExtentRatio = 0.05;
 void FaceFlatData(vtkRenderer* renderer)
 {
   double b[6];
@@ -393,7 +396,7 @@ void FaceFlatData(vtkRenderer* renderer)
   int thin = -1;
   for (int k = 0; k < 3; ++k)
   {
-    if (size[k] <= 1e-3 * largest && (thin < 0 || size[k] < size[thin]))
+    if (size[k] <= FlatExtentRatio * largest && (thin < 0 || size[k] < size[thin]))
     {
       thin = k;
     }

@@ -288,6 +288,47 @@ void TestSharedData()
   }
 }
 
+// Flat data files are looked at face on: each wall, the floor, the ceiling
+// and the light of the published Cornell box (separate OBJ files, some of
+// them slightly skewed quads) covers a good part of the default view.
+void TestFlatFilesFaceOn()
+{
+  const char* shared = std::getenv("MRGI_SHARED_DATA_DIR");
+  if (!shared)
+  {
+    std::printf("MRGI_SHARED_DATA_DIR not set: flat files not checked\n");
+    return;
+  }
+  const char* names[] = { "back", "ceiling", "floor", "greenwall", "luminaire", "redwall" };
+  for (const char* name : names)
+  {
+    const std::string path = std::string(shared) + "/cornell_box/meshes/cbox_" + name + ".obj";
+    if (!std::ifstream(path).good())
+    {
+      std::printf("%s missing: not checked\n", path.c_str());
+      continue;
+    }
+    vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(64, 64);
+    vtkNew<vtkRenderer> renderer;
+    window->AddRenderer(renderer);
+    vtkNew<vtkMRGISceneBuilder> builder;
+    builder->SetScene(path.c_str());
+    MRGI_TEST_CHECK(builder->Build(renderer));
+    renderer->SetBackground(0, 0, 0);
+    window->Render();
+    vtkSmartPointer<vtkImageData> image = mrgitest::GrabRGB(window);
+    vtkIdType drawn = 0;
+    const vtkIdType n = static_cast<vtkIdType>(64) * 64;
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      drawn += image->GetPointData()->GetScalars()->GetComponent(i, 0) > 10 ? 1 : 0;
+    }
+    std::printf("cbox_%s.obj: %lld of %lld pixels drawn\n", name, static_cast<long long>(drawn),
+      static_cast<long long>(n));
+    MRGI_TEST_CHECK(drawn > n / 5);
+  }
+}
+
 // Bad input: each a clear error naming the problem.
 void TestBadInput()
 {
@@ -320,5 +361,6 @@ int main(int argc, char* argv[])
   return mrgitest::RunCases(argc, argv,
     { MRGI_TEST_CASE(TestBuiltInScenes), MRGI_TEST_CASE(TestLivingRoom),
       MRGI_TEST_CASE(TestWrittenFiles), MRGI_TEST_CASE(TestSharedData),
+      MRGI_TEST_CASE(TestFlatFilesFaceOn),
       MRGI_TEST_CASE(TestBadInput) });
 }
