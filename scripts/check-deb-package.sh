@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Build the Debian package from BUILD_DIR (cpack -G DEB), check its files and
 # run paths, install it with apt-get, run the installed mrgi-render and
-# `import mrgi` from a neutral directory, and remove it again. Any failed
-# step fails the script; the package is removed on every exit once installed.
+# `import mrgi` from a neutral directory, and purge it again. Any failed
+# step fails the script; the package is purged on every exit once installed.
 # Run by ctest as install.DebPackage. Needs root or sudo (CI runs as root).
 # Usage: scripts/check-deb-package.sh BUILD_DIR WORK_DIR
 set -euo pipefail
@@ -64,8 +64,10 @@ fi
 installed=0
 cleanup() {
   if [ "$installed" -eq 1 ]; then
-    $SUDO apt-get remove -y -qq "${apt_opts[@]}" mrgi > "$work/remove.log" 2>&1 ||
-      { cat "$work/remove.log" >&2; echo "check-deb-package: apt-get remove mrgi failed" >&2; exit 1; }
+    # purge, not remove: nothing of the package is left, not even dpkg's
+    # record of its maintainer scripts (state "rc").
+    $SUDO apt-get purge -y -qq "${apt_opts[@]}" mrgi > "$work/remove.log" 2>&1 ||
+      { cat "$work/remove.log" >&2; echo "check-deb-package: apt-get purge mrgi failed" >&2; exit 1; }
   fi
 }
 trap cleanup EXIT
@@ -90,8 +92,9 @@ echo "check-deb-package: python3 -c 'import mrgi' loads $where"
 cleanup
 installed=0
 trap - EXIT
-if dpkg-query -W -f='${Status}' mrgi 2>/dev/null | grep -q "install ok installed"; then
-  fail "mrgi is still installed after apt-get remove"
+left="$(dpkg-query -W -f='${db:Status-Status}' mrgi 2>/dev/null || true)"
+if [ -n "$left" ] && [ "$left" != "not-installed" ]; then
+  fail "dpkg still lists mrgi after apt-get purge (state $left)"
 fi
-[ ! -e /usr/bin/mrgi-render ] || fail "/usr/bin/mrgi-render is left after apt-get remove"
-echo "check-deb-package: removed with apt-get remove mrgi"
+[ ! -e /usr/bin/mrgi-render ] || fail "/usr/bin/mrgi-render is left after apt-get purge"
+echo "check-deb-package: purged with apt-get purge mrgi"
