@@ -197,6 +197,27 @@ typedef struct vtk_state
 
 /* Reads a legacy (version < 5) or new (OFFSETS/CONNECTIVITY) cell section. */
 
+
+/* The line "NAME TYPE" that opens a version-5 cell array (OFFSETS or
+ * CONNECTIVITY); `size` receives the byte size of TYPE. */
+static mrgi_status vtk_v5_array_header(vtk_reader* r, const char* name, int* size)
+{
+  mrgi_status s = vtk_need_token(r, name);
+  if (s)
+    return s;
+  if (strcasecmp(r->tok, name) != 0)
+    return mrgi_error_set(r->err, MRGI_ERR_FORMAT,
+      "'%s': a cell section without %s (version 5 layout)", r->name, name);
+  char what[64];
+  snprintf(what, sizeof(what), "the %s type", name);
+  if ((s = vtk_need_token(r, what)))
+    return s;
+  *size = vtk_type_size(r->tok);
+  if (*size <= 0)
+    return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': bad %s type '%s'", r->name, name, r->tok);
+  return vtk_end_line(r);
+}
+
 /* The sizes of `n` unstructured-grid cells, for CELL_TYPES to check against
  * (n is bounded by the file's size before this is called). */
 static mrgi_status vtk_alloc_cell_sizes(vtk_reader* r, vtk_state* st, int64_t n)
@@ -269,16 +290,8 @@ static mrgi_status vtk_cells(vtk_reader* r, vtk_state* st, const char* kw)
   if ((uint64_t)noff > bound || (uint64_t)nconn > bound)
     return mrgi_error_set(
       r->err, MRGI_ERR_FORMAT, "'%s': %s declares more values than the file holds", r->name, kw);
-  if ((s = vtk_need_token(r, "OFFSETS")))
-    return s;
-  if (strcasecmp(r->tok, "OFFSETS") != 0)
-    return vtk_fail(r, "a cell section without OFFSETS (version 5 layout)");
-  if ((s = vtk_need_token(r, "the OFFSETS type")))
-    return s;
-  const int osize = vtk_type_size(r->tok);
-  if (osize <= 0)
-    return mrgi_error_set(r->err, MRGI_ERR_FORMAT, "'%s': bad OFFSETS type '%s'", r->name, r->tok);
-  if ((s = vtk_end_line(r)))
+  int osize = 0;
+  if ((s = vtk_v5_array_header(r, "OFFSETS", &osize)))
     return s;
   const int64_t ncells = noff > 0 ? noff - 1 : 0;
   if (ugrid && (s = vtk_alloc_cell_sizes(r, st, ncells)))
@@ -299,17 +312,8 @@ static mrgi_status vtk_cells(vtk_reader* r, vtk_state* st, const char* kw)
   }
   if (noff == 0 && nconn != 0)
     return vtk_fail(r, "connectivity without offsets");
-  if ((s = vtk_need_token(r, "CONNECTIVITY")))
-    return s;
-  if (strcasecmp(r->tok, "CONNECTIVITY") != 0)
-    return vtk_fail(r, "a cell section without CONNECTIVITY (version 5 layout)");
-  if ((s = vtk_need_token(r, "the CONNECTIVITY type")))
-    return s;
-  const int csize = vtk_type_size(r->tok);
-  if (csize <= 0)
-    return mrgi_error_set(
-      r->err, MRGI_ERR_FORMAT, "'%s': bad CONNECTIVITY type '%s'", r->name, r->tok);
-  if ((s = vtk_end_line(r)))
+  int csize = 0;
+  if ((s = vtk_v5_array_header(r, "CONNECTIVITY", &csize)))
     return s;
   for (int64_t i = 0; i < nconn; ++i)
   {
