@@ -7,7 +7,9 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   libvtk9-dev python3-vtk9 vtk9
-  paraview-dev
+  # The ParaView plugin (Module/ParaView): ParaView 5.11 and its headers,
+  # pvbatch under MPI, Xvfb for the GUI test (xvfb-run needs xauth).
+  paraview paraview-dev openmpi-bin xvfb xauth
   libopenexr-dev libembree-dev libpng-dev zlib1g-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev libglew-dev
   libosmesa6 # vtkMRGIOSMesaRenderWindow dlopens libOSMesa.so.8; no header needed
