@@ -24,9 +24,33 @@ sed -e "s|\${CMAKE_CURRENT_LIST_DIR}|$vtk_dir|g" \
     "$vtk_dir/vtk-config.cmake" > "$shim/vtk-config.cmake"
 cp "$vtk_dir/vtk-config-version.cmake" "$shim/"
 
+# The same for ParaView's own config (the plugin, Module/ParaView): it finds
+# VTK through the shim above, leaves ParaView's Python targets out (their
+# files are python3-paraview's, which must not be installed: it removes
+# Debian's VTK 9.1), and skips ParaViewTools-targets.cmake, which names
+# pvpython, also python3-paraview's.
+pv_dir="$(dirname "$vtk_dir")"
+pv_shim="$build/paraview-config"
+mkdir -p "$pv_shim"
+sed -e "s|\${CMAKE_CURRENT_LIST_DIR}/vtk\"|$shim\"|g" \
+    -e "s|\${CMAKE_CURRENT_LIST_DIR}|$pv_dir|g" \
+    -e 's|set(PARAVIEW_USE_PYTHON "ON")|set(PARAVIEW_USE_PYTHON "OFF")|' \
+    -e 's|^if (ON) # PARAVIEW_USE_PYTHON|if (OFF) # PARAVIEW_USE_PYTHON (MRGI shim)|' \
+    -e '/ParaViewTools-targets.cmake/d' \
+    "$pv_dir/paraview-config.cmake" > "$pv_shim/paraview-config.cmake"
+cp "$pv_dir/paraview-config-version.cmake" "$pv_shim/"
+
+# The plugin's wrapping needs ParaView's class hierarchy files, which only
+# python3-paraview ships: unpacked (never installed) into the build tree.
+pv_python="$build/paraview-python"
+bash "$root/scripts/fetch-paraview-python.sh" "$pv_python"
+
 if [ ! -f "$build/CMakeCache.txt" ]; then
   cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-    -DVTK_DIR="$shim" -DBUILD_TESTING=OFF -DMRGI_WRAP_PYTHON=OFF -DMRGI_BUILD_EXAMPLES=OFF
+    -DVTK_DIR="$shim" -DParaView_DIR="$pv_shim" -DMRGI_BUILD_PARAVIEW_PLUGIN=ON \
+    -DPython3_EXECUTABLE=/usr/bin/python3 \
+    -DMRGI_PARAVIEW_HIERARCHY_DIR="$pv_python/usr/lib/x86_64-linux-gnu/vtk/hierarchy/ParaView" \
+    -DBUILD_TESTING=OFF -DMRGI_WRAP_PYTHON=OFF -DMRGI_BUILD_EXAMPLES=OFF
 fi
 cmake --build "$build" --parallel "${MRGI_JOBS:-2}"
 # The build must really have used VTK 9.2: its libraries carry the pv5.11 suffix.

@@ -1,0 +1,93 @@
+#include "vtkPVMRGIHeadless.h"
+
+#include "vtkLogger.h"
+#include "vtkMRGIRenderWindowFactory.h"
+#include "vtkObjectFactory.h"
+#include "vtkRenderWindow.h"
+#include "vtkVersion.h"
+
+#include <string>
+
+namespace
+{
+// The backend chosen at load time; "x" until the plugin says otherwise.
+std::string ChosenBackend = "x";
+
+vtkObject* NewHeadlessRenderWindow()
+{
+  std::string why;
+  vtkRenderWindow* window =
+    vtkMRGIRenderWindowFactory::CreateRenderWindow(vtkMRGIRenderWindowFactory::Headless, &why);
+  if (!window)
+  {
+    // ParaView aborts on a null window; say why first.
+    vtkLogF(ERROR, "MRGI plugin: no headless render window: %s", why.c_str());
+  }
+  return window;
+}
+
+/**
+ * Overrides vtkRenderWindow with MRGI's headless windows. Registered once,
+ * by vtkPVMRGIInitializePlugin(), only where X cannot be had.
+ */
+class vtkPVMRGIHeadlessFactory : public vtkObjectFactory
+{
+public:
+  static vtkPVMRGIHeadlessFactory* New()
+  {
+    auto* factory = new vtkPVMRGIHeadlessFactory;
+    factory->InitializeObjectBase();
+    return factory;
+  }
+  vtkTypeMacro(vtkPVMRGIHeadlessFactory, vtkObjectFactory);
+  const char* GetVTKSourceVersion() override { return VTK_SOURCE_VERSION; }
+  const char* GetDescription() override
+  {
+    return "MRGI: headless render windows (EGL, OSMesa) for ParaView without X";
+  }
+
+protected:
+  vtkPVMRGIHeadlessFactory()
+  {
+    this->RegisterOverride("vtkRenderWindow", "vtkMRGIEGLRenderWindow",
+      "MRGI headless render window (EGL, else OSMesa)", 1, NewHeadlessRenderWindow);
+  }
+
+private:
+  vtkPVMRGIHeadlessFactory(const vtkPVMRGIHeadlessFactory&) = delete;
+  void operator=(const vtkPVMRGIHeadlessFactory&) = delete;
+};
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIInitializePlugin()
+{
+  static bool initialized = false;
+  if (initialized)
+  {
+    return;
+  }
+  initialized = true;
+  // "x" when MRGI_BACKEND says x, or says nothing and a display opens.
+  const std::string backend =
+    vtkMRGIRenderWindowFactory::GetWindowKindName(vtkMRGIRenderWindowFactory::Automatic);
+  if (backend == "x" || backend == "none")
+  {
+    return;
+  }
+  vtkNew<vtkPVMRGIHeadlessFactory> factory;
+  vtkObjectFactory::RegisterFactory(factory);
+  // VTK asks the factories in registration order and RenderingOpenGL2's
+  // (registered first) maps vtkRenderWindow to the X window: switch that
+  // one off, so that ours answers.
+  vtkObjectFactory::SetAllEnableFlags(0, "vtkRenderWindow", "vtkXOpenGLRenderWindow");
+  ChosenBackend = backend;
+  vtkLogF(INFO, "MRGI plugin: no X display; ParaView's render windows are MRGI's %s windows",
+    backend.c_str());
+}
+
+//------------------------------------------------------------------------------
+const char* vtkPVMRGIHeadlessBackend()
+{
+  return ChosenBackend.c_str();
+}

@@ -1,0 +1,138 @@
+#include "vtkPVMRGIRenderView.h"
+
+#include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIPass.h"
+#include "vtkObjectFactory.h"
+#include "vtkPVMRGIHeadless.h"
+#include "vtkPVSynchronizedRenderer.h"
+#include "vtkRenderStepsPass.h"
+
+vtkStandardNewMacro(vtkPVMRGIRenderView);
+
+//------------------------------------------------------------------------------
+vtkPVMRGIRenderView::vtkPVMRGIRenderView()
+{
+  this->Steps = vtkRenderStepsPass::New();
+  this->MRGIPass = vtkMRGIPass::New();
+  this->MRGIPass->SetDelegatePass(this->Steps);
+  // ParaView's view exposure is MRGI's fixed EV 0 and no tone curve by
+  // default: the image is the HDR result clamped, as VTK's own view shows
+  // direct light. Automatic exposure would differ between MPI ranks.
+  this->MRGIPass->SetAutoExposure(false);
+  this->SynchronizedRenderers->SetRenderPass(this->MRGIPass);
+}
+
+//------------------------------------------------------------------------------
+vtkPVMRGIRenderView::~vtkPVMRGIRenderView()
+{
+  if (this->SynchronizedRenderers && this->SynchronizedRenderers->GetRenderPass() == this->MRGIPass)
+  {
+    this->SynchronizedRenderers->SetRenderPass(nullptr);
+  }
+  this->MRGIPass->Delete();
+  this->Steps->Delete();
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetGlobalIllumination(bool enabled)
+{
+  if (this->GlobalIllumination == enabled)
+  {
+    return;
+  }
+  this->GlobalIllumination = enabled;
+  this->SynchronizedRenderers->SetRenderPass(enabled ? this->MRGIPass : nullptr);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetIndirectMode(int mode)
+{
+  this->MRGIPass->SetIndirectMode(mode);
+}
+
+//------------------------------------------------------------------------------
+int vtkPVMRGIRenderView::GetIndirectMode()
+{
+  return this->MRGIPass->GetIndirectMode();
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetMultiresolutionPreset(int preset)
+{
+  if (!this->MRGIPass->GetMultiresolution()->SetPreset(preset))
+  {
+    vtkErrorMacro("unknown multiresolution preset " << preset
+                                                     << " (0 Fast, 1 Balanced, 2 Accurate)");
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetNumberOfVPLs(int count)
+{
+  this->MRGIPass->SetNumberOfVPLs(count);
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetVPLSelectionMode(int mode)
+{
+  this->MRGIPass->SetVPLSelectionMode(mode);
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetRSMResolution(int resolution)
+{
+  this->MRGIPass->SetRSMResolution(resolution);
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetIndirectStrength(double strength)
+{
+  this->MRGIPass->SetIndirectStrength(strength);
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetSurfaceDetail(double alpha)
+{
+  this->MRGIPass->SetSurfaceDetail(alpha);
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetUpsampleMode(int mode)
+{
+  this->MRGIPass->SetUpsampleMode(mode);
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetExposure(double ev)
+{
+  this->MRGIPass->SetExposure(ev);
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetAutoExposure(bool automatic)
+{
+  this->MRGIPass->SetAutoExposure(automatic);
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetToneMapping(bool enabled)
+{
+  this->MRGIPass->SetToneMapping(enabled);
+}
+
+//------------------------------------------------------------------------------
+const char* vtkPVMRGIRenderView::GetHeadlessBackend()
+{
+  return vtkPVMRGIHeadlessBackend();
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "GlobalIllumination: " << this->GlobalIllumination << "\n";
+  os << indent << "HeadlessBackend: " << GetHeadlessBackend() << "\n";
+  os << indent << "MRGIPass:\n";
+  this->MRGIPass->PrintSelf(os, indent.GetNextIndent());
+}

@@ -1,0 +1,90 @@
+/**
+ * @class   vtkPVMRGIRenderView
+ * @brief   ParaView's render view with MRGI's indirect light and area lights.
+ *
+ * A vtkPVRenderView whose scene is drawn through a vtkMRGIPass (with a
+ * vtkRenderStepsPass as its delegate). The pass is installed as the
+ * synchronized renderers' *render pass*, not as their image-processing
+ * pass: in a parallel (IceT) render, each rank then lights its own piece
+ * with its own G-buffer and writes colour and depth, which IceT composites
+ * by depth as it does for any render; an image-processing pass would run
+ * after compositing, on a G-buffer that holds only the local piece.
+ * ParaView swaps its render pass out for value passes and ray tracing and
+ * back afterwards, so those keep working.
+ *
+ * The properties forward to the pass (vtkMRGIPass, vtkMRGIMultiresolution);
+ * GetMRGIPass() gives the pass itself. The server-manager proxy is
+ * "MRGIRenderView" (label "MRGI Render View", MRGIRenderView.xml).
+ *
+ * @sa vtkMRGIPass vtkPVRenderView
+ */
+#ifndef vtkPVMRGIRenderView_h
+#define vtkPVMRGIRenderView_h
+
+#include "MRGIParaViewModule.h" // For export macro
+#include "vtkPVRenderView.h"
+
+class vtkMRGIPass;
+class vtkRenderStepsPass;
+
+class MRGIPARAVIEW_EXPORT vtkPVMRGIRenderView : public vtkPVRenderView
+{
+public:
+  static vtkPVMRGIRenderView* New();
+  vtkTypeMacro(vtkPVMRGIRenderView, vtkPVRenderView);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Global illumination on (default) or off. Off removes the pass: the view
+   * renders exactly as ParaView's own render view.
+   */
+  void SetGlobalIllumination(bool enabled);
+  vtkGetMacro(GlobalIllumination, bool);
+  ///@}
+
+  ///@{
+  /** vtkMRGIPass::IndirectModes: 0 off, 1 full resolution, 2 multiresolution (default). */
+  void SetIndirectMode(int mode);
+  int GetIndirectMode();
+  ///@}
+
+  /** vtkMRGIMultiresolution::Presets: 0 Fast, 1 Balanced (default), 2 Accurate. */
+  void SetMultiresolutionPreset(int preset);
+
+  ///@{
+  /** Forwarded to vtkMRGIPass (see there for ranges and defaults). */
+  void SetNumberOfVPLs(int count);
+  void SetVPLSelectionMode(int mode);
+  void SetRSMResolution(int resolution);
+  void SetIndirectStrength(double strength);
+  void SetSurfaceDetail(double alpha);
+  void SetUpsampleMode(int mode);
+  void SetExposure(double ev);
+  void SetAutoExposure(bool automatic);
+  void SetToneMapping(bool enabled);
+  ///@}
+
+  /** The pass, for scripts that set what the view's properties do not cover. */
+  vtkMRGIPass* GetMRGIPass() { return this->MRGIPass; }
+
+  /**
+   * The backend of the render windows ParaView makes in this process: "x",
+   * or "egl"/"osmesa" when the plugin supplied its headless windows.
+   */
+  static const char* GetHeadlessBackend();
+
+protected:
+  vtkPVMRGIRenderView();
+  ~vtkPVMRGIRenderView() override;
+
+  bool GlobalIllumination = true;
+  vtkMRGIPass* MRGIPass = nullptr;
+  vtkRenderStepsPass* Steps = nullptr;
+
+private:
+  vtkPVMRGIRenderView(const vtkPVMRGIRenderView&) = delete;
+  void operator=(const vtkPVMRGIRenderView&) = delete;
+};
+
+#endif
