@@ -251,6 +251,30 @@ bool vtkMRGIEGLRenderWindow::IsHeadlessRenderingAvailable()
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIEGLRenderWindow::LoadOpenGLFunctions(std::string* why)
+{
+  const GLenum result = glewInit();
+  if (result != GLEW_OK && result != GLEW_ERROR_NO_GLX_DISPLAY)
+  {
+    if (why)
+    {
+      *why = std::string("GLEW could not be initialized on the EGL context: ") +
+        reinterpret_cast<const char*>(glewGetErrorString(result));
+    }
+    return false;
+  }
+  if (!GLEW_VERSION_3_2)
+  {
+    if (why)
+    {
+      *why = "The EGL context does not provide OpenGL 3.2 core, which VTK requires.";
+    }
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 void vtkMRGIEGLRenderWindow::OpenGLInitContext()
 {
   // Mirrors vtkOpenGLRenderWindow::OpenGLInitContext (VTK 9.1/9.2) except for
@@ -260,16 +284,10 @@ void vtkMRGIEGLRenderWindow::OpenGLInitContext()
   {
     return;
   }
-  const GLenum result = glewInit();
-  if (result != GLEW_OK && result != GLEW_ERROR_NO_GLX_DISPLAY)
+  std::string why;
+  if (!LoadOpenGLFunctions(&why))
   {
-    vtkErrorMacro("GLEW could not be initialized on the EGL context: "
-      << reinterpret_cast<const char*>(glewGetErrorString(result)));
-    return;
-  }
-  if (!GLEW_VERSION_3_2)
-  {
-    vtkErrorMacro("The EGL context does not provide OpenGL 3.2 core, which VTK requires.");
+    vtkErrorMacro(<< why);
     return;
   }
   this->Initialized = true;

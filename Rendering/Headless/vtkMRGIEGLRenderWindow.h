@@ -56,6 +56,17 @@ public:
    */
   static bool IsHeadlessRenderingAvailable();
 
+  /**
+   * Loads the OpenGL functions (glewInit) for the context current now,
+   * accepting the one GLEW result that an EGL or OSMesa context gives
+   * (no GLX display), and checks for OpenGL 3.2. For windows that draw with
+   * this window's context without being one (ParaView's views in pvbatch
+   * share their process window's context). False with the reason in `why`.
+   */
+#ifndef __VTK_WRAP__
+  static bool LoadOpenGLFunctions(std::string* why);
+#endif
+
   /** What EGL gave us: "device N (...)" or "surfaceless", empty before init. */
   const char* GetPlatformDescription() { return this->PlatformDescription.c_str(); }
 

@@ -2,7 +2,10 @@
 
 #include "vtkLogger.h"
 #include "vtkMRGIRenderWindowFactory.h"
+#include "vtkMRGIEGLRenderWindow.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkPVProcessWindow.h"
 #include "vtkRenderWindow.h"
 #include "vtkVersion.h"
 
@@ -22,7 +25,12 @@ vtkObject* NewHeadlessRenderWindow()
   {
     // ParaView aborts on a null window; say why first.
     vtkLogF(ERROR, "MRGI plugin: no headless render window: %s", why.c_str());
+    return nullptr;
   }
+  // ParaView's process window is never sized: it only holds the context
+  // its views share (they draw into their own framebuffers), and MRGI's
+  // windows refuse to render at 0 x 0.
+  window->SetSize(1, 1);
   return window;
 }
 
@@ -57,6 +65,39 @@ private:
   vtkPVMRGIHeadlessFactory(const vtkPVMRGIHeadlessFactory&) = delete;
   void operator=(const vtkPVMRGIHeadlessFactory&) = delete;
 };
+}
+
+namespace
+{
+// vtkOpenGLRenderWindow::Initialized is protected; a pointer to it formed in
+// a derived class may be used on any vtkOpenGLRenderWindow (standard C++).
+struct InitializedFlag : vtkOpenGLRenderWindow
+{
+  static constexpr bool vtkOpenGLRenderWindow::*Member = &InitializedFlag::Initialized;
+};
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIPrepareHeadlessView(vtkOpenGLRenderWindow* window)
+{
+  if (!window || ChosenBackend == "x" || window->*InitializedFlag::Member)
+  {
+    return;
+  }
+  // ParaView's batch views draw with the process window's context; make
+  // sure it exists, then make it current through the view's window.
+  vtkPVProcessWindow::PrepareForRendering();
+  window->MakeCurrent();
+  std::string why;
+  if (!vtkMRGIEGLRenderWindow::LoadOpenGLFunctions(&why))
+  {
+    vtkLogF(ERROR, "MRGI plugin: %s", why.c_str());
+    return;
+  }
+  // The GL state (vtkOpenGLState) is the process window's, which its own
+  // initialisation set up; OpenGLInitState() here would query the colour
+  // sizes of a default framebuffer that a surfaceless context does not have.
+  window->*InitializedFlag::Member = true;
 }
 
 //------------------------------------------------------------------------------

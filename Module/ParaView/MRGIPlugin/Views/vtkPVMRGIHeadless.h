@@ -28,4 +28,17 @@ MRGIPARAVIEW_EXPORT void vtkPVMRGIInitializePlugin();
  */
 MRGIPARAVIEW_EXPORT const char* vtkPVMRGIHeadlessBackend();
 
+class vtkOpenGLRenderWindow;
+
+/**
+ * Makes a view's window ready to draw with MRGI's headless process window's
+ * context: once, when the plugin supplied the windows and `window` is not
+ * initialised yet, makes the context current, loads the GL functions
+ * (vtkMRGIEGLRenderWindow::LoadOpenGLFunctions) and marks the window
+ * initialised (its GL state is the process window's, already set up). ParaView's own path (vtkOpenGLRenderWindow::OpenGLInit)
+ * asks GLEW for a GLX display, which an EGL context has not, and so fails,
+ * with an error, on every frame. Does nothing with X or a null window.
+ */
+MRGIPARAVIEW_EXPORT void vtkPVMRGIPrepareHeadlessView(vtkOpenGLRenderWindow* window);
+
 #endif

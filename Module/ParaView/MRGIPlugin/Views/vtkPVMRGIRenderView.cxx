@@ -3,9 +3,11 @@
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIPass.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
 #include "vtkPVMRGIHeadless.h"
 #include "vtkPVSynchronizedRenderer.h"
 #include "vtkRenderStepsPass.h"
+#include "vtkRenderWindow.h"
 
 vtkStandardNewMacro(vtkPVMRGIRenderView);
 
@@ -29,8 +31,21 @@ vtkPVMRGIRenderView::~vtkPVMRGIRenderView()
   {
     this->SynchronizedRenderers->SetRenderPass(nullptr);
   }
+  // The window outlives the view's passes only until the superclass's
+  // destructor: free the pass's GL objects while its context exists.
+  if (vtkRenderWindow* window = this->GetRenderWindow())
+  {
+    this->MRGIPass->ReleaseGraphicsResources(window);
+  }
   this->MRGIPass->Delete();
   this->Steps->Delete();
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::Render(bool interactive, bool skip_rendering)
+{
+  vtkPVMRGIPrepareHeadlessView(vtkOpenGLRenderWindow::SafeDownCast(this->GetRenderWindow()));
+  this->Superclass::Render(interactive, skip_rendering);
 }
 
 //------------------------------------------------------------------------------

@@ -78,6 +78,14 @@ protected:
   vtkPVMRGIRenderView();
   ~vtkPVMRGIRenderView() override;
 
+  /**
+   * Before the first render of a view that draws with MRGI's headless
+   * process window's context, loads the GL functions for it (see
+   * vtkPVMRGIHeadless.h): ParaView's own initialisation asks GLEW for a
+   * GLX display, which an EGL context has not, and fails on every frame.
+   */
+  void Render(bool interactive, bool skip_rendering) override;
+
   bool GlobalIllumination = true;
   vtkMRGIPass* MRGIPass = nullptr;
   vtkRenderStepsPass* Steps = nullptr;
