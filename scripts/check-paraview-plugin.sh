@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# The ParaView plugin, installed and run the way users run it: pvbatch with
+# no X server, LoadPlugin() of the INSTALLED plugin, against mrgi-render's
+# image of the same scene. Run by ctest as paraview.Pvbatch after
+# compat.ParaViewVTK built the ParaView tree.
+# Usage: scripts/check-paraview-plugin.sh PARAVIEW_BUILD_DIR MAIN_BIN_DIR
+#   PARAVIEW_BUILD_DIR  the tree scripts/check-paraview-vtk.sh built
+#   MAIN_BIN_DIR        the main (VTK 9.1) build's bin/ (mrgi-render, mrgi-compare)
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="$(cd "${1:?usage: check-paraview-plugin.sh PARAVIEW_BUILD_DIR MAIN_BIN_DIR}" && pwd)"
+bin="$(cd "${2:?usage: check-paraview-plugin.sh PARAVIEW_BUILD_DIR MAIN_BIN_DIR}" && pwd)"
+tests="$root/Module/ParaView/Testing"
+if ! command -v pvbatch > /dev/null; then
+  echo "check-paraview-plugin: pvbatch not found (install paraview: scripts/install-deps.sh)" >&2
+  exit 1
+fi
+work="$build/plugin-check"
+rm -rf "$work"
+mkdir -p "$work"
+fail() { echo "check-paraview-plugin: FAIL: $*" >&2; exit 1; }
+
+# 1. Install the ParaView tree to a prefix and use the plugin from there.
+prefix="$work/prefix"
+cmake --install "$build" --prefix "$prefix" > "$work/install.log"
+plugin="$prefix/lib/paraview-5.11/plugins/MRGIRenderView/MRGIRenderView.so"
+[ -f "$plugin" ] || fail "the install has no $plugin"
+# Nothing built for Debian's VTK 9.1 (nor PCL, which links it) may load
+# into ParaView: every VTK library the plugin pulls in is ParaView's.
+ldd "$plugin" > "$work/ldd.txt"
+if grep -E 'libvtk[A-Za-z0-9]*-9\.1|libpcl' "$work/ldd.txt"; then
+  fail "the plugin links VTK 9.1 or PCL libraries (above)"
+fi
+if grep 'not found' "$work/ldd.txt"; then
+  fail "the installed plugin does not find its libraries (above)"
+fi
+grep -q 'libMRGIParaView' "$work/ldd.txt" || fail "the plugin does not link libMRGIParaView"
+grep "libMRGI" "$work/ldd.txt" | grep -v "$prefix" && fail "the installed plugin loads MRGI libraries from outside its prefix"
+echo "check-paraview-plugin: installed plugin links only ParaView's VTK and its own prefix"
+
+export PYTHONPATH="$build/paraview-python/usr/lib/python3/dist-packages"
+pvbatch_headless() {
+  # No X server: the plugin must supply the window (MRGI's EGL).
+  env -u DISPLAY timeout 300 pvbatch "$@" > "$work/pvbatch.log" 2>&1 ||
+    { cat "$work/pvbatch.log" >&2; fail "pvbatch $*"; }
+  if grep -E ' ERR\| ' "$work/pvbatch.log"; then
+    fail "pvbatch reported errors (above)"
+  fi
+}
+compare() { "$bin/mrgi-compare" "$1" "$2" | sed -n 's/^relative_rms=\([^ ]*\).*/\1/p'; }
+
+# 2. The Cornell box in pvbatch against mrgi-render, within 1% relative RMS.
+size=256
+pvbatch_headless "$tests/pvbatch_cornell.py" "$plugin" "$work/pvbatch-cornell.png" "$size"
+grep -q "MRGI's egl windows\|MRGI's osmesa windows" "$work/pvbatch.log" ||
+  fail "pvbatch did not use MRGI's headless window"
+"$bin/mrgi-render" cornell -o "$work/mrgi-render-cornell.png" --size "${size}x${size}" \
+  --exposure 0 --aa off -q
+rms="$(compare "$work/pvbatch-cornell.png" "$work/mrgi-render-cornell.png")"
+echo "check-paraview-plugin: pvbatch vs mrgi-render, cornell ${size}x${size}: relative RMS $rms"
+awk -v r="$rms" 'BEGIN { exit !(r != "" && r <= 0.01) }' || fail "relative RMS $rms > 0.01"
+
+# 3. GI off in the view must give another image (the indirect light is real).
+pvbatch_headless "$tests/pvbatch_cornell.py" "$plugin" "$work/pvbatch-cornell-gi-off.png" "$size" --gi off
+off="$(compare "$work/pvbatch-cornell-gi-off.png" "$work/pvbatch-cornell.png")"
+echo "check-paraview-plugin: GI off vs on: relative RMS $off"
+awk -v r="$off" 'BEGIN { exit !(r != "" && r >= 0.05) }' || fail "GI off is too close to GI on ($off)"
+
+# 4. The view's properties survive a state file, in a fresh process.
+pvbatch_headless "$tests/pvbatch_state.py" "$plugin" save "$work/state.pvsm" "$work/state-saved.png"
+pvbatch_headless "$tests/pvbatch_state.py" "$plugin" load "$work/state.pvsm" "$work/state-loaded.png"
+state="$(compare "$work/state-loaded.png" "$work/state-saved.png")"
+echo "check-paraview-plugin: state file reloaded: relative RMS $state"
+awk -v r="$state" 'BEGIN { exit !(r != "" && r <= 0.001) }' || fail "reloaded state renders differently ($state)"
+echo "check-paraview-plugin: all checks passed"
