@@ -51,6 +51,13 @@ pvbatch_headless() {
 }
 compare() { "$bin/mrgi-compare" "$1" "$2" | sed -n 's/^relative_rms=\([^ ]*\).*/\1/p'; }
 
+# 2a. Loaded at start-up through PV_PLUGIN_PATH (no LoadPlugin in the script).
+PV_PLUGIN_PATH="$(dirname "$plugin")" pvbatch_headless "$tests/pvbatch_plugin_path.py" "$work/plugin-path.png"
+[ -s "$work/plugin-path.png" ] || fail "PV_PLUGIN_PATH: no image"
+grep -q "MRGI's egl windows\|MRGI's osmesa windows" "$work/pvbatch.log" ||
+  fail "PV_PLUGIN_PATH: pvbatch did not use MRGI's headless window"
+echo "check-paraview-plugin: PV_PLUGIN_PATH loads the plugin at start-up, headless"
+
 # 2. The Cornell box in pvbatch against mrgi-render, within 1% relative RMS.
 size=256
 pvbatch_headless "$tests/pvbatch_cornell.py" "$plugin" "$work/pvbatch-cornell.png" "$size"
