@@ -73,8 +73,8 @@ def _loaded_common_cores(maps="/proc/self/maps"):
 
 def _advice(build_info):
     if build_info.PARAVIEW_VERSION:
-        return ("use this mrgi under ParaView %s's Python (pvbatch, pvpython, or "
-                "python3 with ParaView's vtkmodules first on PYTHONPATH), or the mrgi "
+        return ("use this mrgi under ParaView %s's Python (pvbatch or python3 with "
+                "ParaView's vtkmodules first on PYTHONPATH), or the mrgi "
                 "built against Debian's VTK under /usr/bin/python3; see %s"
                 % (build_info.PARAVIEW_VERSION, _DOC))
     return ("use the mrgi built against ParaView's VTK "
