@@ -23,6 +23,11 @@ sed -e "s|\${CMAKE_CURRENT_LIST_DIR}|$vtk_dir|g" \
     -e 's|set("\${CMAKE_FIND_PACKAGE_NAME}_WRAP_PYTHON" "ON")|set("${CMAKE_FIND_PACKAGE_NAME}_WRAP_PYTHON" "OFF")|' \
     "$vtk_dir/vtk-config.cmake" > "$shim/vtk-config.cmake"
 cp "$vtk_dir/vtk-config-version.cmake" "$shim/"
+# MRGI's Python package for ParaView's Python (pvbatch): the wrapping of
+# ParaView's VTK back on, its files taken from python3-paraview, unpacked
+# (never installed) into the build tree.
+bash "$root/scripts/fetch-paraview-python.sh" "$build/paraview-python"
+bash "$root/scripts/paraview-vtk-python-shim.sh" "$shim" "$vtk_dir" "$build/paraview-python"
 
 # The same for ParaView's own config (the plugin, Module/ParaView): it finds
 # VTK through the shim above, leaves ParaView's Python targets out (their
@@ -41,16 +46,18 @@ sed -e "s|\${CMAKE_CURRENT_LIST_DIR}/vtk\"|$shim\"|g" \
 cp "$pv_dir/paraview-config-version.cmake" "$pv_shim/"
 
 # The plugin's wrapping needs ParaView's class hierarchy files, which only
-# python3-paraview ships: unpacked (never installed) into the build tree.
+# python3-paraview ships: unpacked above.
 pv_python="$build/paraview-python"
-bash "$root/scripts/fetch-paraview-python.sh" "$pv_python"
 
 if [ ! -f "$build/CMakeCache.txt" ]; then
   cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
     -DVTK_DIR="$shim" -DParaView_DIR="$pv_shim" -DMRGI_BUILD_PARAVIEW_PLUGIN=ON \
     -DPython3_EXECUTABLE=/usr/bin/python3 \
     -DMRGI_PARAVIEW_HIERARCHY_DIR="$pv_python/usr/lib/x86_64-linux-gnu/vtk/hierarchy/ParaView" \
-    -DBUILD_TESTING=OFF -DMRGI_WRAP_PYTHON=OFF -DMRGI_BUILD_EXAMPLES=OFF
+    -DBUILD_TESTING=OFF -DMRGI_WRAP_PYTHON=ON -DMRGI_BUILD_EXAMPLES=OFF
+elif grep -q '^MRGI_WRAP_PYTHON:BOOL=OFF$' "$build/CMakeCache.txt"; then
+  # A tree configured before this script wrapped for Python.
+  cmake -S "$root" -B "$build" -DMRGI_WRAP_PYTHON=ON -DPython3_EXECUTABLE=/usr/bin/python3
 fi
 cmake --build "$build" --parallel "${MRGI_JOBS:-2}"
 # The build must really have used VTK 9.2: its libraries carry the pv5.11 suffix.

@@ -12,9 +12,18 @@ Usage (the same three lines as vtkSSAOPass)::
 Headless rendering without X: ``mrgi.vtkMRGIRenderWindowFactory.CreateHeadlessRenderWindow()``.
 """
 
+# Before any compiled module of MRGI loads: under another VTK's vtkmodules
+# (e.g. ParaView's in pvbatch) MRGI's libraries would bring a second VTK into
+# the process, which crashes; fail with an ImportError that says so instead.
+from . import _build_info, _vtk_check
+
+_vtk_check.check(_build_info)
+
 # VTK's OpenGL object factories must be registered before any window exists.
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 import vtkmodules.vtkInteractionStyle  # noqa: F401
+
+_vtk_check.check_loaded_libraries(_build_info)
 
 from .MRGIRendering import *  # noqa: F401,F403
 from .MRGIRenderingHeadless import *  # noqa: F401,F403
