@@ -321,6 +321,10 @@ void vtkMRGIReflectiveShadowMapPass::Render(const vtkRenderState* s)
     ++index;
   }
   signature << lightSignature.str();
+  // Maps rendered alone are not composited ones (and the reverse): a new
+  // compositor or a new number of processes renders them again.
+  signature << "C" << this->Compositor << ':'
+            << (this->Compositor ? this->Compositor->GetNumberOfProcesses() : 1) << ';';
   bool changed = signature.str() != this->Internal->Signature || !this->Internal->FrameBuffer;
 
   // Distributed: one collective decides for all ranks (any rank's change
