@@ -1,13 +1,14 @@
 // The same VPLs on every MPI rank (run by ctest as
 // `mpirun -np 2 TestMRGIMPI`, label mpi). The Cornell box is split across
 // two ranks, as ParaView partitions data: rank r keeps the actors whose
-// index % 2 == r, both keep the light and the camera (with the clipping
+// index % 2 == r (index % P == r under `mpirun -np P`; ctest runs 2), all
+// keep the light and the camera (with the clipping
 // range of the whole scene, as ParaView synchronises it). With a
 // vtkMRGIControllerRSMCompositor over the MPI controller, vtkMRGIPass
 // composites the reflective shadow maps across the ranks; each rank gathers
 // on its own G-buffer. Checked, for the
 // multiresolution and the full-resolution gather:
-//  (a) the VPLs of both ranks are identical bit for bit, and equal to those
+//  (a) the VPLs of all ranks are identical bit for bit, and equal to those
 //      of a one-process render of the whole scene within VPL_TOLERANCE
 //      (relative RMS over the VPL records);
 //  (b) the ranks' images composited by depth (as IceT does; gathered to
@@ -75,9 +76,9 @@ struct Frame
   int Views = 0;
 };
 
-// Cornell box into `renderer`; parity -1 keeps every actor, else those with
-// index % 2 == parity. The clipping range is the whole scene's on every rank.
-void BuildScene(vtkRenderer* renderer, int parity)
+// Cornell box into `renderer`; part -1 keeps every actor, else those with
+// index % parts == part. The clipping range is the whole scene's on every rank.
+void BuildScene(vtkRenderer* renderer, int part, int parts)
 {
   vtkNew<vtkMRGISceneBuilder> builder;
   builder->SetScene("cornell");
@@ -96,15 +97,15 @@ void BuildScene(vtkRenderer* renderer, int parity)
   {
     props.push_back(p);
   }
-  for (size_t i = 0; parity >= 0 && i < props.size(); ++i)
+  for (size_t i = 0; part >= 0 && i < props.size(); ++i)
   {
-    if (static_cast<int>(i % 2) != parity)
+    if (static_cast<int>(i % static_cast<size_t>(parts)) != part)
     {
       renderer->RemoveViewProp(props[i]);
     }
   }
   renderer->GetActiveCamera()->SetClippingRange(range);
-  std::printf("rank part %d: %d of %zu actors\n", parity,
+  std::printf("rank part %d: %d of %zu actors\n", part,
     renderer->GetViewProps()->GetNumberOfItems(), props.size());
 }
 
@@ -213,6 +214,7 @@ void WritePNG(const std::vector<float>& rgb, const std::string& name)
 void RunMode(vtkMultiProcessController* c, int mode, const char* name)
 {
   const int rank = c->GetLocalProcessId();
+  const int size = c->GetNumberOfProcesses();
   auto configure = [&](vtkMRGIPass* pass, vtkRenderStepsPass* steps) {
     pass->SetDelegatePass(steps);
     pass->SetIndirectMode(mode);
@@ -226,7 +228,7 @@ void RunMode(vtkMultiProcessController* c, int mode, const char* name)
     vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(Size, Size);
     vtkNew<vtkRenderer> renderer;
     window->AddRenderer(renderer);
-    BuildScene(renderer, -1);
+    BuildScene(renderer, -1, 1);
     vtkNew<vtkRenderStepsPass> steps;
     vtkNew<vtkMRGIPass> pass;
     configure(pass, steps);
@@ -244,7 +246,7 @@ void RunMode(vtkMultiProcessController* c, int mode, const char* name)
   vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(Size, Size);
   vtkNew<vtkRenderer> renderer;
   window->AddRenderer(renderer);
-  BuildScene(renderer, rank);
+  BuildScene(renderer, rank, size);
   vtkNew<vtkRenderStepsPass> steps;
   vtkNew<vtkMRGIPass> pass;
   configure(pass, steps);
@@ -268,8 +270,15 @@ void RunMode(vtkMultiProcessController* c, int mode, const char* name)
               "(one process: %.0f ms)\n",
     name, rank, mine.Views, static_cast<long long>(bytes), static_cast<long long>(mapBytes),
     distributedMs, referenceMs);
-  // Rank 1 sends the maps up once, rank 0 sends them down once.
-  MPI_CHECK(bytes > mapBytes && bytes < mapBytes + 1024);
+  // Two ranks: rank 1 sends the maps up once, rank 0 sends them down once.
+  // More: at most once up and once per child of the binomial tree down.
+  int children = 0;
+  for (int m = 1; m < size && !(rank & m); m <<= 1)
+  {
+    children += rank + m < size ? 1 : 0;
+  }
+  const vtkTypeInt64 messages = (rank != 0 ? 1 : 0) + children;
+  MPI_CHECK(bytes > messages * mapBytes && bytes < messages * mapBytes + 1024);
 
   // (c) An unchanged frame: the decision only, no composite.
   auto t1 = std::chrono::steady_clock::now();
@@ -279,7 +288,7 @@ void RunMode(vtkMultiProcessController* c, int mode, const char* name)
   MPI_CHECK(rsm->GetNumberOfComposites() == 1);
   MPI_CHECK(pass->GetRSMCompositeBytes() > 0 && pass->GetRSMCompositeBytes() < 1024);
   // A change on rank 1 only re-renders and composites on both ranks.
-  if (rank == 1)
+  if (rank == size - 1)
   {
     vtkActor::SafeDownCast(renderer->GetViewProps()->GetItemAsObject(0))->Modified();
   }
@@ -305,17 +314,24 @@ void RunMode(vtkMultiProcessController* c, int mode, const char* name)
   MPI_CHECK(rsm->GetNumberOfComposites() == 3);
   MPI_CHECK(Grab(window, pass).VPLs == mine.VPLs);
 
-  if (rank == 1)
+  if (rank != 0)
   {
     SendFrame(c, mine, 0);
     return;
   }
-  Frame other = ReceiveFrame(c, 1);
+  std::vector<Frame> others;
+  for (int r = 1; r < size; ++r)
+  {
+    others.push_back(ReceiveFrame(c, r));
+  }
 
   // (a) The same VPLs on both ranks, bit for bit, and the same maps.
   MPI_CHECK(!mine.VPLs.empty());
-  MPI_CHECK(mine.VPLs == other.VPLs);
-  MPI_CHECK(mine.RSM == other.RSM);
+  for (const Frame& other : others)
+  {
+    MPI_CHECK(mine.VPLs == other.VPLs);
+    MPI_CHECK(mine.RSM == other.RSM);
+  }
   // ... and those of one process within the tolerance.
   MPI_CHECK(mine.Views == reference.Views);
   size_t differing = 0, texels = 0;
@@ -344,22 +360,31 @@ void RunMode(vtkMultiProcessController* c, int mode, const char* name)
   MPI_CHECK(mine.RSM.size() == reference.RSM.size());
   MPI_CHECK(vplError <= VPL_TOLERANCE);
 
-  // (b) Depth composite of the two ranks' images, nearest wins (IceT's rule).
+  // (b) Depth composite of the ranks' images, nearest wins (IceT's rule).
   std::vector<float> composite(3 * Size * Size);
   std::vector<int> owner(Size * Size); // the rank whose pixel won
   for (int p = 0; p < Size * Size; ++p)
   {
-    const bool nearer = other.Depth[p] < mine.Depth[p];
-    owner[p] = nearer ? 1 : 0;
+    const Frame* best = &mine;
+    owner[p] = 0;
+    for (int r = 1; r < size; ++r)
+    {
+      if (others[r - 1].Depth[p] < best->Depth[p])
+      {
+        best = &others[r - 1];
+        owner[p] = r;
+      }
+    }
     for (int k = 0; k < 3; ++k)
     {
-      composite[3 * p + k] = nearer ? other.RGB[3 * p + k] : mine.RGB[3 * p + k];
+      composite[3 * p + k] = best->RGB[3 * p + k];
     }
   }
   // Where the differences are: pixels off by more than 2/255 in a channel,
-  // and how many of them lie within 4 pixels of a partition border (a pixel
-  // whose neighbour was won by the other rank).
-  int differ = 0, nearBorder = 0;
+  // by their distance (Chebyshev, pixels) to the nearest partition border
+  // (a pixel whose neighbour was won by another rank).
+  const int radii[3] = { 4, 16, 64 };
+  int differ = 0, within[3] = { 0, 0, 0 };
   for (int y = 0; y < Size; ++y)
   {
     for (int x = 0; x < Size; ++x)
@@ -375,28 +400,33 @@ void RunMode(vtkMultiProcessController* c, int mode, const char* name)
         continue;
       }
       ++differ;
-      bool border = false;
-      for (int dy = -4; dy <= 4 && !border; ++dy)
+      int distance = Size;
+      for (int yy = 0; yy < Size; ++yy)
       {
-        for (int dx = -4; dx <= 4 && !border; ++dx)
+        for (int xx = 0; xx < Size; ++xx)
         {
-          const int xx = x + dx, yy = y + dy;
-          border =
-            xx >= 0 && yy >= 0 && xx < Size && yy < Size && owner[yy * Size + xx] != owner[p];
+          if (owner[yy * Size + xx] != owner[p])
+          {
+            distance = std::min(distance, std::max(std::abs(xx - x), std::abs(yy - y)));
+          }
         }
       }
-      nearBorder += border ? 1 : 0;
+      for (int i = 0; i < 3; ++i)
+      {
+        within[i] += distance <= radii[i] ? 1 : 0;
+      }
     }
   }
-  std::printf("%s: %d pixels differ by more than 2/255, %d of them within 4 pixels of a "
-              "partition border\n",
-    name, differ, nearBorder);
+  std::printf("%s: %d pixels differ by more than 2/255; within 4, 16, 64 pixels of a partition "
+              "border: %d, %d, %d\n",
+    name, differ, within[0], within[1], within[2]);
   const mrgi_metrics m = CompareImages(composite, reference.RGB);
-  std::printf("%s: 2-rank depth composite vs one process: relative RMS %.4f, max %.0f/255, PSNR "
-              "%.1f dB\n",
-    name, m.relative_rms, m.max_abs_error, m.psnr_db);
+  std::printf("%s: %d-rank depth composite vs one process: relative RMS %.4f, max %.0f/255, "
+              "PSNR %.1f dB\n",
+    name, size, m.relative_rms, m.max_abs_error, m.psnr_db);
   MPI_CHECK(m.relative_rms <= IMAGE_TOLERANCE);
-  const std::string tag = std::string("TestMRGIMPI-") + name;
+  const std::string tag =
+    std::string("TestMRGIMPI-") + name + (size == 2 ? "" : "-np" + std::to_string(size));
   WritePNG(reference.RGB, tag + "-1rank.png");
   WritePNG(composite, tag + "-2rank.png");
   std::vector<float> diff(composite.size());
@@ -414,9 +444,9 @@ int main(int argc, char* argv[])
   controller->Initialize(&argc, &argv);
   vtkMultiProcessController::SetGlobalController(controller);
   const int rank = controller->GetLocalProcessId();
-  if (controller->GetNumberOfProcesses() != 2)
+  if (controller->GetNumberOfProcesses() < 2)
   {
-    std::fprintf(stderr, "TestMRGIMPI: run it with mpirun -np 2 (got %d processes)\n",
+    std::fprintf(stderr, "TestMRGIMPI: run it with mpirun -np 2 or more (got %d process)\n",
       controller->GetNumberOfProcesses());
     controller->Finalize();
     return 1;
