@@ -16,7 +16,8 @@
 //      one-process image;
 //  (c) the composite is collective and cached: an unchanged frame sends
 //      only the decision, a change on one rank re-composites on both, and
-//      maps rendered without the compositor are not reused with it.
+//      maps rendered without the compositor are not reused with it, and
+//      ranks that disagree on the RSM resolution do not exchange maps.
 // It prints the composite's bytes, the RSM texels that differ from the
 // one-process maps and the image differences (Documentation/ParaView-MPI.md).
 #include "mrgiTestUtilities.h"
@@ -312,6 +313,22 @@ void RunMode(vtkMultiProcessController* c, int mode, const char* name)
   pass->SetRSMCompositor(compositor);
   window->Render();
   MPI_CHECK(rsm->GetNumberOfComposites() == 3);
+  MPI_CHECK(Grab(window, pass).VPLs == mine.VPLs);
+  // Ranks that disagree (here on the RSM resolution) render their own maps
+  // uncomposited, with an error, instead of exchanging maps of different
+  // sizes; once they agree again they composite again.
+  const int resolution = rsm->GetResolution();
+  if (rank == size - 1)
+  {
+    pass->SetRSMResolution(resolution / 2);
+  }
+  vtkObject::GlobalWarningDisplayOff(); // the expected error
+  window->Render();
+  vtkObject::GlobalWarningDisplayOn();
+  MPI_CHECK(rsm->GetNumberOfComposites() == 3);
+  pass->SetRSMResolution(resolution);
+  window->Render();
+  MPI_CHECK(rsm->GetNumberOfComposites() == 4);
   MPI_CHECK(Grab(window, pass).VPLs == mine.VPLs);
 
   if (rank != 0)

@@ -295,8 +295,9 @@ void vtkMRGIReflectiveShadowMapPass::Render(const vtkRenderState* s)
     vtkLight* Light;
   };
   std::vector<LightInfo> lights;
-  std::ostringstream lightSignature; // what every rank must agree on
+  std::ostringstream lightSignature; // what every rank must agree on (with the resolution)
   lightSignature.precision(17);
+  lightSignature << 'S' << this->Resolution << ';';
   vtkLightCollection* lightCollection = renderer->GetLights();
   vtkCollectionSimpleIterator lit;
   lightCollection->InitTraversal(lit);
@@ -357,8 +358,8 @@ void vtkMRGIReflectiveShadowMapPass::Render(const vtkRenderState* s)
     if (!lightsAgree && changed)
     {
       vtkErrorMacro("the processes disagree on the lights (position, colour, cone or "
-                    "attenuation): each renders its own reflective shadow maps, uncomposited, "
-                    "and their VPLs differ");
+                    "attenuation) or the RSM resolution: each renders its own reflective shadow "
+                    "maps, uncomposited, and their VPLs differ");
     }
   }
   const bool anyProps = bounds[0] <= bounds[1];
