@@ -42,6 +42,24 @@ bool vtkMRGIControllerRSMCompositor::AllReduceMax(double* values, int count)
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIControllerRSMCompositor::AllReduceBitwiseOr(vtkTypeUInt32* values, vtkIdType count)
+{
+  if (this->GetNumberOfProcesses() < 2 || count < 1)
+  {
+    return true;
+  }
+  // Element-wise and a standard operation: MPI may split the buffer anywhere.
+  std::vector<vtkTypeUInt32> local(values, values + count);
+  if (!this->Controller->AllReduce(local.data(), values, count, vtkCommunicator::BITWISE_OR_OP))
+  {
+    vtkErrorMacro("bitwise-OR AllReduce of " << count << " words failed");
+    return false;
+  }
+  this->BytesSent += count * static_cast<vtkIdType>(sizeof(vtkTypeUInt32));
+  return true;
+}
+
+//------------------------------------------------------------------------------
 bool vtkMRGIControllerRSMCompositor::CompositeViews(
   float* views, size_t texels, int count, const mrgi_rsm_view_key* keys)
 {

@@ -57,6 +57,7 @@ public:
   bool AllReduceMax(double* values, int count) override;
   bool CompositeViews(
     float* views, size_t texels, int count, const mrgi_rsm_view_key* keys) override;
+  bool AllReduceBitwiseOr(vtkTypeUInt32* values, vtkIdType count) override;
 #endif
 
 protected:

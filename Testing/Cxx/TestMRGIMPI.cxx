@@ -51,6 +51,10 @@ namespace
 constexpr int Size = 192;
 constexpr double VPL_TOLERANCE = 1e-3;
 constexpr double IMAGE_TOLERANCE = 0.01;
+// Area lights: the voxels are OR-ed across ranks, but each rank's
+// multiresolution buffer and visibility masks see only its own G-buffer
+// (measured 0.023 on 2 ranks; 0.156 without the voxels' OR).
+constexpr double AREA_LIGHT_TOLERANCE = 0.04;
 constexpr int Tag = 4711;
 
 int Failures = 0;
@@ -113,7 +117,7 @@ vtkSmartPointer<vtkMRGISceneBuilder> BuildScene(
   return builder;
 }
 
-Frame Grab(vtkRenderWindow* window, vtkMRGIPass* pass)
+Frame Grab(vtkRenderWindow* window, vtkMRGIPass* pass, bool vpls = true)
 {
   Frame f;
   vtkSmartPointer<vtkImageData> rgb = mrgitest::GrabRGB(window);
@@ -121,10 +125,10 @@ Frame Grab(vtkRenderWindow* window, vtkMRGIPass* pass)
   f.RGB.assign(chars->GetPointer(0), chars->GetPointer(0) + 3 * Size * Size);
   f.Depth.resize(Size * Size);
   window->GetZbufferData(0, 0, Size - 1, Size - 1, f.Depth.data());
-  vtkNew<vtkFloatArray> vpls;
-  if (pass->GetVPLs(window, vpls))
+  vtkNew<vtkFloatArray> records;
+  if (vpls && pass->GetVPLs(window, records))
   {
-    f.VPLs.assign(vpls->GetPointer(0), vpls->GetPointer(0) + vpls->GetNumberOfValues());
+    f.VPLs.assign(records->GetPointer(0), records->GetPointer(0) + records->GetNumberOfValues());
   }
   vtkMRGIReflectiveShadowMapPass* rsm = pass->GetReflectiveShadowMapPass();
   f.Views = rsm->GetNumberOfViews();
@@ -213,6 +217,51 @@ void WritePNG(const std::vector<float>& rgb, const std::string& name)
   }
   vtkNew<vtkMRGIImageIO> io;
   io->Write(image, mrgitest::TempPath(name).c_str());
+}
+
+// Where the differences are: pixels off by more than 2/255 in a channel,
+// by their distance (Chebyshev, pixels) to the nearest partition border
+// (a pixel whose neighbour was won by another rank).
+void BorderStatistics(const std::vector<float>& composite, const std::vector<float>& reference,
+  const std::vector<int>& owner, const char* name)
+{
+  const int radii[3] = { 4, 16, 64 };
+  int differ = 0, within[3] = { 0, 0, 0 };
+  for (int y = 0; y < Size; ++y)
+  {
+    for (int x = 0; x < Size; ++x)
+    {
+      const int p = y * Size + x;
+      bool off = false;
+      for (int k = 0; k < 3; ++k)
+      {
+        off = off || std::fabs(composite[3 * p + k] - reference[3 * p + k]) > 2.0f;
+      }
+      if (!off)
+      {
+        continue;
+      }
+      ++differ;
+      int distance = Size;
+      for (int yy = 0; yy < Size; ++yy)
+      {
+        for (int xx = 0; xx < Size; ++xx)
+        {
+          if (owner[yy * Size + xx] != owner[p])
+          {
+            distance = std::min(distance, std::max(std::abs(xx - x), std::abs(yy - y)));
+          }
+        }
+      }
+      for (int i = 0; i < 3; ++i)
+      {
+        within[i] += distance <= radii[i] ? 1 : 0;
+      }
+    }
+  }
+  std::printf("%s: %d pixels differ by more than 2/255; within 4, 16, 64 pixels of a partition "
+              "border: %d, %d, %d\n",
+    name, differ, within[0], within[1], within[2]);
 }
 
 void RunMode(vtkMultiProcessController* c, int mode, const char* name)
@@ -400,46 +449,7 @@ void RunMode(vtkMultiProcessController* c, int mode, const char* name)
       composite[3 * p + k] = best->RGB[3 * p + k];
     }
   }
-  // Where the differences are: pixels off by more than 2/255 in a channel,
-  // by their distance (Chebyshev, pixels) to the nearest partition border
-  // (a pixel whose neighbour was won by another rank).
-  const int radii[3] = { 4, 16, 64 };
-  int differ = 0, within[3] = { 0, 0, 0 };
-  for (int y = 0; y < Size; ++y)
-  {
-    for (int x = 0; x < Size; ++x)
-    {
-      const int p = y * Size + x;
-      bool off = false;
-      for (int k = 0; k < 3; ++k)
-      {
-        off = off || std::fabs(composite[3 * p + k] - reference.RGB[3 * p + k]) > 2.0f;
-      }
-      if (!off)
-      {
-        continue;
-      }
-      ++differ;
-      int distance = Size;
-      for (int yy = 0; yy < Size; ++yy)
-      {
-        for (int xx = 0; xx < Size; ++xx)
-        {
-          if (owner[yy * Size + xx] != owner[p])
-          {
-            distance = std::min(distance, std::max(std::abs(xx - x), std::abs(yy - y)));
-          }
-        }
-      }
-      for (int i = 0; i < 3; ++i)
-      {
-        within[i] += distance <= radii[i] ? 1 : 0;
-      }
-    }
-  }
-  std::printf("%s: %d pixels differ by more than 2/255; within 4, 16, 64 pixels of a partition "
-              "border: %d, %d, %d\n",
-    name, differ, within[0], within[1], within[2]);
+  BorderStatistics(composite, reference.RGB, owner, name);
   const mrgi_metrics m = CompareImages(composite, reference.RGB);
   std::printf("%s: %d-rank depth composite vs one process: relative RMS %.4f, max %.0f/255, "
               "PSNR %.1f dB\n",
@@ -458,10 +468,11 @@ void RunMode(vtkMultiProcessController* c, int mode, const char* name)
 }
 }
 
-// By hand only (`TestMRGIMPI --area-lights`): the area-light scene split
-// the same way, to measure what per-rank voxelization does to area-light
-// shadows. Prints the depth composite's difference from one process; no
-// composite of the voxels exists, so nothing is asserted.
+// `TestMRGIMPI --area-lights` (ctest: mpi.TestMRGIMPIAreaLights): the
+// area-light scene split the same way; with the compositor the ranks OR
+// their voxelizations, so every rank's geometry shadows the area light on
+// every rank. The depth composite must be within AREA_LIGHT_TOLERANCE of
+// one process.
 void MeasureAreaLights(vtkMultiProcessController* c)
 {
   const int rank = c->GetLocalProcessId();
@@ -487,7 +498,7 @@ void MeasureAreaLights(vtkMultiProcessController* c)
     }
     renderer->SetPass(pass);
     window->Render();
-    out = Grab(window, pass);
+    out = Grab(window, pass, false); // lit by the area light only: no VPLs
   };
   Frame reference, mine;
   if (rank == 0)
@@ -506,24 +517,39 @@ void MeasureAreaLights(vtkMultiProcessController* c)
   {
     others.push_back(ReceiveFrame(c, r));
   }
+  std::vector<int> owner(Size * Size);
   for (int p = 0; p < Size * Size; ++p)
   {
     const Frame* best = &mine;
-    for (const Frame& o : others)
+    owner[p] = 0;
+    for (int r = 1; r < size; ++r)
     {
-      best = o.Depth[p] < best->Depth[p] ? &o : best;
+      if (others[r - 1].Depth[p] < best->Depth[p])
+      {
+        best = &others[r - 1];
+        owner[p] = r;
+      }
     }
     for (int k = 0; k < 3; ++k)
     {
       composite[3 * p + k] = best->RGB[3 * p + k];
     }
   }
+  BorderStatistics(composite, reference.RGB, owner, "area lights");
   const mrgi_metrics m = CompareImages(composite, reference.RGB);
   std::printf("area lights: %d-rank depth composite vs one process: relative RMS %.4f, max "
               "%.0f/255, PSNR %.1f dB\n",
     size, m.relative_rms, m.max_abs_error, m.psnr_db);
-  WritePNG(reference.RGB, "TestMRGIMPI-area-1rank.png");
-  WritePNG(composite, "TestMRGIMPI-area-" + std::to_string(size) + "rank.png");
+  MPI_CHECK(m.relative_rms <= AREA_LIGHT_TOLERANCE);
+  const std::string tag = "TestMRGIMPI-area" + (size == 2 ? "" : "-np" + std::to_string(size));
+  WritePNG(reference.RGB, tag + "-1rank.png");
+  WritePNG(composite, tag + "-2rank.png");
+  std::vector<float> diff(composite.size());
+  for (size_t i = 0; i < diff.size(); ++i)
+  {
+    diff[i] = 4.0f * std::fabs(composite[i] - reference.RGB[i]);
+  }
+  WritePNG(diff, tag + "-diff4.png");
 }
 
 int main(int argc, char* argv[])
@@ -542,8 +568,10 @@ int main(int argc, char* argv[])
   if (argc > 1 && std::string(argv[1]) == "--area-lights")
   {
     MeasureAreaLights(controller);
+    int local = Failures, total = 0;
+    controller->AllReduce(&local, &total, 1, vtkCommunicator::SUM_OP);
     controller->Finalize();
-    return 0;
+    return total == 0 ? 0 : 1;
   }
   RunMode(controller, vtkMRGIPass::IndirectMultires, "multires");
   RunMode(controller, vtkMRGIPass::IndirectFull, "full");

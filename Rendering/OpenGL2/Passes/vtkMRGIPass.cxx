@@ -345,6 +345,7 @@ void vtkMRGIPass::SetRSMCompositor(vtkMRGIRSMCompositor* compositor)
   if (compositor != this->RSMPass->GetCompositor())
   {
     this->RSMPass->SetCompositor(compositor);
+    this->AreaLightStage->SetCompositor(compositor);
     this->Modified();
   }
 }

@@ -56,6 +56,14 @@ public:
    */
   virtual bool CompositeViews(
     float* views, size_t texels, int count, const mrgi_rsm_view_key* keys) = 0;
+
+  /**
+   * Collective: values[i] becomes the bitwise OR of values[i] over the
+   * processes (the same count on every process). The area lights use it to
+   * merge the processes' voxelizations, so that every process's geometry
+   * casts area-light shadows on every process. False on a failure.
+   */
+  virtual bool AllReduceBitwiseOr(vtkTypeUInt32* values, vtkIdType count) = 0;
 #endif
 
 protected:
