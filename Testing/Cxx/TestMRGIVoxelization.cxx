@@ -512,6 +512,30 @@ void RandomBoxes()
   MRGI_TEST_CHECK(still->GetNumberOfValues() == kept->GetNumberOfValues());
   MRGI_TEST_CHECK(std::equal(kept->GetPointer(0), kept->GetPointer(0) + kept->GetNumberOfValues(),
     still->GetPointer(0)));
+  // WriteVoxels (how the OR of MPI ranks' voxels comes back): what is
+  // written is read back; an array of another size is refused, the voxels
+  // kept.
+  {
+    vtkNew<vtkTypeUInt32Array> flipped, back, small;
+    flipped->DeepCopy(kept);
+    for (vtkIdType i = 0; i < flipped->GetNumberOfValues(); ++i)
+    {
+      flipped->SetValue(i, ~kept->GetValue(i) ^ static_cast<vtkTypeUInt32>(i));
+    }
+    MRGI_TEST_CHECK(vox->WriteVoxels(window, flipped));
+    MRGI_TEST_CHECK(vox->ReadVoxels(window, back));
+    MRGI_TEST_CHECK(back->GetNumberOfValues() == flipped->GetNumberOfValues());
+    MRGI_TEST_CHECK(std::equal(flipped->GetPointer(0),
+      flipped->GetPointer(0) + flipped->GetNumberOfValues(), back->GetPointer(0)));
+    small->SetNumberOfComponents(4);
+    small->SetNumberOfTuples(3);
+    MRGI_TEST_CHECK(!vox->WriteVoxels(window, small));
+    MRGI_TEST_CHECK(errors->Caught("is not"));
+    MRGI_TEST_CHECK(vox->ReadVoxels(window, back));
+    MRGI_TEST_CHECK(std::equal(flipped->GetPointer(0),
+      flipped->GetPointer(0) + flipped->GetNumberOfValues(), back->GetPointer(0)));
+    MRGI_TEST_CHECK(vox->WriteVoxels(window, kept));
+  }
 
   // Another window: the resources move there (freed in the first one), and back.
   {

@@ -29,3 +29,4 @@ from .MRGIRendering import *  # noqa: F401,F403
 from .MRGIRenderingHeadless import *  # noqa: F401,F403
 from .MRGIRenderingIO import *  # noqa: F401,F403
 from .MRGIRenderingValidation import *  # noqa: F401,F403
+from .MRGIRenderingParallel import *  # noqa: F401,F403

@@ -340,6 +340,23 @@ int vtkMRGIPass::GetRSMResolution()
 {
   return this->RSMPass->GetResolution();
 }
+void vtkMRGIPass::SetRSMCompositor(vtkMRGIRSMCompositor* compositor)
+{
+  if (compositor != this->RSMPass->GetCompositor())
+  {
+    this->RSMPass->SetCompositor(compositor);
+    this->AreaLightStage->SetCompositor(compositor);
+    this->Modified();
+  }
+}
+vtkMRGIRSMCompositor* vtkMRGIPass::GetRSMCompositor()
+{
+  return this->RSMPass->GetCompositor();
+}
+vtkTypeInt64 vtkMRGIPass::GetRSMCompositeBytes()
+{
+  return this->RSMPass->GetCompositeBytes();
+}
 
 //------------------------------------------------------------------------------
 void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
@@ -1111,6 +1128,7 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfVPLs: " << this->VPLSelection->GetNumberOfVPLs() << "\n";
   os << indent << "VPLSelectionMode: " << this->VPLSelection->GetMode() << "\n";
   os << indent << "RSMResolution: " << this->RSMPass->GetResolution() << "\n";
+  os << indent << "RSMCompositor: " << this->RSMPass->GetCompositor() << "\n";
   os << indent << "Exposure: " << this->Exposure << " EV\n";
   os << indent << "AutoExposure: " << (this->AutoExposure ? "On" : "Off") << "\n";
   os << indent << "AutoExposureKey: " << this->AutoExposureKey << "\n";

@@ -76,6 +76,7 @@ class vtkMRGIVarianceShadowQuery;
 class vtkMRGIVisibilityPyramid;
 class vtkMRGIVoxelization;
 class vtkMRGIReflectiveShadowMapPass;
+class vtkMRGIRSMCompositor;
 class vtkMRGIVPLSelection;
 class vtkOpenGLFXAAFilter;
 class vtkOpenGLRenderWindow;
@@ -134,6 +135,29 @@ public:
   void SetRSMResolution(int resolution);
   int GetRSMResolution();
   ///@}
+
+  ///@{
+  /**
+   * Distributed rendering (ParaView's ranks, each with a piece of the
+   * data): with a compositor of more than one process
+   * (vtkMRGIControllerRSMCompositor over a vtkMultiProcessController, in
+   * MRGI::RenderingParallel), the reflective shadow maps are composited
+   * across the processes by depth before the VPLs are selected, so that
+   * every process gathers the same VPLs on its own G-buffer. Every process
+   * must then render the same frames with the same lights and settings
+   * (vtkMRGIReflectiveShadowMapPass says what is collective). Null (default)
+   * or one process: no communication. Forwarded to the reflective shadow
+   * map pass.
+   */
+  void SetRSMCompositor(vtkMRGIRSMCompositor* compositor);
+  vtkMRGIRSMCompositor* GetRSMCompositor();
+  ///@}
+
+  /**
+   * Bytes this process sent for the maps' composite in the last frame (see
+   * vtkMRGIReflectiveShadowMapPass::GetCompositeBytes); 0 without a compositor.
+   */
+  vtkTypeInt64 GetRSMCompositeBytes();
 
   /**
    * The multiresolution buffer (IndirectMultires, and the area lights): its

@@ -31,19 +31,23 @@
 #include "vtkTextureObject.h"
 
 #include "vtkMRGIRSMCapture.h"
+#include "vtkMRGIRSMCompositor.h"
 #include "vtkMRGIRSMDecl.h"
 #include "vtkMRGIShaderUtilities.h"
 
 #include "mrgi_buffers.h"
+#include "mrgi_rsm_composite.h"
 
 #include <algorithm>
-#include <map>
 #include <array>
 #include <cmath>
+#include <functional>
+#include <map>
 #include <sstream>
 #include <vector>
 
 vtkStandardNewMacro(vtkMRGIReflectiveShadowMapPass);
+vtkCxxSetObjectMacro(vtkMRGIReflectiveShadowMapPass, Compositor, vtkMRGIRSMCompositor);
 
 namespace
 {
@@ -138,6 +142,7 @@ vtkMRGIReflectiveShadowMapPass::vtkMRGIReflectiveShadowMapPass()
 //------------------------------------------------------------------------------
 vtkMRGIReflectiveShadowMapPass::~vtkMRGIReflectiveShadowMapPass()
 {
+  this->SetCompositor(nullptr);
   if (this->Internal->FrameBuffer)
   {
     vtkErrorMacro("FrameBuffer should have been deleted in ReleaseGraphicsResources().");
@@ -290,6 +295,9 @@ void vtkMRGIReflectiveShadowMapPass::Render(const vtkRenderState* s)
     vtkLight* Light;
   };
   std::vector<LightInfo> lights;
+  std::ostringstream lightSignature; // what every rank must agree on (with the resolution)
+  lightSignature.precision(17);
+  lightSignature << 'S' << this->Resolution << ';';
   vtkLightCollection* lightCollection = renderer->GetLights();
   vtkCollectionSimpleIterator lit;
   lightCollection->InitTraversal(lit);
@@ -305,22 +313,64 @@ void vtkMRGIReflectiveShadowMapPass::Render(const vtkRenderState* s)
       light->GetTransformedPosition(p);
       light->GetTransformedFocalPoint(f);
       const double* a = light->GetAttenuationValues();
-      signature << 'L' << index << ':' << light->GetIntensity() << ',' << color[0] << ','
-                << color[1] << ',' << color[2] << ',' << p[0] << ',' << p[1] << ',' << p[2] << ','
-                << f[0] << ',' << f[1] << ',' << f[2] << ',' << light->GetPositional() << ','
-                << light->GetConeAngle() << ',' << light->GetExponent() << ',' << a[0] << ','
-                << a[1] << ',' << a[2] << ';';
+      lightSignature << 'L' << index << ':' << light->GetIntensity() << ',' << color[0] << ','
+                     << color[1] << ',' << color[2] << ',' << p[0] << ',' << p[1] << ',' << p[2]
+                     << ',' << f[0] << ',' << f[1] << ',' << f[2] << ',' << light->GetPositional()
+                     << ',' << light->GetConeAngle() << ',' << light->GetExponent() << ',' << a[0]
+                     << ',' << a[1] << ',' << a[2] << ';';
     }
     ++index;
   }
-  if (props.empty())
+  signature << lightSignature.str();
+  // Maps rendered alone are not composited ones (and the reverse): a new
+  // compositor or a new number of processes renders them again.
+  signature << "C" << this->Compositor << ':'
+            << (this->Compositor ? this->Compositor->GetNumberOfProcesses() : 1) << ';';
+  bool changed = signature.str() != this->Internal->Signature || !this->Internal->FrameBuffer;
+
+  // Distributed: one collective decides for all ranks (any rank's change
+  // re-renders and composites everywhere: a rank compositing alone would
+  // wait forever) and gives every rank the bounds of all ranks' props, which
+  // place the views, so that all ranks render the same views.
+  const bool distributed = this->Compositor && this->Compositor->GetNumberOfProcesses() > 1;
+  const vtkTypeInt64 bytesBefore = this->Compositor ? this->Compositor->GetBytesSent() : 0;
+  bool lightsAgree = true;
+  this->CompositeBytes = 0;
+  if (distributed)
+  {
+    // std::hash is the same function in every rank of one program; 52 bits
+    // survive the trip through a double.
+    const double lightHash =
+      static_cast<double>(std::hash<std::string>{}(lightSignature.str()) >> 12);
+    double global[9] = { -bounds[0], bounds[1], -bounds[2], bounds[3], -bounds[4], bounds[5],
+      changed ? 1.0 : 0.0, lightHash, -lightHash };
+    if (!this->Compositor->AllReduceMax(global, 9))
+    {
+      vtkErrorMacro("the processes could not agree on the reflective shadow maps' inputs");
+    }
+    this->CompositeBytes = this->Compositor->GetBytesSent() - bytesBefore;
+    for (int k = 0; k < 6; ++k)
+    {
+      bounds[k] = (k % 2 == 0) ? -global[k] : global[k];
+    }
+    changed = global[6] > 0;
+    lightsAgree = global[7] == -global[8];
+    if (!lightsAgree && changed)
+    {
+      vtkErrorMacro("the processes disagree on the lights (position, colour, cone or "
+                    "attenuation) or the RSM resolution: each renders its own reflective shadow "
+                    "maps, uncomposited, and their VPLs differ");
+    }
+  }
+  const bool anyProps = bounds[0] <= bounds[1];
+  if (!anyProps || (!distributed && props.empty()))
   {
     lights.clear();
   }
 
-  if (signature.str() == this->Internal->Signature && this->Internal->FrameBuffer)
+  if (!changed)
   {
-    return; // nothing the maps depend on changed
+    return; // nothing the maps depend on changed, on any rank
   }
 
   // Build the views of every light that can reach the visible props.
@@ -456,9 +506,10 @@ void vtkMRGIReflectiveShadowMapPass::Render(const vtkRenderState* s)
   }
 
   // Keep only views that reach the visible props; finish their matrices.
-  std::vector<std::unique_ptr<View>> kept;
-  for (auto& view : views)
+  std::vector<int> reaches(views.size(), 0);
+  for (size_t i = 0; i < views.size(); ++i)
   {
+    View* view = views[i].get();
     vtkMatrix4x4* wcvc = view->Camera->GetModelViewTransformMatrix();
     vtkMatrix4x4::Invert(wcvc, view->VCToWC);
     vtkNew<vtkMatrix4x4> worldToClip;
@@ -466,10 +517,26 @@ void vtkMRGIReflectiveShadowMapPass::Render(const vtkRenderState* s)
       view->Camera->GetProjectionTransformMatrix(1.0, -1, 1), wcvc, worldToClip);
     // Prop by prop: the union of the props' bounds holds empty space that
     // a cube face of a light among the props would always reach.
-    if (std::any_of(propBounds.begin(), propBounds.end(),
-          [&](const std::array<double, 6>& b) { return BoxMayIntersect(worldToClip, b.data()); }))
+    reaches[i] = std::any_of(propBounds.begin(), propBounds.end(),
+      [&](const std::array<double, 6>& b) { return BoxMayIntersect(worldToClip, b.data()); });
+  }
+  // Distributed: a view is kept where any rank's props reach it (the same
+  // lights and bounds gave every rank the same candidate views).
+  if (distributed && lightsAgree && !reaches.empty())
+  {
+    std::vector<double> anyRank(reaches.begin(), reaches.end());
+    this->Compositor->AllReduceMax(anyRank.data(), static_cast<int>(anyRank.size()));
+    for (size_t i = 0; i < reaches.size(); ++i)
     {
-      kept.push_back(std::move(view));
+      reaches[i] = anyRank[i] > 0;
+    }
+  }
+  std::vector<std::unique_ptr<View>> kept;
+  for (size_t i = 0; i < views.size(); ++i)
+  {
+    if (reaches[i])
+    {
+      kept.push_back(std::move(views[i]));
     }
   }
 
@@ -589,10 +656,87 @@ void vtkMRGIReflectiveShadowMapPass::Render(const vtkRenderState* s)
   renderer->SetActiveCamera(savedCamera);
   savedCamera->UnRegister(this);
 
+  if (distributed && lightsAgree && !this->Internal->Views.empty())
+  {
+    this->CompositeViews(renWin);
+  }
+  if (this->Compositor)
+  {
+    this->CompositeBytes = this->Compositor->GetBytesSent() - bytesBefore;
+  }
+
   this->Internal->Signature = signature.str();
   this->Internal->ContentTime.Modified();
   this->NumberOfRenders += static_cast<vtkIdType>(this->Internal->Views.size());
   vtkOpenGLCheckErrorMacro("failed after rendering reflective shadow maps");
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIReflectiveShadowMapPass::CompositeViews(vtkOpenGLRenderWindow* renWin)
+{
+  // One buffer for all views (planar per view, as mrgi_rsm_composite.h
+  // lays it out): one message per tree edge.
+  const size_t texels =
+    static_cast<size_t>(this->Resolution) * static_cast<size_t>(this->Resolution);
+  const size_t viewFloats = texels * MRGI_RSM_COMPOSITE_RECORD_FLOATS;
+  const size_t count = this->Internal->Views.size();
+  std::vector<float> mine(count * viewFloats, 0.0f);
+  bool ok = true;
+  std::vector<mrgi_rsm_view_key> keys(count);
+  for (size_t v = 0; v < count; ++v)
+  {
+    const View& view = *this->Internal->Views[v];
+    for (int a = 0; a < MRGI_RSM_ATTACHMENTS; ++a)
+    {
+      std::vector<float> rgba;
+      if (vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, view.Textures[a], rgba) &&
+        rgba.size() == texels * 4)
+      {
+        std::copy(rgba.begin(), rgba.end(),
+          mine.begin() + static_cast<long>(v * viewFloats + a * texels * 4));
+      }
+      else
+      {
+        ok = false; // this rank's view stays empty; the others still get theirs
+      }
+    }
+    // Nearest: from the light (perspective), along the view (orthographic).
+    mrgi_rsm_view_key& key = keys[v];
+    const double* eye = view.Camera->GetPosition();
+    const double* focal = view.Camera->GetFocalPoint();
+    for (int k = 0; k < 3; ++k)
+    {
+      key.origin[k] = eye[k];
+      key.direction[k] = focal[k] - eye[k];
+    }
+    key.perspective = view.Perspective ? 1 : 0;
+  }
+  if (!ok)
+  {
+    vtkErrorMacro("could not read this process's reflective shadow maps back: "
+                  "its geometry is missing from the composited maps");
+  }
+
+  if (!this->Compositor->CompositeViews(mine.data(), texels, static_cast<int>(count), keys.data()))
+  {
+    vtkErrorMacro("the reflective shadow maps could not be composited across the processes");
+    ok = false;
+  }
+
+  for (size_t v = 0; v < count; ++v)
+  {
+    for (int a = 0; a < MRGI_RSM_ATTACHMENTS; ++a)
+    {
+      vtkTextureObject* t = this->Internal->Views[v]->Textures[a];
+      t->Bind();
+      glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, this->Resolution, this->Resolution, GL_RGBA, GL_FLOAT,
+        mine.data() + v * viewFloats + static_cast<size_t>(a) * texels * 4);
+      t->Deactivate();
+    }
+  }
+  ++this->NumberOfComposites;
+  vtkOpenGLCheckErrorMacro("failed after uploading the composited reflective shadow maps");
+  return ok;
 }
 
 //------------------------------------------------------------------------------
@@ -727,4 +871,7 @@ void vtkMRGIReflectiveShadowMapPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Resolution: " << this->Resolution << "\n";
   os << indent << "NumberOfViews: " << this->GetNumberOfViews() << "\n";
   os << indent << "NumberOfRenders: " << this->NumberOfRenders << "\n";
+  os << indent << "Compositor: " << this->Compositor << "\n";
+  os << indent << "CompositeBytes: " << this->CompositeBytes << "\n";
+  os << indent << "NumberOfComposites: " << this->NumberOfComposites << "\n";
 }

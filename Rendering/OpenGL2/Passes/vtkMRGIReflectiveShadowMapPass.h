@@ -25,6 +25,20 @@
  * The projection of every view is square and set explicitly, so the window's
  * aspect ratio never distorts it. All visible opaque props are rendered, also
  * those outside the camera's view: light bounces off them into the image.
+ *
+ * **Distributed rendering** (SetCompositor() with more than one process,
+ * e.g. ParaView's ranks, each holding a piece of the data; the compositor
+ * over a vtkMultiProcessController is vtkMRGIControllerRSMCompositor in
+ * MRGI::RenderingParallel): every rank
+ * builds the same views (from the bounds of all ranks' props, and keeping a
+ * view that reaches any rank's props), renders its own props into them, and
+ * the views are then composited across ranks texel by texel, keeping the
+ * record nearest the light (mrgi_rsm_composite.h), so that every rank holds
+ * the maps one process would render over all the data, and selects the same
+ * VPLs from them. Render() is then collective: every rank must call it for
+ * the same frames, with the same lights and resolution. Whether the maps
+ * are re-rendered is decided together (any rank's change re-renders all),
+ * so the ranks never wait for each other in different collectives.
  */
 #ifndef vtkMRGIReflectiveShadowMapPass_h
 #define vtkMRGIReflectiveShadowMapPass_h
@@ -40,6 +54,7 @@ class vtkRenderWindow;
 class vtkRenderer;
 class vtkTextureObject;
 class vtkMatrix4x4;
+class vtkMRGIRSMCompositor;
 
 class MRGIRENDERING_EXPORT vtkMRGIReflectiveShadowMapPass : public vtkOpenGLRenderPass
 {
@@ -89,6 +104,26 @@ public:
   vtkMTimeType GetContentTime() const;
 
   ///@{
+  /**
+   * How the maps are composited across processes (see the class comment);
+   * null (default) or a compositor of one process: no communication.
+   */
+  virtual void SetCompositor(vtkMRGIRSMCompositor* compositor);
+  vtkGetObjectMacro(Compositor, vtkMRGIRSMCompositor);
+  ///@}
+
+  /**
+   * Bytes this process sent for the composite in its last Render(): the
+   * collective decision (a few doubles, every frame) plus, when the maps
+   * were re-rendered, the maps themselves (views x Resolution^2 x 48 bytes
+   * per message this process sends). 0 without a compositor.
+   */
+  vtkGetMacro(CompositeBytes, vtkTypeInt64);
+
+  /** How many times the maps were composited across processes since creation. */
+  vtkGetMacro(NumberOfComposites, vtkIdType);
+
+  ///@{
   /** Shader hooks: emit the RSM quantities instead of VTK's colour. */
   bool PostReplaceShaderValues(std::string& vertexShader, std::string& geometryShader,
     std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop) override;
@@ -104,6 +139,17 @@ protected:
 
   /** Warn once per data change when a prop's points or normals hold NaN/Inf. */
   void CheckInput(vtkProp* prop);
+
+  /**
+   * Composite the rendered views across the compositor's processes
+   * (collective); returns false (with an error) when a read-back or the
+   * composite failed on this process, which still took part.
+   */
+  bool CompositeViews(vtkOpenGLRenderWindow* window);
+
+  vtkMRGIRSMCompositor* Compositor = nullptr;
+  vtkTypeInt64 CompositeBytes = 0;
+  vtkIdType NumberOfComposites = 0;
 
   int Resolution = 256;
   vtkIdType NumberOfRenders = 0;

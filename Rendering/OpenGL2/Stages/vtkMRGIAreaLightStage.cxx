@@ -12,10 +12,11 @@
 #include "vtkMRGIIncrementalStencil.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIProgramCache.h"
-#include "vtkMRGIStageResources.h"
+#include "vtkMRGIRSMCompositor.h"
 #include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGISpecularStencil.h"
+#include "vtkMRGIStageResources.h"
 #include "vtkMRGIUpsample.h"
 #include "vtkMRGIVarianceShadowQuery.h"
 #include "vtkMRGIVisibilityPyramid.h"
@@ -36,7 +37,7 @@
 #include "vtkShaderProgram.h"
 #include "vtkTexture.h"
 #include "vtkTextureObject.h"
-
+#include "vtkTypeUInt32Array.h"
 
 #include "mrgi_area_light.h"
 #include "mrgi_multires.h"
@@ -48,6 +49,7 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkMRGIAreaLightStage);
+vtkCxxSetObjectMacro(vtkMRGIAreaLightStage, Compositor, vtkMRGIRSMCompositor);
 
 namespace
 {
@@ -121,6 +123,7 @@ vtkMRGIAreaLightStage::vtkMRGIAreaLightStage()
 //------------------------------------------------------------------------------
 vtkMRGIAreaLightStage::~vtkMRGIAreaLightStage()
 {
+  this->SetCompositor(nullptr);
   this->ReleaseGraphicsResources(nullptr);
   this->RemoveAllLights();
   this->Voxelization->Delete();
@@ -222,7 +225,16 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
   // is added to the colour once (and read by GetAreaLightBuffer()). Timed as
   // the stage "area" with its steps.
   const std::string signature = this->Inputs(frame, buffer);
-  if (!signature.empty() && signature == this->Signature && this->SumTexture)
+  bool reuse = !signature.empty() && signature == this->Signature && this->SumTexture;
+  const bool distributed = this->Compositor && this->Compositor->GetNumberOfProcesses() > 1;
+  if (distributed)
+  {
+    // Together: a process recomputing alone would wait in the voxels' OR.
+    double recompute = reuse ? 0.0 : 1.0;
+    this->Compositor->AllReduceMax(&recompute, 1);
+    reuse = recompute == 0.0;
+  }
+  if (reuse)
   {
     // Nothing the lights' sum depends on changed: add it again.
     ScopedStage stage(timer, "area");
@@ -294,6 +306,26 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
     else
     {
       vtkErrorMacro("area lights: could not voxelize the scene; drawing them without shadows");
+    }
+    if (distributed)
+    {
+      // Every process's geometry in every process's voxels (same camera,
+      // clipping range and voxel size: the same grid). A process that
+      // could not voxelize still takes part, with no bits.
+      const int* size = this->Voxelization->GetVoxelSize();
+      vtkNew<vtkTypeUInt32Array> bits;
+      if (!voxels || !this->Voxelization->ReadVoxels(renWin, bits))
+      {
+        bits->SetNumberOfComponents(4);
+        bits->SetNumberOfTuples(static_cast<vtkIdType>(size[0]) * size[1]);
+        bits->Fill(0);
+      }
+      if (!this->Compositor->AllReduceBitwiseOr(bits->GetPointer(0), bits->GetNumberOfValues()) ||
+        (voxels && !this->Voxelization->WriteVoxels(renWin, bits)))
+      {
+        vtkErrorMacro("area lights: could not merge the processes' voxels; shadows from other "
+                      "processes' geometry are missing");
+      }
     }
   }
   bool drawn = false;

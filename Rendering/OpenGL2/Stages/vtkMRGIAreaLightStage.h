@@ -46,6 +46,7 @@ class vtkMRGIAreaLight;
 class vtkMRGIGather;
 class vtkMRGIIncrementalStencil;
 class vtkMRGIMultiresolution;
+class vtkMRGIRSMCompositor;
 class vtkMRGISpecularStencil;
 class vtkMRGIUpsample;
 class vtkMRGIVarianceShadowQuery;
@@ -165,6 +166,18 @@ public:
   /** Free every GL resource (the lights' too). */
   void ReleaseGraphicsResources(vtkWindow* w);
 
+  ///@{
+  /**
+   * Distributed rendering: with a compositor of more than one process, the
+   * processes decide together whether the lights' sum is reused (any
+   * process's change recomputes it on all) and OR their voxelizations, so
+   * that geometry on any process shadows the area lights on every process.
+   * Render() is then collective. Set by vtkMRGIPass::SetRSMCompositor().
+   */
+  virtual void SetCompositor(vtkMRGIRSMCompositor* compositor);
+  vtkGetObjectMacro(Compositor, vtkMRGIRSMCompositor);
+  ///@}
+
 protected:
   vtkMRGIAreaLightStage();
   ~vtkMRGIAreaLightStage() override;
@@ -200,6 +213,7 @@ protected:
   // What the sum was computed from (empty: nothing cached).
   std::string Signature;
 
+  vtkMRGIRSMCompositor* Compositor = nullptr;
   vtkMRGIVoxelization* Voxelization = nullptr;
   vtkMRGIVisibilityPyramid* VisibilityPyramid = nullptr;
   vtkMRGIVarianceShadowQuery* VarianceShadowQuery = nullptr;

@@ -663,6 +663,39 @@ bool vtkMRGIVoxelization::Voxelize(
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIVoxelization::WriteVoxels(vtkRenderWindow* window, vtkTypeUInt32Array* voxels)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  if (!renWin || !voxels || !in.HasGrid || !in.Voxels || renWin != in.Window)
+  {
+    vtkErrorMacro("WriteVoxels: needs the window of a successful Voxelize() and an array");
+    return false;
+  }
+  const int w = in.Grid.width, h = in.Grid.height;
+  if (voxels->GetNumberOfComponents() != MRGI_VOXEL_CHANNELS ||
+    voxels->GetNumberOfTuples() != static_cast<vtkIdType>(w) * h)
+  {
+    vtkErrorMacro("WriteVoxels: the array is not " << w << " x " << h << " x "
+                                                   << MRGI_VOXEL_CHANNELS << " words");
+    return false;
+  }
+  renWin->MakeCurrent();
+  ClearGLErrors();
+  in.Voxels->Bind();
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTexSubImage2D(
+    GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_INT, voxels->GetPointer(0));
+  in.Voxels->Deactivate();
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("WriteVoxels: OpenGL error 0x" << std::hex << error << std::dec);
+    return false;
+  }
+  return true;
+}
+
 bool vtkMRGIVoxelization::ReadVoxels(vtkRenderWindow* window, vtkTypeUInt32Array* voxels)
 {
   Internals& in = *this->Internal;

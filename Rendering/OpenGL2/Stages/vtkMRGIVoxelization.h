@@ -119,6 +119,14 @@ public:
   bool ReadVoxels(vtkRenderWindow* window, vtkTypeUInt32Array* voxels);
 
   /**
+   * Replace the voxels of the last successful Voxelize() by `voxels`, in
+   * ReadVoxels()'s layout and size (e.g. the OR of several processes'
+   * voxels over the same grid). False (voxels untouched) under the same
+   * conditions as ReadVoxels(), or for an array of another size.
+   */
+  bool WriteVoxels(vtkRenderWindow* window, vtkTypeUInt32Array* voxels);
+
+  /**
    * The voxel buffer (GL_RGBA32UI, nearest filtering) of the last
    * successful Voxelize(), for later passes (usampler2D + texelFetch);
    * nullptr before. Owned by this object.

@@ -1,0 +1,8 @@
+#include "vtkMRGIRSMCompositor.h"
+
+//------------------------------------------------------------------------------
+void vtkMRGIRSMCompositor::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "BytesSent: " << this->BytesSent << "\n";
+}
