@@ -1,7 +1,9 @@
 #include "vtkPVMRGIRenderView.h"
 
+#include "vtkMRGIControllerRSMCompositor.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIPass.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPVMRGIHeadless.h"
@@ -16,6 +18,7 @@ vtkPVMRGIRenderView::vtkPVMRGIRenderView()
 {
   this->Steps = vtkRenderStepsPass::New();
   this->MRGIPass = vtkMRGIPass::New();
+  this->Compositor = vtkMRGIControllerRSMCompositor::New();
   this->MRGIPass->SetDelegatePass(this->Steps);
   // ParaView's view exposure is MRGI's fixed EV 0 and no tone curve by
   // default: the image is the HDR result clamped, as VTK's own view shows
@@ -37,7 +40,9 @@ vtkPVMRGIRenderView::~vtkPVMRGIRenderView()
   {
     this->MRGIPass->ReleaseGraphicsResources(window);
   }
+  this->MRGIPass->SetRSMCompositor(nullptr);
   this->MRGIPass->Delete();
+  this->Compositor->Delete();
   this->Steps->Delete();
 }
 
@@ -45,7 +50,31 @@ vtkPVMRGIRenderView::~vtkPVMRGIRenderView()
 void vtkPVMRGIRenderView::Render(bool interactive, bool skip_rendering)
 {
   vtkPVMRGIPrepareHeadlessView(vtkOpenGLRenderWindow::SafeDownCast(this->GetRenderWindow()));
+  // Every rank must see the same VPLs: when this frame is rendered by all
+  // ranks and composited by IceT, the reflective shadow maps are composited
+  // across them (collective). ParaView decided in Update(), identically on
+  // every rank, whether this frame is distributed; a frame rendered on one
+  // process only must not start a collective.
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  const bool distributed = controller && controller->GetNumberOfProcesses() > 1 &&
+    (interactive ? this->GetUseDistributedRenderingForLODRender()
+                 : this->GetUseDistributedRenderingForRender());
+  if (distributed)
+  {
+    this->Compositor->SetController(controller);
+    this->MRGIPass->SetRSMCompositor(this->Compositor);
+  }
+  else
+  {
+    this->MRGIPass->SetRSMCompositor(nullptr);
+  }
   this->Superclass::Render(interactive, skip_rendering);
+}
+
+//------------------------------------------------------------------------------
+double vtkPVMRGIRenderView::GetRSMCompositeBytes()
+{
+  return static_cast<double>(this->MRGIPass->GetRSMCompositeBytes());
 }
 
 //------------------------------------------------------------------------------

@@ -12,6 +12,11 @@
  * ParaView swaps its render pass out for value passes and ray tracing and
  * back afterwards, so those keep working.
  *
+ * With MPI (pvbatch under mpirun, pvserver), every frame that all ranks
+ * render composites the reflective shadow maps across the ranks
+ * (vtkMRGIControllerRSMCompositor), so that every rank gathers from the
+ * same VPLs.
+ *
  * The properties forward to the pass (vtkMRGIPass, vtkMRGIMultiresolution);
  * GetMRGIPass() gives the pass itself. The server-manager proxy is
  * "MRGIRenderView" (label "MRGI Render View", MRGIRenderView.xml).
@@ -24,6 +29,7 @@
 #include "MRGIParaViewModule.h" // For export macro
 #include "vtkPVRenderView.h"
 
+class vtkMRGIControllerRSMCompositor;
 class vtkMRGIPass;
 class vtkRenderStepsPass;
 
@@ -69,6 +75,13 @@ public:
   vtkMRGIPass* GetMRGIPass() { return this->MRGIPass; }
 
   /**
+   * Bytes this rank sent compositing the reflective shadow maps across MPI
+   * ranks in the last frame (0 with one process; a small decision message
+   * when the maps did not change). See Documentation/ParaView-MPI.md.
+   */
+  double GetRSMCompositeBytes();
+
+  /**
    * The backend of the render windows ParaView makes in this process: "x",
    * or "egl"/"osmesa" when the plugin supplied its headless windows.
    */
@@ -88,6 +101,7 @@ protected:
 
   bool GlobalIllumination = true;
   vtkMRGIPass* MRGIPass = nullptr;
+  vtkMRGIControllerRSMCompositor* Compositor = nullptr;
   vtkRenderStepsPass* Steps = nullptr;
 
 private:
