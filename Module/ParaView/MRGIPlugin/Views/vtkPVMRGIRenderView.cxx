@@ -1,13 +1,18 @@
 #include "vtkPVMRGIRenderView.h"
 
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIPass.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkPVMRGIAreaLights.h"
 #include "vtkPVMRGIHeadless.h"
 #include "vtkPVSynchronizedRenderer.h"
 #include "vtkRenderStepsPass.h"
 #include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
 
 vtkStandardNewMacro(vtkPVMRGIRenderView);
 
@@ -22,11 +27,39 @@ vtkPVMRGIRenderView::vtkPVMRGIRenderView()
   // direct light. Automatic exposure would differ between MPI ranks.
   this->MRGIPass->SetAutoExposure(false);
   this->SynchronizedRenderers->SetRenderPass(this->MRGIPass);
+
+  // The area lights are read from the data each representation delivered,
+  // which ParaView sets on the mappers during Render(), before the
+  // renderer draws: the renderer's StartEvent is the first moment they
+  // are all there and the last before the pass runs.
+  this->AreaLights.reset(new vtkPVMRGIAreaLights);
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetCallback(&vtkPVMRGIRenderView::SynchronizeAreaLights);
+  observer->SetClientData(this);
+  this->AreaLightObserver = this->GetRenderer()->AddObserver(vtkCommand::StartEvent, observer);
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SynchronizeAreaLights(vtkObject*, unsigned long, void* view, void*)
+{
+  auto* self = static_cast<vtkPVMRGIRenderView*>(view);
+  self->AreaLights->Synchronize(self->GetRenderer(), self->MRGIPass, self);
+}
+
+//------------------------------------------------------------------------------
+int vtkPVMRGIRenderView::GetNumberOfAreaLights()
+{
+  return this->AreaLights->GetNumberOfLights();
 }
 
 //------------------------------------------------------------------------------
 vtkPVMRGIRenderView::~vtkPVMRGIRenderView()
 {
+  if (vtkRenderer* renderer = this->GetRenderer())
+  {
+    renderer->RemoveObserver(this->AreaLightObserver);
+  }
+  this->AreaLights->RemoveAll(this->MRGIPass);
   if (this->SynchronizedRenderers && this->SynchronizedRenderers->GetRenderPass() == this->MRGIPass)
   {
     this->SynchronizedRenderers->SetRenderPass(nullptr);
@@ -148,6 +181,7 @@ void vtkPVMRGIRenderView::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "GlobalIllumination: " << this->GlobalIllumination << "\n";
   os << indent << "HeadlessBackend: " << GetHeadlessBackend() << "\n";
+  os << indent << "NumberOfAreaLights: " << this->AreaLights->GetNumberOfLights() << "\n";
   os << indent << "MRGIPass:\n";
   this->MRGIPass->PrintSelf(os, indent.GetNextIndent());
 }

@@ -13,7 +13,12 @@
  * back afterwards, so those keep working.
  *
  * The properties forward to the pass (vtkMRGIPass, vtkMRGIMultiresolution);
- * GetMRGIPass() gives the pass itself. The server-manager proxy is
+ * GetMRGIPass() gives the pass itself.
+ *
+ * Area lights: every visible representation of a vtkMRGIAreaLightSource
+ * ("MRGI Area Light", "MRGI Textured Area Light") lights the scene as a
+ * vtkMRGIAreaLight of the pass; hiding or deleting it removes the light
+ * (vtkPVMRGIAreaLights.h). The server-manager proxy is
  * "MRGIRenderView" (label "MRGI Render View", MRGIRenderView.xml).
  *
  * @sa vtkMRGIPass vtkPVRenderView
@@ -24,7 +29,10 @@
 #include "MRGIParaViewModule.h" // For export macro
 #include "vtkPVRenderView.h"
 
+#include <memory> // For std::unique_ptr
+
 class vtkMRGIPass;
+class vtkPVMRGIAreaLights;
 class vtkRenderStepsPass;
 
 class MRGIPARAVIEW_EXPORT vtkPVMRGIRenderView : public vtkPVRenderView
@@ -65,6 +73,13 @@ public:
   void SetToneMapping(bool enabled);
   ///@}
 
+  /**
+   * Area lights in the last render: one per visible representation of an
+   * "MRGI Area Light" / "MRGI Textured Area Light" (vtkMRGIAreaLightSource;
+   * see vtkPVMRGIAreaLights.h for how the view finds them).
+   */
+  int GetNumberOfAreaLights();
+
   /** The pass, for scripts that set what the view's properties do not cover. */
   vtkMRGIPass* GetMRGIPass() { return this->MRGIPass; }
 
@@ -86,9 +101,14 @@ protected:
    */
   void Render(bool interactive, bool skip_rendering) override;
 
+  /** Renderer StartEvent: brings the pass's area lights in step with the data shown. */
+  static void SynchronizeAreaLights(vtkObject*, unsigned long, void* view, void*);
+
   bool GlobalIllumination = true;
   vtkMRGIPass* MRGIPass = nullptr;
   vtkRenderStepsPass* Steps = nullptr;
+  std::unique_ptr<vtkPVMRGIAreaLights> AreaLights;
+  unsigned long AreaLightObserver = 0;
 
 private:
   vtkPVMRGIRenderView(const vtkPVMRGIRenderView&) = delete;
