@@ -15,10 +15,12 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
 
 #include "mrgi_area_light.h"
 #include "mrgi_error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -261,9 +263,37 @@ int vtkMRGIAreaLightSource::RequestData(
       radiance->SetTypedTuple(cell, rgb);
     }
   }
+
+  // The display colours (8 bits: VTK converts float colours to bytes
+  // without clamping, so a radiance of 17 would show as 17 * 255 mod 256).
+  // vtkMRGIAreaLight's emitter rule: a uniform light shows its radiance
+  // clamped (a bright light is white, as MRGI's HDR output clamps it); a
+  // picture is divided by its peak P = max radiance when P > 1, so that a
+  // bright picture stays a picture, not a white rectangle.
+  double peak = 1.0;
+  if (picture.Texels)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      peak = std::max(peak, radiance->GetRange(c)[1]);
+    }
+  }
+  vtkNew<vtkUnsignedCharArray> display;
+  display->SetName("DisplayColors");
+  display->SetNumberOfComponents(3);
+  display->SetNumberOfTuples(radiance->GetNumberOfTuples());
+  for (vtkIdType cell = 0; cell < radiance->GetNumberOfTuples(); ++cell)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const double v = std::min(1.0, radiance->GetTypedComponent(cell, c) / peak);
+      display->SetTypedComponent(cell, c, static_cast<unsigned char>(std::lround(255.0 * v)));
+    }
+  }
   output->SetPoints(points);
   output->SetPolys(quads);
   output->GetCellData()->AddArray(radiance);
+  output->GetCellData()->AddArray(display);
   if (picture.Texels)
   {
     output->GetCellData()->AddArray(picture.Texels);

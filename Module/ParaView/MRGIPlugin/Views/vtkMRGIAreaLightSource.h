@@ -29,8 +29,13 @@
  * quad without input), points ordered row by row from the corner
  * Center - EdgeU/2 - EdgeV/2, quads counter-clockwise seen from the
  * emitting side, with
- * - cell array "Radiance" (float RGB): L per texel, for display (colour by
- *   it with Map Scalars off; values above 1 show saturated);
+ * - cell array "Radiance" (float RGB): L per texel (HDR; colour-map it to
+ *   see the values);
+ * - cell array "DisplayColors" (unsigned char RGB): what to show (colour
+ *   by it with Map Scalars off), as vtkMRGIAreaLight's own emitter shows
+ *   the light: a uniform light its radiance clamped to 1 (a bright light
+ *   is white), a picture its radiance divided by its peak when that is
+ *   above 1 (a bright picture stays a picture);
  * - cell array "Texture" (float RGB, only with an input): T per texel, the
  *   picture the light emits, VTK image order (row 0 at -EdgeV/2);
  * - field array "MRGIAreaLight" (double, one tuple of

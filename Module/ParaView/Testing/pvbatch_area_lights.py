@@ -1,0 +1,110 @@
+"""pvbatch: MRGI Area Lights in an MRGI Render View.
+
+usage: pvbatch pvbatch_area_lights.py PLUGIN OUT_DIR [SIZE]
+       pvbatch pvbatch_area_lights.py PLUGIN OUT_DIR [SIZE] --invalid
+
+Writes to OUT_DIR (PNG, SIZE x SIZE, default 256):
+- area.png: the Cornell box of `mrgi-render cornell-area` (its meshes and
+  its intensity-0 scene light, from the MRGIScene source) lit by an "MRGI
+  Area Light" with the parameters of the scene's area light (the MRGIScene
+  source's AreaLightParameters), to compare with
+  `mrgi-render cornell-area --exposure 0 --aa off`; the scene's emitter
+  mesh is hidden: the light's rectangle, shown self-luminous, stands for it;
+- hidden.png: the same with the light hidden (no area light: dark);
+- textured.png: the same rectangle as an "MRGI Textured Area Light" whose
+  picture is ParaView's Wavelet source (21 x 21, values divided by their
+  maximum through the Intensity);
+- reloaded.png: after the light was deleted and the untextured one shown
+  again (the view drops and re-adds lights).
+Asserts the view's NumberOfAreaLights after each render. With --invalid it
+shows a light whose edges are parallel, then a textured light whose
+picture has negative values, and asserts that the view uses no light for
+either (the errors are expected in the log; the caller checks them).
+"""
+import os
+import sys
+
+from paraview import simple
+
+plugin, out_dir = sys.argv[1], sys.argv[2]
+size = int(sys.argv[3]) if len(sys.argv) > 3 and sys.argv[3].isdigit() else 256
+simple.LoadPlugin(plugin, remote=False)  # into paraview.simple
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from mrgi_paraview_scene import (  # noqa: E402
+    scene_area_lights, show_area_light, show_mrgi_scene, view_area_light_count)
+
+
+def check_count(view, expected, when):
+    count = view_area_light_count(view)
+    if count != expected:
+        raise SystemExit("pvbatch_area_lights: %s: the view used %d area lights, expected %d"
+                         % (when, count, expected))
+    print("pvbatch_area_lights: %s: %d area light(s)" % (when, count))
+
+
+def save(view, name):
+    simple.Render(view)
+    path = os.path.join(out_dir, name)
+    simple.SaveScreenshot(path, view, ImageResolution=[size, size])
+    if not os.path.isfile(path):
+        raise SystemExit("pvbatch_area_lights: no screenshot written to " + path)
+    print("pvbatch_area_lights: wrote", path)
+
+
+view = simple.CreateView("MRGIRenderView")
+view.ViewSize = [size, size]
+view.UseFXAA = 0
+sources = show_mrgi_scene(view, "cornell-area")
+# The light's rectangle stands for the scene's emitter mesh (the same
+# rectangle): hidden, so that what the image shows of the emitter is the
+# MRGI Area Light's own display.
+emitters = [s for s in sources if max(s.FieldData["Emission"].GetRange(c)[1] for c in range(3)) > 0]
+if len(emitters) != 1:
+    raise SystemExit("pvbatch_area_lights: cornell-area has %d emitter meshes, expected 1"
+                     % len(emitters))
+simple.Hide(emitters[0], view)
+params = scene_area_lights("cornell-area")
+if len(params) != 1:
+    raise SystemExit("pvbatch_area_lights: cornell-area has %d area lights, expected 1"
+                     % len(params))
+params = params[0]
+
+if "--invalid" in sys.argv:
+    bad = dict(params, EdgeV=params["EdgeU"])
+    light = simple.MRGIAreaLight(**bad)
+    show_area_light(light, view)
+    save(view, "invalid.png")
+    check_count(view, 0, "parallel edges")
+    simple.Delete(light)
+    # A picture with negative values (this wavelet extent reaches below 0).
+    negative = simple.Wavelet(WholeExtent=[0, 63, 0, 63, 0, 0])
+    light = simple.MRGITexturedAreaLight(Input=negative, **params)
+    show_area_light(light, view)
+    save(view, "invalid-picture.png")
+    check_count(view, 0, "negative picture")
+    sys.exit(0)
+
+light = simple.MRGIAreaLight(**params)
+show_area_light(light, view)
+save(view, "area.png")
+check_count(view, 1, "area light shown")
+
+simple.Hide(light, view)
+save(view, "hidden.png")
+check_count(view, 0, "area light hidden")
+
+# The z = 0 slice of ParaView's default wavelet: 21 x 21 values in about
+# [37, 277] (larger extents reach negative values, which a light refuses).
+wavelet = simple.Wavelet(WholeExtent=[-10, 10, -10, 10, 0, 0])
+wavelet.UpdatePipeline()
+top = wavelet.PointData["RTData"].GetRange()[1]
+textured = simple.MRGITexturedAreaLight(
+    Input=wavelet, **dict(params, Intensity=params["Intensity"] / top))
+show_area_light(textured, view)
+save(view, "textured.png")
+check_count(view, 1, "textured area light shown")
+
+simple.Delete(textured)
+simple.Show(light, view)
+save(view, "reloaded.png")
+check_count(view, 1, "area light shown again")
