@@ -11,7 +11,8 @@ information properties: nothing here repeats the scene's numbers.
 scene_area_lights("cornell-area") gives a scene's area lights as keyword
 arguments of MRGIAreaLight; show_area_light(light, view) shows an MRGI
 (Textured) Area Light as a self-luminous emitter; view_area_light_count(view)
-is the number of area lights the view used in its last render.
+is the number of area lights the view used in its last render,
+view_area_light_updates(view) how often it read a light from changed data.
 """
 from paraview import simple
 
@@ -130,3 +131,9 @@ def view_area_light_count(view):
     """The view's NumberOfAreaLights information property (after a render)."""
     view.UpdatePropertyInformation()
     return int(_info(view, "NumberOfAreaLights")[0])
+
+
+def view_area_light_updates(view):
+    """The view's NumberOfAreaLightUpdates information property."""
+    view.UpdatePropertyInformation()
+    return int(_info(view, "NumberOfAreaLightUpdates")[0])

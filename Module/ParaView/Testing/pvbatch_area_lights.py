@@ -16,7 +16,8 @@ Writes to OUT_DIR (PNG, SIZE x SIZE, default 256):
   maximum through the Intensity);
 - reloaded.png: after the light was deleted and the untextured one shown
   again (the view drops and re-adds lights).
-Asserts the view's NumberOfAreaLights after each render. With --invalid it
+Asserts the view's NumberOfAreaLights after each render, and that a render
+of unchanged data does not read the light again (NumberOfAreaLightUpdates). With --invalid it
 shows a light whose edges are parallel, then a textured light whose
 picture has negative values, and asserts that the view uses no light for
 either (the errors are expected in the log; the caller checks them).
@@ -31,7 +32,8 @@ size = int(sys.argv[3]) if len(sys.argv) > 3 and sys.argv[3].isdigit() else 256
 simple.LoadPlugin(plugin, remote=False)  # into paraview.simple
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from mrgi_paraview_scene import (  # noqa: E402
-    scene_area_lights, show_area_light, show_mrgi_scene, view_area_light_count)
+    scene_area_lights, show_area_light, show_mrgi_scene, view_area_light_count,
+    view_area_light_updates)
 
 
 def check_count(view, expected, when):
@@ -88,6 +90,20 @@ light = simple.MRGIAreaLight(**params)
 show_area_light(light, view)
 save(view, "area.png")
 check_count(view, 1, "area light shown")
+
+# Unchanged data: another render reads nothing again; a changed property
+# (new data) is read once.
+updates = view_area_light_updates(view)
+simple.Render(view)
+if view_area_light_updates(view) != updates:
+    raise SystemExit("pvbatch_area_lights: an unchanged light was read again")
+light.Intensity = 2 * params["Intensity"]
+simple.Render(view)
+if view_area_light_updates(view) != updates + 1:
+    raise SystemExit("pvbatch_area_lights: a changed light was read %d times, expected once"
+                     % (view_area_light_updates(view) - updates))
+light.Intensity = params["Intensity"]
+print("pvbatch_area_lights: light updates: none for an unchanged light, one after a change")
 
 simple.Hide(light, view)
 save(view, "hidden.png")

@@ -53,6 +53,13 @@ int vtkPVMRGIRenderView::GetNumberOfAreaLights()
 }
 
 //------------------------------------------------------------------------------
+int vtkPVMRGIRenderView::GetNumberOfAreaLightUpdates()
+{
+  const vtkIdType updates = this->AreaLights->GetNumberOfUpdates();
+  return updates > VTK_INT_MAX ? VTK_INT_MAX : static_cast<int>(updates);
+}
+
+//------------------------------------------------------------------------------
 vtkPVMRGIRenderView::~vtkPVMRGIRenderView()
 {
   if (vtkRenderer* renderer = this->GetRenderer())

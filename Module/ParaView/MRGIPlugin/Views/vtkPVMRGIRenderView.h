@@ -80,6 +80,14 @@ public:
    */
   int GetNumberOfAreaLights();
 
+  /**
+   * Area-light updates so far: a light made, or its parameters and picture
+   * read again because its data changed. A render of unchanged data adds
+   * none (its picture is not copied nor its texture rebuilt). Saturates
+   * at VTK_INT_MAX (an int for ParaView's information property).
+   */
+  int GetNumberOfAreaLightUpdates();
+
   /** The pass, for scripts that set what the view's properties do not cover. */
   vtkMRGIPass* GetMRGIPass() { return this->MRGIPass; }
 
