@@ -293,7 +293,8 @@ int vtkMRGIAreaLightSource::RequestData(
   output->SetPoints(points);
   output->SetPolys(quads);
   output->GetCellData()->AddArray(radiance);
-  output->GetCellData()->AddArray(display);
+  // Active scalars: ParaView's Show() colours by them.
+  output->GetCellData()->SetScalars(display);
   if (picture.Texels)
   {
     output->GetCellData()->AddArray(picture.Texels);

@@ -31,8 +31,9 @@
  * emitting side, with
  * - cell array "Radiance" (float RGB): L per texel (HDR; colour-map it to
  *   see the values);
- * - cell array "DisplayColors" (unsigned char RGB): what to show (colour
- *   by it with Map Scalars off), as vtkMRGIAreaLight's own emitter shows
+ * - cell array "DisplayColors" (unsigned char RGB, the active cell
+ *   scalars, so ParaView colours by it when shown): what to show (with Map
+ *   Scalars off), as vtkMRGIAreaLight's own emitter shows
  *   the light: a uniform light its radiance clamped to 1 (a bright light
  *   is white), a picture its radiance divided by its peak when that is
  *   above 1 (a bright picture stays a picture);
