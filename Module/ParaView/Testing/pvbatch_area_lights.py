@@ -14,8 +14,9 @@ Writes to OUT_DIR (PNG, SIZE x SIZE, default 256):
 - textured.png: the same rectangle as an "MRGI Textured Area Light" whose
   picture is ParaView's Wavelet source (21 x 21, values divided by their
   maximum through the Intensity);
-- reloaded.png: after the light was deleted and the untextured one shown
-  again (the view drops and re-adds lights).
+- reloaded.png: after the untextured light was shown again beside the
+  textured one (two lights) and the textured one deleted (the view drops
+  and re-adds lights).
 Asserts the view's NumberOfAreaLights after each render, and that a render
 of unchanged data does not read the light again (NumberOfAreaLightUpdates). With --invalid it
 shows a light whose edges are parallel, then a textured light whose
@@ -120,7 +121,11 @@ show_area_light(textured, view)
 save(view, "textured.png")
 check_count(view, 1, "textured area light shown")
 
-simple.Delete(textured)
+# Both at once: two lights.
 simple.Show(light, view)
+simple.Render(view)
+check_count(view, 2, "both lights shown")
+
+simple.Delete(textured)
 save(view, "reloaded.png")
 check_count(view, 1, "area light shown again")
