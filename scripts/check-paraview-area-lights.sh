@@ -62,8 +62,10 @@ again="$(field relative_rms "$work/reloaded.png" "$work/area.png")"
 echo "check-paraview-area-lights: shown again vs first: relative RMS $again"
 at_most "$again" 0.001 || fail "the light shown again renders differently ($again)"
 
-# 5. Invalid lights: an error naming the problem, no light, no crash.
-pvbatch_headless "$tests/pvbatch_area_lights.py" "$plugin" "$work" 64 --invalid
+# 5. The output's layout (corners, colours, mark, pictures), then invalid
+#    lights: an error naming the problem, no light, no crash.
+pvbatch_headless "$tests/pvbatch_area_lights.py" "$plugin" "$work" 64 --checks
+grep -q "layout: quad corners" "$log" || { cat "$log" >&2; fail "the layout checks did not run"; }
 grep -q "MRGI Area Light: invalid parameters: .*parallel" "$log" ||
   { cat "$log" >&2; fail "no error named the parallel edges"; }
 grep -q "MRGI Textured Area Light: the input image's texel .* (a picture needs finite values >= 0)" "$log" ||

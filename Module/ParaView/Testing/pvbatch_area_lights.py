@@ -1,7 +1,7 @@
 """pvbatch: MRGI Area Lights in an MRGI Render View.
 
 usage: pvbatch pvbatch_area_lights.py PLUGIN OUT_DIR [SIZE]
-       pvbatch pvbatch_area_lights.py PLUGIN OUT_DIR [SIZE] --invalid
+       pvbatch pvbatch_area_lights.py PLUGIN OUT_DIR [SIZE] --checks
 
 Writes to OUT_DIR (PNG, SIZE x SIZE, default 256):
 - area.png: the Cornell box of `mrgi-render cornell-area` (its meshes and
@@ -18,7 +18,9 @@ Writes to OUT_DIR (PNG, SIZE x SIZE, default 256):
   textured one (two lights) and the textured one deleted (the view drops
   and re-adds lights).
 Asserts the view's NumberOfAreaLights after each render, and that a render
-of unchanged data does not read the light again (NumberOfAreaLightUpdates). With --invalid it
+of unchanged data does not read the light again (NumberOfAreaLightUpdates).
+With --checks it checks the light's output against its contract (corners,
+radiance, display colours, the field array, a 3D and an x-z picture), then
 shows a light whose edges are parallel, then a textured light whose
 picture has negative values, and asserts that the view uses no light for
 either (the errors are expected in the log; the caller checks them).
@@ -72,7 +74,57 @@ if len(params) != 1:
                      % len(params))
 params = params[0]
 
-if "--invalid" in sys.argv:
+def check_layout():
+    """The light's output against its contract (vtkMRGIAreaLightSource.h)."""
+    from paraview import servermanager
+
+    def fail(why):
+        raise SystemExit("pvbatch_area_lights: layout: " + why)
+
+    # Untextured: one quad, corners -u-v, +u-v, +u+v, -u+v around the centre.
+    c, u, v = [1.0, 2.0, 3.0], [2.0, 0.0, 0.0], [0.0, 0.0, -4.0]
+    quad = simple.MRGIAreaLight(Center=c, EdgeU=u, EdgeV=v, Color=[1, 0.5, 0.25], Intensity=2)
+    data = servermanager.Fetch(quad)
+    if data.GetNumberOfCells() != 1 or data.GetNumberOfPoints() != 4:
+        fail("the untextured light is not one quad")
+    cell = data.GetCell(0)
+    for k, (su, sv) in enumerate([(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)]):
+        p = data.GetPoint(cell.GetPointId(k))
+        want = [c[a] + su * u[a] + sv * v[a] for a in range(3)]
+        if max(abs(p[a] - want[a]) for a in range(3)) > 1e-9:
+            fail("corner %d is %s, expected %s" % (k, p, want))
+    radiance = [data.GetCellData().GetArray("Radiance").GetComponent(0, k) for k in range(3)]
+    display = [data.GetCellData().GetArray("DisplayColors").GetComponent(0, k) for k in range(3)]
+    if radiance != [2.0, 1.0, 0.5] or display != [255, 255, 128]:
+        fail("radiance %s / display %s of a (1, 0.5, 0.25) x 2 light" % (radiance, display))
+    mark = data.GetFieldData().GetArray("MRGIAreaLight")
+    if [mark.GetComponent(0, k) for k in range(16)] != c + u + v + [1, 0.5, 0.25, 2, 0, 0, 0]:
+        fail("the MRGIAreaLight field array does not hold the parameters")
+
+    # Pictures: a 3D image gives its first z slice; an x-z slice is used whole,
+    # x along EdgeU and z along EdgeV.
+    for extent, axes in (([-10, 10, -10, 10, -10, 10], "xy"), ([-10, 10, 0, 0, -10, 10], "xz")):
+        image_source = simple.Wavelet(WholeExtent=extent)
+        image = servermanager.Fetch(image_source)
+        light_data = servermanager.Fetch(simple.MRGITexturedAreaLight(Input=image_source))
+        dims = image.GetDimensions()
+        texture = light_data.GetCellData().GetArray("Texture")
+        values = image.GetPointData().GetArray("RTData")
+        if texture is None or texture.GetNumberOfTuples() != 21 * 21:
+            fail("%s picture: no 21 x 21 Texture array" % axes)
+        stride_v = dims[0] if axes == "xy" else dims[0] * dims[1]
+        for j in range(21):
+            for i in range(21):
+                want = values.GetValue(i + j * stride_v)
+                got = [texture.GetComponent(j * 21 + i, k) for k in range(3)]
+                if max(abs(g - want) for g in got) > 1e-3 * abs(want):
+                    fail("%s picture: texel (%d, %d) is %s, expected %g" % (axes, i, j, got, want))
+    print("pvbatch_area_lights: layout: quad corners, radiance, display colours, mark, "
+          "3D and x-z pictures as documented")
+
+
+if "--checks" in sys.argv:
+    check_layout()
     bad = dict(params, EdgeV=params["EdgeU"])
     light = simple.MRGIAreaLight(**bad)
     show_area_light(light, view)
