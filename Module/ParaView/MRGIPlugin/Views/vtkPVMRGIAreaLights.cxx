@@ -15,6 +15,7 @@
 #include "vtkMapper.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 
 #include <algorithm>
@@ -164,18 +165,23 @@ void vtkPVMRGIAreaLights::Synchronize(vtkRenderer* renderer, vtkMRGIPass* pass, 
         else if (!entry.Valid && wasValid)
         {
           pass->RemoveAreaLight(entry.Light);
+          entry.Light->ReleaseGraphicsResources(renderer->GetRenderWindow());
         }
       }
       kept.push_back(entry);
     }
   }
-  // What is left was hidden, removed or unmarked since the last render.
+  // What is left was hidden, removed or unmarked since the last render (or
+  // its data was replaced: a new entry took over). The light goes with its
+  // GPU textures, freed now while the window's context is current (the
+  // renderer made it current before its StartEvent).
   for (const Entry& gone : this->Entries)
   {
     if (gone.Valid)
     {
       pass->RemoveAreaLight(gone.Light);
     }
+    gone.Light->ReleaseGraphicsResources(renderer->GetRenderWindow());
   }
   this->Entries.swap(kept);
 }

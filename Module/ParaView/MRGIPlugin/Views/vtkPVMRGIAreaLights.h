@@ -13,7 +13,8 @@
  * parameters and the "Texture" cell array as its picture. The light's own
  * emitter actor stays hidden (SetVisible(false)): the representation
  * already draws the rectangle. A light whose actor was hidden or removed,
- * or whose data lost the mark, is removed from the pass.
+ * or whose data lost the mark, is removed from the pass, its GPU textures
+ * freed.
  *
  * Reading the mapper's input, not the pipeline's output, means the lights
  * come from what this process renders: in pvbatch, on every MPI rank, and
@@ -55,7 +56,11 @@ public:
    */
   void Synchronize(vtkRenderer* renderer, vtkMRGIPass* pass, vtkObject* reporter);
 
-  /** Removes every light this object added from `pass` (nullptr: just forgets them). */
+  /**
+   * Removes every light this object added from `pass` (nullptr: just
+   * forgets them). Release the pass's graphics resources first: it frees
+   * the GPU textures of the lights it still holds.
+   */
   void RemoveAll(vtkMRGIPass* pass);
 
   /** Lights currently in the pass. */

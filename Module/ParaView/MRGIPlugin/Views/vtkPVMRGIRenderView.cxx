@@ -66,7 +66,6 @@ vtkPVMRGIRenderView::~vtkPVMRGIRenderView()
   {
     renderer->RemoveObserver(this->AreaLightObserver);
   }
-  this->AreaLights->RemoveAll(this->MRGIPass);
   if (this->SynchronizedRenderers && this->SynchronizedRenderers->GetRenderPass() == this->MRGIPass)
   {
     this->SynchronizedRenderers->SetRenderPass(nullptr);
@@ -75,8 +74,9 @@ vtkPVMRGIRenderView::~vtkPVMRGIRenderView()
   // destructor: free the pass's GL objects while its context exists.
   if (vtkRenderWindow* window = this->GetRenderWindow())
   {
-    this->MRGIPass->ReleaseGraphicsResources(window);
+    this->MRGIPass->ReleaseGraphicsResources(window); // the area lights' textures too
   }
+  this->AreaLights->RemoveAll(this->MRGIPass);
   this->MRGIPass->Delete();
   this->Steps->Delete();
 }
