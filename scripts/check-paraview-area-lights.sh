@@ -44,25 +44,30 @@ rms="$(field relative_rms "$work/area.png" "$work/mrgi-render-cornell-area.png")
 echo "check-paraview-area-lights: MRGI Area Light vs mrgi-render cornell-area ${size}x${size}: relative RMS $rms"
 at_most "$rms" 0.01 || fail "relative RMS $rms > 0.01"
 
-# 2. Hidden: no light at all (the scene has no other light), so the image
+# 2. Moved (the display's Position): the light moves with its rectangle.
+moved="$(field relative_rms "$work/moved.png" "$work/area.png")"
+echo "check-paraview-area-lights: display moved 150 down vs in place: relative RMS $moved"
+at_least "$moved" 0.05 || fail "moving the light's display did not move the light ($moved)"
+
+# 3. Hidden: no light at all (the scene has no other light), so the image
 #    is (nearly) black and far from the lit one.
 off="$(field relative_rms "$work/hidden.png" "$work/area.png")"
 echo "check-paraview-area-lights: light hidden vs shown: relative RMS $off"
 at_least "$off" 0.9 || fail "hiding the light left the image lit ($off)"
 
-# 3. Textured by the Wavelet: another image, not black.
+# 4. Textured by the Wavelet: another image, not black.
 tex="$(field relative_rms "$work/textured.png" "$work/area.png")"
 lit="$(field rms "$work/textured.png" "$work/hidden.png")"
 echo "check-paraview-area-lights: textured vs untextured: relative RMS $tex; textured vs dark: RMS $lit"
 at_least "$tex" 0.05 || fail "the textured light looks like the untextured one ($tex)"
 at_least "$lit" 0.02 || fail "the textured light leaves the scene dark (RMS $lit from black)"
 
-# 4. Deleted and shown again: the same image as the first.
+# 5. Deleted and shown again: the same image as the first.
 again="$(field relative_rms "$work/reloaded.png" "$work/area.png")"
 echo "check-paraview-area-lights: shown again vs first: relative RMS $again"
 at_most "$again" 0.001 || fail "the light shown again renders differently ($again)"
 
-# 5. The output's layout (corners, colours, mark, pictures), then invalid
+# 6. The output's layout (corners, colours, mark, pictures), then invalid
 #    lights: an error naming the problem, no light, no crash.
 pvbatch_headless "$tests/pvbatch_area_lights.py" "$plugin" "$work" 64 --checks
 grep -q "layout: quad corners" "$log" || { cat "$log" >&2; fail "the layout checks did not run"; }

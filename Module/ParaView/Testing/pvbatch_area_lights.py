@@ -10,6 +10,8 @@ Writes to OUT_DIR (PNG, SIZE x SIZE, default 256):
   source's AreaLightParameters), to compare with
   `mrgi-render cornell-area --exposure 0 --aa off`; the scene's emitter
   mesh is hidden: the light's rectangle, shown self-luminous, stands for it;
+- moved.png: the light's display moved 150 down (Position): the light
+  moves with its rectangle;
 - hidden.png: the same with the light hidden (no area light: dark);
 - textured.png: the same rectangle as an "MRGI Textured Area Light" whose
   picture is ParaView's Wavelet source (21 x 21, values divided by their
@@ -140,7 +142,7 @@ if "--checks" in sys.argv:
     sys.exit(0)
 
 light = simple.MRGIAreaLight(**params)
-show_area_light(light, view)
+display = show_area_light(light, view)
 save(view, "area.png")
 check_count(view, 1, "area light shown")
 
@@ -157,6 +159,14 @@ if view_area_light_updates(view) != updates + 1:
                      % (view_area_light_updates(view) - updates))
 light.Intensity = params["Intensity"]
 print("pvbatch_area_lights: light updates: none for an unchanged light, one after a change")
+
+# The display's transform moves the light with its rectangle (read once).
+updates = view_area_light_updates(view)
+display.Position = [0.0, -150.0, 0.0]
+save(view, "moved.png")
+if view_area_light_updates(view) != updates + 1:
+    raise SystemExit("pvbatch_area_lights: a moved light was not placed again")
+display.Position = [0.0, 0.0, 0.0]
 
 simple.Hide(light, view)
 save(view, "hidden.png")

@@ -13,6 +13,7 @@
 #include "vtkMRGIAreaLightSource.h"
 #include "vtkMRGIPass.h"
 #include "vtkMapper.h"
+#include "vtkMatrix4x4.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkRenderWindow.h"
@@ -56,7 +57,8 @@ void MarkedLeaves(vtkDataObject* data, std::vector<vtkPolyData*>& leaves)
 }
 
 //------------------------------------------------------------------------------
-bool vtkPVMRGIAreaLights::ReadLight(vtkPolyData* data, vtkMRGIAreaLight* light, vtkObject* reporter)
+bool vtkPVMRGIAreaLights::ReadLight(vtkPolyData* data, const double matrix[16],
+  vtkMRGIAreaLight* light, bool readPicture, vtkObject* reporter)
 {
   auto* mark =
     vtkDoubleArray::SafeDownCast(data->GetFieldData()->GetAbstractArray("MRGIAreaLight"));
@@ -70,15 +72,30 @@ bool vtkPVMRGIAreaLights::ReadLight(vtkPolyData* data, vtkMRGIAreaLight* light, 
   }
   double v[VTK_MRGI_AREA_LIGHT_FIELD_SIZE];
   mark->GetTypedTuple(0, v);
-  light->SetCenter(v);
-  light->SetEdgeU(v + 3);
-  light->SetEdgeV(v + 6);
+  // Where the actor draws the rectangle (ParaView's display Position,
+  // Orientation, Scale): the centre as a point, the edges as vectors. A
+  // non-uniform scale can make the edges oblique: the light reports it.
+  double placed[9];
+  for (int r = 0; r < 3; ++r)
+  {
+    const double* row = matrix + 4 * r;
+    placed[r] = row[0] * v[0] + row[1] * v[1] + row[2] * v[2] + row[3];
+    placed[3 + r] = row[0] * v[3] + row[1] * v[4] + row[2] * v[5];
+    placed[6 + r] = row[0] * v[6] + row[1] * v[7] + row[2] * v[8];
+  }
+  light->SetCenter(placed);
+  light->SetEdgeU(placed + 3);
+  light->SetEdgeV(placed + 6);
   light->SetColor(v + 9);
   light->SetIntensity(v[12]);
   light->SetTwoSided(v[13] != 0.0);
   // The representation draws the rectangle: the light's own emitter stays hidden.
   light->SetVisible(false);
 
+  if (!readPicture)
+  {
+    return true; // moved only: the picture the light holds is still the data's
+  }
   const double width = v[14];
   const double height = v[15];
   if (width == 0.0 && height == 0.0)
@@ -152,11 +169,16 @@ void vtkPVMRGIAreaLights::Synchronize(vtkRenderer* renderer, vtkMRGIPass* pass, 
         entry.Data = data;
         entry.Light = vtkSmartPointer<vtkMRGIAreaLight>::New();
       }
-      if (entry.DataTime != data->GetMTime())
+      double matrix[16];
+      vtkMatrix4x4::DeepCopy(matrix, actor->GetMatrix());
+      const bool dataChanged = entry.DataTime != data->GetMTime();
+      if (dataChanged || !std::equal(matrix, matrix + 16, entry.Matrix))
       {
         entry.DataTime = data->GetMTime();
+        std::copy(matrix, matrix + 16, entry.Matrix);
         const bool wasValid = entry.Valid;
-        entry.Valid = ReadLight(data, entry.Light, reporter);
+        // An invalid light holds no picture: read it whenever it is read.
+        entry.Valid = ReadLight(data, matrix, entry.Light, dataChanged || !wasValid, reporter);
         ++this->NumberOfUpdates;
         if (entry.Valid && !wasValid)
         {

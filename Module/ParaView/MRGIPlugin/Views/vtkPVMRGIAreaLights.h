@@ -9,7 +9,9 @@
  * whose mapper's input (a vtkPolyData with cells, or a composite data set, leaf by
  * leaf, as ParaView's geometry representations deliver it) carries the
  * mark, it keeps one vtkMRGIAreaLight in the pass (one per data object,
- * however many actors draw it), with the mark's
+ * however many actors draw it; placed by the actor's matrix, so that
+ * ParaView's display Position, Orientation and Scale move the light with
+ * its rectangle), with the mark's
  * parameters and the "Texture" cell array as its picture. The light's own
  * emitter actor stays hidden (SetVisible(false)): the representation
  * already draws the rectangle. A light whose actor was hidden or removed,
@@ -22,8 +24,8 @@
  *
  * Caching: a light is updated (and its picture copied, so its texture
  * pyramid rebuilt) only when it is new (new data object: ParaView
- * delivered a new update) or its data's MTime changed; NumberOfUpdates
- * counts those updates.
+ * delivered a new update) or its data's MTime changed; an actor moved
+ * (matrix changed) only re-places it. NumberOfUpdates counts both.
  *
  * Bad data: a mark of the wrong size, or a Texture array that is missing,
  * of the wrong type or not width x height tuples, is reported once per data
@@ -74,12 +76,19 @@ private:
   {
     vtkWeakPointer<vtkPolyData> Data; // the light's key: null once ParaView freed it
     vtkMTimeType DataTime = 0;
+    double Matrix[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 }; // the actor's
+
     bool Valid = false;
     vtkSmartPointer<vtkMRGIAreaLight> Light;
   };
 
-  /** Reads `data`'s mark and picture into `entry.Light`; false (reported) when unusable. */
-  static bool ReadLight(vtkPolyData* data, vtkMRGIAreaLight* light, vtkObject* reporter);
+  /**
+   * Reads `data`'s mark into `light`, placed by the actor's `matrix`
+   * (row-major), and its picture too when `readPicture`; false (reported)
+   * when unusable.
+   */
+  static bool ReadLight(vtkPolyData* data, const double matrix[16], vtkMRGIAreaLight* light,
+    bool readPicture, vtkObject* reporter);
 
   std::vector<Entry> Entries;
   vtkIdType NumberOfUpdates = 0;
