@@ -4,7 +4,8 @@
 // [near, far]: the Cornell box (perspective and parallel, and with [near,
 // far] cutting through it), random boxes with actor transforms, an assembly,
 // a mirrored box, a translucent and an invisible actor, spheres and a floor
-// seen at a grazing angle; voxel buffers of 128^2, window size, NPOT 97x61,
+// seen at a grazing angle, a composite data set (ParaView's input) against
+// the same polydata as plain actors; voxel buffers of 128^2, window size, NPOT 97x61,
 // anisotropic and larger than the window, and 1x1.
 //
 // The twin needs fragments: this test rasterizes the triangles itself at the
@@ -29,6 +30,8 @@
 #include "vtkAssembly.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
+#include "vtkCompositeDataDisplayAttributes.h"
+#include "vtkCompositePolyDataMapper2.h"
 #include "vtkCubeSource.h"
 #include "vtkDataArray.h"
 #include "vtkMRGISceneBuilder.h"
@@ -36,9 +39,11 @@
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMinimalStandardRandomSequence.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPlaneSource.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataAlgorithm.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProp3DCollection.h"
 #include "vtkPropCollection.h"
@@ -609,6 +614,97 @@ void Grazing(bool parallel, vtkMRGIVoxelization* vox)
   }
 }
 
+// ParaView's geometry representations draw a vtkMultiBlockDataSet through
+// vtkCompositePolyDataMapper2: its visible, opaque polydata leaves must
+// voxelize exactly as the same polydata drawn by plain actors, with the
+// actor's matrix; a hidden and a translucent block are left out.
+void CompositeInput()
+{
+  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(WindowW, WindowH);
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  auto output = [](vtkPolyDataAlgorithm* source) {
+    source->Update();
+    return vtkSmartPointer<vtkPolyData>(source->GetOutput());
+  };
+  vtkNew<vtkCubeSource> cubeSource;
+  cubeSource->SetXLength(2.0);
+  vtkNew<vtkSphereSource> sphereSource;
+  sphereSource->SetCenter(1.5, 1.0, -0.5);
+  vtkNew<vtkCubeSource> hiddenSource;
+  hiddenSource->SetCenter(-2.0, 0.0, 0.0);
+  vtkNew<vtkCubeSource> translucentSource;
+  translucentSource->SetCenter(0.0, -2.0, 0.0);
+  vtkSmartPointer<vtkPolyData> cube = output(cubeSource), sphere = output(sphereSource),
+                               hidden = output(hiddenSource),
+                               translucent = output(translucentSource);
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(4);
+  blocks->SetBlock(0, cube);
+  blocks->SetBlock(1, sphere);
+  blocks->SetBlock(2, hidden);
+  blocks->SetBlock(3, translucent);
+  vtkNew<vtkCompositePolyDataMapper2> compositeMapper;
+  compositeMapper->SetInputDataObject(blocks);
+  vtkNew<vtkCompositeDataDisplayAttributes> attributes;
+  attributes->SetBlockVisibility(hidden, false);
+  attributes->SetBlockOpacity(translucent, 0.5);
+  compositeMapper->SetCompositeDataDisplayAttributes(attributes);
+  vtkNew<vtkActor> compositeActor;
+  compositeActor->SetMapper(compositeMapper);
+  compositeActor->SetPosition(0.3, -0.2, 0.1);
+  compositeActor->RotateY(20);
+  renderer->AddActor(compositeActor);
+  renderer->ResetCamera();
+  renderer->GetActiveCamera()->Azimuth(25);
+  renderer->GetActiveCamera()->Elevation(10);
+  renderer->ResetCameraClippingRange();
+  window->Render();
+  const double dist = renderer->GetActiveCamera()->GetDistance();
+  const double nearDepth = dist - 4.0, farDepth = dist + 4.0;
+
+  vtkNew<vtkMRGIVoxelization> vox;
+  vtkNew<vtkTypeUInt32Array> fromComposite, fromActors;
+  MRGI_TEST_CHECK(vox->Voxelize(renderer, nearDepth, farDepth));
+  MRGI_TEST_CHECK(vox->ReadVoxels(window, fromComposite));
+  std::printf("  composite: drawn %d, skipped %d, triangles %lld\n", vox->GetNumberOfDrawnProps(),
+    vox->GetNumberOfSkippedProps(), static_cast<long long>(vox->GetNumberOfTriangles()));
+  MRGI_TEST_CHECK(vox->GetNumberOfDrawnProps() == 2); // the cube and the sphere
+  MRGI_TEST_CHECK(vox->GetNumberOfSkippedProps() == 0);
+  const vtkIdType compositeTriangles = vox->GetNumberOfTriangles();
+
+  // The same two polydata as plain actors with the same matrix.
+  renderer->RemoveActor(compositeActor);
+  for (vtkPolyData* data : { cube.Get(), sphere.Get() })
+  {
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(data);
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    actor->SetUserMatrix(compositeActor->GetMatrix());
+    renderer->AddActor(actor);
+  }
+  window->Render();
+  MRGI_TEST_CHECK(vox->Voxelize(renderer, nearDepth, farDepth));
+  MRGI_TEST_CHECK(vox->ReadVoxels(window, fromActors));
+  MRGI_TEST_CHECK(vox->GetNumberOfTriangles() == compositeTriangles);
+  MRGI_TEST_CHECK(fromActors->GetNumberOfValues() == fromComposite->GetNumberOfValues());
+  size_t bits = 0, differing = 0;
+  for (vtkIdType i = 0; i < fromActors->GetNumberOfValues(); ++i)
+  {
+    const uint32_t a = fromActors->GetValue(i), b = fromComposite->GetValue(i);
+    for (uint32_t x = a, y = a ^ b; x || y; x >>= 1, y >>= 1)
+    {
+      bits += x & 1u;
+      differing += y & 1u;
+    }
+  }
+  std::printf("  composite vs plain actors: %zu bits set, %zu differ\n", bits, differing);
+  MRGI_TEST_CHECK(bits > 0);
+  MRGI_TEST_CHECK(differing == 0);
+  vox->ReleaseGraphicsResources(window);
+}
+
 void BadInputs()
 {
   vtkNew<mrgitest::ErrorCatcher> errors;
@@ -708,5 +804,5 @@ int main(int argc, char* argv[])
           // The last window is gone too: forget, then nothing is left to free.
           shared->ReleaseGraphicsResources(nullptr);
         } },
-      MRGI_TEST_CASE(BadInputs) });
+      MRGI_TEST_CASE(CompositeInput), MRGI_TEST_CASE(BadInputs) });
 }

@@ -7,11 +7,18 @@ replaces ParaView's headlight and light kit by the scene's lights, and makes
 the background black. The plugin must be loaded first (LoadPlugin
 without `ns`, so that paraview.simple has MRGIScene). Everything comes from the MRGIScene source's
 information properties: nothing here repeats the scene's numbers.
+
+scene_area_lights("cornell-area") gives a scene's area lights as keyword
+arguments of MRGIAreaLight; show_area_light(light, view) shows an MRGI
+(Textured) Area Light as a self-luminous emitter; view_area_light_count(view)
+is the number of area lights the view used in its last render,
+view_area_light_updates(view) how often it read a light from changed data.
 """
 from paraview import simple
 
 
 def _info(proxy, name):
+    """An information property's values (proxy: a source or a view)."""
     prop = proxy.SMProxy.GetProperty(name)
     return [prop.GetElement(i) for i in range(prop.GetNumberOfElements())]
 
@@ -75,3 +82,58 @@ def show_mrgi_scene(view, scene="cornell"):
         view.UseColorPaletteForBackground = 0
     view.Background = [0.0, 0.0, 0.0]
     return sources
+
+
+AREA_LIGHT_FIELDS = 14  # vtkMRGISceneSource::GetAreaLightParameters()
+
+
+def scene_area_lights(scene="cornell-area"):
+    """The area lights of an MRGI scene as MRGIAreaLight keyword arguments.
+
+    Read from the MRGIScene source's AreaLightParameters information property
+    (what mrgi-render puts in the pass), one dict per light.
+    """
+    probe = simple.MRGIScene(Scene=scene)
+    probe.UpdatePipelineInformation()
+    values = _info(probe, "AreaLightParameters")
+    simple.Delete(probe)
+    lights = []
+    for o in range(0, len(values), AREA_LIGHT_FIELDS):
+        lights.append({
+            "Center": values[o:o + 3],
+            "EdgeU": values[o + 3:o + 6],
+            "EdgeV": values[o + 6:o + 9],
+            "Color": values[o + 9:o + 12],
+            "Intensity": values[o + 12],
+            "TwoSided": int(values[o + 13]),
+        })
+    return lights
+
+
+def show_area_light(light, view):
+    """Shows an MRGI (Textured) Area Light as an emitter: its Radiance as is.
+
+    Self-luminous (ambient 1, diffuse 0: MRGI neither captures nor lights
+    it) and coloured by the cell array DisplayColors with Map Scalars off,
+    so the rectangle shows its colour (clamped to 1) or its picture (scaled
+    to its peak), as vtkMRGIAreaLight's own emitter does.
+    """
+    display = simple.Show(light, view)
+    display.ColorArrayName = ["CELLS", "DisplayColors"]
+    display.MapScalars = 0
+    display.Ambient = 1.0
+    display.Diffuse = 0.0
+    display.Specular = 0.0
+    return display
+
+
+def view_area_light_count(view):
+    """The view's NumberOfAreaLights information property (after a render)."""
+    view.UpdatePropertyInformation()
+    return int(_info(view, "NumberOfAreaLights")[0])
+
+
+def view_area_light_updates(view):
+    """The view's NumberOfAreaLightUpdates information property."""
+    view.UpdatePropertyInformation()
+    return int(_info(view, "NumberOfAreaLightUpdates")[0])

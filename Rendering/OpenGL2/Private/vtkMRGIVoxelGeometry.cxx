@@ -6,6 +6,10 @@
 #include "vtkAssemblyNode.h"
 #include "vtkAssemblyPath.h"
 #include "vtkCellArray.h"
+#include "vtkCompositeDataDisplayAttributes.h"
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkCompositePolyDataMapper2.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
@@ -199,6 +203,51 @@ size_t vtkMRGIVoxelGeometry::GetNumberOfCachedGeometries() const
   return this->Internals->Geometries.size();
 }
 
+namespace
+{
+// The polydata `mapper` draws: its vtkPolyData input, or the vtkPolyData
+// leaves of a composite input of a vtkCompositePolyDataMapper2 that its
+// display attributes leave visible and opaque. False when the input is
+// neither (nothing of it is drawn).
+bool PolyDataLeaves(vtkPolyDataMapper* mapper, std::vector<vtkPolyData*>& leaves)
+{
+  vtkDataObject* input = mapper->GetInputDataObject(0, 0);
+  if (auto* data = vtkPolyData::SafeDownCast(input))
+  {
+    leaves.push_back(data);
+    return true;
+  }
+  auto* composite = vtkCompositeDataSet::SafeDownCast(input);
+  auto* compositeMapper = vtkCompositePolyDataMapper2::SafeDownCast(mapper);
+  if (!composite || !compositeMapper)
+  {
+    return false;
+  }
+  vtkCompositeDataDisplayAttributes* attributes =
+    compositeMapper->GetCompositeDataDisplayAttributes();
+  vtkSmartPointer<vtkCompositeDataIterator> it;
+  it.TakeReference(composite->NewIterator());
+  for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+  {
+    auto* data = vtkPolyData::SafeDownCast(it->GetCurrentDataObject());
+    if (!data)
+    {
+      continue;
+    }
+    if (attributes && attributes->HasBlockVisibility(data) && !attributes->GetBlockVisibility(data))
+    {
+      continue;
+    }
+    if (attributes && attributes->HasBlockOpacity(data) && attributes->GetBlockOpacity(data) < 1.0)
+    {
+      continue; // translucent: as translucent actors (Collect())
+    }
+    leaves.push_back(data);
+  }
+  return true;
+}
+}
+
 //------------------------------------------------------------------------------
 void vtkMRGIVoxelGeometry::Collect(vtkRenderer* ren)
 {
@@ -245,37 +294,46 @@ void vtkMRGIVoxelGeometry::Collect(vtkRenderer* ren)
       {
         mapper->Update();
       }
-      vtkPolyData* data = vtkPolyData::SafeDownCast(mapper->GetInputDataObject(0, 0));
-      if (!data)
+      // Polydata, or the polydata leaves of a composite data set drawn by
+      // vtkCompositePolyDataMapper2 (what ParaView delivers to every
+      // geometry representation), minus the blocks it hides or draws
+      // translucent.
+      std::vector<vtkPolyData*> leaves;
+      if (!PolyDataLeaves(mapper, leaves))
       {
-        ++skipped; // composite data and other non-polydata inputs
+        ++skipped; // other non-polydata inputs
         continue;
       }
-      Geometry& geom = in.Geometries[data];
-      const vtkMTimeType dataTime = data->GetMTime();
-      if (geom.Buffer == 0 || geom.DataTime != dataTime)
+      double objectToWorld[16];
+      PathMatrix(path, actor, objectToWorld);
+      for (vtkPolyData* data : leaves)
       {
-        Triangulate(data, xyz, geom.Centre);
-        if (geom.Buffer == 0)
+        Geometry& geom = in.Geometries[data];
+        const vtkMTimeType dataTime = data->GetMTime();
+        if (geom.Buffer == 0 || geom.DataTime != dataTime)
         {
-          glGenBuffers(1, &geom.Buffer);
+          Triangulate(data, xyz, geom.Centre);
+          if (geom.Buffer == 0)
+          {
+            glGenBuffers(1, &geom.Buffer);
+          }
+          glBindBuffer(GL_ARRAY_BUFFER, geom.Buffer);
+          glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(xyz.size() * sizeof(float)),
+            xyz.empty() ? nullptr : xyz.data(), GL_STATIC_DRAW);
+          glBindBuffer(GL_ARRAY_BUFFER, 0);
+          geom.Vertices = static_cast<GLsizei>(xyz.size() / 3);
+          geom.DataTime = dataTime;
         }
-        glBindBuffer(GL_ARRAY_BUFFER, geom.Buffer);
-        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(xyz.size() * sizeof(float)),
-          xyz.empty() ? nullptr : xyz.data(), GL_STATIC_DRAW);
-        glBindBuffer(GL_ARRAY_BUFFER, 0);
-        geom.Vertices = static_cast<GLsizei>(xyz.size() / 3);
-        geom.DataTime = dataTime;
+        geom.Seen = true;
+        if (geom.Vertices == 0)
+        {
+          continue;
+        }
+        DrawItem item;
+        item.Geom = &geom;
+        std::copy(objectToWorld, objectToWorld + 16, item.ObjectToWorld);
+        items.push_back(item);
       }
-      geom.Seen = true;
-      if (geom.Vertices == 0)
-      {
-        continue;
-      }
-      DrawItem item;
-      item.Geom = &geom;
-      PathMatrix(path, actor, item.ObjectToWorld);
-      items.push_back(item);
     }
   }
   in.Skipped = skipped;

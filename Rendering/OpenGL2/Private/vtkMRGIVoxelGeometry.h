@@ -6,8 +6,9 @@
  *
  * Collect() walks the renderer's props as the class notes of
  * vtkMRGIVoxelization say (visible, opaque vtkActors with a
- * vtkPolyDataMapper and vtkPolyData input, assembly parts included; others
- * counted as skipped) and uploads each polydata's triangles (polygons and
+ * vtkPolyDataMapper and vtkPolyData input, or a vtkCompositePolyDataMapper2
+ * and the visible opaque polydata leaves of its composite input, assembly
+ * parts included; others counted as skipped) and uploads each polydata's triangles (polygons and
  * strips, through vtkTriangleFilter where they are not triangles already)
  * once, again only when its MTime changes, as float xyz relative to the
  * data's centre so that data far from the origin keeps float precision.
@@ -53,7 +54,10 @@ public:
    */
   vtkIdType Draw(vtkShaderProgram* program, const double worldToView[16]);
 
-  /** Actors (assembly parts count one each) the last Collect() will draw. */
+  /**
+   * Actors (assembly parts and the leaves of a composite input count one
+   * each) the last Collect() will draw.
+   */
   int GetNumberOfDrawnProps() const;
 
   /** Visible props the last Collect() left out (translucent, not polygonal). */

@@ -26,11 +26,14 @@
  * vtkTriangleFilter where they are not triangles already) of the vtkPolyData
  * input of every visible, opaque vtkActor whose mapper is a
  * vtkPolyDataMapper, assemblies included, with the actor's matrix, whatever
- * the actor's representation (the voxels hold surfaces). Not drawn, and
- * counted in GetNumberOfSkippedProps(): translucent actors (they do not
- * block light in the opaque passes either), volumes, composite data sets,
- * glyph and other non-polydata mappers, 2D props. Lines and vertices have no
- * surface and are ignored.
+ * the actor's representation (the voxels hold surfaces); for a
+ * vtkCompositePolyDataMapper2 with a composite input (ParaView's geometry
+ * representations), each vtkPolyData leaf that the mapper's display
+ * attributes do not hide or make translucent (attributes set on the leaf
+ * itself). Not drawn, and counted in GetNumberOfSkippedProps(): translucent
+ * actors (they do not block light in the opaque passes either), volumes,
+ * composite data sets of other mappers, glyph and other non-polydata
+ * mappers, 2D props. Lines and vertices have no surface and are ignored.
  *
  * Geometry goes through the pass's own shader program (not the mappers'):
  * the triangulated points are uploaded once per polydata (cached on its
@@ -151,7 +154,7 @@ public:
   /** Triangles drawn by the last Voxelize(). */
   vtkIdType GetNumberOfTriangles() const;
 
-  /** Actors (assembly parts count one each) drawn by the last Voxelize(). */
+  /** Actors (assembly parts and composite leaves count one each) drawn by the last Voxelize(). */
   int GetNumberOfDrawnProps() const;
 
   /** Visible props the last Voxelize() did not draw (translucent, not polygonal: see the class notes). */

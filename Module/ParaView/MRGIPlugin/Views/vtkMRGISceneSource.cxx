@@ -12,6 +12,7 @@
 #include "vtkInformationVector.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkMRGIAreaLight.h"
 #include "vtkMRGISceneBuilder.h"
 #include "vtkMapper.h"
 #include "vtkObjectFactory.h"
@@ -87,6 +88,9 @@ vtkMRGISceneSource::vtkMRGISceneSource()
   this->Lights = vtkSmartPointer<vtkDoubleArray>::New();
   this->Lights->SetName("LightParameters");
   this->Lights->SetNumberOfComponents(13);
+  this->AreaLights = vtkSmartPointer<vtkDoubleArray>::New();
+  this->AreaLights->SetName("AreaLightParameters");
+  this->AreaLights->SetNumberOfComponents(14);
 }
 
 //------------------------------------------------------------------------------
@@ -102,6 +106,7 @@ bool vtkMRGISceneSource::BuildScene()
   this->Renderer = nullptr;
   this->BuiltScene.clear();
   this->Lights->SetNumberOfTuples(0);
+  this->AreaLights->SetNumberOfTuples(0);
   vtkNew<vtkMRGISceneBuilder> builder;
   builder->SetScene(this->Scene.c_str());
   auto renderer = vtkSmartPointer<vtkRenderer>::New();
@@ -135,6 +140,18 @@ bool vtkMRGISceneSource::BuildScene()
     tuple[11] = light->GetConeAngle();
     tuple[12] = light->GetExponent();
     this->Lights->InsertNextTuple(tuple);
+  }
+  for (int l = 0; l < builder->GetNumberOfAreaLights(); ++l)
+  {
+    vtkMRGIAreaLight* area = builder->GetAreaLight(l);
+    double tuple[14];
+    area->GetCenter(tuple);
+    area->GetEdgeU(tuple + 3);
+    area->GetEdgeV(tuple + 6);
+    area->GetColor(tuple + 9);
+    tuple[12] = area->GetIntensity();
+    tuple[13] = area->GetTwoSided() ? 1.0 : 0.0;
+    this->AreaLights->InsertNextTuple(tuple);
   }
   return true;
 }
@@ -178,6 +195,13 @@ vtkDoubleArray* vtkMRGISceneSource::GetLightParameters()
 {
   this->BuildScene();
   return this->Lights;
+}
+
+//------------------------------------------------------------------------------
+vtkDoubleArray* vtkMRGISceneSource::GetAreaLightParameters()
+{
+  this->BuildScene();
+  return this->AreaLights;
 }
 
 //------------------------------------------------------------------------------

@@ -70,6 +70,15 @@ public:
    */
   vtkDoubleArray* GetLightParameters();
 
+  /**
+   * The scene's area lights (cornell-area: the published emitter), one
+   * tuple each of 14 components: centre (3), EdgeU (3), EdgeV (3), colour
+   * (3), intensity, two-sided (0/1): the properties of an "MRGI Area Light"
+   * (vtkMRGIAreaLightSource) at the same place. A textured light's picture
+   * is not included.
+   */
+  vtkDoubleArray* GetAreaLightParameters();
+
   /** Why the last build failed; empty after a success. */
   const char* GetLastErrorMessage() { return this->LastErrorMessage.c_str(); }
 
@@ -89,6 +98,7 @@ protected:
   std::string LastErrorMessage;
   vtkSmartPointer<vtkRenderer> Renderer;
   vtkSmartPointer<vtkDoubleArray> Lights;
+  vtkSmartPointer<vtkDoubleArray> AreaLights;
   double CameraPosition[3] = { 0, 0, 0 };
   double CameraFocalPoint[3] = { 0, 0, 0 };
   double CameraViewUp[3] = { 0, 0, 0 };

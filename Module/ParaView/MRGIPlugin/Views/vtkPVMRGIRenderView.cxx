@@ -1,15 +1,20 @@
 #include "vtkPVMRGIRenderView.h"
 
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkMRGIControllerRSMCompositor.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIPass.h"
 #include "vtkMultiProcessController.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkPVMRGIAreaLights.h"
 #include "vtkPVMRGIHeadless.h"
 #include "vtkPVSynchronizedRenderer.h"
 #include "vtkRenderStepsPass.h"
 #include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
 
 vtkStandardNewMacro(vtkPVMRGIRenderView);
 
@@ -25,11 +30,45 @@ vtkPVMRGIRenderView::vtkPVMRGIRenderView()
   // direct light. Automatic exposure would differ between MPI ranks.
   this->MRGIPass->SetAutoExposure(false);
   this->SynchronizedRenderers->SetRenderPass(this->MRGIPass);
+
+  // The area lights are read from the data each representation delivered,
+  // which ParaView sets on the mappers during Render(), before the
+  // renderer draws: the renderer's StartEvent is the first moment they
+  // are all there and the last before the pass runs.
+  this->AreaLights.reset(new vtkPVMRGIAreaLights);
+  vtkNew<vtkCallbackCommand> observer;
+  observer->SetCallback(&vtkPVMRGIRenderView::SynchronizeAreaLights);
+  observer->SetClientData(this);
+  this->AreaLightObserver = this->GetRenderer()->AddObserver(vtkCommand::StartEvent, observer);
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SynchronizeAreaLights(vtkObject*, unsigned long, void* view, void*)
+{
+  auto* self = static_cast<vtkPVMRGIRenderView*>(view);
+  self->AreaLights->Synchronize(self->GetRenderer(), self->MRGIPass, self);
+}
+
+//------------------------------------------------------------------------------
+int vtkPVMRGIRenderView::GetNumberOfAreaLights()
+{
+  return this->AreaLights->GetNumberOfLights();
+}
+
+//------------------------------------------------------------------------------
+int vtkPVMRGIRenderView::GetNumberOfAreaLightUpdates()
+{
+  const vtkIdType updates = this->AreaLights->GetNumberOfUpdates();
+  return updates > VTK_INT_MAX ? VTK_INT_MAX : static_cast<int>(updates);
 }
 
 //------------------------------------------------------------------------------
 vtkPVMRGIRenderView::~vtkPVMRGIRenderView()
 {
+  if (vtkRenderer* renderer = this->GetRenderer())
+  {
+    renderer->RemoveObserver(this->AreaLightObserver);
+  }
   if (this->SynchronizedRenderers && this->SynchronizedRenderers->GetRenderPass() == this->MRGIPass)
   {
     this->SynchronizedRenderers->SetRenderPass(nullptr);
@@ -38,9 +77,10 @@ vtkPVMRGIRenderView::~vtkPVMRGIRenderView()
   // destructor: free the pass's GL objects while its context exists.
   if (vtkRenderWindow* window = this->GetRenderWindow())
   {
-    this->MRGIPass->ReleaseGraphicsResources(window);
+    this->MRGIPass->ReleaseGraphicsResources(window); // the area lights' textures too
   }
   this->MRGIPass->SetRSMCompositor(nullptr);
+  this->AreaLights->RemoveAll(this->MRGIPass);
   this->MRGIPass->Delete();
   this->Compositor->Delete();
   this->Steps->Delete();
@@ -177,6 +217,7 @@ void vtkPVMRGIRenderView::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "GlobalIllumination: " << this->GlobalIllumination << "\n";
   os << indent << "HeadlessBackend: " << GetHeadlessBackend() << "\n";
+  os << indent << "NumberOfAreaLights: " << this->AreaLights->GetNumberOfLights() << "\n";
   os << indent << "MRGIPass:\n";
   this->MRGIPass->PrintSelf(os, indent.GetNextIndent());
 }

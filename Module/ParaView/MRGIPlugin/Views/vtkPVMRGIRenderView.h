@@ -18,7 +18,12 @@
  * same VPLs.
  *
  * The properties forward to the pass (vtkMRGIPass, vtkMRGIMultiresolution);
- * GetMRGIPass() gives the pass itself. The server-manager proxy is
+ * GetMRGIPass() gives the pass itself.
+ *
+ * Area lights: every visible representation of a vtkMRGIAreaLightSource
+ * ("MRGI Area Light", "MRGI Textured Area Light") lights the scene as a
+ * vtkMRGIAreaLight of the pass; hiding or deleting it removes the light
+ * (vtkPVMRGIAreaLights.h). The server-manager proxy is
  * "MRGIRenderView" (label "MRGI Render View", MRGIRenderView.xml).
  *
  * @sa vtkMRGIPass vtkPVRenderView
@@ -29,8 +34,11 @@
 #include "MRGIParaViewModule.h" // For export macro
 #include "vtkPVRenderView.h"
 
+#include <memory> // For std::unique_ptr
+
 class vtkMRGIControllerRSMCompositor;
 class vtkMRGIPass;
+class vtkPVMRGIAreaLights;
 class vtkRenderStepsPass;
 
 class MRGIPARAVIEW_EXPORT vtkPVMRGIRenderView : public vtkPVRenderView
@@ -71,6 +79,21 @@ public:
   void SetToneMapping(bool enabled);
   ///@}
 
+  /**
+   * Area lights in the last render: one per visible representation of an
+   * "MRGI Area Light" / "MRGI Textured Area Light" (vtkMRGIAreaLightSource;
+   * see vtkPVMRGIAreaLights.h for how the view finds them).
+   */
+  int GetNumberOfAreaLights();
+
+  /**
+   * Area-light updates so far: a light made, or its parameters and picture
+   * read again because its data changed. A render of unchanged data adds
+   * none (its picture is not copied nor its texture rebuilt). Saturates
+   * at VTK_INT_MAX (an int for ParaView's information property).
+   */
+  int GetNumberOfAreaLightUpdates();
+
   /** The pass, for scripts that set what the view's properties do not cover. */
   vtkMRGIPass* GetMRGIPass() { return this->MRGIPass; }
 
@@ -99,10 +122,15 @@ protected:
    */
   void Render(bool interactive, bool skip_rendering) override;
 
+  /** Renderer StartEvent: brings the pass's area lights in step with the data shown. */
+  static void SynchronizeAreaLights(vtkObject*, unsigned long, void* view, void*);
+
   bool GlobalIllumination = true;
   vtkMRGIPass* MRGIPass = nullptr;
   vtkMRGIControllerRSMCompositor* Compositor = nullptr;
   vtkRenderStepsPass* Steps = nullptr;
+  std::unique_ptr<vtkPVMRGIAreaLights> AreaLights;
+  unsigned long AreaLightObserver = 0;
 
 private:
   vtkPVMRGIRenderView(const vtkPVMRGIRenderView&) = delete;
