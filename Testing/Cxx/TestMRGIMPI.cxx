@@ -205,6 +205,33 @@ Frame ReceiveFrame(vtkMultiProcessController* c, int from)
   return f;
 }
 
+// Depth composite of rank 0's frame with the others' (others[r - 1] is rank
+// r's), nearest wins as in IceT; owner[p] is the rank whose pixel won.
+void DepthComposite(const Frame& mine, const std::vector<Frame>& others,
+  std::vector<float>& composite, std::vector<int>& owner)
+{
+  composite.assign(3 * Size * Size, 0.0f);
+  owner.assign(Size * Size, 0);
+  const int size = static_cast<int>(others.size()) + 1;
+  for (int p = 0; p < Size * Size; ++p)
+  {
+    const Frame* best = &mine;
+    owner[p] = 0;
+    for (int r = 1; r < size; ++r)
+    {
+      if (others[r - 1].Depth[p] < best->Depth[p])
+      {
+        best = &others[r - 1];
+        owner[p] = r;
+      }
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      composite[3 * p + k] = best->RGB[3 * p + k];
+    }
+  }
+}
+
 void WritePNG(const std::vector<float>& rgb, const std::string& name)
 {
   vtkNew<vtkImageData> image;
@@ -430,25 +457,9 @@ void RunMode(vtkMultiProcessController* c, int mode, const char* name)
   MPI_CHECK(vplError <= VPL_TOLERANCE);
 
   // (b) Depth composite of the ranks' images, nearest wins (IceT's rule).
-  std::vector<float> composite(3 * Size * Size);
-  std::vector<int> owner(Size * Size); // the rank whose pixel won
-  for (int p = 0; p < Size * Size; ++p)
-  {
-    const Frame* best = &mine;
-    owner[p] = 0;
-    for (int r = 1; r < size; ++r)
-    {
-      if (others[r - 1].Depth[p] < best->Depth[p])
-      {
-        best = &others[r - 1];
-        owner[p] = r;
-      }
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      composite[3 * p + k] = best->RGB[3 * p + k];
-    }
-  }
+  std::vector<float> composite;
+  std::vector<int> owner; // the rank whose pixel won
+  DepthComposite(mine, others, composite, owner);
   BorderStatistics(composite, reference.RGB, owner, name);
   const mrgi_metrics m = CompareImages(composite, reference.RGB);
   std::printf("%s: %d-rank depth composite vs one process: relative RMS %.4f, max %.0f/255, "
@@ -511,30 +522,14 @@ void MeasureAreaLights(vtkMultiProcessController* c)
     SendFrame(c, mine, 0);
     return;
   }
-  std::vector<float> composite(3 * Size * Size);
+  std::vector<float> composite;
   std::vector<Frame> others;
   for (int r = 1; r < size; ++r)
   {
     others.push_back(ReceiveFrame(c, r));
   }
-  std::vector<int> owner(Size * Size);
-  for (int p = 0; p < Size * Size; ++p)
-  {
-    const Frame* best = &mine;
-    owner[p] = 0;
-    for (int r = 1; r < size; ++r)
-    {
-      if (others[r - 1].Depth[p] < best->Depth[p])
-      {
-        best = &others[r - 1];
-        owner[p] = r;
-      }
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      composite[3 * p + k] = best->RGB[3 * p + k];
-    }
-  }
+  std::vector<int> owner;
+  DepthComposite(mine, others, composite, owner);
   BorderStatistics(composite, reference.RGB, owner, "area lights");
   const mrgi_metrics m = CompareImages(composite, reference.RGB);
   std::printf("area lights: %d-rank depth composite vs one process: relative RMS %.4f, max "

@@ -275,24 +275,48 @@ bool vtkMRGIAreaLight::UpdateTexture()
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIAreaLight::BuildCoreLight(mrgi_area_light* light, bool withTexture)
+bool vtkMRGIAreaLight::MakeCoreLight(const double center[3], const double edgeU[3],
+  const double edgeV[3], const double color[3], double intensity, bool twoSided,
+  mrgi_area_light* light, std::string* why)
 {
   mrgi_area_light core{};
   for (int c = 0; c < 3; ++c)
   {
-    core.center[c] = this->Center[c];
-    core.edge_u[c] = this->EdgeU[c];
-    core.edge_v[c] = this->EdgeV[c];
-    core.color[c] = this->Color[c];
+    core.center[c] = center[c];
+    core.edge_u[c] = edgeU[c];
+    core.edge_v[c] = edgeV[c];
+    core.color[c] = color[c];
   }
-  core.intensity = this->Intensity;
-  core.two_sided = this->TwoSided ? 1 : 0;
-  // The texture was checked when it was converted and its pyramid built;
-  // checking the rest without it keeps this O(1) per request.
+  core.intensity = intensity;
+  core.texture = nullptr;
+  core.two_sided = twoSided ? 1 : 0;
   mrgi_error err;
   if (mrgi_area_light_check(&core, &err) != MRGI_OK)
   {
-    return this->Fail("invalid area light: " + WithPropertyNames(err.message));
+    if (why)
+    {
+      *why = WithPropertyNames(err.message);
+    }
+    return false;
+  }
+  if (light)
+  {
+    *light = core;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIAreaLight::BuildCoreLight(mrgi_area_light* light, bool withTexture)
+{
+  // The texture was checked when it was converted and its pyramid built;
+  // checking the rest without it keeps this O(1) per request.
+  mrgi_area_light core;
+  std::string why;
+  if (!MakeCoreLight(this->Center, this->EdgeU, this->EdgeV, this->Color, this->Intensity,
+        this->TwoSided, &core, &why))
+  {
+    return this->Fail("invalid area light: " + why);
   }
   if (withTexture && this->Internals->HasTexture)
   {

@@ -262,6 +262,17 @@ public:
    */
   bool GetCoreLight(mrgi_area_light* light);
 
+  /**
+   * The core light (no texture) of these parameters, checked as the light
+   * checks its own (mrgi_area_light_check(), the message naming the
+   * properties: Center, EdgeU, ...). For objects that describe a light
+   * without being one (ParaView's MRGI Area Light source). False with the
+   * reason in `why` (nothing written) when invalid.
+   */
+  static bool MakeCoreLight(const double center[3], const double edgeU[3], const double edgeV[3],
+    const double color[3], double intensity, bool twoSided, mrgi_area_light* light,
+    std::string* why);
+
   /** The gather shaders' uniforms (mrgi_area_light_uniforms_init()). */
   bool GetCoreUniforms(mrgi_area_light_uniforms* uniforms);
 

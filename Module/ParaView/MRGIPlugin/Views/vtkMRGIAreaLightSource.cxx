@@ -9,6 +9,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMRGIAreaLight.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -16,9 +17,6 @@
 #include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
-
-#include "mrgi_area_light.h"
-#include "mrgi_error.h"
 
 #include <algorithm>
 #include <cmath>
@@ -187,23 +185,11 @@ int vtkMRGIAreaLightSource::RequestData(
 
   // The core's check of the parameters (the one vtkMRGIAreaLight applies):
   // a light the view would refuse gives no geometry either.
-  mrgi_area_light core{};
-  for (int c = 0; c < 3; ++c)
+  std::string invalid;
+  if (!vtkMRGIAreaLight::MakeCoreLight(this->Center, this->EdgeU, this->EdgeV, this->Color,
+        this->Intensity, this->TwoSided, nullptr, &invalid))
   {
-    core.center[c] = this->Center[c];
-    core.edge_u[c] = this->EdgeU[c];
-    core.edge_v[c] = this->EdgeV[c];
-    core.color[c] = this->Color[c];
-  }
-  core.intensity = this->Intensity;
-  core.texture = nullptr;
-  core.two_sided = this->TwoSided ? 1 : 0;
-  mrgi_error err;
-  if (mrgi_area_light_check(&core, &err) != MRGI_OK)
-  {
-    // The core names its fields (center, edge_u, color[1], ...): the
-    // properties Center, EdgeU, Color, ...
-    return this->Fail(std::string("invalid parameters: ") + err.message);
+    return this->Fail("invalid parameters: " + invalid);
   }
 
   Picture picture;
