@@ -9,16 +9,17 @@ environment:
   MRGI_GUI_OUT         folder for the results (required)
   MRGI_GUI_SCRIPT_DIR  this file's folder (mrgi_paraview_scene.py)
   MRGI_GUI_SIZE        side of the compared screenshots, pixels (default 256)
-  MRGI_GUI_FRAMES      still renders timed at 512 x 512 (default 20; 0: none)
-  MRGI_GUI_GRAB        file name: keep the GUI open, copy Xvfb's screen
-                       (MRGI_GUI_XWD, the -fbdir file) into it once Qt has
-                       painted the window, then exit (the docs' screenshots)
+  MRGI_GUI_FRAMES      still renders to time (default 20; 0: none)
+  MRGI_GUI_TIMING_SIZE their size, side in pixels (default 512)
+  MRGI_GUI_GRAB        file name: at the end, copy Xvfb's screen (MRGI_GUI_XWD,
+                       the -fbdir file) into it once Qt has painted the
+                       window (the docs' screenshots)
 
 Replaces the layout's render view by an MRGI Render View, shows the Cornell
 box as mrgi-render draws it (mrgi_paraview_scene.show_mrgi_scene), and writes
 
   gui-gi-on.png, gui-gi-off.png  the view at SIZE x SIZE, GI on and off
-  gui-frames.txt                 one still-render time per line, ms
+  gui-frames.txt                 per still render: wall and CPU time, ms
   gui-status.txt                 "ok", or "error" and the traceback
 
 The shell script reads gui-status.txt: an exception inside `paraview
@@ -37,6 +38,42 @@ def log(message):
     # The GUI's stdout is a pipe to the shell script: flush each line, so
     # that a hang shows how far the script came.
     print("paraview_gui_cornell: " + message, flush=True)
+
+
+def qt_process_events(seconds):
+    """Runs Qt's event loop for `seconds`: layout changes and painting.
+
+    `paraview --script` runs the script inside one Qt event, and ParaView's
+    Python has no Qt binding: a layout change (preview mode) would reach
+    the widgets only after the script. QCoreApplication::processEvents(flags,
+    maxtime) is a static function of the Qt 5 the GUI already loaded;
+    ctypes calls it (QFlags is passed as its int).
+    """
+    import ctypes
+
+    try:
+        qt = ctypes.CDLL("libQt5Core.so.5")
+        process = qt._ZN16QCoreApplication13processEventsE6QFlagsIN10QEventLoop17ProcessEventsFlagEEi
+    except (OSError, AttributeError) as error:
+        raise RuntimeError("cannot reach Qt 5's processEvents (%s): is this ParaView built with Qt 5?"
+                           % error)
+    process.argtypes = [ctypes.c_int, ctypes.c_int]
+    process.restype = None
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        process(0, 50)  # QEventLoop::AllEvents, at most 50 ms
+        time.sleep(0.01)
+
+
+def set_view_size(view, layout, size, simple):
+    """Gives the view widget size x size pixels (preview mode) and checks it."""
+    layout.PreviewMode = [size, size]
+    qt_process_events(1.0)
+    simple.Render(view)
+    actual = list(view.GetRenderWindow().GetSize())
+    if actual != [size, size]:
+        raise RuntimeError("the view is %dx%d, not %dx%d: the GUI's layout has no room for it "
+                           "(a smaller size, or a larger Xvfb screen)" % (actual[0], actual[1], size, size))
 
 
 def render_finished(view, simple):
@@ -60,6 +97,7 @@ def run():
 
     size = int(os.environ.get("MRGI_GUI_SIZE", "256"))
     frames = int(os.environ.get("MRGI_GUI_FRAMES", "20"))
+    timing_size = int(os.environ.get("MRGI_GUI_TIMING_SIZE", "512"))
 
     # The GUI starts with one layout holding a render view: put an MRGI
     # Render View in its place, as View > "MRGI Render View" would.
@@ -78,8 +116,7 @@ def run():
 
     # Preview mode gives the view widget exactly this size, so that the
     # screenshot is the view's own pixels, not a resized copy.
-    layout.PreviewMode = [size, size]
-    simple.Render(view)
+    set_view_size(view, layout, size, simple)
     for gi, name in ((1, "gui-gi-on.png"), (0, "gui-gi-off.png")):
         view.GlobalIllumination = gi
         simple.Render(view)
@@ -91,58 +128,45 @@ def run():
     view.GlobalIllumination = 1
 
     if frames > 0:
-        # Still renders at 512 x 512: each after a camera change (a small
+        # Still renders at TIMING_SIZE: each after a camera change (a small
         # azimuth, alternating, so the box stays in view), so that every
         # frame is really drawn again. Times only; nothing asserts them.
-        layout.PreviewMode = [512, 512]
+        set_view_size(view, layout, timing_size, simple)
         render_finished(view, simple)  # first frame: buffers and shaders
         camera = simple.GetActiveCamera()
-        times = []
+        # Wall time, and the CPU time of the whole process (llvmpipe's
+        # threads included): on a shared machine the wall time depends on
+        # the other jobs, the CPU time much less.
+        wall, cpu = [], []
         for i in range(frames):
             camera.Azimuth(2.0 if i % 2 == 0 else -2.0)
-            start = time.perf_counter()
+            start, start_cpu = time.perf_counter(), time.process_time()
             render_finished(view, simple)
-            times.append((time.perf_counter() - start) * 1e3)
+            wall.append((time.perf_counter() - start) * 1e3)
+            cpu.append((time.process_time() - start_cpu) * 1e3)
         with open(os.path.join(OUT, "gui-frames.txt"), "w") as f:
-            f.write("".join("%.3f\n" % t for t in times))
-        times.sort()
-        log("%d still renders at 512x512, median %.1f ms" % (frames, times[len(times) // 2]))
+            f.write("# wall_ms cpu_ms, %dx%d\n" % (timing_size, timing_size))
+            f.write("".join("%.3f %.3f\n" % pair for pair in zip(wall, cpu)))
+        log("%d still renders at %dx%d, median %.1f ms wall, %.1f ms CPU"
+            % (frames, timing_size, timing_size, sorted(wall)[frames // 2], sorted(cpu)[frames // 2]))
 
     layout.PreviewMode = [0, 0]
     # The properties panel shows the view's properties (the "Global
     # Illumination" group) when no source is selected.
     simple.SetActiveSource(None)
     simple.Render(view)
-    return view
 
+    grab = os.environ.get("MRGI_GUI_GRAB", "")
+    if grab:
+        # Xvfb keeps its screen in a file (-fbdir): copy it once Qt has laid
+        # out and painted the window as the script left it.
+        import shutil
 
-def grab_when_painted(view, target):
-    """Copies Xvfb's screen to `target` once Qt has painted, then exits."""
-    import shutil
-
-    xwd = os.environ.get("MRGI_GUI_XWD", "")
-    interactor = view.GetInteractor()
-    ticks = {"count": 0}
-
-    def tick(caller, event):
-        ticks["count"] += 1
-        # A few rounds of the event loop (0.5 s each) lay out and paint
-        # the panels that the script changed.
-        if ticks["count"] < 4:
-            return
-        try:
-            shutil.copyfile(xwd, target)
-            log("copied the screen to " + target)
-        except OSError as error:
-            log("no screen grab: %s" % error)
-        # No Qt binding in ParaView's Python to quit the application: end
-        # the process (only the screenshot tool does this; the test exits
-        # through `paraview --exit`).
-        sys.stdout.flush()
-        os._exit(0)
-
-    interactor.AddObserver("TimerEvent", tick)
-    interactor.CreateRepeatingTimer(500)
+        qt_process_events(2.0)
+        simple.Render(view)
+        qt_process_events(1.0)
+        shutil.copyfile(os.environ.get("MRGI_GUI_XWD", ""), grab)
+        log("copied the screen to " + grab)
 
 
 def main():
@@ -150,12 +174,9 @@ def main():
         log("MRGI_GUI_OUT must name an existing folder (got %r)" % OUT)
         return
     try:
-        view = run()
+        run()
         with open(STATUS, "w") as f:
             f.write("ok\n")
-        grab = os.environ.get("MRGI_GUI_GRAB", "")
-        if grab:
-            grab_when_painted(view, grab)
     except Exception:  # noqa: BLE001 -- every failure must reach the status file
         text = traceback.format_exc()
         log(text)
