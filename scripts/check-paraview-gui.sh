@@ -16,7 +16,8 @@
 #               mrgi` from BUILD_DIR) and print both medians and their ratio
 #   --grab F    also save the whole ParaView window as F (PNG, at most 800
 #               pixels wide), as the script leaves it
-# Environment: MRGI_GUI_TIMEOUT (seconds for one paraview run, default 300).
+# Environment: MRGI_GUI_TIMEOUT (seconds for one paraview run, default 300),
+# MRGI_GUI_SCREEN (Xvfb's screen, default 1280x1024x24).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 usage="usage: check-paraview-gui.sh BUILD_DIR OUT_DIR [--frames N] [--grab FILE.png]"
@@ -43,6 +44,7 @@ plugin_dir="$pv_build/lib/paraview-5.11/plugins/MRGIRenderView"
 pv_python="$pv_build/paraview-python/usr/lib/python3/dist-packages"
 testing="$root/Module/ParaView/Testing"
 gui_timeout="${MRGI_GUI_TIMEOUT:-300}"
+screen="${MRGI_GUI_SCREEN:-1280x1024x24}"
 for tool in paraview xvfb-run xauth timeout; do
   command -v "$tool" > /dev/null || fail "'$tool' not found (scripts/install-deps.sh installs it)"
 done
@@ -74,12 +76,12 @@ cleanup() {
 trap cleanup EXIT
 trap 'exit 143' TERM INT
 
-# Runs "$@" under a fresh Xvfb (1280x1024, its screen also kept in
+# Runs "$@" under a fresh Xvfb ($screen, its screen also kept in
 # $out/fb/Xvfb_screen0), the command itself under a timeout: the GUI can hang.
 under_xvfb() {
   local log="$1"
   shift
-  xvfb-run -a -e "$out/xvfb-errors.log" -s "-screen 0 1280x1024x24 -fbdir $out/fb" \
+  xvfb-run -a -e "$out/xvfb-errors.log" -s "-screen 0 $screen -fbdir $out/fb" \
     timeout -k 10 "$gui_timeout" "$@" > "$log" 2>&1 &
   xvfb_pid=$!
   local status=0
