@@ -35,7 +35,7 @@ STATUS = os.path.join(OUT, "gui-status.txt")
 
 
 def log(message):
-    # The GUI's stdout is a pipe to the shell script: flush each line, so
+    # The GUI's stdout goes to the shell script's log: flush each line, so
     # that a hang shows how far the script came.
     print("paraview_gui_cornell: " + message, flush=True)
 
@@ -43,7 +43,7 @@ def log(message):
 def qt_process_events(seconds):
     """Runs Qt's event loop for `seconds`: layout changes and painting.
 
-    `paraview --script` runs the script inside one Qt event, and ParaView's
+    `paraview --script` runs the script from one Qt event, and ParaView's
     Python has no Qt binding: a layout change (preview mode) would reach
     the widgets only after the script. QCoreApplication::processEvents(flags,
     maxtime) is a static function of the Qt 5 the GUI already loaded;
@@ -90,7 +90,8 @@ def run():
     from paraview import simple
 
     if not hasattr(simple, "MRGIScene"):
-        raise RuntimeError("the MRGI plugin is not loaded (paraview --plugin-search-paths=DIR --plugins=MRGIRenderView)")
+        raise RuntimeError("the MRGI plugin is not loaded "
+                           "(paraview --plugin-search-paths=DIR --plugins=MRGIRenderView)")
     # `paraview --script` defines no __file__: the shell script names the folder.
     sys.path.insert(0, os.environ.get("MRGI_GUI_SCRIPT_DIR", "."))
     from mrgi_paraview_scene import show_mrgi_scene
@@ -151,8 +152,8 @@ def run():
             % (frames, timing_size, timing_size, sorted(wall)[frames // 2], sorted(cpu)[frames // 2]))
 
     layout.PreviewMode = [0, 0]
-    # The properties panel shows the view's properties (the "Global
-    # Illumination" group) when no source is selected.
+    # With no source selected the properties panel shows only the view's
+    # section (ParaView's properties, then the "Global Illumination" group).
     simple.SetActiveSource(None)
     simple.Render(view)
 
