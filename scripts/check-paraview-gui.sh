@@ -17,7 +17,8 @@
 #   --grab F    also save the whole ParaView window as F (PNG, at most 800
 #               pixels wide), as the script leaves it
 # Environment: MRGI_GUI_TIMEOUT (seconds for one paraview run, default 300),
-# MRGI_GUI_SCREEN (Xvfb's screen, default 1280x1024x24).
+# MRGI_GUI_SCREEN (Xvfb's screen, default 1280x1024x24; ParaView's main
+# window keeps its own size, about 1150x760, on a larger screen).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 usage="usage: check-paraview-gui.sh BUILD_DIR OUT_DIR [--frames N] [--grab FILE.png]"
@@ -90,7 +91,8 @@ under_xvfb() {
   return "$status"
 }
 
-echo "check-paraview-gui: paraview $(dpkg-query -W -f='${Version}' paraview 2> /dev/null || echo '(version unknown)') with $plugin_dir"
+pv_version="$(dpkg-query -W -f='${Version}' paraview 2> /dev/null || echo '(version unknown)')"
+echo "check-paraview-gui: paraview $pv_version with $plugin_dir"
 start=$SECONDS
 status=0
 # --dr: no user settings. `--plugins` takes plugin names (a path there is
@@ -165,12 +167,15 @@ if [ "$frames" -gt 0 ]; then
     function median(kind, f,   i, j, k, v, t) {
       k = n[f]
       for (i = 1; i <= k; i++) v[i] = (kind == "wall") ? wall[f, i] : cpu[f, i]
-      for (i = 1; i <= k; i++) for (j = i + 1; j <= k; j++) if (v[j] < v[i]) { t = v[i]; v[i] = v[j]; v[j] = t }
+      for (i = 1; i <= k; i++)
+        for (j = i + 1; j <= k; j++)
+          if (v[j] < v[i]) { t = v[i]; v[i] = v[j]; v[j] = t }
       return v[int(k / 2) + 1]
     }
     END {
-      printf "check-paraview-gui: %d frames at 512x512, medians: GUI %.1f ms wall, %.1f ms CPU; ", n[1], median("wall", 1), median("cpu", 1)
-      printf "plain VTK window %.1f ms wall, %.1f ms CPU; ratio %.2f wall, %.2f CPU\n", median("wall", 2), median("cpu", 2), median("wall", 1) / median("wall", 2), median("cpu", 1) / median("cpu", 2)
+      gw = median("wall", 1); gc = median("cpu", 1); pw = median("wall", 2); pc = median("cpu", 2)
+      printf "check-paraview-gui: %d frames at 512x512, medians: GUI %.1f ms wall, %.1f ms CPU; ", n[1], gw, gc
+      printf "plain VTK window %.1f ms wall, %.1f ms CPU; ratio %.2f wall, %.2f CPU\n", pw, pc, gw / pw, gc / pc
     }' "$out/gui-frames.txt" "$out/vtk-frames.txt"
 fi
 echo "check-paraview-gui: passed ($out)"

@@ -55,8 +55,8 @@ def qt_process_events(seconds):
         qt = ctypes.CDLL("libQt5Core.so.5")
         process = qt._ZN16QCoreApplication13processEventsE6QFlagsIN10QEventLoop17ProcessEventsFlagEEi
     except (OSError, AttributeError) as error:
-        raise RuntimeError("cannot reach Qt 5's processEvents (%s): is this ParaView built with Qt 5?"
-                           % error)
+        raise RuntimeError("cannot reach Qt 5's processEvents (%s): "
+                           "is this ParaView built with Qt 5?" % error)
     process.argtypes = [ctypes.c_int, ctypes.c_int]
     process.restype = None
     end = time.monotonic() + seconds
@@ -72,8 +72,8 @@ def set_view_size(view, layout, size, simple):
     simple.Render(view)
     actual = list(view.GetRenderWindow().GetSize())
     if actual != [size, size]:
-        raise RuntimeError("the view is %dx%d, not %dx%d: the GUI's layout has no room for it "
-                           "(a smaller size, or a larger Xvfb screen)" % (actual[0], actual[1], size, size))
+        raise RuntimeError("the view is %dx%d, not %dx%d: the GUI's layout has no room "
+                           "for it (ask for a smaller size)" % (actual[0], actual[1], size, size))
 
 
 def render_finished(view, simple):
@@ -148,8 +148,8 @@ def run():
         with open(os.path.join(OUT, "gui-frames.txt"), "w") as f:
             f.write("# wall_ms cpu_ms, %dx%d\n" % (timing_size, timing_size))
             f.write("".join("%.3f %.3f\n" % pair for pair in zip(wall, cpu)))
-        log("%d still renders at %dx%d, median %.1f ms wall, %.1f ms CPU"
-            % (frames, timing_size, timing_size, sorted(wall)[frames // 2], sorted(cpu)[frames // 2]))
+        log("%d still renders at %dx%d, median %.1f ms wall, %.1f ms CPU" % (
+            frames, timing_size, timing_size, sorted(wall)[frames // 2], sorted(cpu)[frames // 2]))
 
     layout.PreviewMode = [0, 0]
     # With no source selected the properties panel shows only the view's

@@ -69,7 +69,8 @@ def main():
     print("# wall_ms cpu_ms, %dx%d, %s" % (args.size, args.size, window.GetClassName()))
     for pair in zip(wall, cpu):
         print("%.3f %.3f" % pair)
-    print("median %.3f ms wall, %.3f ms CPU" % (sorted(wall)[args.frames // 2], sorted(cpu)[args.frames // 2]))
+    half = args.frames // 2
+    print("median %.3f ms wall, %.3f ms CPU" % (sorted(wall)[half], sorted(cpu)[half]))
     renderer.SetPass(None)
     gi.ReleaseGraphicsResources(window)
 
