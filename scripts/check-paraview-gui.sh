@@ -7,13 +7,17 @@
 # either differs by more than 1% relative RMS, or when GI on does not differ
 # from GI off. Run by ctest as paraview.GUI.
 #
-# Usage: scripts/check-paraview-gui.sh BUILD_DIR OUT_DIR [--frames N] [--grab FILE.png]
+# Usage: scripts/check-paraview-gui.sh BUILD_DIR OUT_DIR [--frames N [--timing-gi off]]
+#                                      [--grab FILE.png]
 #   BUILD_DIR   the main build (bin/mrgi-render, bin/mrgi-compare); the plugin
 #               build is BUILD_DIR/paraview-vtk (compat.ParaViewVTK's tree),
 #               or MRGI_PARAVIEW_BUILD
 #   --frames N  also time N still renders at 512 x 512 in the GUI and in a
 #               plain VTK window (vtk_cornell_frames.py under Xvfb, `import
 #               mrgi` from BUILD_DIR) and print both medians and their ratio
+#   --timing-gi off  time with GI off instead: ParaView's own render view
+#               against the plain VTK window without vtkMRGIPass, i.e. what
+#               ParaView adds around any frame
 #   --grab F    also save the whole ParaView window as F (PNG, at most 800
 #               pixels wide), as the script leaves it
 # Environment: MRGI_GUI_TIMEOUT (seconds for one paraview run, default 300),
@@ -21,19 +25,25 @@
 # window keeps its own size, about 1150x760, on a larger screen).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-usage="usage: check-paraview-gui.sh BUILD_DIR OUT_DIR [--frames N] [--grab FILE.png]"
+usage="usage: check-paraview-gui.sh BUILD_DIR OUT_DIR [--frames N [--timing-gi off]] [--grab FILE.png]"
 build="${1:?$usage}"
 out="${2:?$usage}"
 shift 2
 frames=0
+timing_gi=on
 grab=""
 while [ "$#" -gt 0 ]; do
   case "$1" in
     --frames) frames="${2:?--frames needs a count}"; shift 2 ;;
+    --timing-gi) timing_gi="${2:?--timing-gi needs on or off}"; shift 2 ;;
     --grab) grab="${2:?--grab needs a file name}"; shift 2 ;;
     *) echo "check-paraview-gui: unknown option '$1'; $usage" >&2; exit 2 ;;
   esac
 done
+case "$timing_gi" in
+  on|off) ;;
+  *) echo "check-paraview-gui: --timing-gi '$timing_gi' is not on or off" >&2; exit 2 ;;
+esac
 case "$frames" in
   ''|*[!0-9]*) echo "check-paraview-gui: --frames '$frames' is not a count" >&2; exit 2 ;;
 esac
@@ -99,7 +109,7 @@ status=0
 # silently ignored in 5.11), found through --plugin-search-paths.
 XDG_RUNTIME_DIR="$out/xdg" PYTHONPATH="$pv_python" \
   MRGI_GUI_OUT="$out" MRGI_GUI_SCRIPT_DIR="$testing" MRGI_GUI_SIZE=256 \
-  MRGI_GUI_FRAMES="$frames" MRGI_GUI_TIMING_SIZE=512 \
+  MRGI_GUI_FRAMES="$frames" MRGI_GUI_TIMING_SIZE=512 MRGI_GUI_TIMING_GI="$timing_gi" \
   MRGI_GUI_GRAB="${grab:+$out/screen.xwd}" MRGI_GUI_XWD="$out/fb/Xvfb_screen0" \
   under_xvfb "$out/paraview.log" \
   paraview --dr --plugin-search-paths="$plugin_dir" --plugins=MRGIRenderView \
@@ -158,7 +168,8 @@ fi
 if [ "$frames" -gt 0 ]; then
   [ -f "$out/gui-frames.txt" ] || fail "the GUI script wrote no gui-frames.txt"
   under_xvfb "$out/vtk-frames.txt" env PYTHONPATH="$build/lib/python3/dist-packages" \
-    /usr/bin/python3 "$testing/vtk_cornell_frames.py" --frames "$frames" --size 512 ||
+    /usr/bin/python3 "$testing/vtk_cornell_frames.py" --frames "$frames" --size 512 \
+    --gi "$timing_gi" ||
     fail "vtk_cornell_frames.py failed: $out/vtk-frames.txt"
   # Medians of wall and CPU time per frame, GUI over plain VTK window.
   awk '
@@ -174,8 +185,8 @@ if [ "$frames" -gt 0 ]; then
     }
     END {
       gw = median("wall", 1); gc = median("cpu", 1); pw = median("wall", 2); pc = median("cpu", 2)
-      printf "check-paraview-gui: %d frames at 512x512, medians: GUI %.1f ms wall, %.1f ms CPU; ", n[1], gw, gc
+      printf "check-paraview-gui: %d frames at 512x512, GI %s, medians: GUI %.1f ms wall, %.1f ms CPU; ", n[1], gi, gw, gc
       printf "plain VTK window %.1f ms wall, %.1f ms CPU; ratio %.2f wall, %.2f CPU\n", pw, pc, gw / pw, gc / pc
-    }' "$out/gui-frames.txt" "$out/vtk-frames.txt"
+    }' gi="$timing_gi" "$out/gui-frames.txt" "$out/vtk-frames.txt"
 fi
 echo "check-paraview-gui: passed ($out)"

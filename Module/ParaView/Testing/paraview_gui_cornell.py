@@ -11,6 +11,7 @@ environment:
   MRGI_GUI_SIZE        side of the compared screenshots, pixels (default 256)
   MRGI_GUI_FRAMES      still renders to time (default 20; 0: none)
   MRGI_GUI_TIMING_SIZE their size, side in pixels (default 512)
+  MRGI_GUI_TIMING_GI   on (default) or off: time with Global Illumination off
   MRGI_GUI_GRAB        file name: at the end, copy Xvfb's screen (MRGI_GUI_XWD,
                        the -fbdir file) into it once Qt has painted the
                        window (the docs' screenshots)
@@ -126,7 +127,7 @@ def run():
         if not os.path.isfile(path):
             raise RuntimeError("SaveScreenshot wrote no " + path)
         log("wrote " + path)
-    view.GlobalIllumination = 1
+    view.GlobalIllumination = 0 if os.environ.get("MRGI_GUI_TIMING_GI", "on") == "off" else 1
 
     if frames > 0:
         # Still renders at TIMING_SIZE: each after a camera change (a small

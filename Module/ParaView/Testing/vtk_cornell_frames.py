@@ -8,10 +8,12 @@ the GL has drawn the frame. Prints the wall and CPU time of each frame (ms),
 then their medians.
 
     PYTHONPATH=build/lib/python3/dist-packages /usr/bin/python3 \\
-        Module/ParaView/Testing/vtk_cornell_frames.py [--frames N] [--window x|headless]
+        Module/ParaView/Testing/vtk_cornell_frames.py [--frames N] [--window x|headless] [--gi off]
 
 --window x (default) opens VTK's own X window (run it under xvfb-run, as the
-GUI); headless uses MRGI's EGL window (no X server needed).
+GUI); headless uses MRGI's EGL window (no X server needed). --gi off renders
+without vtkMRGIPass (VTK's own passes: the counterpart of the view with
+Global Illumination off).
 """
 import argparse
 import time
@@ -27,6 +29,7 @@ def main():
     parser.add_argument("--frames", type=int, default=20)
     parser.add_argument("--size", type=int, default=512)
     parser.add_argument("--window", choices=("x", "headless"), default="x")
+    parser.add_argument("--gi", choices=("on", "off"), default="on")
     args = parser.parse_args()
     if args.frames < 1:
         parser.error("--frames must be at least 1")
@@ -49,7 +52,8 @@ def main():
     gi.SetDelegatePass(vtkRenderStepsPass())
     gi.SetAutoExposure(False)
     gi.SetExposure(0.0)
-    renderer.SetPass(gi)
+    if args.gi == "on":
+        renderer.SetPass(gi)
 
     def render_finished():
         window.Render()
