@@ -321,14 +321,19 @@ def signal_during_write():
                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
         caught = False
         while p.poll() is None:
-            # The first staging or writer temporary file: the write has begun.
-            if any(n.startswith(prefix) and ".tmp-" in n for n in os.listdir(TMP)):
+            # The first staging or writer temporary file of THIS process
+            # (".tmp-PID"): the write has begun. A stale temporary of an
+            # earlier, killed run must not trigger the signal before the
+            # handlers exist.
+            mine = ".tmp-%d" % p.pid
+            if any(n.startswith(prefix) and mine in n for n in os.listdir(TMP)):
                 p.send_signal(signal.SIGTERM)
                 caught = True
                 break
             time.sleep(0.001)
         _, err = p.communicate(timeout=600)
-        left = sorted(n for n in os.listdir(TMP) if n.startswith(prefix))
+        left = sorted(n for n in os.listdir(TMP) if n.startswith(prefix) and
+                      (".tmp-" not in n or (".tmp-%d" % p.pid) in n))
         print("SIGTERM at", size, "caught:", caught, "exit:", p.returncode, "left:", left)
         if not caught:
             check(p.returncode == 0, "the render itself succeeds: %s" % err)
