@@ -57,4 +57,13 @@ run 2 "$work/full-2.png" --indirect full
 full="$(compare "$work/full-2.png" "$work/full-1.png")"
 echo "check-paraview-mpi: 2 ranks vs 1, full-resolution gather: relative RMS $full"
 awk -v r="$full" 'BEGIN { exit !(r != "" && r <= 0.001) }' || fail "full gather: relative RMS $full > 0.001"
+# Without --disable-xdisplay-test, ParaView's X-only capability test makes
+# the ranks wait on each other forever: the plugin must say so, naming the
+# option, before that happens (the run is then stopped).
+env -u DISPLAY timeout -k 5 20 mpirun --allow-run-as-root --oversubscribe \
+  -x PYTHONPATH -x PV_PLUGIN_PATH -np 2 \
+  pvbatch "$script" "$work/no-flag.png" 64 > "$work/no-flag.log" 2>&1 || true
+grep -q 'ERR| MRGI plugin: 2 MPI ranks and no X display.*--disable-xdisplay-test' "$work/no-flag.log" ||
+  { cat "$work/no-flag.log" >&2; fail "no clear error without --disable-xdisplay-test"; }
+echo "check-paraview-mpi: without --disable-xdisplay-test the plugin names the option"
 echo "check-paraview-mpi: all checks passed"

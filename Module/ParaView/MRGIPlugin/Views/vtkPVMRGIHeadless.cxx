@@ -5,7 +5,9 @@
 #include "vtkMRGIEGLRenderWindow.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkMultiProcessController.h"
 #include "vtkPVProcessWindow.h"
+#include "vtkRemotingCoreConfiguration.h"
 #include "vtkRenderWindow.h"
 #include "vtkVersion.h"
 
@@ -125,6 +127,23 @@ void vtkPVMRGIInitializePlugin()
   ChosenBackend = backend;
   vtkLogF(INFO, "MRGI plugin: no X display; ParaView's render windows are MRGI's %s windows",
     backend.c_str());
+  // ParaView's own rendering-capability test knows only X: on several MPI
+  // ranks without a display it decides that they cannot render, and the
+  // ranks then wait on each other in IceT forever (measured with mpirun -np
+  // 2 pvbatch). Its switch is a command-line option the plugin cannot set:
+  // say so before the hang, not after.
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  vtkRemotingCoreConfiguration* config = vtkRemotingCoreConfiguration::GetInstance();
+  if (controller && controller->GetNumberOfProcesses() > 1 && config &&
+    !config->GetDisableXDisplayTests())
+  {
+    vtkLogF(ERROR,
+      "MRGI plugin: %d MPI ranks and no X display: ParaView's rendering-capability test knows "
+      "only X and will decide that these ranks cannot render, and the ranks would then wait on "
+      "each other forever. Start pvbatch (or pvserver) with --disable-xdisplay-test: MRGI's %s "
+      "window renders without X.",
+      controller->GetNumberOfProcesses(), backend.c_str());
+  }
 }
 
 //------------------------------------------------------------------------------
