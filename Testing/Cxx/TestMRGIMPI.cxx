@@ -246,6 +246,20 @@ void WritePNG(const std::vector<float>& rgb, const std::string& name)
   io->Write(image, mrgitest::TempPath(name).c_str());
 }
 
+// The one-process image, the composite and their difference x4, as PNGs.
+void WriteComparison(
+  const std::vector<float>& reference, const std::vector<float>& composite, const std::string& tag)
+{
+  WritePNG(reference, tag + "-1rank.png");
+  WritePNG(composite, tag + "-2rank.png");
+  std::vector<float> diff(composite.size());
+  for (size_t i = 0; i < diff.size(); ++i)
+  {
+    diff[i] = 4.0f * std::fabs(composite[i] - reference[i]);
+  }
+  WritePNG(diff, tag + "-diff4.png");
+}
+
 // Where the differences are: pixels off by more than 2/255 in a channel,
 // by their distance (Chebyshev, pixels) to the nearest partition border
 // (a pixel whose neighbour was won by another rank).
@@ -468,14 +482,7 @@ void RunMode(vtkMultiProcessController* c, int mode, const char* name)
   MPI_CHECK(m.relative_rms <= IMAGE_TOLERANCE);
   const std::string tag =
     std::string("TestMRGIMPI-") + name + (size == 2 ? "" : "-np" + std::to_string(size));
-  WritePNG(reference.RGB, tag + "-1rank.png");
-  WritePNG(composite, tag + "-2rank.png");
-  std::vector<float> diff(composite.size());
-  for (size_t i = 0; i < diff.size(); ++i)
-  {
-    diff[i] = 4.0f * std::fabs(composite[i] - reference.RGB[i]);
-  }
-  WritePNG(diff, tag + "-diff4.png");
+  WriteComparison(reference.RGB, composite, tag);
 }
 }
 
@@ -537,14 +544,7 @@ void MeasureAreaLights(vtkMultiProcessController* c)
     size, m.relative_rms, m.max_abs_error, m.psnr_db);
   MPI_CHECK(m.relative_rms <= AREA_LIGHT_TOLERANCE);
   const std::string tag = "TestMRGIMPI-area" + (size == 2 ? "" : "-np" + std::to_string(size));
-  WritePNG(reference.RGB, tag + "-1rank.png");
-  WritePNG(composite, tag + "-2rank.png");
-  std::vector<float> diff(composite.size());
-  for (size_t i = 0; i < diff.size(); ++i)
-  {
-    diff[i] = 4.0f * std::fabs(composite[i] - reference.RGB[i]);
-  }
-  WritePNG(diff, tag + "-diff4.png");
+  WriteComparison(reference.RGB, composite, tag);
 }
 
 int main(int argc, char* argv[])
