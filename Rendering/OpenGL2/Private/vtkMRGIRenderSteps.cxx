@@ -71,6 +71,27 @@ protected:
 };
 vtkStandardNewMacro(vtkMRGISelectionPass);
 
+// Saves the GL viewport and scissor box, sets both to `viewport` (x, y, w, h)
+// and restores them when it goes out of scope: every forward step draws
+// into the renderer's viewport of MRGI's window-sized buffers.
+class ScopedViewportAndScissor
+{
+public:
+  ScopedViewportAndScissor(vtkRenderer* renderer, const int viewport[4])
+    : State(static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow())->GetState())
+    , SavedViewport(this->State)
+    , SavedScissor(this->State)
+  {
+    this->State->vtkglViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    this->State->vtkglScissor(viewport[0], viewport[1], viewport[2], viewport[3]);
+  }
+
+private:
+  vtkOpenGLState* State;
+  vtkOpenGLState::ScopedglViewport SavedViewport;
+  vtkOpenGLState::ScopedglScissor SavedScissor;
+};
+
 }
 
 namespace vtkMRGIRenderSteps
@@ -108,13 +129,7 @@ int RenderForward(const vtkRenderState* s, vtkRenderStepsPass* steps,
   fbo->AddColorAttachment(MRGI_GBUFFER_DIRECT, color);
   vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
   fbo->AddDepthAttachment(depth);
-  vtkOpenGLRenderWindow* renWin =
-    static_cast<vtkOpenGLRenderWindow*>(s->GetRenderer()->GetRenderWindow());
-  vtkOpenGLState* ostate = renWin->GetState();
-  vtkOpenGLState::ScopedglViewport savedViewport(ostate);
-  vtkOpenGLState::ScopedglScissor savedScissor(ostate);
-  ostate->vtkglViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-  ostate->vtkglScissor(viewport[0], viewport[1], viewport[2], viewport[3]);
+  ScopedViewportAndScissor drawInViewport(s->GetRenderer(), viewport);
   vtkRenderer* renderer = s->GetRenderer();
   vtkOpenGLRenderer* glRenderer = vtkOpenGLRenderer::SafeDownCast(renderer);
   vtkRenderState forward(renderer);
@@ -178,13 +193,7 @@ int RenderOverlays(const vtkRenderState* s, vtkRenderStepsPass* steps, const int
   {
     return 0;
   }
-  vtkOpenGLRenderWindow* renWin =
-    static_cast<vtkOpenGLRenderWindow*>(s->GetRenderer()->GetRenderWindow());
-  vtkOpenGLState* ostate = renWin->GetState();
-  vtkOpenGLState::ScopedglViewport savedViewport(ostate);
-  vtkOpenGLState::ScopedglScissor savedScissor(ostate);
-  ostate->vtkglViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-  ostate->vtkglScissor(viewport[0], viewport[1], viewport[2], viewport[3]);
+  ScopedViewportAndScissor drawInViewport(s->GetRenderer(), viewport);
   overlay->Render(s);
   return overlay->GetNumberOfRenderedProps();
 }
@@ -206,18 +215,13 @@ void RenderFXAA(vtkRenderer* renderer, vtkOpenGLFramebufferObject* fbo, vtkTextu
   {
     fxaa->UpdateConfiguration(renderer->GetFXAAOptions());
   }
-  vtkOpenGLRenderWindow* renWin = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow());
-  vtkOpenGLState* ostate = renWin->GetState();
   fbo->SaveCurrentBindingsAndBuffers();
   fbo->Bind();
   fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
   fbo->AddColorAttachment(0, display);
   vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
   fbo->ActivateReadBuffer(0);
-  vtkOpenGLState::ScopedglViewport savedViewport(ostate);
-  vtkOpenGLState::ScopedglScissor savedScissor(ostate);
-  ostate->vtkglViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-  ostate->vtkglScissor(viewport[0], viewport[1], viewport[2], viewport[3]);
+  ScopedViewportAndScissor drawInViewport(renderer, viewport);
   // The filter copies the viewport out of the read buffer (this one) and
   // draws the filtered image back over it.
   fxaa->Execute(glRenderer);
