@@ -1,9 +1,7 @@
 #include "vtkMRGISceneBuilder.h"
 
-#include "vtkImageData.h"
 #include "vtkMRGIAreaLight.h"
-#include "vtkMRGILASReader.h"
-#include "vtkMRGIPointCloud.h"
+#include "vtkImageData.h"
 
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
@@ -22,6 +20,8 @@
 #include "vtkInformation.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkMRGILASReader.h"
+#include "vtkMRGIPointCloud.h"
 #include "vtkMapper.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
