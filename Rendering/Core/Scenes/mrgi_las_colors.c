@@ -57,10 +57,11 @@ mrgi_las_color_mode mrgi_las_auto_color_mode(const mrgi_las_points* points)
   return MRGI_LAS_COLOR_INTENSITY;
 }
 
-/* The intensity at cumulative fraction `f` of the histogram. */
+/* The intensity at cumulative fraction `f` of the histogram (nearest rank,
+ * so that 3 points keep their 3 greys). */
 static int percentile(const int64_t* histogram, int64_t count, double f)
 {
-  const int64_t target = (int64_t)floor(f * (double)(count - 1));
+  const int64_t target = (int64_t)floor(f * (double)(count - 1) + 0.5);
   int64_t seen = 0;
   for (int v = 0; v < 65536; ++v)
   {
