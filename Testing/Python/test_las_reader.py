@@ -137,6 +137,9 @@ def written_file():
     ground = [round(255 * v) for v in table.GetTableValue(2)[:3]]
     check(list(colors[0]) == ground and list(colors[-1]) != ground, "palette colours match the table")
     check(mrgi.vtkMRGIPointCloud.IsPointCloud(out), "a LAS output is a point cloud")
+    text = str(reader)  # PrintSelf
+    check("FileName: " + path in text and "MaximumNumberOfPoints: 268435456" in text and
+          "ColorByUsed: 1" in text, "PrintSelf: " + text)
     # LAZ: an error naming the file, an empty output.
     laz = fresh("py_las_tile.laz")
     write_las(laz, points, compressed=True)
