@@ -436,8 +436,16 @@ int main(int argc, char* argv[])
     return FailInput(builder->GetLastErrorMessage());
   }
   char line[256];
-  std::snprintf(line, sizeof(line), "scene ready: %lld triangles in %.2f s",
-    static_cast<long long>(builder->GetBuiltTriangleCount()), seconds(buildStart));
+  if (builder->GetBuiltPointCount() > 0)
+  {
+    std::snprintf(line, sizeof(line), "scene ready: a point cloud of %lld points in %.2f s",
+      static_cast<long long>(builder->GetBuiltPointCount()), seconds(buildStart));
+  }
+  else
+  {
+    std::snprintf(line, sizeof(line), "scene ready: %lld triangles in %.2f s",
+      static_cast<long long>(builder->GetBuiltTriangleCount()), seconds(buildStart));
+  }
   Progress(o, line);
 
   if (!o.Lights.empty())

@@ -20,6 +20,9 @@
 #include "vtkInformation.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkMRGILASReader.h"
+#include "vtkMRGIPointCloud.h"
+#include "vtkMapper.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkOBJReader.h"
@@ -51,6 +54,14 @@
 #include "mrgi_scene_scaling.h"
 #include "mrgi_vtk_check.h"
 #include "mrgi_xml_check.h"
+
+// PCD files are read by vtkMRGIPCDReader (MRGI::RenderingPCL overrides it
+// with PCL's reader); until that class is in this tree, .pcd is refused with
+// the same message its base class gives.
+#if __has_include("vtkMRGIPCDReader.h")
+#include "vtkMRGIPCDReader.h"
+#define MRGI_HAVE_PCD_READER 1
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -416,6 +427,54 @@ void FaceFlatData(vtkRenderer* renderer)
   camera->SetViewUp(up);
 }
 
+// Active scalars colour through a lookup table over their range (ParaView's
+// default); only 3- and 4-component unsigned-char scalars are colours used
+// directly. VTK's default colour mode would also take 1- and 2-component
+// unsigned chars as luminance(-alpha): ironProt.vtk's 0..255 density would
+// draw as a near-black grey. `source` is the data before its surface was
+// taken (the range of the whole data set, as ParaView shows it: a volume's
+// outer surface alone may hold a single value, ironProt.vtk's zeros).
+void ColorByScalars(vtkMapper* mapper, vtkDataObject* geometry, vtkDataObject* source)
+{
+  mapper->SetScalarModeToDefault();
+  auto* ds = vtkDataSet::SafeDownCast(geometry);
+  if (!ds)
+  {
+    return;
+  }
+  vtkDataArray* scalars = ds->GetPointData()->GetScalars();
+  if (!scalars)
+  {
+    mapper->ScalarVisibilityOff();
+    return;
+  }
+  const bool colours = scalars->GetDataType() == VTK_UNSIGNED_CHAR &&
+    (scalars->GetNumberOfComponents() == 3 || scalars->GetNumberOfComponents() == 4);
+  if (colours)
+  {
+    mapper->SetColorModeToDirectScalars();
+  }
+  else
+  {
+    double range[2];
+    scalars->GetRange(range, -1);
+    auto* input = vtkDataSet::SafeDownCast(source);
+    vtkDataArray* all = input ? input->GetPointData()->GetScalars() : nullptr;
+    if (all && all->GetNumberOfComponents() == scalars->GetNumberOfComponents())
+    {
+      all->GetRange(range, -1);
+    }
+    if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
+    {
+      range[0] = 0;
+      range[1] = 1;
+    }
+    mapper->SetColorModeToMapScalars();
+    mapper->SetScalarRange(range);
+  }
+  mapper->ScalarVisibilityOn();
+}
+
 vtkSmartPointer<vtkLight> MakeLight(const mrgi_light& in)
 {
   auto light = vtkSmartPointer<vtkLight>::New();
@@ -768,11 +827,31 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
     r->SetFileName(path.c_str());
     reader = r;
   }
+  else if (EndsWith(path, ".las") || EndsWith(path, ".laz"))
+  {
+    // LAZ goes through the LAS reader too: the core recognizes compression
+    // by the header (not the name) and says "compressed LAZ is not supported".
+    auto r = vtkSmartPointer<vtkMRGILASReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (EndsWith(path, ".pcd"))
+  {
+#ifdef MRGI_HAVE_PCD_READER
+    vtkSmartPointer<vtkMRGIPCDReader> r;
+    r.TakeReference(vtkMRGIPCDReader::New()); // the PCL override where MRGI::RenderingPCL is built
+    r->SetFileName(path.c_str());
+    reader = r;
+#else
+    return this->Fail("cannot read '" + path +
+      "': reading PCD needs MRGI's PCL module (MRGI::RenderingPCL), which this build lacks");
+#endif
+  }
   else
   {
     return this->Fail("cannot read '" + path +
       "': unknown extension (known: .vtp .vtu .vti .vts .vtr .vtm .vtk .ply .obj .stl "
-      ".gltf .glb)");
+      ".gltf .glb .las .pcd)");
   }
 
   // Data sets that are not polygonal (and multiblocks of them) become their
@@ -810,8 +889,19 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
   vtkDataObject* data = reader->GetOutputDataObject(0);
   if (readerErrors.HasError() || !data)
   {
-    return this->Fail("cannot read '" + path + "': " +
-      (readerErrors.HasError() ? readerErrors.GetMessage() : std::string("the reader produced nothing")));
+    const std::string why = readerErrors.HasError() ? readerErrors.GetMessage()
+                                                    : std::string("the reader produced nothing");
+    // MRGI's own readers (LAS, PCD) name the file themselves.
+    return this->Fail(
+      why.find("'" + path + "'") != std::string::npos ? why : "cannot read '" + path + "': " + why);
+  }
+
+  // Point clouds take their own path before the checks below, which refuse
+  // any non-finite point: scanners pad clouds with NaN points, which the
+  // point-cloud path leaves out.
+  if (vtkMRGIPointCloud::IsPointCloud(data))
+  {
+    return this->BuildPointCloud(path, vtkPolyData::SafeDownCast(data), renderer);
   }
 
   {
@@ -845,23 +935,11 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
   {
     return this->Fail("'" + path + "' holds a " + data->GetClassName() + ", which has no surface to draw");
   }
-  if (auto* cloud = vtkPolyData::SafeDownCast(geometry))
+  if (vtkMRGIPointCloud::IsPointCloud(geometry))
   {
-    if (cloud->GetNumberOfCells() == 0 && cloud->GetNumberOfPoints() > 0)
-    {
-      // Points without cells (an OBJ or PLY point cloud) draw nothing in
-      // VTK: give each point a vertex cell, as point-cloud viewers show them.
-      auto withVerts = vtkSmartPointer<vtkPolyData>::New();
-      withVerts->ShallowCopy(cloud);
-      vtkNew<vtkCellArray> verts;
-      verts->AllocateExact(cloud->GetNumberOfPoints(), cloud->GetNumberOfPoints());
-      for (vtkIdType i = 0; i < cloud->GetNumberOfPoints(); ++i)
-      {
-        verts->InsertNextCell(1, &i);
-      }
-      withVerts->SetVerts(verts);
-      geometry = withVerts;
-    }
+    // A data set of vertex cells only (a .vtu of points) has a cloud as
+    // its surface.
+    return this->BuildPointCloud(path, vtkPolyData::SafeDownCast(geometry), renderer);
   }
   if (auto* poly = vtkPolyData::SafeDownCast(geometry))
   {
@@ -879,49 +957,7 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
   }
 
   mapper->SetInputDataObject(geometry);
-  // Active scalars colour through a lookup table over their range (ParaView's
-  // default); only 3- and 4-component unsigned-char scalars are colours used
-  // directly. VTK's default colour mode would also take 1- and 2-component
-  // unsigned chars as luminance(-alpha): ironProt.vtk's 0..255 density would
-  // draw as a near-black grey.
-  mapper->SetScalarModeToDefault();
-  if (auto* ds = vtkDataSet::SafeDownCast(geometry))
-  {
-    if (vtkDataArray* scalars = ds->GetPointData()->GetScalars())
-    {
-      const bool colours = scalars->GetDataType() == VTK_UNSIGNED_CHAR &&
-        (scalars->GetNumberOfComponents() == 3 || scalars->GetNumberOfComponents() == 4);
-      if (colours)
-      {
-        mapper->SetColorModeToDirectScalars();
-      }
-      else
-      {
-        // The range of the whole data set, as ParaView shows it: a volume's
-        // outer surface alone may hold a single value (ironProt.vtk's zeros).
-        double range[2];
-        scalars->GetRange(range, -1);
-        auto* input = vtkDataSet::SafeDownCast(data);
-        vtkDataArray* all = input ? input->GetPointData()->GetScalars() : nullptr;
-        if (all && all->GetNumberOfComponents() == scalars->GetNumberOfComponents())
-        {
-          all->GetRange(range, -1);
-        }
-        if (!std::isfinite(range[0]) || !std::isfinite(range[1]))
-        {
-          range[0] = 0;
-          range[1] = 1;
-        }
-        mapper->SetColorModeToMapScalars();
-        mapper->SetScalarRange(range);
-      }
-      mapper->ScalarVisibilityOn();
-    }
-    else
-    {
-      mapper->ScalarVisibilityOff();
-    }
-  }
+  ColorByScalars(mapper, geometry, data);
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
   actor->GetProperty()->SetColor(0.8, 0.8, 0.8);
@@ -930,6 +966,47 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
   FaceFlatData(renderer);
   renderer->ResetCamera();
   this->BuiltTriangleCount = triangles;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+// Every point cloud, whatever its reader, is drawn here: the one place where
+// normals, splat radii and surfels plug in.
+bool vtkMRGISceneBuilder::BuildPointCloud(
+  const std::string& path, vtkPolyData* cloud, vtkRenderer* renderer)
+{
+  const vtkIdType n = cloud ? cloud->GetNumberOfPoints() : 0;
+  if (n > MaxPoints)
+  {
+    return this->Fail("cannot draw '" + path + "': it has " + std::to_string(n) +
+      " points, more than MRGI draws (" + std::to_string(MaxPoints) + ")");
+  }
+  std::string why;
+  if (!cloud || !CellsInRange(cloud->GetVerts(), n, "vertex", why))
+  {
+    return this->Fail("cannot draw '" + path + "': " + (cloud ? why : std::string("no points")));
+  }
+  vtkSmartPointer<vtkPolyData> drawable;
+  drawable.TakeReference(vtkMRGIPointCloud::NewFiniteCloud(cloud));
+  if (!drawable || drawable->GetNumberOfPoints() == 0)
+  {
+    return this->Fail("cannot draw '" + path + "': none of its " + std::to_string(n) +
+      " points has finite coordinates (all NaN or infinite)");
+  }
+  // TODO(surfels): normals, radii and the surfel mapper replace the vertex
+  // rendering below (issue 15, part 3).
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(drawable);
+  ColorByScalars(mapper, drawable, drawable);
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(0.8, 0.8, 0.8);
+  actor->GetProperty()->SetPointSize(2.0f);
+  renderer->AddActor(actor);
+  FaceFlatData(renderer);
+  renderer->ResetCamera();
+  this->BuiltTriangleCount = 0;
+  this->BuiltPointCount = drawable->GetNumberOfPoints();
   return true;
 }
 
@@ -946,6 +1023,7 @@ bool vtkMRGISceneBuilder::Build(vtkRenderer* renderer)
   this->LastErrorMessage.clear();
   this->AreaLights.clear();
   this->BuiltTriangleCount = 0;
+  this->BuiltPointCount = 0;
   if (!renderer)
   {
     return this->Fail("Build needs a renderer");
@@ -996,4 +1074,5 @@ void vtkMRGISceneBuilder::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ObjectCount: " << this->ObjectCount << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "BuiltTriangleCount: " << this->BuiltTriangleCount << "\n";
+  os << indent << "BuiltPointCount: " << this->BuiltPointCount << "\n";
 }

@@ -20,14 +20,20 @@
  *
  * Files are read with VTK's readers, chosen by extension: .vtp .vtu .vti
  * .vts .vtr .vtm (XML), .vtk (legacy), .ply, .obj, .stl, .gltf/.glb
- * (vtkGLTFImporter). Data sets that are not polygonal are reduced to their
+ * (vtkGLTFImporter), and MRGI's: .las (vtkMRGILASReader; .laz is refused:
+ * "compressed LAZ is not supported"), .pcd (vtkMRGIPCDReader, which needs
+ * MRGI::RenderingPCL). Data sets that are not polygonal are reduced to their
  * outer surface as ParaView's Surface representation does
  * (vtkDataSetSurfaceFilter); active point scalars of 1 or 2 components
  * (unsigned char included) are coloured through a lookup table over the data
  * set's range, 3- and 4-component unsigned-char scalars are used directly.
  * Files bring no camera (ResetCamera frames them; flat data is seen face on)
  * and no lights (VTK's headlight lights them unless lights are added).
- * Points without cells get a vertex cell each.
+ * Point clouds (vtkMRGIPointCloud::IsPointCloud(): points with vertex
+ * cells or no cells, from any reader) are drawn as their finite points,
+ * one vertex each (points with a NaN coordinate are left out; a cloud
+ * without a finite point is an error); LAS clouds show their display
+ * colours (RGB, classes or intensity).
  *
  * Only regular files are read. Before a VTK reader sees a PLY, OBJ, legacy
  * VTK, VTK XML or glTF file, the core's structure check of that format
@@ -109,6 +115,12 @@ public:
   /** Triangles added by the last successful Build() (0 for point clouds). */
   vtkGetMacro(BuiltTriangleCount, vtkIdType);
 
+  /**
+   * Points drawn by the last successful Build() of a point cloud (its
+   * finite points); 0 for meshes and built-in scenes.
+   */
+  vtkGetMacro(BuiltPointCount, vtkIdType);
+
   ///@{
   /**
    * The area lights of the last built scene (cornell-area: the published
@@ -132,6 +144,7 @@ protected:
 
   bool BuildCoreScene(const mrgi_scene* scene, vtkRenderer* renderer);
   bool BuildFile(const std::string& path, vtkRenderer* renderer);
+  bool BuildPointCloud(const std::string& path, vtkPolyData* cloud, vtkRenderer* renderer);
   bool Fail(const std::string& why);
 
   std::string Scene = "cornell";
@@ -139,6 +152,7 @@ protected:
   int ObjectCount = 64;
   vtkTypeUInt64 Seed = 1;
   vtkIdType BuiltTriangleCount = 0;
+  vtkIdType BuiltPointCount = 0;
   std::string LastErrorMessage;
   std::vector<vtkSmartPointer<vtkMRGIAreaLight>> AreaLights;
 

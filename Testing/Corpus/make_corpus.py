@@ -540,8 +540,71 @@ def gltf_cases():
     case("glb_header_only.glb", glb(gltf_doc())[:12])
 
 
+# --- LAS point clouds and vertex-only clouds (issue 15) ---------------------
+def las(points=CUBE_P, minor=2, fmt=3, scale=0.001, offset=(500000.0, 5400000.0, 0.0), count=None,
+        header_size=None, offset_to_points=None, record=None, format_byte=None):
+    """A LAS file from the ASPRS specification: points in metres, classes 2 and 5, RGB."""
+    lengths = {0: 20, 1: 28, 2: 26, 3: 34, 6: 30, 7: 36}
+    size = 375 if minor >= 4 else 227
+    rec = lengths[fmt]
+    h = bytearray(size)
+    h[0:4] = b"LASF"
+    h[24], h[25] = 1, minor
+    n = len(points) if count is None else count
+    struct.pack_into("<HIIBHI", h, 94, size if header_size is None else header_size,
+                     size if offset_to_points is None else offset_to_points,
+                     0, fmt if format_byte is None else format_byte, rec if record is None else record,
+                     0 if minor >= 4 else n & 0xFFFFFFFF)
+    if minor >= 4:
+        struct.pack_into("<Q", h, 247, n)
+    struct.pack_into("<3d3d", h, 131, scale, scale, scale, *offset)
+    body = bytearray()
+    for i, p in enumerate(points):
+        r = bytearray(rec)
+        struct.pack_into("<3iH", r, 0, *[int(round(p[c] / 0.001)) for c in range(3)], 100 * i)
+        r[14] = 0x09
+        r[16 if fmt >= 6 else 15] = 2 if i % 2 else 5
+        rgb = {2: 20, 3: 28, 7: 30}.get(fmt)
+        if rgb is not None:
+            struct.pack_into("<3H", r, rgb, 60000, 30000 + 1000 * i, 5000)
+        body += r
+    return bytes(h) + bytes(body)
+
+
+def las_cases():
+    case("las_ok_format3.las", las())
+    case("las_ok_format6_14.las", las(minor=4, fmt=6))
+    case("las_ok_format0.las", las(fmt=0))
+    case("las_one_point.las", las(points=[(1, 2, 3)]))
+    case("las_laz_compressed.laz", las(format_byte=3 | 0x80))
+    case("las_laz_named_las.las", las(format_byte=3 | 0x80))
+    case("las_signature.las", b"LASX" + las()[4:])
+    case("las_version_2_0.las", las()[:24] + b"\x02\x00" + las()[26:])
+    case("las_header_size_small.las", las(header_size=10))
+    case("las_header_size_huge.las", las(header_size=65535))
+    case("las_points_offset_outside.las", las(offset_to_points=0x7FFFFFF0))
+    case("las_points_offset_in_header.las", las(offset_to_points=4))
+    case("las_format_11.las", las(format_byte=11))
+    case("las_record_short.las", las(record=4))
+    case("las_count_zero.las", las(count=0))
+    case("las_count_huge.las", las(count=0xFFFFFFFF))
+    case("las_count64_huge.las", las(minor=4, fmt=6, count=(1 << 63) - 1))
+    case("las_scale_zero.las", las(scale=0.0))
+    case("las_scale_nan.las", las(scale=NAN))
+    case("las_scale_huge.las", las(scale=1e300))
+    case("las_offset_inf.las", las(offset=(float("inf"), 0.0, 0.0)))
+    case("las_header_only.las", las()[:227])
+    # Vertex-only clouds: NaN points left out, all-NaN refused.
+    nan_points = [(NAN, NAN, NAN)] * 8
+    case("ply_points_all_nan.ply", ply_binary(points=nan_points, tris=[]))
+    case("ply_points_some_nan.ply", ply_binary(points=CUBE_P[:4] + nan_points, tris=[]))
+    case("vtk_points_all_nan.vtk", vtk_poly(points=nan_points, cells=[(i,) for i in range(8)], binary=True,
+                                            kind="VERTICES"))
+
+
 # --- generic: garbage, truncation, empty ------------------------------------
-EXTS = [".ply", ".obj", ".vtk", ".vtp", ".vtu", ".vti", ".vts", ".vtr", ".vtm", ".stl", ".gltf", ".glb"]
+EXTS = [".ply", ".obj", ".vtk", ".vtp", ".vtu", ".vti", ".vts", ".vtr", ".vtm", ".stl", ".gltf", ".glb",
+        ".las", ".laz", ".pcd"]
 
 
 def generic_cases():
@@ -583,6 +646,7 @@ def main():
     vtk_cases()
     xml_cases()
     gltf_cases()
+    las_cases()
     generic_cases()
     names = set()
     for name, data in CASES:
