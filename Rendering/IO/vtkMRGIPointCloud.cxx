@@ -1,6 +1,7 @@
 #include "vtkMRGIPointCloud.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellTypes.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdList.h"
@@ -11,6 +12,7 @@
 #include "vtkPolyData.h"
 #include "vtkTypeInt32Array.h"
 #include "vtkTypeInt64Array.h"
+#include "vtkUnstructuredGrid.h"
 
 #include <cmath>
 #include <limits>
@@ -48,13 +50,36 @@ void SetOneVertexPerPoint(vtkPolyData* poly, vtkIdType n)
 //------------------------------------------------------------------------------
 bool vtkMRGIPointCloud::IsPointCloud(vtkDataObject* data)
 {
-  auto* poly = vtkPolyData::SafeDownCast(data);
-  return poly && poly->GetNumberOfPoints() > 0 && poly->GetNumberOfLines() == 0 &&
-    poly->GetNumberOfPolys() == 0 && poly->GetNumberOfStrips() == 0;
+  if (auto* poly = vtkPolyData::SafeDownCast(data))
+  {
+    return poly->GetNumberOfPoints() > 0 && poly->GetNumberOfLines() == 0 &&
+      poly->GetNumberOfPolys() == 0 && poly->GetNumberOfStrips() == 0;
+  }
+  auto* set = vtkPointSet::SafeDownCast(data);
+  if (!set || set->GetNumberOfPoints() == 0)
+  {
+    return false;
+  }
+  if (auto* grid = vtkUnstructuredGrid::SafeDownCast(set))
+  {
+    // The grid's distinct cell types, not a walk over every cell.
+    vtkNew<vtkCellTypes> types;
+    grid->GetCellTypes(types);
+    for (vtkIdType t = 0; t < types->GetNumberOfTypes(); ++t)
+    {
+      const unsigned char type = types->GetCellType(t);
+      if (type != VTK_VERTEX && type != VTK_POLY_VERTEX)
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+  return set->GetNumberOfCells() == 0;
 }
 
 //------------------------------------------------------------------------------
-vtkIdType vtkMRGIPointCloud::CountFinitePoints(vtkPolyData* cloud)
+vtkIdType vtkMRGIPointCloud::CountFinitePoints(vtkPointSet* cloud)
 {
   vtkPoints* points = cloud ? cloud->GetPoints() : nullptr;
   if (!points)
@@ -73,7 +98,7 @@ vtkIdType vtkMRGIPointCloud::CountFinitePoints(vtkPolyData* cloud)
 }
 
 //------------------------------------------------------------------------------
-vtkPolyData* vtkMRGIPointCloud::NewFiniteCloud(vtkPolyData* cloud)
+vtkPolyData* vtkMRGIPointCloud::NewFiniteCloud(vtkPointSet* cloud)
 {
   if (!IsPointCloud(cloud))
   {
@@ -87,7 +112,8 @@ vtkPolyData* vtkMRGIPointCloud::NewFiniteCloud(vtkPolyData* cloud)
   {
     return out;
   }
-  vtkCellArray* verts = cloud->GetVerts();
+  auto* poly = vtkPolyData::SafeDownCast(cloud);
+  vtkCellArray* verts = poly ? poly->GetVerts() : nullptr;
   const bool oneVertexEach =
     verts && verts->GetNumberOfCells() == n && verts->GetNumberOfConnectivityIds() == n;
   if (finite == n && oneVertexEach)

@@ -2,9 +2,10 @@
  * @class   vtkMRGIPointCloud
  * @brief   What MRGI treats as a point cloud, and a cloud ready to draw.
  *
- * A point cloud is a vtkPolyData with at least one point and no lines,
- * polygons or strips: its cells are all vertices (or poly-vertices), or it
- * has no cells at all (a PLY or OBJ of bare vertices). Whatever reader made
+ * A point cloud is a point set with at least one point whose cells are all
+ * vertices (or poly-vertices), or that has no cells at all: a vtkPolyData
+ * without lines, polygons or strips (a PLY or OBJ of bare vertices), or a
+ * vtkUnstructuredGrid of vertex cells (a .vtu of points). Whatever reader made
  * it (LAS, PCD, PLY, legacy or XML VTK), vtkMRGISceneBuilder draws such data
  * through its point-cloud path.
  *
@@ -21,6 +22,7 @@
 #include "vtkWrappingHints.h" // For VTK_NEWINSTANCE
 
 class vtkDataObject;
+class vtkPointSet;
 class vtkPolyData;
 
 class MRGIRENDERINGIO_EXPORT vtkMRGIPointCloud : public vtkObject
@@ -32,12 +34,14 @@ public:
 
   /**
    * True when `data` is a vtkPolyData with points and no lines, polygons or
-   * strips. False for nullptr, empty data and any other type.
+   * strips, or another vtkPointSet with points whose cells are all
+   * VTK_VERTEX or VTK_POLY_VERTEX (or that has none). False for nullptr,
+   * empty data and any other type.
    */
   static bool IsPointCloud(vtkDataObject* data);
 
   /** The number of points of `cloud` whose three coordinates are finite; 0 for nullptr. */
-  static vtkIdType CountFinitePoints(vtkPolyData* cloud);
+  static vtkIdType CountFinitePoints(vtkPointSet* cloud);
 
   /**
    * A new vtkPolyData holding the finite points of `cloud`, one vertex cell
@@ -46,7 +50,7 @@ public:
    * copied. nullptr when `cloud` is not a point cloud (IsPointCloud()); an
    * empty vtkPolyData when no point is finite. The caller owns the result.
    */
-  VTK_NEWINSTANCE static vtkPolyData* NewFiniteCloud(vtkPolyData* cloud);
+  VTK_NEWINSTANCE static vtkPolyData* NewFiniteCloud(vtkPointSet* cloud);
 
 protected:
   vtkMRGIPointCloud() = default;

@@ -901,7 +901,7 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
   // point-cloud path leaves out.
   if (vtkMRGIPointCloud::IsPointCloud(data))
   {
-    return this->BuildPointCloud(path, vtkPolyData::SafeDownCast(data), renderer);
+    return this->BuildPointCloud(path, vtkPointSet::SafeDownCast(data), renderer);
   }
 
   {
@@ -939,7 +939,7 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
   {
     // A data set of vertex cells only (a .vtu of points) has a cloud as
     // its surface.
-    return this->BuildPointCloud(path, vtkPolyData::SafeDownCast(geometry), renderer);
+    return this->BuildPointCloud(path, vtkPointSet::SafeDownCast(geometry), renderer);
   }
   if (auto* poly = vtkPolyData::SafeDownCast(geometry))
   {
@@ -973,7 +973,7 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
 // Every point cloud, whatever its reader, is drawn here: the one place where
 // normals, splat radii and surfels plug in.
 bool vtkMRGISceneBuilder::BuildPointCloud(
-  const std::string& path, vtkPolyData* cloud, vtkRenderer* renderer)
+  const std::string& path, vtkPointSet* cloud, vtkRenderer* renderer)
 {
   const vtkIdType n = cloud ? cloud->GetNumberOfPoints() : 0;
   if (n > MaxPoints)
@@ -982,7 +982,8 @@ bool vtkMRGISceneBuilder::BuildPointCloud(
       " points, more than MRGI draws (" + std::to_string(MaxPoints) + ")");
   }
   std::string why;
-  if (!cloud || !CellsInRange(cloud->GetVerts(), n, "vertex", why))
+  auto* poly = vtkPolyData::SafeDownCast(cloud);
+  if (!cloud || (poly && !CellsInRange(poly->GetVerts(), n, "vertex", why)))
   {
     return this->Fail("cannot draw '" + path + "': " + (cloud ? why : std::string("no points")));
   }

@@ -57,6 +57,7 @@
 #include <vector>             // For std::vector
 
 class vtkMRGIAreaLight;
+class vtkPointSet;
 class vtkPolyData;
 class vtkRenderer;
 struct mrgi_mesh;
@@ -144,7 +145,7 @@ protected:
 
   bool BuildCoreScene(const mrgi_scene* scene, vtkRenderer* renderer);
   bool BuildFile(const std::string& path, vtkRenderer* renderer);
-  bool BuildPointCloud(const std::string& path, vtkPolyData* cloud, vtkRenderer* renderer);
+  bool BuildPointCloud(const std::string& path, vtkPointSet* cloud, vtkRenderer* renderer);
   bool Fail(const std::string& why);
 
   std::string Scene = "cornell";

@@ -228,6 +228,24 @@ void TestBuilderFiles()
   }
   b = Build(vtu);
   MRGI_TEST_CHECK(b.Ok && b.Points == 100);
+  // The same grid with every 10th point NaN: the NaN points are left out,
+  // as for every other reader (not "point 0 is not finite").
+  const std::string nanVtu = mrgitest::TempPath("clouds_some_nan.vtu");
+  {
+    auto cloud = Cloud(100, 10, false);
+    vtkNew<vtkUnstructuredGrid> grid;
+    grid->SetPoints(cloud->GetPoints());
+    for (vtkIdType i = 0; i < 100; ++i)
+    {
+      grid->InsertNextCell(VTK_VERTEX, 1, &i);
+    }
+    vtkNew<vtkXMLUnstructuredGridWriter> writer;
+    writer->SetFileName(nanVtu.c_str());
+    writer->SetInputData(grid);
+    MRGI_TEST_CHECK(writer->Write() == 1);
+  }
+  b = Build(nanVtu);
+  MRGI_TEST_CHECK(b.Ok && b.Points == 90);
   // A mesh is not a cloud.
   const std::string mesh = mrgitest::TempPath("clouds_mesh.ply");
   {
