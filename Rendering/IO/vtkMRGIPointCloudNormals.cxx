@@ -13,6 +13,7 @@
 #include "mrgi_point_normals.h"
 
 #include <cmath>
+#include <exception>
 #include <vector>
 
 // The factory's override (MRGI::RenderingPCL) when it is registered.
@@ -128,8 +129,18 @@ int vtkMRGIPointCloudNormals::RequestData(
   vtkNew<vtkFloatArray> radii;
   radii->SetName("Radius");
   radii->SetNumberOfTuples(n);
-  if (!this->Estimate(input, xyz, n, orientation, reference,
-        estimateNormals ? normals->GetPointer(0) : nullptr, radii->GetPointer(0)))
+  bool estimated = false;
+  try
+  {
+    estimated = this->Estimate(input, xyz, n, orientation, reference,
+      estimateNormals ? normals->GetPointer(0) : nullptr, radii->GetPointer(0));
+  }
+  catch (const std::exception& e)
+  {
+    // PCL (the override) reports out-of-memory and its own failures so.
+    vtkErrorMacro(<< "estimating normals and radii of " << n << " points failed: " << e.what());
+  }
+  if (!estimated)
   {
     output->Initialize();
     return 0;
