@@ -18,6 +18,12 @@
 
 vtkStandardNewMacro(vtkMRGIPCLPointCloudNormals);
 
+namespace
+{
+/** Smallest width and height given to the integral-image estimator. */
+constexpr double MinimumIntegralImageSide = 40.0;
+}
+
 vtkMRGIPCLPointCloudNormals::vtkMRGIPCLPointCloudNormals() = default;
 vtkMRGIPCLPointCloudNormals::~vtkMRGIPCLPointCloudNormals() = default;
 
@@ -75,7 +81,10 @@ bool vtkMRGIPCLPointCloudNormals::Estimate(vtkPolyData* input, const float* xyz,
       const double w = dims->GetComponent(0, 0);
       const double h =
         dims->GetNumberOfComponents() == 2 ? dims->GetComponent(0, 1) : dims->GetComponent(1, 0);
-      organized = w >= 2 && h >= 2 && w * h <= 1e9;
+      // PCL 1.13's integral-image estimator reads outside its image when a
+      // side is under 10 pixels (SIGSEGV, measured) and finds no normal
+      // within 2 x 10 + 1 pixels of a border: small grids go to kNN.
+      organized = w >= MinimumIntegralImageSide && h >= MinimumIntegralImageSide && w * h <= 1e9;
       width = organized ? static_cast<std::size_t>(w) : 0;
       height = organized ? static_cast<std::size_t>(h) : 0;
     }

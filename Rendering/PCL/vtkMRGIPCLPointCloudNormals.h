@@ -6,8 +6,10 @@
  * The object factory's override of vtkMRGIPointCloudNormals in MRGI's PCL
  * module (VTK 9.1 build only). Properties, outputs and orientation rules
  * are the base class's; only the estimation differs:
- * - organized input (field data "OrganizedDimensions" = width, height and
- *   point data "PixelIndex", as vtkMRGIPCLPCDReader writes them): the
+ * - organized input (field data "OrganizedDimensions" = width, height,
+ *   both at least 40, and point data "PixelIndex", as vtkMRGIPCLPCDReader
+ *   writes them; PCL 1.13's estimator crashes on images under 10 pixels
+ *   high or wide): the
  *   points are put back on their width x height grid (NaN elsewhere) and
  *   pcl::IntegralImageNormalEstimation (average 3D gradient, smoothing 10
  *   pixels, depth-change factor 0.02) gives the normals; where it gives none

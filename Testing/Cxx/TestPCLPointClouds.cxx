@@ -197,6 +197,43 @@ pcl::PointCloud<pcl::PointXYZRGBA> OrganizedPlane(int* finite)
   return cloud;
 }
 
+/** Organized clouds too small for integral images (PCL crashed on them) use kNN. */
+void TestSmallOrganized()
+{
+  for (const int side : { 1, 2, 3, 5, 9, 39 })
+  {
+    for (const int other : { 3, 48 })
+    {
+      pcl::PointCloud<pcl::PointXYZ> cloud(
+        static_cast<std::uint32_t>(side), static_cast<std::uint32_t>(other));
+      for (int v = 0; v < other; ++v)
+      {
+        for (int u = 0; u < side; ++u)
+        {
+          cloud.at(u, v) =
+            pcl::PointXYZ(0.01f * static_cast<float>(u), 0.01f * static_cast<float>(v), 1.0f);
+        }
+      }
+      const std::string path = mrgitest::TempPath("pcl_small_organized.pcd");
+      MRGI_TEST_CHECK(pcl::io::savePCDFileBinary(path, cloud) == 0);
+      auto reader = Read(path, nullptr);
+      vtkSmartPointer<vtkMRGIPointCloudNormals> filter =
+        vtkSmartPointer<vtkMRGIPointCloudNormals>::Take(vtkMRGIPointCloudNormals::New());
+      filter->SetInputConnection(reader->GetOutputPort());
+      filter->Update();
+      auto* pclFilter = vtkMRGIPCLPointCloudNormals::SafeDownCast(filter);
+      MRGI_TEST_CHECK(pclFilter && !pclFilter->GetUsedIntegralImage());
+      vtkDataArray* normals = filter->GetOutput()->GetPointData()->GetNormals();
+      MRGI_TEST_CHECK(normals && normals->GetNumberOfTuples() == side * other);
+      if (side > 1)
+      {
+        // A plane seen from the origin: -z.
+        MRGI_TEST_CHECK(normals->GetComponent(0, 2) < -0.999);
+      }
+    }
+  }
+}
+
 void TestOrganized()
 {
   int finite = 0;
@@ -523,6 +560,7 @@ int main(int argc, char* argv[])
   }
   return mrgitest::RunCases(argc, argv,
     { MRGI_TEST_CASE(TestOverridesActive), MRGI_TEST_CASE(TestRoundTrip),
-      MRGI_TEST_CASE(TestOrganized), MRGI_TEST_CASE(TestBadFiles), MRGI_TEST_CASE(TestSharedData),
+      MRGI_TEST_CASE(TestSmallOrganized), MRGI_TEST_CASE(TestOrganized),
+      MRGI_TEST_CASE(TestBadFiles), MRGI_TEST_CASE(TestSharedData),
       MRGI_TEST_CASE(TestPCLAgreesWithCore) });
 }
