@@ -7,7 +7,8 @@
 // (../shared/data, when present) read with the MANIFEST's counts; PCL's
 // normals agree with the core's on a sampled surface, and integral-image
 // normals of an organized view of a plane are right and face the sensor.
-// `TestPCLPointClouds --bench N` times core and PCL normals on N points.
+// `TestPCLPointClouds --bench N` times core and PCL normals on N points of a
+// torus, `--bench-pcd FILE` the reading of FILE and both normals on it.
 #include "mrgiTestUtilities.h"
 
 #include "vtkCallbackCommand.h"
@@ -530,6 +531,37 @@ void TestPCLAgreesWithCore()
   MRGI_TEST_CHECK(runs == 1);
 }
 
+/** Times reading `path` and both normal estimators on it. */
+int BenchFile(const char* path)
+{
+  vtkNew<vtkTimerLog> timer;
+  timer->StartTimer();
+  auto reader = Read(path, nullptr);
+  timer->StopTimer();
+  const vtkIdType n = reader->GetOutput()->GetNumberOfPoints();
+  std::printf(
+    "read %s: %lld points in %.3f s\n", path, static_cast<long long>(n), timer->GetElapsedTime());
+  if (n == 0)
+  {
+    return 1;
+  }
+  vtkNew<CoreNormals> core;
+  vtkSmartPointer<vtkMRGIPointCloudNormals> pclFilter =
+    vtkSmartPointer<vtkMRGIPointCloudNormals>::Take(vtkMRGIPointCloudNormals::New());
+  for (vtkMRGIPointCloudNormals* f :
+    { static_cast<vtkMRGIPointCloudNormals*>(core), pclFilter.Get() })
+  {
+    f->SetInputConnection(reader->GetOutputPort());
+    timer->StartTimer();
+    f->Update();
+    timer->StopTimer();
+    std::printf("%s: %.3f s (%.3f s per million), %lld degenerate\n", f->GetClassName(),
+      timer->GetElapsedTime(), timer->GetElapsedTime() * 1e6 / static_cast<double>(n),
+      static_cast<long long>(f->GetNumberOfDegeneratePoints()));
+  }
+  return 0;
+}
+
 int Bench(vtkIdType n)
 {
   std::vector<double> truth;
@@ -557,6 +589,10 @@ int main(int argc, char* argv[])
   if (argc == 3 && std::strcmp(argv[1], "--bench") == 0)
   {
     return Bench(std::atoll(argv[2]));
+  }
+  if (argc == 3 && std::strcmp(argv[1], "--bench-pcd") == 0)
+  {
+    return BenchFile(argv[2]);
   }
   return mrgitest::RunCases(argc, argv,
     { MRGI_TEST_CASE(TestOverridesActive), MRGI_TEST_CASE(TestRoundTrip),

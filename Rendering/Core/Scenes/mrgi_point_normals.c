@@ -173,11 +173,86 @@ static double cells_for(const double e[3], double h)
   return n;
 }
 
-/* The k nearest finite points of point i (itself excluded), sorted by
- * distance: d2[0..found), idx[0..found). */
-static int knn(const grid* g, const float* positions, uint32_t i, int k, double* d2, uint32_t* idx)
+/* Marks a non-finite point in cell_of. */
+#define NO_CELL 0xFFFFFFFFu
+
+/* The grid with cell edge h over extents e (dims >= 1 each). */
+static void set_grid_size_edge(grid* g, const double e[3], double h)
 {
-  const float* p = positions + 3 * (size_t)i;
+  g->h = h;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double c = h > 0.0 ? ceil(e[a] / h) : 1.0;
+    g->dims[a] = c < 1.0 ? 1 : (int64_t)c;
+  }
+}
+
+/* The grid with the smallest cell edge giving at most `target` cells. */
+static void set_grid_size(grid* g, const double e[3], double target)
+{
+  double emax = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    emax = e[a] > emax ? e[a] : emax;
+  }
+  if (!(emax > 0.0))
+  {
+    set_grid_size_edge(g, e, 0.0);
+    return;
+  }
+  double h_lo = emax / (target + 1.0), h_hi = emax * 1.000001;
+  for (int it = 0; it < 64 && target > 1.0; ++it)
+  {
+    const double mid = 0.5 * (h_lo + h_hi);
+    if (cells_for(e, mid) > target)
+    {
+      h_lo = mid;
+    }
+    else
+    {
+      h_hi = mid;
+    }
+  }
+  set_grid_size_edge(g, e, h_hi);
+}
+
+/* Each finite point's cell (NO_CELL for the others) and the cells' starts
+ * as prefix sums (start[c] = first slot of cell c); returns how many cells
+ * hold a point. */
+static int64_t count_cells(grid* g, const float* positions, int64_t count, uint32_t* cell_of)
+{
+  const int64_t cells = g->dims[0] * g->dims[1] * g->dims[2];
+  memset(g->start, 0, sizeof(uint32_t) * ((size_t)cells + 1));
+  for (int64_t i = 0; i < count; ++i)
+  {
+    const float* p = positions + 3 * i;
+    if (!finite3(p))
+    {
+      cell_of[i] = NO_CELL;
+      continue;
+    }
+    const int64_t cell =
+      (cell_coord(g, p[2], 2) * g->dims[1] + cell_coord(g, p[1], 1)) * g->dims[0] +
+      cell_coord(g, p[0], 0);
+    cell_of[i] = (uint32_t)cell;
+    ++g->start[cell + 1];
+  }
+  int64_t occupied = 0;
+  for (int64_t c = 0; c < cells; ++c)
+  {
+    occupied += g->start[c + 1] > 0 ? 1 : 0;
+    g->start[c + 1] += g->start[c];
+  }
+  return occupied;
+}
+
+/* The k nearest finite points of the point in slot i (itself excluded),
+ * sorted by distance: d2[0..found), their slots idx[0..found). `sorted`
+ * holds the finite points in slot (cell) order: neighbours are read from
+ * nearby memory. */
+static int knn(const grid* g, const float* sorted, uint32_t i, int k, double* d2, uint32_t* idx)
+{
+  const float* p = sorted + 3 * (size_t)i;
   const double px = p[0], py = p[1], pz = p[2];
   const int64_t c[3] = { cell_coord(g, px, 0), cell_coord(g, py, 1), cell_coord(g, pz, 2) };
   /* Distance from p to the nearest face of its own cell: every point in a
@@ -229,12 +304,12 @@ static int knn(const grid* g, const float* positions, uint32_t i, int k, double*
           const int64_t cell = (z * g->dims[1] + y) * g->dims[0] + x;
           for (uint32_t s = g->start[cell]; s < g->start[cell + 1]; ++s)
           {
-            const uint32_t j = g->order[s];
+            const uint32_t j = s;
             if (j == i)
             {
               continue;
             }
-            const float* q = positions + 3 * (size_t)j;
+            const float* q = sorted + 3 * (size_t)j;
             const double dx = q[0] - px, dy = q[1] - py, dz = q[2] - pz;
             const double d = dx * dx + dy * dy + dz * dz;
             if (found == k && d >= d2[k - 1])
@@ -395,84 +470,64 @@ mrgi_status mrgi_point_normals_compute(const float* positions, int64_t count,
   }
   grid g;
   memset(&g, 0, sizeof(g));
-  g.dims[0] = g.dims[1] = g.dims[2] = 1;
+  double e[3] = { 0.0, 0.0, 0.0 };
   if (finite > 0)
   {
-    double e[3], emax = 0.0;
     for (int a = 0; a < 3; ++a)
     {
       centroid[a] /= (double)finite;
       g.origin[a] = lo[a];
       e[a] = hi[a] - lo[a];
-      emax = e[a] > emax ? e[a] : emax;
-    }
-    const double target = finite / 2 > 1 ? (double)(finite / 2) : 1.0;
-    if (emax > 0.0 && target > 1.0)
-    {
-      /* The smallest cell edge whose grid has at most `target` cells. */
-      double h_lo = emax / (target + 1.0), h_hi = emax * 1.000001;
-      for (int it = 0; it < 64; ++it)
-      {
-        const double mid = 0.5 * (h_lo + h_hi);
-        if (cells_for(e, mid) > target)
-        {
-          h_lo = mid;
-        }
-        else
-        {
-          h_hi = mid;
-        }
-      }
-      g.h = h_hi;
-      for (int a = 0; a < 3; ++a)
-      {
-        const double c = ceil(e[a] / g.h);
-        g.dims[a] = c < 1.0 ? 1 : (int64_t)c;
-      }
-    }
-    else
-    {
-      g.h = emax > 0.0 ? emax * 1.000001 : 0.0;
     }
   }
-  const int64_t cells = g.dims[0] * g.dims[1] * g.dims[2];
+  /* First about one cell per two points over the bounding box; max_cells
+   * (cell indices stay below NO_CELL) bounds the refinement below. */
+  const int64_t max_cells =
+    4 * finite + 1 < (int64_t)0xFFFFFFF0 ? 4 * finite + 1 : (int64_t)0xFFFFFFF0;
+  set_grid_size(&g, e, finite / 2 > 1 ? (double)(finite / 2) : 1.0);
 
   /* One allocation: per point its cell, the sorted order, the cell starts. */
-  const size_t words = (size_t)count * 2 + (size_t)cells + 1;
-  uint32_t* memory = (uint32_t*)calloc(words, sizeof(uint32_t));
+  const size_t words = (size_t)count * 2 + (size_t)max_cells + 1;
+  void* memory = malloc(words * sizeof(uint32_t) + (size_t)finite * 3 * sizeof(float));
   if (!memory)
   {
     return mrgi_error_set(err, MRGI_ERR_OUT_OF_MEMORY,
       "point normals: cannot allocate the search grid for %lld points", (long long)count);
   }
-  uint32_t* cell_of = memory;
-  g.order = memory + count;
-  g.start = memory + 2 * count;
-  const uint32_t none = 0xFFFFFFFFu;
-  for (int64_t i = 0; i < count; ++i)
+  uint32_t* cell_of = (uint32_t*)memory;
+  g.order = cell_of + count;
+  g.start = cell_of + 2 * count;
+  float* sorted = (float*)(cell_of + words);
+  int64_t occupied = count_cells(&g, positions, count, cell_of);
+  /* Points on a surface fill few cells of a volume grid, each with many
+   * points: refine once so that occupied cells hold about 3 points (the
+   * occupancy of a surface grid falls with the square of the edge). */
+  if (occupied > 0 && (double)finite / (double)occupied > 6.0)
   {
-    const float* p = positions + 3 * i;
-    if (!finite3(p))
+    const double shrink = sqrt(((double)finite / (double)occupied) / 3.0);
+    const double before = g.h;
+    set_grid_size(&g, e, (double)max_cells);
+    if (g.h < before / shrink)
     {
-      cell_of[i] = none;
-      continue;
+      set_grid_size_edge(&g, e, before / shrink);
     }
-    const int64_t cell =
-      (cell_coord(&g, p[2], 2) * g.dims[1] + cell_coord(&g, p[1], 1)) * g.dims[0] +
-      cell_coord(&g, p[0], 0);
-    cell_of[i] = (uint32_t)cell;
-    ++g.start[cell + 1];
+    occupied = count_cells(&g, positions, count, cell_of);
   }
-  for (int64_t c = 0; c < cells; ++c)
-  {
-    g.start[c + 1] += g.start[c];
-  }
-  /* Counting sort: start[c] runs over cell c's slots while filling. */
+  const int64_t cells = g.dims[0] * g.dims[1] * g.dims[2];
+  /* Counting sort: start[c] runs over cell c's slots while filling; the
+   * non-finite points take the slots after the finite ones. */
+  uint32_t tail = (uint32_t)finite;
   for (int64_t i = 0; i < count; ++i)
   {
-    if (cell_of[i] != none)
+    if (cell_of[i] != NO_CELL)
     {
-      g.order[g.start[cell_of[i]]++] = (uint32_t)i;
+      const uint32_t slot = g.start[cell_of[i]]++;
+      g.order[slot] = (uint32_t)i;
+      memcpy(sorted + 3 * (size_t)slot, positions + 3 * i, 3 * sizeof(float));
+    }
+    else
+    {
+      g.order[tail++] = (uint32_t)i;
     }
   }
   /* The loop above advanced each start to the next cell's: shift back. */
@@ -491,26 +546,28 @@ mrgi_status mrgi_point_normals_compute(const float* positions, int64_t count,
   int64_t radius_count = 0;
   double d2[MRGI_NORMALS_MAX_K];
   uint32_t idx[MRGI_NORMALS_MAX_K];
-  for (int64_t i = 0; i < count; ++i)
+  /* In slot order (cell by cell: neighbourhoods stay in cache). */
+  for (int64_t slot = 0; slot < count; ++slot)
   {
+    const int64_t i = g.order[slot];
     const float* p = positions + 3 * i;
     uint8_t flag = 0;
     double n[3];
     double radius = 0.0;
     fallback_direction(&o, p, n);
-    if (cell_of[i] == none)
+    if (slot >= finite)
     {
       flag = MRGI_POINT_NON_FINITE | MRGI_POINT_NO_SPACING;
     }
     else
     {
-      const int found = knn(&g, positions, (uint32_t)i, o.k, d2, idx);
+      const int found = knn(&g, sorted, (uint32_t)slot, o.k, d2, idx);
       /* Covariance about p (small numbers: no cancellation), then moved to
        * the neighbourhood's mean. */
       double mean[3] = { 0, 0, 0 }, c[9] = { 0 };
       for (int j = 0; j < found; ++j)
       {
-        const float* q = positions + 3 * (size_t)idx[j];
+        const float* q = sorted + 3 * (size_t)idx[j];
         const double d[3] = { (double)q[0] - p[0], (double)q[1] - p[1], (double)q[2] - p[2] };
         for (int a = 0; a < 3; ++a)
         {

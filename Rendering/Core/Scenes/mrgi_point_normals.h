@@ -8,8 +8,11 @@
  *
  * For every finite point p:
  * - its k nearest other finite points are found exactly (Euclidean; a tie at
- *   the k-th distance keeps the first found, deterministically) over a uniform grid of about one
- * cell per two points, shaped to the points' bounding box;
+ *   the k-th distance keeps the first found, deterministically) over a
+ *   uniform grid over the points' bounding box: first about one cell per two
+ *   points; when the occupied cells hold more than 6 points on average (a
+ *   surface in a volume grid), the edge is shrunk once by sqrt(occupancy /
+ *   3), within 4 n + 1 cells;
  * - the normal is the eigenvector of the smallest eigenvalue of the
  *   covariance of p and its neighbours (a least-squares plane), unit length;
  * - the normal is oriented (see ::mrgi_normals_orientation): towards a
@@ -41,8 +44,10 @@
  *
  * Cost: O(n k) for evenly spread points; the grid follows the bounding box,
  * so a dense cluster inside a large, empty box makes the search within that
- * cluster's cells quadratic. Memory: one allocation of (2 n + cells + 1) 32-bit
- * integers per call (cells <= n / 2 + 1); nothing is allocated per point.
+ * cluster's cells quadratic. Memory: one allocation of at most 9 n + 2
+ * 4-byte words per call (per point its cell, its slot and a copy of its
+ * position in cell order; the cells' starts); nothing is allocated per
+ * point.
  * Single-threaded, no global state, deterministic (the same input gives the
  * same output bit for bit).
  */
