@@ -1,7 +1,7 @@
 // MRGI::RenderingPCL (VTK 9.1 build): the factory overrides are active;
 // PCD files written here by PCL (ascii, binary, binary_compressed; rgb,
 // normals, curvature, intensity; an organized cloud with NaN holes and a
-// viewpoint) read back exactly; bad files (empty, no FIELDS, truncated
+// viewpoint) read back exactly, 10^7 points too; bad files (empty, no FIELDS, truncated
 // binary and binary_compressed bodies, huge declared sizes, all NaN) are
 // errors naming the file, with an empty output; the shared PCDs
 // (../shared/data, when present) read with the MANIFEST's counts; PCL's
@@ -371,6 +371,40 @@ void TestBadFiles()
   MRGI_TEST_CHECK(errors->Caught("no PCD file name"));
 }
 
+/** 10^7 points (issue 15's size): read exactly, then the file is removed. */
+void TestTenMillionPoints()
+{
+  const std::string path = mrgitest::TempPath("pcl_1e7.pcd");
+  {
+    pcl::PointCloud<pcl::PointXYZ> cloud;
+    cloud.resize(10000000);
+    for (std::size_t i = 0; i < cloud.size(); ++i)
+    {
+      cloud[i] = pcl::PointXYZ(
+        static_cast<float>(i % 3163), static_cast<float>(i / 3163), static_cast<float>(i % 7));
+    }
+    MRGI_TEST_CHECK(pcl::io::savePCDFileBinary(path, cloud) == 0);
+  }
+  vtkNew<mrgitest::ErrorCatcher> errors;
+  vtkNew<vtkTimerLog> timer;
+  timer->StartTimer();
+  auto reader = Read(path, errors);
+  timer->StopTimer();
+  std::remove(path.c_str());
+  std::printf("10^7 points: read in %.3f s\n", timer->GetElapsedTime());
+  MRGI_TEST_CHECK(errors->Count == 0);
+  vtkPolyData* out = reader->GetOutput();
+  MRGI_TEST_CHECK(out->GetNumberOfPoints() == 10000000);
+  MRGI_TEST_CHECK(out->GetNumberOfVerts() == 10000000);
+  for (const vtkIdType i : { vtkIdType(0), vtkIdType(1234567), vtkIdType(9999999) })
+  {
+    double p[3];
+    out->GetPoint(i, p);
+    MRGI_TEST_CHECK(p[0] == static_cast<double>(i % 3163) &&
+      p[1] == static_cast<double>(i / 3163) && p[2] == static_cast<double>(i % 7));
+  }
+}
+
 void TestSharedData()
 {
   const char* dir = std::getenv("MRGI_SHARED_DATA_DIR");
@@ -611,6 +645,6 @@ int main(int argc, char* argv[])
   return mrgitest::RunCases(argc, argv,
     { MRGI_TEST_CASE(TestOverridesActive), MRGI_TEST_CASE(TestRoundTrip),
       MRGI_TEST_CASE(TestSmallOrganized), MRGI_TEST_CASE(TestOrganized),
-      MRGI_TEST_CASE(TestBadFiles), MRGI_TEST_CASE(TestSharedData),
-      MRGI_TEST_CASE(TestPCLAgreesWithCore) });
+      MRGI_TEST_CASE(TestBadFiles), MRGI_TEST_CASE(TestTenMillionPoints),
+      MRGI_TEST_CASE(TestSharedData), MRGI_TEST_CASE(TestPCLAgreesWithCore) });
 }
