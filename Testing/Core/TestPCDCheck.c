@@ -192,6 +192,17 @@ static void test_bad_bodies(void)
     "lacks its two sizes");
 }
 
+/* WIDTH x HEIGHT beyond int64 with a limit that lets each through. */
+static void test_no_overflow(void)
+{
+  const char* h = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 1099511627776\n"
+                  "HEIGHT 1099511627776\nPOINTS 1099511627776\nDATA binary\n";
+  mrgi_error err;
+  MRGI_CHECK(
+    mrgi_pcd_check_buffer(h, strlen(h), "t.pcd", INT64_MAX, NULL, &err) == MRGI_ERR_FORMAT);
+  MRGI_CHECK(strstr(err.message, "is not POINTS") != NULL);
+}
+
 static void test_paths(void)
 {
   mrgi_error err;
@@ -220,6 +231,7 @@ int main(int argc, char** argv)
     MRGI_TEST_CASE(test_valid),
     MRGI_TEST_CASE(test_bad_headers),
     MRGI_TEST_CASE(test_bad_bodies),
+    MRGI_TEST_CASE(test_no_overflow),
     MRGI_TEST_CASE(test_paths),
   };
   return MRGI_TEST_MAIN(argc, argv, cases);

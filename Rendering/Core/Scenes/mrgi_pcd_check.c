@@ -449,7 +449,8 @@ mrgi_status mrgi_pcd_check_buffer(const void* data, size_t size, const char* nam
   {
     out.height = 1;
   }
-  if (out.width * out.height != out.points)
+  /* Each is at most 2^40 (parse_int): compare without overflowing. */
+  if (out.width > out.points / out.height || out.width * out.height != out.points)
   {
     status =
       mrgi_error_set(err, MRGI_ERR_FORMAT, "'%s': WIDTH %lld x HEIGHT %lld is not POINTS %lld",
