@@ -19,6 +19,53 @@
 // The factory's override (MRGI::RenderingPCL) when it is registered.
 vtkObjectFactoryNewMacro(vtkMRGIPointCloudNormals);
 
+namespace
+{
+/** Component i of a field-data array read as one flat tuple list. */
+double Flat(vtkDataArray* array, int i)
+{
+  const int c = array->GetNumberOfComponents();
+  return array->GetComponent(i / c, i % c);
+}
+}
+
+bool vtkMRGIPointCloudNormals::SensorPoseIsMeaningful(vtkPolyData* input)
+{
+  vtkFieldData* fd = input ? input->GetFieldData() : nullptr;
+  vtkDataArray* origin = fd ? fd->GetArray("SensorOrigin") : nullptr;
+  if (!origin || origin->GetNumberOfTuples() * origin->GetNumberOfComponents() < 3)
+  {
+    return false;
+  }
+  // A depth-camera frame is always in its sensor's coordinates.
+  if (fd->GetArray("OrganizedDimensions"))
+  {
+    return true;
+  }
+  // PCL writes VIEWPOINT 0 0 0 1 0 0 0 into every file, sensor or not: only
+  // another pose says where a sensor was.
+  for (int a = 0; a < 3; ++a)
+  {
+    if (Flat(origin, a) != 0.0)
+    {
+      return true;
+    }
+  }
+  vtkDataArray* orientation = fd->GetArray("SensorOrientation");
+  if (orientation && orientation->GetNumberOfTuples() * orientation->GetNumberOfComponents() >= 4)
+  {
+    const double identity[4] = { 1.0, 0.0, 0.0, 0.0 };
+    for (int a = 0; a < 4; ++a)
+    {
+      if (Flat(orientation, a) != identity[a])
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 vtkMRGIPointCloudNormals::vtkMRGIPointCloudNormals() = default;
 vtkMRGIPointCloudNormals::~vtkMRGIPointCloudNormals() = default;
 
@@ -89,13 +136,12 @@ int vtkMRGIPointCloudNormals::RequestData(
       reference[a] = this->ViewPoint[a];
     }
   }
-  else if (sensor && sensor->GetNumberOfTuples() * sensor->GetNumberOfComponents() >= 3)
+  else if (SensorPoseIsMeaningful(input))
   {
     orientation = ORIENT_VIEWPOINT;
     for (int a = 0; a < 3; ++a)
     {
-      reference[a] = sensor->GetComponent(
-        a / sensor->GetNumberOfComponents(), a % sensor->GetNumberOfComponents());
+      reference[a] = Flat(sensor, a);
     }
   }
   else if (this->Up[0] != 0.0 || this->Up[1] != 0.0 || this->Up[2] != 0.0)

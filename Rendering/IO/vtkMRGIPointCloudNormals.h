@@ -11,11 +11,13 @@
  *   as d_k * sqrt(pi / k) (exact for evenly sampled surfaces).
  *
  * Normals are oriented towards ViewPoint when UseViewPoint is on; else
- * towards the field data "SensorOrigin" (3 values) when the input has it
- * (vtkMRGIPCDReader writes the PCD VIEWPOINT there; a PCD without one has
- * the origin); else along Up when Up is not zero (LAS clouds: (0, 0, 1));
- * else away from the centroid of the points (right on closed, star-shaped
- * surfaces only).
+ * towards the field data "SensorOrigin" (3 values) when it says where a
+ * sensor was (SensorPoseIsMeaningful(): vtkMRGIPCDReader writes the PCD
+ * VIEWPOINT there, and PCL writes the origin and the identity into every
+ * file, so that pose counts only for organized clouds, i.e. depth-camera
+ * frames); else along Up when Up is not zero (LAS clouds: (0, 0, 1)); else
+ * away from the centroid of the points (right on closed, star-shaped
+ * surfaces such as the Stanford bunny only).
  *
  * This class estimates with MRGI's C core (mrgi_point_normals.h: exact k
  * nearest neighbours over a uniform grid, PCA normals), single-threaded.
@@ -105,6 +107,14 @@ public:
     ORIENT_UP = 1,
     ORIENT_OUTWARD = 2
   };
+
+  /**
+   * Whether `input`'s field data "SensorOrigin" (and "SensorOrientation")
+   * tell where a sensor was: present, and either the cloud is organized
+   * (field data "OrganizedDimensions") or the pose is not PCL's default
+   * (origin, identity).
+   */
+  static bool SensorPoseIsMeaningful(vtkPolyData* input);
 
   ///@{
   /**

@@ -420,6 +420,15 @@ void TestSharedData()
   MRGI_TEST_CHECK(errors->Count == 0);
   MRGI_TEST_CHECK(reader->GetOutput()->GetNumberOfPoints() == 397);
   MRGI_TEST_CHECK(reader->GetOutput()->GetNumberOfVerts() == 397);
+  {
+    // PCD v.5, no VIEWPOINT: PCL's default pose, unorganized: outward
+    // normals (towards the origin, under the bunny, 318 of 397 faced in).
+    vtkSmartPointer<vtkMRGIPointCloudNormals> normals =
+      vtkSmartPointer<vtkMRGIPointCloudNormals>::Take(vtkMRGIPointCloudNormals::New());
+    normals->SetInputConnection(reader->GetOutputPort());
+    normals->Update();
+    MRGI_TEST_CHECK(normals->GetLastOrientation() == vtkMRGIPointCloudNormals::ORIENT_OUTWARD);
+  }
   vtkNew<vtkTimerLog> timer;
   timer->StartTimer();
   reader = Read(milk, errors);
@@ -442,6 +451,7 @@ void TestSharedData()
   std::printf("milk_cartoon: PCL normals (integral image) in %.3f s, %lld degenerate\n",
     timer->GetElapsedTime(), static_cast<long long>(filter->GetNumberOfDegeneratePoints()));
   MRGI_TEST_CHECK(vtkMRGIPCLPointCloudNormals::SafeDownCast(filter)->GetUsedIntegralImage());
+  MRGI_TEST_CHECK(filter->GetLastOrientation() == vtkMRGIPointCloudNormals::ORIENT_VIEWPOINT);
   vtkDataArray* normals = filter->GetOutput()->GetPointData()->GetNormals();
   MRGI_TEST_CHECK(normals && normals->GetNumberOfTuples() == 241407);
   // Facing the sensor at the origin, all finite.

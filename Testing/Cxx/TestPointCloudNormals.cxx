@@ -1,7 +1,8 @@
 // vtkMRGIPointCloudNormals with the C core (this program does not load the
 // PCL module, so New() gives the base class in every build): a sampled
 // sphere gets radial normals and radii near its spacing; the orientation
-// follows ViewPoint, the SensorOrigin field data, Up, else outward; input
+// follows ViewPoint, a meaningful SensorOrigin (not PCL's default pose
+// unless organized), Up, else outward; input
 // normals are kept unless ComputeNormals; the pipeline caches the result
 // (RequestData runs again only when the input or a property changes); bad
 // settings are errors with an empty output; the PCD reader's base class
@@ -12,6 +13,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIntArray.h"
 #include "vtkMRGIPCDReader.h"
 #include "vtkMRGIPointCloudNormals.h"
 #include "vtkNew.h"
@@ -107,6 +109,29 @@ void TestSphereAndOrientation()
   filter->Update();
   MRGI_TEST_CHECK(filter->GetLastOrientation() == vtkMRGIPointCloudNormals::ORIENT_VIEWPOINT);
   MRGI_TEST_CHECK(WorstRadialAngle(filter->GetOutput(), c, -1.0) < 2.0);
+  // PCL's default pose (origin, identity) on an unorganized cloud says
+  // nothing about a sensor: outward again; on an organized one it does.
+  origin->SetTuple3(0, 0.0, 0.0, 0.0);
+  vtkNew<vtkDoubleArray> orientation;
+  orientation->SetName("SensorOrientation");
+  orientation->SetNumberOfComponents(4);
+  orientation->InsertNextTuple4(1.0, 0.0, 0.0, 0.0);
+  sphere->GetFieldData()->AddArray(orientation);
+  sphere->Modified();
+  filter->Update();
+  MRGI_TEST_CHECK(filter->GetLastOrientation() == vtkMRGIPointCloudNormals::ORIENT_OUTWARD);
+  MRGI_TEST_CHECK(!vtkMRGIPointCloudNormals::SensorPoseIsMeaningful(sphere));
+  orientation->SetTuple4(0, 0.0, 1.0, 0.0, 0.0);
+  MRGI_TEST_CHECK(vtkMRGIPointCloudNormals::SensorPoseIsMeaningful(sphere));
+  orientation->SetTuple4(0, 1.0, 0.0, 0.0, 0.0);
+  vtkNew<vtkIntArray> dims;
+  dims->SetName("OrganizedDimensions");
+  dims->InsertNextValue(100);
+  dims->InsertNextValue(80);
+  sphere->GetFieldData()->AddArray(dims);
+  MRGI_TEST_CHECK(vtkMRGIPointCloudNormals::SensorPoseIsMeaningful(sphere));
+  sphere->GetFieldData()->RemoveArray("OrganizedDimensions");
+  sphere->GetFieldData()->RemoveArray("SensorOrientation");
   sphere->GetFieldData()->RemoveArray("SensorOrigin");
   sphere->Modified();
   // Up = -z: every normal has z <= 0.
