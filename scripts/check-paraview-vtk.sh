@@ -51,7 +51,7 @@ pv_python="$build/paraview-python"
 
 if [ ! -f "$build/CMakeCache.txt" ]; then
   cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-    -DVTK_DIR="$shim" -DParaView_DIR="$pv_shim" -DMRGI_BUILD_PARAVIEW_PLUGIN=ON -DMRGI_WARNINGS_AS_ERRORS=ON \
+    -DVTK_DIR="$shim" -DParaView_DIR="$pv_shim" -DMRGI_BUILD_PARAVIEW_PLUGIN=ON -DMRGI_WARNINGS_AS_ERRORS=ON -DMRGI_ENABLE_PCL=OFF \
     -DPython3_EXECUTABLE=/usr/bin/python3 \
     -DMRGI_PARAVIEW_HIERARCHY_DIR="$pv_python/usr/lib/x86_64-linux-gnu/vtk/hierarchy/ParaView" \
     -DBUILD_TESTING=OFF -DMRGI_WRAP_PYTHON=ON -DMRGI_BUILD_EXAMPLES=OFF

@@ -20,6 +20,9 @@ PACKAGES=(
   # install.DebPackage: cpack -G DEB computes Depends with dpkg-shlibdeps,
   # which CPack runs only when `file` is there.
   dpkg-dev file
+  # MRGI::RenderingPCL (Rendering/PCL, VTK 9.1 build only): PCD files and
+  # normals through the Point Cloud Library 1.13.
+  libpcl-dev
 )
 # `install-deps.sh --benchmarks` adds what Testing/Benchmarks needs (plots).
 if [ "${1:-}" = "--benchmarks" ]; then

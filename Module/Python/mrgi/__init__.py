@@ -30,3 +30,9 @@ from .MRGIRenderingHeadless import *  # noqa: F401,F403
 from .MRGIRenderingIO import *  # noqa: F401,F403
 from .MRGIRenderingValidation import *  # noqa: F401,F403
 from .MRGIRenderingParallel import *  # noqa: F401,F403
+# PCD files and PCL normals (the VTK 9.1 build only): importing the module
+# registers its overrides of vtkMRGIPCDReader and vtkMRGIPointCloudNormals.
+import importlib.util as _importlib_util
+
+if _importlib_util.find_spec(__name__ + ".MRGIRenderingPCL") is not None:
+    from .MRGIRenderingPCL import *  # noqa: F401,F403
