@@ -51,6 +51,7 @@
 #include <vector>             // For std::vector
 
 class vtkMRGIAreaLight;
+class vtkMRGIStaging;
 class vtkPolyData;
 class vtkRenderer;
 struct mrgi_mesh;
@@ -121,6 +122,17 @@ public:
   vtkMRGIAreaLight* GetAreaLight(int index) const;
   ///@}
 
+  ///@{
+  /**
+   * Stage data files with this vtkMRGIStaging (up axis, framing, ground,
+   * key light; volumes as iso-surfaces) instead of ResetCamera() under
+   * VTK's headlight. Default nullptr: not staged. Built-in scenes are never
+   * staged. A staged area key light is one of the area lights above.
+   */
+  void SetStaging(vtkMRGIStaging* staging);
+  vtkMRGIStaging* GetStaging();
+  ///@}
+
 #ifndef __VTK_WRAP__
   /** A core mesh as vtkPolyData (points, normals, triangles); caller owns it. */
   static vtkPolyData* MeshToPolyData(const mrgi_mesh* mesh);
@@ -128,11 +140,12 @@ public:
 
 protected:
   vtkMRGISceneBuilder();
-  ~vtkMRGISceneBuilder() override = default;
+  ~vtkMRGISceneBuilder() override;
 
   bool BuildCoreScene(const mrgi_scene* scene, vtkRenderer* renderer);
   bool BuildFile(const std::string& path, vtkRenderer* renderer);
   bool Fail(const std::string& why);
+  bool Frame(const std::string& path, vtkRenderer* renderer);
 
   std::string Scene = "cornell";
   vtkIdType TriangleCount = 100000;
@@ -141,6 +154,7 @@ protected:
   vtkIdType BuiltTriangleCount = 0;
   std::string LastErrorMessage;
   std::vector<vtkSmartPointer<vtkMRGIAreaLight>> AreaLights;
+  vtkSmartPointer<vtkMRGIStaging> Staging;
 
 private:
   vtkMRGISceneBuilder(const vtkMRGISceneBuilder&) = delete;
