@@ -21,6 +21,7 @@
 #include "vtkMRGIVPLSelection.h"
 #include "vtkMRGIRenderWindowFactory.h"
 #include "vtkMRGISceneBuilder.h"
+#include "vtkMRGIStaging.h"
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
 #include "vtkRenderStepsPass.h"
@@ -665,6 +666,42 @@ const std::vector<OptionSection>& OptionTable()
           Integer(&Options::Objects, 1, 4096) },
         { { "--seed" }, "N", "random seed, >= 0 (default 1)",
           Integer(&Options::Seed, 0, INT64_MAX) },
+      } },
+    { "Staging of data files (Documentation/Staging.md; built-in scenes bring\n"
+      "their own camera and lights and are never staged)",
+      {
+        { { "--stage" }, "on|off",
+          "on (default): detect the up axis, frame the data, add a ground and a\n"
+          "key light, show volumes as iso-surfaces; off: VTK's framing and\n"
+          "headlight, volumes as their outer surface",
+          OnOff(&Options::Stage) },
+        { { "--up" }, "auto|x|y|z|-x|-y|-z",
+          "the data's up axis (default auto: LAS/PCD metadata, a flat or\n"
+          "open base, a thin extent, else y)",
+          Choice<int>(&Options::StageUp,
+            { { "auto", vtkMRGIStaging::UpAuto }, { "x", vtkMRGIStaging::UpPositiveX },
+              { "y", vtkMRGIStaging::UpPositiveY }, { "z", vtkMRGIStaging::UpPositiveZ },
+              { "-x", vtkMRGIStaging::UpNegativeX }, { "-y", vtkMRGIStaging::UpNegativeY },
+              { "-z", vtkMRGIStaging::UpNegativeZ } }) },
+        { { "--ground" }, "on|off", "a grey matte ground under the data (default on)",
+          OnOff(&Options::StageGround) },
+        { { "--key-light" }, "spot|area|none",
+          "the light from above and in front: a spot light (default), an area\n"
+          "light, or none (the scene's lights, VTK's headlight)",
+          Choice<int>(&Options::StageKeyLight,
+            { { "spot", vtkMRGIStaging::KeyLightSpot }, { "area", vtkMRGIStaging::KeyLightArea },
+              { "none", vtkMRGIStaging::KeyLightNone } }) },
+        { { "--fill" }, "F",
+          "fraction of the image width or height the data fills, 0.05..1\n"
+          "(default 0.8)",
+          Number(
+            &Options::StageFill, [](double f) { return f >= 0.05 && f <= 1.0; },
+            "expected a number in [0.05, 1]") },
+        { { "--iso" }, "V",
+          "volumes: the iso-value (default Otsu's threshold of the scalars)",
+          Number(
+            &Options::Iso, [](double v) { return std::fabs(v) <= MaxFloatValue; },
+            "expected a finite number", &Options::HasIso) },
       } },
     { "Indirect light (one bounce; Documentation/IndirectLight.md)",
       {
