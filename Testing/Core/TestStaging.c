@@ -299,7 +299,13 @@ static void test_iso_value(void)
   int otsu = -1;
   MRGI_CHECK(mrgi_iso_value_otsu(h, MRGI_ISO_VALUE_BINS, 0.0, 256.0, &t, &otsu, NULL) == MRGI_OK);
   MRGI_CHECK(otsu == 1);
-  MRGI_CHECK(t >= 16.0 && t <= 190.0); /* every t between the populations ties: the lowest */
+  MRGI_CHECK(t == 0.5 * (16.0 + 190.0)); /* every t between the populations ties: the middle */
+  /* A 0/1 mask: 0.5. */
+  double mask[MRGI_ISO_VALUE_BINS] = { 0 };
+  mask[0] = 900.0;
+  mask[MRGI_ISO_VALUE_BINS - 1] = 100.0;
+  MRGI_CHECK(mrgi_iso_value_otsu(mask, MRGI_ISO_VALUE_BINS, 0.0, 1.0, &t, NULL, NULL) == MRGI_OK);
+  MRGI_CHECK(t == 0.5);
   /* One bin: the midpoint. */
   double one[4] = { 0, 7, 0, 0 };
   MRGI_CHECK(mrgi_iso_value_otsu(one, 4, -1.0, 3.0, &t, &otsu, NULL) == MRGI_OK);

@@ -36,7 +36,7 @@ mrgi_status mrgi_iso_value_otsu(const double* counts, int bins, double lo, doubl
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "mrgi_iso_value_otsu: the histogram is empty");
   }
   double best = -1.0;
-  int best_t = 0;
+  int best_t = 0, last_t = 0;
   double below = 0.0, below_moment = 0.0;
   for (int t = 1; t < bins; ++t)
   {
@@ -50,10 +50,15 @@ mrgi_status mrgi_iso_value_otsu(const double* counts, int bins, double lo, doubl
     const double m0 = below_moment / below;
     const double m1 = (moment - below_moment) / above;
     const double between = (below / total) * (above / total) * (m0 - m1) * (m0 - m1);
-    if (between > best)
+    if (between > best * (1.0 + 1e-12))
     {
       best = between;
       best_t = t;
+      last_t = t;
+    }
+    else if (between >= best * (1.0 - 1e-12))
+    {
+      last_t = t; /* a tie: empty bins between the populations */
     }
   }
   if (best_t == 0)
@@ -65,7 +70,7 @@ mrgi_status mrgi_iso_value_otsu(const double* counts, int bins, double lo, doubl
     }
     return MRGI_OK;
   }
-  *threshold = lo + best_t * width;
+  *threshold = lo + 0.5 * (best_t + last_t) * width;
   if (otsu)
   {
     *otsu = 1;

@@ -14,8 +14,10 @@
  * The histogram has `bins` >= 2 equal bins over [lo, hi] (lo < hi, both
  * finite): bin i covers [lo + i w, lo + (i + 1) w), w = (hi - lo) / bins;
  * counts are >= 0 and finite. The threshold returned is the boundary
- * lo + t w (1 <= t <= bins - 1) between the classes; ties go to the lowest
- * t. When the counts leave one class empty for every t (all values in one
+ * lo + t w (1 <= t <= bins - 1) between the classes. Empty bins between
+ * two populations give every t among them the same variance: the
+ * threshold is then the middle of that run of tied t (a 0/1 mask: 0.5),
+ * not its first bin's edge. When the counts leave one class empty for every t (all values in one
  * bin), the midpoint (lo + hi) / 2 is returned with `*otsu` = 0 (1 when
  * Otsu's rule decided; `otsu` may be NULL).
  *
