@@ -388,6 +388,9 @@ bool vtkMRGIStaging::Stage(vtkRenderer* renderer)
         continue;
       }
       vtkPoints* points = piece.Data->GetPoints();
+      // The polygons of 3 points or more: VTK's cell links (vtkFeatureEdges)
+      // fail on the empty faces a file may hold.
+      vtkNew<vtkCellArray> valid;
       vtkSmartPointer<vtkCellArrayIterator> it;
       it.TakeReference(polys->NewIterator());
       for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
@@ -400,6 +403,7 @@ bool vtkMRGIStaging::Stage(vtkRenderer* renderer)
         {
           continue;
         }
+        valid->InsertNextCell(size, ids);
         points->GetPoint(ids[0], a);
         ToWorld(piece, a, a);
         points->GetPoint(ids[1], b);
@@ -415,7 +419,7 @@ bool vtkMRGIStaging::Stage(vtkRenderer* renderer)
       // Edges of one polygon only: the holes of a scan.
       vtkNew<vtkPolyData> surface;
       surface->SetPoints(points);
-      surface->SetPolys(polys);
+      surface->SetPolys(valid);
       vtkNew<vtkFeatureEdges> edges;
       edges->SetInputData(surface);
       edges->BoundaryEdgesOn();
