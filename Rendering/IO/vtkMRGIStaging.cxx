@@ -65,6 +65,11 @@ constexpr double KeySpotExponent = 10.0;
 constexpr double GroundAlbedo = 0.7;
 constexpr double GroundMinSizes = 3.0;
 constexpr double GroundMaxSizes = 20.0;
+// With an area key light, whose voxel shadows slice the camera's depth
+// range into 128: a ground reaching far behind the data stretches that
+// range and the data shadows itself in speckles. It ends closer (where
+// the light's 1/d^2 has faded it).
+constexpr double GroundMaxSizesArea = 6.0;
 constexpr double GroundGap = 1e-3;
 
 // One polygonal piece of an actor's data, with the actor's matrix.
@@ -399,7 +404,11 @@ bool vtkMRGIStaging::Stage(vtkRenderer* renderer)
         const vtkIdType* ids = nullptr;
         it->GetCurrentCell(size, ids);
         double a[3], b[3], c[3];
-        if (size < 3)
+        // Faces of fewer than 3 points or with ids outside the points
+        // (a data set not checked by vtkMRGISceneBuilder) are left out.
+        const vtkIdType npoints = points->GetNumberOfPoints();
+        if (size < 3 ||
+          std::any_of(ids, ids + size, [npoints](vtkIdType id) { return id < 0 || id >= npoints; }))
         {
           continue;
         }
@@ -544,7 +553,8 @@ bool vtkMRGIStaging::Stage(vtkRenderer* renderer)
     vtkMath::Cross(d, framing.view_up, right);
     vtkMath::Normalize(right);
     vtkMath::Cross(right, d, vup);
-    const double reach = 0.5 * GroundMaxSizes * horizontal;
+    const double reach =
+      0.5 * (this->KeyLight == KeyLightArea ? GroundMaxSizesArea : GroundMaxSizes) * horizontal;
     for (int corner = 0; corner < 4; ++corner)
     {
       const double sx = (corner & 1) ? 1.0 : -1.0;

@@ -33,8 +33,9 @@
  *   quad just under the data along up (1e-3 of its size below its lowest
  *   point), facing up, covering what the camera sees of its plane (the
  *   view's corner rays hit it), at least 3 and at most 20 times the data's
- *   horizontal size around its centre: it receives the bounce and the
- *   shadows. GetGroundActor().
+ *   horizontal size around its centre (at most 6 with an area key light:
+ *   its voxel shadows slice the depth range the ground stretches): it
+ *   receives the bounce and the shadows. GetGroundActor().
  * - **Key light** (KeyLight): KeyLightSpot (default) a spot light above
  *   (55 degrees) and in front of the data, 35 degrees to the camera's
  *   left, at 4 bounding radii, its cone covering 3.5 radii around the data
