@@ -11,7 +11,6 @@
 #include "vtkCompositeDataSet.h"
 #include "vtkContourFilter.h"
 #include "vtkDataArray.h"
-#include "vtkFeatureEdges.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkFlyingEdges3D.h"
@@ -40,6 +39,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkMRGIStaging);
@@ -176,6 +177,54 @@ int UpFromFields(vtkFieldData* fields, std::string& reason)
     }
   }
   return 2 * k + (up[k] < 0 ? 1 : 0);
+}
+
+// Adds the edges used by one polygon of `polys` only to the evidence.
+// (VTK 9.1's vtkFeatureEdges throws std::bad_alloc on a 2M-triangle
+// sphere: the edges are sorted here instead, 8 bytes each.)
+void AddBoundaryEdges(const Piece& piece, vtkCellArray* polys, mrgi_up_evidence& evidence)
+{
+  vtkPoints* points = piece.Data->GetPoints();
+  const vtkIdType npoints = points->GetNumberOfPoints();
+  if (npoints >= (vtkIdType(1) << 32))
+  {
+    return; // not packable in 64 bits; the other cues decide
+  }
+  std::vector<uint64_t> edges;
+  edges.reserve(static_cast<size_t>(polys->GetNumberOfConnectivityIds()));
+  vtkSmartPointer<vtkCellArrayIterator> it;
+  it.TakeReference(polys->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    vtkIdType size = 0;
+    const vtkIdType* ids = nullptr;
+    it->GetCurrentCell(size, ids);
+    for (vtkIdType v = 0; v < size; ++v)
+    {
+      const auto i = static_cast<uint64_t>(ids[v]);
+      const auto j = static_cast<uint64_t>(ids[(v + 1) % size]);
+      edges.push_back(i < j ? (i << 32) | j : (j << 32) | i);
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  for (size_t e = 0; e < edges.size();)
+  {
+    size_t run = e + 1;
+    while (run < edges.size() && edges[run] == edges[e])
+    {
+      ++run;
+    }
+    if (run == e + 1)
+    {
+      double a[3], b[3];
+      points->GetPoint(static_cast<vtkIdType>(edges[e] >> 32), a);
+      points->GetPoint(static_cast<vtkIdType>(edges[e] & 0xFFFFFFFFu), b);
+      ToWorld(piece, a, a);
+      ToWorld(piece, b, b);
+      mrgi_up_add_boundary_edge(&evidence, a, b);
+    }
+    e = run;
+  }
 }
 
 // The "front" the camera looks from, for an up axis (class documentation).
@@ -385,6 +434,7 @@ bool vtkMRGIStaging::Stage(vtkRenderer* renderer)
     {
       return this->Fail(std::string("cannot stage: ") + err.message);
     }
+    std::vector<std::pair<const Piece*, vtkSmartPointer<vtkCellArray>>> validPolys;
     for (const Piece& piece : pieces)
     {
       vtkCellArray* polys = piece.Data->GetPolys();
@@ -395,7 +445,7 @@ bool vtkMRGIStaging::Stage(vtkRenderer* renderer)
       vtkPoints* points = piece.Data->GetPoints();
       // The polygons of 3 points or more: VTK's cell links (vtkFeatureEdges)
       // fail on the empty faces a file may hold.
-      vtkNew<vtkCellArray> valid;
+      auto valid = vtkSmartPointer<vtkCellArray>::New();
       vtkSmartPointer<vtkCellArrayIterator> it;
       it.TakeReference(polys->NewIterator());
       for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
@@ -425,42 +475,25 @@ bool vtkMRGIStaging::Stage(vtkRenderer* renderer)
           std::copy(c, c + 3, b);
         }
       }
-      // Edges of one polygon only: the holes of a scan.
-      vtkNew<vtkPolyData> surface;
-      surface->SetPoints(points);
-      surface->SetPolys(valid);
-      vtkNew<vtkFeatureEdges> edges;
-      edges->SetInputData(surface);
-      edges->BoundaryEdgesOn();
-      edges->FeatureEdgesOff();
-      edges->NonManifoldEdgesOff();
-      edges->ManifoldEdgesOff();
-      edges->ColoringOff();
-      edges->Update();
-      vtkPolyData* boundary = edges->GetOutput();
-      vtkCellArray* lines = boundary->GetLines();
-      vtkSmartPointer<vtkCellArrayIterator> lit;
-      lit.TakeReference(lines->NewIterator());
-      for (lit->GoToFirstCell(); !lit->IsDoneWithTraversal(); lit->GoToNextCell())
-      {
-        vtkIdType size = 0;
-        const vtkIdType* ids = nullptr;
-        lit->GetCurrentCell(size, ids);
-        for (vtkIdType v = 0; v + 1 < size; ++v)
-        {
-          double a[3], b[3];
-          boundary->GetPoint(ids[v], a);
-          boundary->GetPoint(ids[v + 1], b);
-          ToWorld(piece, a, a);
-          ToWorld(piece, b, b);
-          mrgi_up_add_boundary_edge(&evidence, a, b);
-        }
-      }
+      validPolys.emplace_back(&piece, valid);
     }
     mrgi_up_decision decision;
     if (mrgi_up_decide(&evidence, &decision, &err) != MRGI_OK)
     {
       return this->Fail(std::string("cannot stage: ") + err.message);
+    }
+    if (decision.reason != MRGI_UP_REASON_FLAT_BASE && evidence.total_area > 0)
+    {
+      // No flat base: the edges of one polygon only (a scan's holes) may
+      // say where the base is.
+      for (const auto& pv : validPolys)
+      {
+        AddBoundaryEdges(*pv.first, pv.second, evidence);
+      }
+      if (mrgi_up_decide(&evidence, &decision, &err) != MRGI_OK)
+      {
+        return this->Fail(std::string("cannot stage: ") + err.message);
+      }
     }
     up = static_cast<int>(decision.up);
     reason = mrgi_up_reason_name(decision.reason);
