@@ -227,6 +227,77 @@ void AddBoundaryEdges(const Piece& piece, vtkCellArray* polys, mrgi_up_evidence&
   }
 }
 
+// Whether any of the cells of `cells` would draw something: a vertex; a
+// line or polygon spanning some length or area (strips: their consecutive
+// triples). Degenerate files (every point at one place, zero spacing)
+// draw nothing.
+bool DrawsSomething(vtkPoints* points, vtkCellArray* cells, int kind)
+{
+  if (!cells || cells->GetNumberOfCells() == 0)
+  {
+    return false;
+  }
+  if (kind == 0)
+  {
+    return true; // vertices draw at least a pixel
+  }
+  const vtkIdType npoints = points->GetNumberOfPoints();
+  vtkSmartPointer<vtkCellArrayIterator> it;
+  it.TakeReference(cells->NewIterator());
+  for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell())
+  {
+    vtkIdType size = 0;
+    const vtkIdType* ids = nullptr;
+    it->GetCurrentCell(size, ids);
+    if (std::any_of(ids, ids + size, [npoints](vtkIdType id) { return id < 0 || id >= npoints; }))
+    {
+      continue;
+    }
+    for (vtkIdType v = 1; v < size; ++v)
+    {
+      double a[3], b[3], c[3];
+      points->GetPoint(ids[kind == 2 ? v - 1 : 0], a);
+      points->GetPoint(ids[v], b);
+      if (kind == 1)
+      {
+        if (Finite(a) && Finite(b) && vtkMath::Distance2BetweenPoints(a, b) > 0)
+        {
+          return true;
+        }
+        continue;
+      }
+      if (v + 1 >= size)
+      {
+        break;
+      }
+      points->GetPoint(ids[v + 1], c);
+      double e1[3], e2[3], n[3];
+      vtkMath::Subtract(b, a, e1);
+      vtkMath::Subtract(c, a, e2);
+      vtkMath::Cross(e1, e2, n);
+      if (Finite(n) && vtkMath::Norm(n) > 0)
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+bool Drawable(const Piece& piece)
+{
+  vtkPoints* points = piece.Data->GetPoints();
+  if (!points)
+  {
+    return false;
+  }
+  // Kinds: 0 vertices, 1 lines, 2 strips (consecutive triples), 3 polygons (fans).
+  return DrawsSomething(points, piece.Data->GetVerts(), 0) ||
+    DrawsSomething(points, piece.Data->GetLines(), 1) ||
+    DrawsSomething(points, piece.Data->GetPolys(), 3) ||
+    DrawsSomething(points, piece.Data->GetStrips(), 2);
+}
+
 // The "front" the camera looks from, for an up axis (class documentation).
 void FrontOf(int up, double front[3])
 {
@@ -407,6 +478,14 @@ bool vtkMRGIStaging::Stage(vtkRenderer* renderer)
   if (!Finite(bounds) || !Finite(bounds + 3))
   {
     return this->Fail("nothing to stage: the data's bounds are not finite");
+  }
+  if (!std::any_of(pieces.begin(), pieces.end(), Drawable))
+  {
+    // The ground alone would make the picture look fine: say it instead.
+    return this->Fail("nothing to draw: its polygons have no area and it has no vertices or "
+                      "lines of any length (every point near " +
+      std::to_string(bounds[0]) + ", " + std::to_string(bounds[2]) + ", " +
+      std::to_string(bounds[4]) + ")");
   }
 
   // The up axis.

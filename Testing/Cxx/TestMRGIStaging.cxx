@@ -627,6 +627,24 @@ void TestErrors()
   MRGI_TEST_CHECK(!staging->Stage(renderer));
   MRGI_TEST_CHECK(renderer->GetActors()->GetNumberOfItems() == 1);
   MRGI_TEST_CHECK(renderer->GetLights()->GetNumberOfItems() == 0);
+  // Triangles with every corner at one place draw nothing: an error, not
+  // a picture of the ground alone.
+  vtkNew<vtkPoints> same;
+  for (int i = 0; i < 3; ++i)
+  {
+    same->InsertNextPoint(0.5, 0.5, 0.5);
+  }
+  auto degenerate = vtkSmartPointer<vtkPolyData>::New();
+  degenerate->SetPoints(same);
+  vtkNew<vtkCellArray> triangle;
+  const vtkIdType corners[3] = { 0, 1, 2 };
+  triangle->InsertNextCell(3, corners);
+  degenerate->SetPolys(triangle);
+  vtkNew<vtkRenderer> nothing;
+  nothing->AddActor(ActorOf(degenerate));
+  MRGI_TEST_CHECK(!staging->Stage(nothing));
+  MRGI_TEST_CHECK(std::string(staging->GetLastErrorMessage()).find("nothing to draw") != std::string::npos);
+  MRGI_TEST_CHECK(nothing->GetActors()->GetNumberOfItems() == 1);
   // One point: staged, the camera at distance 1 around it.
   vtkNew<vtkPoints> one;
   one->InsertNextPoint(1, 2, 3);
