@@ -26,7 +26,10 @@
  * (unsigned char included) are coloured through a lookup table over the data
  * set's range, 3- and 4-component unsigned-char scalars are used directly.
  * Files bring no camera (ResetCamera frames them; flat data is seen face on)
- * and no lights (VTK's headlight lights them unless lights are added).
+ * and no lights (VTK's headlight lights them unless lights are added), unless
+ * a vtkMRGIStaging is set (SetStaging()): it then frames them, adds a ground
+ * and a key light, and volumes (vtkMRGIStaging::IsVolume()) are shown as
+ * their iso-surface instead of their outer surface.
  * Points without cells get a vertex cell each.
  *
  * Only regular files are read. Before a VTK reader sees a PLY, OBJ, legacy
