@@ -38,8 +38,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <cstdint>
+#include <cstring>
 #include <utility>
 #include <vector>
 
@@ -442,7 +442,8 @@ bool vtkMRGIStaging::Stage(vtkRenderer* renderer)
   {
     total += piece.Data->GetNumberOfPoints();
   }
-  const vtkIdType stride = std::max<vtkIdType>(1, (total + MaxFramingPoints - 1) / MaxFramingPoints);
+  const vtkIdType stride =
+    std::max<vtkIdType>(1, (total + MaxFramingPoints - 1) / MaxFramingPoints);
   std::vector<double> samples;
   double bounds[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
     VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
@@ -606,8 +607,8 @@ bool vtkMRGIStaging::Stage(vtkRenderer* renderer)
   mrgi_framing framing;
   {
     mrgi_error err;
-    if (mrgi_frame_points(samples.data(), static_cast<int64_t>(samples.size() / 3), direction,
-          upv, viewAngle, aspect, this->FillFraction, &framing, &err) != MRGI_OK)
+    if (mrgi_frame_points(samples.data(), static_cast<int64_t>(samples.size() / 3), direction, upv,
+          viewAngle, aspect, this->FillFraction, &framing, &err) != MRGI_OK)
     {
       return this->Fail(std::string("cannot frame the data: ") + err.message);
     }
@@ -622,7 +623,8 @@ bool vtkMRGIStaging::Stage(vtkRenderer* renderer)
   camera->SetFocalPoint(framing.focal);
   camera->SetPosition(framing.position);
   camera->SetViewUp(framing.view_up);
-  const double distance = std::sqrt(vtkMath::Distance2BetweenPoints(framing.focal, framing.position));
+  const double distance =
+    std::sqrt(vtkMath::Distance2BetweenPoints(framing.focal, framing.position));
   const double tanHalf = std::tan(vtkMath::RadiansFromDegrees(0.5 * viewAngle));
   camera->SetParallelScale(distance * tanHalf);
 
@@ -647,7 +649,8 @@ bool vtkMRGIStaging::Stage(vtkRenderer* renderer)
     double largest = std::max(size[0], std::max(size[1], size[2]));
     largest = largest > 0 ? largest : 1.0;
     // Just under the data along up.
-    const double level = (sign > 0 ? bounds[2 * k] : bounds[2 * k + 1]) - sign * GroundGap * largest;
+    const double level =
+      (sign > 0 ? bounds[2 * k] : bounds[2 * k + 1]) - sign * GroundGap * largest;
     double horizontal = std::max(size[a1], size[a2]);
     horizontal = horizontal > 0 ? horizontal : largest;
     // What the camera sees of the plane: where the corner rays of the view
@@ -754,8 +757,8 @@ bool vtkMRGIStaging::Stage(vtkRenderer* renderer)
     double towards[3], position[3];
     for (int k = 0; k < 3; ++k)
     {
-      towards[k] = std::cos(el) * (std::cos(az) * front[k] + std::sin(az) * left[k]) +
-        std::sin(el) * upv[k];
+      towards[k] =
+        std::cos(el) * (std::cos(az) * front[k] + std::sin(az) * left[k]) + std::sin(el) * upv[k];
     }
     vtkMath::Normalize(towards);
     const double lightDistance = KeyDistanceRadii * radius;
@@ -931,7 +934,9 @@ void vtkMRGIStaging::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Up: " << GetUpAxisName(this->Up) << "\n";
   os << indent << "Ground: " << (this->Ground ? "on" : "off") << "\n";
   os << indent << "KeyLight: "
-     << (this->KeyLight == KeyLightSpot ? "spot" : this->KeyLight == KeyLightArea ? "area" : "none")
+     << (this->KeyLight == KeyLightSpot      ? "spot"
+            : this->KeyLight == KeyLightArea ? "area"
+                                             : "none")
      << "\n";
   os << indent << "FillFraction: " << this->FillFraction << "\n";
   os << indent << "CameraElevation: " << this->CameraElevation << "\n";

@@ -68,8 +68,8 @@
 
 #include "vtkSmartPointer.h" // For vtkSmartPointer
 #include "vtkWeakPointer.h"  // For vtkWeakPointer
-#include <limits>             // For std::numeric_limits
-#include <string>             // For std::string
+#include <limits>            // For std::numeric_limits
+#include <string>            // For std::string
 
 class vtkActor;
 class vtkDataObject;

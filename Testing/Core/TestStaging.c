@@ -240,23 +240,23 @@ static void test_framing(void)
       for (int fi = 0; fi < 2; ++fi)
       {
         mrgi_framing f;
-        MRGI_CHECK(mrgi_frame_points(p, n, dirs[di], up, 30.0, aspects[ai], fills[fi], &f, NULL) ==
-          MRGI_OK);
+        MRGI_CHECK(
+          mrgi_frame_points(p, n, dirs[di], up, 30.0, aspects[ai], fills[fi], &f, NULL) == MRGI_OK);
         double dir[3];
         for (int k = 0; k < 3; ++k)
         {
           dir[k] = f.focal[k] - f.position[k];
         }
         double fill = 0, center[2] = { 1, 1 };
-        MRGI_CHECK(mrgi_frame_fill(p, n, f.position, dir, up, 30.0, aspects[ai], &fill, center,
-                     NULL) == MRGI_OK);
+        MRGI_CHECK(mrgi_frame_fill(
+                     p, n, f.position, dir, up, 30.0, aspects[ai], &fill, center, NULL) == MRGI_OK);
         MRGI_CHECK_NEAR(fill, fills[fi], 1e-3 * fills[fi]);
         MRGI_CHECK_NEAR(f.fill, fill, 1e-9);
         MRGI_CHECK(fabs(center[0]) < 1e-3 && fabs(center[1]) < 1e-3);
         /* The direction is kept. */
         const double dn = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-        const double gn = sqrt(dirs[di][0] * dirs[di][0] + dirs[di][1] * dirs[di][1] +
-          dirs[di][2] * dirs[di][2]);
+        const double gn =
+          sqrt(dirs[di][0] * dirs[di][0] + dirs[di][1] * dirs[di][1] + dirs[di][2] * dirs[di][2]);
         for (int k = 0; k < 3; ++k)
         {
           MRGI_CHECK_NEAR(dir[k] / dn, dirs[di][k] / gn, 1e-9);
@@ -270,15 +270,22 @@ static void test_framing(void)
   MRGI_CHECK(f.fill == 0.0);
   /* Bad arguments. */
   mrgi_error err;
-  MRGI_CHECK(mrgi_frame_points(p, 0, dirs[0], up, 30.0, 1.0, 0.8, &f, &err) == MRGI_ERR_INVALID_ARGUMENT);
-  MRGI_CHECK(mrgi_frame_points(p, n, up, up, 30.0, 1.0, 0.8, &f, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(
+    mrgi_frame_points(p, 0, dirs[0], up, 30.0, 1.0, 0.8, &f, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(
+    mrgi_frame_points(p, n, up, up, 30.0, 1.0, 0.8, &f, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "parallel") != NULL);
-  MRGI_CHECK(mrgi_frame_points(p, n, dirs[0], up, 180.0, 1.0, 0.8, &f, &err) == MRGI_ERR_INVALID_ARGUMENT);
-  MRGI_CHECK(mrgi_frame_points(p, n, dirs[0], up, 30.0, NAN, 0.8, &f, &err) == MRGI_ERR_INVALID_ARGUMENT);
-  MRGI_CHECK(mrgi_frame_points(p, n, dirs[0], up, 30.0, 1.0, 1.5, &f, &err) == MRGI_ERR_INVALID_ARGUMENT);
-  MRGI_CHECK(mrgi_frame_points(p, n, dirs[0], up, 30.0, 1.0, 0.0, &f, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(
+    mrgi_frame_points(p, n, dirs[0], up, 180.0, 1.0, 0.8, &f, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(
+    mrgi_frame_points(p, n, dirs[0], up, 30.0, NAN, 0.8, &f, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(
+    mrgi_frame_points(p, n, dirs[0], up, 30.0, 1.0, 1.5, &f, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(
+    mrgi_frame_points(p, n, dirs[0], up, 30.0, 1.0, 0.0, &f, &err) == MRGI_ERR_INVALID_ARGUMENT);
   p[7] = NAN;
-  MRGI_CHECK(mrgi_frame_points(p, n, dirs[0], up, 30.0, 1.0, 0.8, &f, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(
+    mrgi_frame_points(p, n, dirs[0], up, 30.0, 1.0, 0.8, &f, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "point 2") != NULL);
   free(p);
 }
@@ -318,10 +325,12 @@ static void test_iso_value(void)
   double zero[3] = { 0, 0, 0 };
   MRGI_CHECK(mrgi_iso_value_otsu(zero, 3, 0.0, 1.0, &t, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
   double negative[3] = { 1, -1, 0 };
-  MRGI_CHECK(mrgi_iso_value_otsu(negative, 3, 0.0, 1.0, &t, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(
+    mrgi_iso_value_otsu(negative, 3, 0.0, 1.0, &t, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(mrgi_iso_value_otsu(two, 2, 1.0, 1.0, &t, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(mrgi_iso_value_otsu(two, 1, 0.0, 1.0, &t, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
-  MRGI_CHECK(mrgi_iso_value_otsu(two, 2, 0.0, INFINITY, &t, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(
+    mrgi_iso_value_otsu(two, 2, 0.0, INFINITY, &t, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
 }
 
 int main(int argc, char** argv)

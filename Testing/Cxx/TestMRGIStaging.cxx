@@ -114,7 +114,8 @@ int DetectUp(vtkActor* actor, vtkMRGIStaging* staging = nullptr)
   vtkNew<vtkMRGIStaging> own;
   vtkMRGIStaging* s = staging ? staging : own.GetPointer();
   MRGI_TEST_CHECK(s->Stage(renderer));
-  std::printf("  up %s (%s)\n", vtkMRGIStaging::GetUpAxisName(s->GetDetectedUp()), s->GetUpReason());
+  std::printf(
+    "  up %s (%s)\n", vtkMRGIStaging::GetUpAxisName(s->GetDetectedUp()), s->GetUpReason());
   return s->GetDetectedUp();
 }
 
@@ -170,11 +171,11 @@ void TestUpShared()
       actor->SetUserTransform(RotateYTo(vtkMRGIStaging::UpPositiveZ));
       MRGI_TEST_CHECK(DetectUp(actor) == vtkMRGIStaging::UpPositiveZ);
       std::printf("bunny rotated to +x (data):\n");
-      MRGI_TEST_CHECK(DetectUp(ActorOf(Transformed(mesh, RotateYTo(vtkMRGIStaging::UpPositiveX)))) ==
-        vtkMRGIStaging::UpPositiveX);
+      MRGI_TEST_CHECK(DetectUp(ActorOf(Transformed(mesh,
+                        RotateYTo(vtkMRGIStaging::UpPositiveX)))) == vtkMRGIStaging::UpPositiveX);
       std::printf("bunny upside down (data):\n");
-      MRGI_TEST_CHECK(DetectUp(ActorOf(Transformed(mesh, RotateYTo(vtkMRGIStaging::UpNegativeY)))) ==
-        vtkMRGIStaging::UpNegativeY);
+      MRGI_TEST_CHECK(DetectUp(ActorOf(Transformed(mesh,
+                        RotateYTo(vtkMRGIStaging::UpNegativeY)))) == vtkMRGIStaging::UpNegativeY);
     }
   }
 }
@@ -260,8 +261,8 @@ void TestUpClouds()
     vtkNew<vtkDoubleArray> viewpoint;
     viewpoint->SetName("VIEWPOINT");
     const double half = vtkMath::RadiansFromDegrees(45.0);
-    const double values[7] = { 0, 0, 0, turned ? std::cos(half) : 1.0, turned ? std::sin(half) : 0.0,
-      0, 0 };
+    const double values[7] = { 0, 0, 0, turned ? std::cos(half) : 1.0,
+      turned ? std::sin(half) : 0.0, 0, 0 };
     for (double v : values)
     {
       viewpoint->InsertNextValue(v);
@@ -288,7 +289,8 @@ bool Covered(vtkImageData* image, int threshold, int box[4])
     for (int x = 0; x < dims[0]; ++x)
     {
       const vtkIdType p = static_cast<vtkIdType>(y) * dims[0] + x;
-      const double v = std::max(rgb->GetComponent(p, 0), std::max(rgb->GetComponent(p, 1), rgb->GetComponent(p, 2)));
+      const double v = std::max(
+        rgb->GetComponent(p, 0), std::max(rgb->GetComponent(p, 1), rgb->GetComponent(p, 2)));
       if (v > threshold)
       {
         box[0] = std::min(box[0], x);
@@ -304,8 +306,8 @@ bool Covered(vtkImageData* image, int threshold, int box[4])
 // The data's covered fraction (of the limiting side) and the offset of its
 // centre from the image centre (fraction of the side), rendered by VTK alone
 // under a headlight, for the staging (or ResetCamera when staging is null).
-void Coverage(vtkPolyData* data, int width, int height, vtkMRGIStaging* staging, double& fill,
-  double offset[2])
+void Coverage(
+  vtkPolyData* data, int width, int height, vtkMRGIStaging* staging, double& fill, double offset[2])
 {
   vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(width, height);
   vtkNew<vtkRenderer> renderer;
@@ -373,7 +375,8 @@ std::vector<vtkLight*> Lights(vtkRenderer* renderer)
 
 void TestGroundAndLights()
 {
-  vtkSmartPointer<vtkPolyData> pedestal = Transformed(Pedestal(), RotateYTo(vtkMRGIStaging::UpPositiveZ));
+  vtkSmartPointer<vtkPolyData> pedestal =
+    Transformed(Pedestal(), RotateYTo(vtkMRGIStaging::UpPositiveZ));
   double bounds[6];
   pedestal->GetBounds(bounds);
   const double center[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
@@ -395,8 +398,10 @@ void TestGroundAndLights()
   const double height = bounds[5] - bounds[4];
   MRGI_TEST_CHECK(g[5] - g[4] < 1e-9 * height + 1e-12);
   MRGI_TEST_CHECK(g[4] < bounds[4] && g[4] > bounds[4] - 0.01 * height);
-  MRGI_TEST_CHECK(g[0] < bounds[0] - (bounds[1] - bounds[0]) && g[1] > bounds[1] + (bounds[1] - bounds[0]));
-  vtkDataArray* normals = vtkPolyData::SafeDownCast(ground->GetMapper()->GetInput())->GetPointData()->GetNormals();
+  MRGI_TEST_CHECK(
+    g[0] < bounds[0] - (bounds[1] - bounds[0]) && g[1] > bounds[1] + (bounds[1] - bounds[0]));
+  vtkDataArray* normals =
+    vtkPolyData::SafeDownCast(ground->GetMapper()->GetInput())->GetPointData()->GetNormals();
   MRGI_TEST_CHECK(normals && normals->GetComponent(0, 2) == 1.0);
 
   // The spot: the only light, above and in front (-y is the front for +z
@@ -419,7 +424,8 @@ void TestGroundAndLights()
     double to[3] = { bounds[corner & 1] - p[0], bounds[2 + ((corner >> 1) & 1)] - p[1],
       bounds[4 + ((corner >> 2) & 1)] - p[2] };
     vtkMath::Normalize(to);
-    MRGI_TEST_CHECK(vtkMath::DegreesFromRadians(std::acos(vtkMath::Dot(to, axis))) < spot->GetConeAngle());
+    MRGI_TEST_CHECK(
+      vtkMath::DegreesFromRadians(std::acos(vtkMath::Dot(to, axis))) < spot->GetConeAngle());
   }
 
   // Staged again with an area light: the spot and the old ground go; the
@@ -503,7 +509,8 @@ void TestIsoSurfaceMade()
     {
       for (int x = 0; x < 40; ++x)
       {
-        const double r = std::sqrt((x - 19.5) * (x - 19.5) + (y - 19.5) * (y - 19.5) + (z - 19.5) * (z - 19.5));
+        const double r =
+          std::sqrt((x - 19.5) * (x - 19.5) + (y - 19.5) * (y - 19.5) + (z - 19.5) * (z - 19.5));
         *s++ = static_cast<float>(1.0 / (1.0 + std::exp(2.0 * (r - 10.0))));
       }
     }
@@ -521,7 +528,8 @@ void TestIsoSurfaceMade()
   {
     double p[3];
     surface->GetPoint(i, p);
-    const double r = std::sqrt((p[0] - 19.5) * (p[0] - 19.5) + (p[1] - 19.5) * (p[1] - 19.5) + (p[2] - 19.5) * (p[2] - 19.5));
+    const double r = std::sqrt((p[0] - 19.5) * (p[0] - 19.5) + (p[1] - 19.5) * (p[1] - 19.5) +
+      (p[2] - 19.5) * (p[2] - 19.5));
     if (std::fabs(r - 10.0) > 1.5)
     {
       MRGI_TEST_FAIL("point %lld at radius %.2f", static_cast<long long>(i), r);
@@ -535,7 +543,8 @@ void TestIsoSurfaceMade()
   // Errors: a value outside the range, constant scalars, not a volume.
   staging->SetIsoValue(5.0);
   MRGI_TEST_CHECK(!staging->MakeIsoSurface(volume, surface));
-  MRGI_TEST_CHECK(std::string(staging->GetLastErrorMessage()).find("is empty") != std::string::npos);
+  MRGI_TEST_CHECK(
+    std::string(staging->GetLastErrorMessage()).find("is empty") != std::string::npos);
   staging->AutomaticIsoValueOn();
   volume->GetPointData()->GetScalars()->Fill(3.0);
   MRGI_TEST_CHECK(!staging->MakeIsoSurface(volume, surface));
@@ -596,7 +605,8 @@ void TestIsoSurfaceIronProt()
     const double fraction = static_cast<double>(onFaces) / surface->GetNumberOfPoints();
     std::printf("ironProt.vtk %s: %lld cells, %.3f of the points on the volume's faces%s\n",
       staged ? "staged" : "not staged", static_cast<long long>(builder->GetBuiltTriangleCount()),
-      fraction, staged ? (", iso-value " + std::to_string(staging->GetLastIsoValue())).c_str() : "");
+      fraction,
+      staged ? (", iso-value " + std::to_string(staging->GetLastIsoValue())).c_str() : "");
     if (staged)
     {
       MRGI_TEST_CHECK(fraction < 0.01);
@@ -614,10 +624,12 @@ void TestErrors()
 {
   vtkNew<vtkMRGIStaging> staging;
   MRGI_TEST_CHECK(!staging->Stage(nullptr));
-  MRGI_TEST_CHECK(std::string(staging->GetLastErrorMessage()).find("renderer") != std::string::npos);
+  MRGI_TEST_CHECK(
+    std::string(staging->GetLastErrorMessage()).find("renderer") != std::string::npos);
   vtkNew<vtkRenderer> empty;
   MRGI_TEST_CHECK(!staging->Stage(empty));
-  MRGI_TEST_CHECK(std::string(staging->GetLastErrorMessage()).find("nothing to stage") != std::string::npos);
+  MRGI_TEST_CHECK(
+    std::string(staging->GetLastErrorMessage()).find("nothing to stage") != std::string::npos);
   MRGI_TEST_CHECK(empty->GetActors()->GetNumberOfItems() == 0);
   // Only NaN points (an organized cloud with no valid pixel).
   vtkNew<vtkPoints> nan;
@@ -643,7 +655,8 @@ void TestErrors()
   vtkNew<vtkRenderer> nothing;
   nothing->AddActor(ActorOf(degenerate));
   MRGI_TEST_CHECK(!staging->Stage(nothing));
-  MRGI_TEST_CHECK(std::string(staging->GetLastErrorMessage()).find("nothing to draw") != std::string::npos);
+  MRGI_TEST_CHECK(
+    std::string(staging->GetLastErrorMessage()).find("nothing to draw") != std::string::npos);
   MRGI_TEST_CHECK(nothing->GetActors()->GetNumberOfItems() == 1);
   // One point: staged, the camera at distance 1 around it.
   vtkNew<vtkPoints> one;

@@ -18,8 +18,8 @@ static void mrgi_framing_cross(const double a[3], const double b[3], double out[
 }
 
 /* Unit direction, right and up vectors; 0 when the input is unusable. */
-static int mrgi_framing_basis(const double direction[3], const double view_up[3], double d[3],
-  double right[3], double up[3])
+static int mrgi_framing_basis(
+  const double direction[3], const double view_up[3], double d[3], double right[3], double up[3])
 {
   const double dn = sqrt(mrgi_framing_dot(direction, direction));
   if (!(dn > 0.0) || !isfinite(dn))
@@ -164,7 +164,8 @@ mrgi_status mrgi_frame_points(const double* points, int64_t count, const double 
   }
   if (!(fill > 0.0 && fill <= 1.0))
   {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "mrgi_frame_points: fill must be in (0, 1]");
+    return mrgi_error_set(
+      err, MRGI_ERR_INVALID_ARGUMENT, "mrgi_frame_points: fill must be in (0, 1]");
   }
   double d[3], r[3], u[3];
   mrgi_framing_basis(direction, view_up, d, r, u);

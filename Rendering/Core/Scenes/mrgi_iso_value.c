@@ -33,7 +33,8 @@ mrgi_status mrgi_iso_value_otsu(const double* counts, int bins, double lo, doubl
   }
   if (!(total > 0.0))
   {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "mrgi_iso_value_otsu: the histogram is empty");
+    return mrgi_error_set(
+      err, MRGI_ERR_INVALID_ARGUMENT, "mrgi_iso_value_otsu: the histogram is empty");
   }
   double best = -1.0;
   int best_t = 0, last_t = 0;

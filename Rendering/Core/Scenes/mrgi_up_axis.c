@@ -17,7 +17,8 @@ mrgi_status mrgi_up_evidence_init(mrgi_up_evidence* ev, const double bounds[6], 
   }
   for (int k = 0; k < 3; ++k)
   {
-    if (!isfinite(bounds[2 * k]) || !isfinite(bounds[2 * k + 1]) || bounds[2 * k] > bounds[2 * k + 1])
+    if (!isfinite(bounds[2 * k]) || !isfinite(bounds[2 * k + 1]) ||
+      bounds[2 * k] > bounds[2 * k + 1])
     {
       return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
         "mrgi_up_evidence_init: bounds of axis %d are not finite or inverted", k);
@@ -159,8 +160,7 @@ mrgi_status mrgi_up_decide(const mrgi_up_evidence* ev, mrgi_up_decision* out, mr
     const double extent = ev->bounds[2 * k + 1] - ev->bounds[2 * k];
     if (dominant && extent > 0.0)
     {
-      const double where =
-        (ev->boundary_sum[k] / ev->boundary_length - ev->bounds[2 * k]) / extent;
+      const double where = (ev->boundary_sum[k] / ev->boundary_length - ev->bounds[2 * k]) / extent;
       if (where <= MRGI_UP_OPEN_END_BAND || where >= 1.0 - MRGI_UP_OPEN_END_BAND)
       {
         out->up = mrgi_up_away_from(k, where >= 0.5);

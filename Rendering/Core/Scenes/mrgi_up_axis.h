@@ -87,12 +87,12 @@ typedef enum mrgi_up_reason
 /** What mrgi_up_add_triangle() and mrgi_up_add_boundary_edge() gather. */
 typedef struct mrgi_up_evidence
 {
-  double bounds[6];        /**< xmin, xmax, ymin, ymax, zmin, zmax of the data. */
-  double total_area;       /**< Sum of the triangle areas. */
-  double base_area[6];     /**< Flat-base area at the low (even) / high (odd) end of x, y, z. */
-  double area_vector[3];   /**< Sum of the triangles' area vectors (0.5 (b-a) x (c-a)). */
-  double boundary_length;  /**< Total length of the boundary edges given. */
-  double boundary_sum[3];  /**< Sum of edge midpoints times edge lengths. */
+  double bounds[6];       /**< xmin, xmax, ymin, ymax, zmin, zmax of the data. */
+  double total_area;      /**< Sum of the triangle areas. */
+  double base_area[6];    /**< Flat-base area at the low (even) / high (odd) end of x, y, z. */
+  double area_vector[3];  /**< Sum of the triangles' area vectors (0.5 (b-a) x (c-a)). */
+  double boundary_length; /**< Total length of the boundary edges given. */
+  double boundary_sum[3]; /**< Sum of edge midpoints times edge lengths. */
 } mrgi_up_evidence;
 
 /** What mrgi_up_decide() concludes. */
