@@ -697,8 +697,7 @@ const std::vector<OptionSection>& OptionTable()
           Number(
             &Options::StageFill, [](double f) { return f >= 0.05 && f <= 1.0; },
             "expected a number in [0.05, 1]") },
-        { { "--iso" }, "V",
-          "volumes: the iso-value (default Otsu's threshold of the scalars)",
+        { { "--iso" }, "V", "volumes: the iso-value (default Otsu's threshold of the scalars)",
           Number(
             &Options::Iso, [](double v) { return std::fabs(v) <= MaxFloatValue; },
             "expected a finite number", &Options::HasIso) },

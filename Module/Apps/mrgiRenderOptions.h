@@ -99,7 +99,7 @@ struct Options
   long long ReferencePasses = 64;
   // Staging of data files (vtkMRGIStaging); built-in scenes are never staged.
   bool Stage = true;
-  int StageUp = -1;      // vtkMRGIStaging::UpAxis
+  int StageUp = -1; // vtkMRGIStaging::UpAxis
   bool StageGround = true;
   int StageKeyLight = 1; // vtkMRGIStaging::KeyLightType
   double StageFill = 0.8;
