@@ -749,6 +749,17 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
     }
     if (!this->Frame(path, renderer))
     {
+      // Leave the renderer as it was.
+      imported->InitTraversal();
+      while (vtkActor* actor = imported->GetNextActor())
+      {
+        renderer->RemoveActor(actor);
+      }
+      scratch->GetLights()->InitTraversal();
+      while (vtkLight* light = scratch->GetLights()->GetNextItem())
+      {
+        renderer->RemoveLight(light);
+      }
       return false;
     }
     this->BuiltTriangleCount = triangles;

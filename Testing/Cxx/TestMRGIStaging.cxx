@@ -658,6 +658,28 @@ void TestErrors()
   MRGI_TEST_CHECK(
     std::string(staging->GetLastErrorMessage()).find("nothing to draw") != std::string::npos);
   MRGI_TEST_CHECK(nothing->GetActors()->GetNumberOfItems() == 1);
+  // Through the scene builder (a glTF file, the importer's path): the
+  // renderer keeps nothing of the file.
+  const std::string gltf = mrgitest::TempPath("staging_degenerate.gltf");
+  {
+    std::ofstream out(gltf);
+    out << R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+        << R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+        << R"("buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)"
+        << R"(AAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAA"}],)"
+        << R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36}],)"
+        << R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",)"
+        << R"("max":[0,0,0],"min":[0,0,0]}]})";
+  }
+  vtkNew<vtkRenderer> untouched;
+  vtkNew<vtkMRGISceneBuilder> builder;
+  builder->SetScene(gltf.c_str());
+  builder->SetStaging(staging);
+  MRGI_TEST_CHECK(!builder->Build(untouched));
+  std::printf("degenerate glTF: %s\n", builder->GetLastErrorMessage());
+  MRGI_TEST_CHECK(std::string(builder->GetLastErrorMessage()).find("cannot stage") != std::string::npos);
+  MRGI_TEST_CHECK(untouched->GetActors()->GetNumberOfItems() == 0);
+  MRGI_TEST_CHECK(untouched->GetLights()->GetNumberOfItems() == 0);
   // One point: staged, the camera at distance 1 around it.
   vtkNew<vtkPoints> one;
   one->InsertNextPoint(1, 2, 3);
