@@ -677,7 +677,8 @@ void TestErrors()
   builder->SetStaging(staging);
   MRGI_TEST_CHECK(!builder->Build(untouched));
   std::printf("degenerate glTF: %s\n", builder->GetLastErrorMessage());
-  MRGI_TEST_CHECK(std::string(builder->GetLastErrorMessage()).find("cannot stage") != std::string::npos);
+  MRGI_TEST_CHECK(
+    std::string(builder->GetLastErrorMessage()).find("cannot stage") != std::string::npos);
   MRGI_TEST_CHECK(untouched->GetActors()->GetNumberOfItems() == 0);
   MRGI_TEST_CHECK(untouched->GetLights()->GetNumberOfItems() == 0);
   // One point: staged, the camera at distance 1 around it.
