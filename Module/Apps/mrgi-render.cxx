@@ -451,7 +451,14 @@ int main(int argc, char* argv[])
   std::snprintf(line, sizeof(line), "scene ready: %lld triangles in %.2f s",
     static_cast<long long>(builder->GetBuiltTriangleCount()), seconds(buildStart));
   Progress(o, line);
-  if (o.Stage && !vtkMRGISceneBuilder::IsBuiltInScene(o.Scene.c_str()))
+  const bool builtIn = vtkMRGISceneBuilder::IsBuiltInScene(o.Scene.c_str());
+  if (!o.StagingOptions.empty() && (!o.Stage || builtIn))
+  {
+    Progress(o,
+      "note: " + o.StagingOptions +
+        " ignored: " + (builtIn ? "built-in scenes are not staged" : "--stage off"));
+  }
+  if (o.Stage && !builtIn)
   {
     std::snprintf(line, sizeof(line), "staged: up %s (%s)%s",
       vtkMRGIStaging::GetUpAxisName(stager->GetDetectedUp()), stager->GetUpReason(),

@@ -468,6 +468,20 @@ OptionHandler Choice(T Options::*field, std::vector<std::pair<std::string, T>> c
   };
 }
 
+// A staging option (--up, --ground, ...): `handler`, and noted as given, so
+// that mrgi-render can say when no staging takes place to use it.
+OptionHandler Staged(OptionHandler handler)
+{
+  return [handler](Options& o, const std::string& option, const char* v) {
+    const int result = handler(o, option, v);
+    if (result < 0)
+    {
+      o.StagingOptions += (o.StagingOptions.empty() ? "" : " ") + option;
+    }
+    return result;
+  };
+}
+
 // --depth-threshold / --normal-threshold: a number >= 0, or inf (never
 // refines; the pass takes -1 for it).
 OptionHandler Threshold(double Options::*field)
@@ -678,29 +692,29 @@ const std::vector<OptionSection>& OptionTable()
         { { "--up" }, "auto|x|y|z|-x|-y|-z",
           "the data's up axis (default auto: LAS/PCD metadata, a flat or\n"
           "open base, a thin extent, else y)",
-          Choice<int>(&Options::StageUp,
+          Staged(Choice<int>(&Options::StageUp,
             { { "auto", vtkMRGIStaging::UpAuto }, { "x", vtkMRGIStaging::UpPositiveX },
               { "y", vtkMRGIStaging::UpPositiveY }, { "z", vtkMRGIStaging::UpPositiveZ },
               { "-x", vtkMRGIStaging::UpNegativeX }, { "-y", vtkMRGIStaging::UpNegativeY },
-              { "-z", vtkMRGIStaging::UpNegativeZ } }) },
+              { "-z", vtkMRGIStaging::UpNegativeZ } })) },
         { { "--ground" }, "on|off", "a grey matte ground under the data (default on)",
-          OnOff(&Options::StageGround) },
+          Staged(OnOff(&Options::StageGround)) },
         { { "--key-light" }, "spot|area|none",
           "the light from above and in front: a spot light (default), an area\n"
           "light, or none (the scene's lights, VTK's headlight)",
-          Choice<int>(&Options::StageKeyLight,
+          Staged(Choice<int>(&Options::StageKeyLight,
             { { "spot", vtkMRGIStaging::KeyLightSpot }, { "area", vtkMRGIStaging::KeyLightArea },
-              { "none", vtkMRGIStaging::KeyLightNone } }) },
+              { "none", vtkMRGIStaging::KeyLightNone } })) },
         { { "--fill" }, "F",
           "fraction of the image width or height the data fills, 0.05..1\n"
           "(default 0.8)",
-          Number(
+          Staged(Number(
             &Options::StageFill, [](double f) { return f >= 0.05 && f <= 1.0; },
-            "expected a number in [0.05, 1]") },
+            "expected a number in [0.05, 1]")) },
         { { "--iso" }, "V", "volumes: the iso-value (default Otsu's threshold of the scalars)",
-          Number(
+          Staged(Number(
             &Options::Iso, [](double v) { return std::fabs(v) <= MaxFloatValue; },
-            "expected a finite number", &Options::HasIso) },
+            "expected a finite number", &Options::HasIso)) },
       } },
     { "Indirect light (one bounce; Documentation/IndirectLight.md)",
       {

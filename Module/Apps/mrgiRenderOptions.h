@@ -105,6 +105,7 @@ struct Options
   double StageFill = 0.8;
   bool HasIso = false;
   double Iso = 0.0;
+  std::string StagingOptions; // the staging options given, for a note when unused
 };
 
 // Parses argv into `o`; returns -1 to go on, else the exit code (0 after

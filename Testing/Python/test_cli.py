@@ -220,8 +220,14 @@ def staging():
         check((line in err) if line else ("staged:" not in err), "staging %s progress: %s" % (name, err))
     contents = [open(images[n], "rb").read() for n in sorted(images)]
     check(len(set(contents)) == len(contents), "each staging option changes the image")
-    code, _, err = run("cornell", "-o", fresh("cli_stage_cornell.png"), "--size", "16x16", "--up", "z")
+    code, _, err = run("cornell", "-o", fresh("cli_stage_cornell.png"), "--size", "16x16", "--up", "z",
+                       "--fill", "0.5")
     check(code == 0 and "staged:" not in err, "built-in scenes are not staged: " + err)
+    check("note: --up --fill ignored: built-in scenes are not staged" in err,
+          "staging options on a built-in scene are noted: " + err)
+    code, _, err = run(obj, "-o", fresh("cli_stage_off.png"), "--size", "16x16", "--stage", "off",
+                       "--ground", "off")
+    check(code == 0 and "note: --ground ignored: --stage off" in err, "--stage off notes: " + err)
 
     # A volume: a ball of 1s in 0s, shown as the iso-surface (Otsu: 0.5)
     # or at --iso; a value outside the range is an error naming the file.
