@@ -557,6 +557,14 @@ bool vtkMRGIStaging::Stage(vtkRenderer* renderer)
       }
       validPolys.emplace_back(&piece, valid);
     }
+    if (!(evidence.total_area > 0))
+    {
+      // A cloud: its points (the framing's sample) are the evidence.
+      for (size_t i = 0; i + 2 < samples.size(); i += 3)
+      {
+        mrgi_up_add_point(&evidence, &samples[i]);
+      }
+    }
     mrgi_up_decision decision;
     if (mrgi_up_decide(&evidence, &decision, &err) != MRGI_OK)
     {

@@ -19,8 +19,10 @@
  *      sensor's -y axis rotated by the orientation (depth cameras have y
  *      down), rounded to the nearest world axis;
  *   3. the geometry (mrgi_up_axis.h): a flat base, an open base (a scan's
- *      hole where the turntable was), a thin extent, else +y, VTK's
- *      convention. GetUpReason() names the cue.
+ *      hole where the turntable was), for point clouds a point base (one
+ *      end of an axis holding many more points than the others: a scan's
+ *      base, terrain's ground), a thin extent, else +y, VTK's convention.
+ *      GetUpReason() names the cue.
  * - **Camera**: the view direction is the "front" (+z for a y or x up
  *   axis, -y for +z, +y for -z) raised by CameraElevation degrees (default
  *   25) towards up; the camera is placed so that the projection of the

@@ -151,6 +151,58 @@ static void test_open_base(void)
   }
 }
 
+static void test_point_base(void)
+{
+  /* Points spread evenly (a 0.05 grid) over the pedestal's faces, as a
+   * scanner samples them: its slab's bottom holds most of them at the low
+   * end. In every orientation. */
+  quad q[12];
+  box(-1, 1, 0, 0.2, -1, 1, q);
+  box(-0.1, 0.1, 0.2, 3, -0.1, 0.1, q + 6);
+  for (int a = 0; a < 6; ++a)
+  {
+    double b[6];
+    bounds_of(q, 12, (mrgi_axis)a, b);
+    mrgi_up_evidence ev;
+    MRGI_CHECK(mrgi_up_evidence_init(&ev, b, NULL) == MRGI_OK);
+    for (int i = 0; i < 12; ++i)
+    {
+      double lu = 0, lv = 0;
+      for (int k = 0; k < 3; ++k)
+      {
+        lu += (q[i].c[1][k] - q[i].c[0][k]) * (q[i].c[1][k] - q[i].c[0][k]);
+        lv += (q[i].c[3][k] - q[i].c[0][k]) * (q[i].c[3][k] - q[i].c[0][k]);
+      }
+      const int nu = (int)ceil(sqrt(lu) / 0.05), nv = (int)ceil(sqrt(lv) / 0.05);
+      for (int s = 0; s <= nu; ++s)
+      {
+        for (int t = 0; t <= nv; ++t)
+        {
+          double p[3], o[3];
+          for (int k = 0; k < 3; ++k)
+          {
+            const double u = (double)s / nu, v = (double)t / nv;
+            p[k] = (1 - u) * (1 - v) * q[i].c[0][k] + u * (1 - v) * q[i].c[1][k] +
+              u * v * q[i].c[2][k] + (1 - u) * v * q[i].c[3][k];
+          }
+          orient((mrgi_axis)a, p, o);
+          mrgi_up_add_point(&ev, o);
+        }
+      }
+    }
+    mrgi_up_decision d;
+    MRGI_CHECK(mrgi_up_decide(&ev, &d, NULL) == MRGI_OK);
+    MRGI_CHECK(d.up == (mrgi_axis)a);
+    MRGI_CHECK(d.reason == MRGI_UP_REASON_POINT_BASE);
+    /* With a triangle, the points no longer decide. */
+    const double t0[3] = { b[0], b[2], b[4] }, t1[3] = { b[1], b[2], b[4] },
+                 t2[3] = { b[0], b[3], b[5] };
+    mrgi_up_add_triangle(&ev, t0, t1, t2);
+    MRGI_CHECK(mrgi_up_decide(&ev, &d, NULL) == MRGI_OK);
+    MRGI_CHECK(d.reason != MRGI_UP_REASON_POINT_BASE);
+  }
+}
+
 static void test_thin_and_default(void)
 {
   quad q[6];
@@ -336,8 +388,8 @@ static void test_iso_value(void)
 int main(int argc, char** argv)
 {
   static const mrgi_test_case cases[] = { MRGI_TEST_CASE(test_flat_base),
-    MRGI_TEST_CASE(test_open_base), MRGI_TEST_CASE(test_thin_and_default),
-    MRGI_TEST_CASE(test_axis_names_and_errors), MRGI_TEST_CASE(test_framing),
-    MRGI_TEST_CASE(test_iso_value) };
+    MRGI_TEST_CASE(test_open_base), MRGI_TEST_CASE(test_point_base),
+    MRGI_TEST_CASE(test_thin_and_default), MRGI_TEST_CASE(test_axis_names_and_errors),
+    MRGI_TEST_CASE(test_framing), MRGI_TEST_CASE(test_iso_value) };
   return MRGI_TEST_MAIN(argc, argv, cases);
 }

@@ -233,19 +233,33 @@ void TestUpClouds()
     {
       for (int j = 0; j < 40; ++j)
       {
-        points->InsertNextPoint(i, j, 0.1 * i + ((i * 7 + j * 3) % 11 == 0 ? 15.0 : 0.0));
+        points->InsertNextPoint(i, j, 0.02 * i + ((i * 7 + j * 3) % 11 == 0 ? 15.0 : 0.0));
       }
     }
   }
   vtkSmartPointer<vtkPolyData> tile = Cloud(points);
   std::printf("LAS tile, geometry only:\n");
-  DetectUp(ActorOf(tile)); // printed: the extents of a small tile do not say it
+  MRGI_TEST_CHECK(DetectUp(ActorOf(tile)) == vtkMRGIStaging::UpPositiveZ); // its ground
   vtkNew<vtkIntArray> version;
   version->SetName("LASVersion");
   version->InsertNextValue(14);
   tile->GetFieldData()->AddArray(version);
   std::printf("LAS tile, with its LASVersion field:\n");
   MRGI_TEST_CHECK(DetectUp(ActorOf(tile)) == vtkMRGIStaging::UpPositiveZ);
+
+  // The bunny's vertices as a cloud (no cells), turned to z-up and x-up.
+  const std::string bunny = Shared("bunny.ply");
+  if (!bunny.empty())
+  {
+    vtkSmartPointer<vtkPolyData> mesh = ReadPLY(bunny);
+    for (int up :
+      { vtkMRGIStaging::UpPositiveY, vtkMRGIStaging::UpPositiveZ, vtkMRGIStaging::UpPositiveX })
+    {
+      vtkSmartPointer<vtkPolyData> turned = Transformed(mesh, RotateYTo(up));
+      std::printf("bunny's points, up %s:\n", vtkMRGIStaging::GetUpAxisName(up));
+      MRGI_TEST_CHECK(DetectUp(ActorOf(Cloud(turned->GetPoints()))) == up);
+    }
+  }
 
   // A depth camera's cloud: the sensor looks along +z with y down; turned
   // by 90 degrees about x (its y now along world -z), up is world +z.

@@ -74,6 +74,27 @@ void mrgi_up_add_triangle(
   }
 }
 
+void mrgi_up_add_point(mrgi_up_evidence* ev, const double p[3])
+{
+  if (!ev || !p || !mrgi_up_finite3(p))
+  {
+    return;
+  }
+  ev->point_count += 1.0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double band = MRGI_UP_BASE_BAND * (ev->bounds[2 * k + 1] - ev->bounds[2 * k]);
+    if (p[k] - ev->bounds[2 * k] <= band)
+    {
+      ev->point_base[2 * k] += 1.0;
+    }
+    else if (ev->bounds[2 * k + 1] - p[k] <= band)
+    {
+      ev->point_base[2 * k + 1] += 1.0;
+    }
+  }
+}
+
 void mrgi_up_add_boundary_edge(mrgi_up_evidence* ev, const double a[3], const double b[3])
 {
   if (!ev || !a || !b || !mrgi_up_finite3(a) || !mrgi_up_finite3(b))
@@ -170,7 +191,34 @@ mrgi_status mrgi_up_decide(const mrgi_up_evidence* ev, mrgi_up_decision* out, mr
     }
   }
 
-  /* 3. A thin extent. */
+  /* 3. A point base: clouds only (triangles say more when there are any). */
+  if (!(total > 0.0) && ev->point_count > 0.0)
+  {
+    int best = 0;
+    for (int i = 1; i < 6; ++i)
+    {
+      if (ev->point_base[i] > ev->point_base[best])
+      {
+        best = i;
+      }
+    }
+    int dominant = ev->point_base[best] >= MRGI_UP_POINT_BASE_MIN_FRACTION * ev->point_count;
+    for (int i = 0; i < 6 && dominant; ++i)
+    {
+      if (i != best && ev->point_base[best] < MRGI_UP_BASE_DOMINANCE * ev->point_base[i])
+      {
+        dominant = 0;
+      }
+    }
+    if (dominant)
+    {
+      out->up = mrgi_up_away_from(best / 2, best % 2);
+      out->reason = MRGI_UP_REASON_POINT_BASE;
+      return MRGI_OK;
+    }
+  }
+
+  /* 4. A thin extent. */
   double size[3];
   int order[3] = { 0, 1, 2 };
   for (int k = 0; k < 3; ++k)
@@ -268,6 +316,8 @@ const char* mrgi_up_reason_name(mrgi_up_reason reason)
       return "thin extent";
     case MRGI_UP_REASON_DEFAULT:
       return "default";
+    case MRGI_UP_REASON_POINT_BASE:
+      return "point base";
   }
   return "?";
 }

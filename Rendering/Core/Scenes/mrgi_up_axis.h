@@ -23,6 +23,10 @@
  *   the file's orientation). Its dominant axis, with the boundary edges'
  *   length-weighted centroid at one end of that axis, says where the base
  *   is.
+ * - **point base** (point clouds: no triangle added): the points within
+ *   ::MRGI_UP_BASE_BAND of the extent from each end of each axis. A scan
+ *   stands on its base, terrain has its ground: one end holds many more
+ *   points than the others.
  * - **extents**: an axis much shorter than the other two (terrain, a
  *   floor) is up.
  *
@@ -34,9 +38,13 @@
  *    ::MRGI_UP_BASE_DOMINANCE times the other components of S, and the
  *    boundary centroid within ::MRGI_UP_OPEN_END_BAND of an end of axis k:
  *    up points away from that end.
- * 3. extents: the shortest extent is <= ::MRGI_UP_THIN_RATIO of the next
+ * 3. point base, only when no triangle was added: the end holding the most
+ *    points holds >= ::MRGI_UP_POINT_BASE_MIN_FRACTION of them and >=
+ *    ::MRGI_UP_BASE_DOMINANCE times every other end's: up points away
+ *    from it.
+ * 4. extents: the shortest extent is <= ::MRGI_UP_THIN_RATIO of the next
  *    shortest: up is +that axis.
- * 4. otherwise +y (VTK's convention).
+ * 5. otherwise +y (VTK's convention).
  *
  * All functions are pure; no global state.
  */
@@ -66,7 +74,8 @@ typedef enum mrgi_up_reason
   MRGI_UP_REASON_FLAT_BASE = 0,
   MRGI_UP_REASON_OPEN_BASE = 1,
   MRGI_UP_REASON_THIN_EXTENT = 2,
-  MRGI_UP_REASON_DEFAULT = 3
+  MRGI_UP_REASON_DEFAULT = 3,
+  MRGI_UP_REASON_POINT_BASE = 4
 } mrgi_up_reason;
 
 /** A triangle counts for a flat base when its normal is this close to an axis. */
@@ -81,10 +90,12 @@ typedef enum mrgi_up_reason
 #define MRGI_UP_OPEN_MIN_FRACTION 0.005
 /** An open base: the boundary centroid within this fraction of an end. */
 #define MRGI_UP_OPEN_END_BAND 0.2
+/** A point base: at least this fraction of the points. */
+#define MRGI_UP_POINT_BASE_MIN_FRACTION 0.05
 /** Thin extent: the shortest extent at most this fraction of the next. */
 #define MRGI_UP_THIN_RATIO 0.25
 
-/** What mrgi_up_add_triangle() and mrgi_up_add_boundary_edge() gather. */
+/** What mrgi_up_add_triangle(), mrgi_up_add_boundary_edge() and mrgi_up_add_point() gather. */
 typedef struct mrgi_up_evidence
 {
   double bounds[6];       /**< xmin, xmax, ymin, ymax, zmin, zmax of the data. */
@@ -93,6 +104,8 @@ typedef struct mrgi_up_evidence
   double area_vector[3];  /**< Sum of the triangles' area vectors (0.5 (b-a) x (c-a)). */
   double boundary_length; /**< Total length of the boundary edges given. */
   double boundary_sum[3]; /**< Sum of edge midpoints times edge lengths. */
+  double point_count;     /**< Points given to mrgi_up_add_point(). */
+  double point_base[6];   /**< Of those, within the base band of the low / high end of x, y, z. */
 } mrgi_up_evidence;
 
 /** What mrgi_up_decide() concludes. */
@@ -112,6 +125,9 @@ mrgi_status mrgi_up_evidence_init(mrgi_up_evidence* ev, const double bounds[6], 
 /** Add one triangle (its corners). Degenerate or non-finite ones add nothing. */
 void mrgi_up_add_triangle(
   mrgi_up_evidence* ev, const double a[3], const double b[3], const double c[3]);
+
+/** Add one point (of a cloud; a sample of it is enough). Non-finite ones add nothing. */
+void mrgi_up_add_point(mrgi_up_evidence* ev, const double p[3]);
 
 /** Add one boundary edge (an edge used by one triangle only). Non-finite ones add nothing. */
 void mrgi_up_add_boundary_edge(mrgi_up_evidence* ev, const double a[3], const double b[3]);
@@ -136,7 +152,7 @@ const char* mrgi_axis_name(mrgi_axis axis);
  */
 mrgi_status mrgi_axis_parse(const char* text, mrgi_axis* out, mrgi_error* err);
 
-/** The name of a reason: "flat base", "open base", "thin extent", "default". */
+/** The name of a reason: "flat base", "open base", "point base", "thin extent", "default". */
 const char* mrgi_up_reason_name(mrgi_up_reason reason);
 
 #ifdef __cplusplus
