@@ -24,6 +24,7 @@
 #include "vtkMRGIReferenceRenderer.h"
 #include "vtkMRGIRenderWindowFactory.h"
 #include "vtkMRGISceneBuilder.h"
+#include "vtkMRGIStaging.h"
 #include "vtkMRGIUpsample.h"
 #include "vtkMRGIVPLSelection.h"
 #include "vtkMRGIVisibilityPyramid.h"
@@ -431,6 +432,17 @@ int main(int argc, char* argv[])
   builder->SetTriangleCount(static_cast<vtkIdType>(o.Triangles));
   builder->SetObjectCount(static_cast<int>(o.Objects));
   builder->SetSeed(static_cast<vtkTypeUInt64>(o.Seed));
+  vtkNew<vtkMRGIStaging> stager;
+  stager->SetUp(o.StageUp);
+  stager->SetGround(o.StageGround);
+  stager->SetKeyLight(o.StageKeyLight);
+  stager->SetFillFraction(o.StageFill);
+  stager->SetAutomaticIsoValue(!o.HasIso);
+  stager->SetIsoValue(o.Iso);
+  if (o.Stage)
+  {
+    builder->SetStaging(stager); // used for data files only
+  }
   if (!builder->Build(renderer))
   {
     return FailInput(builder->GetLastErrorMessage());
@@ -447,6 +459,22 @@ int main(int argc, char* argv[])
       static_cast<long long>(builder->GetBuiltTriangleCount()), seconds(buildStart));
   }
   Progress(o, line);
+  const bool builtIn = vtkMRGISceneBuilder::IsBuiltInScene(o.Scene.c_str());
+  if (!o.StagingOptions.empty() && (!o.Stage || builtIn))
+  {
+    Progress(o,
+      "note: " + o.StagingOptions +
+        " ignored: " + (builtIn ? "built-in scenes are not staged" : "--stage off"));
+  }
+  if (o.Stage && !builtIn)
+  {
+    std::snprintf(line, sizeof(line), "staged: up %s (%s)%s",
+      vtkMRGIStaging::GetUpAxisName(stager->GetDetectedUp()), stager->GetUpReason(),
+      std::isnan(stager->GetLastIsoValue())
+        ? ""
+        : (", volume as the iso-surface at " + std::to_string(stager->GetLastIsoValue())).c_str());
+    Progress(o, line);
+  }
 
   if (!o.Lights.empty())
   {

@@ -21,6 +21,7 @@
 #include "vtkMRGIVPLSelection.h"
 #include "vtkMRGIRenderWindowFactory.h"
 #include "vtkMRGISceneBuilder.h"
+#include "vtkMRGIStaging.h"
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
 #include "vtkRenderStepsPass.h"
@@ -468,6 +469,20 @@ OptionHandler Choice(T Options::*field, std::vector<std::pair<std::string, T>> c
   };
 }
 
+// A staging option (--up, --ground, ...): `handler`, and noted as given, so
+// that mrgi-render can say when no staging takes place to use it.
+OptionHandler Staged(OptionHandler handler)
+{
+  return [handler](Options& o, const std::string& option, const char* v) {
+    const int result = handler(o, option, v);
+    if (result < 0)
+    {
+      o.StagingOptions += (o.StagingOptions.empty() ? "" : " ") + option;
+    }
+    return result;
+  };
+}
+
 // --depth-threshold / --normal-threshold: a number >= 0, or inf (never
 // refines; the pass takes -1 for it).
 OptionHandler Threshold(double Options::*field)
@@ -666,6 +681,41 @@ const std::vector<OptionSection>& OptionTable()
           Integer(&Options::Objects, 1, 4096) },
         { { "--seed" }, "N", "random seed, >= 0 (default 1)",
           Integer(&Options::Seed, 0, INT64_MAX) },
+      } },
+    { "Staging of data files (Documentation/Staging.md; built-in scenes bring\n"
+      "their own camera and lights and are never staged)",
+      {
+        { { "--stage" }, "on|off",
+          "on (default): detect the up axis, frame the data, add a ground and a\n"
+          "key light, show volumes as iso-surfaces; off: VTK's framing and\n"
+          "headlight, volumes as their outer surface",
+          OnOff(&Options::Stage) },
+        { { "--up" }, "auto|x|y|z|-x|-y|-z",
+          "the data's up axis (default auto: LAS/PCD metadata, a flat or\n"
+          "open base, a thin extent, else y)",
+          Staged(Choice<int>(&Options::StageUp,
+            { { "auto", vtkMRGIStaging::UpAuto }, { "x", vtkMRGIStaging::UpPositiveX },
+              { "y", vtkMRGIStaging::UpPositiveY }, { "z", vtkMRGIStaging::UpPositiveZ },
+              { "-x", vtkMRGIStaging::UpNegativeX }, { "-y", vtkMRGIStaging::UpNegativeY },
+              { "-z", vtkMRGIStaging::UpNegativeZ } })) },
+        { { "--ground" }, "on|off", "a grey matte ground under the data (default on)",
+          Staged(OnOff(&Options::StageGround)) },
+        { { "--key-light" }, "spot|area|none",
+          "the light from above and in front: a spot light (default), an area\n"
+          "light, or none (the scene's lights, VTK's headlight)",
+          Staged(Choice<int>(&Options::StageKeyLight,
+            { { "spot", vtkMRGIStaging::KeyLightSpot }, { "area", vtkMRGIStaging::KeyLightArea },
+              { "none", vtkMRGIStaging::KeyLightNone } })) },
+        { { "--fill" }, "F",
+          "fraction of the image width or height the data fills, 0.05..1\n"
+          "(default 0.8)",
+          Staged(Number(
+            &Options::StageFill, [](double f) { return f >= 0.05 && f <= 1.0; },
+            "expected a number in [0.05, 1]")) },
+        { { "--iso" }, "V", "volumes: the iso-value (default Otsu's threshold of the scalars)",
+          Staged(Number(
+            &Options::Iso, [](double v) { return std::fabs(v) <= MaxFloatValue; },
+            "expected a finite number", &Options::HasIso)) },
       } },
     { "Indirect light (one bounce; Documentation/IndirectLight.md)",
       {

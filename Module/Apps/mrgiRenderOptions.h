@@ -97,6 +97,15 @@ struct Options
   bool ReferenceShadows = true;
   double ReferenceError = 0.01;
   long long ReferencePasses = 64;
+  // Staging of data files (vtkMRGIStaging); built-in scenes are never staged.
+  bool Stage = true;
+  int StageUp = -1; // vtkMRGIStaging::UpAxis
+  bool StageGround = true;
+  int StageKeyLight = 1; // vtkMRGIStaging::KeyLightType
+  double StageFill = 0.8;
+  bool HasIso = false;
+  double Iso = 0.0;
+  std::string StagingOptions; // the staging options given, for a note when unused
 };
 
 // Parses argv into `o`; returns -1 to go on, else the exit code (0 after

@@ -1,6 +1,7 @@
 #include "vtkMRGISceneBuilder.h"
 
 #include "vtkMRGIAreaLight.h"
+#include "vtkMRGIStaging.h"
 #include "vtkImageData.h"
 
 #include "vtkActor.h"
@@ -507,6 +508,47 @@ vtkSmartPointer<vtkLight> MakeLight(const mrgi_light& in)
 vtkMRGISceneBuilder::vtkMRGISceneBuilder() = default;
 
 //------------------------------------------------------------------------------
+vtkMRGISceneBuilder::~vtkMRGISceneBuilder() = default;
+
+//------------------------------------------------------------------------------
+void vtkMRGISceneBuilder::SetStaging(vtkMRGIStaging* staging)
+{
+  if (this->Staging != staging)
+  {
+    this->Staging = staging;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIStaging* vtkMRGISceneBuilder::GetStaging()
+{
+  return this->Staging;
+}
+
+//------------------------------------------------------------------------------
+// A file's view: staged (vtkMRGIStaging), or framed by ResetCamera() under
+// VTK's headlight.
+bool vtkMRGISceneBuilder::Frame(const std::string& path, vtkRenderer* renderer)
+{
+  if (!this->Staging)
+  {
+    FaceFlatData(renderer);
+    renderer->ResetCamera();
+    return true;
+  }
+  if (!this->Staging->Stage(renderer))
+  {
+    return this->Fail("cannot stage '" + path + "': " + this->Staging->GetLastErrorMessage());
+  }
+  if (vtkMRGIAreaLight* key = this->Staging->GetAreaLight())
+  {
+    this->AreaLights.emplace_back(key);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 bool vtkMRGISceneBuilder::IsBuiltInScene(const char* name)
 {
   if (!name)
@@ -764,8 +806,21 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
     {
       renderer->AddLight(light);
     }
-    FaceFlatData(renderer);
-    renderer->ResetCamera();
+    if (!this->Frame(path, renderer))
+    {
+      // Leave the renderer as it was.
+      imported->InitTraversal();
+      while (vtkActor* actor = imported->GetNextActor())
+      {
+        renderer->RemoveActor(actor);
+      }
+      scratch->GetLights()->InitTraversal();
+      while (vtkLight* light = scratch->GetLights()->GetNextItem())
+      {
+        renderer->RemoveLight(light);
+      }
+      return false;
+    }
     this->BuiltTriangleCount = triangles;
     return true;
   }
@@ -920,6 +975,17 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
   {
     geometry = data;
   }
+  else if (this->Staging && vtkMRGIStaging::IsVolume(data))
+  {
+    // Staged volumes show an iso-surface, not their outer box.
+    auto iso = vtkSmartPointer<vtkPolyData>::New();
+    if (!this->Staging->MakeIsoSurface(vtkDataSet::SafeDownCast(data), iso))
+    {
+      return this->Fail("cannot draw '" + path + "': " + this->Staging->GetLastErrorMessage() +
+        " (set the iso-value, or do not stage)");
+    }
+    geometry = iso;
+  }
   else if (vtkCompositeDataSet::SafeDownCast(data) || vtkDataSet::SafeDownCast(data))
   {
     surface->SetInputData(data);
@@ -963,8 +1029,11 @@ bool vtkMRGISceneBuilder::BuildFile(const std::string& path, vtkRenderer* render
   actor->GetProperty()->SetColor(0.8, 0.8, 0.8);
   actor->GetProperty()->SetPointSize(2.0f);
   renderer->AddActor(actor);
-  FaceFlatData(renderer);
-  renderer->ResetCamera();
+  if (!this->Frame(path, renderer))
+  {
+    renderer->RemoveActor(actor);
+    return false;
+  }
   this->BuiltTriangleCount = triangles;
   return true;
 }

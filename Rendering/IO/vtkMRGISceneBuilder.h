@@ -28,12 +28,15 @@
  * (unsigned char included) are coloured through a lookup table over the data
  * set's range, 3- and 4-component unsigned-char scalars are used directly.
  * Files bring no camera (ResetCamera frames them; flat data is seen face on)
- * and no lights (VTK's headlight lights them unless lights are added).
+ * and no lights (VTK's headlight lights them unless lights are added), unless
+ * a vtkMRGIStaging is set (SetStaging()): it then frames them, adds a ground
+ * and a key light, and volumes (vtkMRGIStaging::IsVolume()) are shown as
+ * their iso-surface instead of their outer surface.
  * Point clouds (vtkMRGIPointCloud::IsPointCloud(): points with vertex
- * cells or no cells, from any reader) are drawn as their finite points,
- * one vertex each (points with a NaN coordinate are left out; a cloud
- * without a finite point is an error); LAS clouds show their display
- * colours (RGB, classes or intensity).
+ * cells or no cells, from any reader) are drawn as their finite points
+ * (points with a NaN coordinate are left out; a cloud without a finite
+ * point is an error); LAS clouds show their display colours (RGB, classes
+ * or intensity).
  *
  * Only regular files are read. Before a VTK reader sees a PLY, OBJ, legacy
  * VTK, VTK XML or glTF file, the core's structure check of that format
@@ -58,6 +61,7 @@
 
 class vtkMRGIAreaLight;
 class vtkPointSet;
+class vtkMRGIStaging;
 class vtkPolyData;
 class vtkRenderer;
 struct mrgi_mesh;
@@ -134,6 +138,17 @@ public:
   vtkMRGIAreaLight* GetAreaLight(int index) const;
   ///@}
 
+  ///@{
+  /**
+   * Stage data files with this vtkMRGIStaging (up axis, framing, ground,
+   * key light; volumes as iso-surfaces) instead of ResetCamera() under
+   * VTK's headlight. Default nullptr: not staged. Built-in scenes are never
+   * staged. A staged area key light is one of the area lights above.
+   */
+  void SetStaging(vtkMRGIStaging* staging);
+  vtkMRGIStaging* GetStaging();
+  ///@}
+
 #ifndef __VTK_WRAP__
   /** A core mesh as vtkPolyData (points, normals, triangles); caller owns it. */
   static vtkPolyData* MeshToPolyData(const mrgi_mesh* mesh);
@@ -141,12 +156,13 @@ public:
 
 protected:
   vtkMRGISceneBuilder();
-  ~vtkMRGISceneBuilder() override = default;
+  ~vtkMRGISceneBuilder() override;
 
   bool BuildCoreScene(const mrgi_scene* scene, vtkRenderer* renderer);
   bool BuildFile(const std::string& path, vtkRenderer* renderer);
   bool BuildPointCloud(const std::string& path, vtkPointSet* cloud, vtkRenderer* renderer);
   bool Fail(const std::string& why);
+  bool Frame(const std::string& path, vtkRenderer* renderer);
 
   std::string Scene = "cornell";
   vtkIdType TriangleCount = 100000;
@@ -156,6 +172,7 @@ protected:
   vtkIdType BuiltPointCount = 0;
   std::string LastErrorMessage;
   std::vector<vtkSmartPointer<vtkMRGIAreaLight>> AreaLights;
+  vtkSmartPointer<vtkMRGIStaging> Staging;
 
 private:
   vtkMRGISceneBuilder(const vtkMRGISceneBuilder&) = delete;

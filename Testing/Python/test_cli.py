@@ -185,10 +185,70 @@ def main():
     check(code == 0 and os.path.exists(out_png), "scaling renders: " + err)
     check(err == "", "--quiet prints nothing")
 
+    staging()
     bad_input()
     quiet_and_plain(corrupt_stl())
     signal_during_write()
     print("ok")
+
+
+def staging():
+    """Data files are staged (Documentation/Staging.md): the up axis of a
+    z-up pedestal, the options, a volume as an iso-surface; built-in scenes
+    and --stage off are not."""
+    # A z-up pedestal: a wide flat slab with a tall block on it.
+    obj = os.path.join(TMP, "cli_pedestal.obj")
+    with open(obj, "w") as f:
+        for n, (x0, x1, y0, y1, z0, z1) in enumerate(((-1, 1, -1, 1, 0, 0.1), (-0.2, 0.2, -0.2, 0.2, 0.1, 2))):
+            for z in (z0, z1):
+                for y in (y0, y1):
+                    for x in (x0, x1):
+                        f.write("v %g %g %g\n" % (x, y, z))
+            o = 8 * n + 1
+            for a, b, c, d in ((0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)):
+                f.write("f %d %d %d %d\n" % (o + a, o + b, o + c, o + d))
+    images = {}
+    for name, args, line in (
+            ("default", [], "staged: up +z (flat base)"),
+            ("up_y", ["--up", "y"], "staged: up +y (set)"),
+            ("area", ["--key-light", "area", "--ground", "off", "--fill", "0.5"], "staged: up +z"),
+            ("none", ["--key-light", "none"], "staged: up +z"),
+            ("off", ["--stage", "off"], None)):
+        images[name] = fresh("cli_stage_%s.png" % name)
+        code, _, err = run(obj, "-o", images[name], "--size", "48x36", "--vpls", "16", *args)
+        check(code == 0 and png_size(images[name]) == (48, 36), "staging %s: %s" % (name, err))
+        check((line in err) if line else ("staged:" not in err), "staging %s progress: %s" % (name, err))
+    contents = [open(images[n], "rb").read() for n in sorted(images)]
+    check(len(set(contents)) == len(contents), "each staging option changes the image")
+    code, _, err = run("cornell", "-o", fresh("cli_stage_cornell.png"), "--size", "16x16", "--up", "z",
+                       "--fill", "0.5")
+    check(code == 0 and "staged:" not in err, "built-in scenes are not staged: " + err)
+    check("note: --up --fill ignored: built-in scenes are not staged" in err,
+          "staging options on a built-in scene are noted: " + err)
+    code, _, err = run(obj, "-o", fresh("cli_stage_off.png"), "--size", "16x16", "--stage", "off",
+                       "--ground", "off")
+    check(code == 0 and "note: --ground ignored: --stage off" in err, "--stage off notes: " + err)
+
+    # A volume: a ball of 1s in 0s, shown as the iso-surface (Otsu: 0.5)
+    # or at --iso; a value outside the range is an error naming the file.
+    vol = os.path.join(TMP, "cli_ball.vtk")
+    with open(vol, "w") as f:
+        f.write("# vtk DataFile Version 3.0\nball\nASCII\nDATASET STRUCTURED_POINTS\n"
+                "DIMENSIONS 12 12 12\nORIGIN 0 0 0\nSPACING 1 1 1\nPOINT_DATA 1728\n"
+                "SCALARS density float 1\nLOOKUP_TABLE default\n")
+        for z in range(12):
+            for y in range(12):
+                f.write(" ".join("1" if (x - 5.5) ** 2 + (y - 5.5) ** 2 + (z - 5.5) ** 2 < 16 else "0"
+                                 for x in range(12)) + "\n")
+    ball = fresh("cli_stage_ball.png")
+    code, _, err = run(vol, "-o", ball, "--size", "32x32", "--gi", "off")
+    check(code == 0 and "volume as the iso-surface at 0.5" in err, "a volume's iso-surface: " + err)
+    code, _, err = run(vol, "-o", ball, "--size", "32x32", "--gi", "off", "--iso", "0.25")
+    check(code == 0 and "iso-surface at 0.25" in err, "--iso: " + err)
+    os.remove(ball)
+    code, _, err = run(vol, "-o", ball, "--size", "32x32", "--iso", "7")
+    check(code != 0 and "cli_ball.vtk" in err and "is empty" in err and not os.path.exists(ball),
+          "--iso outside the range: " + err)
 
 
 def corrupt_stl():
@@ -262,6 +322,17 @@ def bad_input():
         (["cornell", "-o", target, "--specular", "0.5:nan"], "--specular"),
         (["cornell", "-o", target, "--reference-error", "1.5"], "--reference-error"),
         (["cornell", "-o", target, "--finest-level", "24"], "--finest-level"),
+        (["cornell", "-o", target, "--stage", "yes"], "--stage"),
+        (["cornell", "-o", target, "--up", "w"], "--up 'w': expected auto, x, y, z, -x, -y or -z"),
+        (["cornell", "-o", target, "--up", "+y"], "--up"),
+        (["cornell", "-o", target, "--ground", "1"], "--ground"),
+        (["cornell", "-o", target, "--key-light", "laser"], "--key-light"),
+        (["cornell", "-o", target, "--fill", "0"], "--fill"),
+        (["cornell", "-o", target, "--fill", "1.5"], "--fill"),
+        (["cornell", "-o", target, "--fill", "nan"], "--fill"),
+        (["cornell", "-o", target, "--iso", "nan"], "--iso"),
+        (["cornell", "-o", target, "--iso", "1e39"], "--iso"),
+        (["cornell", "-o", target, "--iso", "3junk"], "--iso"),
         # Outputs are checked before rendering: a bad second output leaves
         # no first one; an output given twice; a directory as output.
         (["cornell", "-o", target, "-o", "/nonexistent-dir/second.exr", "--size", "8x8"],
