@@ -1,0 +1,322 @@
+"""Point clouds as surfels, measured: the same surface as a mesh and as a cloud
+sampled from it, and the cost of a cloud as it grows.
+
+mesh-vs-cloud: the object (the Stanford bunny from ../shared/data, or a
+sphere made here) on the floor of the Cornell box lit by the spot, drawn once
+as its mesh (flat triangles) and once as a cloud of N points sampled from the
+mesh (vtkMRGIMeshSampler, uniform by area, the triangle's normal) drawn as
+surfels (vtkMRGISurfels). Reports
+  - indirect: the relative RMS error of the cloud's indirect light against the
+    mesh's, both averaged over 4x4-pixel boxes (C core metrics, mrgi-compare);
+  - silhouette: the object alone, coverage from the depth buffer; the boundary
+    of a mask is its covered pixels with an uncovered 4-neighbour; each
+    boundary pixel's distance to the other mask's boundary, both ways
+    (symmetric): the maximum (Hausdorff distance, pixels), the mean, and the
+    pixels covered by one mask only.
+With --check REL,PIXELS it exits 1 unless indirect <= REL (over the image and
+over the boxes near the object) and silhouette max <= PIXELS (the ctest
+python.PointCloudMeshVsCloud).
+
+scaling: the same scene with clouds of 1e5, 1e6, 1e7 points at the same screen
+coverage; per count: surfel build (ms), first frame (upload and first draw),
+and medians over repeats of the frame with GI off, with GI on in steady state
+(nothing changed: the RSM is reused) and cold (the light moved: the RSM is
+drawn again), the GPU stage times "scene" and "rsm", and ms per million points.
+
+    PYTHONPATH=build/lib/python3/dist-packages /usr/bin/python3 \\
+        Testing/Benchmarks/point_cloud.py mesh-vs-cloud --object bunny --size 256 --points 1000000
+    ... point_cloud.py scaling --counts 100000,1000000,10000000 --size 256
+    ... point_cloud.py pictures --out Documentation/images
+"""
+import argparse
+import os
+import statistics
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(__file__))
+import mrgi_bench as mb  # noqa: E402
+
+from vtkmodules.vtkCommonCore import vtkFloatArray  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
+from vtkmodules.vtkFiltersSources import vtkSphereSource  # noqa: E402
+from vtkmodules.vtkIOPLY import vtkPLYReader  # noqa: E402
+from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper  # noqa: E402
+
+import mrgi  # noqa: E402
+
+COMPARE = os.environ.get("MRGI_COMPARE", os.path.join(mb.ROOT, "build", "bin", "mrgi-compare"))
+
+
+def object_source(name):
+    """(algorithm giving the mesh in its own units, description); None when the file is absent."""
+    if name == "bunny":
+        path = os.path.join(mb.SHARED_DATA, "bunny.ply")
+        if not os.path.exists(path):
+            return None
+        reader = vtkPLYReader()
+        reader.SetFileName(path)
+        return reader, "the Stanford bunny (69,451 triangles)"
+    sphere = vtkSphereSource()
+    sphere.SetRadius(0.1)
+    sphere.SetThetaResolution(48)
+    sphere.SetPhiResolution(48)
+    sphere.GenerateNormalsOff()  # flat triangles, as the cloud's normals are
+    return sphere, "a sphere (4,416 flat triangles)"
+
+
+def place(actor, bounds):
+    """Metres to the box's millimetres, standing on the floor in front of the tall block."""
+    actor.SetScale(1000.0)
+    actor.SetPosition(430.0 - 1000.0 * 0.5 * (bounds[0] + bounds[1]), -1000.0 * bounds[2],
+                      130.0 - 1000.0 * 0.5 * (bounds[4] + bounds[5]))
+    prop = actor.GetProperty()
+    prop.SetColor(0.725, 0.71, 0.68)
+    prop.SetAmbient(0.0)
+    prop.SetDiffuse(1.0)
+    prop.SetSpecular(0.0)
+
+
+def object_actor(source, points=0, surfels=True, seed=1, radius_scale=1.0):
+    """The mesh (points = 0) or a cloud of `points` samples as surfels (or as pixels)."""
+    source.Update()
+    bounds = source.GetOutput().GetBounds()
+    mapper = vtkPolyDataMapper()
+    mapper.ScalarVisibilityOff()
+    info = {}
+    if points:
+        sampler = mrgi.vtkMRGIMeshSampler()
+        sampler.SetInputConnection(source.GetOutputPort())
+        sampler.SetNumberOfPoints(points)
+        sampler.SetSeed(seed)
+        sampler.Update()
+        info["radius"] = sampler.GetSampledRadius()
+        if surfels:
+            filt = mrgi.vtkMRGISurfels()
+            filt.SetInputConnection(sampler.GetOutputPort())
+            filt.SetRadiusScale(radius_scale)
+            start = time.perf_counter()
+            filt.Update()
+            info["build_ms"] = (time.perf_counter() - start) * 1e3
+            output = filt.GetOutput()
+            info["bytes"] = output.GetActualMemorySize() * 1024
+            mapper.SetInputData(output)
+        else:
+            mapper.SetInputData(sampler.GetOutput())
+    else:
+        mapper.SetInputConnection(source.GetOutputPort())
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    place(actor, bounds)
+    return actor, info
+
+
+def scene(size, actor, gi=True):
+    window, renderer = mb.make_window(size, size)
+    assert mb.build_scene(renderer, "cornell-spot")
+    renderer.AddActor(actor)
+    gi_pass = mb.install_pass(renderer, IndirectMode=2 if gi else 0)
+    return window, renderer, gi_pass
+
+
+def indirect(window, gi_pass):
+    window.Render()
+    image = vtkImageData()
+    assert gi_pass.GetIndirectBuffer(window, image)
+    return mb.to_numpy(image)[..., :3]
+
+
+def boxes(array, n=4):
+    h, w, c = array.shape
+    return array[: h - h % n, : w - w % n].reshape(h // n, n, w // n, n, c).mean(axis=(1, 3))
+
+
+def coverage(size, actor):
+    """The object alone, no MRGI: covered pixels from the depth buffer (rows top-down)."""
+    window, renderer = mb.make_window(size, size)
+    assert mb.build_scene(renderer, "cornell-spot")  # the same camera as the lit scene
+    for prop in list(renderer.GetViewProps()):
+        renderer.RemoveViewProp(prop)
+    renderer.AddActor(actor)
+    window.Render()
+    depth = vtkFloatArray()
+    window.GetZbufferData(0, 0, size - 1, size - 1, depth)
+    z = np.frombuffer(memoryview(depth), dtype=np.float32).reshape(size, size)[::-1]
+    renderer.RemoveActor(actor)
+    return z < 1.0
+
+
+def boundary(mask):
+    padded = np.pad(mask, 1, constant_values=False)
+    inner = padded[1:-1, 1:-1] & padded[:-2, 1:-1] & padded[2:, 1:-1] & padded[1:-1, :-2] & padded[1:-1, 2:]
+    return np.argwhere(mask & ~inner).astype(np.float64)
+
+
+def nearest(a, b):
+    """Distance from each point of a to the nearest of b (chunked brute force)."""
+    out = np.empty(len(a))
+    for i in range(0, len(a), 512):
+        d = ((a[i:i + 512, None, :] - b[None, :, :]) ** 2).sum(axis=2)
+        out[i:i + 512] = np.sqrt(d.min(axis=1))
+    return out
+
+
+def silhouette(mask_mesh, mask_cloud):
+    a, b = boundary(mask_mesh), boundary(mask_cloud)
+    if len(a) == 0 or len(b) == 0:
+        return {"max": float("inf"), "mean": float("inf"), "xor": int((mask_mesh ^ mask_cloud).sum())}
+    d = np.concatenate([nearest(a, b), nearest(b, a)])
+    return {"max": float(d.max()), "mean": float(d.mean()), "p99": float(np.percentile(d, 99)),
+            "xor": int((mask_mesh ^ mask_cloud).sum()), "covered": int(mask_mesh.sum())}
+
+
+def mesh_vs_cloud(args):
+    made = object_source(args.object)
+    if made is None:
+        print("mesh-vs-cloud: %s is not in %s: skipped" % (args.object, mb.SHARED_DATA))
+        return 0
+    source, description = made
+    tmp = tempfile.mkdtemp(prefix="mrgi-point-cloud-")
+    results = {}
+    for size in args.sizes:
+        mesh, _ = object_actor(source)
+        cloud, info = object_actor(source, args.points, radius_scale=args.radius_scale)
+        window, renderer, gi = scene(size, mesh)
+        e_mesh = indirect(window, gi)
+        renderer.RemoveActor(mesh)
+        renderer.AddActor(cloud)
+        e_cloud = indirect(window, gi)
+        mb.write(boxes(e_mesh), os.path.join(tmp, "mesh.exr"))
+        mb.write(boxes(e_cloud), os.path.join(tmp, "cloud.exr"))
+        metrics = mb.compare(COMPARE, os.path.join(tmp, "cloud.exr"), os.path.join(tmp, "mesh.exr"))
+        assert np.isfinite(e_cloud).all(), "NaN in the cloud's indirect light"
+        mask_mesh = coverage(size, mesh)
+        sil = silhouette(mask_mesh, coverage(size, cloud))
+        # The same error on the boxes within 16 pixels of the object's bounding box only,
+        # where the object's own indirect light and its bounce onto the floor are.
+        rows, cols = np.nonzero(mask_mesh)
+        y0, y1 = max(rows.min() - 16, 0) // 4, (rows.max() + 16) // 4 + 1
+        x0, x1 = max(cols.min() - 16, 0) // 4, (cols.max() + 16) // 4 + 1
+        near_mesh, near_cloud = boxes(e_mesh)[y0:y1, x0:x1], boxes(e_cloud)[y0:y1, x0:x1]
+        near = float(np.sqrt(((near_cloud - near_mesh) ** 2).sum() / (near_mesh ** 2).sum()))
+        results[size] = (max(metrics["relative_rms"], near), sil)
+        print("mesh-vs-cloud %dx%d, %s, %d points (radius %.3g, scale %.2g): indirect light on 4x4 "
+              "boxes relative RMS %.4f (%.4f near the object); silhouette max %.2f px, mean %.3f px, "
+              "p99 %.2f px, %d of %d covered pixels differ; surfels built in %.0f ms, %.1f MB"
+              % (size, size, description, args.points, info["radius"], args.radius_scale,
+                 metrics["relative_rms"], near,
+                 sil["max"], sil["mean"], sil.get("p99", 0), sil["xor"], sil.get("covered", 0),
+                 info["build_ms"], info["bytes"] / 1e6))
+    if args.check:
+        limit_rel, limit_px = (float(v) for v in args.check.split(","))
+        failed = [s for s, (rel, sil) in results.items() if not (rel <= limit_rel and sil["max"] <= limit_px)]
+        if failed:
+            print("FAILED: indirect relative RMS above %g or silhouette above %g px at %s"
+                  % (limit_rel, limit_px, failed))
+            return 1
+        print("passed: indirect relative RMS <= %g and silhouette <= %g px" % (limit_rel, limit_px))
+    return 0
+
+
+def frame_ms(window):
+    start = time.perf_counter()
+    window.Render()
+    window.GetPixelData(0, 0, 0, 0, 0, 0)  # waits for the frame
+    return (time.perf_counter() - start) * 1e3
+
+
+def stage_times(window, gi):
+    return {gi.GetStageName(i): gi.GetStageTimeMilliseconds(i) for i in range(gi.FetchStageTimings(window, True))}
+
+
+def scaling(args):
+    made = object_source(args.object)
+    source, description = made if made else object_source("sphere")
+    print("scaling: %s on the Cornell floor, %dx%d, medians of %d repeats (ms)" % (description, args.size, args.size, args.repeats))
+    header = "points,build_ms,first_frame_ms,off_ms,steady_ms,cold_ms,overhead_steady_ms,overhead_cold_ms,scene_ms,rsm_ms,bytes"
+    print(header)
+    rows = []
+    for count in args.counts:
+        actor, info = object_actor(source, count)
+        window, renderer, gi = scene(args.size, actor)
+        gi.SetStageTimingEnabled(True)
+        window.GetRenderTimer().SetLoggingEnabled(True)
+        first = frame_ms(window)
+        light = renderer.GetLights().GetItemAsObject(0)
+        off, steady, cold, scene_ms, rsm_ms = [], [], [], [], []
+        frame_ms(window)
+        for r in range(args.repeats):
+            gi.SetIndirectMode(0)
+            off.append(frame_ms(window))
+            stage_times(window, gi)
+            gi.SetIndirectMode(2)
+            frame_ms(window)  # the first frame back re-renders what GI off skipped
+            stage_times(window, gi)
+            steady.append(frame_ms(window))
+            scene_ms.append(stage_times(window, gi).get("scene", 0.0))
+            light.SetIntensity(light.GetIntensity() * (1.0001 if r % 2 else 0.9999))  # the RSM is drawn again
+            cold.append(frame_ms(window))
+            rsm_ms.append(stage_times(window, gi).get("rsm", 0.0))
+        row = [count, info["build_ms"], first, statistics.median(off), statistics.median(steady),
+               statistics.median(cold), statistics.median(steady) - statistics.median(off),
+               statistics.median(cold) - statistics.median(off), statistics.median(scene_ms),
+               statistics.median(rsm_ms), info["bytes"]]
+        rows.append(row)
+        print(",".join("%.6g" % v for v in row))
+        renderer.RemoveAllViewProps()
+        del window, renderer, gi, actor
+    print("per million points (ms): " + "; ".join(
+        "%d: build %.1f, first frame %.1f, scene %.1f, rsm %.1f" % (r[0], r[1] / r[0] * 1e6, r[2] / r[0] * 1e6,
+                                                                   r[8] / r[0] * 1e6, r[9] / r[0] * 1e6) for r in rows))
+    if len(rows) > 1:
+        for k, name in ((6, "steady"), (7, "cold")):
+            growth = rows[-1][k] / rows[0][k] if rows[0][k] > 0 else float("inf")
+            print("GI overhead (%s) from %d to %d points: %.1f -> %.1f ms, x%.2f (target <= 1.5)"
+                  % (name, rows[0][0], rows[-1][0], rows[0][k], rows[-1][k], growth))
+    return 0
+
+
+def pictures(args):
+    made = object_source(args.object)
+    source, description = made if made else object_source("sphere")
+    for name, points, surfels in (("mesh", 0, True), ("pixels", args.points, False), ("surfels", args.points, True)):
+        actor, _ = object_actor(source, points, surfels)
+        window, renderer, gi = scene(args.size, actor)
+        window.Render()
+        image = vtkImageData()
+        assert gi.GetColorBuffer(window, image)
+        path = os.path.join(args.out, "point-cloud-%s.png" % name)
+        mb.write_display(mb.to_numpy(image), path, 1.0)
+        print("wrote", path)
+    return 0
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    sub = parser.add_subparsers(dest="command", required=True)
+    a = sub.add_parser("mesh-vs-cloud")
+    a.add_argument("--object", default="bunny", choices=("bunny", "sphere"))
+    a.add_argument("--sizes", type=lambda s: [int(v) for v in s.split(",")], default=[256, 512])
+    a.add_argument("--points", type=int, default=1000000)
+    a.add_argument("--check", help="REL,PIXELS: fail above these")
+    a.add_argument("--radius-scale", type=float, default=1.0,
+                   help="surfel radius times this (below 1 opens holes: shows that --check can fail)")
+    b = sub.add_parser("scaling")
+    b.add_argument("--object", default="bunny", choices=("bunny", "sphere"))
+    b.add_argument("--counts", type=lambda s: [int(float(v)) for v in s.split(",")], default=[100000, 1000000, 10000000])
+    b.add_argument("--size", type=int, default=256)
+    b.add_argument("--repeats", type=int, default=3)
+    c = sub.add_parser("pictures")
+    c.add_argument("--object", default="bunny", choices=("bunny", "sphere"))
+    c.add_argument("--points", type=int, default=200000)
+    c.add_argument("--size", type=int, default=256)
+    c.add_argument("--out", default=os.path.join(mb.ROOT, "build", "Testing", "Temporary"))
+    args = parser.parse_args()
+    return {"mesh-vs-cloud": mesh_vs_cloud, "scaling": scaling, "pictures": pictures}[args.command](args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
