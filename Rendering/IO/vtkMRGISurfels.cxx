@@ -125,6 +125,7 @@ int vtkMRGISurfels::RequestData(
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   this->NumberOfSkippedPoints = 0;
+  this->Stride = 1;
   if (!input || !output)
   {
     vtkErrorMacro("vtkMRGISurfels: no input point cloud (a vtkPolyData) is connected");
@@ -205,6 +206,12 @@ int vtkMRGISurfels::RequestData(
   in.radii = radii ? AsFloats(radii, 1, radiusCopy) : nullptr;
   in.radius = static_cast<float>(radius);
   in.radius_scale = static_cast<float>(this->RadiusScale);
+  // Level of detail: the smallest stride that keeps at most the budget.
+  in.stride = this->MaximumNumberOfSurfels > 0
+    ? static_cast<int64_t>(
+        (count + this->MaximumNumberOfSurfels - 1) / this->MaximumNumberOfSurfels)
+    : 1;
+  this->Stride = static_cast<vtkIdType>(in.stride);
 
   mrgi_surfel_counts counts;
   mrgi_error err;
@@ -243,7 +250,8 @@ int vtkMRGISurfels::RequestData(
   normalCopy = std::vector<float>();
   radiusCopy = std::vector<float>();
 
-  this->NumberOfSkippedPoints = static_cast<vtkIdType>(count - kept);
+  this->NumberOfSkippedPoints =
+    static_cast<vtkIdType>(counts.bad_position + counts.bad_normal + counts.bad_radius);
   if (this->NumberOfSkippedPoints > 0)
   {
     vtkWarningMacro("vtkMRGISurfels: skipped "
@@ -298,5 +306,7 @@ void vtkMRGISurfels::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RadiusArrayName: " << this->RadiusArrayName << "\n";
   os << indent << "Radius: " << this->Radius << "\n";
   os << indent << "RadiusScale: " << this->RadiusScale << "\n";
+  os << indent << "MaximumNumberOfSurfels: " << this->MaximumNumberOfSurfels << "\n";
+  os << indent << "Stride: " << this->Stride << "\n";
   os << indent << "NumberOfSkippedPoints: " << this->NumberOfSkippedPoints << "\n";
 }

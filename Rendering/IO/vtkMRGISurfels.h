@@ -31,6 +31,7 @@
  * work as on the cloud. Points with a non-finite position, normal or radius
  * are skipped and counted (GetNumberOfSkippedPoints(), one warning per
  * update). The cell array uses 32-bit storage up to 2^31 corners.
+ * MaximumNumberOfSurfels sets a level of detail for very dense clouds.
  */
 #ifndef vtkMRGISurfels_h
 #define vtkMRGISurfels_h
@@ -86,6 +87,23 @@ public:
   vtkGetMacro(RadiusScale, double);
   ///@}
 
+  ///@{
+  /**
+   * Level of detail (default 0: every point). With a budget M below the
+   * point count N, only every k-th point becomes a surfel, k = ceil(N / M),
+   * with its radius times sqrt(k): the sparser disks cover the same area, so
+   * a cloud much denser than the pixels it covers looks the same for 1/k of
+   * the geometry (and of the G-buffer and shadow-map cost). Coarser
+   * silhouettes and detail below the new spacing are the price; use it for
+   * clouds with many points per pixel (Documentation/PointClouds-Surfels.md).
+   */
+  vtkSetClampMacro(MaximumNumberOfSurfels, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(MaximumNumberOfSurfels, vtkIdType);
+  ///@}
+
+  /** The stride k the last update used (1: every point). */
+  vtkGetMacro(Stride, vtkIdType);
+
   /** Points the last update skipped: non-finite position, normal or radius, or a radius <= 0. */
   vtkGetMacro(NumberOfSkippedPoints, vtkIdType);
 
@@ -102,6 +120,8 @@ protected:
   std::string RadiusArrayName = "Radius";
   double Radius = 0.0;
   double RadiusScale = 1.0;
+  vtkIdType MaximumNumberOfSurfels = 0;
+  vtkIdType Stride = 1;
   vtkIdType NumberOfSkippedPoints = 0;
 
 private:

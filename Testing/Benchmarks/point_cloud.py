@@ -284,11 +284,18 @@ def pictures(args):
     source, description = made if made else object_source("sphere")
     for name, points, surfels in (("mesh", 0, True), ("pixels", args.points, False), ("surfels", args.points, True)):
         actor, _ = object_actor(source, points, surfels)
-        window, renderer, gi = scene(args.size, actor)
+        window, renderer, gi = scene(args.size, actor, gi=not args.gi_off)
+        if args.zoom > 1.0:
+            # Closer to the object, so a pixel is smaller than the points' spacing.
+            bounds = actor.GetBounds()
+            camera = renderer.GetActiveCamera()
+            camera.SetFocalPoint(0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
+                                 0.5 * (bounds[4] + bounds[5]))
+            camera.Zoom(args.zoom)
         window.Render()
         image = vtkImageData()
         assert gi.GetColorBuffer(window, image)
-        path = os.path.join(args.out, "point-cloud-%s.png" % name)
+        path = os.path.join(args.out, "point-cloud-%s%s.png" % (name, "-direct" if args.gi_off else ""))
         mb.write_display(mb.to_numpy(image), path, 1.0)
         print("wrote", path)
     return 0
@@ -313,6 +320,8 @@ def main():
     c.add_argument("--object", default="bunny", choices=("bunny", "sphere"))
     c.add_argument("--points", type=int, default=200000)
     c.add_argument("--size", type=int, default=256)
+    c.add_argument("--zoom", type=float, default=1.0)
+    c.add_argument("--gi-off", action="store_true")
     c.add_argument("--out", default=os.path.join(mb.ROOT, "build", "Testing", "Temporary"))
     args = parser.parse_args()
     return {"mesh-vs-cloud": mesh_vs_cloud, "scaling": scaling, "pictures": pictures}[args.command](args)

@@ -105,7 +105,7 @@ static void check_shape(mrgi_surfel_shape shape)
   float* out_n = malloc(sizeof(float) * 3 * (size_t)V * N);
   int64_t source[N];
   MRGI_CHECK(out_p && out_n);
-  const mrgi_surfel_input input = { N, positions, normals, radii, 0.0f, 2.0f };
+  const mrgi_surfel_input input = { N, positions, normals, radii, 0.0f, 2.0f, 0 };
   const mrgi_surfel_output output = { out_p, 3 * V * N, out_n, 3 * V * N, source, N };
   mrgi_surfel_counts counts;
   mrgi_error err;
@@ -195,7 +195,7 @@ static void test_degenerate_points_counted(void)
   const float normals[] = { 0, 0, 1, 0, 0, 1, 0, inf, 1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 1, 0, 0, 0,
     0, 0, 0, -2, 1e-20f, 0, 0 };
   const float radii[] = { 1, 1, 1, 1, 0, -1, nan, 1, 0.5f, 1 };
-  const mrgi_surfel_input input = { 10, positions, normals, radii, 0.0f, 0.0f };
+  const mrgi_surfel_input input = { 10, positions, normals, radii, 0.0f, 0.0f, 1 };
   mrgi_surfel_counts counts;
   mrgi_error err;
   MRGI_CHECK(mrgi_surfels_count(&input, &counts, &err) == MRGI_OK);
@@ -218,7 +218,7 @@ static void test_degenerate_points_counted(void)
   MRGI_CHECK_NEAR(out_p[14], 7.0, 1e-6);
 
   /* An all-bad cloud is no error: zero surfels. */
-  const mrgi_surfel_input bad = { 1, positions + 3, normals + 3, radii + 3, 0.0f, 0.0f };
+  const mrgi_surfel_input bad = { 1, positions + 3, normals + 3, radii + 3, 0.0f, 0.0f, 0 };
   MRGI_CHECK(mrgi_surfels_build(&bad, MRGI_SURFEL_SQUARE, &output, &counts, &err) == MRGI_OK);
   MRGI_CHECK(counts.kept == 0 && counts.bad_position == 1);
 }
@@ -231,7 +231,7 @@ static void test_bad_arguments(void)
   int64_t source[2];
   mrgi_surfel_counts counts;
   mrgi_error err;
-  mrgi_surfel_input input = { 2, positions, normals, NULL, 0.5f, 1.0f };
+  mrgi_surfel_input input = { 2, positions, normals, NULL, 0.5f, 1.0f, 0 };
   mrgi_surfel_output output = { out_p, 36, out_n, 36, source, 2 };
 
   MRGI_CHECK(mrgi_surfels_build(&input, MRGI_SURFEL_HEXAGON, &output, &counts, &err) == MRGI_OK);
@@ -271,6 +271,10 @@ static void test_bad_arguments(void)
   MRGI_CHECK(mrgi_surfels_count(&input, &counts, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "normals") != NULL);
   input.normals = normals;
+  input.stride = -2;
+  MRGI_CHECK(mrgi_surfels_count(&input, &counts, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(strstr(err.message, "stride") != NULL);
+  input.stride = 0;
   input.count = -1;
   MRGI_CHECK(mrgi_surfels_count(&input, &counts, &err) == MRGI_ERR_INVALID_ARGUMENT);
   input.count = 0;
@@ -278,10 +282,49 @@ static void test_bad_arguments(void)
   MRGI_CHECK(counts.kept == 0);
 }
 
+/* Every k-th point, radius x sqrt(k): the disks' total area stays the same. */
+static void test_stride(void)
+{
+  enum
+  {
+    N = 10
+  };
+  float positions[3 * N], normals[3 * N];
+  for (int i = 0; i < N; ++i)
+  {
+    positions[3 * i] = (float)i;
+    positions[3 * i + 1] = positions[3 * i + 2] = 0.0f;
+    normals[3 * i] = normals[3 * i + 1] = 0.0f;
+    normals[3 * i + 2] = 1.0f;
+  }
+  /* Point 3 is bad, but stride 3 keeps 0, 3, 6, 9: it is counted bad, not strided out. */
+  positions[9] = NAN;
+  const mrgi_surfel_input input = { N, positions, normals, NULL, 1.0f, 0.0f, 3 };
+  float out_p[3 * 4 * N], out_n[3 * 4 * N];
+  int64_t source[N];
+  const mrgi_surfel_output output = { out_p, 3 * 4 * N, out_n, 3 * 4 * N, source, N };
+  mrgi_surfel_counts counts;
+  mrgi_error err;
+  MRGI_CHECK(mrgi_surfels_build(&input, MRGI_SURFEL_SQUARE, &output, &counts, &err) == MRGI_OK);
+  MRGI_CHECK(counts.kept == 3 && counts.bad_position == 1 && counts.strided_out == 6);
+  MRGI_CHECK(source[0] == 0 && source[1] == 6 && source[2] == 9);
+  const double expected = sqrt(3.0) * mrgi_surfel_circumradius_factor(MRGI_SURFEL_SQUARE);
+  for (int j = 0; j < 3; ++j)
+  {
+    for (int k = 0; k < 4; ++k)
+    {
+      const float* q = out_p + 3 * (4 * j + k);
+      const float d[3] = { q[0] - (float)source[j], q[1], q[2] };
+      MRGI_CHECK_NEAR(length3(d), expected, 1e-5);
+    }
+  }
+}
+
 int main(int argc, char** argv)
 {
   static const mrgi_test_case cases[] = { MRGI_TEST_CASE(test_basis_orthonormal),
     MRGI_TEST_CASE(test_square), MRGI_TEST_CASE(test_hexagon), MRGI_TEST_CASE(test_factors),
-    MRGI_TEST_CASE(test_degenerate_points_counted), MRGI_TEST_CASE(test_bad_arguments) };
+    MRGI_TEST_CASE(test_degenerate_points_counted), MRGI_TEST_CASE(test_bad_arguments),
+    MRGI_TEST_CASE(test_stride) };
   return MRGI_TEST_MAIN(argc, argv, cases);
 }

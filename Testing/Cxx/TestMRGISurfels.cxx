@@ -151,6 +151,32 @@ void TestFixedRadiusNoCells()
   MRGI_TEST_CHECK(std::abs(std::hypot(p[0], p[1]) - 0.5 * std::sqrt(vtkMath::Pi() / 2.0)) < 1e-5);
 }
 
+void TestLevelOfDetail()
+{
+  vtkSmartPointer<vtkPolyData> cloud = MakeCloud(10, true);
+  vtkNew<vtkMRGISurfels> surfels;
+  surfels->SetInputData(cloud);
+  surfels->SetMaximumNumberOfSurfels(4); // stride 3: points 0, 3, 6, 9
+  surfels->Update();
+  vtkPolyData* out = surfels->GetOutput();
+  MRGI_TEST_CHECK(surfels->GetStride() == 3);
+  MRGI_TEST_CHECK(surfels->GetNumberOfSkippedPoints() == 0);
+  MRGI_TEST_CHECK(out->GetNumberOfPolys() == 4);
+  vtkDataArray* intensity = out->GetPointData()->GetArray("Intensity");
+  for (int j = 0; j < 4; ++j)
+  {
+    MRGI_TEST_CHECK(intensity->GetComponent(4 * j, 0) == 100 + 3 * j);
+    double p[3];
+    out->GetPoint(4 * j, p);
+    // Radius x sqrt(3): the sparser disks cover the same area.
+    const double r = (0.1 + 0.01 * 3 * j) * std::sqrt(3.0) * std::sqrt(vtkMath::Pi() / 2.0);
+    MRGI_TEST_CHECK(std::abs(std::hypot(p[0] - 3 * j, p[1] - 6 * j) - r) < 1e-4);
+  }
+  surfels->SetMaximumNumberOfSurfels(10);
+  surfels->Update();
+  MRGI_TEST_CHECK(surfels->GetStride() == 1 && surfels->GetOutput()->GetNumberOfPolys() == 10);
+}
+
 void TestErrorsNameWhatIsMissing()
 {
   vtkNew<mrgitest::ErrorCatcher> errors;
@@ -268,6 +294,6 @@ int main(int argc, char* argv[])
 {
   return mrgitest::RunCases(argc, argv,
     { MRGI_TEST_CASE(TestPolygonsAndData), MRGI_TEST_CASE(TestFixedRadiusNoCells),
-      MRGI_TEST_CASE(TestErrorsNameWhatIsMissing),
+      MRGI_TEST_CASE(TestLevelOfDetail), MRGI_TEST_CASE(TestErrorsNameWhatIsMissing),
       MRGI_TEST_CASE(TestPassWarnsOncePerPixelCloud) });
 }

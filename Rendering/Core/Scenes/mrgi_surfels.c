@@ -114,6 +114,11 @@ static mrgi_status mrgi_surfel_check_input(
       "%s: no radii array and the radius %g is not a positive number", caller,
       (double)input->radius);
   }
+  if (input->stride < 0)
+  {
+    return mrgi_error_set(
+      err, MRGI_ERR_INVALID_ARGUMENT, "%s: stride %" PRId64 " is negative", caller, input->stride);
+  }
   if (!isfinite(input->radius_scale) || input->radius_scale < 0.0f)
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
@@ -122,9 +127,16 @@ static mrgi_status mrgi_surfel_check_input(
   return MRGI_OK;
 }
 
+static int64_t mrgi_surfel_stride(const mrgi_surfel_input* input)
+{
+  return input->stride > 1 ? input->stride : 1;
+}
+
+/* The radius factor: the scale, and sqrt(stride) for the points a stride leaves out. */
 static float mrgi_surfel_scale(const mrgi_surfel_input* input)
 {
-  return input->radius_scale == 0.0f ? 1.0f : input->radius_scale;
+  const double scale = input->radius_scale == 0.0f ? 1.0 : (double)input->radius_scale;
+  return (float)(scale * sqrt((double)mrgi_surfel_stride(input)));
 }
 
 mrgi_status mrgi_surfels_count(
@@ -141,8 +153,10 @@ mrgi_status mrgi_surfels_count(
     return status;
   }
   const float scale = mrgi_surfel_scale(input);
-  mrgi_surfel_counts c = { 0, 0, 0, 0 };
-  for (int64_t i = 0; i < input->count; ++i)
+  const int64_t stride = mrgi_surfel_stride(input);
+  mrgi_surfel_counts c = { 0, 0, 0, 0, 0 };
+  c.strided_out = input->count - (input->count + stride - 1) / stride;
+  for (int64_t i = 0; i < input->count; i += stride)
   {
     float n[3], r;
     switch (mrgi_surfel_classify(input, scale, i, n, &r))
@@ -217,8 +231,9 @@ mrgi_status mrgi_surfels_build(const mrgi_surfel_input* input, mrgi_surfel_shape
   }
 
   const float scale = mrgi_surfel_scale(input);
+  const int64_t stride = mrgi_surfel_stride(input);
   int64_t j = 0;
-  for (int64_t i = 0; i < input->count; ++i)
+  for (int64_t i = 0; i < input->count; i += stride)
   {
     float n[3], r;
     if (mrgi_surfel_classify(input, scale, i, n, &r) != 0)

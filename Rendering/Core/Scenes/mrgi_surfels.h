@@ -39,6 +39,13 @@
  * <= 0. A point with several faults counts once, under the first of
  * position, normal, radius.
  *
+ * Level of detail: with `stride` k > 1 only every k-th point (index i with
+ * i % k == 0) is considered and its radius is multiplied by sqrt(k), so the
+ * disks of a cloud k times sparser cover the same area (the fraction of a
+ * surface a cloud of independent samples leaves uncovered depends only on
+ * density x r^2). A cloud far denser than the pixels it covers then costs
+ * 1/k of the geometry with the same look at that distance.
+ *
  * Errors (::MRGI_ERR_INVALID_ARGUMENT, nothing written): NULL input arrays
  * or outputs, a negative count, an unknown shape, neither `radii` nor a
  * radius given, an output capacity smaller than the points kept need
@@ -73,6 +80,8 @@ typedef struct mrgi_surfel_input
   const float* radii;     /**< count disk radii, or NULL: every point has `radius`. */
   float radius;           /**< The radius of every point when `radii` is NULL. */
   float radius_scale;     /**< Multiplies every radius; 0 is read as 1. */
+  int64_t
+    stride; /**< Level of detail: every stride-th point, radius x sqrt(stride); 0 or 1: all. */
 } mrgi_surfel_input;
 
 /** Why points were skipped, and how many were kept. */
@@ -82,6 +91,7 @@ typedef struct mrgi_surfel_counts
   int64_t bad_position; /**< Skipped: a non-finite coordinate. */
   int64_t bad_normal;   /**< Skipped: a non-finite or (near) zero normal. */
   int64_t bad_radius;   /**< Skipped: a radius that is not finite or <= 0. */
+  int64_t strided_out;  /**< Left out by the level of detail (stride); not counted as bad. */
 } mrgi_surfel_counts;
 
 /** Caller-provided outputs; capacities count floats (positions, normals) or entries. */
@@ -113,8 +123,8 @@ void mrgi_surfel_basis(const float n[3], float t1[3], float t2[3]);
 
 /**
  * @brief Classify every point as mrgi_surfels_build() will, writing nothing else.
- * @return ::MRGI_ERR_INVALID_ARGUMENT for a NULL argument, a negative count,
- *         or a NULL `radii` with `radius` <= 0 or not finite.
+ * @return ::MRGI_ERR_INVALID_ARGUMENT for a NULL argument, a negative count
+ *         or stride, or a NULL `radii` with `radius` <= 0 or not finite.
  */
 mrgi_status mrgi_surfels_count(
   const mrgi_surfel_input* input, mrgi_surfel_counts* counts, mrgi_error* err);
