@@ -80,7 +80,7 @@ def place(actor, bounds):
     prop.SetSpecular(0.0)
 
 
-def object_actor(source, points=0, surfels=True, seed=1, radius_scale=1.0):
+def object_actor(source, points=0, surfels=True, seed=1, radius_scale=1.0, max_surfels=0):
     """The mesh (points = 0) or a cloud of `points` samples as surfels (or as pixels)."""
     source.Update()
     bounds = source.GetOutput().GetBounds()
@@ -98,6 +98,7 @@ def object_actor(source, points=0, surfels=True, seed=1, radius_scale=1.0):
             filt = mrgi.vtkMRGISurfels()
             filt.SetInputConnection(sampler.GetOutputPort())
             filt.SetRadiusScale(radius_scale)
+            filt.SetMaximumNumberOfSurfels(max_surfels)
             start = time.perf_counter()
             filt.Update()
             info["build_ms"] = (time.perf_counter() - start) * 1e3
@@ -183,7 +184,8 @@ def mesh_vs_cloud(args):
     results = {}
     for size in args.sizes:
         mesh, _ = object_actor(source)
-        cloud, info = object_actor(source, args.points, radius_scale=args.radius_scale)
+        cloud, info = object_actor(source, args.points, radius_scale=args.radius_scale,
+                                   max_surfels=args.max_surfels)
         window, renderer, gi = scene(size, mesh)
         e_mesh = indirect(window, gi)
         renderer.RemoveActor(mesh)
@@ -235,12 +237,13 @@ def stage_times(window, gi):
 def scaling(args):
     made = object_source(args.object)
     source, description = made if made else object_source("sphere")
-    print("scaling: %s on the Cornell floor, %dx%d, medians of %d repeats (ms)" % (description, args.size, args.size, args.repeats))
+    print("scaling: %s on the Cornell floor, %dx%d, medians of %d repeats (ms), surfel budget %s"
+          % (description, args.size, args.size, args.repeats, args.max_surfels or "none"))
     header = "points,build_ms,first_frame_ms,off_ms,steady_ms,cold_ms,overhead_steady_ms,overhead_cold_ms,scene_ms,rsm_ms,bytes"
     print(header)
     rows = []
     for count in args.counts:
-        actor, info = object_actor(source, count)
+        actor, info = object_actor(source, count, max_surfels=args.max_surfels)
         window, renderer, gi = scene(args.size, actor)
         gi.SetStageTimingEnabled(True)
         window.GetRenderTimer().SetLoggingEnabled(True)
@@ -311,11 +314,13 @@ def main():
     a.add_argument("--check", help="REL,PIXELS: fail above these")
     a.add_argument("--radius-scale", type=float, default=1.0,
                    help="surfel radius times this (below 1 opens holes: shows that --check can fail)")
+    a.add_argument("--max-surfels", type=int, default=0, help="vtkMRGISurfels' level of detail (0: off)")
     b = sub.add_parser("scaling")
     b.add_argument("--object", default="bunny", choices=("bunny", "sphere"))
     b.add_argument("--counts", type=lambda s: [int(float(v)) for v in s.split(",")], default=[100000, 1000000, 10000000])
     b.add_argument("--size", type=int, default=256)
     b.add_argument("--repeats", type=int, default=3)
+    b.add_argument("--max-surfels", type=int, default=0, help="vtkMRGISurfels' level of detail (0: off)")
     c = sub.add_parser("pictures")
     c.add_argument("--object", default="bunny", choices=("bunny", "sphere"))
     c.add_argument("--points", type=int, default=200000)
