@@ -67,7 +67,8 @@ vtkSmartPointer<vtkAbstractArray> RepeatTuples(
   const vtkIdType kept = static_cast<vtkIdType>(source.size());
   out->SetNumberOfTuples(kept * corners);
   vtkDataArray* data = vtkDataArray::SafeDownCast(in);
-  if (data && data->HasStandardMemoryLayout())
+  if (data && data->HasStandardMemoryLayout() && in->GetDataType() != VTK_BIT &&
+    in->GetDataTypeSize() > 0)
   {
     // Plain arrays (all of VTK's numeric ones): byte copies, no virtual call per tuple.
     const size_t bytes = static_cast<size_t>(in->GetDataTypeSize()) * in->GetNumberOfComponents();
@@ -179,6 +180,13 @@ int vtkMRGISurfels::RequestData(
       << normals->GetNumberOfComponents() << " components; normals need 3");
     return 0;
   }
+  if (normals->GetNumberOfTuples() != count)
+  {
+    vtkErrorMacro("vtkMRGISurfels: the normals array '"
+      << (normals->GetName() ? normals->GetName() : "") << "' has " << normals->GetNumberOfTuples()
+      << " tuples for " << count << " points");
+    return 0;
+  }
   vtkDataArray* radii =
     this->RadiusArrayName.empty() ? nullptr : inPD->GetArray(this->RadiusArrayName.c_str());
   if (radii && radii->GetNumberOfComponents() != 1)
@@ -186,6 +194,13 @@ int vtkMRGISurfels::RequestData(
     vtkErrorMacro("vtkMRGISurfels: the radius array '" << this->RadiusArrayName << "' has "
                                                        << radii->GetNumberOfComponents()
                                                        << " components; a radius is 1");
+    return 0;
+  }
+  if (radii && radii->GetNumberOfTuples() != count)
+  {
+    vtkErrorMacro("vtkMRGISurfels: the radius array '"
+      << this->RadiusArrayName << "' has " << radii->GetNumberOfTuples() << " tuples for " << count
+      << " points");
     return 0;
   }
   const double radius = this->Radius;
@@ -280,6 +295,14 @@ int vtkMRGISurfels::RequestData(
     vtkAbstractArray* array = inPD->GetAbstractArray(a);
     if (!array || array == normals)
     {
+      continue;
+    }
+    if (array->GetNumberOfTuples() != count)
+    {
+      // Reading it per point would run past its end: left out, said once per update.
+      vtkWarningMacro("vtkMRGISurfels: point array '"
+        << (array->GetName() ? array->GetName() : "(unnamed)") << "' has "
+        << array->GetNumberOfTuples() << " tuples for " << count << " points; left out");
       continue;
     }
     vtkSmartPointer<vtkAbstractArray> repeated = RepeatTuples(array, source, corners);

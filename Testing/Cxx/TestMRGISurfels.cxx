@@ -172,6 +172,14 @@ void TestLevelOfDetail()
     const double r = (0.1 + 0.01 * 3 * j) * std::sqrt(3.0) * std::sqrt(vtkMath::Pi() / 2.0);
     MRGI_TEST_CHECK(std::abs(std::hypot(p[0] - 3 * j, p[1] - 6 * j) - r) < 1e-4);
   }
+  // An array shorter than the points is left out (never read past its end).
+  vtkNew<vtkFloatArray> shortArray;
+  shortArray->SetName("Short");
+  shortArray->SetNumberOfTuples(3);
+  cloud->GetPointData()->AddArray(shortArray);
+  surfels->Update();
+  MRGI_TEST_CHECK(surfels->GetOutput()->GetPointData()->GetArray("Short") == nullptr);
+  MRGI_TEST_CHECK(surfels->GetOutput()->GetPointData()->GetArray("Intensity") != nullptr);
   surfels->SetMaximumNumberOfSurfels(10);
   surfels->Update();
   MRGI_TEST_CHECK(surfels->GetStride() == 1 && surfels->GetOutput()->GetNumberOfPolys() == 10);
@@ -208,6 +216,19 @@ void TestErrorsNameWhatIsMissing()
   surfels->Update();
   MRGI_TEST_CHECK(errors->Caught("has 1 components; normals need 3"));
   surfels->SetNormalsArrayName(nullptr);
+
+  cloud = MakeCloud(5, true);
+  cloud->GetPointData()->GetNormals()->SetNumberOfTuples(4);
+  surfels->SetInputData(cloud);
+  surfels->Update();
+  MRGI_TEST_CHECK(errors->Caught("has 4 tuples for 5 points"));
+  cloud = MakeCloud(5, true);
+  surfels->SetRadiusArrayName("Radius");
+  vtkDataArray::SafeDownCast(cloud->GetPointData()->GetAbstractArray("Radius"))
+    ->SetNumberOfTuples(2);
+  surfels->SetInputData(cloud);
+  surfels->Update();
+  MRGI_TEST_CHECK(errors->Caught("has 2 tuples for 5 points"));
 
   vtkNew<vtkSphereSource> sphere;
   sphere->Update();
