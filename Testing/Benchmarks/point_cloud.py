@@ -17,6 +17,10 @@ With --check REL,PIXELS it exits 1 unless indirect <= REL (over the image and
 over the boxes near the object) and silhouette max <= PIXELS (the ctest
 python.PointCloudMeshVsCloud).
 
+truth: the CPU ground truth (vtkMRGIReferenceRenderer, Embree) of the mesh
+and of the cloud as surfels, direct and indirect light compared on 4x4 boxes
+(--check REL: the ctest python.PointCloudGroundTruth).
+
 scaling: the same scene with clouds of 1e5, 1e6, 1e7 points at the same screen
 coverage; per count: surfel build (ms), first frame (upload and first draw),
 and medians over repeats of the frame with GI off, with GI on in steady state
@@ -323,6 +327,41 @@ def pictures(args):
     return 0
 
 
+def truth(args):
+    """The CPU ground truth (Embree) of the mesh and of the cloud as surfels, compared."""
+    made = object_source(args.object)
+    source, description = made if made else object_source("sphere")
+    images = {}
+    for name, points in (("mesh", 0), ("cloud", args.points)):
+        actor, info = object_actor(source, points, radius_scale=args.radius_scale)
+        window, renderer, gi = scene(args.size, actor, gi=False)
+        window.Render()
+        reference = mrgi.vtkMRGIReferenceRenderer()
+        reference.SetTargetRelativeError(0.0)
+        reference.SetMaxPasses(args.passes)
+        start = time.perf_counter()
+        assert reference.Render(renderer), reference.GetLastErrorMessage()
+        seconds = time.perf_counter() - start
+        images[name] = [mb.to_numpy(reference.GetDirectImage())[..., :3],
+                        mb.to_numpy(reference.GetIndirectImage())[..., :3]]
+        print("ground truth of the %s: %d triangles, %d passes, %.1f s" % (name, reference.GetTriangleCount(),
+                                                                          reference.GetPasses(), seconds))
+    worst = 0.0
+    for k, what in ((0, "direct"), (1, "indirect")):
+        a, b = boxes(images["cloud"][k]), boxes(images["mesh"][k])
+        assert np.isfinite(a).all(), "NaN in the ground truth of the cloud"
+        rel = float(np.sqrt(((a - b) ** 2).sum() / (b ** 2).sum()))
+        worst = max(worst, rel)
+        print("ground truth %dx%d, %s, %d points: %s light of the cloud against the mesh's, 4x4 boxes: "
+              "relative RMS %.4f" % (args.size, args.size, description, args.points, what, rel))
+    if args.check is not None:
+        if worst > args.check:
+            print("FAILED: relative RMS %.4f above %g" % (worst, args.check))
+            return 1
+        print("passed: relative RMS <= %g" % args.check)
+    return 0
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     sub = parser.add_subparsers(dest="command", required=True)
@@ -347,8 +386,16 @@ def main():
     c.add_argument("--zoom", type=float, default=1.0)
     c.add_argument("--gi-off", action="store_true")
     c.add_argument("--out", default=os.path.join(mb.ROOT, "build", "Testing", "Temporary"))
+    d = sub.add_parser("truth")
+    d.add_argument("--object", default="bunny", choices=("bunny", "sphere"))
+    d.add_argument("--points", type=int, default=200000)
+    d.add_argument("--size", type=int, default=128)
+    d.add_argument("--passes", type=int, default=4)
+    d.add_argument("--radius-scale", type=float, default=1.0)
+    d.add_argument("--check", type=float, help="fail above this relative RMS (direct or indirect)")
     args = parser.parse_args()
-    return {"mesh-vs-cloud": mesh_vs_cloud, "scaling": scaling, "pictures": pictures}[args.command](args)
+    return {"mesh-vs-cloud": mesh_vs_cloud, "scaling": scaling, "pictures": pictures,
+            "truth": truth}[args.command](args)
 
 
 if __name__ == "__main__":

@@ -11,6 +11,7 @@
 #include "vtkCommand.h"
 #include "vtkExecutive.h"
 #include "vtkFloatArray.h"
+#include "vtkImageData.h"
 #include "vtkMRGIMeshSampler.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGISceneBuilder.h"
@@ -309,6 +310,68 @@ void TestPassWarnsOncePerPixelCloud()
   window->Render();
   MRGI_TEST_CHECK(warnings.Count == 2);
 }
+
+// The area light's voxelization and visibility see surfels: a cloud sampled
+// from a downward-facing plate under the Cornell box's ceiling light
+// shadows what is under it, as the plate itself would.
+void TestAreaLightShadowFromSurfels()
+{
+  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(64, 64);
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  vtkNew<vtkMRGISceneBuilder> builder;
+  builder->SetScene("cornell-area");
+  MRGI_TEST_CHECK(builder->Build(renderer) && builder->GetNumberOfAreaLights() == 1);
+  vtkNew<vtkRenderStepsPass> steps;
+  vtkNew<vtkMRGIPass> pass;
+  pass->SetDelegatePass(steps);
+  pass->SetIndirectMode(vtkMRGIPass::IndirectOff);
+  pass->AddAreaLight(builder->GetAreaLight(0));
+  renderer->SetPass(pass);
+  auto mean = [&]() {
+    window->Render();
+    vtkSmartPointer<vtkImageData> area = mrgitest::AreaBuffer(pass, window);
+    vtkDataArray* values = area->GetPointData()->GetScalars();
+    double sum = 0.0;
+    for (vtkIdType i = 0; i < values->GetNumberOfValues(); ++i)
+    {
+      const double v = values->GetVariantValue(i).ToDouble();
+      MRGI_TEST_CHECK(std::isfinite(v));
+      sum += v;
+    }
+    return sum / static_cast<double>(values->GetNumberOfValues());
+  };
+  const double open = mean();
+  pass->SetAreaLightVisibility(0);
+  const double openUnshadowed = mean();
+  pass->SetAreaLightVisibility(2);
+
+  vtkNew<vtkPlaneSource> plate; // normal (0, -1, 0): its front faces the floor
+  plate->SetOrigin(130, 400, 130);
+  plate->SetPoint1(420, 400, 130);
+  plate->SetPoint2(130, 400, 420);
+  vtkNew<vtkMRGIMeshSampler> sampler;
+  sampler->SetInputConnection(plate->GetOutputPort());
+  sampler->SetNumberOfPoints(20000);
+  vtkNew<vtkMRGISurfels> surfels;
+  surfels->SetInputConnection(sampler->GetOutputPort());
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(surfels->GetOutputPort());
+  vtkNew<vtkActor> blocker;
+  blocker->SetMapper(mapper);
+  renderer->AddActor(blocker);
+  const double shadowed = mean();
+  // Without shadows the plate still hides what is behind it from the camera
+  // but lights what is under it: the ratio of shadowed to unshadowed light
+  // must drop below the open box's (whose blocks cast shadows too).
+  pass->SetAreaLightVisibility(0);
+  const double unshadowed = mean();
+  std::printf("area light, mean over the image (shadows on / off): open box %.5f / %.5f, with "
+              "the surfel plate %.5f / %.5f\n",
+    open, openUnshadowed, shadowed, unshadowed);
+  MRGI_TEST_CHECK(open > 0.0 && unshadowed > 0.0);
+  MRGI_TEST_CHECK(shadowed / unshadowed < 0.85 * (open / openUnshadowed));
+}
 }
 
 int main(int argc, char* argv[])
@@ -316,5 +379,6 @@ int main(int argc, char* argv[])
   return mrgitest::RunCases(argc, argv,
     { MRGI_TEST_CASE(TestPolygonsAndData), MRGI_TEST_CASE(TestFixedRadiusNoCells),
       MRGI_TEST_CASE(TestLevelOfDetail), MRGI_TEST_CASE(TestErrorsNameWhatIsMissing),
-      MRGI_TEST_CASE(TestPassWarnsOncePerPixelCloud) });
+      MRGI_TEST_CASE(TestPassWarnsOncePerPixelCloud),
+      MRGI_TEST_CASE(TestAreaLightShadowFromSurfels) });
 }
