@@ -119,9 +119,12 @@ def object_actor(source, points=0, surfels=True, seed=1, radius_scale=1.0, max_s
     return actor, info
 
 
+SCENE = "cornell-spot"  # the built-in scene the object stands in (--scene)
+
+
 def scene(size, actor, gi=True):
     window, renderer = mb.make_window(size, size)
-    assert mb.build_scene(renderer, "cornell-spot")
+    assert mb.build_scene(renderer, SCENE)
     renderer.AddActor(actor)
     gi_pass = mb.install_pass(renderer, IndirectMode=2 if gi else 0)
     return window, renderer, gi_pass
@@ -142,7 +145,7 @@ def boxes(array, n=4):
 def coverage(size, actor):
     """The object alone, no MRGI: covered pixels from the depth buffer (rows top-down)."""
     window, renderer = mb.make_window(size, size)
-    assert mb.build_scene(renderer, "cornell-spot")  # the same camera as the lit scene
+    assert mb.build_scene(renderer, SCENE)  # the same camera as the lit scene
     for prop in list(renderer.GetViewProps()):
         renderer.RemoveViewProp(prop)
     renderer.AddActor(actor)
@@ -370,6 +373,7 @@ def main():
     a.add_argument("--sizes", type=lambda s: [int(v) for v in s.split(",")], default=[256, 512])
     a.add_argument("--points", type=int, default=1000000)
     a.add_argument("--check", help="REL,PIXELS: fail above these")
+    a.add_argument("--scene", default="cornell-spot", help="cornell-spot (spot) or cornell (point light: cube-face RSMs)")
     a.add_argument("--radius-scale", type=float, default=1.0,
                    help="surfel radius times this (below 1 opens holes: shows that --check can fail)")
     a.add_argument("--max-surfels", type=int, default=0, help="vtkMRGISurfels' level of detail (0: off)")
@@ -394,6 +398,8 @@ def main():
     d.add_argument("--radius-scale", type=float, default=1.0)
     d.add_argument("--check", type=float, help="fail above this relative RMS (direct or indirect)")
     args = parser.parse_args()
+    global SCENE
+    SCENE = getattr(args, "scene", SCENE)
     return {"mesh-vs-cloud": mesh_vs_cloud, "scaling": scaling, "pictures": pictures,
             "truth": truth}[args.command](args)
 
