@@ -9,6 +9,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCommand.h"
+#include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -141,14 +142,25 @@ void TestFixedRadiusNoCells()
 {
   vtkSmartPointer<vtkPolyData> cloud = MakeCloud(10, false);
   cloud->GetPointData()->RemoveArray("Radius");
+  // Double points and normals are converted.
+  vtkNew<vtkPoints> doublePoints;
+  doublePoints->SetDataTypeToDouble();
+  doublePoints->DeepCopy(cloud->GetPoints());
+  cloud->SetPoints(doublePoints);
+  vtkNew<vtkDoubleArray> doubleNormals;
+  doubleNormals->DeepCopy(cloud->GetPointData()->GetNormals());
+  doubleNormals->SetName("Normals");
+  cloud->GetPointData()->SetNormals(doubleNormals);
   vtkNew<vtkMRGISurfels> surfels;
   surfels->SetInputData(cloud);
   surfels->SetRadius(0.5);
   surfels->Update();
   vtkPolyData* out = surfels->GetOutput();
   MRGI_TEST_CHECK(out->GetNumberOfPolys() == 10);
+  MRGI_TEST_CHECK(doublePoints->GetDataType() == VTK_DOUBLE);
   double p[3];
   out->GetPoint(0, p);
+  MRGI_TEST_CHECK(std::abs(p[2] - 1.0) < 1e-6);
   MRGI_TEST_CHECK(std::abs(std::hypot(p[0], p[1]) - 0.5 * std::sqrt(vtkMath::Pi() / 2.0)) < 1e-5);
 }
 
