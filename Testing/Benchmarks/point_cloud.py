@@ -34,6 +34,7 @@ drawn again), the GPU stage times "scene" and "rsm", and ms per million points.
 """
 import argparse
 import os
+import shutil
 import statistics
 import sys
 import tempfile
@@ -219,6 +220,7 @@ def mesh_vs_cloud(args):
                  metrics["relative_rms"], near,
                  sil["max"], sil["mean"], sil.get("p99", 0), sil["xor"], sil.get("covered", 0),
                  info["build_ms"], info["bytes"] / 1e6))
+    shutil.rmtree(tmp, ignore_errors=True)
     if args.check:
         limit_rel, limit_px = (float(v) for v in args.check.split(","))
         failed = [s for s, (rel, sil) in results.items() if not (rel <= limit_rel and sil["max"] <= limit_px)]
