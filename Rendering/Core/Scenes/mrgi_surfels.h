@@ -6,9 +6,9 @@
  * Why geometry and not point sprites: a polygon goes through every stage that
  * consumes triangles unchanged (VTK's direct light, the G-buffer capture, the
  * reflective shadow maps of every light type, the area-light voxelization,
- * IceT, the Embree ground truth), with no gl_PointSize limit (llvmpipe caps
- * sprites at 255 px) and no gl_FragDepth write. See
- * Documentation/PointClouds-Surfels.md for the costs measured.
+ * the Embree ground truth; in ParaView IceT too), with no gl_PointSize limit
+ * (llvmpipe caps sprites at 255 px) and no gl_FragDepth write. See
+ * Documentation/PointClouds-Surfels.md for what was measured and the costs.
  *
  * Shapes (::mrgi_surfel_shape): a square (4 vertices, 2 triangles) or a
  * regular hexagon (6 vertices, 4 triangles). The polygon has the same area as
@@ -47,7 +47,7 @@
  * 1/k of the geometry with the same look at that distance.
  *
  * Errors (::MRGI_ERR_INVALID_ARGUMENT, nothing written): NULL input arrays
- * or outputs, a negative count, an unknown shape, neither `radii` nor a
+ * or outputs, a negative count or stride, an unknown shape, neither `radii` nor a
  * radius given, an output capacity smaller than the points kept need
  * (mrgi_surfels_count() says how many; the message names the capacities).
  * No allocation, no global state; safe to call on disjoint ranges from
