@@ -9,12 +9,15 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkProp3D.h"
+#include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkTypeInt32Array.h"
 #include "vtkTypeInt64Array.h"
 
 #include "mrgi_surfels.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -316,6 +319,56 @@ int vtkMRGISurfels::RequestData(
   }
   outPD->SetNormals(outNormals);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkMRGISurfels::SuggestMaximumNumberOfSurfels(
+  vtkRenderer* renderer, vtkProp3D* prop, double surfelsPerPixel)
+{
+  if (!renderer || !prop || !renderer->GetRenderWindow() || !(surfelsPerPixel > 0.0))
+  {
+    return 0;
+  }
+  const double* bounds = prop->GetBounds();
+  if (!bounds || !(bounds[0] <= bounds[1]))
+  {
+    return 0;
+  }
+  const int* size = renderer->GetSize();
+  const int* origin = renderer->GetOrigin();
+  double lo[2] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
+  double hi[2] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    renderer->SetWorldPoint(
+      bounds[corner & 1], bounds[2 + ((corner >> 1) & 1)], bounds[4 + ((corner >> 2) & 1)], 1.0);
+    renderer->WorldToDisplay();
+    const double* d = renderer->GetDisplayPoint();
+    // Display z in [0, 1] is between the clipping planes; a corner behind the
+    // camera projects mirrored, so the box then counts as the whole viewport.
+    if (d[2] < 0.0 || d[2] > 1.0)
+    {
+      lo[0] = origin[0];
+      lo[1] = origin[1];
+      hi[0] = origin[0] + size[0];
+      hi[1] = origin[1] + size[1];
+      break;
+    }
+    for (int a = 0; a < 2; ++a)
+    {
+      lo[a] = std::min(lo[a], d[a]);
+      hi[a] = std::max(hi[a], d[a]);
+    }
+  }
+  double pixels = 1.0;
+  for (int a = 0; a < 2; ++a)
+  {
+    const double from = std::max(lo[a], static_cast<double>(origin[a]));
+    const double to = std::min(hi[a], static_cast<double>(origin[a] + size[a]));
+    pixels *= std::max(0.0, to - from);
+  }
+  const double budget = std::ceil(pixels * surfelsPerPixel);
+  return budget < 1.0 ? 1 : static_cast<vtkIdType>(std::min(budget, 1e15));
 }
 
 //------------------------------------------------------------------------------

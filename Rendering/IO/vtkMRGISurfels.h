@@ -41,6 +41,9 @@
 
 #include <string> // For std::string
 
+class vtkProp3D;
+class vtkRenderer;
+
 class MRGIRENDERINGIO_EXPORT vtkMRGISurfels : public vtkPolyDataAlgorithm
 {
 public:
@@ -100,6 +103,19 @@ public:
   vtkSetClampMacro(MaximumNumberOfSurfels, vtkIdType, 0, VTK_ID_MAX);
   vtkGetMacro(MaximumNumberOfSurfels, vtkIdType);
   ///@}
+
+  /**
+   * A budget for SetMaximumNumberOfSurfels() from a view: `surfelsPerPixel`
+   * times the pixels that the bounding box of `prop` covers in `renderer`'s
+   * viewport with its current camera (the box's projected corners, clipped
+   * to the viewport: an upper bound of the cloud's coverage; a box reaching
+   * out of the clipping range counts as the whole viewport). At least 1; 0
+   * without a renderer, window, prop or a positive `surfelsPerPixel`. Call
+   * it again when the view changes much: the filter does not watch the
+   * camera.
+   */
+  static vtkIdType SuggestMaximumNumberOfSurfels(
+    vtkRenderer* renderer, vtkProp3D* prop, double surfelsPerPixel);
 
   /** The stride k the last update used (1: every point). */
   vtkGetMacro(Stride, vtkIdType);

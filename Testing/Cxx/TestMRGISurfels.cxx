@@ -7,6 +7,7 @@
 
 #include "vtkActor.h"
 #include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
@@ -29,6 +30,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <string>
 
@@ -196,6 +198,36 @@ void TestLevelOfDetail()
   surfels->SetMaximumNumberOfSurfels(10);
   surfels->Update();
   MRGI_TEST_CHECK(surfels->GetStride() == 1 && surfels->GetOutput()->GetNumberOfPolys() == 10);
+}
+
+// The budget from a view follows the pixels the prop's box covers.
+void TestSuggestedBudget()
+{
+  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(100, 80);
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  vtkNew<vtkPlaneSource> plane; // a unit square facing the default camera
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(plane->GetOutputPort());
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  renderer->AddActor(actor);
+  renderer->ResetCamera();
+  window->Render();
+  const vtkIdType one = vtkMRGISurfels::SuggestMaximumNumberOfSurfels(renderer, actor, 1.0);
+  const vtkIdType four = vtkMRGISurfels::SuggestMaximumNumberOfSurfels(renderer, actor, 4.0);
+  std::printf("budget: %lld at 1 surfel per pixel, %lld at 4\n", static_cast<long long>(one),
+    static_cast<long long>(four));
+  MRGI_TEST_CHECK(one > 100 && one <= 100 * 80);
+  MRGI_TEST_CHECK(std::llabs(static_cast<long long>(four - 4 * one)) <= 4);
+  // Half the size on screen: a quarter of the pixels.
+  renderer->GetActiveCamera()->Zoom(0.5);
+  renderer->ResetCameraClippingRange();
+  const vtkIdType far = vtkMRGISurfels::SuggestMaximumNumberOfSurfels(renderer, actor, 1.0);
+  MRGI_TEST_CHECK(std::abs(static_cast<double>(far) / one - 0.25) < 0.05);
+  MRGI_TEST_CHECK(vtkMRGISurfels::SuggestMaximumNumberOfSurfels(nullptr, actor, 1.0) == 0);
+  MRGI_TEST_CHECK(vtkMRGISurfels::SuggestMaximumNumberOfSurfels(renderer, nullptr, 1.0) == 0);
+  MRGI_TEST_CHECK(vtkMRGISurfels::SuggestMaximumNumberOfSurfels(renderer, actor, 0.0) == 0);
 }
 
 void TestErrorsNameWhatIsMissing()
@@ -390,7 +422,7 @@ int main(int argc, char* argv[])
 {
   return mrgitest::RunCases(argc, argv,
     { MRGI_TEST_CASE(TestPolygonsAndData), MRGI_TEST_CASE(TestFixedRadiusNoCells),
-      MRGI_TEST_CASE(TestLevelOfDetail), MRGI_TEST_CASE(TestErrorsNameWhatIsMissing),
-      MRGI_TEST_CASE(TestPassWarnsOncePerPixelCloud),
+      MRGI_TEST_CASE(TestLevelOfDetail), MRGI_TEST_CASE(TestSuggestedBudget),
+      MRGI_TEST_CASE(TestErrorsNameWhatIsMissing), MRGI_TEST_CASE(TestPassWarnsOncePerPixelCloud),
       MRGI_TEST_CASE(TestAreaLightShadowFromSurfels) });
 }
