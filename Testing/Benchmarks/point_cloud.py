@@ -182,6 +182,16 @@ def silhouette(mask_mesh, mask_cloud):
             "xor": int((mask_mesh ^ mask_cloud).sum()), "covered": int(mask_mesh.sum())}
 
 
+def view_budget(source, size, surfels_per_pixel):
+    """vtkMRGISurfels.SuggestMaximumNumberOfSurfels for the object in the scene's view (0: none)."""
+    if not surfels_per_pixel:
+        return 0
+    mesh, _ = object_actor(source)
+    window, renderer, gi = scene(size, mesh, gi=False)
+    window.Render()
+    return mrgi.vtkMRGISurfels.SuggestMaximumNumberOfSurfels(renderer, mesh, surfels_per_pixel)
+
+
 def mesh_vs_cloud(args):
     made = object_source(args.object)
     if made is None:
@@ -192,8 +202,11 @@ def mesh_vs_cloud(args):
     results = {}
     for size in args.sizes:
         mesh, _ = object_actor(source)
+        budget = view_budget(source, size, args.surfels_per_pixel) or args.max_surfels
+        if budget:
+            print("surfel budget %d" % budget)
         cloud, info = object_actor(source, args.points, radius_scale=args.radius_scale,
-                                   max_surfels=args.max_surfels)
+                                   max_surfels=budget)
         window, renderer, gi = scene(size, mesh)
         e_mesh = indirect(window, gi)
         renderer.RemoveActor(mesh)
@@ -251,14 +264,17 @@ def stage_times(window, gi):
 def scaling(args):
     made = object_source(args.object)
     source, description = made if made else object_source("sphere")
-    print("scaling: %s on the Cornell floor, %dx%d, medians of %d repeats (ms), surfel budget %s"
-          % (description, args.size, args.size, args.repeats, args.max_surfels or "none"))
+    budget = view_budget(source, args.size, args.surfels_per_pixel) or args.max_surfels
+    print("scaling: %s on the Cornell floor, %dx%d, medians of %d repeats (ms), surfel budget %s%s"
+          % (description, args.size, args.size, args.repeats, budget or "none",
+             " (%g surfels per pixel of the object's box, SuggestMaximumNumberOfSurfels)"
+             % args.surfels_per_pixel if args.surfels_per_pixel else ""))
     header = ("points,build_ms,first_frame_ms,off_ms,steady_ms,cold_ms,overhead_steady_ms,overhead_cold_ms,"
               "scene_ms,rsm_ms,bytes,min_off_ms,min_steady_ms,min_cold_ms,cpu_off_ms,cpu_steady_ms,cpu_cold_ms")
     print(header)
     rows = []
     for count in args.counts:
-        actor, info = object_actor(source, count, max_surfels=args.max_surfels)
+        actor, info = object_actor(source, count, max_surfels=budget)
         window, renderer, gi = scene(args.size, actor)
         gi.SetStageTimingEnabled(True)
         window.GetRenderTimer().SetLoggingEnabled(True)
@@ -379,12 +395,16 @@ def main():
     a.add_argument("--radius-scale", type=float, default=1.0,
                    help="surfel radius times this (below 1 opens holes: shows that --check can fail)")
     a.add_argument("--max-surfels", type=int, default=0, help="vtkMRGISurfels' level of detail (0: off)")
+    a.add_argument("--surfels-per-pixel", type=float, default=0.0,
+                   help="the budget from the view (SuggestMaximumNumberOfSurfels); overrides --max-surfels")
     b = sub.add_parser("scaling")
     b.add_argument("--object", default="bunny", choices=("bunny", "sphere"))
     b.add_argument("--counts", type=lambda s: [int(float(v)) for v in s.split(",")], default=[100000, 1000000, 10000000])
     b.add_argument("--size", type=int, default=256)
     b.add_argument("--repeats", type=int, default=3)
     b.add_argument("--max-surfels", type=int, default=0, help="vtkMRGISurfels' level of detail (0: off)")
+    b.add_argument("--surfels-per-pixel", type=float, default=0.0,
+                   help="the budget from the view (SuggestMaximumNumberOfSurfels); overrides --max-surfels")
     c = sub.add_parser("pictures")
     c.add_argument("--object", default="bunny", choices=("bunny", "sphere"))
     c.add_argument("--points", type=int, default=200000)
