@@ -32,6 +32,8 @@
 #include "vtkOpenGLRenderer.h"
 #include "vtkOpenGLState.h"
 #include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
 #include "vtkProp.h"
 #include "vtkProp3D.h"
 #include "vtkPropCollection.h"
@@ -45,6 +47,7 @@
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
+#include "vtkWeakPointer.h"
 
 #include "vtkMRGICompositeFS.h"
 #include "vtkMRGIGBufferCapture.h"
@@ -79,6 +82,8 @@ struct vtkMRGIPass::Internals
   // every frame: the pass says so once, until the light is computed again.
   bool IndirectFailureReported = false;
   bool AreaLightFailureReported = false;
+  // Actors already warned about as point clouds drawn as pixels (once each).
+  std::vector<vtkWeakPointer<vtkProp>> PointCloudsReported;
 };
 
 //------------------------------------------------------------------------------
@@ -174,6 +179,58 @@ bool AnySpecularProp(vtkRenderer* renderer)
   }
   return false;
 }
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+// Points of an actor's polydata input that is a point cloud (vertex cells
+// only, or no cells at all), or 0: such an actor is drawn as pixels, so the
+// G-buffer and the RSMs get no surface and no usable normal from it.
+vtkIdType PointCloudPoints(vtkActor* actor)
+{
+  vtkPolyDataMapper* mapper = vtkPolyDataMapper::SafeDownCast(actor->GetMapper());
+  vtkPolyData* data = mapper ? mapper->GetInput() : nullptr;
+  if (!data || data->GetNumberOfPoints() == 0)
+  {
+    return 0;
+  }
+  const bool surfaceless = data->GetNumberOfPolys() == 0 && data->GetNumberOfStrips() == 0 &&
+    data->GetNumberOfLines() == 0;
+  return surfaceless ? data->GetNumberOfPoints() : 0;
+}
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIPass::WarnPointClouds(vtkRenderer* renderer)
+{
+  std::vector<vtkWeakPointer<vtkProp>>& reported = this->Internal->PointCloudsReported;
+  // Forget actors that were deleted, so the list stays as short as the scene.
+  reported.erase(std::remove_if(reported.begin(), reported.end(),
+                   [](const vtkWeakPointer<vtkProp>& p) { return p == nullptr; }),
+    reported.end());
+  vtkPropCollection* props = renderer->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    vtkActor* actor = vtkActor::SafeDownCast(prop);
+    if (!actor || !actor->GetVisibility())
+    {
+      continue;
+    }
+    const vtkIdType points = PointCloudPoints(actor);
+    if (points == 0 ||
+      std::find(reported.begin(), reported.end(), vtkWeakPointer<vtkProp>(prop)) != reported.end())
+    {
+      continue;
+    }
+    reported.emplace_back(prop);
+    vtkWarningMacro("actor " << actor << " draws " << points
+                             << " points as pixels: the indirect light sees no surface; put "
+                                "vtkMRGISurfels (after vtkMRGIPointCloudNormals) before its mapper "
+                                "(Documentation/PointClouds-Surfels.md)");
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -835,6 +892,11 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   {
     ScopedStage stage(timer, "scene");
     this->RenderScene(s, capture, split);
+  }
+  if (capture)
+  {
+    // After the scene pass: the mappers' inputs are up to date now.
+    this->WarnPointClouds(renderer);
   }
   // The frame's context, built once; `framed`: the multiresolution terms
   // (pixel size) are defined, which only a captured frame needs.

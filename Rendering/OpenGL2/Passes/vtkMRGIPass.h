@@ -505,6 +505,9 @@ protected:
   // Frees every GL resource (with `w`) or, without, the C++ objects that
   // hold them: the destructor and ReleaseGraphicsResources() share it.
   void ReleaseResources(vtkWindow* w);
+  // Warns once per visible actor whose polydata is a point cloud (vertex
+  // cells or none): drawn as pixels, it gives the indirect light no surface.
+  void WarnPointClouds(vtkRenderer* renderer);
 
   int IndirectMode = IndirectMultires;
   double IndirectStrength = 1.0;
