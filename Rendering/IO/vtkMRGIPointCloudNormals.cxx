@@ -31,7 +31,12 @@ double Flat(vtkDataArray* array, int i)
 
 bool vtkMRGIPointCloudNormals::SensorPoseIsMeaningful(vtkPolyData* input)
 {
-  vtkFieldData* fd = input ? input->GetFieldData() : nullptr;
+  return SensorPoseIsMeaningful(input ? input->GetFieldData() : nullptr);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIPointCloudNormals::SensorPoseIsMeaningful(vtkFieldData* fd)
+{
   vtkDataArray* origin = fd ? fd->GetArray("SensorOrigin") : nullptr;
   if (!origin || origin->GetNumberOfTuples() * origin->GetNumberOfComponents() < 3)
   {

@@ -39,6 +39,7 @@
 #include "MRGIRenderingIOModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 
+class vtkFieldData;
 class vtkFloatArray;
 
 class MRGIRENDERINGIO_EXPORT vtkMRGIPointCloudNormals : public vtkPolyDataAlgorithm
@@ -115,6 +116,7 @@ public:
    * (origin, identity).
    */
   static bool SensorPoseIsMeaningful(vtkPolyData* input);
+  static bool SensorPoseIsMeaningful(vtkFieldData* fields);
 
   ///@{
   /**

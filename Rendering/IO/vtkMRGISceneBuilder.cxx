@@ -23,6 +23,8 @@
 #include "vtkLightCollection.h"
 #include "vtkMRGILASReader.h"
 #include "vtkMRGIPointCloud.h"
+#include "vtkMRGIPointCloudNormals.h"
+#include "vtkMRGISurfels.h"
 #include "vtkMapper.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
@@ -97,18 +99,26 @@ struct CoreScene
 class ErrorCatcher
 {
 public:
-  explicit ErrorCatcher(vtkObject* watched)
+  // Warnings count as errors unless `warningsToo` is false (then VTK
+  // prints them as usual).
+  explicit ErrorCatcher(vtkObject* watched, bool warningsToo = true)
     : Watched(watched)
   {
     this->Callback->SetClientData(this);
     this->Callback->SetCallback(&ErrorCatcher::OnError);
     this->ErrorTag = watched->AddObserver(vtkCommand::ErrorEvent, this->Callback);
-    this->WarningTag = watched->AddObserver(vtkCommand::WarningEvent, this->Callback);
+    if (warningsToo)
+    {
+      this->WarningTag = watched->AddObserver(vtkCommand::WarningEvent, this->Callback);
+    }
   }
   ~ErrorCatcher()
   {
     this->Watched->RemoveObserver(this->ErrorTag);
-    this->Watched->RemoveObserver(this->WarningTag);
+    if (this->WarningTag)
+    {
+      this->Watched->RemoveObserver(this->WarningTag);
+    }
   }
   bool HasError() const { return !this->Message.empty(); }
   const std::string& GetMessage() const { return this->Message; }
@@ -388,6 +398,59 @@ bool ValidData(vtkDataObject* data, std::string& why)
     }
   }
   return true;
+}
+
+// The splat radii vtkMRGIPointCloudNormals estimates are 0 where a point
+// has no spacing to its neighbours (a duplicate, a lone point). Such
+// points would draw nothing: give them the median of the positive radii,
+// or, when none is positive (one point, all duplicates), 1/100 of the
+// cloud's diagonal (1 for a single point). Shares everything else.
+vtkSmartPointer<vtkPolyData> WithFallbackRadii(vtkPolyData* cloud)
+{
+  vtkDataArray* radii = cloud->GetPointData()->GetArray("Radius");
+  if (!radii || radii->GetNumberOfComponents() != 1)
+  {
+    return cloud;
+  }
+  const vtkIdType n = radii->GetNumberOfTuples();
+  std::vector<double> positive;
+  positive.reserve(static_cast<size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const double r = radii->GetComponent(i, 0);
+    if (r > 0 && std::isfinite(r))
+    {
+      positive.push_back(r);
+    }
+  }
+  if (static_cast<vtkIdType>(positive.size()) == n)
+  {
+    return cloud;
+  }
+  double fallback = 0;
+  if (!positive.empty())
+  {
+    auto middle = positive.begin() + static_cast<std::ptrdiff_t>(positive.size() / 2);
+    std::nth_element(positive.begin(), middle, positive.end());
+    fallback = *middle;
+  }
+  else
+  {
+    const double diagonal = cloud->GetLength();
+    fallback = diagonal > 0 && std::isfinite(diagonal) ? diagonal / 100.0 : 1.0;
+  }
+  vtkNew<vtkFloatArray> filled;
+  filled->SetName("Radius");
+  filled->SetNumberOfTuples(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const double r = radii->GetComponent(i, 0);
+    filled->SetValue(i, static_cast<float>(r > 0 && std::isfinite(r) ? r : fallback));
+  }
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->ShallowCopy(cloud);
+  out->GetPointData()->AddArray(filled);
+  return out;
 }
 
 // Flat data (one extent of its bounds much smaller than the others, such as
@@ -1063,18 +1126,62 @@ bool vtkMRGISceneBuilder::BuildPointCloud(
     return this->Fail("cannot draw '" + path + "': none of its " + std::to_string(n) +
       " points has finite coordinates (all NaN or infinite)");
   }
-  // TODO(surfels): normals, radii and the surfel mapper replace the vertex
-  // rendering below (issue 15, part 3).
+  // Points drawn as pixels give the G-buffer and the shadow maps no surface:
+  // each point becomes an oriented surfel (vtkMRGISurfels), with normals
+  // and splat radii estimated where the file has none (PCL when MRGI's PCL
+  // module is loaded, the core otherwise). LAS clouds are georeferenced
+  // with z up: their normals face up; PCD frames face their sensor.
+  vtkNew<vtkMRGIPointCloudNormals> normals;
+  normals->SetInputData(drawable);
+  if (drawable->GetFieldData()->GetAbstractArray("LASVersion"))
+  {
+    normals->SetUp(0.0, 0.0, 1.0);
+  }
+  {
+    ErrorCatcher normalsErrors(normals);
+    normals->Update();
+    if (normalsErrors.HasError())
+    {
+      return this->Fail("cannot draw the point cloud '" + path + "': " + normalsErrors.GetMessage());
+    }
+  }
+  vtkSmartPointer<vtkPolyData> withRadii = WithFallbackRadii(normals->GetOutput());
+  vtkNew<vtkMRGISurfels> surfels;
+  surfels->SetInputData(withRadii);
+  {
+    // Points the surfels skip (a zero normal in the file) are reported by
+    // VTK's warning; the others draw.
+    ErrorCatcher surfelsErrors(surfels, false);
+    surfels->Update();
+    if (surfelsErrors.HasError() || surfels->GetOutput()->GetNumberOfPolys() == 0)
+    {
+      return this->Fail("cannot draw the point cloud '" + path + "': " +
+        (surfelsErrors.HasError() ? surfelsErrors.GetMessage()
+                                  : std::string("no point has a usable normal and radius")));
+    }
+  }
   vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputData(drawable);
-  ColorByScalars(mapper, drawable, drawable);
+  mapper->SetInputConnection(surfels->GetOutputPort());
+  ColorByScalars(mapper, surfels->GetOutput(), drawable);
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
   actor->GetProperty()->SetColor(0.8, 0.8, 0.8);
-  actor->GetProperty()->SetPointSize(2.0f);
   renderer->AddActor(actor);
-  FaceFlatData(renderer);
-  renderer->ResetCamera();
+  if (!this->Frame(path, renderer))
+  {
+    renderer->RemoveActor(actor);
+    return false;
+  }
+  // A cloud with many points per pixel looks the same with fewer, larger
+  // surfels (every k-th point, radius x sqrt(k)) at a fraction of the
+  // geometry cost: budget them from the framed view.
+  const vtkIdType budget = vtkMRGISurfels::SuggestMaximumNumberOfSurfels(
+    renderer, actor, this->SurfelsPerPixel);
+  if (budget > 0 && budget < drawable->GetNumberOfPoints())
+  {
+    surfels->SetMaximumNumberOfSurfels(budget);
+    surfels->Update();
+  }
   this->BuiltTriangleCount = 0;
   this->BuiltPointCount = drawable->GetNumberOfPoints();
   return true;
@@ -1143,6 +1250,7 @@ void vtkMRGISceneBuilder::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TriangleCount: " << this->TriangleCount << "\n";
   os << indent << "ObjectCount: " << this->ObjectCount << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "SurfelsPerPixel: " << this->SurfelsPerPixel << "\n";
   os << indent << "BuiltTriangleCount: " << this->BuiltTriangleCount << "\n";
   os << indent << "BuiltPointCount: " << this->BuiltPointCount << "\n";
 }

@@ -33,10 +33,13 @@
  * and a key light, and volumes (vtkMRGIStaging::IsVolume()) are shown as
  * their iso-surface instead of their outer surface.
  * Point clouds (vtkMRGIPointCloud::IsPointCloud(): points with vertex
- * cells or no cells, from any reader) are drawn as their finite points
- * (points with a NaN coordinate are left out; a cloud without a finite
- * point is an error); LAS clouds show their display colours (RGB, classes
- * or intensity).
+ * cells or no cells, from any reader) are drawn as oriented surfels of
+ * their finite points (points with a NaN coordinate are left out; a cloud
+ * without a finite point is an error): vtkMRGIPointCloudNormals estimates
+ * normals the file lacks and a splat radius per point, vtkMRGISurfels
+ * makes the disks, at most SurfelsPerPixel times the pixels the cloud
+ * covers in the framed view. LAS clouds show their display colours (RGB,
+ * classes or intensity).
  *
  * Only regular files are read. Before a VTK reader sees a PLY, OBJ, legacy
  * VTK, VTK XML or glTF file, the core's structure check of that format
@@ -94,6 +97,17 @@ public:
   /** Scaling scene: number of objects, default 64. */
   vtkSetClampMacro(ObjectCount, int, 1, 4096);
   vtkGetMacro(ObjectCount, int);
+  ///@}
+
+  ///@{
+  /**
+   * Point clouds: the surfel budget per covered pixel of the framed view
+   * (vtkMRGISurfels::SuggestMaximumNumberOfSurfels()); a denser cloud
+   * draws every k-th point with a larger disk. 0 draws every point.
+   * Default 16.
+   */
+  vtkSetClampMacro(SurfelsPerPixel, double, 0.0, 1.0e6);
+  vtkGetMacro(SurfelsPerPixel, double);
   ///@}
 
   ///@{
@@ -168,6 +182,7 @@ protected:
   vtkIdType TriangleCount = 100000;
   int ObjectCount = 64;
   vtkTypeUInt64 Seed = 1;
+  double SurfelsPerPixel = 16.0;
   vtkIdType BuiltTriangleCount = 0;
   vtkIdType BuiltPointCount = 0;
   std::string LastErrorMessage;

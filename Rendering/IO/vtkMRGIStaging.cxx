@@ -1,6 +1,7 @@
 #include "vtkMRGIStaging.h"
 
 #include "vtkMRGIAreaLight.h"
+#include "vtkMRGIPointCloudNormals.h"
 
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
@@ -104,7 +105,11 @@ bool Finite(const double p[3])
 }
 
 // The data field cues of the class documentation; -1 when there is none.
-int UpFromFields(vtkFieldData* fields, std::string& reason)
+// A sensor pose (PCD) also gives the direction the sensor looked in
+// (`sensorForward`, set when `hasForward` becomes true): a depth frame is a
+// surface seen from there, and only from there does it look whole.
+int UpFromFields(
+  vtkFieldData* fields, std::string& reason, double sensorForward[3], bool& hasForward)
 {
   if (!fields)
   {
@@ -140,7 +145,10 @@ int UpFromFields(vtkFieldData* fields, std::string& reason)
   }
   if (!sensor)
   {
-    if (vtkDataArray* orientation = fields->GetArray("SensorOrientation"))
+    vtkDataArray* orientation = fields->GetArray("SensorOrientation");
+    // PCL writes the identity pose into every file: only a real sensor's
+    // pose (vtkMRGIPointCloudNormals' rule) says which way is up.
+    if (orientation && vtkMRGIPointCloudNormals::SensorPoseIsMeaningful(fields))
     {
       if (orientation->GetNumberOfValues() == 4)
       {
@@ -168,6 +176,9 @@ int UpFromFields(vtkFieldData* fields, std::string& reason)
   const double down[3] = { 0, -1, 0 }; // a depth camera's image y points down
   double up[3];
   vtkMath::Multiply3x3(m, down, up);
+  const double ahead[3] = { 0, 0, 1 }; // and it looks along its +z
+  vtkMath::Multiply3x3(m, ahead, sensorForward);
+  hasForward = true;
   int k = 0;
   for (int i = 1; i < 3; ++i)
   {
@@ -490,6 +501,8 @@ bool vtkMRGIStaging::Stage(vtkRenderer* renderer)
   }
 
   // The up axis.
+  double sensorForward[3] = { 0, 0, 1 };
+  bool hasSensorForward = false;
   int up = this->Up;
   std::string reason = "set";
   if (up == UpAuto)
@@ -500,7 +513,7 @@ bool vtkMRGIStaging::Stage(vtkRenderer* renderer)
       {
         if (up == UpAuto)
         {
-          const int found = UpFromFields(fields, reason);
+          const int found = UpFromFields(fields, reason, sensorForward, hasSensorForward);
           up = found >= 0 ? found : up;
         }
       }
@@ -589,6 +602,21 @@ bool vtkMRGIStaging::Stage(vtkRenderer* renderer)
   double upv[3], front[3], left[3];
   mrgi_axis_vector(static_cast<mrgi_axis>(up), upv);
   FrontOf(up, front);
+  if (hasSensorForward)
+  {
+    // Seen from the sensor's side (horizontally): a depth frame seen from
+    // behind shows the backs of its surfaces, edge-on.
+    const double along = vtkMath::Dot(sensorForward, upv);
+    double towardsSensor[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      towardsSensor[k] = -(sensorForward[k] - along * upv[k]);
+    }
+    if (vtkMath::Normalize(towardsSensor) > 1e-3)
+    {
+      std::copy(towardsSensor, towardsSensor + 3, front);
+    }
+  }
   vtkMath::Cross(front, upv, left);
 
   // The camera.

@@ -15,17 +15,20 @@
  *   1. field data of a LAS file (an array whose name starts with "LAS"):
  *      +z, as LAS stores elevation in z;
  *   2. field data of a PCD file (a "VIEWPOINT" array of 7 values tx ty tz
- *      qw qx qy qz, or a "SensorOrientation" array qw qx qy qz): the
- *      sensor's -y axis rotated by the orientation (depth cameras have y
- *      down), rounded to the nearest world axis;
+ *      qw qx qy qz, or a "SensorOrientation" array qw qx qy qz that
+ *      vtkMRGIPointCloudNormals::SensorPoseIsMeaningful() accepts: PCL
+ *      writes the identity pose into every file): the sensor's -y axis
+ *      rotated by the orientation (depth cameras have y down), rounded to
+ *      the nearest world axis;
  *   3. the geometry (mrgi_up_axis.h): a flat base, an open base (a scan's
  *      hole where the turntable was), for point clouds a point base (one
  *      end of an axis holding many more points than the others: a scan's
  *      base, terrain's ground), a thin extent, else +y, VTK's convention.
  *      GetUpReason() names the cue.
  * - **Camera**: the view direction is the "front" (+z for a y or x up
- *   axis, -y for +z, +y for -z) raised by CameraElevation degrees (default
- *   25) towards up; the camera is placed so that the projection of the
+ *   axis, -y for +z, +y for -z; for a sensor pose, the side the sensor
+ *   looked from: a depth frame seen from behind shows the backs of its
+ *   surfaces) raised by CameraElevation degrees (default 25) towards up; the camera is placed so that the projection of the
  *   data's points (at most 65536 of them, evenly strided) fills
  *   FillFraction (default 0.8) of the image's width or height, whichever
  *   limits, centred (mrgi_framing.h), with the renderer's aspect and the

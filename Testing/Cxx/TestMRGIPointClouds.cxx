@@ -7,12 +7,14 @@
 #include "mrgiLASTestUtilities.h"
 #include "mrgiTestUtilities.h"
 
+#include "vtkActor.h"
 #include "vtkActorCollection.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkMRGIPass.h"
+#include "vtkMapper.h"
 #include "vtkMRGIPointCloud.h"
 #include "vtkMRGISceneBuilder.h"
 #include "vtkPLYWriter.h"
@@ -66,6 +68,7 @@ struct Built
   bool Ok = false;
   std::string Error;
   vtkIdType Points = 0;
+  vtkIdType Surfels = 0; // polygons the cloud's actor draws
   int Actors = 0;
 };
 
@@ -79,6 +82,13 @@ Built Build(const std::string& scene)
   b.Error = builder->GetLastErrorMessage();
   b.Points = builder->GetBuiltPointCount();
   b.Actors = renderer->GetActors()->GetNumberOfItems();
+  if (b.Ok && b.Points > 0)
+  {
+    // The cloud's actor is the first one (staging, when on, adds a ground).
+    vtkActor* actor = vtkActor::SafeDownCast(renderer->GetActors()->GetItemAsObject(0));
+    auto* drawn = vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0));
+    b.Surfels = drawn ? drawn->GetNumberOfPolys() : 0;
+  }
   std::printf("%s: %s\n", scene.c_str(),
     b.Ok ? ("ok, " + std::to_string(b.Points) + " points").c_str() : b.Error.c_str());
   if (!b.Ok)
@@ -211,6 +221,26 @@ void TestBuilderFiles()
   WriteLegacy(oneVtk, Cloud(1, 0, true));
   b = Build(oneVtk);
   MRGI_TEST_CHECK(b.Ok && b.Points == 1);
+  // A lone point has no spacing to estimate a splat radius from; it still
+  // draws (one surfel), as do duplicated points.
+  MRGI_TEST_CHECK(b.Surfels == 1);
+  const std::string twice = mrgitest::TempPath("clouds_duplicates.vtk");
+  {
+    auto cloud = Cloud(100, 0, false);
+    vtkNew<vtkPoints> doubled;
+    for (int copy = 0; copy < 2; ++copy)
+    {
+      for (vtkIdType i = 0; i < 100; ++i)
+      {
+        doubled->InsertNextPoint(cloud->GetPoint(i));
+      }
+    }
+    vtkNew<vtkPolyData> both;
+    both->SetPoints(doubled);
+    WriteLegacy(twice, both);
+  }
+  b = Build(twice);
+  MRGI_TEST_CHECK(b.Ok && b.Points == 200 && b.Surfels == 200);
   // An unstructured grid of vertex cells: its surface is a cloud.
   const std::string vtu = mrgitest::TempPath("clouds_vertices.vtu");
   {
