@@ -1,7 +1,7 @@
 #include "vtkMRGIPointCloud.h"
 
 #include "vtkCellArray.h"
-#include "vtkCellTypes.h"
+#include "vtkCellType.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdList.h"
@@ -12,6 +12,7 @@
 #include "vtkPolyData.h"
 #include "vtkTypeInt32Array.h"
 #include "vtkTypeInt64Array.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <cmath>
@@ -62,12 +63,13 @@ bool vtkMRGIPointCloud::IsPointCloud(vtkDataObject* data)
   }
   if (auto* grid = vtkUnstructuredGrid::SafeDownCast(set))
   {
-    // The grid's distinct cell types, not a walk over every cell.
-    vtkNew<vtkCellTypes> types;
-    grid->GetCellTypes(types);
-    for (vtkIdType t = 0; t < types->GetNumberOfTypes(); ++t)
+    // One byte per cell (GetCellTypes() is deprecated in VTK 9.2 and its
+    // replacement is missing in 9.1: this array is in both).
+    vtkUnsignedCharArray* types = grid->GetCellTypesArray();
+    const vtkIdType cells = types ? types->GetNumberOfValues() : 0;
+    for (vtkIdType c = 0; c < cells; ++c)
     {
-      const unsigned char type = types->GetCellType(t);
+      const unsigned char type = types->GetValue(c);
       if (type != VTK_VERTEX && type != VTK_POLY_VERTEX)
       {
         return false;

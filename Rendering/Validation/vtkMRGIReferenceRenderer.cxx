@@ -74,10 +74,15 @@ bool MeanMappedColor(vtkMapper* mapper, vtkPolyData* poly, double rgb[3])
   return true;
 }
 
-void AddPieces(vtkActor* actor, vtkPolyData* input, std::vector<Piece>& pieces)
+// Adds `input`'s triangles; counts in `pointsOnly` a piece that draws
+// vertices but no surface (a point cloud without surfels), which the
+// ground truth cannot see.
+void AddPieces(
+  vtkActor* actor, vtkPolyData* input, std::vector<Piece>& pieces, vtkIdType& pointsOnly)
 {
   if (!input || input->GetNumberOfPolys() + input->GetNumberOfStrips() == 0)
   {
+    pointsOnly += input && input->GetNumberOfVerts() > 0 ? 1 : 0;
     return;
   }
   vtkNew<vtkTriangleFilter> triangulate;
@@ -125,6 +130,7 @@ bool vtkMRGIReferenceRenderer::ExportScene(vtkRenderer* renderer, mrgi_scene* ou
 {
   std::memset(out, 0, sizeof(*out));
   std::vector<Piece> pieces;
+  vtkIdType pointsOnly = 0;
   vtkActorCollection* actors = renderer->GetActors();
   vtkCollectionSimpleIterator ait;
   actors->InitTraversal(ait);
@@ -139,7 +145,7 @@ bool vtkMRGIReferenceRenderer::ExportScene(vtkRenderer* renderer, mrgi_scene* ou
     vtkDataObject* data = mapper->GetInputDataObject(0, 0);
     if (auto* poly = vtkPolyData::SafeDownCast(data))
     {
-      AddPieces(actor, poly, pieces);
+      AddPieces(actor, poly, pieces, pointsOnly);
     }
     else if (auto* composite = vtkCompositeDataSet::SafeDownCast(data))
     {
@@ -147,9 +153,17 @@ bool vtkMRGIReferenceRenderer::ExportScene(vtkRenderer* renderer, mrgi_scene* ou
       it.TakeReference(composite->NewIterator());
       for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
       {
-        AddPieces(actor, vtkPolyData::SafeDownCast(it->GetCurrentDataObject()), pieces);
+        AddPieces(
+          actor, vtkPolyData::SafeDownCast(it->GetCurrentDataObject()), pieces, pointsOnly);
       }
     }
+  }
+  if (pointsOnly > 0)
+  {
+    vtkWarningWithObjectMacro(renderer, << pointsOnly
+                    << " visible data set(s) draw only vertices: the ground truth has no "
+                       "surface for them and leaves them out; put vtkMRGIPointCloudNormals "
+                       "and vtkMRGISurfels before a point cloud's mapper");
   }
   if (pieces.empty())
   {
