@@ -1,9 +1,11 @@
 // vtkMRGISurfels and vtkMRGIMeshSampler: the polygons and their per-corner
 // data, 32-bit cells, skipped points, the errors that name what is missing;
-// and vtkMRGIPass's one warning per actor drawn as pixels, which a cloud
-// drawn as surfels does not get. (The image comparison of a cloud with its
-// mesh is python.PointCloudMeshVsCloud.)
+// and the warnings of vtkMRGIPass (one per actor drawn as pixels) and of the
+// ground truth, which a cloud drawn as surfels does not get. (The image
+// comparison of a cloud with its mesh is python.PointCloudMeshVsCloud.)
 #include "mrgiTestUtilities.h"
+
+#include "mrgi_scene.h"
 
 #include "vtkActor.h"
 #include "vtkCallbackCommand.h"
@@ -16,6 +18,7 @@
 #include "vtkImageData.h"
 #include "vtkMRGIMeshSampler.h"
 #include "vtkMRGIPass.h"
+#include "vtkMRGIReferenceRenderer.h"
 #include "vtkMRGISceneBuilder.h"
 #include "vtkMRGISurfels.h"
 #include "vtkMath.h"
@@ -355,6 +358,64 @@ void TestPassWarnsOncePerPixelCloud()
   MRGI_TEST_CHECK(warnings.Count == 2);
 }
 
+// The ground truth has no surface for a cloud drawn as vertices: it says so
+// (a warning naming the surfels) instead of leaving the cloud out silently;
+// the same cloud as surfels is in its scene and raises no warning.
+void TestReferenceWarnsOnPixelCloud()
+{
+  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(32, 32);
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  vtkNew<vtkMRGISceneBuilder> builder;
+  builder->SetScene("cornell-spot");
+  MRGI_TEST_CHECK(builder->Build(renderer));
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(100, 1, 100);
+  plane->SetPoint1(400, 1, 100);
+  plane->SetPoint2(100, 1, 400);
+  vtkNew<vtkMRGIMeshSampler> sampler;
+  sampler->SetInputConnection(plane->GetOutputPort());
+  sampler->SetNumberOfPoints(2000);
+  vtkNew<vtkPolyDataMapper> pixelsMapper;
+  pixelsMapper->SetInputConnection(sampler->GetOutputPort());
+  vtkNew<vtkActor> pixels;
+  pixels->SetMapper(pixelsMapper);
+  renderer->AddActor(pixels);
+
+  struct Warnings
+  {
+    int Count = 0;
+    static void Callback(vtkObject*, unsigned long, void* client, void* data)
+    {
+      const std::string text = data ? static_cast<const char*>(data) : "";
+      if (text.find("draw only vertices") != std::string::npos &&
+        text.find("vtkMRGISurfels") != std::string::npos)
+      {
+        ++static_cast<Warnings*>(client)->Count;
+      }
+    }
+  } warnings;
+  vtkNew<vtkCallbackCommand> callback;
+  callback->SetClientData(&warnings);
+  callback->SetCallback(Warnings::Callback);
+  renderer->AddObserver(vtkCommand::WarningEvent, callback);
+
+  mrgi_scene scene;
+  std::string why;
+  MRGI_TEST_CHECK(vtkMRGIReferenceRenderer::ExportScene(renderer, &scene, why));
+  const int32_t meshesWithPixels = scene.mesh_count;
+  mrgi_scene_destroy(&scene);
+  MRGI_TEST_CHECK(warnings.Count == 1);
+
+  vtkNew<vtkMRGISurfels> surfels;
+  surfels->SetInputConnection(sampler->GetOutputPort());
+  pixelsMapper->SetInputConnection(surfels->GetOutputPort());
+  MRGI_TEST_CHECK(vtkMRGIReferenceRenderer::ExportScene(renderer, &scene, why));
+  MRGI_TEST_CHECK(scene.mesh_count == meshesWithPixels + 1);
+  mrgi_scene_destroy(&scene);
+  MRGI_TEST_CHECK(warnings.Count == 1);
+}
+
 // The area light's voxelization and visibility see surfels: a cloud sampled
 // from a downward-facing plate under the Cornell box's ceiling light
 // shadows what is under it, as the plate itself would.
@@ -424,5 +485,6 @@ int main(int argc, char* argv[])
     { MRGI_TEST_CASE(TestPolygonsAndData), MRGI_TEST_CASE(TestFixedRadiusNoCells),
       MRGI_TEST_CASE(TestLevelOfDetail), MRGI_TEST_CASE(TestSuggestedBudget),
       MRGI_TEST_CASE(TestErrorsNameWhatIsMissing), MRGI_TEST_CASE(TestPassWarnsOncePerPixelCloud),
+      MRGI_TEST_CASE(TestReferenceWarnsOnPixelCloud),
       MRGI_TEST_CASE(TestAreaLightShadowFromSurfels) });
 }
