@@ -285,52 +285,72 @@ void TestErrorsNameWhatIsMissing()
   MRGI_TEST_CHECK(errors->Caught("not a point cloud"));
 }
 
-// Counts vtkMRGIPass's point-cloud warnings.
+// Counts the warnings of an object that contain two phrases.
 struct WarningCount
 {
-  int Count = 0;
+  WarningCount(vtkObject* watched, const char* phrase, const char* other)
+    : Phrase(phrase)
+    , Other(other)
+  {
+    this->Observer->SetClientData(this);
+    this->Observer->SetCallback(WarningCount::Callback);
+    watched->AddObserver(vtkCommand::WarningEvent, this->Observer);
+  }
   static void Callback(vtkObject*, unsigned long, void* client, void* data)
   {
+    auto* self = static_cast<WarningCount*>(client);
     const std::string text = data ? static_cast<const char*>(data) : "";
-    if (text.find("points as pixels") != std::string::npos &&
-      text.find("vtkMRGISurfels") != std::string::npos)
+    if (text.find(self->Phrase) != std::string::npos && text.find(self->Other) != std::string::npos)
     {
-      ++static_cast<WarningCount*>(client)->Count;
+      ++self->Count;
     }
   }
+  int Count = 0;
+  std::string Phrase, Other;
+  vtkNew<vtkCallbackCommand> Observer;
+};
+
+// cornell-spot in a headless window, and a cloud sampled from a square on
+// its floor (drawn as pixels until a vtkMRGISurfels is put in between).
+struct FloorCloudScene
+{
+  explicit FloorCloudScene(int size, vtkIdType points)
+    : Window(mrgitest::HeadlessWindow(size, size))
+  {
+    this->Window->AddRenderer(this->Renderer);
+    vtkNew<vtkMRGISceneBuilder> builder;
+    builder->SetScene("cornell-spot");
+    MRGI_TEST_CHECK(builder->Build(this->Renderer));
+    vtkNew<vtkPlaneSource> plane;
+    plane->SetOrigin(100, 1, 100);
+    plane->SetPoint1(400, 1, 100);
+    plane->SetPoint2(100, 1, 400);
+    this->Sampler->SetInputConnection(plane->GetOutputPort());
+    this->Sampler->SetNumberOfPoints(points);
+    this->PixelsMapper->SetInputConnection(this->Sampler->GetOutputPort());
+    this->Pixels->SetMapper(this->PixelsMapper);
+    this->Renderer->AddActor(this->Pixels);
+  }
+  vtkSmartPointer<vtkRenderWindow> Window;
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkMRGIMeshSampler> Sampler;
+  vtkNew<vtkPolyDataMapper> PixelsMapper;
+  vtkNew<vtkActor> Pixels;
 };
 
 void TestPassWarnsOncePerPixelCloud()
 {
-  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(64, 64);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkMRGISceneBuilder> builder;
-  builder->SetScene("cornell-spot");
-  MRGI_TEST_CHECK(builder->Build(renderer));
+  FloorCloudScene scene(64, 5000);
   vtkNew<vtkRenderStepsPass> steps;
   vtkNew<vtkMRGIPass> pass;
   pass->SetDelegatePass(steps);
-  renderer->SetPass(pass);
-  WarningCount warnings;
-  vtkNew<vtkCallbackCommand> callback;
-  callback->SetClientData(&warnings);
-  callback->SetCallback(WarningCount::Callback);
-  pass->AddObserver(vtkCommand::WarningEvent, callback);
-
-  // A cloud sampled from a plane on the floor, drawn as pixels.
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(100, 1, 100);
-  plane->SetPoint1(400, 1, 100);
-  plane->SetPoint2(100, 1, 400);
-  vtkNew<vtkMRGIMeshSampler> sampler;
-  sampler->SetInputConnection(plane->GetOutputPort());
-  sampler->SetNumberOfPoints(5000);
-  vtkNew<vtkPolyDataMapper> pixelsMapper;
-  pixelsMapper->SetInputConnection(sampler->GetOutputPort());
-  vtkNew<vtkActor> pixels;
-  pixels->SetMapper(pixelsMapper);
-  renderer->AddActor(pixels);
+  scene.Renderer->SetPass(pass);
+  WarningCount warnings(pass, "points as pixels", "vtkMRGISurfels");
+  vtkRenderWindow* window = scene.Window;
+  vtkRenderer* renderer = scene.Renderer;
+  vtkMRGIMeshSampler* sampler = scene.Sampler;
+  vtkPolyDataMapper* pixelsMapper = scene.PixelsMapper;
+  vtkActor* pixels = scene.Pixels;
   window->Render();
   window->Render();
   MRGI_TEST_CHECK(warnings.Count == 1);
@@ -363,42 +383,9 @@ void TestPassWarnsOncePerPixelCloud()
 // the same cloud as surfels is in its scene and raises no warning.
 void TestReferenceWarnsOnPixelCloud()
 {
-  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(32, 32);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkMRGISceneBuilder> builder;
-  builder->SetScene("cornell-spot");
-  MRGI_TEST_CHECK(builder->Build(renderer));
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(100, 1, 100);
-  plane->SetPoint1(400, 1, 100);
-  plane->SetPoint2(100, 1, 400);
-  vtkNew<vtkMRGIMeshSampler> sampler;
-  sampler->SetInputConnection(plane->GetOutputPort());
-  sampler->SetNumberOfPoints(2000);
-  vtkNew<vtkPolyDataMapper> pixelsMapper;
-  pixelsMapper->SetInputConnection(sampler->GetOutputPort());
-  vtkNew<vtkActor> pixels;
-  pixels->SetMapper(pixelsMapper);
-  renderer->AddActor(pixels);
-
-  struct Warnings
-  {
-    int Count = 0;
-    static void Callback(vtkObject*, unsigned long, void* client, void* data)
-    {
-      const std::string text = data ? static_cast<const char*>(data) : "";
-      if (text.find("draw only vertices") != std::string::npos &&
-        text.find("vtkMRGISurfels") != std::string::npos)
-      {
-        ++static_cast<Warnings*>(client)->Count;
-      }
-    }
-  } warnings;
-  vtkNew<vtkCallbackCommand> callback;
-  callback->SetClientData(&warnings);
-  callback->SetCallback(Warnings::Callback);
-  renderer->AddObserver(vtkCommand::WarningEvent, callback);
+  FloorCloudScene floor(32, 2000);
+  vtkRenderer* renderer = floor.Renderer;
+  WarningCount warnings(renderer, "draw only vertices", "vtkMRGISurfels");
 
   mrgi_scene scene;
   std::string why;
@@ -408,8 +395,8 @@ void TestReferenceWarnsOnPixelCloud()
   MRGI_TEST_CHECK(warnings.Count == 1);
 
   vtkNew<vtkMRGISurfels> surfels;
-  surfels->SetInputConnection(sampler->GetOutputPort());
-  pixelsMapper->SetInputConnection(surfels->GetOutputPort());
+  surfels->SetInputConnection(floor.Sampler->GetOutputPort());
+  floor.PixelsMapper->SetInputConnection(surfels->GetOutputPort());
   MRGI_TEST_CHECK(vtkMRGIReferenceRenderer::ExportScene(renderer, &scene, why));
   MRGI_TEST_CHECK(scene.mesh_count == meshesWithPixels + 1);
   mrgi_scene_destroy(&scene);
