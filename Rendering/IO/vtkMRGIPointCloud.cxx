@@ -12,7 +12,9 @@
 #include "vtkPolyData.h"
 #include "vtkTypeInt32Array.h"
 #include "vtkTypeInt64Array.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
+#include "vtkVersionMacros.h"
 
 #include <cmath>
 #include <limits>
@@ -62,12 +64,21 @@ bool vtkMRGIPointCloud::IsPointCloud(vtkDataObject* data)
   }
   if (auto* grid = vtkUnstructuredGrid::SafeDownCast(set))
   {
-    // The grid's distinct cell types, not a walk over every cell.
+    // The grid's distinct cell types, not a walk over every cell. VTK 9.2
+    // (ParaView's) deprecates GetCellTypes(vtkCellTypes*), which 9.1 has alone.
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 2, 0)
+    vtkUnsignedCharArray* types = grid->GetDistinctCellTypesArray();
+    const vtkIdType numberOfTypes = types ? types->GetNumberOfValues() : 0;
+    for (vtkIdType t = 0; t < numberOfTypes; ++t)
+    {
+      const unsigned char type = types->GetValue(t);
+#else
     vtkNew<vtkCellTypes> types;
     grid->GetCellTypes(types);
     for (vtkIdType t = 0; t < types->GetNumberOfTypes(); ++t)
     {
       const unsigned char type = types->GetCellType(t);
+#endif
       if (type != VTK_VERTEX && type != VTK_POLY_VERTEX)
       {
         return false;
