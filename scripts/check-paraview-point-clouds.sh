@@ -5,7 +5,8 @@
 # in an MRGI Render View with GI off and on (Module/ParaView/Testing/
 # pvbatch_point_clouds.py asserts coverage, no black pixel in the cloud, the
 # indirect light); the same for the shared LAS tile when present; then a
-# truncated LAS file, whose error must name the file.
+# truncated LAS file, whose error must name the file, and bad filter
+# settings, each reported once by the filter.
 # Run by ctest as paraview.PointClouds after compat.ParaViewVTK built the
 # ParaView tree.
 # Usage: scripts/check-paraview-point-clouds.sh PARAVIEW_BUILD_DIR [SHARED_DATA_DIR]
@@ -51,4 +52,12 @@ pvbatch_headless "$script" "$plugin" "$work/bad" 64 --bad
 grep -q "bad input checks done" "$log" || fail "the bad-input checks did not finish"
 grep -q "ERR| vtkMRGILASReader.*'$work/bad/truncated.las'.*truncated" "$log" ||
   { cat "$log" >&2; fail "no error named the truncated file"; }
+grep -q "ERR| vtkMRGISurfels.*has no normals" "$log" ||
+  { cat "$log" >&2; fail "no error said the surfels' input has no normals"; }
+grep -q "ERR| vtkMRGIPointCloudNormals.*RadiusScale = 0 must be finite and > 0" "$log" ||
+  { cat "$log" >&2; fail "no error named the radius scale"; }
+# Each problem is said once: the filters' executives add no generic error.
+if grep "returned failure for request" "$log"; then
+  fail "a generic executive error came with the filters' own (above)"
+fi
 echo "check-paraview-point-clouds: all checks passed"

@@ -19,8 +19,9 @@ pixel is black (where NaNs would land: an 8-bit PNG cannot hold one), that
 GI on differs from GI off and is brighter (indirect light added). With a
 LAS path (e.g. the shared tile), uses it instead of the valley and checks
 the same, with Up 0 0 1; the valley's geometry checks are skipped.
-With --bad, opens a truncated LAS file instead: empty outputs, and the
-reader's error in the log (the caller checks it).
+With --bad, opens a truncated LAS file instead, then gives the surfels a
+cloud without normals and the normals a RadiusScale of 0: empty outputs,
+and each error in the log (the caller checks them).
 Prints one line per check; exits non-zero on the first failed one.
 """
 import os
@@ -95,6 +96,16 @@ if las_path == "--bad":
     check(servermanager.Fetch(reader).GetNumberOfPoints() == 0, "truncated: empty output")
     surfels = simple.MRGISurfels(Input=simple.MRGIPointCloudNormals(Input=reader))
     check(servermanager.Fetch(surfels).GetNumberOfPoints() == 0, "truncated: no surfels")
+    # A good cloud with bad filter settings: surfels without normals, a
+    # radius scale of 0. Each must give its filter's error (the caller
+    # checks the log) and an empty output.
+    good = os.path.join(out_dir, "valley.las")
+    write_valley(good)
+    cloud = simple.OpenDataFile(good)
+    check(servermanager.Fetch(simple.MRGISurfels(Input=cloud)).GetNumberOfPoints() == 0,
+          "surfels without normals: empty output")
+    check(servermanager.Fetch(simple.MRGIPointCloudNormals(Input=cloud, RadiusScale=0.0))
+          .GetNumberOfPoints() == 0, "normals with RadiusScale 0: empty output")
     print("pvbatch_point_clouds: bad input checks done")
     sys.exit(0)
 

@@ -1,5 +1,8 @@
 #include "vtkPVMRGIPointCloudNormals.h"
 
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkExecutive.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMRGIPointCloudNormals.h"
@@ -29,6 +32,11 @@ int vtkPVMRGIPointCloudNormals::RequestData(
   normals->SetRadiusScale(this->RadiusScale);
   normals->SetUp(this->Up);
   normals->SetComputeNormals(this->ComputeNormals);
+  // On bad input the inner filter reports the problem itself; its
+  // executive would add a second, generic error ("returned failure").
+  // An observer takes that one: ParaView shows the useful message once.
+  vtkNew<vtkCallbackCommand> quiet;
+  normals->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, quiet);
   normals->Update();
   this->NumberOfDegeneratePoints = normals->GetNumberOfDegeneratePoints();
   this->NumberOfNonFinitePoints = normals->GetNumberOfNonFinitePoints();

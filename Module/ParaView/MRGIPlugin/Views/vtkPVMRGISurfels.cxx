@@ -1,5 +1,8 @@
 #include "vtkPVMRGISurfels.h"
 
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkExecutive.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMRGISurfels.h"
@@ -32,6 +35,11 @@ int vtkPVMRGISurfels::RequestData(
   surfels->SetRadius(this->Radius);
   surfels->SetRadiusScale(this->RadiusScale);
   surfels->SetMaximumNumberOfSurfels(this->MaximumNumberOfSurfels);
+  // On bad input the inner filter reports the problem itself; its
+  // executive would add a second, generic error ("returned failure").
+  // An observer takes that one: ParaView shows the useful message once.
+  vtkNew<vtkCallbackCommand> quiet;
+  surfels->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, quiet);
   surfels->Update();
   this->Stride = surfels->GetStride();
   this->NumberOfSkippedPoints = surfels->GetNumberOfSkippedPoints();
