@@ -34,8 +34,8 @@ measure: per size (640x480 and 1280x960 by default)
 check: the ctest python.KinectCloud. Renders at --size and exits 1 when a
 pixel is NaN/inf or when the cloud-only holes (3x3 closing) exceed
 --max-holes of the covered pixels. --radius-scale multiplies every surfel's
-radius (0.3: a broken cloud the check must fail; --expect-fail inverts the
-exit status). --synthetic renders an organized cloud this script writes
+radius (0.3: a broken cloud the check must fail; with --expect-fail the exit
+status is 0 only when the holes bound failed). --synthetic renders an organized cloud this script writes
 (an ascii PCD: a tilted floor, a box on it with its occlusion shadow, 1% of
 the pixels dropped), so the check runs without ../shared/data; without it,
 the shared Kinect PCD, skipped (exit 0 with a message) when absent.
@@ -243,8 +243,8 @@ def write_synthetic_pcd(path, width=320, height=240, seed=3):
     # Floor: the plane y = 0.6 - 0.35 z (camera frame, y down), seen from 0.6 m above.
     normal, offset = np.array([0.0, 1.0, 0.35]), 0.6
     t_floor = offset / np.maximum(rays @ normal, 1e-9)
-    t_floor[(rays @ normal) <= 1e-3] = np.nan
     points = rays * t_floor[..., None]
+    points[(rays @ normal <= 1e-3) | (points[..., 2] > 2.5)] = np.nan  # beyond the sensor's range
     # A box: its front face at z = 1.2, 0.2 m wide, up to 0.25 m above the floor.
     x, y, z = points[..., 0], points[..., 1], points[..., 2]
     box_face = 1.2
@@ -395,16 +395,21 @@ def check(args):
         failures.append("non-finite pixels")
     if fraction > args.max_holes:
         failures.append("holes between points above the bound")
-    if r["covered_mesh"] == 0 or not (0.9 <= agreement <= 1.1):
-        failures.append("coverage of the cloud and of its mesh differ by more than 10%")
+    # The mesh is the reference for "holes where the mesh covers": it must cover
+    # about what the cloud covers (measured: the cloud 5-11% more, its surfels
+    # reaching half a grid cell past the outermost points).
+    if r["covered_mesh"] == 0 or not (0.8 <= agreement <= 1.25):
+        failures.append("coverage of the cloud and of its mesh differ by more than 20%")
     if failures:
         print("FAILED: " + "; ".join(failures))
     else:
         print("passed")
-    failed = bool(failures)
     if args.expect_fail:
-        print("(expected to fail: %s)" % ("it did" if failed else "it did NOT"))
+        # The broken cloud must fail on its holes (not only on something else).
+        failed = any(f.startswith("holes") for f in failures)
+        print("(expected to fail on its holes: %s)" % ("it did" if failed else "it did NOT"))
         return 0 if failed else 1
+    failed = bool(failures)
     return 1 if failed else 0
 
 
