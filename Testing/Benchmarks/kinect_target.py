@@ -25,10 +25,12 @@ measure: per size (640x480 and 1280x960 by default)
     nearest one (the range step of the grid radii), and one triangle per block of three such pixels (the
     fourth missing, as PCL's OrganizedFastMesh does); the cloud's own points, normals and colours, drawn by the
     cloud's actor (same camera, lights, ground and staging); both coverages;
-  - times: cold (a new window: scene build, then the first Render, which
-    uploads and draws) and steady state (median of --frames repeated Renders
-    of the same view), GI on and off, each the median over --repeats
-    windows, cloud and mesh alternating in one process; ratios cloud/mesh.
+  - times: cold (a new window: the scene build, then the first Render,
+    which uploads and draws) and steady state (median of --frames Renders of
+    the same view, "still", and with the camera turning 0.5 degree a frame,
+    "orbit"), GI on and off, each the median over --repeats windows, cloud
+    and mesh alternating in one process; ratios cloud/mesh. The mesh's build
+    is the cloud's plus its triangulation (it is made from the built cloud).
   - --pictures DIR: the render and a map of the holes (PNG) per size.
 
 check: the ctest python.KinectCloud. Renders at --size and exits 1 when a
@@ -36,8 +38,8 @@ pixel is NaN/inf or when the cloud-only holes (3x3 closing) exceed
 --max-holes of the covered pixels. --radius-scale multiplies every surfel's
 radius (0.3: a broken cloud the check must fail; with --expect-fail the exit
 status is 0 only when the holes bound failed). --synthetic renders an organized cloud this script writes
-(an ascii PCD: a tilted floor, a box on it with its occlusion shadow, 1% of
-the pixels dropped), so the check runs without ../shared/data; without it,
+(an ascii PCD: a tilted floor out to 4 m, a box on it with its occlusion
+shadow, a Kinect's depth quantization, 1% of the pixels dropped), so the check runs without ../shared/data; without it,
 the shared Kinect PCD, skipped (exit 0 with a message) when absent.
 
     export PYTHONPATH=build/lib/python3/dist-packages
@@ -82,7 +84,7 @@ def surfels_of(renderer):
     raise RuntimeError("the scene builder added no surfels")
 
 
-def build(path, size, gi=True, radius_scale=1.0):
+def build(path, size, gi=True, radius_scale=1.0, grid_radii=True):
     """A window holding `path` staged as mrgi-render stages it; the MRGI pass as its defaults."""
     window, renderer = mb.make_window(*size)
     renderer.SetUseFXAA(True)  # mrgi-render's default --aa fxaa
@@ -97,6 +99,15 @@ def build(path, size, gi=True, radius_scale=1.0):
     if not builder.Build(renderer):
         raise RuntimeError(builder.GetLastErrorMessage())
     actor, surfels = surfels_of(renderer)
+    if not grid_radii:
+        # The radii as before vtkMRGIPointCloudNormals::GridRadii: the kNN spacing only
+        # (the normals are kept; the camera stays as framed with the grid radii).
+        knn = mrgi.vtkMRGIPointCloudNormals()
+        knn.SetInputData(surfels.GetInputDataObject(0, 0))
+        knn.GridRadiiOff()
+        knn.Update()
+        surfels.SetInputData(knn.GetOutput())
+        surfels.Update()
     if radius_scale != 1.0:
         surfels.SetRadiusScale(radius_scale)
         surfels.Update()
@@ -234,8 +245,9 @@ def hole_picture(mask_cloud, mask_mesh, h_cloud, path):
 # --------------------------------------------------------------------------- synthetic cloud
 def write_synthetic_pcd(path, width=320, height=240, seed=3):
     """An organized ascii PCD as a depth camera sees it: a floor tilted away from the
-    sensor (grazing towards the top rows), a box standing on it, NaN in the box's
-    occlusion shadow (the projector's parallax, to its right) and in 1% of random pixels."""
+    sensor (grazing towards the top rows) out to 4 m, a box standing on it, NaN in the
+    box's occlusion shadow (the projector's parallax, to its right) and in 1% of random
+    pixels, depths quantized as a Kinect's."""
     rng = np.random.default_rng(seed)
     f = 525.0 * width / 640.0
     u, v = np.meshgrid(np.arange(width) - width / 2 + 0.5, np.arange(height) - height / 2 + 0.5)
@@ -244,7 +256,7 @@ def write_synthetic_pcd(path, width=320, height=240, seed=3):
     normal, offset = np.array([0.0, 1.0, 0.35]), 0.6
     t_floor = offset / np.maximum(rays @ normal, 1e-9)
     points = rays * t_floor[..., None]
-    points[(rays @ normal <= 1e-3) | (points[..., 2] > 2.5)] = np.nan  # beyond the sensor's range
+    points[(rays @ normal <= 1e-3) | (points[..., 2] > 4.0)] = np.nan  # beyond the sensor's 4 m
     # A box: its front face at z = 1.2, 0.2 m wide, up to 0.25 m above the floor.
     x, y, z = points[..., 0], points[..., 1], points[..., 2]
     box_face = 1.2
@@ -259,6 +271,13 @@ def write_synthetic_pcd(path, width=320, height=240, seed=3):
     shadow = (~on_box) & (cols > right_edge[:, None]) & (cols <= right_edge[:, None] + 12) & \
         (right_edge[:, None] >= 0) & (points[..., 2] > box_face)
     points[shadow] = np.nan
+    # The depth quantization of a structured-light sensor (Kinect: disparity in
+    # 1/8 pixel steps, a depth step of about 2.85e-3 z^2 m): rows of a grazing
+    # surface bunch on discrete depths, their gaps wider than the kNN spacing.
+    q = 2.85e-3
+    with np.errstate(invalid="ignore", divide="ignore"):
+        zq = 1.0 / (np.round(1.0 / (points[..., 2] * q)) * q)
+    points = rays * zq[..., None]
     points[rng.random((height, width)) < 0.01] = np.nan
     points[~np.isfinite(points).all(axis=-1)] = np.nan
     grey = np.where(on_box, 0xB04030, 0xC8C0B0).astype(np.uint32)
@@ -275,13 +294,16 @@ def write_synthetic_pcd(path, width=320, height=240, seed=3):
 
 
 # --------------------------------------------------------------------------- commands
-def look(path, size, depth_step, pictures=None, radius_scale=1.0):
+def look(path, size, depth_step, pictures=None, radius_scale=1.0, grid_radii=True):
     """NaN counts, coverage and holes of the cloud and of its mesh at one size."""
-    window, renderer, gi, actor, surfels = build(path, size, radius_scale=radius_scale)
+    window, renderer, gi, actor, surfels = build(path, size, radius_scale=radius_scale,
+                                                 grid_radii=grid_radii)
     window.Render()
     result = {"nan_cloud": non_finite(hdr(window, gi))}
+    suffix = "" if grid_radii else "-knn"
     if pictures:
-        mb.write_display(hdr(window, gi), os.path.join(pictures, "kinect-cloud-%dx%d.png" % size), 1.0)
+        mb.write_display(hdr(window, gi), os.path.join(pictures, "kinect-cloud-%dx%d%s.png"
+                                                       % (size + (suffix,))), 1.0)
     mask_cloud = coverage(window, renderer, actor)
     cloud = surfels.GetInputDataObject(0, 0)
     _, blocks, _ = use_mesh(actor, surfels, depth_step)
@@ -300,24 +322,32 @@ def look(path, size, depth_step, pictures=None, radius_scale=1.0):
             hole_map = hc
     if pictures:
         hole_picture(mask_cloud, mask_mesh, hole_map,
-                     os.path.join(pictures, "kinect-holes-%dx%d.png" % size))
+                     os.path.join(pictures, "kinect-holes-%dx%d%s.png" % (size + (suffix,))))
     return result
 
 
 def timing(path, size, depth_step, gi, repeats, frames):
-    """Medians over `repeats` windows: cold (build, first Render) and steady (median Render)."""
-    out = {"cloud": {"build": [], "first": [], "steady": []},
-           "mesh": {"build": [], "first": [], "steady": []}}
+    """Medians over `repeats` windows of: the scene build (cloud: read, normals, surfels,
+    staging; mesh: the triangulation added), the first Render (upload, first draw), the
+    median of `frames` Renders of the same view (still) and of `frames` Renders with the
+    camera turning 0.5 degree a frame (orbit: nothing the pass can reuse)."""
+    keys = ("build", "first", "still", "orbit")
+    out = {kind: {k: [] for k in keys} for kind in ("cloud", "mesh")}
     for _ in range(repeats):
         for kind in ("cloud", "mesh"):
             start = time.perf_counter()
             window, renderer, gi_pass, actor, surfels = build(path, size, gi=gi)
-            build_ms = (time.perf_counter() - start) * 1e3
             if kind == "mesh":
-                build_ms += use_mesh(actor, surfels, depth_step)[2]
-            out[kind]["build"].append(build_ms)
+                use_mesh(actor, surfels, depth_step)
+            out[kind]["build"].append((time.perf_counter() - start) * 1e3)
             out[kind]["first"].append(render_ms(window))
-            out[kind]["steady"].append(statistics.median(render_ms(window) for _ in range(frames)))
+            out[kind]["still"].append(statistics.median(render_ms(window) for _ in range(frames)))
+            orbit = []
+            for _ in range(frames):
+                renderer.GetActiveCamera().Azimuth(0.5)
+                renderer.ResetCameraClippingRange()
+                orbit.append(render_ms(window))
+            out[kind]["orbit"].append(statistics.median(orbit))
             del window, renderer, gi_pass
     return {k: {m: statistics.median(v) for m, v in d.items()} for k, d in out.items()}
 
@@ -336,7 +366,7 @@ def measure(args):
         os.makedirs(args.pictures, exist_ok=True)
     print("cloud: %s; mesh: 2x2 blocks with depth step <= %g of the depth" % (path, args.depth_step))
     for size in args.sizes:
-        r = look(path, size, args.depth_step, args.pictures, args.radius_scale)
+        r = look(path, size, args.depth_step, args.pictures, args.radius_scale, args.grid_radii)
         print("%dx%d: %d points, %d surfels, mesh of %d triangles"
               % (size + (r["points"], r["surfels"], r["blocks"])))
         print("  NaN/inf pixels (HDR colour): cloud %d, mesh %d" % (r["nan_cloud"], r["nan_mesh"]))
@@ -351,18 +381,19 @@ def measure(args):
                      r["holes%d_mesh" % k], r["holes%d_cloud_only" % k]))
     if args.repeats <= 0:
         return 0
-    print("times (ms; medians over %d windows, steady = median of %d frames):" % (args.repeats, args.frames))
-    print("| size | GI | cloud build | mesh build | cloud first | mesh first | first ratio |"
-          " cloud steady | mesh steady | steady ratio | cold ratio (build + first) |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("times (ms; medians over %d windows; still, orbit: median of %d frames):"
+          % (args.repeats, args.frames))
+    print("| size | GI | build cloud / mesh | first frame cloud / mesh | ratio |"
+          " still cloud / mesh | ratio | orbit cloud / mesh | ratio |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for size in args.sizes:
         for gi in (True, False):
             t = timing(path, size, args.depth_step, gi, args.repeats, args.frames)
             c, m = t["cloud"], t["mesh"]
-            print("| %dx%d | %s | %.0f | %.0f | %.0f | %.0f | %.2f | %.0f | %.0f | %.2f | %.2f |"
+            print("| %dx%d | %s | %.0f / %.0f | %.0f / %.0f | %.2f | %.0f / %.0f | %.2f | %.0f / %.0f | %.2f |"
                   % (size + ("on" if gi else "off", c["build"], m["build"], c["first"], m["first"],
-                             c["first"] / m["first"], c["steady"], m["steady"], c["steady"] / m["steady"],
-                             (c["build"] + c["first"]) / (m["build"] + m["first"]))), flush=True)
+                             c["first"] / m["first"], c["still"], m["still"], c["still"] / m["still"],
+                             c["orbit"], m["orbit"], c["orbit"] / m["orbit"])), flush=True)
     return 0
 
 
@@ -379,7 +410,8 @@ def check(args):
             print("check: %s not found (set MRGI_SHARED_DATA_DIR): skipped" % path)
             return 0
     try:
-        r = look(path, args.size, args.depth_step, radius_scale=args.radius_scale)
+        r = look(path, args.size, args.depth_step, radius_scale=args.radius_scale,
+                 grid_radii=args.grid_radii)
     finally:
         if tmp:
             shutil.rmtree(tmp, ignore_errors=True)
@@ -422,6 +454,8 @@ def main():
         p.add_argument("--depth-step", type=float, default=0.03,
                        help="mesh: largest depth difference in a 2x2 block, relative (0.03)")
         p.add_argument("--radius-scale", type=float, default=1.0)
+        p.add_argument("--grid-radii", choices=("on", "off"), default="on",
+                       help="off: the radii before GridRadii (kNN spacing only)")
     m = sub.choices["measure"]
     m.add_argument("--sizes", type=lambda s: [parse_size(v) for v in s.split(",")],
                    default=[(640, 480), (1280, 960)])
@@ -435,6 +469,7 @@ def main():
                    help="bound on the cloud-only holes, fraction of the mesh's covered pixels")
     c.add_argument("--expect-fail", action="store_true")
     args = parser.parse_args()
+    args.grid_radii = args.grid_radii == "on"
     return measure(args) if args.command == "measure" else check(args)
 
 
