@@ -31,7 +31,8 @@ measure: per size (640x480 and 1280x960 by default)
     "orbit"), GI on and off, each the median over --repeats windows, cloud
     and mesh alternating in one process; ratios cloud/mesh. The mesh's build
     is the cloud's plus its triangulation (it is made from the built cloud).
-  - --pictures DIR: the render and a map of the holes (PNG) per size.
+  - --pictures DIR: the renders of the cloud and of the mesh and a map of
+    the holes (PNG) per size.
 
 check: the ctest python.KinectCloud. Renders at --size and exits 1 when a
 pixel is NaN/inf or when the cloud-only holes (3x3 closing) exceed
@@ -98,6 +99,9 @@ def build(path, size, gi=True, radius_scale=1.0, grid_radii=True):
     builder.SetStaging(staging)
     if not builder.Build(renderer):
         raise RuntimeError(builder.GetLastErrorMessage())
+    # A vtkMRGIStaging takes its ground and key light away when it is deleted:
+    # keep it (and the builder holding it) as long as the window.
+    window.mrgi_staging = (builder, staging)
     actor, surfels = surfels_of(renderer)
     if not grid_radii:
         # The radii as before vtkMRGIPointCloudNormals::GridRadii: the kNN spacing only
@@ -309,6 +313,9 @@ def look(path, size, depth_step, pictures=None, radius_scale=1.0, grid_radii=Tru
     _, blocks, _ = use_mesh(actor, surfels, depth_step)
     window.Render()
     result["nan_mesh"] = non_finite(hdr(window, gi))
+    if pictures:
+        mb.write_display(hdr(window, gi), os.path.join(pictures, "kinect-mesh-%dx%d%s.png"
+                                                       % (size + (suffix,))), 1.0)
     mask_mesh = coverage(window, renderer, actor)
     result.update(points=cloud.GetNumberOfPoints(), surfels=surfels.GetOutput().GetNumberOfPolys(),
                   blocks=blocks, covered_cloud=int(mask_cloud.sum()), covered_mesh=int(mask_mesh.sum()),
