@@ -435,7 +435,7 @@ def check(args):
     if fraction > args.max_holes:
         failures.append("holes between points above the bound")
     # The mesh is the reference for "holes where the mesh covers": it must cover
-    # about what the cloud covers (measured: the cloud 5-11% more, its surfels
+    # about what the cloud covers (measured: the cloud 4-12% more, its surfels
     # reaching half a grid cell past the outermost points).
     if r["covered_mesh"] == 0 or not (0.8 <= agreement <= 1.25):
         failures.append("coverage of the cloud and of its mesh differ by more than 20%")
