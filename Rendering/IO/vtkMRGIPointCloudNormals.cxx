@@ -193,7 +193,8 @@ int vtkMRGIPointCloudNormals::RequestData(
     // PCL (the override) reports out-of-memory and its own failures so.
     vtkErrorMacro(<< "estimating normals and radii of " << n << " points failed: " << e.what());
   }
-  if (!estimated || (this->GridRadii && !this->RaiseRadiiOnGrid(input, xyz, n, radii->GetPointer(0))))
+  if (!estimated ||
+    (this->GridRadii && !this->RaiseRadiiOnGrid(input, xyz, n, radii->GetPointer(0))))
   {
     output->Initialize();
     return 0;
@@ -263,9 +264,8 @@ bool vtkMRGIPointCloudNormals::RaiseRadiiOnGrid(
   {
     const double q = pixels->GetComponent(i, 0);
     // Out-of-range indices are left off the grid by the core.
-    where[static_cast<size_t>(i)] = std::isfinite(q) && q >= 0.0 && q < w * h
-      ? static_cast<int64_t>(q)
-      : -1;
+    where[static_cast<size_t>(i)] =
+      std::isfinite(q) && q >= 0.0 && q < w * h ? static_cast<int64_t>(q) : -1;
   }
   double origin[3] = { 0.0, 0.0, 0.0 };
   vtkDataArray* sensor = input->GetFieldData()->GetArray("SensorOrigin");

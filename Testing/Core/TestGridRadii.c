@@ -41,8 +41,8 @@ static void test_stretched_cells_covered(void)
   const double origin[3] = { 0.0, 0.0, 0.0 };
   mrgi_grid_radii_stats stats;
   mrgi_error err;
-  MRGI_CHECK(mrgi_grid_radii_apply(xyz, pixels, W * H, W, H, origin, 0.03, 1.0, radii, &stats,
-               &err) == MRGI_OK);
+  MRGI_CHECK(mrgi_grid_radii_apply(
+               xyz, pixels, W * H, W, H, origin, 0.03, 1.0, radii, &stats, &err) == MRGI_OK);
   MRGI_CHECK(stats.placed == W * H && stats.unplaced == 0 && stats.isolated == 0);
   MRGI_CHECK(stats.raised == W * H);
   const double diagonal = sqrt(a * a + b * b);
@@ -68,8 +68,8 @@ static void test_scale_and_only_raised(void)
   const double origin[3] = { 0.0, 0.0, 0.0 };
   mrgi_grid_radii_stats stats;
   mrgi_error err;
-  MRGI_CHECK(mrgi_grid_radii_apply(xyz, pixels, W * H, W, H, origin, 0.03, 2.0, radii, &stats,
-               &err) == MRGI_OK);
+  MRGI_CHECK(mrgi_grid_radii_apply(
+               xyz, pixels, W * H, W, H, origin, 0.03, 2.0, radii, &stats, &err) == MRGI_OK);
   MRGI_CHECK(radii[0] == 1.0f);
   MRGI_CHECK(stats.raised == W * H - 1);
   MRGI_CHECK_NEAR(radii[W + 1], 2.0 * 0.002 * sqrt(2.0) / SQRT_PI, 1e-6);
@@ -96,14 +96,14 @@ static void test_discontinuity_not_bridged(void)
   memset(radii, 0, sizeof(radii));
   const double origin[3] = { 0.0, 0.0, 0.0 };
   mrgi_error err;
-  MRGI_CHECK(mrgi_grid_radii_apply(xyz, pixels, W * H, W, H, origin, 0.03, 1.0, radii, NULL,
-               &err) == MRGI_OK);
+  MRGI_CHECK(mrgi_grid_radii_apply(
+               xyz, pixels, W * H, W, H, origin, 0.03, 1.0, radii, NULL, &err) == MRGI_OK);
   const int edge_far = 2 * W + W / 2 - 1, edge_near = 2 * W + W / 2;
   MRGI_CHECK_NEAR(radii[edge_far], s * sqrt(2.0) / SQRT_PI, 1e-6);
   MRGI_CHECK_NEAR(radii[edge_near], 0.5 * s * sqrt(2.0) / SQRT_PI, 1e-6);
   /* A step of 3% would be bridged with range_step 0.5. */
-  MRGI_CHECK(mrgi_grid_radii_apply(xyz, pixels, W * H, W, H, origin, 1.5, 1.0, radii, NULL,
-               &err) == MRGI_OK);
+  MRGI_CHECK(mrgi_grid_radii_apply(xyz, pixels, W * H, W, H, origin, 1.5, 1.0, radii, NULL, &err) ==
+    MRGI_OK);
   MRGI_CHECK(radii[edge_far] > 0.2f);
 }
 
@@ -127,8 +127,8 @@ static void test_isolated_nonfinite_misplaced(void)
   const double origin[3] = { 0.0, 0.0, 0.0 };
   mrgi_grid_radii_stats stats;
   mrgi_error err;
-  MRGI_CHECK(mrgi_grid_radii_apply(xyz, pixels, W * H, W, H, origin, 0.03, 1.0, radii, &stats,
-               &err) == MRGI_OK);
+  MRGI_CHECK(mrgi_grid_radii_apply(
+               xyz, pixels, W * H, W, H, origin, 0.03, 1.0, radii, &stats, &err) == MRGI_OK);
   MRGI_CHECK(stats.unplaced == 3);
   MRGI_CHECK(stats.placed == W * H - 3 - 3);
   MRGI_CHECK(stats.isolated == 1);
@@ -160,24 +160,24 @@ static void test_bad_arguments(void)
     MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(mrgi_grid_radii_apply(xyz, pixels, 4, 0, H, origin, 0.03, 1, radii, &stats, &err) ==
     MRGI_ERR_INVALID_ARGUMENT);
-  MRGI_CHECK(mrgi_grid_radii_apply(xyz, pixels, 4, (int64_t)1 << 20, (int64_t)1 << 20, origin,
-               0.03, 1, radii, &stats, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_grid_radii_apply(xyz, pixels, 4, (int64_t)1 << 20, (int64_t)1 << 20, origin, 0.03,
+               1, radii, &stats, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "grid") != NULL);
   MRGI_CHECK(mrgi_grid_radii_apply(xyz, pixels, 4, W, H, bad_origin, 0.03, 1, radii, &stats,
                &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(mrgi_grid_radii_apply(xyz, pixels, 4, W, H, origin, 0.0, 1, radii, &stats, &err) ==
     MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "range_step") != NULL);
-  MRGI_CHECK(mrgi_grid_radii_apply(xyz, pixels, 4, W, H, origin, 0.03, NAN, radii, &stats,
-               &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_grid_radii_apply(xyz, pixels, 4, W, H, origin, 0.03, NAN, radii, &stats, &err) ==
+    MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "scale") != NULL);
   MRGI_CHECK(stats.placed == 0 && stats.raised == 0);
   for (int i = 0; i < W * H; ++i)
   {
     MRGI_CHECK(radii[i] == 0.0f); /* untouched on failure */
   }
-  MRGI_CHECK(mrgi_grid_radii_apply(NULL, NULL, 0, W, H, origin, 0.03, 1, NULL, &stats, &err) ==
-    MRGI_OK);
+  MRGI_CHECK(
+    mrgi_grid_radii_apply(NULL, NULL, 0, W, H, origin, 0.03, 1, NULL, &stats, &err) == MRGI_OK);
 }
 
 int main(int argc, char** argv)

@@ -30,19 +30,22 @@ mrgi_status mrgi_grid_radii_apply(const float* positions, const int64_t* pixels,
   }
   if (count < 0 || count > MRGI_GRID_RADII_MAX_POINTS)
   {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-      "count %lld is outside [0, %lld]", (long long)count, (long long)MRGI_GRID_RADII_MAX_POINTS);
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "count %lld is outside [0, %lld]",
+      (long long)count, (long long)MRGI_GRID_RADII_MAX_POINTS);
   }
   if (count > 0 && (!positions || !pixels || !radii))
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "%s is NULL with count %lld",
-      !positions ? "positions" : !pixels ? "pixels" : "radii", (long long)count);
+      !positions  ? "positions"
+        : !pixels ? "pixels"
+                  : "radii",
+      (long long)count);
   }
   if (width < 1 || height < 1 || width > MRGI_GRID_RADII_MAX_PIXELS / height)
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-      "grid %lld x %lld: each side must be >= 1 and the grid at most %lld pixels",
-      (long long)width, (long long)height, (long long)MRGI_GRID_RADII_MAX_PIXELS);
+      "grid %lld x %lld: each side must be >= 1 and the grid at most %lld pixels", (long long)width,
+      (long long)height, (long long)MRGI_GRID_RADII_MAX_PIXELS);
   }
   if (!origin || !isfinite(origin[0]) || !isfinite(origin[1]) || !isfinite(origin[2]))
   {
@@ -66,8 +69,8 @@ mrgi_status mrgi_grid_radii_apply(const float* positions, const int64_t* pixels,
   int32_t* grid = (int32_t*)malloc((size_t)n_pixels * sizeof(int32_t));
   if (!grid)
   {
-    return mrgi_error_set(err, MRGI_ERR_OUT_OF_MEMORY,
-      "cannot allocate the %lld x %lld grid", (long long)width, (long long)height);
+    return mrgi_error_set(err, MRGI_ERR_OUT_OF_MEMORY, "cannot allocate the %lld x %lld grid",
+      (long long)width, (long long)height);
   }
   /* -1: empty; -2: claimed twice (left out, with both claimants). */
   for (int64_t q = 0; q < n_pixels; ++q)
