@@ -49,7 +49,6 @@ the shared Kinect PCD, skipped (exit 0 with a message) when absent.
     /usr/bin/python3 Testing/Benchmarks/kinect_target.py check --synthetic --radius-scale 0.3 --expect-fail
 """
 import argparse
-import math
 import os
 import shutil
 import statistics
@@ -156,7 +155,6 @@ def grid_mesh(cloud, depth_step, three_corners=True):
         sel = three & ~finite[missing]
         triangles.append(np.stack([t[sel] for t in tri], 1))
     triangles = np.concatenate(triangles)
-    ok = full | three
     cells = np.hstack([np.full((len(triangles), 1), 3, dtype=np.int64), triangles]).ravel()
     polys = vtkCellArray()
     polys.SetCells(len(triangles), numpy_to_vtkIdTypeArray(cells, deep=True))
@@ -262,7 +260,7 @@ def write_synthetic_pcd(path, width=320, height=240, seed=3):
     points = rays * t_floor[..., None]
     points[(rays @ normal <= 1e-3) | (points[..., 2] > 4.0)] = np.nan  # beyond the sensor's 4 m
     # A box: its front face at z = 1.2, 0.2 m wide, up to 0.25 m above the floor.
-    x, y, z = points[..., 0], points[..., 1], points[..., 2]
+    z = points[..., 2]
     box_face = 1.2
     t_box = box_face / rays[..., 2]
     bx, by = rays[..., 0] * t_box, rays[..., 1] * t_box
