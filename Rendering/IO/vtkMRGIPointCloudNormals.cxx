@@ -10,6 +10,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 
+#include "mrgi_grid_radii.h"
 #include "mrgi_point_normals.h"
 
 #include <cmath>
@@ -86,6 +87,7 @@ int vtkMRGIPointCloudNormals::RequestData(
   }
   this->NumberOfDegeneratePoints = 0;
   this->NumberOfNonFinitePoints = 0;
+  this->NumberOfGridRaisedPoints = 0;
   output->ShallowCopy(input);
   if (!std::isfinite(this->RadiusScale) || !(this->RadiusScale > 0.0))
   {
@@ -191,7 +193,8 @@ int vtkMRGIPointCloudNormals::RequestData(
     // PCL (the override) reports out-of-memory and its own failures so.
     vtkErrorMacro(<< "estimating normals and radii of " << n << " points failed: " << e.what());
   }
-  if (!estimated)
+  if (!estimated ||
+    (this->GridRadii && !this->RaiseRadiiOnGrid(input, xyz, n, radii->GetPointer(0))))
   {
     output->Initialize();
     return 0;
@@ -232,9 +235,66 @@ bool vtkMRGIPointCloudNormals::Estimate(vtkPolyData*, const float* xyz, vtkIdTyp
   return true;
 }
 
+//------------------------------------------------------------------------------
+// A depth camera samples a surface seen at a grazing angle in cells much
+// longer than wide; the kNN radius (the spacing of evenly sampled surfaces)
+// leaves gaps along them. On the sensor's grid each surfel is made to cover
+// its own cell (mrgi_grid_radii.h). Unorganized clouds are left as they are.
+bool vtkMRGIPointCloudNormals::RaiseRadiiOnGrid(
+  vtkPolyData* input, const float* xyz, vtkIdType n, float* radii)
+{
+  this->NumberOfGridRaisedPoints = 0;
+  vtkDataArray* dims = input->GetFieldData()->GetArray("OrganizedDimensions");
+  vtkDataArray* pixels = input->GetPointData()->GetArray("PixelIndex");
+  if (!dims || dims->GetNumberOfTuples() * dims->GetNumberOfComponents() != 2 || !pixels ||
+    pixels->GetNumberOfTuples() != n || pixels->GetNumberOfComponents() != 1)
+  {
+    return true;
+  }
+  const double w = Flat(dims, 0), h = Flat(dims, 1);
+  if (!(w >= 1.0 && h >= 1.0 && w * h <= static_cast<double>(MRGI_GRID_RADII_MAX_PIXELS)))
+  {
+    vtkErrorMacro(<< "OrganizedDimensions " << w << " x " << h
+                  << " is not a grid this filter handles (each side >= 1, at most "
+                  << MRGI_GRID_RADII_MAX_PIXELS << " pixels)");
+    return false;
+  }
+  std::vector<int64_t> where(static_cast<size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const double q = pixels->GetComponent(i, 0);
+    // Out-of-range indices are left off the grid by the core.
+    where[static_cast<size_t>(i)] =
+      std::isfinite(q) && q >= 0.0 && q < w * h ? static_cast<int64_t>(q) : -1;
+  }
+  double origin[3] = { 0.0, 0.0, 0.0 };
+  vtkDataArray* sensor = input->GetFieldData()->GetArray("SensorOrigin");
+  if (sensor && sensor->GetNumberOfTuples() * sensor->GetNumberOfComponents() >= 3)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      origin[a] = Flat(sensor, a);
+    }
+  }
+  mrgi_grid_radii_stats stats;
+  mrgi_error err;
+  if (mrgi_grid_radii_apply(xyz, where.data(), n, static_cast<int64_t>(w), static_cast<int64_t>(h),
+        origin, MRGI_GRID_RADII_DEFAULT_RANGE_STEP, this->RadiusScale, radii, &stats,
+        &err) != MRGI_OK)
+  {
+    vtkErrorMacro(<< "radii on the grid of the organized cloud: " << err.message);
+    return false;
+  }
+  this->NumberOfGridRaisedPoints = stats.raised;
+  return true;
+}
+
+//------------------------------------------------------------------------------
 void vtkMRGIPointCloudNormals::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "GridRadii: " << (this->GridRadii ? "On" : "Off") << "\n";
+  os << indent << "NumberOfGridRaisedPoints: " << this->NumberOfGridRaisedPoints << "\n";
   os << indent << "NumberOfNeighbors: " << this->NumberOfNeighbors << "\n";
   os << indent << "RadiusScale: " << this->RadiusScale << "\n";
   os << indent << "ViewPoint: (" << this->ViewPoint[0] << ", " << this->ViewPoint[1] << ", "

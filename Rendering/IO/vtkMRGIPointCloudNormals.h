@@ -9,6 +9,8 @@
  *   between the point and its neighbours: RadiusScale times the local sample
  *   spacing, estimated from the distance d_k to the k-th nearest neighbour
  *   as d_k * sqrt(pi / k) (exact for evenly sampled surfaces).
+ *   On organized clouds (depth-camera frames) it is raised where needed to
+ *   cover the point's cell of the sensor's grid (GridRadii).
  *
  * Normals are oriented towards ViewPoint when UseViewPoint is on; else
  * towards the field data "SensorOrigin" (3 values) when it says where a
@@ -120,6 +122,24 @@ public:
 
   ///@{
   /**
+   * On organized clouds (field data "OrganizedDimensions" and point data
+   * "PixelIndex", as vtkMRGIPCDReader writes them), raise each radius so
+   * that its surfel covers the point's own cell of the sensor's grid
+   * (mrgi_grid_radii.h): at grazing angles the cells are much longer than
+   * the kNN spacing, which leaves holes between the surfels. RadiusScale
+   * multiplies these radii too. On by default; no effect on unorganized
+   * clouds.
+   */
+  vtkSetMacro(GridRadii, bool);
+  vtkGetMacro(GridRadii, bool);
+  vtkBooleanMacro(GridRadii, bool);
+  ///@}
+
+  /** Points whose radius the grid raised in the last run (GridRadii). */
+  vtkGetMacro(NumberOfGridRaisedPoints, vtkIdType);
+
+  ///@{
+  /**
    * What the last run did: the orientation used, the points with a fallback
    * normal (no plane in their neighbourhood) and those skipped because a
    * coordinate was not finite.
@@ -145,7 +165,12 @@ protected:
   virtual bool Estimate(vtkPolyData* input, const float* xyz, vtkIdType n, int orientation,
     const double reference[3], float* normals, float* radii);
 
+  /** GridRadii on `input` (true when unorganized); vtkErrorMacro and false on failure. */
+  bool RaiseRadiiOnGrid(vtkPolyData* input, const float* xyz, vtkIdType n, float* radii);
+
   int NumberOfNeighbors = 16;
+  bool GridRadii = true;
+  vtkIdType NumberOfGridRaisedPoints = 0;
   double RadiusScale = 1.0;
   double ViewPoint[3] = { 0.0, 0.0, 0.0 };
   bool UseViewPoint = false;

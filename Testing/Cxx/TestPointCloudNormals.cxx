@@ -6,7 +6,8 @@
 // normals are kept unless ComputeNormals; the pipeline caches the result
 // (RequestData runs again only when the input or a property changes); bad
 // settings are errors with an empty output; the PCD reader's base class
-// refuses to read, naming the missing module.
+// refuses to read, naming the missing module; organized clouds get radii
+// that cover their grid cells (GridRadii).
 #include "mrgiTestUtilities.h"
 
 #include "vtkCallbackCommand.h"
@@ -239,6 +240,65 @@ void TestDegenerateInputs()
   MRGI_TEST_CHECK(filter->GetOutput()->GetNumberOfPoints() == 0);
 }
 
+// An organized cloud seen at a grazing angle (cells 4x longer than wide)
+// gets radii that cover its grid cells with GridRadii (the default), the
+// kNN radius without; a bad OrganizedDimensions is an error.
+void TestGridRadii()
+{
+  const int w = 40, h = 30;
+  const double a = 0.002, b = 0.008;
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToFloat();
+  vtkNew<vtkIntArray> pixels;
+  pixels->SetName("PixelIndex");
+  for (int y = 0; y < h; ++y)
+  {
+    for (int x = 0; x < w; ++x)
+    {
+      points->InsertNextPoint(a * x, b * y, 1.0);
+      pixels->InsertNextValue(y * w + x);
+    }
+  }
+  vtkNew<vtkPolyData> grid;
+  grid->SetPoints(points);
+  grid->GetPointData()->AddArray(pixels);
+  vtkNew<vtkIntArray> dims;
+  dims->SetName("OrganizedDimensions");
+  dims->InsertNextValue(w);
+  dims->InsertNextValue(h);
+  grid->GetFieldData()->AddArray(dims);
+  vtkNew<vtkMRGIPointCloudNormals> filter;
+  filter->SetInputData(grid);
+  MRGI_TEST_CHECK(filter->GetGridRadii());
+  filter->Update();
+  const vtkIdType middle = (h / 2) * w + w / 2;
+  const double covering = std::sqrt(a * a + b * b) / std::sqrt(Pi);
+  vtkDataArray* radius = filter->GetOutput()->GetPointData()->GetArray("Radius");
+  MRGI_TEST_CHECK(std::fabs(radius->GetComponent(middle, 0) - covering) < 1e-6);
+  // Interior points (corners and borders may have a larger kNN radius).
+  MRGI_TEST_CHECK(filter->GetNumberOfGridRaisedPoints() >= (w - 2) * (h - 2));
+  filter->GridRadiiOff();
+  filter->Update();
+  radius = filter->GetOutput()->GetPointData()->GetArray("Radius");
+  // The kNN radius: its square surfel does not reach the cell's corners.
+  MRGI_TEST_CHECK(radius->GetComponent(middle, 0) < 0.95 * covering);
+  MRGI_TEST_CHECK(filter->GetNumberOfGridRaisedPoints() == 0);
+  // Without its grid the same points are an unorganized cloud: kNN radii.
+  grid->GetFieldData()->RemoveArray("OrganizedDimensions");
+  filter->GridRadiiOn();
+  filter->Update();
+  MRGI_TEST_CHECK(filter->GetNumberOfGridRaisedPoints() == 0);
+  // A grid of 0 x 30 pixels is refused.
+  vtkNew<mrgitest::ErrorCatcher> errors;
+  filter->AddObserver(vtkCommand::ErrorEvent, errors);
+  dims->SetValue(0, 0);
+  grid->GetFieldData()->AddArray(dims);
+  grid->Modified();
+  filter->Update();
+  MRGI_TEST_CHECK(errors->Caught("OrganizedDimensions"));
+  MRGI_TEST_CHECK(filter->GetOutput()->GetNumberOfPoints() == 0);
+}
+
 void TestPCDReaderBase()
 {
   // This program does not load MRGI::RenderingPCL: the base class answers.
@@ -258,5 +318,5 @@ int main(int argc, char* argv[])
   return mrgitest::RunCases(argc, argv,
     { MRGI_TEST_CASE(TestSphereAndOrientation), MRGI_TEST_CASE(TestCaching),
       MRGI_TEST_CASE(TestKeepsInputNormals), MRGI_TEST_CASE(TestDegenerateInputs),
-      MRGI_TEST_CASE(TestPCDReaderBase) });
+      MRGI_TEST_CASE(TestGridRadii), MRGI_TEST_CASE(TestPCDReaderBase) });
 }
