@@ -332,10 +332,11 @@ void FrontOf(int up, double front[3])
 vtkMRGIStaging::vtkMRGIStaging() = default;
 
 //------------------------------------------------------------------------------
-vtkMRGIStaging::~vtkMRGIStaging()
-{
-  this->RemoveStaged();
-}
+// What Stage() added stays in the renderer, which holds it, as any actor or
+// light added to a renderer does: a staging object (or the scene builder
+// that holds one) going out of scope before the first render must not
+// silently unstage the scene.
+vtkMRGIStaging::~vtkMRGIStaging() = default;
 
 //------------------------------------------------------------------------------
 bool vtkMRGIStaging::Fail(const std::string& why)

@@ -61,7 +61,8 @@
  *   reads when it stages.
  *
  * Stage() may be called again (after a change of a property): it removes
- * what it added before. Errors (no renderer, nothing visible, geometry that
+ * what it added before. What it added stays when the staging object is
+ * deleted (the renderer holds it). Errors (no renderer, nothing visible, geometry that
  * is not finite) return false and GetLastErrorMessage() says why; the
  * renderer is then left as it was.
  */

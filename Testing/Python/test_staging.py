@@ -98,6 +98,16 @@ def main():
     builder.SetStaging(staged)
     check(builder.Build(built), "Build: " + builder.GetLastErrorMessage())
     check(staged.GetDetectedUp() == mrgi.vtkMRGIStaging.UpPositiveZ, "the builder's file is staged")
+    # What was staged stays when the staging object and the builder go away
+    # (a scene built in a function, rendered later).
+    actors_staged = built.GetActors().GetNumberOfItems()
+    lights_staged = built.GetLights().GetNumberOfItems()
+    del builder, staged
+    staged = mrgi.vtkMRGIStaging()
+    check(built.GetActors().GetNumberOfItems() == actors_staged and actors_staged == 2,
+          "the data and the ground stay after the staging object is gone")
+    check(built.GetLights().GetNumberOfItems() == lights_staged and lights_staged >= 1,
+          "the key light stays after the staging object is gone")
     check(built.GetActors().GetNumberOfItems() == 2, "the data and the ground")
 
     # A volume: a ball of 1s in 0s, contoured at 0.5 (Otsu's threshold).
