@@ -15,6 +15,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 #include "vtkTypeInt32Array.h"
 #include "vtkTypeInt64Array.h"
@@ -79,6 +80,36 @@ void FillVertices(vtkCellArray* verts, vtkIdType n)
   }
   o[n] = static_cast<T>(n);
   verts->SetData(offsets, connectivity);
+}
+
+// Points [first, first + count) of `whole` (vertices, arrays, field data)
+// into `out`, one vertex each.
+void ExtractRange(vtkPolyData* whole, vtkIdType first, vtkIdType count, vtkPolyData* out)
+{
+  out->Initialize();
+  vtkNew<vtkPoints> points;
+  points->SetDataType(whole->GetPoints()->GetDataType());
+  points->GetData()->InsertTuples(0, count, first, whole->GetPoints()->GetData());
+  out->SetPoints(points);
+  vtkPointData* from = whole->GetPointData();
+  for (int a = 0; a < from->GetNumberOfArrays(); ++a)
+  {
+    vtkAbstractArray* source = from->GetAbstractArray(a);
+    vtkSmartPointer<vtkAbstractArray> part;
+    part.TakeReference(source->NewInstance());
+    part->SetName(source->GetName());
+    part->SetNumberOfComponents(source->GetNumberOfComponents());
+    part->InsertTuples(0, count, first, source);
+    out->GetPointData()->AddArray(part);
+    if (source == from->GetScalars())
+    {
+      out->GetPointData()->SetActiveScalars(part->GetName());
+    }
+  }
+  vtkNew<vtkCellArray> verts;
+  FillVertices<vtkTypeInt64Array>(verts, count);
+  out->SetVerts(verts);
+  out->GetFieldData()->ShallowCopy(whole->GetFieldData());
 }
 }
 
@@ -269,6 +300,35 @@ int vtkMRGILASReader::RequestData(
       this->ColorByUsed = COLOR_BY_INTENSITY;
       break;
   }
+
+  // Pieces (ParaView under MPI asks each rank for one): an even share of
+  // the file's points in file order, every share recentred on the same
+  // origin, so that the ranks' pieces fit together.
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    : 1;
+  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+  if (pieces > 1 && piece >= 0 && piece < pieces)
+  {
+    const vtkIdType first = static_cast<vtkIdType>(static_cast<double>(n) * piece / pieces);
+    const vtkIdType end = static_cast<vtkIdType>(static_cast<double>(n) * (piece + 1) / pieces);
+    vtkNew<vtkPolyData> whole;
+    whole->ShallowCopy(output);
+    ExtractRange(whole, first, end - first, output);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkMRGILASReader::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  // Any piece of the file can be read (RequestData), so ParaView's ranks
+  // each draw their share instead of all drawing the whole cloud.
+  outputVector->GetInformationObject(0)->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
   return 1;
 }
 

@@ -22,6 +22,10 @@
  * NewClassificationLookupTable() gives the class palette as a
  * vtkLookupTable for colouring "Classification" in a user's own pipeline.
  *
+ * Pieces: asked for piece k of N (ParaView under MPI), the reader outputs
+ * the k-th even share of the points in file order, recentred on the same
+ * origin as the whole file, so that the pieces fit together.
+ *
  * Errors (missing or unreadable file, compressed LAZ: "compressed LAZ is not
  * supported", a bad header, truncated point data, absurd counts, more points
  * than MaximumNumberOfPoints) raise one vtkErrorMacro naming the file and
@@ -103,6 +107,7 @@ protected:
   vtkMRGILASReader();
   ~vtkMRGILASReader() override = default;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   std::string FileName;

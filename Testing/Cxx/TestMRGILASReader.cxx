@@ -314,6 +314,51 @@ void TestOnePoint()
   MRGI_TEST_CHECK(colors && colors->GetTypedComponent(0, 0) == 204);
 }
 
+// Pieces, as ParaView's ranks ask for them: every point exactly once, in
+// file order, with its attributes, and all pieces on the whole file's origin.
+void TestPieces()
+{
+  const std::string path = mrgitest::TempPath("las_reader_pieces.las");
+  std::vector<LASPoint> points(10);
+  for (size_t i = 0; i < points.size(); ++i)
+  {
+    points[i].X = 512300.0 + static_cast<double>(i);
+    points[i].Y = 5432100.0 + 0.5 * static_cast<double>(i);
+    points[i].Z = 300.0;
+    points[i].Intensity = static_cast<uint16_t>(100 + i);
+    points[i].Classification = static_cast<uint8_t>(i % 3 + 1);
+  }
+  mrgitest::WriteBytes(path, mrgitest::LASBytes(UTMFile(2, 3), points));
+  auto whole = Read(path);
+  double origin[3];
+  whole->GetOutput()->GetFieldData()->GetArray("Origin")->GetTuple(0, origin);
+  vtkIdType next = 0;
+  for (int piece = 0; piece < 3; ++piece)
+  {
+    vtkNew<vtkMRGILASReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->UpdatePiece(piece, 3, 0);
+    vtkPolyData* out = reader->GetOutput();
+    const vtkIdType n = out->GetNumberOfPoints();
+    MRGI_TEST_CHECK(n >= 3 && n <= 4);
+    CheckVertices(out);
+    double pieceOrigin[3];
+    out->GetFieldData()->GetArray("Origin")->GetTuple(0, pieceOrigin);
+    MRGI_TEST_CHECK(pieceOrigin[0] == origin[0] && pieceOrigin[1] == origin[1] &&
+      pieceOrigin[2] == origin[2]);
+    auto* intensity = vtkUnsignedShortArray::SafeDownCast(out->GetPointData()->GetArray("Intensity"));
+    MRGI_TEST_CHECK(intensity && intensity->GetNumberOfTuples() == n);
+    MRGI_TEST_CHECK(out->GetPointData()->GetScalars() != nullptr &&
+      out->GetPointData()->GetScalars()->GetNumberOfTuples() == n);
+    for (vtkIdType i = 0; i < n; ++i, ++next)
+    {
+      CheckWorld(out, i, points[static_cast<size_t>(next)], 2e-4);
+      MRGI_TEST_CHECK(intensity->GetValue(i) == 100 + next);
+    }
+  }
+  MRGI_TEST_CHECK(next == 10);
+}
+
 // UTM-sized coordinates (x ~ 5e5, y ~ 5e6 m) with a millimetre scale: in
 // float they would collapse (the ulp at 5e6 is 0.5 m); recentred, they stay
 // distinct and exact.
@@ -557,6 +602,6 @@ int main(int argc, char* argv[])
   return mrgitest::RunCases(argc, argv,
     { MRGI_TEST_CASE(TestAttributes), MRGI_TEST_CASE(TestEightBitRGB),
       MRGI_TEST_CASE(TestClassifiedColors), MRGI_TEST_CASE(TestColorBy),
-      MRGI_TEST_CASE(TestOnePoint), MRGI_TEST_CASE(TestHugeOffsets), MRGI_TEST_CASE(TestBadFiles),
+      MRGI_TEST_CASE(TestOnePoint), MRGI_TEST_CASE(TestPieces), MRGI_TEST_CASE(TestHugeOffsets), MRGI_TEST_CASE(TestBadFiles),
       MRGI_TEST_CASE(TestTenMillion) });
 }

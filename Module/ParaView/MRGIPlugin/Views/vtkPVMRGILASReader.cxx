@@ -6,6 +6,7 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
 #include <cctype>
@@ -36,6 +37,14 @@ int vtkPVMRGILASReader::CanReadFile(const char* fileName)
 }
 
 //------------------------------------------------------------------------------
+int vtkPVMRGILASReader::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  outputVector->GetInformationObject(0)->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
 int vtkPVMRGILASReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
@@ -45,7 +54,16 @@ int vtkPVMRGILASReader::RequestData(
   vtkNew<vtkMRGILASReader> reader;
   reader->SetFileName(this->FileName.c_str());
   reader->SetColorBy(this->ColorBy);
-  reader->Update();
+  // The piece this rank was asked for (mpirun pvbatch): each rank reads
+  // its share of the points instead of every rank drawing the whole cloud.
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    : 1;
+  reader->UpdatePiece(piece, pieces, 0);
   this->SetErrorCode(reader->GetErrorCode());
   output->ShallowCopy(reader->GetOutput());
   return 1;

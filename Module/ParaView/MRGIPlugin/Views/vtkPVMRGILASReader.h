@@ -54,6 +54,7 @@ protected:
   vtkPVMRGILASReader();
   ~vtkPVMRGILASReader() override = default;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   std::string FileName;
