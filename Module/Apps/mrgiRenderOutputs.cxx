@@ -156,15 +156,21 @@ bool Outputs::Check(const std::vector<std::string>& paths, std::string& why)
       why = quoted + ": the directory '" + directory + "' does not exist";
       return false;
     }
-    // The probe: can a new file be made beside the output?
+    // The probe: can a new file be made beside the output? Its name (the
+    // writer's first temporary for `path`) is registered before it exists,
+    // so that a signal while it exists removes it too.
     char probe[MRGI_ATOMIC_FILE_PATH_MAX];
     mrgi_error err;
+    const std::string probeName = WriterTemporary(path);
+    Register(probeName);
     if (mrgi_atomic_file_begin(path.c_str(), probe, sizeof(probe), &err) != MRGI_OK)
     {
+      Unregister(probeName);
       why = quoted + ": cannot create a file in '" + directory + "': " + err.message;
       return false;
     }
     mrgi_atomic_file_abort(probe);
+    Unregister(probeName);
     this->Finals.push_back(path);
     std::string staging = path + ".tmp-" + std::to_string(static_cast<long>(getpid())) + extension;
     this->Stagings.push_back(staging);
