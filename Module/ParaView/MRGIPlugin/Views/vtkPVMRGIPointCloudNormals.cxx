@@ -1,8 +1,7 @@
 #include "vtkPVMRGIPointCloudNormals.h"
 
-#include "vtkCallbackCommand.h"
-#include "vtkCommand.h"
-#include "vtkExecutive.h"
+#include "vtkPVMRGIInnerFilter.h"
+
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMRGIPointCloudNormals.h"
@@ -22,25 +21,14 @@ int vtkPVMRGIPointCloudNormals::RequestData(
   {
     return 0;
   }
-  // The inner filter gets a shallow copy, so that it never holds (or
-  // modifies) ParaView's pipeline object.
-  vtkNew<vtkPolyData> cloud;
-  cloud->ShallowCopy(input);
   vtkNew<vtkMRGIPointCloudNormals> normals;
-  normals->SetInputData(cloud);
   normals->SetNumberOfNeighbors(this->NumberOfNeighbors);
   normals->SetRadiusScale(this->RadiusScale);
   normals->SetUp(this->Up);
   normals->SetComputeNormals(this->ComputeNormals);
-  // On bad input the inner filter reports the problem itself; its
-  // executive would add a second, generic error ("returned failure").
-  // An observer takes that one: ParaView shows the useful message once.
-  vtkNew<vtkCallbackCommand> quiet;
-  normals->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, quiet);
-  normals->Update();
+  vtkPVMRGIInnerFilter::Run(normals, input, output);
   this->NumberOfDegeneratePoints = normals->GetNumberOfDegeneratePoints();
   this->NumberOfNonFinitePoints = normals->GetNumberOfNonFinitePoints();
-  output->ShallowCopy(normals->GetOutput());
   return 1;
 }
 

@@ -1,8 +1,7 @@
 #include "vtkPVMRGISurfels.h"
 
-#include "vtkCallbackCommand.h"
-#include "vtkCommand.h"
-#include "vtkExecutive.h"
+#include "vtkPVMRGIInnerFilter.h"
+
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMRGISurfels.h"
@@ -25,25 +24,16 @@ int vtkPVMRGISurfels::RequestData(
   {
     return 0;
   }
-  vtkNew<vtkPolyData> cloud;
-  cloud->ShallowCopy(input);
   vtkNew<vtkMRGISurfels> surfels;
-  surfels->SetInputData(cloud);
   surfels->SetShape(this->Shape == 6 ? vtkMRGISurfels::Hexagon : vtkMRGISurfels::Square);
   surfels->SetNormalsArrayName(this->NormalsArrayName.c_str());
   surfels->SetRadiusArrayName(this->RadiusArrayName.c_str());
   surfels->SetRadius(this->Radius);
   surfels->SetRadiusScale(this->RadiusScale);
   surfels->SetMaximumNumberOfSurfels(this->MaximumNumberOfSurfels);
-  // On bad input the inner filter reports the problem itself; its
-  // executive would add a second, generic error ("returned failure").
-  // An observer takes that one: ParaView shows the useful message once.
-  vtkNew<vtkCallbackCommand> quiet;
-  surfels->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, quiet);
-  surfels->Update();
+  vtkPVMRGIInnerFilter::Run(surfels, input, output);
   this->Stride = surfels->GetStride();
   this->NumberOfSkippedPoints = surfels->GetNumberOfSkippedPoints();
-  output->ShallowCopy(surfels->GetOutput());
   return 1;
 }
 
