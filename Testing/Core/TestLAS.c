@@ -254,6 +254,15 @@ static void test_bad_files(void)
   RESET();
   put_u16(b + 94, 100);
   expect_error(b, size, MRGI_ERR_FORMAT, "header size 100");
+  {
+    /* A LAS 1.4 file cut inside its 375-byte header (past the 227 bytes
+       every version has): named as truncation. */
+    size_t size14;
+    unsigned char* las14 = make_las(4, 6, 0, utm, 3, utm_offset, &size14);
+    MRGI_CHECK(las14 != NULL && size14 > 300);
+    expect_error(las14, 300, MRGI_ERR_FORMAT, "ends inside its 375-byte header");
+    free(las14);
+  }
   RESET();
   put_f64(b + 131, 1e308);
   put_f64(b + 155, 1e308);

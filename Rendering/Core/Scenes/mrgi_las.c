@@ -98,11 +98,18 @@ mrgi_status mrgi_las_read_header_buffer(
   const int32_t needed = header->version_minor >= 4 ? LAS_HEADER_14
     : header->version_minor == 3                     ? LAS_HEADER_13
                                                      : LAS_HEADER_12;
-  if (header->header_size < needed || (size_t)header->header_size > size)
+  if (header->header_size < needed)
   {
     return mrgi_error_set(err, MRGI_ERR_FORMAT,
-      "LAS: header size %d is outside %d..%zu for version 1.%d", (int)header->header_size,
-      (int)needed, size, (int)header->version_minor);
+      "LAS: header size %d is smaller than the %d bytes of a version 1.%d header",
+      (int)header->header_size, (int)needed, (int)header->version_minor);
+  }
+  if ((size_t)header->header_size > size)
+  {
+    /* A file cut inside its header: say so, not "outside 375..307". */
+    return mrgi_error_set(err, MRGI_ERR_FORMAT,
+      "LAS: the file (%zu bytes) ends inside its %d-byte header (truncated?)", size,
+      (int)header->header_size);
   }
   header->offset_to_points = (int64_t)read_u32(b + 96);
   const int32_t format_byte = b[104];
