@@ -13,7 +13,9 @@
 #include "mrgi_grid_radii.h"
 #include "mrgi_point_normals.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <exception>
 #include <vector>
 
@@ -27,6 +29,68 @@ double Flat(vtkDataArray* array, int i)
 {
   const int c = array->GetNumberOfComponents();
   return array->GetComponent(i / c, i % c);
+}
+
+// The estimators leave radius 0 where a finite point has no spacing to its
+// neighbours (a lone point, duplicates): such a point would draw nothing.
+// It takes the median of the positive radii, or, when none is positive,
+// 1/100 of the finite points' diagonal (1 when that is 0: a single point).
+// Non-finite points keep 0. Whichever estimator ran (core or PCL).
+void FillMissingRadii(const float* xyz, vtkIdType n, float* radii)
+{
+  std::vector<float> positive;
+  double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+  vtkIdType missing = 0;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const float* p = xyz + 3 * i;
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+    {
+      continue;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], static_cast<double>(p[a]));
+      hi[a] = std::max(hi[a], static_cast<double>(p[a]));
+    }
+    if (radii[i] > 0.0f && std::isfinite(radii[i]))
+    {
+      positive.push_back(radii[i]);
+    }
+    else
+    {
+      ++missing;
+    }
+  }
+  if (missing == 0)
+  {
+    return;
+  }
+  float fallback = 1.0f;
+  if (!positive.empty())
+  {
+    auto middle = positive.begin() + static_cast<std::ptrdiff_t>(positive.size() / 2);
+    std::nth_element(positive.begin(), middle, positive.end());
+    fallback = *middle;
+  }
+  else
+  {
+    const double diagonal = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) +
+      (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    if (diagonal > 0.0 && std::isfinite(diagonal))
+    {
+      fallback = static_cast<float>(diagonal / 100.0);
+    }
+  }
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const float* p = xyz + 3 * i;
+    if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]) &&
+      !(radii[i] > 0.0f && std::isfinite(radii[i])))
+    {
+      radii[i] = fallback;
+    }
+  }
 }
 }
 
@@ -199,6 +263,7 @@ int vtkMRGIPointCloudNormals::RequestData(
     output->Initialize();
     return 0;
   }
+  FillMissingRadii(xyz, n, radii->GetPointer(0));
   if (estimateNormals)
   {
     output->GetPointData()->SetNormals(normals);

@@ -31,7 +31,10 @@
  * ParaView (VTK 9.2) build has no PCL module and always uses the core.
  *
  * Non-finite points get the fallback normal and radius 0 (the core's
- * contract); so do points whose neighbourhood has no spacing (duplicates).
+ * contract). A finite point whose neighbourhood has no spacing (a lone
+ * point, duplicates) gets the median of the other radii, or 1/100 of the
+ * cloud's diagonal when no radius is positive (1 for a single point), so
+ * that every finite point draws as a surfel.
  * The results are cached by the pipeline: RequestData runs again only when
  * the input or a property changes.
  */

@@ -185,59 +185,6 @@ bool InRectangle(const mrgi_mesh& mesh, const mrgi_area_light& light)
 }
 
 
-// The splat radii vtkMRGIPointCloudNormals estimates are 0 where a point
-// has no spacing to its neighbours (a duplicate, a lone point). Such
-// points would draw nothing: give them the median of the positive radii,
-// or, when none is positive (one point, all duplicates), 1/100 of the
-// cloud's diagonal (1 for a single point). Shares everything else.
-vtkSmartPointer<vtkPolyData> WithFallbackRadii(vtkPolyData* cloud)
-{
-  vtkDataArray* radii = cloud->GetPointData()->GetArray("Radius");
-  if (!radii || radii->GetNumberOfComponents() != 1)
-  {
-    return cloud;
-  }
-  const vtkIdType n = radii->GetNumberOfTuples();
-  std::vector<double> positive;
-  positive.reserve(static_cast<size_t>(n));
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    const double r = radii->GetComponent(i, 0);
-    if (r > 0 && std::isfinite(r))
-    {
-      positive.push_back(r);
-    }
-  }
-  if (static_cast<vtkIdType>(positive.size()) == n)
-  {
-    return cloud;
-  }
-  double fallback = 0;
-  if (!positive.empty())
-  {
-    auto middle = positive.begin() + static_cast<std::ptrdiff_t>(positive.size() / 2);
-    std::nth_element(positive.begin(), middle, positive.end());
-    fallback = *middle;
-  }
-  else
-  {
-    const double diagonal = cloud->GetLength();
-    fallback = diagonal > 0 && std::isfinite(diagonal) ? diagonal / 100.0 : 1.0;
-  }
-  vtkNew<vtkFloatArray> filled;
-  filled->SetName("Radius");
-  filled->SetNumberOfTuples(n);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    const double r = radii->GetComponent(i, 0);
-    filled->SetValue(i, static_cast<float>(r > 0 && std::isfinite(r) ? r : fallback));
-  }
-  auto out = vtkSmartPointer<vtkPolyData>::New();
-  out->ShallowCopy(cloud);
-  out->GetPointData()->AddArray(filled);
-  return out;
-}
-
 // Flat data (one extent of its bounds much smaller than the others, such as
 // a floor) seen along its plane draws nothing: look at it face on instead.
 // "Much smaller": at most 5% of the largest extent, so that a slightly skewed
@@ -930,9 +877,8 @@ bool vtkMRGISceneBuilder::BuildPointCloud(
       return this->Fail("cannot draw the point cloud '" + path + "': " + normalsErrors.GetMessage());
     }
   }
-  vtkSmartPointer<vtkPolyData> withRadii = WithFallbackRadii(normals->GetOutput());
   vtkNew<vtkMRGISurfels> surfels;
-  surfels->SetInputData(withRadii);
+  surfels->SetInputConnection(normals->GetOutputPort());
   {
     // Points the surfels skip (a zero normal in the file) are reported by
     // VTK's warning; the others draw.

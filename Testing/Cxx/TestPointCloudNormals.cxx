@@ -231,8 +231,24 @@ void TestDegenerateInputs()
     {
       MRGI_TEST_CHECK(std::isfinite(normals->GetComponent(i, a)));
     }
-    MRGI_TEST_CHECK(radius->GetComponent(i, 0) == 0.0);
   }
+  // The lone finite point has no spacing: it still gets a radius (1, the
+  // fallback for a single point); the NaN point keeps 0.
+  MRGI_TEST_CHECK(radius->GetComponent(0, 0) == 1.0);
+  MRGI_TEST_CHECK(radius->GetComponent(1, 0) == 0.0);
+  // Twenty copies of one point: no spacing anywhere, no positive radius to
+  // borrow; each copy gets the single-point fallback, 1.
+  vtkNew<vtkPoints> copies;
+  for (int i = 0; i < 20; ++i)
+  {
+    copies->InsertNextPoint(4.0, 5.0, 6.0);
+  }
+  vtkNew<vtkPolyData> same;
+  same->SetPoints(copies);
+  filter->SetInputData(same);
+  filter->Update();
+  vtkDataArray* sameRadius = filter->GetOutput()->GetPointData()->GetArray("Radius");
+  MRGI_TEST_CHECK(sameRadius && sameRadius->GetRange()[0] == 1.0 && sameRadius->GetRange()[1] == 1.0);
   // A bad RadiusScale is an error and an empty output.
   filter->SetRadiusScale(0.0);
   filter->Update();
