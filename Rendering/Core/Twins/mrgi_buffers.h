@@ -22,6 +22,14 @@
  * - attachment MRGI_GBUFFER_SHININESS (with MRGI_GBUFFER_SPECULAR): r = the
  *   Phong exponent (vtkProperty SpecularPower), w = MRGI_GBUFFER_VALID. Two
  *   attachments because every w must stay 1 (the blending note below).
+ * - attachments MRGI_GBUFFER_LIGHT0 .. MRGI_GBUFFER_LIGHT0 +
+ *   MRGI_SHADOW_SLOTS - 1 (only while direct shadows are on): the
+ *   contribution of VTK's shader light s (the s-th switched-on light) to
+ *   attachment 0, rgb, as VTK's own light loop computed it (after texture
+ *   modulation; linear, before PBR's display gamma). w of MRGI_GBUFFER_LIGHT0
+ *   holds MRGI_GBUFFER_LIGHT_FLAG_* bits (as a float), the other w are 1.
+ *   Shadows are applied by subtracting (1 - factor) x contribution
+ *   (Documentation/DirectShadows.md), so lit pixels keep VTK's value exactly.
  *
  * w = 1 marks geometry. VTK draws opaque geometry with blending on
  * (SRC_ALPHA, ONE_MINUS_SRC_ALPHA), which with alpha exactly 1 stores the
@@ -52,6 +60,15 @@
 #define MRGI_GBUFFER_SHININESS 5
 /** All G-buffer attachments; without specular data the first MRGI_GBUFFER_SPECULAR. */
 #define MRGI_GBUFFER_ATTACHMENTS 6
+/**
+ * Per-light contributions for direct shadows: attachments 6 and 7 (OpenGL
+ * 3.2 guarantees 8 draw buffers). VTK's shader lights past
+ * MRGI_SHADOW_SLOTS stay unshadowed (the pass warns once).
+ */
+#define MRGI_GBUFFER_LIGHT0 6
+#define MRGI_SHADOW_SLOTS 2
+/** Bits in w of MRGI_GBUFFER_LIGHT0: the pixel's colour is PBR (display gamma 1/2.2). */
+#define MRGI_GBUFFER_LIGHT_FLAG_GAMMA 1
 
 /** Colour attachments of a reflective shadow map view. */
 #define MRGI_RSM_POSITION 0
