@@ -26,8 +26,10 @@
  *   MRGI_SHADOW_SLOTS - 1 (only while direct shadows are on): the
  *   contribution of VTK's shader light s (the s-th switched-on light) to
  *   attachment 0, rgb, as VTK's own light loop computed it (after texture
- *   modulation; linear, before PBR's display gamma). w of MRGI_GBUFFER_LIGHT0
- *   holds MRGI_GBUFFER_LIGHT_FLAG_* bits (as a float), the other w are 1.
+ *   modulation; linear, before PBR's display gamma), w = 1 (blending-neutral,
+ *   see below). Contributions are never negative; PBR pixels, whose colour
+ *   VTK encodes with a display gamma of 1/2.2, store them negated, so the
+ *   sign tells the composite which law to undo (mrgi_shadow_composite.h).
  *   Shadows are applied by subtracting (1 - factor) x contribution
  *   (Documentation/DirectShadows.md), so lit pixels keep VTK's value exactly.
  *
@@ -67,8 +69,8 @@
  */
 #define MRGI_GBUFFER_LIGHT0 6
 #define MRGI_SHADOW_SLOTS 2
-/** Bits in w of MRGI_GBUFFER_LIGHT0: the pixel's colour is PBR (display gamma 1/2.2). */
-#define MRGI_GBUFFER_LIGHT_FLAG_GAMMA 1
+/** Every attachment index the G-buffer framebuffer may hold (0 .. this - 1). */
+#define MRGI_GBUFFER_MAX_ATTACHMENTS (MRGI_GBUFFER_LIGHT0 + MRGI_SHADOW_SLOTS)
 
 /** Colour attachments of a reflective shadow map view. */
 #define MRGI_RSM_POSITION 0
