@@ -47,13 +47,15 @@ int main()
   window->Render();
   vtkSmartPointer<vtkImageData> plain = mrgitest::GrabRGB(window);
 
-  // 2. Through vtkMRGIPass with indirect light off: the same pixels
-  // (non-square window on purpose), and nothing but the scene and the copy run.
+  // 2. Through vtkMRGIPass with indirect light and direct shadows off: the
+  // same pixels (non-square window on purpose), and nothing but the scene
+  // and the copy run.
   vtkNew<vtkRenderStepsPass> steps;
   vtkNew<vtkMRGIPass> pass;
   pass->SetDelegatePass(steps);
   pass->SetStageTimingEnabled(true);
   pass->SetIndirectMode(vtkMRGIPass::IndirectOff);
+  pass->SetDirectShadowsToOff();
   renderer->SetPass(pass);
   window->Render();
   vtkSmartPointer<vtkImageData> withPass = mrgitest::GrabRGB(window);

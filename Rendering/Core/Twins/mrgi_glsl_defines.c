@@ -4,6 +4,7 @@
 #include "mrgi_exposure.h"
 #include "mrgi_gather.h"
 #include "mrgi_multires.h"
+#include "mrgi_shadow_composite.h"
 #include "mrgi_specular_stencil.h"
 #include "mrgi_upsample.h"
 #include "mrgi_variance_shadow.h"
@@ -58,6 +59,7 @@ static const mrgi_glsl_constant mrgi_glsl_constants[] = {
   MRGI_GLSL_CONSTANT(MRGI_GBUFFER_SHININESS, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_GBUFFER_LIGHT0, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_SHADOW_SLOTS, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_SHADOW_PBR_GAMMA, MRGI_GLSL_FLOAT),
   MRGI_GLSL_CONSTANT(MRGI_RSM_POSITION, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_RSM_NORMAL, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_RSM_FLUX, MRGI_GLSL_INT),

@@ -8,6 +8,8 @@
 #include "vtkFloatArray.h"
 #include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkMRGIAreaLightStage.h"
 #include "vtkMRGIFrameContext.h"
 #include "vtkMRGIFullScreenStep.h"
@@ -19,6 +21,7 @@
 #include "vtkMRGIRenderSteps.h"
 #include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
+#include "vtkMRGIShadowComposite.h"
 #include "vtkMRGIUpsample.h"
 #include "vtkMRGIVPLSelection.h"
 #include "vtkMatrix4x4.h"
@@ -82,6 +85,8 @@ struct vtkMRGIPass::Internals
   // every frame: the pass says so once, until the light is computed again.
   bool IndirectFailureReported = false;
   bool AreaLightFailureReported = false;
+  bool ShadowFailureReported = false;
+  bool ExtraLightsReported = false; // lights past MRGI_SHADOW_SLOTS stay unshadowed
   // Actors already warned about as point clouds drawn as pixels (once each).
   std::vector<vtkWeakPointer<vtkProp>> PointCloudsReported;
 };
@@ -97,6 +102,7 @@ vtkMRGIPass::vtkMRGIPass()
   this->Gather = vtkMRGIGather::New();
   this->Upsample = vtkMRGIUpsample::New();
   this->AreaLightStage = vtkMRGIAreaLightStage::New();
+  this->ShadowComposite = vtkMRGIShadowComposite::New();
   this->OpaqueSequence = vtkSequencePass::New();
   for (int i = 0; i < 16; ++i)
   {
@@ -119,6 +125,7 @@ vtkMRGIPass::~vtkMRGIPass()
   this->Gather->Delete();
   this->Upsample->Delete();
   this->AreaLightStage->Delete();
+  this->ShadowComposite->Delete();
   this->OpaqueSequence->Delete();
 }
 
@@ -132,6 +139,7 @@ void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
   this->Gather->ReleaseGraphicsResources(w);
   this->Upsample->ReleaseGraphicsResources(w);
   this->AreaLightStage->ReleaseGraphicsResources(w);
+  this->ShadowComposite->ReleaseGraphicsResources(w);
   this->ReleaseResources(w);
 }
 
@@ -157,6 +165,34 @@ void vtkMRGIPass::ReleaseResources(vtkWindow* w)
 //------------------------------------------------------------------------------
 namespace
 {
+// VTK's shader lights are the renderer's switched-on lights, in collection
+// order (vtkOpenGLRenderer::UpdateLightingUniforms numbers them so).
+// `slots[s]`: the collection index of shader light s, or -1. Returns how
+// many shader lights can cast a visible shadow: lit (intensity > 0) and not
+// a headlight, whose shadows hide behind what it lights.
+int ShaderLights(vtkRenderer* renderer, int slots[MRGI_SHADOW_SLOTS])
+{
+  std::fill(slots, slots + MRGI_SHADOW_SLOTS, -1);
+  vtkLightCollection* lights = renderer->GetLights();
+  vtkCollectionSimpleIterator it;
+  lights->InitTraversal(it);
+  int index = 0, shaderLight = 0, casting = 0;
+  while (vtkLight* light = lights->GetNextLight(it))
+  {
+    if (light->GetSwitch() > 0)
+    {
+      if (shaderLight < MRGI_SHADOW_SLOTS)
+      {
+        slots[shaderLight] = index;
+      }
+      ++shaderLight;
+      casting += light->GetIntensity() > 0 && !light->LightTypeIsHeadlight();
+    }
+    ++index;
+  }
+  return casting;
+}
+
 // Whether some visible prop may reflect specularly: an actor with Specular
 // > 0; other 3D props (assemblies, volumes) are not looked into and count
 // as possibly specular; 2D props (text, overlays) never reach the G-buffer.
@@ -435,12 +471,16 @@ void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
       fbo->AddColorAttachment(MRGI_GBUFFER_SPECULAR, in.GBuffer.Specular);
       fbo->AddColorAttachment(MRGI_GBUFFER_SHININESS, in.GBuffer.Shininess);
     }
-    vtkMRGIShaderUtilities::SelectDrawBuffers(
-      fbo, this->SpecularCaptured ? MRGI_GBUFFER_ATTACHMENTS : MRGI_GBUFFER_SPECULAR);
+    for (int slot = 0; this->ShadowsCaptured && slot < MRGI_SHADOW_SLOTS; ++slot)
+    {
+      fbo->AddColorAttachment(MRGI_GBUFFER_LIGHT0 + slot, in.GBuffer.LightTerms[slot]);
+    }
+    vtkMRGIShaderUtilities::SelectGBufferDrawBuffers(
+      fbo, this->SpecularCaptured, this->ShadowsCaptured);
   }
   else
   {
-    fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
+    fbo->RemoveColorAttachments(MRGI_GBUFFER_MAX_ATTACHMENTS);
     fbo->AddColorAttachment(MRGI_GBUFFER_DIRECT, in.GBuffer.Color);
     vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
   }
@@ -476,7 +516,7 @@ void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
     // (valid only if that alpha exceeds MRGI_GBUFFER_VALID_THRESHOLD, which
     // VTK's default background alpha of 0 does not).
     const float zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
-    for (int a = MRGI_GBUFFER_POSITION; capture && a < MRGI_GBUFFER_ATTACHMENTS; ++a)
+    for (int a = MRGI_GBUFFER_POSITION; capture && a < MRGI_GBUFFER_MAX_ATTACHMENTS; ++a)
     {
       glClearBufferfv(GL_COLOR, a, zero);
     }
@@ -488,6 +528,9 @@ void vtkMRGIPass::RenderScene(const vtkRenderState* s, bool capture, bool split)
     this->Capturing = false;
     this->PostRender(s);
   }
+  // Later steps draw through the same framebuffer at other sizes: only the
+  // colour and depth stay attached.
+  fbo->RemoveColorAttachments(MRGI_GBUFFER_MAX_ATTACHMENTS);
   fbo->UnBind();
   fbo->RestorePreviousBindingsAndBuffers();
 }
@@ -521,7 +564,7 @@ bool vtkMRGIPass::RenderGather(const vtkMRGIFrameContext& frame, int vplCount)
   vtkMRGIViewportStep state(renWin->GetState(), frame.Viewport);
   fbo->SaveCurrentBindingsAndBuffers();
   fbo->Bind();
-  fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
+  fbo->RemoveColorAttachments(MRGI_GBUFFER_MAX_ATTACHMENTS);
   fbo->AddColorAttachment(0, in.GBuffer.Irradiance);
   fbo->AddColorAttachment(1, in.GBuffer.Indirect);
   vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 2);
@@ -625,6 +668,41 @@ bool vtkMRGIPass::RenderMultiresolution(const vtkMRGIFrameContext& frame, int vp
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIPass::RenderDirectShadows(
+  const vtkMRGIFrameContext& frame, const int slotLights[MRGI_SHADOW_SLOTS])
+{
+  Internals& in = *this->Internal;
+  vtkMRGIGBuffer& g = in.GBuffer;
+  bool applied = false;
+  {
+    ScopedStage stage(frame.Timer, "shadows");
+    // Factors: 1 (lit) until the factor stage fills them.
+    (void)slotLights;
+    vtkMRGIFullScreenStep steps(frame.Window, g.FrameBuffer);
+    steps.Target(g.ShadowFactors, nullptr, frame.Viewport[0], frame.Viewport[1],
+      frame.Viewport[2], frame.Viewport[3]);
+    const float lit[4] = { 1.0f, 1.0f, 1.0f, 1.0f };
+    glClearBufferfv(GL_COLOR, 0, lit);
+  }
+  applied = this->ShadowComposite->Apply(frame, g.Color, g.LightTerms, g.ShadowFactors, g.Shadowed);
+  if (applied)
+  {
+    // Color is the frame's colour from here on; Shadowed keeps VTK's
+    // unshadowed light for GetUnshadowedBuffer().
+    std::swap(g.Color, g.Shadowed);
+    in.ShadowFailureReported = false;
+  }
+  else if (!in.ShadowFailureReported)
+  {
+    in.ShadowFailureReported = true;
+    vtkErrorMacro("the direct shadows could not be computed at "
+      << frame.Viewport[2] << " x " << frame.Viewport[3]
+      << " pixels: this frame has VTK's unshadowed direct light");
+  }
+  return applied;
+}
+
+//------------------------------------------------------------------------------
 void vtkMRGIPass::RenderAdd(
   const vtkMRGIFrameContext& frame, vtkTextureObject* source, vtkTextureObject* target)
 {
@@ -703,7 +781,7 @@ void vtkMRGIPass::RenderOutputFXAA(const vtkMRGIFrameContext& frame, float scale
   vtkOpenGLFramebufferObject* fbo = in.GBuffer.FrameBuffer;
   fbo->SaveCurrentBindingsAndBuffers();
   fbo->Bind();
-  fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
+  fbo->RemoveColorAttachments(MRGI_GBUFFER_MAX_ATTACHMENTS);
   fbo->AddColorAttachment(0, in.GBuffer.Display);
   vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
   this->RenderOutput(frame, in.GBuffer.Color, scale, this->ToneMapping, false);
@@ -874,19 +952,31 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   Internals& in = *this->Internal;
   const bool areaLights = this->AreaLightStage->GetNumberOfLights() > 0;
   const bool indirect = this->IndirectMode != IndirectOff && this->GetNumberOfVPLs() > 0;
-  const bool capture = indirect || areaLights || this->OuterGBuffer;
+  int slotLights[MRGI_SHADOW_SLOTS];
+  const int shadowedLights =
+    this->DirectShadows != DirectShadowsOff ? ShaderLights(renderer, slotLights) : 0;
+  const bool shadows = shadowedLights > 0;
+  const bool capture = indirect || areaLights || this->OuterGBuffer || shadows;
   const bool split = vtkRenderStepsPass::SafeDownCast(this->DelegatePass) != nullptr;
   vtkRenderTimerLog* timer = vtkMRGIShaderUtilities::StageTimer(renderer, this->StageTimingEnabled);
   this->IndirectComputed = false;
   this->AreaLightsComputed = false;
   this->Captured = capture;
+  this->ShadowsCaptured = shadows;
+  this->ShadowsComputed = false;
+  if (shadowedLights > MRGI_SHADOW_SLOTS && !in.ExtraLightsReported)
+  {
+    in.ExtraLightsReported = true;
+    vtkWarningMacro(<< shadowedLights << " lights are switched on: direct shadows are cast for the first "
+                    << MRGI_SHADOW_SLOTS << " only; the others light as VTK lights them, unshadowed");
+  }
   // The specular pass cannot change the image when no visible prop has a
   // specular material: then neither it nor its G-buffer targets run.
   this->SpecularCaptured =
     capture && areaLights && this->AreaLightStage->GetSpecular() && AnySpecularProp(renderer);
 
   const bool fxaa = renderer->GetUseFXAA() && !multisampled;
-  in.GBuffer.Prepare(renWin, x + w, y + h, capture, this->SpecularCaptured, fxaa);
+  in.GBuffer.Prepare(renWin, x + w, y + h, capture, this->SpecularCaptured, shadows, fxaa);
   this->BufferSize[0] = w;
   this->BufferSize[1] = h;
   {
@@ -903,13 +993,20 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   vtkMRGIFrameContext frame;
   const bool framed = this->MakeFrame(renWin, renderer, timer, capture, frame);
   bool selected = false; // this frame's multiresolution selection exists
+  if (indirect || (shadows && framed))
+  {
+    // The reflective shadow maps are the indirect light's VPLs and the
+    // direct light's shadow maps: rendered once for both.
+    ScopedStage stage(timer, "rsm");
+    this->RSMPass->Render(s);
+  }
+  if (shadows && framed)
+  {
+    this->ShadowsComputed = this->RenderDirectShadows(frame, slotLights);
+  }
   if (indirect)
   {
     int vplCount = 0;
-    {
-      ScopedStage stage(timer, "rsm");
-      this->RSMPass->Render(s);
-    }
     {
       ScopedStage stage(timer, "vpl");
       vplCount = this->VPLSelection->Update(renWin, this->RSMPass);
@@ -1010,8 +1107,13 @@ bool vtkMRGIPass::PostReplaceShaderValues(std::string&, std::string&, std::strin
     // VTK's lit shaders (not PBR) compute specularColor and specularPower.
     const bool phong = fragmentShader.find("float specularPower") != std::string::npos &&
       fragmentShader.find("vec3 specularColor") != std::string::npos;
+    // The light terms are written whether or not this frame has shadows:
+    // the shader then never changes with the shadow setting.
+    std::string declarations = phong ? "#define MRGI_SPECULAR_MATERIAL 1\n" : "";
+    std::string lightTerms;
+    vtkMRGIShaderUtilities::InsertLightTerms(fragmentShader, declarations, lightTerms);
     vtkMRGIShaderUtilities::InsertCapture(
-      fragmentShader, phong ? "#define MRGI_SPECULAR_MATERIAL 1\n" : "", vtkMRGIGBufferCapture);
+      fragmentShader, declarations, std::string(vtkMRGIGBufferCapture) + lightTerms);
   }
   else
   {
@@ -1021,7 +1123,8 @@ bool vtkMRGIPass::PostReplaceShaderValues(std::string&, std::string&, std::strin
       "  gl_FragData[MRGI_GBUFFER_NORMAL] = vec4(0.0);\n"
       "  gl_FragData[MRGI_GBUFFER_ALBEDO] = vec4(0.0);\n"
       "  gl_FragData[MRGI_GBUFFER_SPECULAR] = vec4(0.0);\n"
-      "  gl_FragData[MRGI_GBUFFER_SHININESS] = vec4(0.0);\n");
+      "  gl_FragData[MRGI_GBUFFER_SHININESS] = vec4(0.0);\n" +
+        vtkMRGIShaderUtilities::NoLightTerms());
   }
   return true;
 }
@@ -1035,8 +1138,8 @@ bool vtkMRGIPass::SetShaderParameters(
   // buffers.
   if (this->Capturing && vtkOpenGLPolyDataMapper::SafeDownCast(mapper))
   {
-    vtkMRGIShaderUtilities::SelectDrawBuffers(this->Internal->GBuffer.FrameBuffer,
-      this->SpecularCaptured ? MRGI_GBUFFER_ATTACHMENTS : MRGI_GBUFFER_SPECULAR);
+    vtkMRGIShaderUtilities::SelectGBufferDrawBuffers(
+      this->Internal->GBuffer.FrameBuffer, this->SpecularCaptured, this->ShadowsCaptured);
   }
   return true;
 }
@@ -1121,6 +1224,32 @@ bool vtkMRGIPass::GetColorBuffer(vtkRenderWindow* window, vtkImageData* image)
   return this->ReadViewport(window, in.GBuffer.Color, 4, image, "HDRColor");
 }
 
+bool vtkMRGIPass::GetUnshadowedBuffer(vtkRenderWindow* window, vtkImageData* image)
+{
+  Internals& in = *this->Internal;
+  return this->ReadViewport(
+    window, this->ShadowsComputed ? in.GBuffer.Shadowed : nullptr, 4, image, "Unshadowed");
+}
+
+bool vtkMRGIPass::GetShadowFactorBuffer(vtkRenderWindow* window, vtkImageData* image)
+{
+  Internals& in = *this->Internal;
+  return this->ReadViewport(
+    window, this->ShadowsComputed ? in.GBuffer.ShadowFactors : nullptr, 4, image, "ShadowFactors");
+}
+
+bool vtkMRGIPass::GetLightTermBuffer(vtkRenderWindow* window, int slot, vtkImageData* image)
+{
+  Internals& in = *this->Internal;
+  if (slot < 0 || slot >= MRGI_SHADOW_SLOTS)
+  {
+    vtkErrorMacro("light term " << slot << " does not exist: slots are 0.." << MRGI_SHADOW_SLOTS - 1);
+    return false;
+  }
+  return this->ReadViewport(window,
+    this->ShadowsCaptured ? in.GBuffer.LightTerms[slot] : nullptr, 4, image, "LightTerm");
+}
+
 bool vtkMRGIPass::GetIndirectBuffer(vtkRenderWindow* window, vtkImageData* image)
 {
   Internals& in = *this->Internal;
@@ -1186,6 +1315,11 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "UpsampleMode: " << this->GetUpsampleMode() << "\n";
   os << indent << "UpsampleMaskWeight: " << this->GetUpsampleMaskWeight() << "\n";
   os << indent << "SurfaceDetail: " << this->SurfaceDetail << "\n";
+  os << indent << "DirectShadows: "
+     << (this->DirectShadows == DirectShadowsOff ? "Off"
+           : this->DirectShadows == DirectShadowsHard ? "Hard"
+                                                      : "Soft")
+     << "\n";
   os << indent << "IndirectStrength: " << this->IndirectStrength << "\n";
   os << indent << "NumberOfVPLs: " << this->VPLSelection->GetNumberOfVPLs() << "\n";
   os << indent << "VPLSelectionMode: " << this->VPLSelection->GetMode() << "\n";

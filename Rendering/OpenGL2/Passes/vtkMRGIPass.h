@@ -60,6 +60,8 @@
 #include "MRGIRenderingModule.h" // For export macro
 #include "vtkImageProcessingPass.h"
 
+#include "mrgi_buffers.h" // For MRGI_SHADOW_SLOTS
+
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
 #include <vector> // For std::vector
@@ -76,6 +78,7 @@ class vtkMRGIVarianceShadowQuery;
 class vtkMRGIVisibilityPyramid;
 class vtkMRGIVoxelization;
 class vtkMRGIReflectiveShadowMapPass;
+class vtkMRGIShadowComposite;
 class vtkMRGIRSMCompositor;
 class vtkMRGIVPLSelection;
 class vtkOpenGLFXAAFilter;
@@ -184,6 +187,31 @@ public:
   int GetUpsampleMode();
   void SetUpsampleMaskWeight(double weight);
   double GetUpsampleMaskWeight();
+  ///@}
+
+  enum DirectShadowModes
+  {
+    DirectShadowsOff = 0,  ///< VTK's direct light as VTK draws it (no shadows)
+    DirectShadowsHard = 1, ///< percentage-closer filtering on the RSMs
+    DirectShadowsSoft = 2  ///< PCSS: blocker search, then filtering (default)
+  };
+
+  ///@{
+  /**
+   * Shadows in VTK's direct light, from the reflective shadow maps the
+   * indirect light already renders (no extra render of the scene), for the
+   * first MRGI_SHADOW_SLOTS (2) switched-on VTK lights: spot, point (cube
+   * faces) and directional. Each light's term is captured from VTK's own
+   * light loop and scaled by its shadow factor, so lit pixels keep VTK's
+   * exact colour: Phong and PBR, textures, scalars
+   * (Documentation/DirectShadows.md). Translucent props, volumes and
+   * overlays are drawn as before, unshadowed. Default: soft.
+   */
+  vtkSetClampMacro(DirectShadows, int, DirectShadowsOff, DirectShadowsSoft);
+  vtkGetMacro(DirectShadows, int);
+  void SetDirectShadowsToOff() { this->SetDirectShadows(DirectShadowsOff); }
+  void SetDirectShadowsToHard() { this->SetDirectShadows(DirectShadowsHard); }
+  void SetDirectShadowsToSoft() { this->SetDirectShadows(DirectShadowsSoft); }
   ///@}
 
   ///@{
@@ -422,6 +450,19 @@ public:
   bool GetIrradianceBuffer(vtkRenderWindow* window, vtkImageData* image);
   ///@}
 
+  ///@{
+  /**
+   * Direct shadows of the last frame (RGBA float each): VTK's direct light
+   * before shadows were applied; the shadow factors (channel s: VTK's
+   * shader light s, 1 = lit); and the term of shader light `slot` that
+   * VTK's light loop added (mrgi_buffers.h). False when the last frame had
+   * no direct shadows.
+   */
+  bool GetUnshadowedBuffer(vtkRenderWindow* window, vtkImageData* image);
+  bool GetShadowFactorBuffer(vtkRenderWindow* window, vtkImageData* image);
+  bool GetLightTermBuffer(vtkRenderWindow* window, int slot, vtkImageData* image);
+  ///@}
+
   /** The G-buffer of the last frame (RGBA float each; see mrgi_buffers.h). */
   bool GetGBuffer(vtkRenderWindow* window, vtkImageData* position, vtkImageData* normal,
     vtkImageData* albedo);
@@ -488,6 +529,11 @@ protected:
   bool RenderGather(const vtkMRGIFrameContext& frame, int vplCount);
   // Selection, gather, upsampling and resolve of the multiresolution gather.
   bool RenderMultiresolution(const vtkMRGIFrameContext& frame, int vplCount);
+  // Shadow factors of the frame's lights and their application to the
+  // direct light (Color holds the shadowed light afterwards). False (with
+  // an error, once) when they could not be computed.
+  bool RenderDirectShadows(
+    const vtkMRGIFrameContext& frame, const int slotLights[MRGI_SHADOW_SLOTS]);
   // Adds `source`'s RGB to `target`'s (additive blending, target alpha kept).
   void RenderAdd(const vtkMRGIFrameContext& frame, vtkTextureObject* source, vtkTextureObject* target);
   // Writes `source` (window-sized) to the framebuffer bound now: scaled,
@@ -528,6 +574,9 @@ protected:
   bool Capturing = false;            // the scene is being drawn into the G-buffer
   bool Captured = false;         // the last frame captured the G-buffer
   bool SpecularCaptured = false; // ... with its specular attachments
+  int DirectShadows = DirectShadowsSoft;
+  bool ShadowsCaptured = false; // the last frame captured the light terms
+  bool ShadowsComputed = false; // ... and applied its shadows
   double LastViewToWorld[16];
 
   vtkMRGIReflectiveShadowMapPass* RSMPass = nullptr;
@@ -536,6 +585,7 @@ protected:
   vtkMRGIGather* Gather = nullptr;
   vtkMRGIUpsample* Upsample = nullptr;
   vtkMRGIAreaLightStage* AreaLightStage = nullptr;
+  vtkMRGIShadowComposite* ShadowComposite = nullptr;
   vtkSequencePass* OpaqueSequence = nullptr;
   vtkOpenGLFXAAFilter* FXAAFilter = nullptr;
 

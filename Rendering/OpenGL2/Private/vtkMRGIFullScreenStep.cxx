@@ -226,7 +226,7 @@ bool vtkMRGIFullScreenStep::AddRGB(vtkOpenGLRenderWindow* window, vtkMRGIProgram
   ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
   fbo->SaveCurrentBindingsAndBuffers();
   fbo->Bind();
-  fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
+  fbo->RemoveColorAttachments(MRGI_GBUFFER_MAX_ATTACHMENTS);
   fbo->AddColorAttachment(0, target);
   vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
   source->Activate();

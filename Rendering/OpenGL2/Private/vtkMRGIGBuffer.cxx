@@ -11,8 +11,8 @@
 #include "vtkTextureObject.h"
 
 //------------------------------------------------------------------------------
-void vtkMRGIGBuffer::Prepare(
-  vtkOpenGLRenderWindow* window, int w, int h, bool capture, bool specular, bool display)
+void vtkMRGIGBuffer::Prepare(vtkOpenGLRenderWindow* window, int w, int h, bool capture,
+  bool specular, bool shadows, bool display)
 {
   auto ensure = [&](vtkTextureObject*& t, int format) {
     if (!t)
@@ -59,6 +59,19 @@ void vtkMRGIGBuffer::Prepare(
       ensure(this->Specular, GL_RGBA16F);
       ensure(this->Shininess, GL_RGBA16F);
     }
+    if (shadows)
+    {
+      // Terms in float, like the colour they are subtracted from: half
+      // floats overflow above 65504 (bright lights would lose their
+      // shadows) and leave 5e-4 of a removed term behind. Factors lie in
+      // [0, 1]: half floats suffice.
+      for (vtkTextureObject*& t : this->LightTerms)
+      {
+        ensure(t, GL_RGBA32F);
+      }
+      ensure(this->ShadowFactors, GL_RGBA16F);
+      ensure(this->Shadowed, GL_RGBA32F);
+    }
   }
   if (display)
   {
@@ -86,9 +99,14 @@ void vtkMRGIGBuffer::Release(vtkWindow* w)
   }
   for (vtkTextureObject** t :
     { &this->Color, &this->Depth, &this->Position, &this->Normal, &this->Albedo, &this->Specular,
-      &this->Shininess, &this->Irradiance, &this->Indirect, &this->Display })
+      &this->Shininess, &this->Irradiance, &this->Indirect, &this->Display,
+      &this->ShadowFactors, &this->Shadowed })
   {
     vtkMRGIShaderUtilities::ReleaseTexture(*t, w);
+  }
+  for (vtkTextureObject*& t : this->LightTerms)
+  {
+    vtkMRGIShaderUtilities::ReleaseTexture(t, w);
   }
 }
 

@@ -13,6 +13,8 @@
 #ifndef vtkMRGIGBuffer_h
 #define vtkMRGIGBuffer_h
 
+#include "mrgi_buffers.h" // For MRGI_SHADOW_SLOTS
+
 class vtkImageData;
 class vtkOpenGLFramebufferObject;
 class vtkOpenGLRenderWindow;
@@ -28,11 +30,12 @@ public:
   /**
    * Make every buffer a frame of w x h needs: colour and depth always; with
    * `capture` the G-buffer and the indirect targets; with `specular` also
-   * the specular attachments; with `display` the display image (FXAA's
-   * input and output). Buffers are created once and resized.
+   * the specular attachments; with `shadows` the light terms, the shadow
+   * factors and the shadowed colour; with `display` the display image
+   * (FXAA's input and output). Buffers are created once and resized.
    */
-  void Prepare(
-    vtkOpenGLRenderWindow* window, int w, int h, bool capture, bool specular, bool display = false);
+  void Prepare(vtkOpenGLRenderWindow* window, int w, int h, bool capture, bool specular,
+    bool shadows, bool display);
 
   /** Free every buffer (their GL objects too when `w` is given). */
   void Release(vtkWindow* w);
@@ -59,6 +62,12 @@ public:
   vtkTextureObject* Irradiance = nullptr; // E of the indirect gather
   vtkTextureObject* Indirect = nullptr;   // strength x albedo x E
   vtkTextureObject* Display = nullptr;    // exposed, tone-mapped colour (FXAA runs on it)
+  // Direct shadows: VTK's per-light terms (MRGI_GBUFFER_LIGHT0..), the
+  // factors of each slot, and the colour they are applied into (swapped
+  // with Color once applied, so Color is always the frame's colour).
+  vtkTextureObject* LightTerms[MRGI_SHADOW_SLOTS] = {};
+  vtkTextureObject* ShadowFactors = nullptr;
+  vtkTextureObject* Shadowed = nullptr;
 
 private:
   vtkMRGIGBuffer(const vtkMRGIGBuffer&) = delete;

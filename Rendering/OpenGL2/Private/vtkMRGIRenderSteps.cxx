@@ -36,7 +36,7 @@ public:
   void Render(const vtkRenderState*) override
   {
     const float zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
-    for (int a = MRGI_GBUFFER_POSITION; a < MRGI_GBUFFER_ATTACHMENTS; ++a)
+    for (int a = MRGI_GBUFFER_POSITION; a < MRGI_GBUFFER_MAX_ATTACHMENTS; ++a)
     {
       glClearBufferfv(GL_COLOR, a, zero);
     }
@@ -125,7 +125,7 @@ int RenderForward(const vtkRenderState* s, vtkRenderStepsPass* steps,
   int rendered = 0;
   fbo->SaveCurrentBindingsAndBuffers();
   fbo->Bind();
-  fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
+  fbo->RemoveColorAttachments(MRGI_GBUFFER_MAX_ATTACHMENTS);
   fbo->AddColorAttachment(MRGI_GBUFFER_DIRECT, color);
   vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
   fbo->AddDepthAttachment(depth);
@@ -217,7 +217,7 @@ void RenderFXAA(vtkRenderer* renderer, vtkOpenGLFramebufferObject* fbo, vtkTextu
   }
   fbo->SaveCurrentBindingsAndBuffers();
   fbo->Bind();
-  fbo->RemoveColorAttachments(MRGI_GBUFFER_ATTACHMENTS);
+  fbo->RemoveColorAttachments(MRGI_GBUFFER_MAX_ATTACHMENTS);
   fbo->AddColorAttachment(0, display);
   vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
   fbo->ActivateReadBuffer(0);

@@ -35,6 +35,110 @@ void SelectDrawBuffers(vtkOpenGLFramebufferObject* fbo, unsigned int count)
 }
 
 //------------------------------------------------------------------------------
+void SelectGBufferDrawBuffers(vtkOpenGLFramebufferObject* fbo, bool specular, bool lightTerms)
+{
+  const unsigned int count = lightTerms ? MRGI_GBUFFER_MAX_ATTACHMENTS
+    : specular                          ? MRGI_GBUFFER_ATTACHMENTS
+                                        : MRGI_GBUFFER_SPECULAR;
+  fbo->ActivateDrawBuffers(count);
+  std::vector<GLenum> buffers(count);
+  for (unsigned int a = 0; a < count; ++a)
+  {
+    const bool unused =
+      !specular && a >= MRGI_GBUFFER_SPECULAR && a < MRGI_GBUFFER_ATTACHMENTS;
+    buffers[a] = unused ? static_cast<GLenum>(GL_NONE) : static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + a);
+  }
+  glDrawBuffers(static_cast<GLsizei>(count), buffers.data());
+}
+
+//------------------------------------------------------------------------------
+void InsertLightTerms(std::string& fs, std::string& declarations, std::string& capture)
+{
+  const bool pbr = fs.find("vec3 Lo = vec3(0.0);") != std::string::npos;
+  for (int s = 0; s < MRGI_SHADOW_SLOTS; ++s)
+  {
+    declarations += "vec3 mrgiLightTerm" + std::to_string(s) + " = vec3(0.0);\n";
+  }
+  declarations += "vec3 mrgiLightLo;\n";
+  // The strings below are VTK 9.1's and 9.2's light loop
+  // (vtkOpenGLPolyDataMapper::ReplaceShaderLight; vtkShadowMapPass edits the
+  // same lines). Each light's lines appear in light order, so the first
+  // remaining occurrence belongs to the next light.
+  for (int s = 0; s < MRGI_SHADOW_SLOTS; ++s)
+  {
+    const std::string n = std::to_string(s);
+    const std::string term = "mrgiLightTerm" + n;
+    if (pbr)
+    {
+      for (const char* form : { "NdL", "NdV" })
+      {
+        const std::string line = std::string("Lo += radiance * (diffuse + specular) * ") + form + ";";
+        const size_t at = fs.find(line);
+        if (at != std::string::npos)
+        {
+          fs.replace(at, line.size(),
+            std::string("mrgiLightLo = radiance * (diffuse + specular) * ") + form +
+              "; Lo += mrgiLightLo; " + term + " += mrgiLightLo;");
+          break;
+        }
+      }
+      const std::string coat = "Lo += coatLayer;";
+      const size_t at = fs.find(coat);
+      if (at != std::string::npos)
+      {
+        fs.replace(at, coat.size(), "Lo += (coatLayer); " + term + " += coatLayer;");
+      }
+    }
+    else
+    {
+      vtkShaderProgram::Substitute(fs, "diffuse += (df * lightColor" + n + ");",
+        "diffuse += (df * lightColor" + n + "); " + term + " += df * lightColor" + n +
+          " * diffuseColor;",
+        false);
+      vtkShaderProgram::Substitute(fs, "specular += (sf * lightColor" + n + ");",
+        "specular += (sf * lightColor" + n + "); " + term + " += sf * lightColor" + n +
+          " * specularColor;",
+        false);
+      if (s == 0)
+      {
+        // The headlight (VTK's light complexity 1): light 0 is the only one.
+        vtkShaderProgram::Substitute(fs, "vec3 specular = sf * specularColor * lightColor0;",
+          "vec3 specular = sf * specularColor * lightColor0; " + term + " = diffuse + specular;",
+          false);
+      }
+    }
+  }
+  std::string factor = "mrgiTextureFactor";
+  std::string sign = "1.0";
+  if (pbr)
+  {
+    // VTK scales the whole lit colour by its occlusion term, then encodes
+    // pow(color, 1/2.2): the terms take the occlusion, the sign marks the law.
+    factor = fs.find("color = mix(color, color * ao, aoStrengthUniform);") != std::string::npos
+      ? "vec3(1.0 + aoStrengthUniform * (ao - 1.0))"
+      : "vec3(1.0)";
+    sign = fs.find("pow(color, vec3(1.0/2.2))") != std::string::npos ? "-1.0" : "1.0";
+  }
+  for (int s = 0; s < MRGI_SHADOW_SLOTS; ++s)
+  {
+    const std::string n = std::to_string(s);
+    capture += "  gl_FragData[MRGI_GBUFFER_LIGHT" + n + "] = vec4(" + sign + " * max(mrgiLightTerm" +
+      n + " * " + factor + ", vec3(0.0)), 1.0);\n";
+  }
+}
+
+//------------------------------------------------------------------------------
+std::string NoLightTerms()
+{
+  std::string capture;
+  for (int s = 0; s < MRGI_SHADOW_SLOTS; ++s)
+  {
+    capture += "  gl_FragData[MRGI_GBUFFER_LIGHT" + std::to_string(s) + "] = vec4(0.0, 0.0, 0.0, 1.0);\n";
+  }
+  return capture;
+}
+
+//------------------------------------------------------------------------------
 const std::string& Defines()
 {
   static const std::string block = []() {
@@ -70,6 +174,11 @@ std::string ResolveAttachments(std::string code)
   {
     vtkShaderProgram::Substitute(code, std::string("gl_FragData[") + a.name + "]",
       "gl_FragData[" + std::to_string(a.value) + "]", true);
+  }
+  for (int s = 0; s < MRGI_SHADOW_SLOTS; ++s)
+  {
+    vtkShaderProgram::Substitute(code, "gl_FragData[MRGI_GBUFFER_LIGHT" + std::to_string(s) + "]",
+      "gl_FragData[" + std::to_string(MRGI_GBUFFER_LIGHT0 + s) + "]", true);
   }
   return code;
 }

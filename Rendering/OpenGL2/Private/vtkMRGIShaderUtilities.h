@@ -72,6 +72,30 @@ bool CanCapture(const std::string& fragmentShader);
 void InsertCapture(
   std::string& fragmentShader, const std::string& declarations, const std::string& capture);
 
+/**
+ * Instrument VTK's light loop in `fragmentShader` (after VTK replaced
+ * //VTK::Light::Impl, before InsertCapture) so that it also sums the term
+ * of each of its first MRGI_SHADOW_SLOTS lights separately, and return the
+ * declarations and the capture code that write those terms to the
+ * MRGI_GBUFFER_LIGHT0.. attachments (mrgi_buffers.h): Phong terms times
+ * VTK's texture colour; PBR terms times its ambient-occlusion factor, stored
+ * negated (VTK encodes PBR colours with a display gamma). Light loops that
+ * do not have VTK 9.1/9.2's form leave the terms at 0: those pixels keep
+ * VTK's unshadowed colour.
+ */
+void InsertLightTerms(std::string& fragmentShader, std::string& declarations, std::string& capture);
+
+/** Capture code that writes zero light terms (geometry VTK does not light). */
+std::string NoLightTerms();
+
+/**
+ * Select the G-buffer's draw buffers for the scene: the first
+ * MRGI_GBUFFER_SPECULAR attachments, the specular pair when `specular`, the
+ * light terms when `lightTerms` (GL_NONE between, which OpenGL 3.2 requires
+ * for attachment points without an image).
+ */
+void SelectGBufferDrawBuffers(vtkOpenGLFramebufferObject* fbo, bool specular, bool lightTerms);
+
 /** Free a texture's GL resources (when `w` is given) and delete it; null-safe, nulls `t`. */
 void ReleaseTexture(vtkTextureObject*& t, vtkWindow* w);
 
