@@ -531,6 +531,11 @@ int main(int argc, char* argv[])
   mrgi->SetIndirectMode(!o.GI ? vtkMRGIPass::IndirectOff
       : o.Multires             ? vtkMRGIPass::IndirectMultires
                                : vtkMRGIPass::IndirectFull);
+  // Shadows come with the indirect light unless asked otherwise: --gi off
+  // stays VTK's own direct light.
+  mrgi->SetDirectShadows(o.DirectShadows >= 0 ? o.DirectShadows
+      : o.GI                                  ? vtkMRGIPass::DirectShadowsSoft
+                                              : vtkMRGIPass::DirectShadowsOff);
   // The preset first, then every knob given explicitly.
   mrgi->GetMultiresolution()->SetPreset(static_cast<int>(o.Preset));
   if (!std::isnan(o.DepthThreshold))

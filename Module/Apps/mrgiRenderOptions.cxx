@@ -717,6 +717,17 @@ const std::vector<OptionSection>& OptionTable()
             &Options::Iso, [](double v) { return std::fabs(v) <= MaxFloatValue; },
             "expected a finite number", &Options::HasIso)) },
       } },
+    { "Direct shadows (Documentation/DirectShadows.md)",
+      {
+        { { "--direct-shadows" }, "off|hard|soft",
+          "shadows in VTK's direct light, from the reflective shadow maps, for\n"
+          "the first two lights: hard (percentage-closer filtering) or soft\n"
+          "(PCSS); lit pixels keep VTK's colour exactly (default soft with\n"
+          "--gi on/full, off with --gi off)",
+          Choice<int>(&Options::DirectShadows,
+            { { "off", vtkMRGIPass::DirectShadowsOff }, { "hard", vtkMRGIPass::DirectShadowsHard },
+              { "soft", vtkMRGIPass::DirectShadowsSoft } }) },
+      } },
     { "Indirect light (one bounce; Documentation/IndirectLight.md)",
       {
         { { "--gi" }, "on|multires|full|off",

@@ -73,6 +73,7 @@ struct Options
   bool HasSpecular = false;
   double SpecularCoefficient = 0.0;
   double SpecularPower = 1.0;
+  int DirectShadows = -1; // not given: soft with indirect light, off without
   long long VPLs = 256;
   bool ImportanceVPLs = false;
   long long RSMSize = 256;

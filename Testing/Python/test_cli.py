@@ -286,6 +286,8 @@ def bad_input():
         (["cornell", "-o", target, "--area-light", "0,0,0:1,0,0:0,1,0:-1,1,1"], "colour"),
         (["cornell", "-o", target, "--area-light-samples", "0"], "--area-light-samples"),
         (["cornell", "-o", target, "--area-light-visibility", "exact"], "--area-light-visibility"),
+        (["cornell", "-o", target, "--direct-shadows", "maybe"], "--direct-shadows"),
+        (["cornell", "-o", target, "--direct-shadows", ""], "--direct-shadows"),
         (["cornell", "-o", target, "--voxel-size", "0"], "--voxel-size"),
         (["cornell", "-o", target, "--incremental-stencil", "yes"], "--incremental-stencil"),
         (["cornell", "-o", target, "--area-light-specular-resolution", "half"],
