@@ -288,7 +288,7 @@ int main()
       MRGI_TEST_CHECK(pass->GetStageTimeMilliseconds(s) >= 0.0);
     }
   }
-  MRGI_TEST_CHECK(top == "scene rsm vpl select gather upsample add forward output ");
+  MRGI_TEST_CHECK(top == "scene rsm shadows vpl select gather upsample add forward output ");
   MRGI_TEST_CHECK(names.find("select.stencil") != std::string::npos &&
     names.find("gather.vpls") != std::string::npos);
 
