@@ -182,6 +182,12 @@ void vtkPVMRGIRenderView::SetSurfaceDetail(double alpha)
 }
 
 //------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetDirectShadows(int mode)
+{
+  this->MRGIPass->SetDirectShadows(mode);
+}
+
+//------------------------------------------------------------------------------
 void vtkPVMRGIRenderView::SetUpsampleMode(int mode)
 {
   this->MRGIPass->SetUpsampleMode(mode);

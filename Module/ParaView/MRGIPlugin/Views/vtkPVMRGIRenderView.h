@@ -73,6 +73,7 @@ public:
   void SetRSMResolution(int resolution);
   void SetIndirectStrength(double strength);
   void SetSurfaceDetail(double alpha);
+  void SetDirectShadows(int mode);
   void SetUpsampleMode(int mode);
   void SetExposure(double ev);
   void SetAutoExposure(bool automatic);
