@@ -1,0 +1,317 @@
+// The GPU's shadow factors (vtkMRGIDirectShadows) against the C twin
+// (mrgi_direct_shadow_gbuffer) on the GPU's own inputs: the G-buffer and
+// the RSM views a vtkMRGIPass rendered, read back.
+// (1) SpotAndDirectional: cornell-spot's spot light in slot 0 and a
+//     directional light through the open front in slot 1 (both channels);
+// (2) PointCube: cornell's point light (six cube faces) in slot 0, slot 1
+//     empty (its channel must stay exactly 1).
+// Each in hard (3 x 3 PCF) and soft (PCSS, 196 taps) mode, on a non-square
+// window. Compared per pixel: within 1e-4 on >= 99.9% of the pixels; the
+// rest may differ where float (GPU) and double (twin) put a tap or a depth
+// compare on the other side of a boundary (a tap in the neighbouring texel,
+// a view rule tie on a cube edge), which moves the factor by a few taps:
+// bounded by 4 taps of the PCF (4 / n^2) and counted. Channels without a
+// light and the blue and alpha channels are exactly 1. Both scenes must
+// have shadowed and lit pixels, so the comparison is not vacuous.
+//
+// `TestMRGIDirectShadows --bench` instead times Compute() (the window's
+// WaitForCompletion around it, median of 5) at 256^2 and 1024^2 on cornell-spot; not run by ctest.
+#include "mrgiTestUtilities.h"
+
+#include "vtkCamera.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMRGIDirectShadows.h"
+#include "vtkMRGIFrameContext.h"
+#include "vtkMRGIPass.h"
+#include "vtkMRGIReflectiveShadowMapPass.h"
+#include "vtkMRGISceneBuilder.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkRenderStepsPass.h"
+#include "vtkRenderer.h"
+#include "vtkTextureObject.h"
+
+#include "mrgi_buffers.h"
+#include "mrgi_direct_shadow.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+namespace
+{
+struct Scene
+{
+  vtkSmartPointer<vtkRenderWindow> Window;
+  vtkSmartPointer<vtkRenderer> Renderer;
+  vtkSmartPointer<vtkMRGIPass> Pass;
+  vtkSmartPointer<vtkTextureObject> Factors;
+  vtkMRGIFrameContext Frame;
+};
+
+// Render `sceneName` (plus a directional light through the open front when
+// asked) and prepare the frame context and a window-sized factor texture.
+void Build(Scene& s, const char* sceneName, bool directional, int width, int height, int rsm)
+{
+  s.Window = mrgitest::HeadlessWindow(width, height);
+  s.Renderer = vtkSmartPointer<vtkRenderer>::New();
+  s.Window->AddRenderer(s.Renderer);
+  vtkNew<vtkMRGISceneBuilder> builder;
+  builder->SetScene(sceneName);
+  MRGI_TEST_CHECK(builder->Build(s.Renderer));
+  if (directional)
+  {
+    vtkNew<vtkLight> sun;
+    sun->SetLightTypeToSceneLight();
+    sun->SetPositional(false);
+    sun->SetPosition(578.0, 773.0, -800.0);
+    sun->SetFocalPoint(278.0, 273.0, 279.5);
+    sun->SetIntensity(0.5);
+    s.Renderer->AddLight(sun);
+  }
+  vtkNew<vtkRenderStepsPass> steps;
+  s.Pass = vtkSmartPointer<vtkMRGIPass>::New();
+  s.Pass->SetDelegatePass(steps);
+  s.Pass->SetNumberOfVPLs(16);
+  s.Pass->SetRSMResolution(rsm);
+  s.Renderer->SetPass(s.Pass);
+  s.Window->Render();
+
+  vtkOpenGLRenderWindow* glWindow = vtkOpenGLRenderWindow::SafeDownCast(s.Window);
+  vtkTextureObject* position = s.Pass->GetPositionTexture();
+  MRGI_TEST_CHECK(glWindow && position);
+  s.Factors = vtkSmartPointer<vtkTextureObject>::New();
+  s.Factors->SetContext(glWindow);
+  // Default internal format of 4 float components: RGBA32F.
+  MRGI_TEST_CHECK(s.Factors->Allocate2D(position->GetWidth(), position->GetHeight(), 4, VTK_FLOAT));
+  vtkMRGIFrameContext& frame = s.Frame;
+  frame.Window = glWindow;
+  frame.Renderer = s.Renderer;
+  frame.Position = position;
+  frame.Normal = s.Pass->GetNormalTexture();
+  const int* vp = s.Pass->GetViewport();
+  std::copy(vp, vp + 4, frame.Viewport);
+  const double* v2w = s.Pass->GetLastViewToWorld();
+  for (int k = 0; k < 16; ++k)
+  {
+    frame.ViewToWorld[k] = static_cast<float>(v2w[k]);
+    frame.ViewToWorldDouble[k] = v2w[k];
+  }
+}
+
+// The twin's description of RSM view i (positions read back into `store`).
+mrgi_direct_shadow_view TwinView(
+  vtkRenderWindow* window, vtkMRGIReflectiveShadowMapPass* rsm, int i, vtkImageData* store)
+{
+  vtkNew<vtkImageData> normal, flux;
+  MRGI_TEST_CHECK(rsm->ReadView(window, i, store, normal, flux));
+  mrgi_direct_shadow_view view;
+  double m[16], p[16];
+  MRGI_TEST_CHECK(rsm->GetViewWorldToView(i, m) && rsm->GetViewProjection(i, p));
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      view.world_to_view[4 * c + r] = m[4 * r + c];
+    }
+  }
+  view.perspective = rsm->GetViewPerspective(i) ? 1 : 0;
+  view.scale[0] = p[0];
+  view.scale[1] = p[5];
+  view.near_plane = view.perspective ? p[11] / (p[10] - 1.0) : 0.0;
+  view.size = rsm->GetResolution();
+  view.positions = static_cast<const float*>(store->GetScalarPointer());
+  return view;
+}
+
+void Compare(Scene& s, const int slots[MRGI_SHADOW_SLOTS], int mode, const char* label)
+{
+  mrgi_direct_shadow_params params;
+  mrgi_direct_shadow_params_default(&params);
+  params.mode = mode;
+  params.samples_side = MRGI_DIRECT_SHADOW_MAX_SIDE;
+  params.light_radius = 10.0; // world units (mm): about 2% of the box's bounding radius
+  vtkMRGIReflectiveShadowMapPass* rsm = s.Pass->GetReflectiveShadowMapPass();
+  vtkNew<vtkMRGIDirectShadows> gpu;
+  MRGI_TEST_CHECK(gpu->Compute(s.Frame, rsm, slots, params, s.Factors));
+  vtkNew<vtkFloatArray> factors;
+  MRGI_TEST_CHECK(vtkMRGIDirectShadows::ReadFactors(s.Window, s.Factors, factors));
+  const int texW = s.Factors->GetWidth();
+
+  vtkNew<vtkImageData> position, normal, albedo;
+  MRGI_TEST_CHECK(s.Pass->GetGBuffer(s.Window, position, normal, albedo));
+  const int x0 = s.Frame.Viewport[0], y0 = s.Frame.Viewport[1];
+  const int W = s.Frame.Viewport[2], H = s.Frame.Viewport[3];
+  const float* P = static_cast<const float*>(position->GetScalarPointer());
+  const float* N = static_cast<const float*>(normal->GetScalarPointer());
+  const double taps = mode == MRGI_DIRECT_SHADOW_HARD
+    ? MRGI_DIRECT_SHADOW_HARD_SIDE * MRGI_DIRECT_SHADOW_HARD_SIDE
+    : params.samples_side * params.samples_side;
+
+  int expectedDraws = 0;
+  for (int slot = 0; slot < MRGI_SHADOW_SLOTS; ++slot)
+  {
+    std::vector<float> twin(static_cast<size_t>(W) * H, 1.0f);
+    std::vector<mrgi_direct_shadow_view> views;
+    std::vector<vtkSmartPointer<vtkImageData>> stores;
+    if (slots[slot] >= 0)
+    {
+      for (int i = 0; i < rsm->GetNumberOfViews(); ++i)
+      {
+        if (rsm->GetViewLight(i) == slots[slot])
+        {
+          stores.push_back(vtkSmartPointer<vtkImageData>::New());
+          views.push_back(TwinView(s.Window, rsm, i, stores.back()));
+        }
+      }
+      MRGI_TEST_CHECK(!views.empty());
+      expectedDraws += static_cast<int>(views.size());
+      mrgi_direct_shadow_stats stats = { 0, 0, 0 };
+      mrgi_error err;
+      MRGI_TEST_CHECK(mrgi_direct_shadow_gbuffer(W, H, P, N, s.Frame.ViewToWorldDouble,
+                        views.data(), static_cast<int>(views.size()), &params, twin.data(),
+                        &stats, &err) == MRGI_OK);
+      MRGI_TEST_CHECK(stats.invalid_receivers == 0 && stats.invalid_views == 0);
+    }
+    size_t pixels = 0, close = 0, shadowed = 0, lit = 0, geometry = 0;
+    double worst = 0.0;
+    for (int y = 0; y < H; ++y)
+    {
+      for (int x = 0; x < W; ++x)
+      {
+        const size_t t = static_cast<size_t>(y) * W + x;
+        const float* g = factors->GetPointer(4 * ((static_cast<size_t>(y0 + y)) * texW + x0 + x));
+        MRGI_TEST_CHECK(g[2] == 1.0f && g[3] == 1.0f);
+        const double e = std::fabs(static_cast<double>(g[slot]) - twin[t]);
+        MRGI_TEST_CHECK(std::isfinite(g[slot]) && g[slot] >= 0.0f && g[slot] <= 1.0f);
+        if (slots[slot] < 0)
+        {
+          MRGI_TEST_CHECK(g[slot] == 1.0f);
+        }
+        ++pixels;
+        close += e <= 1e-4;
+        worst = std::max(worst, e);
+        if (P[4 * t + 3] > MRGI_GBUFFER_VALID_THRESHOLD)
+        {
+          ++geometry;
+          shadowed += twin[t] < 0.5f;
+          lit += twin[t] > 0.99f;
+        }
+      }
+    }
+    const double fraction = static_cast<double>(close) / static_cast<double>(pixels);
+    std::printf("%s slot %d (light %d, %zu views): %zu pixels, %zu with geometry, %zu shadowed, "
+                "%zu lit; within 1e-4: %.5f; largest difference %.4g (%.2f taps)\n",
+      label, slot, slots[slot], views.size(), pixels, geometry, shadowed, lit, fraction, worst,
+      worst * taps);
+    MRGI_TEST_CHECK(fraction >= 0.999);
+    MRGI_TEST_CHECK(worst <= 4.0 / taps + 1e-5);
+    if (slots[slot] >= 0)
+    {
+      MRGI_TEST_CHECK(shadowed >= geometry / 100 && lit >= geometry / 100);
+    }
+  }
+  MRGI_TEST_CHECK(gpu->GetNumberOfDraws() == expectedDraws);
+  gpu->ReleaseGraphicsResources(s.Window);
+}
+
+void SpotAndDirectional()
+{
+  Scene s;
+  Build(s, "cornell-spot", true, 128, 96, 128);
+  MRGI_TEST_CHECK(s.Renderer->GetLights()->GetNumberOfItems() == 2);
+  const int slots[MRGI_SHADOW_SLOTS] = { 0, 1 };
+  Compare(s, slots, MRGI_DIRECT_SHADOW_HARD, "spot+directional hard");
+  Compare(s, slots, MRGI_DIRECT_SHADOW_SOFT, "spot+directional soft");
+}
+
+void PointCube()
+{
+  Scene s;
+  Build(s, "cornell", false, 128, 96, 128);
+  vtkMRGIReflectiveShadowMapPass* rsm = s.Pass->GetReflectiveShadowMapPass();
+  MRGI_TEST_CHECK(rsm->GetNumberOfViews() > 1); // cube faces
+  const int slots[MRGI_SHADOW_SLOTS] = { 0, -1 };
+  Compare(s, slots, MRGI_DIRECT_SHADOW_HARD, "point hard");
+  Compare(s, slots, MRGI_DIRECT_SHADOW_SOFT, "point soft");
+}
+
+void BadInput()
+{
+  Scene s;
+  Build(s, "cornell-spot", false, 64, 48, 64);
+  vtkNew<vtkMRGIDirectShadows> gpu;
+  mrgi_direct_shadow_params params;
+  mrgi_direct_shadow_params_default(&params);
+  const int slots[MRGI_SHADOW_SLOTS] = { 0, -1 };
+  vtkMRGIReflectiveShadowMapPass* rsm = s.Pass->GetReflectiveShadowMapPass();
+  params.samples_side = 0;
+  MRGI_TEST_CHECK(!gpu->Compute(s.Frame, rsm, slots, params, s.Factors));
+  mrgi_direct_shadow_params_default(&params);
+  MRGI_TEST_CHECK(!gpu->Compute(s.Frame, nullptr, slots, params, s.Factors));
+  MRGI_TEST_CHECK(!gpu->Compute(s.Frame, rsm, slots, params, nullptr));
+  vtkMRGIFrameContext big = s.Frame;
+  big.Viewport[2] = 10000;
+  MRGI_TEST_CHECK(!gpu->Compute(big, rsm, slots, params, s.Factors));
+  MRGI_TEST_CHECK(gpu->Compute(s.Frame, rsm, slots, params, s.Factors));
+  gpu->ReleaseGraphicsResources(s.Window);
+}
+
+int Bench()
+{
+  for (int size : { 256, 1024 })
+  {
+    Scene s;
+    Build(s, "cornell-spot", false, size, size, 256);
+    vtkMRGIReflectiveShadowMapPass* rsm = s.Pass->GetReflectiveShadowMapPass();
+    const int slots[MRGI_SHADOW_SLOTS] = { 0, -1 };
+    vtkNew<vtkMRGIDirectShadows> gpu;
+    struct Setting
+    {
+      const char* Name;
+      int Mode, Side;
+    } settings[] = { { "hard", MRGI_DIRECT_SHADOW_HARD, 1 },
+      { "soft-64", MRGI_DIRECT_SHADOW_SOFT, 8 }, { "soft-196", MRGI_DIRECT_SHADOW_SOFT, 14 } };
+    for (const Setting& setting : settings)
+    {
+      mrgi_direct_shadow_params params;
+      mrgi_direct_shadow_params_default(&params);
+      params.mode = setting.Mode;
+      params.samples_side = setting.Side;
+      params.light_radius = 10.0;
+      std::vector<double> ms;
+      for (int k = 0; k < 6; ++k)
+      {
+        s.Frame.Window->WaitForCompletion();
+        const auto start = std::chrono::steady_clock::now();
+        MRGI_TEST_CHECK(gpu->Compute(s.Frame, rsm, slots, params, s.Factors));
+        s.Frame.Window->WaitForCompletion();
+        const auto end = std::chrono::steady_clock::now();
+        if (k > 0) // the first builds the program
+        {
+          ms.push_back(std::chrono::duration<double, std::milli>(end - start).count());
+        }
+      }
+      std::sort(ms.begin(), ms.end());
+      std::printf("bench %dx%d %s: %.2f ms (median of %zu)\n", size, size, setting.Name,
+        ms[ms.size() / 2], ms.size());
+    }
+    gpu->ReleaseGraphicsResources(s.Window);
+  }
+  return 0;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  if (argc > 1 && std::strcmp(argv[1], "--bench") == 0)
+  {
+    return Bench();
+  }
+  return mrgitest::RunCases(argc, argv,
+    { MRGI_TEST_CASE(SpotAndDirectional), MRGI_TEST_CASE(PointCube), MRGI_TEST_CASE(BadInput) });
+}
