@@ -87,8 +87,9 @@
  * scale <= 0 (perspective: near <= 0) give factor 1 (the view is skipped)
  * and count in ::mrgi_direct_shadow_stats. Computation is in double; the
  * GPU computes in float, so a tap can fall in the neighbouring texel (or a
- * depth compare flip) where a value lies within rounding of a boundary: the
- * parity test allows such pixels to differ by one tap (1 / n^2).
+ * depth compare flip) where a value lies within rounding of a boundary; the
+ * taps of a grid row share their offset, so a row moves as one (n taps).
+ * The parity test allows a few such pixels, by at most 2 / n.
  */
 #ifndef MRGI_DIRECT_SHADOW_H
 #define MRGI_DIRECT_SHADOW_H
@@ -109,7 +110,7 @@ extern "C" {
 /** Side of the hard PCF kernel (3 x 3 texels). */
 #define MRGI_DIRECT_SHADOW_HARD_SIDE 3
 /** Side of the PCSS blocker-search grid (6 x 6 = 36 taps). */
-#define MRGI_DIRECT_SHADOW_BLOCKER_SIDE 6
+#define MRGI_DIRECT_SHADOW_BLOCKER_SIDE 8
 /** Largest PCSS filter side (14 x 14 = 196 taps, BMR's count). */
 #define MRGI_DIRECT_SHADOW_MAX_SIDE 14
 /** The pass's default PCSS filter side (8 x 8 = 64 taps). */
@@ -119,7 +120,7 @@ extern "C" {
 /** Largest receiver-plane slope used by the bias (tan of about 88 degrees). */
 #define MRGI_DIRECT_SHADOW_MAX_SLOPE 32.0
 /** Nearest blocker depth the search accounts for, as a fraction of the receiver's depth. */
-#define MRGI_DIRECT_SHADOW_SEARCH_NEAR 0.1
+#define MRGI_DIRECT_SHADOW_SEARCH_NEAR 0.25
 /** Search and filter radii, texels. */
 #define MRGI_DIRECT_SHADOW_MIN_RADIUS 0.5
 #define MRGI_DIRECT_SHADOW_MAX_RADIUS 32.0
