@@ -170,6 +170,7 @@ bool vtkMRGIDirectShadows::Compute(const vtkMRGIFrameContext& frame,
   vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
   vtkOpenGLState* ostate = steps.GetState();
   vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+  vtkOpenGLState::ScopedglScissor scissorBox(ostate); // the step saves only its enable
   steps.Target(factors, nullptr, x0, y0, w, h);
   // Every channel starts lit (1) over the viewport only.
   ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
