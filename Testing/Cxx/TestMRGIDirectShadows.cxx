@@ -4,7 +4,10 @@
 // (1) SpotAndDirectional: cornell-spot's spot light in slot 0 and a
 //     directional light through the open front in slot 1 (both channels);
 // (2) PointCube: cornell's point light (six cube faces) in slot 0, slot 1
-//     empty (its channel must stay exactly 1).
+//     empty (its channel must stay exactly 1);
+// (3) SubViewport: a renderer on a tile of the window: texels outside the
+//     tile keep what the texture held; a slot naming a light without views
+//     stays 1.
 // Each in hard (3 x 3 PCF) and soft (PCSS, 196 taps) mode, on a non-square
 // window. Compared per pixel: within 1e-4 on >= 99.9% of the pixels; the
 // rest may differ where float (GPU) and double (twin) put a tap on the
@@ -48,6 +51,9 @@
 
 namespace
 {
+// What the factor texture holds before Compute(), outside the viewport after it.
+const float MarkerValue = 0.25f;
+
 struct Scene
 {
   vtkSmartPointer<vtkRenderWindow> Window;
@@ -59,10 +65,15 @@ struct Scene
 
 // Render `sceneName` (plus a directional light through the open front when
 // asked) and prepare the frame context and a window-sized factor texture.
-void Build(Scene& s, const char* sceneName, bool directional, int width, int height, int rsm)
+void Build(Scene& s, const char* sceneName, bool directional, int width, int height, int rsm,
+  const double* viewport = nullptr)
 {
   s.Window = mrgitest::HeadlessWindow(width, height);
   s.Renderer = vtkSmartPointer<vtkRenderer>::New();
+  if (viewport)
+  {
+    s.Renderer->SetViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+  }
   s.Window->AddRenderer(s.Renderer);
   vtkNew<vtkMRGISceneBuilder> builder;
   builder->SetScene(sceneName);
@@ -90,8 +101,11 @@ void Build(Scene& s, const char* sceneName, bool directional, int width, int hei
   MRGI_TEST_CHECK(glWindow && position);
   s.Factors = vtkSmartPointer<vtkTextureObject>::New();
   s.Factors->SetContext(glWindow);
-  // Default internal format of 4 float components: RGBA32F.
-  MRGI_TEST_CHECK(s.Factors->Allocate2D(position->GetWidth(), position->GetHeight(), 4, VTK_FLOAT));
+  // Default internal format of 4 float components: RGBA32F. Filled with
+  // MarkerValue, which texels outside the viewport must keep.
+  std::vector<float> fill(4 * static_cast<size_t>(position->GetWidth()) * position->GetHeight(), MarkerValue);
+  MRGI_TEST_CHECK(s.Factors->Create2DFromRaw(
+    position->GetWidth(), position->GetHeight(), 4, VTK_FLOAT, fill.data()));
   vtkMRGIFrameContext& frame = s.Frame;
   frame.Window = glWindow;
   frame.Renderer = s.Renderer;
@@ -220,6 +234,25 @@ void Compare(Scene& s, const int slots[MRGI_SHADOW_SLOTS], int mode, const char*
     }
   }
   MRGI_TEST_CHECK(gpu->GetNumberOfDraws() == expectedDraws);
+  // Texels outside the viewport are left as they were.
+  size_t outside = 0, touched = 0;
+  const int texH = s.Factors->GetHeight();
+  for (int y = 0; y < texH; ++y)
+  {
+    for (int x = 0; x < texW; ++x)
+    {
+      if (x >= x0 && x < x0 + W && y >= y0 && y < y0 + H)
+      {
+        continue;
+      }
+      ++outside;
+      const float* g = factors->GetPointer(4 * (static_cast<size_t>(y) * texW + x));
+      touched += g[0] != MarkerValue || g[1] != MarkerValue || g[2] != MarkerValue || g[3] != MarkerValue;
+    }
+  }
+  std::printf("%s: viewport (%d, %d, %d, %d) of %d x %d; %zu texels outside it, %zu written\n",
+    label, x0, y0, W, H, texW, texH, outside, touched);
+  MRGI_TEST_CHECK(touched == 0);
   gpu->ReleaseGraphicsResources(s.Window);
 }
 
@@ -242,6 +275,38 @@ void PointCube()
   const int slots[MRGI_SHADOW_SLOTS] = { 0, -1 };
   Compare(s, slots, MRGI_DIRECT_SHADOW_HARD, "point hard");
   Compare(s, slots, MRGI_DIRECT_SHADOW_SOFT, "point soft");
+}
+
+// A renderer on part of a non-square window: the stage writes its tile only.
+void SubViewport()
+{
+  Scene s;
+  const double viewport[4] = { 0.2, 0.1, 0.9, 0.95 };
+  Build(s, "cornell-spot", false, 144, 96, 128, viewport);
+  MRGI_TEST_CHECK(s.Frame.Viewport[0] > 0 && s.Frame.Viewport[1] > 0);
+  const int slots[MRGI_SHADOW_SLOTS] = { 0, -1 };
+  Compare(s, slots, MRGI_DIRECT_SHADOW_HARD, "tile hard");
+  Compare(s, slots, MRGI_DIRECT_SHADOW_SOFT, "tile soft");
+  // A slot naming a light without views (no such light) stays lit.
+  const int none[MRGI_SHADOW_SLOTS] = { 7, -1 };
+  vtkNew<vtkMRGIDirectShadows> gpu;
+  mrgi_direct_shadow_params params;
+  mrgi_direct_shadow_params_default(&params);
+  MRGI_TEST_CHECK(gpu->Compute(s.Frame, s.Pass->GetReflectiveShadowMapPass(), none, params, s.Factors));
+  MRGI_TEST_CHECK(gpu->GetNumberOfDraws() == 0);
+  vtkNew<vtkFloatArray> factors;
+  MRGI_TEST_CHECK(vtkMRGIDirectShadows::ReadFactors(s.Window, s.Factors, factors));
+  const int texW = s.Factors->GetWidth();
+  for (int y = 0; y < s.Frame.Viewport[3]; ++y)
+  {
+    for (int x = 0; x < s.Frame.Viewport[2]; ++x)
+    {
+      const float* g = factors->GetPointer(
+        4 * (static_cast<size_t>(s.Frame.Viewport[1] + y) * texW + s.Frame.Viewport[0] + x));
+      MRGI_TEST_CHECK(g[0] == 1.0f && g[1] == 1.0f && g[2] == 1.0f && g[3] == 1.0f);
+    }
+  }
+  gpu->ReleaseGraphicsResources(s.Window);
 }
 
 void BadInput()
@@ -345,5 +410,6 @@ int main(int argc, char* argv[])
     return Bench();
   }
   return mrgitest::RunCases(argc, argv,
-    { MRGI_TEST_CASE(SpotAndDirectional), MRGI_TEST_CASE(PointCube), MRGI_TEST_CASE(BadInput) });
+    { MRGI_TEST_CASE(SpotAndDirectional), MRGI_TEST_CASE(PointCube), MRGI_TEST_CASE(SubViewport),
+      MRGI_TEST_CASE(BadInput) });
 }
