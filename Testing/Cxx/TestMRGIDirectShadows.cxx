@@ -7,7 +7,8 @@
 //     empty (its channel must stay exactly 1);
 // (3) SubViewport: a renderer on a tile of the window: texels outside the
 //     tile keep what the texture held; a slot naming a light without views
-//     stays 1.
+//     stays 1; the depth maps are derived again only when the RSMs are
+//     re-rendered (then the factors still match the twin).
 // Each in hard (3 x 3 PCF) and soft (PCSS, 196 taps) mode, on a non-square
 // window. Compared per pixel: within 1e-4 on >= 99.9% of the pixels; the
 // rest may differ where float (GPU) and double (twin) put a tap on the
@@ -306,7 +307,24 @@ void SubViewport()
       MRGI_TEST_CHECK(g[0] == 1.0f && g[1] == 1.0f && g[2] == 1.0f && g[3] == 1.0f);
     }
   }
+  // The depth maps are derived once per RSM render: not again for a frame
+  // with nothing changed, again once the light moves.
+  MRGI_TEST_CHECK(gpu->GetNumberOfDepthUpdates() == 1);
+  MRGI_TEST_CHECK(gpu->Compute(s.Frame, s.Pass->GetReflectiveShadowMapPass(), slots, params, s.Factors));
+  MRGI_TEST_CHECK(gpu->GetNumberOfDepthUpdates() == 1);
+  s.Window->Render();
+  MRGI_TEST_CHECK(gpu->Compute(s.Frame, s.Pass->GetReflectiveShadowMapPass(), slots, params, s.Factors));
+  MRGI_TEST_CHECK(gpu->GetNumberOfDepthUpdates() == 1);
+  vtkLight* light = vtkLight::SafeDownCast(s.Renderer->GetLights()->GetItemAsObject(0));
+  MRGI_TEST_CHECK(light);
+  double p[3];
+  light->GetPosition(p);
+  light->SetPosition(p[0] + 60.0, p[1] - 20.0, p[2]);
+  s.Window->Render();
+  MRGI_TEST_CHECK(gpu->Compute(s.Frame, s.Pass->GetReflectiveShadowMapPass(), slots, params, s.Factors));
+  MRGI_TEST_CHECK(gpu->GetNumberOfDepthUpdates() == 2);
   gpu->ReleaseGraphicsResources(s.Window);
+  Compare(s, slots, MRGI_DIRECT_SHADOW_SOFT, "tile soft, light moved");
 }
 
 void BadInput()

@@ -25,13 +25,38 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkMRGIDirectShadows);
 
 struct vtkMRGIDirectShadows::Internals
 {
-  vtkMRGIStageResources GL; // framebuffer and program
+  vtkMRGIStageResources GL; // framebuffer and programs
+  // Per RSM view, its depth map (R32F, S x S), derived when the RSMs'
+  // contents change (GetContentTime()), not every frame.
+  std::vector<vtkTextureObject*> Depth;
+  vtkMTimeType DepthTime = 0;
+  int DepthSize = 0;
+  vtkIdType DepthUpdates = 0;
+
+  void ReleaseDepth(vtkWindow* w)
+  {
+    for (vtkTextureObject*& t : this->Depth)
+    {
+      vtkMRGIShaderUtilities::ReleaseTexture(t, w);
+    }
+    this->Depth.clear();
+    this->DepthTime = 0;
+    this->DepthSize = 0;
+  }
+
+  vtkOpenGLQuadHelper* Ready(vtkOpenGLRenderWindow* window, int stage)
+  {
+    return this->GL.Programs.Ready(window, "directshadows",
+      "#define MRGI_DS_STAGE " + std::to_string(stage) + "\n",
+      [] { return std::string(vtkMRGIDirectShadowFS); });
+  }
 };
 
 //------------------------------------------------------------------------------
@@ -43,16 +68,24 @@ vtkMRGIDirectShadows::vtkMRGIDirectShadows()
 //------------------------------------------------------------------------------
 vtkMRGIDirectShadows::~vtkMRGIDirectShadows()
 {
-  if (this->Internal->GL.FrameBuffer)
+  if (this->Internal->GL.FrameBuffer || !this->Internal->Depth.empty())
   {
     vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
   }
+  this->Internal->ReleaseDepth(nullptr);
 }
 
 //------------------------------------------------------------------------------
 void vtkMRGIDirectShadows::ReleaseGraphicsResources(vtkWindow* w)
 {
+  this->Internal->ReleaseDepth(w);
   this->Internal->GL.Release(w);
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkMRGIDirectShadows::GetNumberOfDepthUpdates() const
+{
+  return this->Internal->DepthUpdates;
 }
 
 namespace
@@ -64,6 +97,7 @@ struct ViewUniforms
   float WorldToView[16];
   float Terms[4];
   vtkTextureObject* Positions;
+  int Index; // in the RSM pass
 };
 
 bool GetViewUniforms(vtkMRGIReflectiveShadowMapPass* rsm, int i, ViewUniforms& out)
@@ -87,6 +121,7 @@ bool GetViewUniforms(vtkMRGIReflectiveShadowMapPass* rsm, int i, ViewUniforms& o
   out.Terms[2] = perspective ? static_cast<float>(p[11] / (p[10] - 1.0)) : 0.0f;
   out.Terms[3] = perspective ? 1.0f : 0.0f;
   out.Positions = rsm->GetPositionTexture(i);
+  out.Index = i;
   return out.Positions != nullptr;
 }
 }
@@ -156,19 +191,51 @@ bool vtkMRGIDirectShadows::Compute(const vtkMRGIFrameContext& frame,
 
   Internals& in = *this->Internal;
   in.GL.Prepare(window);
-  vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(
-    window, "directshadows", "", [] { return std::string(vtkMRGIDirectShadowFS); });
-  if (!quad)
+  vtkOpenGLQuadHelper* depthQuad = in.Ready(window, 0);
+  vtkOpenGLQuadHelper* quad = in.Ready(window, 1);
+  if (!quad || !depthQuad)
   {
-    vtkErrorMacro("could not build the direct-shadow shader");
+    vtkErrorMacro("could not build the direct-shadow shaders");
     return false;
   }
   vtkShaderProgram* program = quad->Program;
   const int size = rsm->GetResolution();
+  const int viewCount = rsm->GetNumberOfViews();
 
   vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "shadows");
   vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
   vtkOpenGLState* ostate = steps.GetState();
+
+  // The views' depth maps, again only when the RSMs were re-rendered.
+  if (in.DepthTime != rsm->GetContentTime() || in.DepthSize != size ||
+    static_cast<int>(in.Depth.size()) != viewCount)
+  {
+    in.ReleaseDepth(window);
+    vtkShaderProgram* depth = depthQuad->Program;
+    window->GetShaderCache()->ReadyShaderProgram(depth);
+    for (int i = 0; i < viewCount; ++i)
+    {
+      ViewUniforms view;
+      vtkTextureObject* map = vtkMRGIShaderUtilities::NewTexture(window, GL_R32F, size, size);
+      in.Depth.push_back(map);
+      if (!map || !GetViewUniforms(rsm, i, view))
+      {
+        in.ReleaseDepth(window);
+        vtkErrorMacro("Compute: could not derive the depth map of RSM view " << i << " ("
+                                                                            << size << "^2)");
+        return false;
+      }
+      steps.Targets({ map }, size, size);
+      vtkMRGIFullScreenStep::BindInputs(depth, { view.Positions });
+      depth->SetUniformMatrix4x4v("mrgiWorldToView", 1, view.WorldToView);
+      depth->SetUniformi("mrgiView", 0);
+      depthQuad->Render();
+      vtkMRGIFullScreenStep::UnbindInputs({ view.Positions });
+    }
+    in.DepthTime = rsm->GetContentTime();
+    in.DepthSize = size;
+    ++in.DepthUpdates;
+  }
   vtkOpenGLState::ScopedglColorMask colorMask(ostate);
   vtkOpenGLState::ScopedglScissor scissorBox(ostate); // the step saves only its enable
   steps.Target(factors, nullptr, x0, y0, w, h);
@@ -207,10 +274,11 @@ bool vtkMRGIDirectShadows::Compute(const vtkMRGIFrameContext& frame,
     program->SetUniformi("mrgiViewCount", count);
     for (int k = 0; k < count; ++k)
     {
-      vtkMRGIFullScreenStep::BindInputs(program, { frame.Position, frame.Normal, views[k].Positions });
+      vtkTextureObject* depth = in.Depth[static_cast<size_t>(views[k].Index)];
+      vtkMRGIFullScreenStep::BindInputs(program, { frame.Position, frame.Normal, depth });
       program->SetUniformi("mrgiView", k);
       quad->Render();
-      vtkMRGIFullScreenStep::UnbindInputs({ frame.Position, frame.Normal, views[k].Positions });
+      vtkMRGIFullScreenStep::UnbindInputs({ frame.Position, frame.Normal, depth });
       ++this->NumberOfDraws;
     }
   }

@@ -15,8 +15,10 @@
  * eye -> world, timer), the RSM pass, the light of each slot, the
  * parameters, and the target. C twin: mrgi_direct_shadow.h
  * (mrgi_direct_shadow_gbuffer() per slot); shader
- * vtkMRGIDirectShadowFS.glsl. One draw per (slot, view): the slot's channel
- * only (colour mask), each draw writing the pixels its view holds.
+ * vtkMRGIDirectShadowFS.glsl. Each RSM view's depth map (light-view depth,
+ * mrgi_direct_shadow_depth_map()) is derived once per RSM render; then one
+ * draw per (slot, view): the slot's channel only (colour mask), each draw
+ * writing the pixels its view holds.
  */
 #ifndef vtkMRGIDirectShadows_h
 #define vtkMRGIDirectShadows_h
@@ -63,6 +65,14 @@ public:
 
   /** Number of (slot, view) draws of the last Compute(). */
   vtkGetMacro(NumberOfDraws, int);
+
+  /**
+   * How many times the views' depth maps were derived from the RSM
+   * positions: only when the RSMs were re-rendered
+   * (vtkMRGIReflectiveShadowMapPass::GetContentTime()), the resolution or
+   * the number of views changed, or after ReleaseGraphicsResources().
+   */
+  vtkIdType GetNumberOfDepthUpdates() const;
 
   /** Free every GL resource. */
   void ReleaseGraphicsResources(vtkWindow* w);

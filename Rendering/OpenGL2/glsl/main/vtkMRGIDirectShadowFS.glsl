@@ -1,13 +1,15 @@
-// MRGI direct shadows: the shadow factor of one light at each G-buffer pixel
-// from one of its reflective shadow map views (hard PCF or PCSS). One draw
-// per (light slot, view); a pixel is written only by the view that holds it
-// (the rule of mrgi_direct_shadow_select_view), into the slot's channel
-// (the colour mask). C twin and exact rules: mrgi_direct_shadow.h; this file
-// follows mrgi_direct_shadow.c statement by statement, in float.
+// MRGI direct shadows. C twin and exact rules: mrgi_direct_shadow.h; this
+// file follows mrgi_direct_shadow.c statement by statement, in float.
+// MRGI_DS_STAGE 0: the depth map of one RSM view (mrgi_direct_shadow_depth_map),
+//   S x S, red = light-view depth or MRGI_DIRECT_SHADOW_NO_OCCLUDER;
+// MRGI_DS_STAGE 1: the shadow factor of one light at each G-buffer pixel from
+//   one of its views (hard PCF or PCSS). One draw per (light slot, view); a
+//   pixel is written only by the view that holds it (the rule of
+//   mrgi_direct_shadow_select_view), into the slot's channel (colour mask).
 in vec2 texCoord; // bound by vtkOpenGLQuadHelper; texels are addressed by gl_FragCoord
-uniform sampler2D mrgiInput0; // G-buffer eye-space position, w = valid
-uniform sampler2D mrgiInput1; // G-buffer eye-space normal
-uniform sampler2D mrgiInput2; // this view's RSM world positions, w = valid
+uniform sampler2D mrgiInput0; // 0: the view's RSM world positions, w = valid; 1: G-buffer eye-space position
+uniform sampler2D mrgiInput1; // 1: G-buffer eye-space normal
+uniform sampler2D mrgiInput2; // 1: this view's depth map (stage 0's output)
 uniform mat4 mrgiVCToWC;      // eye -> world of the rendered camera
 uniform mat4 mrgiWorldToView[MRGI_DIRECT_SHADOW_MAX_VIEWS]; // the light's views
 uniform vec4 mrgiViewTerms[MRGI_DIRECT_SHADOW_MAX_VIEWS];   // sx, sy, near, perspective (1 or 0)
@@ -60,10 +62,11 @@ float mrgiPlaneDepth(ivec2 t)
   return mrgiD + (mrgiN.x * (cx / mrgiScale.x - mrgiQ.x) + mrgiN.y * (cy / mrgiScale.y - mrgiQ.y)) / den;
 }
 
-// The depth map of mrgi_direct_shadow_depth_map, one texel.
-float mrgiTexelDepth(ivec2 t)
+// One texel of mrgi_direct_shadow_depth_map for the view mrgiView: the
+// light-view depth of a valid, finite position, else no occluder.
+float mrgiPositionDepth(ivec2 t)
 {
-  vec4 q = texelFetch(mrgiInput2, t, 0);
+  vec4 q = texelFetch(mrgiInput0, t, 0);
   if (!(q.w > MRGI_GBUFFER_VALID_THRESHOLD) || any(isnan(q.xyz)) || any(isinf(q.xyz)))
   {
     return MRGI_DIRECT_SHADOW_NO_OCCLUDER;
@@ -74,6 +77,11 @@ float mrgiTexelDepth(ivec2 t)
     return -z;
   }
   return MRGI_DIRECT_SHADOW_NO_OCCLUDER;
+}
+
+float mrgiTexelDepth(ivec2 t)
+{
+  return texelFetch(mrgiInput2, t, 0).r;
 }
 
 bool mrgiTapOccludes(vec2 tap, out float depth)
@@ -124,6 +132,9 @@ float mrgiClampRadius(float w)
 void main()
 {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
+#if MRGI_DS_STAGE == 0
+  gl_FragData[0] = vec4(mrgiPositionDepth(pixel), 0.0, 0.0, 1.0);
+#else
   vec4 e = texelFetch(mrgiInput0, pixel, 0);
   if (!(e.w > MRGI_GBUFFER_VALID_THRESHOLD))
   {
@@ -201,4 +212,5 @@ void main()
     }
   }
   gl_FragData[0] = vec4(factor, factor, factor, 1.0);
+#endif
 }
