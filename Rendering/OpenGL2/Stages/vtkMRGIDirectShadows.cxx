@@ -199,8 +199,20 @@ bool vtkMRGIDirectShadows::Compute(const vtkMRGIFrameContext& frame,
     return false;
   }
   vtkShaderProgram* program = quad->Program;
-  const int size = rsm->GetResolution();
+  // S from the maps themselves: the resolution setting may have changed
+  // since they were rendered.
   const int viewCount = rsm->GetNumberOfViews();
+  vtkTextureObject* first = viewCount > 0 ? rsm->GetPositionTexture(0) : nullptr;
+  const int size = first ? static_cast<int>(first->GetWidth()) : 0;
+  for (int i = 0; i < viewCount; ++i)
+  {
+    vtkTextureObject* t = rsm->GetPositionTexture(i);
+    if (!t || static_cast<int>(t->GetWidth()) != size || static_cast<int>(t->GetHeight()) != size)
+    {
+      vtkErrorMacro("Compute: RSM view " << i << " is not a " << size << " x " << size << " map");
+      return false;
+    }
+  }
 
   vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "shadows");
   vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
