@@ -22,7 +22,9 @@
 // `TestMRGIDirectShadows --bench` instead times Compute() at 256^2 and
 // 1024^2 on cornell-spot (wall time with the window's WaitForCompletion()
 // around it, and the stage timer's "MRGI shadows" event; medians of 5);
-// not run by ctest.
+// not run by ctest. `--fidelity` multiplies VTK's direct light by the
+// factor (one-light scenes) and compares it with the ground truth's direct
+// light with shadows (4 x 4 boxes, the metric); not run by ctest.
 #include "mrgiTestUtilities.h"
 
 #include "vtkCamera.h"
@@ -33,6 +35,7 @@
 #include "vtkMRGIDirectShadows.h"
 #include "vtkMRGIFrameContext.h"
 #include "vtkMRGIPass.h"
+#include "vtkMRGIReferenceRenderer.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGISceneBuilder.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -42,7 +45,9 @@
 #include "vtkTextureObject.h"
 
 #include "mrgi_buffers.h"
+#include "mrgi_box_filter.h"
 #include "mrgi_direct_shadow.h"
+#include "mrgi_metrics.h"
 
 #include <algorithm>
 #include <chrono>
@@ -421,11 +426,136 @@ int Bench()
 }
 }
 
+// RGB of a float image (3 or 4 components) over its whole extent, as an mrgi_image.
+void ToImage(vtkImageData* in, mrgi_image& out)
+{
+  int dims[3];
+  in->GetDimensions(dims);
+  const int c = in->GetNumberOfScalarComponents();
+  MRGI_TEST_CHECK(mrgi_image_create(&out, dims[0], dims[1], 3, nullptr) == MRGI_OK);
+  const float* p = static_cast<const float*>(in->GetScalarPointer());
+  for (size_t t = 0; t < static_cast<size_t>(dims[0]) * dims[1]; ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      out.pixels[3 * t + k] = p[c * t + k];
+    }
+  }
+}
+
+// Relative RMS of 4 x 4 box averages (the metric).
+double BoxRelativeRMS(const mrgi_image& test, const mrgi_image& reference)
+{
+  mrgi_image a{}, b{};
+  MRGI_TEST_CHECK(mrgi_box_downsample(&test, 4, &a, nullptr) == MRGI_OK);
+  MRGI_TEST_CHECK(mrgi_box_downsample(&reference, 4, &b, nullptr) == MRGI_OK);
+  mrgi_metrics m;
+  MRGI_TEST_CHECK(mrgi_metrics_compare(&a, &b, nullptr, 1.0, &m, nullptr) == MRGI_OK);
+  mrgi_image_destroy(&a);
+  mrgi_image_destroy(&b);
+  return m.relative_rms;
+}
+
+// VTK's direct light times the slot-0 factor against the ground truth's
+// direct light with shadows, 256 x 256, for scenes with one light (the
+// factor then scales that light's whole contribution; the Cornell
+// materials have no ambient term). Not run by ctest.
+int Fidelity()
+{
+  for (const char* name : { "cornell-spot", "cornell" })
+  {
+    Scene s;
+    Build(s, name, false, 256, 256, 256);
+    MRGI_TEST_CHECK(s.Renderer->GetLights()->GetNumberOfItems() == 1);
+    vtkNew<vtkImageData> color, indirect;
+    MRGI_TEST_CHECK(s.Pass->GetColorBuffer(s.Window, color) && s.Pass->GetIndirectBuffer(s.Window, indirect));
+    mrgi_image direct{}, added{};
+    ToImage(color, direct);
+    ToImage(indirect, added);
+    for (size_t i = 0; i < static_cast<size_t>(direct.width) * direct.height * 3; ++i)
+    {
+      direct.pixels[i] -= added.pixels[i]; // VTK's own direct light
+    }
+    mrgi_image truth[2] = { {}, {} };
+    for (int shadows = 0; shadows < 2; ++shadows)
+    {
+      vtkNew<vtkMRGIReferenceRenderer> reference;
+      reference->SetShadows(shadows == 1);
+      reference->SetIndirectSamples(0);
+      reference->SetMaxPasses(16);
+      reference->SetTargetRelativeError(0.0);
+      MRGI_TEST_CHECK(reference->Render(s.Renderer));
+      ToImage(reference->GetDirectImage(), truth[shadows]);
+    }
+    MRGI_TEST_CHECK(truth[1].width == direct.width && truth[1].height == direct.height);
+    std::printf("%s: VTK direct vs truth with shadows %.4f, without %.4f\n", name,
+      BoxRelativeRMS(direct, truth[1]), BoxRelativeRMS(direct, truth[0]));
+    double bounds[6];
+    s.Renderer->ComputeVisiblePropBounds(bounds);
+    const double sceneRadius = 0.5 *
+      std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+        (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
+        (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+    struct Setting
+    {
+      const char* Name;
+      int Mode, Side;
+      double Radius; // fraction of the scene radius
+    } settings[] = { { "hard", MRGI_DIRECT_SHADOW_HARD, 1, 0.0 },
+      { "soft-64 r=0.5%", MRGI_DIRECT_SHADOW_SOFT, 8, 0.005 },
+      { "soft-64 r=1%", MRGI_DIRECT_SHADOW_SOFT, 8, 0.01 },
+      { "soft-196 r=1%", MRGI_DIRECT_SHADOW_SOFT, 14, 0.01 },
+      { "soft-64 r=2%", MRGI_DIRECT_SHADOW_SOFT, 8, 0.02 } };
+    const int slots[MRGI_SHADOW_SLOTS] = { 0, -1 };
+    vtkNew<vtkMRGIDirectShadows> gpu;
+    const int x0 = s.Frame.Viewport[0], y0 = s.Frame.Viewport[1];
+    for (const Setting& setting : settings)
+    {
+      mrgi_direct_shadow_params params;
+      mrgi_direct_shadow_params_default(&params);
+      params.mode = setting.Mode;
+      params.samples_side = setting.Side;
+      params.light_radius = setting.Radius * sceneRadius;
+      MRGI_TEST_CHECK(gpu->Compute(s.Frame, s.Pass->GetReflectiveShadowMapPass(), slots, params, s.Factors));
+      vtkNew<vtkFloatArray> factors;
+      MRGI_TEST_CHECK(vtkMRGIDirectShadows::ReadFactors(s.Window, s.Factors, factors));
+      const int texW = s.Factors->GetWidth();
+      mrgi_image shadowed{};
+      MRGI_TEST_CHECK(mrgi_image_create(&shadowed, direct.width, direct.height, 3, nullptr) == MRGI_OK);
+      for (int y = 0; y < direct.height; ++y)
+      {
+        for (int x = 0; x < direct.width; ++x)
+        {
+          const float f = factors->GetValue(4 * ((static_cast<vtkIdType>(y0 + y)) * texW + x0 + x));
+          for (int k = 0; k < 3; ++k)
+          {
+            const size_t i = 3 * (static_cast<size_t>(y) * direct.width + x) + k;
+            shadowed.pixels[i] = f * direct.pixels[i];
+          }
+        }
+      }
+      std::printf("%s: VTK direct x factor (%s) vs truth with shadows %.4f\n", name, setting.Name,
+        BoxRelativeRMS(shadowed, truth[1]));
+      mrgi_image_destroy(&shadowed);
+    }
+    gpu->ReleaseGraphicsResources(s.Window);
+    mrgi_image_destroy(&direct);
+    mrgi_image_destroy(&added);
+    mrgi_image_destroy(&truth[0]);
+    mrgi_image_destroy(&truth[1]);
+  }
+  return 0;
+}
+
 int main(int argc, char* argv[])
 {
   if (argc > 1 && std::strcmp(argv[1], "--bench") == 0)
   {
     return Bench();
+  }
+  if (argc > 1 && std::strcmp(argv[1], "--fidelity") == 0)
+  {
+    return Fidelity();
   }
   return mrgitest::RunCases(argc, argv,
     { MRGI_TEST_CASE(SpotAndDirectional), MRGI_TEST_CASE(PointCube), MRGI_TEST_CASE(SubViewport),
