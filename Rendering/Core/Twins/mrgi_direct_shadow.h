@@ -109,7 +109,7 @@ extern "C" {
 #define MRGI_DIRECT_SHADOW_MAX_VIEWS 6
 /** Side of the hard PCF kernel (3 x 3 texels). */
 #define MRGI_DIRECT_SHADOW_HARD_SIDE 3
-/** Side of the PCSS blocker-search grid (6 x 6 = 36 taps). */
+/** Side of the PCSS blocker-search grid (8 x 8 = 64 taps). */
 #define MRGI_DIRECT_SHADOW_BLOCKER_SIDE 8
 /** Largest PCSS filter side (14 x 14 = 196 taps, BMR's count). */
 #define MRGI_DIRECT_SHADOW_MAX_SIDE 14
