@@ -37,7 +37,9 @@
  * _SAMPLE_FLOATS, _LOBE_GRID, _LOBE_MIN_SAMPLES, _LOBE_CUTOFF, _LOBE_DISCARD,
  * _MIN_COS, _MIN_ALONG and the specular paths (::mrgi_area_light_specular_path)
  * MRGI_AREA_LIGHT_SPECULAR_SAMPLES, _LOBE_GRID, _BEHIND, _FACING_AWAY,
- * _LOBE_MISS.
+ * _LOBE_MISS; from mrgi_direct_shadow.h MRGI_DIRECT_SHADOW_HARD, _SOFT,
+ * _MAX_VIEWS, _HARD_SIDE, _BLOCKER_SIDE, _MAX_SIDE, _BIAS_TEXELS, _MAX_SLOPE,
+ * _SEARCH_NEAR, _MIN_RADIUS, _MAX_RADIUS, _NO_OCCLUDER.
  *
  * Insert the block after the shader's `#version` line (a `#define` may not
  * precede it).

@@ -239,6 +239,33 @@ int vtkMRGIReflectiveShadowMapPass::GetViewLight(int i) const
   return (i >= 0 && i < this->GetNumberOfViews()) ? this->Internal->Views[i]->Light : -1;
 }
 
+bool vtkMRGIReflectiveShadowMapPass::GetViewWorldToView(int i, double worldToView[16]) const
+{
+  if (i < 0 || i >= this->GetNumberOfViews() || !worldToView)
+  {
+    return false;
+  }
+  vtkMatrix4x4::DeepCopy(worldToView, this->Internal->Views[i]->Camera->GetModelViewTransformMatrix());
+  return true;
+}
+
+bool vtkMRGIReflectiveShadowMapPass::GetViewProjection(int i, double projection[16]) const
+{
+  if (i < 0 || i >= this->GetNumberOfViews() || !projection)
+  {
+    return false;
+  }
+  // The explicit square projection set when the view was built (the aspect is ignored).
+  vtkMatrix4x4::DeepCopy(
+    projection, this->Internal->Views[i]->Camera->GetProjectionTransformMatrix(1.0, -1, 1));
+  return true;
+}
+
+bool vtkMRGIReflectiveShadowMapPass::GetViewPerspective(int i) const
+{
+  return i >= 0 && i < this->GetNumberOfViews() && this->Internal->Views[i]->Perspective;
+}
+
 vtkMTimeType vtkMRGIReflectiveShadowMapPass::GetContentTime() const
 {
   return this->Internal->ContentTime.GetMTime();

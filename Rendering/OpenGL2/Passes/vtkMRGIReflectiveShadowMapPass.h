@@ -97,6 +97,20 @@ public:
   /** Index, in the renderer's light collection, of the light of view `i`. */
   int GetViewLight(int i) const;
 
+  ///@{
+  /**
+   * The camera of view `i`, for shadow lookups (vtkMRGIDirectShadows): its
+   * world -> view transform and its projection (row-major, as
+   * vtkMatrix4x4 stores them; view space looks down -z; the projection is
+   * square and centred), and whether it is perspective (spot, cube face) or
+   * orthographic (directional). False (matrices untouched) when there is no
+   * such view.
+   */
+  bool GetViewWorldToView(int i, double worldToView[16]) const;
+  bool GetViewProjection(int i, double projection[16]) const;
+  bool GetViewPerspective(int i) const;
+  ///@}
+
   /** How many times views were actually rendered since creation. */
   vtkGetMacro(NumberOfRenders, vtkIdType);
 
