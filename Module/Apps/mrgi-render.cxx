@@ -536,6 +536,8 @@ int main(int argc, char* argv[])
   mrgi->SetDirectShadows(o.DirectShadows >= 0 ? o.DirectShadows
       : o.GI                                  ? vtkMRGIPass::DirectShadowsSoft
                                               : vtkMRGIPass::DirectShadowsOff);
+  mrgi->SetSoftShadowKernelSize(static_cast<int>(o.ShadowKernel));
+  mrgi->SetShadowLightRadius(o.ShadowLightRadius);
   // The preset first, then every knob given explicitly.
   mrgi->GetMultiresolution()->SetPreset(static_cast<int>(o.Preset));
   if (!std::isnan(o.DepthThreshold))

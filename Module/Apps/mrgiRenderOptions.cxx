@@ -1,5 +1,7 @@
 #include "mrgiRenderOptions.h"
 
+#include "mrgi_direct_shadow.h"
+
 #include "vtkCamera.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
@@ -727,6 +729,15 @@ const std::vector<OptionSection>& OptionTable()
           Choice<int>(&Options::DirectShadows,
             { { "off", vtkMRGIPass::DirectShadowsOff }, { "hard", vtkMRGIPass::DirectShadowsHard },
               { "soft", vtkMRGIPass::DirectShadowsSoft } }) },
+        { { "--shadow-kernel" }, "N",
+          "soft shadows: filter taps per side, 1..14 (N x N taps; default 8)",
+          Integer(&Options::ShadowKernel, 1, MRGI_DIRECT_SHADOW_MAX_SIDE) },
+        { { "--shadow-light-radius" }, "R",
+          "soft shadows: the lights' radius in scene units, > 0 (default: 1% of\n"
+          "the scene's bounding radius)",
+          Number(
+            &Options::ShadowLightRadius, [](double r) { return r > 0 && r <= MaxFloatValue; },
+            "expected a positive finite number") },
       } },
     { "Indirect light (one bounce; Documentation/IndirectLight.md)",
       {

@@ -74,6 +74,8 @@ struct Options
   double SpecularCoefficient = 0.0;
   double SpecularPower = 1.0;
   int DirectShadows = -1; // not given: soft with indirect light, off without
+  long long ShadowKernel = MRGI_DIRECT_SHADOW_DEFAULT_SIDE;
+  double ShadowLightRadius = 0.0; // 0: automatic
   long long VPLs = 256;
   bool ImportanceVPLs = false;
   long long RSMSize = 256;

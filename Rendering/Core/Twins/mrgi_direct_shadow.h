@@ -126,6 +126,12 @@ extern "C" {
 #define MRGI_DIRECT_SHADOW_MAX_RADIUS 32.0
 /** Depth-map value of a texel that holds no occluder. */
 #define MRGI_DIRECT_SHADOW_NO_OCCLUDER (-1.0f)
+/**
+ * The light radius vtkMRGIPass uses when none is set, as a fraction of the
+ * visible props' bounding radius (VTK's lights are points; measured in
+ * Documentation/DirectShadows.md).
+ */
+#define MRGI_SHADOW_AUTO_LIGHT_RADIUS 0.01
 
 /** One shadow-map view (see the file comment). Plain data, nothing owned. */
 typedef struct mrgi_direct_shadow_view

@@ -22,8 +22,10 @@
 #include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIShadowComposite.h"
+#include "vtkMRGIDirectShadows.h"
 #include "vtkMRGIUpsample.h"
 #include "vtkMRGIVPLSelection.h"
+#include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLError.h"
@@ -56,6 +58,7 @@
 #include "vtkMRGIGBufferCapture.h"
 
 #include "mrgi_buffers.h"
+#include "mrgi_direct_shadow.h"
 #include "mrgi_exposure.h"
 #include "mrgi_multires.h"
 #include "mrgi_vpl.h"
@@ -103,6 +106,7 @@ vtkMRGIPass::vtkMRGIPass()
   this->Upsample = vtkMRGIUpsample::New();
   this->AreaLightStage = vtkMRGIAreaLightStage::New();
   this->ShadowComposite = vtkMRGIShadowComposite::New();
+  this->DirectShadowStage = vtkMRGIDirectShadows::New();
   this->OpaqueSequence = vtkSequencePass::New();
   for (int i = 0; i < 16; ++i)
   {
@@ -126,6 +130,7 @@ vtkMRGIPass::~vtkMRGIPass()
   this->Upsample->Delete();
   this->AreaLightStage->Delete();
   this->ShadowComposite->Delete();
+  this->DirectShadowStage->Delete();
   this->OpaqueSequence->Delete();
 }
 
@@ -140,6 +145,7 @@ void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
   this->Upsample->ReleaseGraphicsResources(w);
   this->AreaLightStage->ReleaseGraphicsResources(w);
   this->ShadowComposite->ReleaseGraphicsResources(w);
+  this->DirectShadowStage->ReleaseGraphicsResources(w);
   this->ReleaseResources(w);
 }
 
@@ -673,18 +679,30 @@ bool vtkMRGIPass::RenderDirectShadows(
 {
   Internals& in = *this->Internal;
   vtkMRGIGBuffer& g = in.GBuffer;
-  bool applied = false;
+  ScopedStage stage(frame.Timer, "shadows");
+  mrgi_direct_shadow_params params;
+  mrgi_direct_shadow_params_default(&params);
+  params.mode =
+    this->DirectShadows == DirectShadowsHard ? MRGI_DIRECT_SHADOW_HARD : MRGI_DIRECT_SHADOW_SOFT;
+  params.samples_side = this->SoftShadowKernelSize;
+  params.light_radius = this->ShadowLightRadius;
+  if (params.light_radius <= 0)
   {
-    ScopedStage stage(frame.Timer, "shadows");
-    // Factors: 1 (lit) until the factor stage fills them.
-    (void)slotLights;
-    vtkMRGIFullScreenStep steps(frame.Window, g.FrameBuffer);
-    steps.Target(g.ShadowFactors, nullptr, frame.Viewport[0], frame.Viewport[1],
-      frame.Viewport[2], frame.Viewport[3]);
-    const float lit[4] = { 1.0f, 1.0f, 1.0f, 1.0f };
-    glClearBufferfv(GL_COLOR, 0, lit);
+    // Automatic: a light of MRGI_SHADOW_AUTO_LIGHT_RADIUS of the visible
+    // scene's bounding radius (Documentation/DirectShadows.md).
+    double bounds[6];
+    frame.Renderer->ComputeVisiblePropBounds(bounds);
+    const double diagonal = vtkMath::AreBoundsInitialized(bounds)
+      ? std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+          (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
+          (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]))
+      : 0.0;
+    params.light_radius = std::isfinite(diagonal) ? 0.5 * diagonal * MRGI_SHADOW_AUTO_LIGHT_RADIUS : 0.0;
   }
-  applied = this->ShadowComposite->Apply(frame, g.Color, g.LightTerms, g.ShadowFactors, g.Shadowed);
+  bool applied =
+    this->DirectShadowStage->Compute(frame, this->RSMPass, slotLights, params, g.ShadowFactors);
+  applied = applied &&
+    this->ShadowComposite->Apply(frame, g.Color, g.LightTerms, g.ShadowFactors, g.Shadowed);
   if (applied)
   {
     // Color is the frame's colour from here on; Shadowed keeps VTK's
@@ -1319,7 +1337,8 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
      << (this->DirectShadows == DirectShadowsOff ? "Off"
            : this->DirectShadows == DirectShadowsHard ? "Hard"
                                                       : "Soft")
-     << "\n";
+     << " (kernel " << this->SoftShadowKernelSize << ", light radius " << this->ShadowLightRadius
+     << ")\n";
   os << indent << "IndirectStrength: " << this->IndirectStrength << "\n";
   os << indent << "NumberOfVPLs: " << this->VPLSelection->GetNumberOfVPLs() << "\n";
   os << indent << "VPLSelectionMode: " << this->VPLSelection->GetMode() << "\n";

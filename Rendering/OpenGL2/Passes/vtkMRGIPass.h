@@ -60,7 +60,8 @@
 #include "MRGIRenderingModule.h" // For export macro
 #include "vtkImageProcessingPass.h"
 
-#include "mrgi_buffers.h" // For MRGI_SHADOW_SLOTS
+#include "mrgi_buffers.h"       // For MRGI_SHADOW_SLOTS
+#include "mrgi_direct_shadow.h" // For MRGI_DIRECT_SHADOW_MAX_SIDE
 
 #include <memory> // For std::unique_ptr
 #include <string> // For std::string
@@ -79,6 +80,7 @@ class vtkMRGIVisibilityPyramid;
 class vtkMRGIVoxelization;
 class vtkMRGIReflectiveShadowMapPass;
 class vtkMRGIShadowComposite;
+class vtkMRGIDirectShadows;
 class vtkMRGIRSMCompositor;
 class vtkMRGIVPLSelection;
 class vtkOpenGLFXAAFilter;
@@ -213,6 +215,23 @@ public:
   void SetDirectShadowsToHard() { this->SetDirectShadows(DirectShadowsHard); }
   void SetDirectShadowsToSoft() { this->SetDirectShadows(DirectShadowsSoft); }
   ///@}
+
+  ///@{
+  /**
+   * Soft shadows (PCSS, mrgi_direct_shadow.h): the filter's taps per side
+   * n, 1..14 (n x n taps; default 8), and the radius of the lights in world
+   * units (VTK's lights are points; a directional light's radius is read
+   * as an angle against the scene's bounding radius). 0 (default):
+   * automatic, 1% of the visible props' bounding radius.
+   */
+  vtkSetClampMacro(SoftShadowKernelSize, int, 1, MRGI_DIRECT_SHADOW_MAX_SIDE);
+  vtkGetMacro(SoftShadowKernelSize, int);
+  vtkSetClampMacro(ShadowLightRadius, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(ShadowLightRadius, double);
+  ///@}
+
+  /** The stage that computes the shadow factors (vtkMRGIDirectShadows). */
+  vtkMRGIDirectShadows* GetDirectShadowStage() { return this->DirectShadowStage; }
 
   ///@{
   /**
@@ -575,6 +594,8 @@ protected:
   bool Captured = false;         // the last frame captured the G-buffer
   bool SpecularCaptured = false; // ... with its specular attachments
   int DirectShadows = DirectShadowsSoft;
+  int SoftShadowKernelSize = MRGI_DIRECT_SHADOW_DEFAULT_SIDE;
+  double ShadowLightRadius = 0.0;
   bool ShadowsCaptured = false; // the last frame captured the light terms
   bool ShadowsComputed = false; // ... and applied its shadows
   double LastViewToWorld[16];
@@ -586,6 +607,7 @@ protected:
   vtkMRGIUpsample* Upsample = nullptr;
   vtkMRGIAreaLightStage* AreaLightStage = nullptr;
   vtkMRGIShadowComposite* ShadowComposite = nullptr;
+  vtkMRGIDirectShadows* DirectShadowStage = nullptr;
   vtkSequencePass* OpaqueSequence = nullptr;
   vtkOpenGLFXAAFilter* FXAAFilter = nullptr;
 

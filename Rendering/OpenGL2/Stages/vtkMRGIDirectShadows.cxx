@@ -214,7 +214,7 @@ bool vtkMRGIDirectShadows::Compute(const vtkMRGIFrameContext& frame,
     }
   }
 
-  vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "shadows");
+  vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "shadows.factors");
   vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
   vtkOpenGLState* ostate = steps.GetState();
 

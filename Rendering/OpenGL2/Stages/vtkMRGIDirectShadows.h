@@ -52,7 +52,7 @@ public:
    * channels 1. `slotLights` has MRGI_SHADOW_SLOTS entries: the index, in
    * the renderer's light collection, of VTK's shader light s, or -1.
    * Needs frame.Window, frame.Position, frame.Normal and frame.ViewToWorld.
-   * Timer step "shadows". False (with an error naming the problem) on bad
+   * Timer step "shadows.factors". False (with an error naming the problem) on bad
    * input, a light with more than MRGI_DIRECT_SHADOW_MAX_VIEWS views, or a
    * shader that does not build.
    */
