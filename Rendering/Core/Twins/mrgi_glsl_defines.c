@@ -5,6 +5,7 @@
 #include "mrgi_gather.h"
 #include "mrgi_multires.h"
 #include "mrgi_specular_stencil.h"
+#include "mrgi_ssao.h"
 #include "mrgi_upsample.h"
 #include "mrgi_variance_shadow.h"
 #include "mrgi_visibility_pyramid.h"
@@ -116,6 +117,7 @@ static const mrgi_glsl_constant mrgi_glsl_constants[] = {
   MRGI_GLSL_CONSTANT(MRGI_AREA_LIGHT_SPECULAR_BEHIND, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_AREA_LIGHT_SPECULAR_FACING_AWAY, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_AREA_LIGHT_SPECULAR_LOBE_MISS, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_SSAO_NOISE_SIZE, MRGI_GLSL_INT),
 };
 
 /* Longest VALUE text: sign, 17 digits, point, exponent, ".0" suffix, NUL. */

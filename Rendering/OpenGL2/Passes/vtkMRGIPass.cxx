@@ -17,6 +17,7 @@
 #include "vtkMRGIProgramCache.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIRenderSteps.h"
+#include "vtkMRGISSAO.h"
 #include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIUpsample.h"
@@ -96,6 +97,7 @@ vtkMRGIPass::vtkMRGIPass()
   this->Multiresolution = vtkMRGIMultiresolution::New();
   this->Gather = vtkMRGIGather::New();
   this->Upsample = vtkMRGIUpsample::New();
+  this->SSAOStage = vtkMRGISSAO::New();
   this->AreaLightStage = vtkMRGIAreaLightStage::New();
   this->OpaqueSequence = vtkSequencePass::New();
   for (int i = 0; i < 16; ++i)
@@ -118,6 +120,7 @@ vtkMRGIPass::~vtkMRGIPass()
   this->Multiresolution->Delete();
   this->Gather->Delete();
   this->Upsample->Delete();
+  this->SSAOStage->Delete();
   this->AreaLightStage->Delete();
   this->OpaqueSequence->Delete();
 }
@@ -131,6 +134,7 @@ void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
   this->Multiresolution->ReleaseGraphicsResources(w);
   this->Gather->ReleaseGraphicsResources(w);
   this->Upsample->ReleaseGraphicsResources(w);
+  this->SSAOStage->ReleaseGraphicsResources(w);
   this->AreaLightStage->ReleaseGraphicsResources(w);
   this->ReleaseResources(w);
 }
@@ -874,7 +878,7 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   Internals& in = *this->Internal;
   const bool areaLights = this->AreaLightStage->GetNumberOfLights() > 0;
   const bool indirect = this->IndirectMode != IndirectOff && this->GetNumberOfVPLs() > 0;
-  const bool capture = indirect || areaLights || this->OuterGBuffer;
+  const bool capture = indirect || areaLights || this->OuterGBuffer || this->SSAO;
   const bool split = vtkRenderStepsPass::SafeDownCast(this->DelegatePass) != nullptr;
   vtkRenderTimerLog* timer = vtkMRGIShaderUtilities::StageTimer(renderer, this->StageTimingEnabled);
   this->IndirectComputed = false;
@@ -902,6 +906,25 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   // (pixel size) are defined, which only a captured frame needs.
   vtkMRGIFrameContext frame;
   const bool framed = this->MakeFrame(renWin, renderer, timer, capture, frame);
+  // SSAO as vtkSSAOPass applies it, to the direct light only: the indirect
+  // and area light added below are not ambient terms and model their own
+  // visibility.
+  if (this->SSAO && framed)
+  {
+    ScopedStage stage(timer, "ssao");
+    if (this->SSAOStage->Render(frame, this->SSAOKernelSize, this->SSAORadius, this->SSAOBias,
+          this->SSAOBlur, in.GBuffer.Color))
+    {
+      this->SSAOFailureReported = false;
+    }
+    else if (!this->SSAOFailureReported)
+    {
+      this->SSAOFailureReported = true;
+      vtkErrorMacro("SSAO could not be computed (kernel size "
+        << this->SSAOKernelSize << ", radius " << this->SSAORadius << ", bias " << this->SSAOBias
+        << "): this frame has no ambient occlusion");
+    }
+  }
   bool selected = false; // this frame's multiresolution selection exists
   if (indirect)
   {
@@ -1186,6 +1209,9 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "UpsampleMode: " << this->GetUpsampleMode() << "\n";
   os << indent << "UpsampleMaskWeight: " << this->GetUpsampleMaskWeight() << "\n";
   os << indent << "SurfaceDetail: " << this->SurfaceDetail << "\n";
+  os << indent << "SSAO: " << (this->SSAO ? "on" : "off") << " (kernel " << this->SSAOKernelSize
+     << ", radius " << this->SSAORadius << ", bias " << this->SSAOBias << ", blur "
+     << (this->SSAOBlur ? "on" : "off") << ")\n";
   os << indent << "IndirectStrength: " << this->IndirectStrength << "\n";
   os << indent << "NumberOfVPLs: " << this->VPLSelection->GetNumberOfVPLs() << "\n";
   os << indent << "VPLSelectionMode: " << this->VPLSelection->GetMode() << "\n";
