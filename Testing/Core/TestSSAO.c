@@ -208,7 +208,7 @@ static void test_scale_invariance(void)
       }
     }
     MRGI_CHECK(occluded > 100);
-    MRGI_CHECK(k < 3 || compared > 80 * 60 * 9 / 10);
+    MRGI_CHECK(k < 3 || compared > 80 * 60 * 7 / 10);
     mrgi_image_destroy(&outB);
     free_scene(&b);
   }

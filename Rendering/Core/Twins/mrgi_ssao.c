@@ -172,12 +172,32 @@ float mrgi_ssao_receiver(const mrgi_ssao_params* params, const mrgi_image* posit
   {
     return 1.0f; /* vtkSSAOPass's "depth > 0 && depth < 1" */
   }
+  if (params->depth)
+  {
+    /* vtkSSAOPass's test against its depth buffer, in its order. */
+    const float buffer = params->depth[(size_t)y * (size_t)w + (size_t)x];
+    if (!(buffer > 0.0f && buffer < 1.0f) || !(depth - buffer < 0.0001f))
+    {
+      return 1.0f;
+    }
+  }
   /* The noise texel, as vtkSSAOPass's nearest, repeated lookup. */
   const int32_t shiftx = w / MRGI_SSAO_NOISE_SIZE, shifty = h / MRGI_SSAO_NOISE_SIZE;
   const float cx = ((float)x + 0.5f) / (float)w * (float)shiftx;
   const float cy = ((float)y + 0.5f) / (float)h * (float)shifty;
-  const int32_t tx = ((int32_t)floorf(cx * (float)MRGI_SSAO_NOISE_SIZE)) % MRGI_SSAO_NOISE_SIZE;
-  const int32_t ty = ((int32_t)floorf(cy * (float)MRGI_SSAO_NOISE_SIZE)) % MRGI_SSAO_NOISE_SIZE;
+  const float nx = cx * (float)MRGI_SSAO_NOISE_SIZE, ny = cy * (float)MRGI_SSAO_NOISE_SIZE;
+  const int32_t tx = ((int32_t)floorf(nx)) % MRGI_SSAO_NOISE_SIZE;
+  const int32_t ty = ((int32_t)floorf(ny)) % MRGI_SSAO_NOISE_SIZE;
+  /* A lookup on a noise texel edge: a GPU's interpolated texture coordinate
+   * may land on either side (vtkSSAOPass at sizes not multiples of 64). */
+  if (shiftx > 0)
+  {
+    m = fminf(m, fabsf(nx - roundf(nx)));
+  }
+  if (shifty > 0) /* a shift of 0 gives coordinate 0 exactly */
+  {
+    m = fminf(m, fabsf(ny - roundf(ny)));
+  }
   const float angle = 6.283185f * params->noise[ty * MRGI_SSAO_NOISE_SIZE + tx];
   const float v[3] = { cosf(angle), sinf(angle), 0.0f };
   const float vn = v[0] * nv[0] + v[1] * nv[1] + v[2] * nv[2];

@@ -62,8 +62,10 @@
  * - A sample that lands on the background: vtkSSAOPass reads whatever its
  *   position buffer was cleared to (the renderer's background colour as a
  *   position); here the background never occludes.
- * - vtkSSAOPass's "depth buffer equals the position" check is implied:
- *   MRGI's position is that of the visible surface.
+ * - vtkSSAOPass also requires z_P - depth < 0.0001 with the depth
+ *   buffer's depth: MRGI's float position is that of the visible surface,
+ *   so the test is implied; vtkSSAOPass's half-float position may fail it
+ *   (the receiver then gets AO 1). With params->depth the twin applies it.
  * - vtkSSAOPass writes AO to an 8-bit texture (steps of 1/255); this twin
  *   and vtkMRGISSAO keep it in float.
  *
@@ -80,8 +82,11 @@
  * AO is a sum of step functions: a position that moves by one float ulp
  * may flip a sample. mrgi_ssao_receiver() also returns the smallest margin of
  * the receiver's decisions: min over samples of |d - (S.z + b)| / max(|S.z|,
- * 1e-30) and of the distance of u (W, H) to the nearest texel edge (in
- * texels). Parity tests compare only receivers whose margin is not tiny.
+ * 1e-30), of the distance of u (W, H) to the nearest texel edge (in
+ * texels) and of the distance of c * 64 to the nearest noise texel edge
+ * (c * 64 is often an integer when W or H is not a multiple of 64: a GPU's
+ * interpolated texture coordinate then falls on either side). Parity tests
+ * compare only receivers whose margin is not tiny.
  */
 #ifndef MRGI_SSAO_H
 #define MRGI_SSAO_H
@@ -123,6 +128,14 @@ typedef struct mrgi_ssao_params
   float bias;           /**< Depth bias in eye-space units; finite. */
   float projection[16]; /**< Eye -> clip, column-major (GL's order); finite. */
   const float* noise;   /**< MRGI_SSAO_NOISE_SIZE^2 values, row 0 bottom; finite. */
+  /**
+   * Optional (NULL: none, MRGI's case): the window depth of every pixel of
+   * the G-buffer (W x H, rows bottom-up), for vtkSSAOPass's own receiver
+   * test: depth in (0, 1) and z_P - depth < 0.0001. Lets the twin
+   * reproduce vtkSSAOPass from its buffers (its half-float positions can
+   * fail that test; section 2).
+   */
+  const float* depth;
 } mrgi_ssao_params;
 
 /**
