@@ -88,6 +88,10 @@ struct Scene
     std::copy(Floats(n), Floats(n) + 4 * Width * Height, normal.pixels);
     vtkOpenGLRenderWindow* gl = vtkOpenGLRenderWindow::SafeDownCast(this->Window);
     MRGI_TEST_CHECK(vtkMRGISSAO::ReadNoise(gl, noise));
+    MRGI_TEST_CHECK(noise.size() == MRGI_SSAO_NOISE_SIZE * MRGI_SSAO_NOISE_SIZE);
+    const auto range = std::minmax_element(noise.begin(), noise.end());
+    std::printf("window noise tile: %zu values in [%.4f, %.4f]\n", noise.size(), *range.first,
+      *range.second);
     kernel.resize(3 * KernelSize);
     MRGI_TEST_CHECK(mrgi_ssao_kernel(KernelSize, kernel.data(), nullptr) == MRGI_OK);
     params.kernel = kernel.data();
