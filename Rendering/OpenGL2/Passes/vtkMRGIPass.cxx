@@ -906,9 +906,11 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   // (pixel size) are defined, which only a captured frame needs.
   vtkMRGIFrameContext frame;
   const bool framed = this->MakeFrame(renWin, renderer, timer, capture, frame);
+  bool selected = false; // this frame's multiresolution selection exists
   // SSAO as vtkSSAOPass applies it, to the direct light only: the indirect
   // and area light added below are not ambient terms and model their own
-  // visibility.
+  // visibility. (After the direct shadows, which subtract shadowed light
+  // terms from the unshadowed colour: AO multiplies their result.)
   if (this->SSAO && framed)
   {
     ScopedStage stage(timer, "ssao");
@@ -925,7 +927,6 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
         << "): this frame has no ambient occlusion");
     }
   }
-  bool selected = false; // this frame's multiresolution selection exists
   if (indirect)
   {
     int vplCount = 0;
