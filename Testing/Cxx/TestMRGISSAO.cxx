@@ -82,16 +82,19 @@ struct Scene
   {
     vtkNew<vtkImageData> p, n, a;
     MRGI_TEST_CHECK(this->Pass->GetGBuffer(this->Window, p, n, a));
-    MRGI_TEST_CHECK(mrgi_image_create(&position, Width, Height, 4, nullptr) == MRGI_OK);
-    MRGI_TEST_CHECK(mrgi_image_create(&normal, Width, Height, 4, nullptr) == MRGI_OK);
-    std::copy(Floats(p), Floats(p) + 4 * Width * Height, position.pixels);
-    std::copy(Floats(n), Floats(n) + 4 * Width * Height, normal.pixels);
+    int w = 0, h = 0, x0 = 0, y0 = 0;
+    this->Renderer->GetTiledSizeAndOrigin(&w, &h, &x0, &y0);
+    MRGI_TEST_CHECK(p->GetDimensions()[0] == w && p->GetDimensions()[1] == h);
+    MRGI_TEST_CHECK(mrgi_image_create(&position, w, h, 4, nullptr) == MRGI_OK);
+    MRGI_TEST_CHECK(mrgi_image_create(&normal, w, h, 4, nullptr) == MRGI_OK);
+    std::copy(Floats(p), Floats(p) + 4 * w * h, position.pixels);
+    std::copy(Floats(n), Floats(n) + 4 * w * h, normal.pixels);
     vtkOpenGLRenderWindow* gl = vtkOpenGLRenderWindow::SafeDownCast(this->Window);
     MRGI_TEST_CHECK(vtkMRGISSAO::ReadNoise(gl, noise));
     MRGI_TEST_CHECK(noise.size() == MRGI_SSAO_NOISE_SIZE * MRGI_SSAO_NOISE_SIZE);
     const auto range = std::minmax_element(noise.begin(), noise.end());
-    std::printf("window noise tile: %zu values in [%.4f, %.4f]\n", noise.size(), *range.first,
-      *range.second);
+    std::printf(
+      "window noise tile: %zu values in [%.4f, %.4f]\n", noise.size(), *range.first, *range.second);
     kernel.resize(3 * KernelSize);
     MRGI_TEST_CHECK(mrgi_ssao_kernel(KernelSize, kernel.data(), nullptr) == MRGI_OK);
     params.kernel = kernel.data();
@@ -240,6 +243,90 @@ void TestCornellAO()
   mrgi_image_destroy(&normal);
 }
 
+// A renderer in part of the window (a second one, without MRGI, behind
+// it), FXAA on: the AO of the viewport still equals the twin's on the
+// viewport's G-buffer, the colour with SSAO is the colour without times
+// AO, and the window outside the viewport is untouched.
+void TestViewport()
+{
+  Scene s;
+  s.Renderer->SetViewport(0.15, 0.1, 0.9, 0.95);
+  s.Renderer->UseFXAAOn();
+  vtkNew<vtkRenderer> back;
+  back->SetBackground(0.2, 0.4, 0.6);
+  back->SetLayer(0);
+  s.Window->SetNumberOfLayers(2);
+  s.Renderer->SetLayer(1);
+  s.Window->AddRenderer(back);
+  s.Window->Render();
+  vtkSmartPointer<vtkImageData> plain = mrgitest::GrabRGB(s.Window);
+  vtkNew<vtkImageData> direct;
+  MRGI_TEST_CHECK(s.Pass->GetColorBuffer(s.Window, direct));
+  s.Pass->SSAOOn();
+  s.Window->Render();
+  vtkSmartPointer<vtkImageData> shaded = mrgitest::GrabRGB(s.Window);
+  vtkNew<vtkImageData> colour;
+  MRGI_TEST_CHECK(s.Pass->GetColorBuffer(s.Window, colour));
+  int w = 0, h = 0, x0 = 0, y0 = 0;
+  s.Renderer->GetTiledSizeAndOrigin(&w, &h, &x0, &y0);
+  MRGI_TEST_CHECK(x0 > 0 && y0 > 0 && w < Width && h < Height);
+  vtkNew<vtkFloatArray> ao;
+  MRGI_TEST_CHECK(s.Pass->GetSSAOStage()->ReadAO(s.Window, ao));
+  MRGI_TEST_CHECK(ao->GetNumberOfTuples() == w * h);
+
+  mrgi_image position, normal, twin;
+  std::vector<float> noise, kernel;
+  mrgi_ssao_params params = {};
+  s.TwinInputs(position, normal, noise, kernel, params);
+  MRGI_TEST_CHECK(mrgi_ssao_compute(&params, &position, &normal, 0, &twin, nullptr) == MRGI_OK);
+  CompareAO("viewport", ao->GetPointer(0), twin, 0.9);
+  mrgi_image_destroy(&twin);
+  mrgi_image_destroy(&position);
+  mrgi_image_destroy(&normal);
+
+  double worst = 0.0;
+  const float* d = Floats(direct);
+  const float* c = Floats(colour);
+  for (int i = 0; i < w * h; ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const double expected = static_cast<double>(d[4 * i + k]) * ao->GetValue(i);
+      worst =
+        std::max(worst, std::fabs(c[4 * i + k] - expected) / std::max(1e-3, std::fabs(expected)));
+    }
+  }
+  std::printf("viewport %d x %d at (%d, %d): max relative |colour - direct x AO| = %.3g\n", w, h,
+    x0, y0, worst);
+  MRGI_TEST_CHECK(worst <= 1e-5);
+  // Outside the viewport the window shows the other renderer, as before.
+  const unsigned char* a = static_cast<unsigned char*>(plain->GetScalarPointer());
+  const unsigned char* b = static_cast<unsigned char*>(shaded->GetScalarPointer());
+  int outside = 0, changedOutside = 0, changedInside = 0;
+  for (int y = 0; y < Height; ++y)
+  {
+    for (int x = 0; x < Width; ++x)
+    {
+      const int i = 3 * (y * Width + x);
+      const bool same = a[i] == b[i] && a[i + 1] == b[i + 1] && a[i + 2] == b[i + 2];
+      if (x < x0 || x >= x0 + w || y < y0 || y >= y0 + h)
+      {
+        ++outside;
+        changedOutside += !same;
+      }
+      else
+      {
+        changedInside += !same;
+      }
+    }
+  }
+  std::printf("window pixels changed by SSAO: %d inside the viewport, %d of %d outside\n",
+    changedInside, changedOutside, outside);
+  MRGI_TEST_CHECK(changedOutside == 0);
+  MRGI_TEST_CHECK(changedInside > w * h / 20);
+  s.Window->RemoveRenderer(back);
+}
+
 // The colour with SSAO is the colour without, times AO (blurred with Blur).
 void TestApply()
 {
@@ -305,6 +392,6 @@ void TestApply()
 
 int main(int argc, char* argv[])
 {
-  return mrgitest::RunCases(
-    argc, argv, { MRGI_TEST_CASE(TestCornellAO), MRGI_TEST_CASE(TestApply) });
+  return mrgitest::RunCases(argc, argv,
+    { MRGI_TEST_CASE(TestCornellAO), MRGI_TEST_CASE(TestApply), MRGI_TEST_CASE(TestViewport) });
 }
