@@ -14,7 +14,9 @@
 // The measured errors are printed for the documentation.
 #include "mrgiTestUtilities.h"
 
+#include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkCubeSource.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkMRGIFrameContext.h"
@@ -23,9 +25,13 @@
 #include "vtkMRGISceneBuilder.h"
 #include "vtkMatrix4x4.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkPlaneSource.h"
 #include "vtkPointData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
 #include "vtkRenderStepsPass.h"
 #include "vtkRenderer.h"
+#include "vtkSphereSource.h"
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
@@ -327,6 +333,110 @@ void TestViewport()
   s.Window->RemoveRenderer(back);
 }
 
+// A PBR sphere resting on a Phong plane, a translucent box, depth peeling:
+// the PBR sphere is in the G-buffer, it occludes the plane around its
+// contact, and the AO still equals the twin's.
+void TestComposition()
+{
+  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(Width, Height);
+  vtkNew<vtkRenderer> renderer;
+  window->AddRenderer(renderer);
+  window->SetAlphaBitPlanes(1);
+  renderer->UseDepthPeelingOn();
+  renderer->SetMaximumNumberOfPeels(4);
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(-100, 0, -100);
+  plane->SetPoint1(100, 0, -100);
+  plane->SetPoint2(-100, 0, 100);
+  vtkNew<vtkPolyDataMapper> planeMapper;
+  planeMapper->SetInputConnection(plane->GetOutputPort());
+  vtkNew<vtkActor> planeActor;
+  planeActor->SetMapper(planeMapper);
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(0, 20, 0);
+  sphere->SetRadius(20);
+  sphere->SetThetaResolution(48);
+  sphere->SetPhiResolution(48);
+  vtkNew<vtkPolyDataMapper> sphereMapper;
+  sphereMapper->SetInputConnection(sphere->GetOutputPort());
+  vtkNew<vtkActor> sphereActor;
+  sphereActor->SetMapper(sphereMapper);
+  sphereActor->GetProperty()->SetInterpolationToPBR();
+  sphereActor->GetProperty()->SetMetallic(0.0);
+  sphereActor->GetProperty()->SetRoughness(0.5);
+  vtkNew<vtkCubeSource> cube;
+  cube->SetCenter(50, 15, 30);
+  cube->SetXLength(20);
+  cube->SetYLength(30);
+  cube->SetZLength(20);
+  vtkNew<vtkPolyDataMapper> cubeMapper;
+  cubeMapper->SetInputConnection(cube->GetOutputPort());
+  vtkNew<vtkActor> cubeActor;
+  cubeActor->SetMapper(cubeMapper);
+  cubeActor->GetProperty()->SetOpacity(0.4);
+  renderer->AddActor(planeActor);
+  renderer->AddActor(sphereActor);
+  renderer->AddActor(cubeActor);
+  renderer->GetActiveCamera()->SetPosition(0, 70, 110);
+  renderer->GetActiveCamera()->SetFocalPoint(0, 15, 0);
+  renderer->ResetCameraClippingRange();
+  vtkNew<vtkRenderStepsPass> steps;
+  vtkNew<vtkMRGIPass> pass;
+  pass->SetDelegatePass(steps);
+  pass->SetIndirectMode(vtkMRGIPass::IndirectOff);
+  pass->SSAOOn();
+  pass->SetSSAOKernelSize(KernelSize);
+  pass->SetSSAORadius(6.0);
+  pass->SetSSAOBias(0.05);
+  renderer->SetPass(pass);
+  window->Render();
+
+  vtkNew<vtkImageData> p, n, a;
+  MRGI_TEST_CHECK(pass->GetGBuffer(window, p, n, a));
+  const float* centre = Floats(p) + 4 * ((Height / 2) * Width + Width / 2);
+  MRGI_TEST_CHECK(centre[3] > 0.5f); // the PBR sphere is captured
+  vtkNew<vtkFloatArray> ao;
+  MRGI_TEST_CHECK(pass->GetSSAOStage()->ReadAO(window, ao));
+  float minimum = 1.0f;
+  for (vtkIdType i = 0; i < ao->GetNumberOfTuples(); ++i)
+  {
+    minimum = std::min(minimum, ao->GetValue(i));
+  }
+  std::printf("PBR sphere on a plane: minimum AO %.3f\n", minimum);
+  MRGI_TEST_CHECK(minimum < 0.8f);
+
+  mrgi_image position, normal, twin;
+  MRGI_TEST_CHECK(mrgi_image_create(&position, Width, Height, 4, nullptr) == MRGI_OK);
+  MRGI_TEST_CHECK(mrgi_image_create(&normal, Width, Height, 4, nullptr) == MRGI_OK);
+  std::copy(Floats(p), Floats(p) + 4 * Width * Height, position.pixels);
+  std::copy(Floats(n), Floats(n) + 4 * Width * Height, normal.pixels);
+  std::vector<float> noise, kernel(3 * KernelSize);
+  MRGI_TEST_CHECK(vtkMRGISSAO::ReadNoise(vtkOpenGLRenderWindow::SafeDownCast(window), noise));
+  MRGI_TEST_CHECK(mrgi_ssao_kernel(KernelSize, kernel.data(), nullptr) == MRGI_OK);
+  mrgi_ssao_params params = {};
+  params.kernel = kernel.data();
+  params.kernel_size = KernelSize;
+  params.radius = 6.0f;
+  params.bias = 0.05f;
+  params.noise = noise.data();
+  vtkMatrix4x4* m = renderer->GetActiveCamera()->GetProjectionTransformMatrix(
+    renderer->GetTiledAspectRatio(), -1, 1);
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      params.projection[c * 4 + r] = static_cast<float>(m->GetElement(r, c));
+    }
+  }
+  MRGI_TEST_CHECK(mrgi_ssao_compute(&params, &position, &normal, 0, &twin, nullptr) == MRGI_OK);
+  CompareAO("PBR sphere, translucent box, depth peeling", ao->GetPointer(0), twin, 0.9);
+  mrgi_image_destroy(&twin);
+  mrgi_image_destroy(&position);
+  mrgi_image_destroy(&normal);
+  renderer->SetPass(nullptr);
+  pass->ReleaseGraphicsResources(window);
+}
+
 // The colour with SSAO is the colour without, times AO (blurred with Blur).
 void TestApply()
 {
@@ -393,5 +503,6 @@ void TestApply()
 int main(int argc, char* argv[])
 {
   return mrgitest::RunCases(argc, argv,
-    { MRGI_TEST_CASE(TestCornellAO), MRGI_TEST_CASE(TestApply), MRGI_TEST_CASE(TestViewport) });
+    { MRGI_TEST_CASE(TestCornellAO), MRGI_TEST_CASE(TestApply), MRGI_TEST_CASE(TestViewport),
+      MRGI_TEST_CASE(TestComposition) });
 }
