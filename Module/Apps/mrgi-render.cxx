@@ -547,6 +547,23 @@ int main(int argc, char* argv[])
   if (o.FinestLevel >= 0)
     mrgi->GetMultiresolution()->SetFinestLevel(static_cast<int>(o.FinestLevel));
   mrgi->SetSurfaceDetail(o.SurfaceDetail);
+  mrgi->SetSSAO(o.SSAO);
+  if (o.SSAO)
+  {
+    // vtkSSAOPass's radius (0.5) and bias are in world units and suit only
+    // scenes of about unit size: the default scales with the scene.
+    double bounds[6];
+    renderer->ComputeVisiblePropBounds(bounds);
+    const double dx = bounds[1] - bounds[0], dy = bounds[3] - bounds[2], dz = bounds[5] - bounds[4];
+    const double diagonal = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double radius = o.HasSSAORadius       ? o.SSAORadius
+      : std::isfinite(diagonal) && diagonal > 0 ? 0.02 * diagonal
+                                                : o.SSAORadius;
+    mrgi->SetSSAORadius(radius);
+    mrgi->SetSSAOBias(o.HasSSAOBias ? o.SSAOBias : radius / 50.0);
+    mrgi->SetSSAOKernelSize(static_cast<int>(o.SSAOSamples));
+    mrgi->SetSSAOBlur(o.SSAOBlur);
+  }
   mrgi->SetAreaLightVisibility(o.AreaLightVisibility);
   mrgi->SetAreaLightSpecular(o.AreaLightSpecular);
   mrgi->SetAreaLightSpecularResolution(o.AreaLightSpecularResolution);

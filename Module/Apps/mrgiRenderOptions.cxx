@@ -36,6 +36,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkPointData.h"
+#include "mrgi_ssao.h"
 #include "mrgi_error.h"
 #include "mrgi_area_light.h"
 #include "mrgi_box_filter.h"
@@ -795,6 +796,27 @@ const std::vector<OptionSection>& OptionTable()
             "expected a number in [0, 1e6]") },
         { { "--indirect-only" }, nullptr, "write only the indirect light (EXR: float RGB)",
           Set(&Options::IndirectOnly) },
+      } },
+    { "Ambient occlusion of the direct light, as vtkSSAOPass computes it\n"
+      "(Documentation/ScreenSpaceEffects-SSAO.md)",
+      {
+        { { "--ssao" }, "on|off", "screen-space ambient occlusion (default off)",
+          OnOff(&Options::SSAO) },
+        { { "--ssao-samples" }, "N", "SSAO kernel samples, 1..1000 (default 32, vtkSSAOPass's)",
+          Integer(&Options::SSAOSamples, 1, MRGI_SSAO_MAX_KERNEL_SIZE) },
+        { { "--ssao-radius" }, "R",
+          "SSAO kernel radius in world units, > 0 (default 2% of the scene's\n"
+          "bounding-box diagonal)",
+          Number(
+            &Options::SSAORadius, [](double r) { return r > 0 && r <= MaxFloatValue; },
+            "expected a finite number > 0", &Options::HasSSAORadius) },
+        { { "--ssao-bias" }, "B",
+          "SSAO depth bias in world units (default radius / 50, vtkSSAOPass's ratio)",
+          Number(
+            &Options::SSAOBias, [](double b) { return std::fabs(b) <= MaxFloatValue; },
+            "expected a finite number", &Options::HasSSAOBias) },
+        { { "--ssao-blur" }, "on|off", "vtkSSAOPass's 3x3 blur of the occlusion (default off)",
+          OnOff(&Options::SSAOBlur) },
       } },
     { "Exposure and anti-aliasing (the PNG; EXR files keep the unscaled HDR radiance)",
       {

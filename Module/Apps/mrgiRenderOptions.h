@@ -54,6 +54,13 @@ struct Options
   bool Multires = true; // Balanced whenever indirect light is on
   long long Preset = 1;
   double SurfaceDetail = 0.0;
+  bool SSAO = false;
+  long long SSAOSamples = 32; // MRGI_SSAO_DEFAULT_KERNEL_SIZE
+  double SSAORadius = 0.5;
+  bool HasSSAORadius = false; // else 2% of the scene's diagonal
+  double SSAOBias = 0.01;
+  bool HasSSAOBias = false; // else radius / 50
+  bool SSAOBlur = false;
   // NaN / -1: not given, the preset's value stands.
   double DepthThreshold = std::nan("");
   double NormalThreshold = std::nan("");

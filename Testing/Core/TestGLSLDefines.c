@@ -10,6 +10,7 @@
 #include "mrgi_gather.h"
 #include "mrgi_multires.h"
 #include "mrgi_specular_stencil.h"
+#include "mrgi_ssao.h"
 #include "mrgi_upsample.h"
 #include "mrgi_test.h"
 #include "mrgi_variance_shadow.h"
@@ -53,6 +54,7 @@ static expected_constant expected[] = {
   EXPECT(MRGI_LUMINANCE_G, EXPECT_DOUBLE),
   EXPECT(MRGI_LUMINANCE_B, EXPECT_DOUBLE),
   EXPECT(MRGI_PI, EXPECT_DOUBLE),
+  EXPECT(MRGI_SSAO_NOISE_SIZE, EXPECT_INT),
   EXPECT(MRGI_GBUFFER_VALID, EXPECT_FLOAT),
   EXPECT(MRGI_GBUFFER_VALID_THRESHOLD, EXPECT_FLOAT),
   EXPECT(MRGI_GBUFFER_DIRECT, EXPECT_INT),

@@ -104,6 +104,19 @@ def main():
     check(code == 0, "direct-only render: " + err)
     check(os.path.getsize(on_png) != os.path.getsize(off_png) or
           open(on_png, "rb").read() != open(off_png, "rb").read(), "--gi off changes the image")
+    # --ssao darkens the direct light (corners and contacts), with the
+    # scene-scaled default radius and with every knob given; the stage is timed.
+    ao_exr, noao_exr = fresh("cli_ssao_on.exr"), fresh("cli_ssao_off.exr")
+    code, out, err = run("cornell", "-o", ao_exr, "--size", "48x40", "-q", "--gi", "off",
+                         "--ssao", "on", "--timings")
+    check(code == 0 and "ssao.ao" in out, "--ssao on renders and times its stage: " + err)
+    code, _, err = run("cornell", "-o", noao_exr, "--size", "48x40", "-q", "--gi", "off")
+    check(code == 0, "--ssao off render: " + err)
+    check(open(ao_exr, "rb").read() != open(noao_exr, "rb").read(), "--ssao on changes the image")
+    code, _, err = run("cornell", "-o", fresh("cli_ssao_knobs.png"), "--size", "40x48", "-q",
+                       "--ssao", "on", "--ssao-samples", "8", "--ssao-radius", "20",
+                       "--ssao-bias", "0.5", "--ssao-blur", "on")
+    check(code == 0, "--ssao with every knob: " + err)
     mr_exr = fresh("cli_multires.exr")
     code, out, err = run("cornell-spot", "-o", mr_exr, "--size", "48x48", "-q", "--gi", "multires",
                          "--depth-threshold", "8", "--normal-threshold", "inf", "--upsample", "mask",
@@ -304,6 +317,17 @@ def bad_input():
         (["cornell", "-o", target, "--indirect-strength", "nan"], "--indirect-strength"),
         (["cornell", "-o", target, "--gi", "off", "--indirect-only"], "--indirect-only"),
         (["cornell", "-o", target, "--reference-visibility", "maybe"], "--reference-visibility"),
+        (["cornell", "-o", target, "--ssao", "yes"], "--ssao"),
+        (["cornell", "-o", target, "--ssao-samples", "0"], "--ssao-samples"),
+        (["cornell", "-o", target, "--ssao-samples", "1001"], "--ssao-samples"),
+        (["cornell", "-o", target, "--ssao-samples", "3x"], "--ssao-samples"),
+        (["cornell", "-o", target, "--ssao-radius", "0"], "--ssao-radius"),
+        (["cornell", "-o", target, "--ssao-radius", "-1"], "--ssao-radius"),
+        (["cornell", "-o", target, "--ssao-radius", "nan"], "--ssao-radius"),
+        (["cornell", "-o", target, "--ssao-radius", "1e39"], "--ssao-radius"),
+        (["cornell", "-o", target, "--ssao-bias", "inf"], "--ssao-bias"),
+        (["cornell", "-o", target, "--ssao-bias", "0.1.2"], "--ssao-bias"),
+        (["cornell", "-o", target, "--ssao-blur", "maybe"], "--ssao-blur"),
         (["cornell", "-o", "/nonexistent-dir/out.png", "--size", "8x8"], "nonexistent-dir"),
         # Every value outside its documented range is refused, naming the option.
         (["cornell", "-o", target, "--voxel-size", "16384"], "[1, 4096]"),

@@ -19,6 +19,7 @@
 #include "vtkMRGIProgramCache.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIRenderSteps.h"
+#include "vtkMRGISSAO.h"
 #include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIShadowComposite.h"
@@ -104,6 +105,7 @@ vtkMRGIPass::vtkMRGIPass()
   this->Multiresolution = vtkMRGIMultiresolution::New();
   this->Gather = vtkMRGIGather::New();
   this->Upsample = vtkMRGIUpsample::New();
+  this->SSAOStage = vtkMRGISSAO::New();
   this->AreaLightStage = vtkMRGIAreaLightStage::New();
   this->ShadowComposite = vtkMRGIShadowComposite::New();
   this->DirectShadowStage = vtkMRGIDirectShadows::New();
@@ -128,6 +130,7 @@ vtkMRGIPass::~vtkMRGIPass()
   this->Multiresolution->Delete();
   this->Gather->Delete();
   this->Upsample->Delete();
+  this->SSAOStage->Delete();
   this->AreaLightStage->Delete();
   this->ShadowComposite->Delete();
   this->DirectShadowStage->Delete();
@@ -143,6 +146,7 @@ void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
   this->Multiresolution->ReleaseGraphicsResources(w);
   this->Gather->ReleaseGraphicsResources(w);
   this->Upsample->ReleaseGraphicsResources(w);
+  this->SSAOStage->ReleaseGraphicsResources(w);
   this->AreaLightStage->ReleaseGraphicsResources(w);
   this->ShadowComposite->ReleaseGraphicsResources(w);
   this->DirectShadowStage->ReleaseGraphicsResources(w);
@@ -974,7 +978,7 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   const int shadowedLights =
     this->DirectShadows != DirectShadowsOff ? ShaderLights(renderer, slotLights) : 0;
   const bool shadows = shadowedLights > 0;
-  const bool capture = indirect || areaLights || this->OuterGBuffer || shadows;
+  const bool capture = indirect || areaLights || this->OuterGBuffer || shadows || this->SSAO;
   const bool split = vtkRenderStepsPass::SafeDownCast(this->DelegatePass) != nullptr;
   vtkRenderTimerLog* timer = vtkMRGIShaderUtilities::StageTimer(renderer, this->StageTimingEnabled);
   this->IndirectComputed = false;
@@ -1021,6 +1025,26 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   if (shadows && framed)
   {
     this->ShadowsComputed = this->RenderDirectShadows(frame, slotLights);
+  }
+  // SSAO as vtkSSAOPass applies it, to the direct light only: the indirect
+  // and area light added below are not ambient terms and model their own
+  // visibility. (After the direct shadows, which subtract shadowed light
+  // terms from the unshadowed colour: AO multiplies their result.)
+  if (this->SSAO && framed)
+  {
+    ScopedStage stage(timer, "ssao");
+    if (this->SSAOStage->Render(frame, this->SSAOKernelSize, this->SSAORadius, this->SSAOBias,
+          this->SSAOBlur, in.GBuffer.Color))
+    {
+      this->SSAOFailureReported = false;
+    }
+    else if (!this->SSAOFailureReported)
+    {
+      this->SSAOFailureReported = true;
+      vtkErrorMacro("SSAO could not be computed (kernel size "
+        << this->SSAOKernelSize << ", radius " << this->SSAORadius << ", bias " << this->SSAOBias
+        << "): this frame has no ambient occlusion");
+    }
   }
   if (indirect)
   {
@@ -1339,6 +1363,9 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
                                                       : "Soft")
      << " (kernel " << this->SoftShadowKernelSize << ", light radius " << this->ShadowLightRadius
      << ")\n";
+  os << indent << "SSAO: " << (this->SSAO ? "on" : "off") << " (kernel " << this->SSAOKernelSize
+     << ", radius " << this->SSAORadius << ", bias " << this->SSAOBias << ", blur "
+     << (this->SSAOBlur ? "on" : "off") << ")\n";
   os << indent << "IndirectStrength: " << this->IndirectStrength << "\n";
   os << indent << "NumberOfVPLs: " << this->VPLSelection->GetNumberOfVPLs() << "\n";
   os << indent << "VPLSelectionMode: " << this->VPLSelection->GetMode() << "\n";

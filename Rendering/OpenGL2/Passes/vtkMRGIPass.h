@@ -75,6 +75,7 @@ class vtkMRGIAreaLightStage;
 class vtkMRGIGather;
 class vtkMRGIMultiresolution;
 class vtkMRGIUpsample;
+class vtkMRGISSAO;
 class vtkMRGIVarianceShadowQuery;
 class vtkMRGIVisibilityPyramid;
 class vtkMRGIVoxelization;
@@ -242,6 +243,31 @@ public:
    */
   vtkSetClampMacro(SurfaceDetail, double, 0.0, 1.0);
   vtkGetMacro(SurfaceDetail, double);
+  ///@}
+
+  ///@{
+  /**
+   * Screen-space ambient occlusion of the direct light, computed from the
+   * G-buffer and applied as vtkSSAOPass (VTK 9.1) does: its kernel for the
+   * same size, radius, bias, range check, and optional 3x3 blur; AO
+   * multiplies the scene's colour before indirect and area light are added
+   * (they carry their own visibility). Off by default; KernelSize 1..1000
+   * (default 32), Radius > 0 (0.5) and Bias (0.01) in world units, Blur
+   * off: vtkSSAOPass's defaults. vtkMRGISSAO is the stage.
+   */
+  vtkSetMacro(SSAO, bool);
+  vtkGetMacro(SSAO, bool);
+  vtkBooleanMacro(SSAO, bool);
+  vtkSetClampMacro(SSAOKernelSize, int, 1, 1000);
+  vtkGetMacro(SSAOKernelSize, int);
+  vtkSetMacro(SSAORadius, double);
+  vtkGetMacro(SSAORadius, double);
+  vtkSetMacro(SSAOBias, double);
+  vtkGetMacro(SSAOBias, double);
+  vtkSetMacro(SSAOBlur, bool);
+  vtkGetMacro(SSAOBlur, bool);
+  vtkBooleanMacro(SSAOBlur, bool);
+  vtkMRGISSAO* GetSSAOStage() { return this->SSAOStage; }
   ///@}
 
   ///@{
@@ -577,6 +603,12 @@ protected:
   int IndirectMode = IndirectMultires;
   double IndirectStrength = 1.0;
   double SurfaceDetail = 0.0;
+  bool SSAO = false;
+  int SSAOKernelSize = 32; // MRGI_SSAO_DEFAULT_KERNEL_SIZE
+  double SSAORadius = 0.5; // MRGI_SSAO_DEFAULT_RADIUS
+  double SSAOBias = 0.01;  // MRGI_SSAO_DEFAULT_BIAS
+  bool SSAOBlur = false;
+  bool SSAOFailureReported = false;
   bool StageTimingEnabled = false;
   int BufferSize[2] = { 0, 0 };
   int Viewport[4] = { 0, 0, 0, 0 };
@@ -605,6 +637,7 @@ protected:
   vtkMRGIMultiresolution* Multiresolution = nullptr;
   vtkMRGIGather* Gather = nullptr;
   vtkMRGIUpsample* Upsample = nullptr;
+  vtkMRGISSAO* SSAOStage = nullptr;
   vtkMRGIAreaLightStage* AreaLightStage = nullptr;
   vtkMRGIShadowComposite* ShadowComposite = nullptr;
   vtkMRGIDirectShadows* DirectShadowStage = nullptr;

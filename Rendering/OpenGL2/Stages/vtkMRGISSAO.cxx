@@ -1,0 +1,317 @@
+#include "vtk_glew.h"
+
+#include "vtkMRGISSAO.h"
+
+#include "vtkCamera.h"
+#include "vtkFloatArray.h"
+#include "vtkMRGIFrameContext.h"
+#include "vtkMRGIFullScreenStep.h"
+#include "vtkMRGIProgramCache.h"
+#include "vtkMRGIShaderUtilities.h"
+#include "vtkMRGIStageResources.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+
+#include "vtkMRGISSAOFS.h"
+
+#include "mrgi_ssao.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkMRGISSAO);
+
+struct vtkMRGISSAO::Internals
+{
+  vtkTextureObject* AO = nullptr; // full-resolution AO of Render(), R32F
+  int Size[2] = { 0, 0 };
+  std::vector<float> Kernel; // the kernel of KernelSize samples
+  int KernelSize = 0;
+  vtkMRGIStageResources GL;
+
+  // The stage's program: 0 AO (one program per kernel size: the kernel is a
+  // uniform array, like vtkSSAOPass's), 1 apply.
+  vtkOpenGLQuadHelper* Ready(vtkOpenGLRenderWindow* window, int stage, int kernelSize)
+  {
+    std::string defines = "#define MRGI_SSAO_STAGE " + std::to_string(stage) + "\n";
+    if (stage == 0)
+    {
+      defines += "#define MRGI_SSAO_KERNEL_SIZE " + std::to_string(kernelSize) + "\n";
+    }
+    return this->GL.Programs.Ready(
+      window, stage == 0 ? "ssao" : "ssao.apply", defines, [] { return vtkMRGISSAOFS; });
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkMRGISSAO::vtkMRGISSAO()
+  : Internal(new Internals)
+{
+}
+
+//------------------------------------------------------------------------------
+vtkMRGISSAO::~vtkMRGISSAO()
+{
+  if (this->Internal->GL.FrameBuffer || this->Internal->AO)
+  {
+    vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
+  }
+  vtkMRGIShaderUtilities::ReleaseTexture(this->Internal->AO, nullptr);
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGISSAO::ReleaseGraphicsResources(vtkWindow* w)
+{
+  vtkMRGIShaderUtilities::ReleaseTexture(this->Internal->AO, w);
+  this->Internal->Size[0] = this->Internal->Size[1] = 0;
+  this->Internal->GL.Release(w);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISSAO::ComputeAO(const vtkMRGIFrameContext& frame, int kernelSize, double radius,
+  double bias, int level, vtkTextureObject* target)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  const int w = frame.Viewport[2], h = frame.Viewport[3];
+  if (!window || !frame.Renderer || !frame.Position || !frame.Normal || !target || w < 1 || h < 1)
+  {
+    vtkErrorMacro("SSAO needs the frame's window, renderer, G-buffer position and normal, a "
+                  "viewport and a target");
+    return false;
+  }
+  if (kernelSize < 1 || kernelSize > MRGI_SSAO_MAX_KERNEL_SIZE)
+  {
+    vtkErrorMacro(
+      "SSAO kernel size " << kernelSize << " is outside 1.." << MRGI_SSAO_MAX_KERNEL_SIZE);
+    return false;
+  }
+  if (!(radius > 0.0) || !std::isfinite(radius) || !std::isfinite(bias) ||
+    !std::isfinite(static_cast<float>(radius)) || !std::isfinite(static_cast<float>(bias)))
+  {
+    vtkErrorMacro(
+      "SSAO radius " << radius << " must be finite and > 0, bias " << bias << " finite");
+    return false;
+  }
+  if (level < 0 || level > MRGI_SSAO_MAX_LEVEL)
+  {
+    vtkErrorMacro("SSAO level " << level << " is outside 0.." << MRGI_SSAO_MAX_LEVEL);
+    return false;
+  }
+  const int side = 1 << level;
+  const int lw = (w + side - 1) / side, lh = (h + side - 1) / side;
+  if (target->GetWidth() < static_cast<unsigned int>(lw) ||
+    target->GetHeight() < static_cast<unsigned int>(lh))
+  {
+    vtkErrorMacro("SSAO target " << target->GetWidth() << " x " << target->GetHeight()
+                                 << " is smaller than level " << level << " (" << lw << " x " << lh
+                                 << ")");
+    return false;
+  }
+  if (in.KernelSize != kernelSize)
+  {
+    in.Kernel.resize(3 * static_cast<size_t>(kernelSize));
+    mrgi_error err;
+    if (mrgi_ssao_kernel(kernelSize, in.Kernel.data(), &err) != MRGI_OK)
+    {
+      vtkErrorMacro(<< err.message);
+      in.KernelSize = 0;
+      return false;
+    }
+    in.KernelSize = kernelSize;
+  }
+  // vtkSSAOPass's projection: the camera's at the tile's aspect ratio,
+  // depth in [-1, 1]; column-major for GLSL.
+  vtkMatrix4x4* projection = frame.Renderer->GetActiveCamera()->GetProjectionTransformMatrix(
+    frame.Renderer->GetTiledAspectRatio(), -1, 1);
+  float matrix[16];
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      matrix[c * 4 + r] = static_cast<float>(projection->GetElement(r, c));
+    }
+  }
+  in.GL.Prepare(window);
+  vtkOpenGLQuadHelper* quad = in.Ready(window, 0, kernelSize);
+  if (!quad)
+  {
+    vtkErrorMacro("could not build the SSAO shader (kernel size " << kernelSize << ")");
+    return false;
+  }
+  vtkShaderProgram* program = quad->Program;
+  {
+    vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssao.ao");
+    vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
+    steps.Target(target, nullptr, 0, 0, lw, lh);
+    vtkMRGIFullScreenStep::BindInputs(program, { frame.Position, frame.Normal });
+    program->SetUniformi("mrgiNoise", window->GetNoiseTextureUnit());
+    const int origin[2] = { frame.Viewport[0], frame.Viewport[1] };
+    const int size[2] = { w, h };
+    program->SetUniform2i("mrgiOrigin", origin);
+    program->SetUniform2i("mrgiSize", size);
+    program->SetUniformi("mrgiLevel", level);
+    program->SetUniformMatrix4x4("mrgiProjection", matrix);
+    program->SetUniformf("mrgiRadius", static_cast<float>(radius));
+    program->SetUniformf("mrgiBias", static_cast<float>(bias));
+    program->SetUniform3fv("mrgiKernel", kernelSize, in.Kernel.data());
+    quad->Render();
+    vtkMRGIFullScreenStep::UnbindInputs({ frame.Position, frame.Normal });
+  }
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("OpenGL error " << error << " in the SSAO stage");
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISSAO::Apply(
+  const vtkMRGIFrameContext& frame, vtkTextureObject* ao, bool blur, vtkTextureObject* colour)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  if (!window || !ao || !colour || frame.Viewport[2] < 1 || frame.Viewport[3] < 1)
+  {
+    vtkErrorMacro("SSAO Apply needs the frame's window and viewport, an AO texture and a colour");
+    return false;
+  }
+  in.GL.Prepare(window);
+  vtkOpenGLQuadHelper* quad = in.Ready(window, 1, 0);
+  if (!quad)
+  {
+    vtkErrorMacro("could not build the SSAO apply shader");
+    return false;
+  }
+  vtkShaderProgram* program = quad->Program;
+  {
+    vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssao.apply");
+    vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
+    steps.Target(
+      colour, nullptr, frame.Viewport[0], frame.Viewport[1], frame.Viewport[2], frame.Viewport[3]);
+    // colour.rgb * AO in place: multiplicative blending (the same float
+    // product as vtkSSAOPass's col.rgb * ao), alpha kept.
+    vtkOpenGLState* ostate = steps.GetState();
+    vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
+    ostate->vtkglEnable(GL_BLEND);
+    ostate->vtkglBlendFuncSeparate(GL_ZERO, GL_SRC_COLOR, GL_ZERO, GL_ONE);
+    vtkMRGIFullScreenStep::BindInputs(program, { ao });
+    const int origin[2] = { frame.Viewport[0], frame.Viewport[1] };
+    const int size[2] = { frame.Viewport[2], frame.Viewport[3] };
+    program->SetUniform2i("mrgiOrigin", origin);
+    program->SetUniform2i("mrgiSize", size);
+    program->SetUniformi("mrgiBlur", blur ? 1 : 0);
+    quad->Render();
+    vtkMRGIFullScreenStep::UnbindInputs({ ao });
+  }
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("OpenGL error " << error << " in the SSAO apply step");
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISSAO::Render(const vtkMRGIFrameContext& frame, int kernelSize, double radius,
+  double bias, bool blur, vtkTextureObject* colour)
+{
+  Internals& in = *this->Internal;
+  const int w = frame.Viewport[2], h = frame.Viewport[3];
+  if (!frame.Window || w < 1 || h < 1)
+  {
+    vtkErrorMacro("SSAO needs the frame's window and a viewport");
+    return false;
+  }
+  if (!in.AO || in.Size[0] != w || in.Size[1] != h)
+  {
+    vtkMRGIShaderUtilities::ReleaseTexture(in.AO, frame.Window);
+    in.AO = vtkMRGIShaderUtilities::NewTexture(frame.Window, GL_R32F, w, h);
+    in.Size[0] = in.AO ? w : 0;
+    in.Size[1] = in.AO ? h : 0;
+    if (!in.AO)
+    {
+      vtkErrorMacro("could not allocate the SSAO target (" << w << " x " << h << ")");
+      return false;
+    }
+  }
+  return this->ComputeAO(frame, kernelSize, radius, bias, 0, in.AO) &&
+    this->Apply(frame, in.AO, blur, colour);
+}
+
+//------------------------------------------------------------------------------
+vtkTextureObject* vtkMRGISSAO::GetAOTexture()
+{
+  return this->Internal->AO;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISSAO::ReadAO(vtkRenderWindow* window, vtkFloatArray* ao)
+{
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  Internals& in = *this->Internal;
+  std::vector<float> rgba;
+  if (!renWin || !ao || !in.AO || !vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.AO, rgba))
+  {
+    vtkErrorMacro("ReadAO: no AO rendered yet");
+    return false;
+  }
+  const size_t n = rgba.size() / 4;
+  ao->SetNumberOfComponents(1);
+  ao->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  for (size_t i = 0; i < n; ++i)
+  {
+    ao->SetValue(static_cast<vtkIdType>(i), rgba[4 * i]);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISSAO::ReadNoise(vtkOpenGLRenderWindow* window, std::vector<float>& noise)
+{
+  if (!window)
+  {
+    return false;
+  }
+  const int unit = window->GetNoiseTextureUnit();
+  if (unit < 0)
+  {
+    return false;
+  }
+  vtkOpenGLState* ostate = window->GetState();
+  vtkOpenGLState::ScopedglActiveTexture activeSaver(ostate);
+  ostate->vtkglActiveTexture(GL_TEXTURE0 + static_cast<unsigned int>(unit));
+  GLint width = 0, height = 0;
+  glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_WIDTH, &width);
+  glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_HEIGHT, &height);
+  if (width != MRGI_SSAO_NOISE_SIZE || height != MRGI_SSAO_NOISE_SIZE)
+  {
+    return false;
+  }
+  noise.assign(static_cast<size_t>(width) * static_cast<size_t>(height), 0.0f);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTexImage(GL_TEXTURE_2D, 0, GL_RED, GL_FLOAT, noise.data());
+  return glGetError() == GL_NO_ERROR;
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGISSAO::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "KernelSize (cached): " << this->Internal->KernelSize << "\n";
+  os << indent << "AO size: " << this->Internal->Size[0] << " x " << this->Internal->Size[1]
+     << "\n";
+}
