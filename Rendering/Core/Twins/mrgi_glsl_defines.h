@@ -37,7 +37,9 @@
  * _SAMPLE_FLOATS, _LOBE_GRID, _LOBE_MIN_SAMPLES, _LOBE_CUTOFF, _LOBE_DISCARD,
  * _MIN_COS, _MIN_ALONG and the specular paths (::mrgi_area_light_specular_path)
  * MRGI_AREA_LIGHT_SPECULAR_SAMPLES, _LOBE_GRID, _BEHIND, _FACING_AWAY,
- * _LOBE_MISS.
+ * _LOBE_MISS; from mrgi_bmr_mask.h MRGI_BMR_LEVELS, _MAX_RADIUS, _COMBINE_MAX,
+ * _COMBINE_MIN, _SSGI_SKIP_LEVEL and Table 1's presets
+ * MRGI_BMR_{SSAO,SSM,SSGI}_{VARIANCE,WEIGHT}_{1..4}.
  *
  * Insert the block after the shader's `#version` line (a `#define` may not
  * precede it).
@@ -54,7 +56,7 @@ extern "C" {
 #endif
 
 /** An upper bound of mrgi_glsl_defines_size(): a buffer this large always suffices. */
-#define MRGI_GLSL_DEFINES_MAX_SIZE 4096
+#define MRGI_GLSL_DEFINES_MAX_SIZE 8192
 
 /** @brief Bytes the block needs, terminating NUL included (<= MRGI_GLSL_DEFINES_MAX_SIZE). */
 size_t mrgi_glsl_defines_size(void);
