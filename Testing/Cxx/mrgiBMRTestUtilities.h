@@ -304,7 +304,8 @@ inline void ReadMasks(vtkRenderWindow* window, vtkMRGIBMRLevels* levels, GPUMask
 /**
  * The test effect: at level k texel t, a smooth function of the G-buffer at
  * the footprint's centre pixel min(t 2^k + 2^(k-1), size - 1) (level 0: t):
- * (albedo r, albedo g, 0.5 + 0.5 sin(eye depth), 1); 0 at an invalid
+ * (albedo r, 0.5 + 0.5 sin(8 x / |z|) (smooth across the image), 0.5 + 0.5
+ * clamp(normal z, -1, 1), 1) with the eye-space position (x, y, z); 0 at an invalid
  * centre. Rendered per level under the stencil with vtkMRGIBMRLevelStep;
  * alpha 1 marks the texels it rendered (the rest stay 0).
  */
@@ -318,6 +319,7 @@ public:
                            "in vec2 texCoord;\n"
                            "uniform sampler2D gPosition;\n"
                            "uniform sampler2D gAlbedo;\n"
+                           "uniform sampler2D gNormal;\n"
                            "uniform ivec2 offset;\n"
                            "uniform ivec2 frameSize;\n"
                            "uniform int level;\n"
@@ -330,8 +332,9 @@ public:
                            "  ivec2 c = level == 0 ? t : min(t * s + s / 2, frameSize - 1);\n"
                            "  vec4 P = texelFetch(gPosition, c + offset, 0);\n"
                            "  vec3 A = texelFetch(gAlbedo, c + offset, 0).rgb;\n"
-                           "  bool valid = P.w > 0.5 && !isnan(P.z) && !isinf(P.z);\n"
-                           "  gl_FragData[0] = valid ? vec4(A.r, A.g, 0.5 + 0.5 * sin(-P.z), 1.0) : vec4(0.0, 0.0, 0.0, 1.0);\n"
+                           "  vec3 N = texelFetch(gNormal, c + offset, 0).xyz;\n"
+                           "  bool valid = P.w > 0.5 && !isnan(P.z) && !isinf(P.z) && !any(isnan(N)) && !any(isinf(N));\n"
+                           "  gl_FragData[0] = valid ? vec4(A.r, 0.5 + 0.5 * sin(8.0 * P.x / max(abs(P.z), 1e-30)), 0.5 + 0.5 * clamp(N.z, -1.0, 1.0), 1.0) : vec4(0.0, 0.0, 0.0, 1.0);\n"
                            "}\n";
     this->Quad = new vtkOpenGLQuadHelper(
       window, vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(), fs.c_str(), "");
@@ -352,8 +355,10 @@ public:
       this->Window->GetShaderCache()->ReadyShaderProgram(p);
       frame.Position->Activate();
       frame.Albedo->Activate();
+      frame.Normal->Activate();
       p->SetUniformi("gPosition", frame.Position->GetTextureUnit());
       p->SetUniformi("gAlbedo", frame.Albedo->GetTextureUnit());
+      p->SetUniformi("gNormal", frame.Normal->GetTextureUnit());
       const int offset[2] = { frame.Viewport[0], frame.Viewport[1] };
       const int size[2] = { frame.Viewport[2], frame.Viewport[3] };
       p->SetUniform2i("offset", offset);
@@ -362,6 +367,7 @@ public:
       this->Quad->Render();
       frame.Position->Deactivate();
       frame.Albedo->Deactivate();
+      frame.Normal->Deactivate();
     }
   }
 
