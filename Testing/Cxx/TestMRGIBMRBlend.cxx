@@ -284,6 +284,11 @@ void Benchmark()
                 "%.2f ms; wall clock mask + blend %.2f ms\n",
       s.W, s.H, counted, counted ? ms["MRGI bmr.mask"] / counted : -1.0,
       counted ? ms["MRGI bmr.blend"] / counted : -1.0, wallMs / frames);
+    for (const auto& step : ms)
+    {
+      std::printf("Benchmark cornell %d x %d: %s %.2f ms\n", s.W, s.H, step.first.c_str(),
+        counted ? step.second / counted : -1.0);
+    }
     const double v = static_cast<double>(std::max<int64_t>(stats.valid_pixels, 1));
     std::printf("Benchmark cornell %d x %d: pixels whose finest level is 1..4: %.4f %.4f %.4f %.4f "
                 "(of %lld valid); stencilled texels per level %lld %lld %lld %lld; work %.3f\n",

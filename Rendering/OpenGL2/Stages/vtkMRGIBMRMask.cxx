@@ -22,6 +22,7 @@
 #include "mrgi_bmr_mask.h"
 
 #include <cmath>
+#include <memory>
 #include <string>
 
 vtkStandardNewMacro(vtkMRGIBMRMask);
@@ -243,6 +244,8 @@ bool vtkMRGIBMRMask::Run(const vtkMRGIFrameContext& frame, vtkMRGIBMRLevels* lev
     // level's own target, which would be a feedback loop).
     vtkTextureObject* finerMask = k > 0 ? levels->GetMaskTexture(k - 1) : in.ScratchA;
     // E_k and NE_k into A.
+    std::unique_ptr<vtkMRGIShaderUtilities::ScopedStage> sub(
+      new vtkMRGIShaderUtilities::ScopedStage(frame.Timer, "bmr.mask.edges"));
     steps.Target(in.ScratchA, nullptr, 0, 0, size[0], size[1]);
     if (buffer && k < flagLevels)
     {
@@ -286,15 +289,22 @@ bool vtkMRGIBMRMask::Run(const vtkMRGIFrameContext& frame, vtkMRGIBMRLevels* lev
     // The Gaussian's radius and variance as the C twin computes them.
     const float variance = static_cast<float>(params.variance[k]);
     const int radius = variance > 0.0f ? static_cast<int>(std::ceil(3.0f * std::sqrt(variance))) : 0;
+    float gauss[MRGI_BMR_MAX_RADIUS + 1] = {};
+    for (int j = 0; j <= radius; ++j)
+    {
+      gauss[j] = radius == 0 ? 1.0f : std::exp(-static_cast<float>(j * j) / (2.0f * variance));
+    }
     // Horizontal blur into B.
+    sub.reset();
+    sub.reset(new vtkMRGIShaderUtilities::ScopedStage(frame.Timer, "bmr.mask.blur"));
     {
       steps.Target(in.ScratchB, nullptr, 0, 0, size[0], size[1]);
       vtkShaderProgram* p = quads[2]->Program;
       window->GetShaderCache()->ReadyShaderProgram(p);
       vtkMRGIFullScreenStep::BindInputs(p, { in.ScratchA });
       p->SetUniform2i("mrgiSize", size);
-      p->SetUniformf("mrgiVariance", variance);
       p->SetUniformi("mrgiRadius", radius);
+      p->SetUniform1fv("mrgiGauss", MRGI_BMR_MAX_RADIUS + 1, gauss);
       quads[2]->Render();
       vtkMRGIFullScreenStep::UnbindInputs({ in.ScratchA });
     }
@@ -307,14 +317,16 @@ bool vtkMRGIBMRMask::Run(const vtkMRGIFrameContext& frame, vtkMRGIBMRLevels* lev
       vtkMRGIFullScreenStep::BindInputs(p, { in.ScratchB, finerMask });
       p->SetUniform2i("mrgiSize", size);
       p->SetUniform2i("mrgiFinerSize", finer);
-      p->SetUniformf("mrgiVariance", variance);
       p->SetUniformi("mrgiRadius", radius);
+      p->SetUniform1fv("mrgiGauss", MRGI_BMR_MAX_RADIUS + 1, gauss);
       p->SetUniformi("mrgiLevel", k);
       p->SetUniformi("mrgiSkip", params.skip[k]);
       quads[3]->Render();
       vtkMRGIFullScreenStep::UnbindInputs({ in.ScratchB, finerMask });
     }
     // S_k into the level's stencil (the colour goes to A, unused now).
+    sub.reset();
+    sub.reset(new vtkMRGIShaderUtilities::ScopedStage(frame.Timer, "bmr.mask.stencil"));
     {
       steps.Target(in.ScratchA, nullptr, 0, 0, size[0], size[1]);
       steps.BeginMaskWrite(levels->GetDepthStencilTexture(k));
@@ -325,6 +337,7 @@ bool vtkMRGIBMRMask::Run(const vtkMRGIFrameContext& frame, vtkMRGIBMRLevels* lev
       vtkMRGIFullScreenStep::UnbindInputs({ mask });
       steps.EndMaskWrite();
     }
+    sub.reset();
     finer[0] = size[0];
     finer[1] = size[1];
   }

@@ -21,31 +21,26 @@ uniform float mrgiDepthThreshold;  // 0: T_d, < 0: off
 uniform float mrgiNormalThreshold; // 0: T_n, < 0: off
 uniform int mrgiCombine;      // 0: MRGI_BMR_COMBINE_MAX or _MIN
 uniform int mrgiHasShadow;    // 0: 1 when mrgiInput2 holds the shadow image
-uniform float mrgiVariance;   // 2, 3: sigma_k^2 (as a float, as the C twin)
-uniform int mrgiRadius;       // 2, 3: ceil(3 sigma_k), 0 for no blur
+uniform int mrgiRadius;       // 2, 3: R = ceil(3 sigma_k), 0 for no blur
+// 2, 3: the Gaussian's weights g(0..R), computed once in C++ with the C
+// twin's expf (the same floats, and no exp per tap).
+uniform float mrgiGauss[MRGI_BMR_MAX_RADIUS + 1];
 uniform int mrgiLevel;        // 3: k
 uniform int mrgiSkip;         // 3: level k is skipped
 //VTK::Output::Dec
 
 #if MRGI_BMR_STAGE == 0
-bool mrgiValid(ivec2 p)
+bool mrgiValid(vec4 P, vec3 N)
 {
-  vec4 P = texelFetch(mrgiInput0, p + mrgiOffset, 0);
-  vec3 N = texelFetch(mrgiInput1, p + mrgiOffset, 0).xyz;
   return P.w > MRGI_GBUFFER_VALID_THRESHOLD && !isnan(P.z) && !isinf(P.z) &&
     !any(isnan(N)) && !any(isinf(N));
 }
-vec3 mrgiUnitNormal(ivec2 p)
+vec3 mrgiUnitNormal(vec3 N)
 {
-  vec3 N = texelFetch(mrgiInput1, p + mrgiOffset, 0).xyz;
   float length2 = N.x * N.x + N.y * N.y + N.z * N.z;
   if (!(length2 > MRGI_MULTIRES_MIN_PIXEL_SIZE)) { length2 = MRGI_MULTIRES_MIN_PIXEL_SIZE; }
   float inverseLength = 1.0 / sqrt(length2);
   return vec3(N.x * inverseLength, N.y * inverseLength, N.z * inverseLength);
-}
-float mrgiDepth(ivec2 p)
-{
-  return -texelFetch(mrgiInput0, p + mrgiOffset, 0).z;
 }
 #endif
 
@@ -53,18 +48,24 @@ void main()
 {
   ivec2 t = ivec2(gl_FragCoord.xy);
 #if MRGI_BMR_STAGE == 0
-  if (!mrgiValid(t))
+  // Every G-buffer texel is fetched once: the pixel, then left, right,
+  // down, up (an outside neighbour is the pixel itself, as the C twin's
+  // clamped central differences).
+  vec4 P = texelFetch(mrgiInput0, t + mrgiOffset, 0);
+  vec3 N = texelFetch(mrgiInput1, t + mrgiOffset, 0).xyz;
+  if (!mrgiValid(P, N))
   {
     gl_FragData[0] = vec4(0.0);
     return;
   }
-  // Neighbours: left, right, down, up.
   ivec2 q[4];
   q[0] = t + ivec2(-1, 0);
   q[1] = t + ivec2(1, 0);
   q[2] = t + ivec2(0, -1);
   q[3] = t + ivec2(0, 1);
   bool inside[4];
+  vec4 Pq[4];
+  vec3 Nq[4];
   bool silhouette = false;
   bool shadowEdge = false;
   float shadowHere = mrgiHasShadow != 0 ? texelFetch(mrgiInput2, t + mrgiOffset, 0).r : 0.0;
@@ -72,8 +73,9 @@ void main()
   {
     inside[i] = all(greaterThanEqual(q[i], ivec2(0))) && all(lessThan(q[i], mrgiSize));
     if (!inside[i]) { q[i] = t; }
-    bool valid = inside[i] ? mrgiValid(q[i]) : true;
-    if (!valid)
+    Pq[i] = texelFetch(mrgiInput0, q[i] + mrgiOffset, 0);
+    Nq[i] = texelFetch(mrgiInput1, q[i] + mrgiOffset, 0).xyz;
+    if (!mrgiValid(Pq[i], Nq[i]))
     {
       silhouette = true;
     }
@@ -89,8 +91,8 @@ void main()
   bool normalEdge = silhouette;
   if (!silhouette && normalOn)
   {
-    vec3 n0 = mrgiUnitNormal(q[0]), n1 = mrgiUnitNormal(q[1]);
-    vec3 n2 = mrgiUnitNormal(q[2]), n3 = mrgiUnitNormal(q[3]);
+    vec3 n0 = mrgiUnitNormal(Nq[0]), n1 = mrgiUnitNormal(Nq[1]);
+    vec3 n2 = mrgiUnitNormal(Nq[2]), n3 = mrgiUnitNormal(Nq[3]);
     float m = 0.0;
     for (int c = 0; c < 3; ++c)
     {
@@ -102,15 +104,15 @@ void main()
   }
   if (!silhouette && depthOn)
   {
-    float d = mrgiDepth(t);
+    float d = -P.z;
     float sum = 0.0;
     if (inside[0] && inside[1])
     {
-      sum += abs(mrgiDepth(q[1]) + mrgiDepth(q[0]) - 2.0 * d);
+      sum += abs(-Pq[1].z + -Pq[0].z - 2.0 * d);
     }
     if (inside[2] && inside[3])
     {
-      sum += abs(mrgiDepth(q[3]) + mrgiDepth(q[2]) - 2.0 * d);
+      sum += abs(-Pq[3].z + -Pq[2].z - 2.0 * d);
     }
     float s = mrgiPixelSize.x * abs(d) + mrgiPixelSize.y;
     s = s > MRGI_MULTIRES_MIN_PIXEL_SIZE ? s : MRGI_MULTIRES_MIN_PIXEL_SIZE;
@@ -140,12 +142,14 @@ void main()
   }
   gl_FragData[0] = vec4(e, ne, 0.0, 0.0);
 #elif MRGI_BMR_STAGE == 2
+  // Taps outside the level are skipped (the C twin's renormalisation);
+  // the loop runs over the uniform radius, the same for every fragment.
   float sum = 0.0, wsum = 0.0;
-  for (int j = -MRGI_BMR_MAX_RADIUS; j <= MRGI_BMR_MAX_RADIUS; ++j)
+  for (int j = -mrgiRadius; j <= mrgiRadius; ++j)
   {
     int x = t.x + j;
-    if (abs(j) > mrgiRadius || x < 0 || x >= mrgiSize.x) { continue; }
-    float g = mrgiRadius == 0 ? 1.0 : exp(-float(j * j) / (2.0 * mrgiVariance));
+    if (x < 0 || x >= mrgiSize.x) { continue; }
+    float g = mrgiGauss[abs(j)];
     sum += g * texelFetch(mrgiInput0, ivec2(x, t.y), 0).r;
     wsum += g;
   }
@@ -157,11 +161,11 @@ void main()
   if (mrgiSkip == 0)
   {
     float sum = 0.0, wsum = 0.0;
-    for (int j = -MRGI_BMR_MAX_RADIUS; j <= MRGI_BMR_MAX_RADIUS; ++j)
+    for (int j = -mrgiRadius; j <= mrgiRadius; ++j)
     {
       int y = t.y + j;
-      if (abs(j) > mrgiRadius || y < 0 || y >= mrgiSize.y) { continue; }
-      float g = mrgiRadius == 0 ? 1.0 : exp(-float(j * j) / (2.0 * mrgiVariance));
+      if (y < 0 || y >= mrgiSize.y) { continue; }
+      float g = mrgiGauss[abs(j)];
       sum += g * texelFetch(mrgiInput0, ivec2(t.x, y), 0).r;
       wsum += g;
     }
