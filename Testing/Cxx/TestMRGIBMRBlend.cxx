@@ -1,7 +1,7 @@
 // The GPU's BMR blend (vtkMRGIBMRBlend) against its C twin
 // (mrgi_bmr_blend.h) on the levels read back: a test effect (a smooth
 // function of the G-buffer at each block's centre pixel) is rendered per
-// level under the stencils (vtkMRGIBMRLevelStep), then blended on the GPU
+// level under the stencils (vtkMRGIBMRLevels::LevelStep), then blended on the GPU
 // and in C; within 1e-4 relative. Also: the effect is rendered exactly where
 // S_k = 1; the full-resolution path (threshold 0) returns the effect at
 // every pixel; the multiresolution result stays close to it (RMS printed).

@@ -306,7 +306,7 @@ inline void ReadMasks(vtkRenderWindow* window, vtkMRGIBMRLevels* levels, GPUMask
  * the footprint's centre pixel min(t 2^k + 2^(k-1), size - 1) (level 0: t):
  * (albedo r, 0.5 + 0.5 sin(8 x / |z|) (smooth across the image), 0.5 + 0.5
  * clamp(normal z, -1, 1), 1) with the eye-space position (x, y, z); 0 at an invalid
- * centre. Rendered per level under the stencil with vtkMRGIBMRLevelStep;
+ * centre. Rendered per level under the stencil with vtkMRGIBMRLevels::LevelStep;
  * alpha 1 marks the texels it rendered (the rest stay 0).
  */
 class TestEffect
@@ -349,7 +349,7 @@ public:
   {
     for (int k = 0; k < MRGI_BMR_LEVELS; ++k)
     {
-      vtkMRGIBMRLevelStep step(this->Window, levels, k);
+      vtkMRGIBMRLevels::LevelStep step(this->Window, levels, k);
       MRGI_TEST_CHECK(step.IsValid());
       vtkShaderProgram* p = this->Quad->Program;
       this->Window->GetShaderCache()->ReadyShaderProgram(p);

@@ -219,7 +219,7 @@ void vtkMRGIBMRLevels::PrintSelf(ostream& os, vtkIndent indent)
 }
 
 //------------------------------------------------------------------------------
-vtkMRGIBMRLevelStep::vtkMRGIBMRLevelStep(
+vtkMRGIBMRLevels::LevelStep::LevelStep(
   vtkOpenGLRenderWindow* window, vtkMRGIBMRLevels* levels, int level)
 {
   int size[2];
@@ -234,7 +234,7 @@ vtkMRGIBMRLevelStep::vtkMRGIBMRLevelStep(
 }
 
 //------------------------------------------------------------------------------
-vtkMRGIBMRLevelStep::~vtkMRGIBMRLevelStep()
+vtkMRGIBMRLevels::LevelStep::~LevelStep()
 {
   if (this->Step)
   {

@@ -8,7 +8,7 @@
  * Level k is ceil(W / 2^k) x ceil(H / 2^k) texels for a W x H frame
  * (mrgi_bmr_mask.h). vtkMRGIBMRMask writes the masks and stencils;
  * an effect renders each level under its stencil through
- * vtkMRGIBMRLevelStep; vtkMRGIBMRBlend reads colours and masks. Only its
+ * vtkMRGIBMRLevels::LevelStep; vtkMRGIBMRBlend reads colours and masks. Only its
  * owner calls Prepare(); stages take it as an argument.
  *
  * Mask texture texel (RGBA32F): (a_k, E_k, R_k + 2 S_k, NE_k), the
@@ -76,6 +76,33 @@ public:
   /** The framebuffer the masks and the level steps draw through. */
   vtkOpenGLFramebufferObject* GetFramebuffer() const;
 
+#ifndef __VTK_WRAP__
+  /**
+   * How an effect renders one level under its stencil: for its lifetime the
+   * levels' framebuffer is bound with level k's colour target (cleared to
+   * 0) and depth-stencil, the viewport is the level's rectangle and only
+   * fragments with S_k = 1 pass (stencil test EQUAL 1, stencil unchanged);
+   * blending, depth and scissor tests are off. The caller draws one
+   * full-screen step (fragment (x, y) is level-k texel (x, y)). Everything
+   * is restored when it ends.
+   *
+   *     { vtkMRGIBMRLevels::LevelStep step(window, levels, k); quad->Render(); }
+   */
+  class LevelStep
+  {
+  public:
+    LevelStep(vtkOpenGLRenderWindow* window, vtkMRGIBMRLevels* levels, int level);
+    ~LevelStep();
+    /** False when the levels were not prepared or the level is out of range (nothing bound). */
+    bool IsValid() const { return this->Step != nullptr; }
+
+  private:
+    LevelStep(const LevelStep&) = delete;
+    void operator=(const LevelStep&) = delete;
+    std::unique_ptr<vtkMRGIFullScreenStep> Step;
+  };
+#endif
+
   /** Free every GL resource. */
   void ReleaseGraphicsResources(vtkWindow* w);
 
@@ -92,29 +119,5 @@ private:
   void operator=(const vtkMRGIBMRLevels&) = delete;
 };
 
-#ifndef __VTK_WRAP__
-/**
- * How an effect renders one level under its stencil: for its lifetime the
- * levels' framebuffer is bound with level k's colour target (cleared to 0)
- * and depth-stencil, the viewport is the level's rectangle and only
- * fragments with S_k = 1 pass (stencil test EQUAL 1, stencil unchanged);
- * blending, depth and scissor tests are off. The caller draws one
- * full-screen step (fragment (x, y) is level-k texel (x, y)). Everything is
- * restored when it ends.
- */
-class MRGIRENDERING_EXPORT vtkMRGIBMRLevelStep
-{
-public:
-  vtkMRGIBMRLevelStep(vtkOpenGLRenderWindow* window, vtkMRGIBMRLevels* levels, int level);
-  ~vtkMRGIBMRLevelStep();
-  /** False when the levels were not prepared or the level is out of range (nothing bound). */
-  bool IsValid() const { return this->Step != nullptr; }
-
-private:
-  vtkMRGIBMRLevelStep(const vtkMRGIBMRLevelStep&) = delete;
-  void operator=(const vtkMRGIBMRLevelStep&) = delete;
-  std::unique_ptr<vtkMRGIFullScreenStep> Step;
-};
-#endif
 
 #endif
