@@ -312,10 +312,12 @@ inline void ReadMasks(vtkRenderWindow* window, vtkMRGIBMRLevels* levels, GPUMask
 class TestEffect
 {
 public:
-  explicit TestEffect(vtkOpenGLRenderWindow* window)
+  /** `samples` > 0 adds a loop of that many G-buffer fetches (a stand-in for an expensive effect). */
+  explicit TestEffect(vtkOpenGLRenderWindow* window, int samples = 0)
     : Window(window)
   {
     const std::string fs = "//VTK::System::Dec\n"
+                           "#define SAMPLES " + std::to_string(samples) + "\n"
                            "in vec2 texCoord;\n"
                            "uniform sampler2D gPosition;\n"
                            "uniform sampler2D gAlbedo;\n"
@@ -334,7 +336,13 @@ public:
                            "  vec3 A = texelFetch(gAlbedo, c + offset, 0).rgb;\n"
                            "  vec3 N = texelFetch(gNormal, c + offset, 0).xyz;\n"
                            "  bool valid = P.w > 0.5 && !isnan(P.z) && !isinf(P.z) && !any(isnan(N)) && !any(isinf(N));\n"
-                           "  gl_FragData[0] = valid ? vec4(A.r, 0.5 + 0.5 * sin(8.0 * P.x / max(abs(P.z), 1e-30)), 0.5 + 0.5 * clamp(N.z, -1.0, 1.0), 1.0) : vec4(0.0, 0.0, 0.0, 1.0);\n"
+                           "  float cost = 0.0;\n"
+                           "  for (int i = 0; i < SAMPLES; ++i)\n"
+                           "  {\n"
+                           "    ivec2 o = ivec2((i * 7) % 15 - 7, (i * 11) % 15 - 7);\n"
+                           "    cost += texelFetch(gPosition, clamp(c + o, ivec2(0), frameSize - 1) + offset, 0).w;\n"
+                           "  }\n"
+                           "  gl_FragData[0] = vec4(0.0, 1e-30 * cost, 0.0, 0.0) + (valid ? vec4(A.r, 0.5 + 0.5 * sin(8.0 * P.x / max(abs(P.z), 1e-30)), 0.5 + 0.5 * clamp(N.z, -1.0, 1.0), 1.0) : vec4(0.0, 0.0, 0.0, 1.0));\n"
                            "}\n";
     this->Quad = new vtkOpenGLQuadHelper(
       window, vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(), fs.c_str(), "");
@@ -345,10 +353,15 @@ public:
     this->Window->MakeCurrent();
     delete this->Quad;
   }
-  void Render(const vtkMRGIFrameContext& frame, vtkMRGIBMRLevels* levels)
+  /** Every level, or only level `only` (>= 0). */
+  void Render(const vtkMRGIFrameContext& frame, vtkMRGIBMRLevels* levels, int only = -1)
   {
     for (int k = 0; k < MRGI_BMR_LEVELS; ++k)
     {
+      if (only >= 0 && k != only)
+      {
+        continue;
+      }
       vtkMRGIBMRLevels::LevelStep step(this->Window, levels, k);
       MRGI_TEST_CHECK(step.IsValid());
       vtkShaderProgram* p = this->Quad->Program;
