@@ -3,8 +3,9 @@
 // same order). One level k at a time, fine to coarse. MRGI_BMR_STAGE
 // 0: e(p) at level 0 from the G-buffer: (E, NE, 0, 0);
 // 1: E_k, NE_k as the max over the children in level k-1's mask: (E, NE, 0, 0);
-// 2: horizontal Gaussian of E_k: (h, E, 0, NE);
-// 3: vertical Gaussian and the stencil rule: the level's mask (a, E, R + 2 S, NE);
+// 2: horizontal Gaussian of E_k: (h, 0, 0, 0) (a one-channel float target);
+// 3: vertical Gaussian of h and the stencil rule, with E and NE from stage
+//    0/1: the level's mask (a, E, R + 2 S, NE);
 // 4: stencil write: keeps the fragments whose S is set (the caller's
 //    stencil op writes 1), discards the rest;
 // 5: the ablation source: E_k, NE_k from the NW09 flags of level k
@@ -12,7 +13,7 @@
 in vec2 texCoord; // bound by vtkOpenGLQuadHelper; texels are addressed by gl_FragCoord
 uniform sampler2D mrgiInput0; // 0: position; 1: mask of level k-1; 2: stage 0/1/5 output; 3: stage 2 output; 4: mask of level k; 5: flags of level k
 uniform sampler2D mrgiInput1; // 0: normal; 3: mask of level k-1 (unread at level 0)
-uniform sampler2D mrgiInput2; // 0: shadow factor (red), unread unless mrgiHasShadow
+uniform sampler2D mrgiInput2; // 0: shadow factor (red), unread unless mrgiHasShadow; 3: stage 0/1 output
 uniform ivec2 mrgiOffset;     // 0: the frame's origin in the G-buffer textures
 uniform ivec2 mrgiSize;       // size of level k (stage 0: W x H)
 uniform ivec2 mrgiFinerSize;  // 1, 3: size of level k-1
@@ -153,10 +154,9 @@ void main()
     sum += g * texelFetch(mrgiInput0, ivec2(x, t.y), 0).r;
     wsum += g;
   }
-  vec4 here = texelFetch(mrgiInput0, t, 0);
-  gl_FragData[0] = vec4(sum / wsum, here.r, 0.0, here.g);
+  gl_FragData[0] = vec4(sum / wsum, 0.0, 0.0, 0.0);
 #elif MRGI_BMR_STAGE == 3
-  vec4 here = texelFetch(mrgiInput0, t, 0);
+  vec4 here = texelFetch(mrgiInput2, t, 0); // (E, NE)
   float a = 0.0;
   if (mrgiSkip == 0)
   {
@@ -171,7 +171,7 @@ void main()
     }
     a = sum / wsum;
   }
-  bool nonEmpty = here.a > 0.5;
+  bool nonEmpty = here.g > 0.5;
   bool required = false;
   if (nonEmpty)
   {
@@ -196,7 +196,8 @@ void main()
     }
   }
   bool stencil = required && mrgiSkip == 0;
-  gl_FragData[0] = vec4(a, here.g, float((required ? 1 : 0) + (stencil ? 2 : 0)), here.a);
+  gl_FragData[0] = vec4(a, here.r > 0.5 ? 1.0 : 0.0, float((required ? 1 : 0) + (stencil ? 2 : 0)),
+    nonEmpty ? 1.0 : 0.0);
 #elif MRGI_BMR_STAGE == 5
   int flags = int(texelFetch(mrgiInput0, t, 0).r);
   gl_FragData[0] = vec4((flags & MRGI_MULTIRES_FLAG_DISCONTINUOUS) != 0 ? 1.0 : 0.0,
