@@ -18,8 +18,8 @@ static void levels_alloc(levels* l, const mrgi_bmr_masks* m, int32_t channels)
 {
   for (int k = 0; k < MRGI_BMR_LEVELS; ++k)
   {
-    l->data[k] = (float*)calloc((size_t)m->level_width[k] * (size_t)m->level_height[k] * (size_t)channels,
-                                sizeof(float));
+    l->data[k] = (float*)calloc(
+      (size_t)m->level_width[k] * (size_t)m->level_height[k] * (size_t)channels, sizeof(float));
     MRGI_CHECK(l->data[k]);
   }
 }
@@ -52,13 +52,13 @@ static void levels_junk(levels* l, const mrgi_bmr_masks* m, int32_t channels)
   }
 }
 
-static void blend(const mrgi_bmr_masks* m, const mrgi_bmr_params* p, const levels* l,
-                  int32_t channels, float* out)
+static void blend(
+  const mrgi_bmr_masks* m, const mrgi_bmr_params* p, const levels* l, int32_t channels, float* out)
 {
   mrgi_error err;
   const float* const lv[MRGI_BMR_LEVELS] = { l->data[0], l->data[1], l->data[2], l->data[3] };
   if (mrgi_bmr_blend(m, p, lv, channels, out,
-                     (size_t)m->width * (size_t)m->height * (size_t)channels, &err) != MRGI_OK)
+        (size_t)m->width * (size_t)m->height * (size_t)channels, &err) != MRGI_OK)
   {
     MRGI_FAIL("mrgi_bmr_blend: %s", err.message);
   }
@@ -109,8 +109,7 @@ static void test_constant(void)
         if (!(fabsf(out[q * (size_t)C + (size_t)c] - expected) <= 1e-6f * fabsf(expected)))
         {
           MRGI_FAIL("trial %d (%d x %d): pixel %zu channel %d is %.9g, expected %.9g", trial,
-                    (int)W, (int)H, q, (int)c, (double)out[q * (size_t)C + (size_t)c],
-                    (double)expected);
+            (int)W, (int)H, q, (int)c, (double)out[q * (size_t)C + (size_t)c], (double)expected);
         }
       }
     }

@@ -9,8 +9,8 @@
 #include "mrgi_bmr_test.h"
 
 /* Masks of a G-buffer; fails the case on error. */
-static void build(const bmr_gbuffer* g, const float* shadow, const mrgi_bmr_params* params,
-                  mrgi_bmr_masks* masks)
+static void build(
+  const bmr_gbuffer* g, const float* shadow, const mrgi_bmr_params* params, mrgi_bmr_masks* masks)
 {
   mrgi_error err;
   const mrgi_status status = mrgi_bmr_mask_build(&g->view, shadow, g->ab, params, masks, &err);
@@ -37,8 +37,8 @@ static int same_masks(const mrgi_bmr_masks* a, const mrgi_bmr_masks* b)
   {
     const size_t n = (size_t)a->level_width[k] * (size_t)a->level_height[k];
     if (a->level_width[k] != b->level_width[k] || a->level_height[k] != b->level_height[k] ||
-        memcmp(a->edge[k], b->edge[k], n) || memcmp(a->stencil[k], b->stencil[k], n) ||
-        memcmp(a->mask[k], b->mask[k], n * sizeof(float)))
+      memcmp(a->edge[k], b->edge[k], n) || memcmp(a->stencil[k], b->stencil[k], n) ||
+      memcmp(a->mask[k], b->mask[k], n * sizeof(float)))
     {
       return 0;
     }
@@ -84,8 +84,8 @@ static void test_plane_has_no_edges(void)
 }
 
 /* Columns of level 0 with an edge in row `y`. */
-static void edge_columns(const mrgi_bmr_masks* m, int32_t y, int32_t* first, int32_t* last,
-                         int64_t* total)
+static void edge_columns(
+  const mrgi_bmr_masks* m, int32_t y, int32_t* first, int32_t* last, int64_t* total)
 {
   *first = -1;
   *last = -1;
@@ -126,7 +126,7 @@ static void check_middle_edge(bmr_scene_kind kind, double depth, double normal)
       if (first != 31 || last != 32 || total != 2 * 40)
       {
         MRGI_FAIL("kind %d parallel %d scale %g: edges in columns %d..%d, %lld in all", (int)kind,
-                  parallel, scales[s], (int)first, (int)last, (long long)total);
+          parallel, scales[s], (int)first, (int)last, (long long)total);
       }
       /* Stencils: level 1 around the edge, level 4 everywhere. */
       MRGI_CHECK(m.stencil[0][20 * 64 + 31] && !m.stencil[0][20 * 64 + 10]);
@@ -311,8 +311,9 @@ static void test_random_invariants(void)
               {
                 continue;
               }
-              const double gw =
-                R == 0 ? 1.0 : exp(-(double)(i * i) / (2.0 * var)) * exp(-(double)(j * j) / (2.0 * var));
+              const double gw = R == 0
+                ? 1.0
+                : exp(-(double)(i * i) / (2.0 * var)) * exp(-(double)(j * j) / (2.0 * var));
               sum += gw * m.edge[k][(size_t)(y + j) * (size_t)w + (size_t)(x + i)];
               wsum += gw;
             }
@@ -337,7 +338,8 @@ static void test_random_invariants(void)
           {
             for (int j = k + 1; j < MRGI_BMR_LEVELS; ++j)
             {
-              const size_t up = (size_t)(y >> (j - k)) * (size_t)m.level_width[j] + (size_t)(x >> (j - k));
+              const size_t up =
+                (size_t)(y >> (j - k)) * (size_t)m.level_width[j] + (size_t)(x >> (j - k));
               MRGI_CHECK(m.stencil[j][up] || params.skip[j]);
             }
           }
@@ -369,9 +371,10 @@ static void test_small_sizes(void)
     mrgi_bmr_masks m;
     build(&g, NULL, &params, &m);
     const int k = MRGI_BMR_LEVELS - 1;
-    MRGI_CHECK(m.level_width[k] == (sizes[i][0] + 7) / 8 && m.level_height[k] == (sizes[i][1] + 7) / 8);
+    MRGI_CHECK(
+      m.level_width[k] == (sizes[i][0] + 7) / 8 && m.level_height[k] == (sizes[i][1] + 7) / 8);
     MRGI_CHECK(count(m.stencil[k], m.level_width[k], m.level_height[k]) ==
-               (int64_t)m.level_width[k] * m.level_height[k]);
+      (int64_t)m.level_width[k] * m.level_height[k]);
     if (sizes[i][0] == 1 && sizes[i][1] == 1)
     {
       MRGI_CHECK(m.edge[0][0] == 0 && m.mask[0][0] == 0.0f && m.stencil[0][0] == 0);
@@ -389,7 +392,8 @@ static void test_flags_source(void)
     bmr_gbuffer g;
     bmr_gbuffer_scene(&g, 64, 40, kind == 0 ? BMR_SCENE_PLANE : BMR_SCENE_STEP, 1.0, 0);
     mrgi_multires_layout layout;
-    MRGI_CHECK(mrgi_multires_layout_init(&layout, 64, 40, MRGI_MULTIRES_DEFAULT_COARSEST_SIDE, NULL) == MRGI_OK);
+    MRGI_CHECK(mrgi_multires_layout_init(
+                 &layout, 64, 40, MRGI_MULTIRES_DEFAULT_COARSEST_SIDE, NULL) == MRGI_OK);
     mrgi_multires_mipmap mipmap;
     MRGI_CHECK(mrgi_multires_mipmap_build(&layout, &g.view, g.ab, &mipmap, NULL) == MRGI_OK);
     mrgi_multires_params mp;
@@ -416,7 +420,7 @@ static void test_flags_source(void)
     MRGI_CHECK(count(m.stencil[3], 8, 5) == 40);
     mrgi_bmr_masks_destroy(&m);
     MRGI_CHECK(mrgi_bmr_mask_from_flags(&layout, flags, n - 1, &params, &m, NULL) ==
-               MRGI_ERR_INVALID_ARGUMENT);
+      MRGI_ERR_INVALID_ARGUMENT);
     free(flags);
     mrgi_multires_mipmap_destroy(&mipmap);
     bmr_gbuffer_free(&g);
@@ -428,8 +432,9 @@ static void test_presets(void)
   mrgi_bmr_params p;
   MRGI_CHECK(mrgi_bmr_preset_params(MRGI_BMR_EFFECT_SSAO, &p, NULL) == MRGI_OK);
   MRGI_CHECK(p.variance[0] == 0.924 && p.variance[1] == 1.848 && p.variance[2] == 3.696 &&
-             p.variance[3] == 0.0);
-  MRGI_CHECK(p.weight[0] == 100.0 && p.weight[1] == 50.0 && p.weight[2] == 20.0 && p.weight[3] == 1.0);
+    p.variance[3] == 0.0);
+  MRGI_CHECK(
+    p.weight[0] == 100.0 && p.weight[1] == 50.0 && p.weight[2] == 20.0 && p.weight[3] == 1.0);
   MRGI_CHECK(!p.skip[0] && !p.skip[1] && !p.skip[2] && !p.skip[3]);
   MRGI_CHECK(mrgi_bmr_preset_params(MRGI_BMR_EFFECT_SSM, &p, NULL) == MRGI_OK);
   MRGI_CHECK(p.weight[0] == 1000.0 && p.weight[2] == 1000.0 && p.weight[3] == 1.0);

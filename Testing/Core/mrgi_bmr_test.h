@@ -31,10 +31,10 @@ static int32_t bmr_rng_int(int32_t lo, int32_t hi)
 
 typedef enum bmr_scene_kind
 {
-  BMR_SCENE_PLANE,       /* one plane facing the viewer at depth 10 */
-  BMR_SCENE_TILTED,      /* one plane tilted 60 degrees about x, through depth 10 */
-  BMR_SCENE_STEP,        /* two facing planes, depth 10 left of the middle, 12 right */
-  BMR_SCENE_CREASE,      /* two planes meeting at the middle column (a ridge), continuous depth */
+  BMR_SCENE_PLANE,  /* one plane facing the viewer at depth 10 */
+  BMR_SCENE_TILTED, /* one plane tilted 60 degrees about x, through depth 10 */
+  BMR_SCENE_STEP,   /* two facing planes, depth 10 left of the middle, 12 right */
+  BMR_SCENE_CREASE, /* two planes meeting at the middle column (a ridge), continuous depth */
 } bmr_scene_kind;
 
 typedef struct bmr_gbuffer
@@ -79,8 +79,8 @@ static double bmr_hit(const double o[3], const double r[3], const double n[3], d
 /* Ray-cast `kind` at scene scale `scale` (every length times scale) into a
  * W x H G-buffer. Perspective: 30 degree vertical field of view; parallel:
  * parallel scale 2 * scale. */
-static void bmr_gbuffer_scene(bmr_gbuffer* g, int32_t W, int32_t H, bmr_scene_kind kind,
-                              double scale, int parallel)
+static void bmr_gbuffer_scene(
+  bmr_gbuffer* g, int32_t W, int32_t H, bmr_scene_kind kind, double scale, int parallel)
 {
   bmr_gbuffer_alloc(g, W, H);
   const double half_angle = 15.0 * 3.14159265358979323846 / 180.0;
@@ -167,8 +167,8 @@ static void bmr_gbuffer_random(bmr_gbuffer* g, int32_t W, int32_t H)
 /* Random valid params (thresholds may be 0, finite or off). */
 static void bmr_params_random(mrgi_bmr_params* params)
 {
-  MRGI_CHECK(mrgi_bmr_preset_params(bmr_rng_int(0, MRGI_BMR_EFFECT_COUNT - 1), params, NULL) ==
-             MRGI_OK);
+  MRGI_CHECK(
+    mrgi_bmr_preset_params(bmr_rng_int(0, MRGI_BMR_EFFECT_COUNT - 1), params, NULL) == MRGI_OK);
   const double choices[4] = { 0.0, 0.5, 2.0, INFINITY };
   params->depth_threshold = choices[bmr_rng_int(0, 3)];
   params->normal_threshold = choices[bmr_rng_int(0, 3)] * 0.1;

@@ -60,7 +60,8 @@ Result Run(bmrtest::Scene& s, int preset, double depthThreshold, const char* lab
   {
     vtkNew<vtkFloatArray> rgba;
     MRGI_TEST_CHECK(levels->ReadColor(s.Window, k, rgba));
-    colours[static_cast<size_t>(k)].assign(rgba->GetPointer(0), rgba->GetPointer(0) + 4 * rgba->GetNumberOfTuples());
+    colours[static_cast<size_t>(k)].assign(
+      rgba->GetPointer(0), rgba->GetPointer(0) + 4 * rgba->GetNumberOfTuples());
     // The effect ran exactly under the stencil (alpha 1 there, 0 elsewhere).
     for (vtkIdType t = 0; t < rgba->GetNumberOfTuples(); ++t)
     {
@@ -74,8 +75,8 @@ Result Run(bmrtest::Scene& s, int preset, double depthThreshold, const char* lab
   {
     params.weight[k] = blend->GetWeight(k);
   }
-  const float* const lv[MRGI_BMR_LEVELS] = { colours[0].data(), colours[1].data(), colours[2].data(),
-    colours[3].data() };
+  const float* const lv[MRGI_BMR_LEVELS] = { colours[0].data(), colours[1].data(),
+    colours[2].data(), colours[3].data() };
   std::vector<float> c(static_cast<size_t>(s.W) * static_cast<size_t>(s.H) * 4);
   mrgi_error err;
   MRGI_TEST_CHECK(mrgi_bmr_blend(&g.Masks, &params, lv, 4, c.data(), c.size(), &err) == MRGI_OK);
@@ -87,8 +88,9 @@ Result Run(bmrtest::Scene& s, int preset, double depthThreshold, const char* lab
     differ += !bmrtest::Near(result.Blended[i], c[i]);
     maxError = std::fmax(maxError, std::fabs(result.Blended[i] - c[i]));
   }
-  std::printf("%s (%d x %d, %s): GPU vs C blend: %zu of %zu values differ (max %.3g); effect outside "
-              "its stencil: %zu texels\n",
+  std::printf(
+    "%s (%d x %d, %s): GPU vs C blend: %zu of %zu values differ (max %.3g); effect outside "
+    "its stencil: %zu texels\n",
     label, s.W, s.H, mrgi_bmr_effect_name(preset), differ, c.size(), maxError, misplaced);
   MRGI_TEST_CHECK(differ == 0);
   MRGI_TEST_CHECK(misplaced == 0);
@@ -105,13 +107,15 @@ std::vector<float> EffectInC(const bmrtest::Scene& s)
   for (size_t p = 0; p < static_cast<size_t>(s.W) * static_cast<size_t>(s.H); ++p)
   {
     const float z = s.Position[4 * p + 2];
-    const bool valid = s.Position[4 * p + 3] > 0.5f && std::isfinite(z) && std::isfinite(s.Normal[4 * p]) &&
-      std::isfinite(s.Normal[4 * p + 1]) && std::isfinite(s.Normal[4 * p + 2]);
+    const bool valid = s.Position[4 * p + 3] > 0.5f && std::isfinite(z) &&
+      std::isfinite(s.Normal[4 * p]) && std::isfinite(s.Normal[4 * p + 1]) &&
+      std::isfinite(s.Normal[4 * p + 2]);
     out[4 * p + 0] = valid ? s.Albedo[4 * p + 0] : 0.0f;
     out[4 * p + 1] = valid
       ? 0.5f + 0.5f * std::sin(8.0f * s.Position[4 * p] / std::fmax(std::fabs(z), 1e-30f))
       : 0.0f;
-    out[4 * p + 2] = valid ? 0.5f + 0.5f * std::fmin(std::fmax(s.Normal[4 * p + 2], -1.0f), 1.0f) : 0.0f;
+    out[4 * p + 2] =
+      valid ? 0.5f + 0.5f * std::fmin(std::fmax(s.Normal[4 * p + 2], -1.0f), 1.0f) : 0.0f;
     out[4 * p + 3] = 1.0f;
   }
   return out;
@@ -146,7 +150,8 @@ void CheckScene(bmrtest::Scene& s, const std::string& name)
     size_t count = 0;
     for (size_t p = 0; p < n; ++p)
     {
-      if (full.Level0[4 * p + 3] == 1.0f && multi.Stats.valid_pixels > 0 && s.Position[4 * p + 3] > 0.5f)
+      if (full.Level0[4 * p + 3] == 1.0f && multi.Stats.valid_pixels > 0 &&
+        s.Position[4 * p + 3] > 0.5f)
       {
         for (size_t c = 0; c < 3; ++c)
         {
@@ -157,8 +162,9 @@ void CheckScene(bmrtest::Scene& s, const std::string& name)
       }
     }
     const double rms = count ? std::sqrt(sum / static_cast<double>(count)) : 0.0;
-    std::printf("%s, %s preset: absolute RMS against the full-resolution path %.4f (values in [0, 1]); "
-                "work %.3f of one full-resolution pass\n",
+    std::printf(
+      "%s, %s preset: absolute RMS against the full-resolution path %.4f (values in [0, 1]); "
+      "work %.3f of one full-resolution pass\n",
       name.c_str(), mrgi_bmr_effect_name(preset), rms, multi.Stats.work_fraction);
     // Measured 0.003-0.004 on these scenes; a broken blend (wrong level or
     // texel, a lost weight) exceeds 0.02.
@@ -315,8 +321,9 @@ void Benchmark()
     mrgi_bmr_stats stats;
     mrgi_error err;
     MRGI_TEST_CHECK(mrgi_bmr_stats_compute(&g.Masks, &stats, &err) == MRGI_OK);
-    std::printf("Benchmark cornell %d x %d (SSAO preset), %d frames: stage timer mask %.2f ms, blend "
-                "%.2f ms; wall clock mask + blend %.2f ms\n",
+    std::printf(
+      "Benchmark cornell %d x %d (SSAO preset), %d frames: stage timer mask %.2f ms, blend "
+      "%.2f ms; wall clock mask + blend %.2f ms\n",
       s.W, s.H, counted, counted ? ms["MRGI bmr.mask"] / counted : -1.0,
       counted ? ms["MRGI bmr.blend"] / counted : -1.0, wallMs / frames);
     for (const auto& step : ms)

@@ -17,7 +17,7 @@ namespace
 struct Settings
 {
   int Preset = vtkMRGIBMRMask::SSAO;
-  double DepthThreshold = -2.0;  // -2: the preset's
+  double DepthThreshold = -2.0; // -2: the preset's
   double NormalThreshold = -2.0;
   int Combine = vtkMRGIBMRMask::CombineMax;
   bool Shadow = false;
@@ -81,16 +81,20 @@ mrgi_bmr_stats Compare(bmrtest::Scene& s, const Settings& settings, const char* 
       s.Frame.Viewport[1], s.W, s.H, s.PixelSize[0], s.PixelSize[1]));
     MRGI_TEST_CHECK(gpu->BuildFromFlags(s.Frame, levels, buffer));
     mrgi_multires_layout layout;
-    MRGI_TEST_CHECK(mrgi_multires_layout_init(&layout, s.W, s.H, MRGI_MULTIRES_DEFAULT_COARSEST_SIDE, &err) == MRGI_OK);
+    MRGI_TEST_CHECK(mrgi_multires_layout_init(
+                      &layout, s.W, s.H, MRGI_MULTIRES_DEFAULT_COARSEST_SIDE, &err) == MRGI_OK);
     mrgi_multires_mipmap mipmap;
-    MRGI_TEST_CHECK(mrgi_multires_mipmap_build(&layout, &view, s.PixelSize, &mipmap, &err) == MRGI_OK);
+    MRGI_TEST_CHECK(
+      mrgi_multires_mipmap_build(&layout, &view, s.PixelSize, &mipmap, &err) == MRGI_OK);
     mrgi_multires_params mp;
     mrgi_multires_params_default(&mp);
     const size_t texels = static_cast<size_t>(mrgi_multires_texel_count(&layout));
     std::vector<uint8_t> flags(texels);
-    MRGI_TEST_CHECK(mrgi_multires_flags_compute(&mipmap, &mp, flags.data(), texels, &err) == MRGI_OK);
+    MRGI_TEST_CHECK(
+      mrgi_multires_flags_compute(&mipmap, &mp, flags.data(), texels, &err) == MRGI_OK);
     mrgi_multires_mipmap_destroy(&mipmap);
-    MRGI_TEST_CHECK(mrgi_bmr_mask_from_flags(&layout, flags.data(), texels, &params, &c, &err) == MRGI_OK);
+    MRGI_TEST_CHECK(
+      mrgi_bmr_mask_from_flags(&layout, flags.data(), texels, &params, &c, &err) == MRGI_OK);
   }
   else
   {
@@ -107,8 +111,10 @@ mrgi_bmr_stats Compare(bmrtest::Scene& s, const Settings& settings, const char* 
   double maxMaskError = 0.0;
   for (int k = 0; k < MRGI_BMR_LEVELS; ++k)
   {
-    MRGI_TEST_CHECK(g.Masks.level_width[k] == c.level_width[k] && g.Masks.level_height[k] == c.level_height[k]);
-    const size_t texels = static_cast<size_t>(c.level_width[k]) * static_cast<size_t>(c.level_height[k]);
+    MRGI_TEST_CHECK(
+      g.Masks.level_width[k] == c.level_width[k] && g.Masks.level_height[k] == c.level_height[k]);
+    const size_t texels =
+      static_cast<size_t>(c.level_width[k]) * static_cast<size_t>(c.level_height[k]);
     for (size_t t = 0; t < texels; ++t)
     {
       diffEdge += g.Masks.edge[k][t] != c.edge[k][t];
@@ -123,8 +129,9 @@ mrgi_bmr_stats Compare(bmrtest::Scene& s, const Settings& settings, const char* 
   }
   mrgi_bmr_stats stats;
   MRGI_TEST_CHECK(mrgi_bmr_stats_compute(&c, &stats, &err) == MRGI_OK);
-  std::printf("%s (%d x %d, %s): %zu stencilled texels, work %.3f; finest level 1..4: %.4f %.4f %.4f "
-              "%.4f of %lld pixels; differences E %zu NE %zu R %zu S %zu stencil %zu a %zu (max %.3g)\n",
+  std::printf(
+    "%s (%d x %d, %s): %zu stencilled texels, work %.3f; finest level 1..4: %.4f %.4f %.4f "
+    "%.4f of %lld pixels; differences E %zu NE %zu R %zu S %zu stencil %zu a %zu (max %.3g)\n",
     label, s.W, s.H, mrgi_bmr_effect_name(settings.Preset), stencilled, stats.work_fraction,
     stats.valid_pixels ? static_cast<double>(stats.finest_pixels[0]) / stats.valid_pixels : 0.0,
     stats.valid_pixels ? static_cast<double>(stats.finest_pixels[1]) / stats.valid_pixels : 0.0,

@@ -44,7 +44,8 @@
 namespace bmrtest
 {
 /** A window-sized RGBA32F texture holding `rgba` (w x h x 4 floats; null: allocated only). */
-inline vtkSmartPointer<vtkTextureObject> Upload(vtkOpenGLRenderWindow* window, int w, int h, const float* rgba)
+inline vtkSmartPointer<vtkTextureObject> Upload(
+  vtkOpenGLRenderWindow* window, int w, int h, const float* rgba)
 {
   auto t = vtkSmartPointer<vtkTextureObject>::New();
   t->SetContext(window);
@@ -55,18 +56,20 @@ inline vtkSmartPointer<vtkTextureObject> Upload(vtkOpenGLRenderWindow* window, i
   t->SetMagnificationFilter(vtkTextureObject::Nearest);
   if (rgba)
   {
-    MRGI_TEST_CHECK(t->Create2DFromRaw(static_cast<unsigned int>(w), static_cast<unsigned int>(h), 4,
-      VTK_FLOAT, const_cast<float*>(rgba)));
+    MRGI_TEST_CHECK(t->Create2DFromRaw(static_cast<unsigned int>(w), static_cast<unsigned int>(h),
+      4, VTK_FLOAT, const_cast<float*>(rgba)));
   }
   else
   {
-    MRGI_TEST_CHECK(t->Allocate2D(static_cast<unsigned int>(w), static_cast<unsigned int>(h), 4, VTK_FLOAT));
+    MRGI_TEST_CHECK(
+      t->Allocate2D(static_cast<unsigned int>(w), static_cast<unsigned int>(h), 4, VTK_FLOAT));
   }
   return t;
 }
 
 /** The (x, y, w, h) region of a float texture, RGBA, rows bottom-up (through a pixel buffer). */
-inline std::vector<float> Read(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, int x, int y, int w, int h)
+inline std::vector<float> Read(
+  vtkOpenGLRenderWindow* window, vtkTextureObject* texture, int x, int y, int w, int h)
 {
   window->MakeCurrent();
   vtkNew<vtkOpenGLFramebufferObject> fbo;
@@ -117,9 +120,12 @@ struct Scene
     {
       for (int y = 0; y < H; ++y)
       {
-        std::memcpy(&full[(static_cast<size_t>(y + this->Frame.Viewport[1]) * static_cast<size_t>(tw) +
-                      static_cast<size_t>(this->Frame.Viewport[0])) * 4],
-          rgba + static_cast<size_t>(y) * static_cast<size_t>(W) * 4, sizeof(float) * 4 * static_cast<size_t>(W));
+        std::memcpy(
+          &full[(static_cast<size_t>(y + this->Frame.Viewport[1]) * static_cast<size_t>(tw) +
+                  static_cast<size_t>(this->Frame.Viewport[0])) *
+            4],
+          rgba + static_cast<size_t>(y) * static_cast<size_t>(W) * 4,
+          sizeof(float) * 4 * static_cast<size_t>(W));
       }
     }
     this->Owned.push_back(Upload(this->GL, tw, th, full.data()));
@@ -173,9 +179,11 @@ inline void RenderScene(Scene& s, const char* name, int width, int height, bool 
   s.Position.assign(P, P + n);
   s.Normal.assign(N, N + n);
   s.Albedo.assign(A, A + n);
-  mrgi_multires_projection projection = { parallel ? 1 : 0, camera->GetViewAngle(), camera->GetParallelScale() };
+  mrgi_multires_projection projection = { parallel ? 1 : 0, camera->GetViewAngle(),
+    camera->GetParallelScale() };
   mrgi_error err;
-  MRGI_TEST_CHECK(mrgi_multires_pixel_size_coefficients(&projection, s.H, s.PixelSize, &err) == MRGI_OK);
+  MRGI_TEST_CHECK(
+    mrgi_multires_pixel_size_coefficients(&projection, s.H, s.PixelSize, &err) == MRGI_OK);
   s.Frame.Window = s.GL;
   s.Frame.Renderer = s.Renderer;
   s.Frame.Position = s.Pass->GetPositionTexture();
@@ -287,7 +295,8 @@ inline void ReadMasks(vtkRenderWindow* window, vtkMRGIBMRLevels* levels, GPUMask
     MRGI_TEST_CHECK(levels->ReadMask(window, k, rgba));
     MRGI_TEST_CHECK(levels->ReadStencil(window, k, stencil));
     MRGI_TEST_CHECK(static_cast<size_t>(rgba->GetNumberOfTuples()) == n);
-    out.StencilBytes[static_cast<size_t>(k)].assign(stencil->GetPointer(0), stencil->GetPointer(0) + n);
+    out.StencilBytes[static_cast<size_t>(k)].assign(
+      stencil->GetPointer(0), stencil->GetPointer(0) + n);
     for (size_t t = 0; t < n; ++t)
     {
       const float* v = rgba->GetPointer(0) + 4 * t;
@@ -312,38 +321,44 @@ inline void ReadMasks(vtkRenderWindow* window, vtkMRGIBMRLevels* levels, GPUMask
 class TestEffect
 {
 public:
-  /** `samples` > 0 adds a loop of that many G-buffer fetches (a stand-in for an expensive effect). */
+  /** `samples` > 0 adds a loop of that many G-buffer fetches (a stand-in for an expensive effect).
+   */
   explicit TestEffect(vtkOpenGLRenderWindow* window, int samples = 0)
     : Window(window)
   {
     const std::string fs = "//VTK::System::Dec\n"
-                           "#define SAMPLES " + std::to_string(samples) + "\n"
-                           "in vec2 texCoord;\n"
-                           "uniform sampler2D gPosition;\n"
-                           "uniform sampler2D gAlbedo;\n"
-                           "uniform sampler2D gNormal;\n"
-                           "uniform ivec2 offset;\n"
-                           "uniform ivec2 frameSize;\n"
-                           "uniform int level;\n"
-                           "//VTK::Output::Dec\n"
-                           "void main()\n"
-                           "{\n"
-                           "  if (texCoord.x < -1.0) { discard; }\n"
-                           "  ivec2 t = ivec2(gl_FragCoord.xy);\n"
-                           "  int s = 1 << level;\n"
-                           "  ivec2 c = level == 0 ? t : min(t * s + s / 2, frameSize - 1);\n"
-                           "  vec4 P = texelFetch(gPosition, c + offset, 0);\n"
-                           "  vec3 A = texelFetch(gAlbedo, c + offset, 0).rgb;\n"
-                           "  vec3 N = texelFetch(gNormal, c + offset, 0).xyz;\n"
-                           "  bool valid = P.w > 0.5 && !isnan(P.z) && !isinf(P.z) && !any(isnan(N)) && !any(isinf(N));\n"
-                           "  float cost = 0.0;\n"
-                           "  for (int i = 0; i < SAMPLES; ++i)\n"
-                           "  {\n"
-                           "    ivec2 o = ivec2((i * 7) % 15 - 7, (i * 11) % 15 - 7);\n"
-                           "    cost += texelFetch(gPosition, clamp(c + o, ivec2(0), frameSize - 1) + offset, 0).w;\n"
-                           "  }\n"
-                           "  gl_FragData[0] = vec4(0.0, 1e-30 * cost, 0.0, 0.0) + (valid ? vec4(A.r, 0.5 + 0.5 * sin(8.0 * P.x / max(abs(P.z), 1e-30)), 0.5 + 0.5 * clamp(N.z, -1.0, 1.0), 1.0) : vec4(0.0, 0.0, 0.0, 1.0));\n"
-                           "}\n";
+                           "#define SAMPLES " +
+      std::to_string(samples) +
+      "\n"
+      "in vec2 texCoord;\n"
+      "uniform sampler2D gPosition;\n"
+      "uniform sampler2D gAlbedo;\n"
+      "uniform sampler2D gNormal;\n"
+      "uniform ivec2 offset;\n"
+      "uniform ivec2 frameSize;\n"
+      "uniform int level;\n"
+      "//VTK::Output::Dec\n"
+      "void main()\n"
+      "{\n"
+      "  if (texCoord.x < -1.0) { discard; }\n"
+      "  ivec2 t = ivec2(gl_FragCoord.xy);\n"
+      "  int s = 1 << level;\n"
+      "  ivec2 c = level == 0 ? t : min(t * s + s / 2, frameSize - 1);\n"
+      "  vec4 P = texelFetch(gPosition, c + offset, 0);\n"
+      "  vec3 A = texelFetch(gAlbedo, c + offset, 0).rgb;\n"
+      "  vec3 N = texelFetch(gNormal, c + offset, 0).xyz;\n"
+      "  bool valid = P.w > 0.5 && !isnan(P.z) && !isinf(P.z) && !any(isnan(N)) && "
+      "!any(isinf(N));\n"
+      "  float cost = 0.0;\n"
+      "  for (int i = 0; i < SAMPLES; ++i)\n"
+      "  {\n"
+      "    ivec2 o = ivec2((i * 7) % 15 - 7, (i * 11) % 15 - 7);\n"
+      "    cost += texelFetch(gPosition, clamp(c + o, ivec2(0), frameSize - 1) + offset, 0).w;\n"
+      "  }\n"
+      "  gl_FragData[0] = vec4(0.0, 1e-30 * cost, 0.0, 0.0) + (valid ? vec4(A.r, 0.5 + 0.5 * "
+      "sin(8.0 * P.x / max(abs(P.z), 1e-30)), 0.5 + 0.5 * clamp(N.z, -1.0, 1.0), 1.0) : vec4(0.0, "
+      "0.0, 0.0, 1.0));\n"
+      "}\n";
     this->Quad = new vtkOpenGLQuadHelper(
       window, vtkOpenGLRenderUtilities::GetFullScreenQuadVertexShader().c_str(), fs.c_str(), "");
     MRGI_TEST_CHECK(this->Quad->Program && this->Quad->Program->GetCompiled());

@@ -10,8 +10,8 @@ typedef struct mrgi_bmr_taps
   float weight[4];
 } mrgi_bmr_taps;
 
-static void mrgi_bmr_taps_at(const mrgi_bmr_masks* m, int k, int32_t x, int32_t y,
-                             mrgi_bmr_taps* taps)
+static void mrgi_bmr_taps_at(
+  const mrgi_bmr_masks* m, int k, int32_t x, int32_t y, mrgi_bmr_taps* taps)
 {
   const float scale = 1.0f / (float)((int32_t)1 << k);
   const float u = ((float)x + 0.5f) * scale - 0.5f;
@@ -21,9 +21,9 @@ static void mrgi_bmr_taps_at(const mrgi_bmr_masks* m, int k, int32_t x, int32_t 
   const int32_t w = m->level_width[k], h = m->level_height[k];
   const int32_t x0 = (int32_t)fu, y0 = (int32_t)fv;
   const int32_t xs[2] = { x0 < 0 ? 0 : (x0 > w - 1 ? w - 1 : x0),
-                          x0 + 1 < 0 ? 0 : (x0 + 1 > w - 1 ? w - 1 : x0 + 1) };
+    x0 + 1 < 0 ? 0 : (x0 + 1 > w - 1 ? w - 1 : x0 + 1) };
   const int32_t ys[2] = { y0 < 0 ? 0 : (y0 > h - 1 ? h - 1 : y0),
-                          y0 + 1 < 0 ? 0 : (y0 + 1 > h - 1 ? h - 1 : y0 + 1) };
+    y0 + 1 < 0 ? 0 : (y0 + 1 > h - 1 ? h - 1 : y0 + 1) };
   const float wx[2] = { 1.0f - fx, fx };
   const float wy[2] = { 1.0f - fy, fy };
   for (int b = 0; b < 2; ++b)
@@ -37,13 +37,13 @@ static void mrgi_bmr_taps_at(const mrgi_bmr_masks* m, int k, int32_t x, int32_t 
 }
 
 mrgi_status mrgi_bmr_blend(const mrgi_bmr_masks* masks, const mrgi_bmr_params* params,
-                           const float* const levels[MRGI_BMR_LEVELS], int32_t channels,
-                           float* out, size_t out_size, mrgi_error* err)
+  const float* const levels[MRGI_BMR_LEVELS], int32_t channels, float* out, size_t out_size,
+  mrgi_error* err)
 {
   if (!masks || !levels || !out || !masks->stencil[0])
   {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "BMR blend: masks, levels and out must not be NULL or empty");
+    return mrgi_error_set(
+      err, MRGI_ERR_INVALID_ARGUMENT, "BMR blend: masks, levels and out must not be NULL or empty");
   }
   for (int k = 0; k < MRGI_BMR_LEVELS; ++k)
   {
@@ -60,16 +60,15 @@ mrgi_status mrgi_bmr_blend(const mrgi_bmr_masks* masks, const mrgi_bmr_params* p
   if (channels < 1 || channels > MRGI_BMR_MAX_CHANNELS)
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "BMR blend: channels must be 1..%d, got %d", MRGI_BMR_MAX_CHANNELS,
-                          (int)channels);
+      "BMR blend: channels must be 1..%d, got %d", MRGI_BMR_MAX_CHANNELS, (int)channels);
   }
   const int32_t W = masks->width, H = masks->height;
   const size_t needed = (size_t)W * (size_t)H * (size_t)channels;
   if (out_size < needed)
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "BMR blend: out holds %zu floats but %d x %d x %d needs %zu", out_size,
-                          (int)W, (int)H, (int)channels, needed);
+      "BMR blend: out holds %zu floats but %d x %d x %d needs %zu", out_size, (int)W, (int)H,
+      (int)channels, needed);
   }
   const size_t C = (size_t)channels;
   for (int32_t y = 0; y < H; ++y)

@@ -84,8 +84,8 @@ extern "C" {
  *         params, a bad channel count or a short `out`.
  */
 mrgi_status mrgi_bmr_blend(const mrgi_bmr_masks* masks, const mrgi_bmr_params* params,
-                           const float* const levels[MRGI_BMR_LEVELS], int32_t channels,
-                           float* out, size_t out_size, mrgi_error* err);
+  const float* const levels[MRGI_BMR_LEVELS], int32_t channels, float* out, size_t out_size,
+  mrgi_error* err);
 
 #ifdef __cplusplus
 }

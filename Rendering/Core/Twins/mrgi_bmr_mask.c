@@ -49,7 +49,7 @@ mrgi_status mrgi_bmr_preset_params(int32_t effect, mrgi_bmr_params* params, mrgi
   if (effect < 0 || effect >= MRGI_BMR_EFFECT_COUNT)
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "BMR preset: unknown effect %d (0 ssao, 1 ssm, 2 ssgi)", (int)effect);
+      "BMR preset: unknown effect %d (0 ssao, 1 ssm, 2 ssgi)", (int)effect);
   }
   memset(params, 0, sizeof(*params));
   params->depth_threshold = MRGI_BMR_DEFAULT_DEPTH_THRESHOLD;
@@ -76,47 +76,42 @@ mrgi_status mrgi_bmr_params_validate(const mrgi_bmr_params* params, mrgi_error* 
   if (!(params->depth_threshold >= 0.0))
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "BMR depth threshold must be >= 0 (+inf: off), got %g",
-                          params->depth_threshold);
+      "BMR depth threshold must be >= 0 (+inf: off), got %g", params->depth_threshold);
   }
   if (!(params->normal_threshold >= 0.0))
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "BMR normal threshold must be >= 0 (+inf: off), got %g",
-                          params->normal_threshold);
+      "BMR normal threshold must be >= 0 (+inf: off), got %g", params->normal_threshold);
   }
   if (params->combine != MRGI_BMR_COMBINE_MAX && params->combine != MRGI_BMR_COMBINE_MIN)
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "BMR combine must be %d (max) or %d (min), got %d", MRGI_BMR_COMBINE_MAX,
-                          MRGI_BMR_COMBINE_MIN, (int)params->combine);
+      "BMR combine must be %d (max) or %d (min), got %d", MRGI_BMR_COMBINE_MAX,
+      MRGI_BMR_COMBINE_MIN, (int)params->combine);
   }
   for (int k = 0; k < MRGI_BMR_LEVELS; ++k)
   {
     if (!(params->variance[k] >= 0.0 && params->variance[k] <= MRGI_BMR_MAX_VARIANCE))
     {
       return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                            "BMR variance of level %d must be in [0, %g], got %g", k + 1,
-                            MRGI_BMR_MAX_VARIANCE, params->variance[k]);
+        "BMR variance of level %d must be in [0, %g], got %g", k + 1, MRGI_BMR_MAX_VARIANCE,
+        params->variance[k]);
     }
     if (!(params->weight[k] >= 0.0 && params->weight[k] <= 1e30))
     {
       return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                            "BMR weight of level %d must be finite and >= 0, got %g", k + 1,
-                            params->weight[k]);
+        "BMR weight of level %d must be finite and >= 0, got %g", k + 1, params->weight[k]);
     }
     if (params->skip[k] != 0 && params->skip[k] != 1)
     {
       return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                            "BMR skip flag of level %d must be 0 or 1, got %d", k + 1,
-                            (int)params->skip[k]);
+        "BMR skip flag of level %d must be 0 or 1, got %d", k + 1, (int)params->skip[k]);
     }
   }
   if (params->skip[MRGI_BMR_LEVELS - 1])
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "BMR level %d covers every pixel and cannot be skipped",
-                          MRGI_BMR_LEVELS);
+      "BMR level %d covers every pixel and cannot be skipped", MRGI_BMR_LEVELS);
   }
   return MRGI_OK;
 }
@@ -156,19 +151,19 @@ static mrgi_status mrgi_bmr_masks_alloc(mrgi_bmr_masks* out, int32_t W, int32_t 
     out->required[k] = (uint8_t*)calloc(n, 1);
     out->stencil[k] = (uint8_t*)calloc(n, 1);
     if (!out->edge[k] || !out->nonempty[k] || !out->mask[k] || !out->required[k] ||
-        !out->stencil[k])
+      !out->stencil[k])
     {
       mrgi_bmr_masks_destroy(out);
-      return mrgi_error_set(err, MRGI_ERR_OUT_OF_MEMORY, "BMR masks: out of memory at %d x %d",
-                            (int)W, (int)H);
+      return mrgi_error_set(
+        err, MRGI_ERR_OUT_OF_MEMORY, "BMR masks: out of memory at %d x %d", (int)W, (int)H);
     }
   }
   return MRGI_OK;
 }
 
 /* Max of `src` (level k-1) over the children of each level-k texel. */
-static void mrgi_bmr_max_down(const uint8_t* src, int32_t sw, int32_t sh, uint8_t* dst, int32_t dw,
-                              int32_t dh)
+static void mrgi_bmr_max_down(
+  const uint8_t* src, int32_t sw, int32_t sh, uint8_t* dst, int32_t dw, int32_t dh)
 {
   for (int32_t y = 0; y < dh; ++y)
   {
@@ -192,8 +187,8 @@ static void mrgi_bmr_max_down(const uint8_t* src, int32_t sw, int32_t sh, uint8_
 }
 
 /* Gaussian blur, masks and stencils from E_k and NE_k (sections 2-3). */
-static mrgi_status mrgi_bmr_finish(mrgi_bmr_masks* out, const mrgi_bmr_params* params,
-                                   mrgi_error* err)
+static mrgi_status mrgi_bmr_finish(
+  mrgi_bmr_masks* out, const mrgi_bmr_params* params, mrgi_error* err)
 {
   const size_t n0 = (size_t)out->level_width[0] * (size_t)out->level_height[0];
   float* row = (float*)malloc(n0 * sizeof(float));
@@ -280,7 +275,8 @@ static mrgi_status mrgi_bmr_finish(mrgi_bmr_masks* out, const mrgi_bmr_params* p
               for (int32_t c = 0; c < 2; ++c)
               {
                 const int32_t cx = 2 * x + c, cy = 2 * y + b;
-                if (cx < sw && cy < sh && out->required[k - 1][(size_t)cy * (size_t)sw + (size_t)cx])
+                if (cx < sw && cy < sh &&
+                  out->required[k - 1][(size_t)cy * (size_t)sw + (size_t)cx])
                 {
                   required = 1;
                 }
@@ -303,7 +299,7 @@ static int mrgi_bmr_valid(const mrgi_gather_receivers* g, size_t p)
   const float* P = g->position + 4 * p;
   const float* N = g->normal + 4 * p;
   return P[3] > MRGI_GBUFFER_VALID_THRESHOLD && mrgi_bmr_finite(P[2]) && mrgi_bmr_finite(N[0]) &&
-         mrgi_bmr_finite(N[1]) && mrgi_bmr_finite(N[2]);
+    mrgi_bmr_finite(N[1]) && mrgi_bmr_finite(N[2]);
 }
 
 /* Unit normal component c of pixel p (as mrgi_multires.c). */
@@ -323,9 +319,8 @@ static void mrgi_bmr_unit_normal(const mrgi_gather_receivers* g, size_t p, float
 }
 
 mrgi_status mrgi_bmr_mask_build(const mrgi_gather_receivers* gbuffer, const float* shadow,
-                                const float pixel_size_coefficients[2],
-                                const mrgi_bmr_params* params, mrgi_bmr_masks* out,
-                                mrgi_error* err)
+  const float pixel_size_coefficients[2], const mrgi_bmr_params* params, mrgi_bmr_masks* out,
+  mrgi_error* err)
 {
   if (out)
   {
@@ -334,24 +329,24 @@ mrgi_status mrgi_bmr_mask_build(const mrgi_gather_receivers* gbuffer, const floa
   if (!gbuffer || !gbuffer->position || !gbuffer->normal || !pixel_size_coefficients || !out)
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "BMR mask: the G-buffer, its arrays, the pixel-size coefficients and "
-                          "the output must not be NULL");
+      "BMR mask: the G-buffer, its arrays, the pixel-size coefficients and "
+      "the output must not be NULL");
   }
   const int32_t W = gbuffer->width, H = gbuffer->height;
   if (W < 1 || H < 1 || W > MRGI_IMAGE_MAX_DIMENSION || H > MRGI_IMAGE_MAX_DIMENSION)
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "BMR mask: G-buffer size %d x %d is outside 1..%d", (int)W, (int)H,
-                          (int)MRGI_IMAGE_MAX_DIMENSION);
+      "BMR mask: G-buffer size %d x %d is outside 1..%d", (int)W, (int)H,
+      (int)MRGI_IMAGE_MAX_DIMENSION);
   }
   const float ca = pixel_size_coefficients[0], cb = pixel_size_coefficients[1];
   if (!(mrgi_bmr_finite(ca) && mrgi_bmr_finite(cb) && ca >= 0.0f && cb >= 0.0f &&
         (ca > 0.0f || cb > 0.0f)))
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "BMR mask: pixel-size coefficients (%g, %g) must be finite, >= 0 and "
-                          "not both 0",
-                          (double)ca, (double)cb);
+      "BMR mask: pixel-size coefficients (%g, %g) must be finite, >= 0 and "
+      "not both 0",
+      (double)ca, (double)cb);
   }
   mrgi_status status = mrgi_bmr_params_validate(params, err);
   if (status != MRGI_OK)
@@ -465,9 +460,9 @@ mrgi_status mrgi_bmr_mask_build(const mrgi_gather_receivers* gbuffer, const floa
   for (int k = 1; k < MRGI_BMR_LEVELS; ++k)
   {
     mrgi_bmr_max_down(out->edge[k - 1], out->level_width[k - 1], out->level_height[k - 1],
-                      out->edge[k], out->level_width[k], out->level_height[k]);
+      out->edge[k], out->level_width[k], out->level_height[k]);
     mrgi_bmr_max_down(out->nonempty[k - 1], out->level_width[k - 1], out->level_height[k - 1],
-                      out->nonempty[k], out->level_width[k], out->level_height[k]);
+      out->nonempty[k], out->level_width[k], out->level_height[k]);
   }
   status = mrgi_bmr_finish(out, params, err);
   if (status != MRGI_OK)
@@ -478,8 +473,7 @@ mrgi_status mrgi_bmr_mask_build(const mrgi_gather_receivers* gbuffer, const floa
 }
 
 mrgi_status mrgi_bmr_mask_from_flags(const mrgi_multires_layout* layout, const uint8_t* flags,
-                                     size_t flags_size, const mrgi_bmr_params* params,
-                                     mrgi_bmr_masks* out, mrgi_error* err)
+  size_t flags_size, const mrgi_bmr_params* params, mrgi_bmr_masks* out, mrgi_error* err)
 {
   if (out)
   {
@@ -527,9 +521,9 @@ mrgi_status mrgi_bmr_mask_from_flags(const mrgi_multires_layout* layout, const u
     else
     {
       mrgi_bmr_max_down(out->edge[k - 1], out->level_width[k - 1], out->level_height[k - 1],
-                        out->edge[k], out->level_width[k], out->level_height[k]);
+        out->edge[k], out->level_width[k], out->level_height[k]);
       mrgi_bmr_max_down(out->nonempty[k - 1], out->level_width[k - 1], out->level_height[k - 1],
-                        out->nonempty[k], out->level_width[k], out->level_height[k]);
+        out->nonempty[k], out->level_width[k], out->level_height[k]);
     }
   }
   status = mrgi_bmr_finish(out, params, err);
@@ -540,8 +534,8 @@ mrgi_status mrgi_bmr_mask_from_flags(const mrgi_multires_layout* layout, const u
   return status;
 }
 
-mrgi_status mrgi_bmr_stats_compute(const mrgi_bmr_masks* masks, mrgi_bmr_stats* stats,
-                                   mrgi_error* err)
+mrgi_status mrgi_bmr_stats_compute(
+  const mrgi_bmr_masks* masks, mrgi_bmr_stats* stats, mrgi_error* err)
 {
   if (!masks || !stats || !masks->stencil[0])
   {

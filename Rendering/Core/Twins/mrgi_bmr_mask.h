@@ -157,9 +157,10 @@ typedef struct mrgi_bmr_params
   double depth_threshold;  /**< T_d, [0, +inf] (+inf: test off); depth kink in pixel widths. */
   double normal_threshold; /**< T_n, [0, +inf] (+inf: test off); unit-normal component change. */
   int32_t combine;         /**< MRGI_BMR_COMBINE_MAX (OR) or MRGI_BMR_COMBINE_MIN (AND). */
-  double variance[MRGI_BMR_LEVELS]; /**< sigma_k^2 in level-k texels^2, [0, MRGI_BMR_MAX_VARIANCE]. */
-  double weight[MRGI_BMR_LEVELS];   /**< w_k of the blend (mrgi_bmr_blend.h), finite >= 0. */
-  int32_t skip[MRGI_BMR_LEVELS];    /**< 1: level k is not rendered (S_k = 0); skip[3] must be 0. */
+  double
+    variance[MRGI_BMR_LEVELS];    /**< sigma_k^2 in level-k texels^2, [0, MRGI_BMR_MAX_VARIANCE]. */
+  double weight[MRGI_BMR_LEVELS]; /**< w_k of the blend (mrgi_bmr_blend.h), finite >= 0. */
+  int32_t skip[MRGI_BMR_LEVELS];  /**< 1: level k is not rendered (S_k = 0); skip[3] must be 0. */
 } mrgi_bmr_params;
 
 /**
@@ -188,15 +189,15 @@ mrgi_status mrgi_bmr_params_validate(const mrgi_bmr_params* params, mrgi_error* 
 /** The masks of one frame (sections 2-3). Arrays per level, index y * w_k + x. */
 typedef struct mrgi_bmr_masks
 {
-  int32_t width;                             /**< W. */
-  int32_t height;                            /**< H. */
-  int32_t level_width[MRGI_BMR_LEVELS];      /**< w_k = ceil(W / 2^k). */
-  int32_t level_height[MRGI_BMR_LEVELS];     /**< h_k = ceil(H / 2^k). */
-  uint8_t* edge[MRGI_BMR_LEVELS];            /**< E_k in {0, 1} (E_0 = e). */
-  uint8_t* nonempty[MRGI_BMR_LEVELS];        /**< NE_k in {0, 1}. */
-  float* mask[MRGI_BMR_LEVELS];              /**< a_k in [0, 1] (0 at a skipped level). */
-  uint8_t* required[MRGI_BMR_LEVELS];        /**< R_k in {0, 1} (section 3). */
-  uint8_t* stencil[MRGI_BMR_LEVELS];         /**< S_k in {0, 1}. */
+  int32_t width;                         /**< W. */
+  int32_t height;                        /**< H. */
+  int32_t level_width[MRGI_BMR_LEVELS];  /**< w_k = ceil(W / 2^k). */
+  int32_t level_height[MRGI_BMR_LEVELS]; /**< h_k = ceil(H / 2^k). */
+  uint8_t* edge[MRGI_BMR_LEVELS];        /**< E_k in {0, 1} (E_0 = e). */
+  uint8_t* nonempty[MRGI_BMR_LEVELS];    /**< NE_k in {0, 1}. */
+  float* mask[MRGI_BMR_LEVELS];          /**< a_k in [0, 1] (0 at a skipped level). */
+  uint8_t* required[MRGI_BMR_LEVELS];    /**< R_k in {0, 1} (section 3). */
+  uint8_t* stencil[MRGI_BMR_LEVELS];     /**< S_k in {0, 1}. */
 } mrgi_bmr_masks;
 
 /**
@@ -211,9 +212,8 @@ typedef struct mrgi_bmr_masks
  *         ::MRGI_ERR_OUT_OF_MEMORY.
  */
 mrgi_status mrgi_bmr_mask_build(const mrgi_gather_receivers* gbuffer, const float* shadow,
-                                const float pixel_size_coefficients[2],
-                                const mrgi_bmr_params* params, mrgi_bmr_masks* out,
-                                mrgi_error* err);
+  const float pixel_size_coefficients[2], const mrgi_bmr_params* params, mrgi_bmr_masks* out,
+  mrgi_error* err);
 
 /**
  * @brief The ablation: masks whose E_k are the NW09 min-max flags
@@ -224,8 +224,7 @@ mrgi_status mrgi_bmr_mask_build(const mrgi_gather_receivers* gbuffer, const floa
  *         a bad layout or bad params; ::MRGI_ERR_OUT_OF_MEMORY.
  */
 mrgi_status mrgi_bmr_mask_from_flags(const mrgi_multires_layout* layout, const uint8_t* flags,
-                                     size_t flags_size, const mrgi_bmr_params* params,
-                                     mrgi_bmr_masks* out, mrgi_error* err);
+  size_t flags_size, const mrgi_bmr_params* params, mrgi_bmr_masks* out, mrgi_error* err);
 
 /** @brief Free the arrays and zero the struct. NULL-safe and idempotent. */
 void mrgi_bmr_masks_destroy(mrgi_bmr_masks* masks);
@@ -238,13 +237,15 @@ typedef struct mrgi_bmr_stats
   /** Valid full-resolution pixels whose finest stencilled level is k (sums to valid_pixels). */
   int64_t finest_pixels[MRGI_BMR_LEVELS];
   int64_t valid_pixels; /**< NE_0 count. */
-  /** sum_k stencilled[k] / valid_pixels: 1 = the cost of one full-resolution pass (0 without valid pixels). */
+  /** sum_k stencilled[k] / valid_pixels: 1 = the cost of one full-resolution pass (0 without valid
+   * pixels). */
   double work_fraction;
 } mrgi_bmr_stats;
 
-/** @brief Count the stencils of `masks`. ::MRGI_ERR_INVALID_ARGUMENT for NULL pointers or empty masks. */
-mrgi_status mrgi_bmr_stats_compute(const mrgi_bmr_masks* masks, mrgi_bmr_stats* stats,
-                                   mrgi_error* err);
+/** @brief Count the stencils of `masks`. ::MRGI_ERR_INVALID_ARGUMENT for NULL pointers or empty
+ * masks. */
+mrgi_status mrgi_bmr_stats_compute(
+  const mrgi_bmr_masks* masks, mrgi_bmr_stats* stats, mrgi_error* err);
 
 #ifdef __cplusplus
 }

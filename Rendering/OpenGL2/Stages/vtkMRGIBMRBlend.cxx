@@ -72,9 +72,9 @@ void vtkMRGIBMRBlend::SetWeight(int level, double weight)
 {
   if (level < 0 || level >= MRGI_BMR_LEVELS || !(weight >= 0.0 && weight <= 1e30))
   {
-    vtkErrorMacro("SetWeight: level must be 0.." << MRGI_BMR_LEVELS - 1
-                                                 << " and the weight finite and >= 0, got level "
-                                                 << level << ", weight " << weight);
+    vtkErrorMacro("SetWeight: level must be 0.."
+      << MRGI_BMR_LEVELS - 1 << " and the weight finite and >= 0, got level " << level
+      << ", weight " << weight);
     return;
   }
   this->Weight[level] = weight;
@@ -97,8 +97,8 @@ bool vtkMRGIBMRBlend::Blend(
   if (!window || !levels || !target || W < 1 || H < 1 || levels->GetWidth() != W ||
     levels->GetHeight() != H)
   {
-    vtkErrorMacro("BMR blend needs a target and levels prepared for the frame's "
-      << W << " x " << H << " viewport");
+    vtkErrorMacro("BMR blend needs a target and levels prepared for the frame's " << W << " x " << H
+                                                                                  << " viewport");
     return false;
   }
   if (static_cast<int>(target->GetWidth()) < frame.Viewport[0] + W ||

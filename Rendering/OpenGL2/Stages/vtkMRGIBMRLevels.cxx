@@ -151,7 +151,8 @@ bool ReadRGBA(vtkRenderWindow* window, vtkTextureObject* texture, vtkFloatArray*
 {
   vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
   std::vector<float> data;
-  if (!renWin || !rgba || !texture || !vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, texture, data))
+  if (!renWin || !rgba || !texture ||
+    !vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, texture, data))
   {
     return false;
   }
@@ -185,7 +186,8 @@ bool vtkMRGIBMRLevels::ReadMask(vtkRenderWindow* window, int level, vtkFloatArra
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIBMRLevels::ReadStencil(vtkRenderWindow* window, int level, vtkUnsignedCharArray* stencil)
+bool vtkMRGIBMRLevels::ReadStencil(
+  vtkRenderWindow* window, int level, vtkUnsignedCharArray* stencil)
 {
   vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
   int size[2];

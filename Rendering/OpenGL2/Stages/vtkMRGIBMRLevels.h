@@ -53,7 +53,8 @@ public:
   int GetHeight() const { return this->Size[1]; }
   ///@}
 
-  /** Level k's size, ceil(W / 2^k) x ceil(H / 2^k); false for k out of range or before Prepare(). */
+  /** Level k's size, ceil(W / 2^k) x ceil(H / 2^k); false for k out of range or before Prepare().
+   */
   bool GetLevelSize(int level, int size[2]) const;
 
   ///@{
@@ -118,6 +119,5 @@ private:
   vtkMRGIBMRLevels(const vtkMRGIBMRLevels&) = delete;
   void operator=(const vtkMRGIBMRLevels&) = delete;
 };
-
 
 #endif

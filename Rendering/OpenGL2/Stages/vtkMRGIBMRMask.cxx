@@ -121,11 +121,12 @@ void vtkMRGIBMRMask::SetPreset(int effect)
 //------------------------------------------------------------------------------
 void vtkMRGIBMRMask::SetVariance(int level, double variance)
 {
-  if (level < 0 || level >= MRGI_BMR_LEVELS || !(variance >= 0.0 && variance <= MRGI_BMR_MAX_VARIANCE))
+  if (level < 0 || level >= MRGI_BMR_LEVELS ||
+    !(variance >= 0.0 && variance <= MRGI_BMR_MAX_VARIANCE))
   {
-    vtkErrorMacro("SetVariance: level must be 0.." << MRGI_BMR_LEVELS - 1 << " and the variance in [0, "
-                                                   << MRGI_BMR_MAX_VARIANCE << "], got level " << level
-                                                   << ", variance " << variance);
+    vtkErrorMacro("SetVariance: level must be 0.."
+      << MRGI_BMR_LEVELS - 1 << " and the variance in [0, " << MRGI_BMR_MAX_VARIANCE
+      << "], got level " << level << ", variance " << variance);
     return;
   }
   this->Variance[level] = variance;
@@ -143,9 +144,8 @@ void vtkMRGIBMRMask::SetSkipLevel(int level, bool skip)
 {
   if (level < 0 || level >= MRGI_BMR_LEVELS - 1)
   {
-    vtkErrorMacro("SetSkipLevel: only levels 0.." << MRGI_BMR_LEVELS - 2
-                                                  << " may be skipped (the coarsest covers every pixel), got "
-                                                  << level);
+    vtkErrorMacro("SetSkipLevel: only levels 0.."
+      << MRGI_BMR_LEVELS - 2 << " may be skipped (the coarsest covers every pixel), got " << level);
     return;
   }
   this->Skip[level] = skip;
@@ -244,8 +244,7 @@ bool vtkMRGIBMRMask::Run(const vtkMRGIFrameContext& frame, vtkMRGIBMRLevels* lev
     levels->GetLevelSize(k, size);
     // Level 0 has no finer mask: the coarsest level's mask stands in,
     // unread (never a texture the pass draws into: a feedback loop).
-    vtkTextureObject* finerMask =
-      levels->GetMaskTexture(k > 0 ? k - 1 : MRGI_BMR_LEVELS - 1);
+    vtkTextureObject* finerMask = levels->GetMaskTexture(k > 0 ? k - 1 : MRGI_BMR_LEVELS - 1);
     // E_k and NE_k into A.
     std::unique_ptr<vtkMRGIShaderUtilities::ScopedStage> sub(
       new vtkMRGIShaderUtilities::ScopedStage(frame.Timer, "bmr.mask.edges"));
@@ -269,7 +268,8 @@ bool vtkMRGIBMRMask::Run(const vtkMRGIFrameContext& frame, vtkMRGIBMRLevels* lev
       const int offset[2] = { frame.Viewport[0], frame.Viewport[1] };
       p->SetUniform2i("mrgiOffset", offset);
       p->SetUniform2i("mrgiSize", size);
-      const float ab[2] = { static_cast<float>(frame.PixelSize[0]), static_cast<float>(frame.PixelSize[1]) };
+      const float ab[2] = { static_cast<float>(frame.PixelSize[0]),
+        static_cast<float>(frame.PixelSize[1]) };
       p->SetUniform2f("mrgiPixelSize", ab);
       p->SetUniformf("mrgiDepthThreshold",
         std::isinf(params.depth_threshold) ? -1.0f : static_cast<float>(params.depth_threshold));
@@ -291,7 +291,8 @@ bool vtkMRGIBMRMask::Run(const vtkMRGIFrameContext& frame, vtkMRGIBMRLevels* lev
     }
     // The Gaussian's radius and variance as the C twin computes them.
     const float variance = static_cast<float>(params.variance[k]);
-    const int radius = variance > 0.0f ? static_cast<int>(std::ceil(3.0f * std::sqrt(variance))) : 0;
+    const int radius =
+      variance > 0.0f ? static_cast<int>(std::ceil(3.0f * std::sqrt(variance))) : 0;
     float gauss[MRGI_BMR_MAX_RADIUS + 1] = {};
     for (int j = 0; j <= radius; ++j)
     {
