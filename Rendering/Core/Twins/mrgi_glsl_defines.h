@@ -39,7 +39,10 @@
  * MRGI_AREA_LIGHT_SPECULAR_SAMPLES, _LOBE_GRID, _BEHIND, _FACING_AWAY,
  * _LOBE_MISS; from mrgi_direct_shadow.h MRGI_DIRECT_SHADOW_HARD, _SOFT,
  * _MAX_VIEWS, _HARD_SIDE, _BLOCKER_SIDE, _MAX_SIDE, _BIAS_TEXELS, _MAX_SLOPE,
- * _SEARCH_NEAR, _MIN_RADIUS, _MAX_RADIUS, _NO_OCCLUDER.
+ * _SEARCH_NEAR, _MIN_RADIUS, _MAX_RADIUS, _NO_OCCLUDER;
+ * from mrgi_bmr_mask.h MRGI_BMR_LEVELS, _MAX_RADIUS, _COMBINE_MAX,
+ * _COMBINE_MIN, _SSGI_SKIP_LEVEL and Table 1's presets
+ * MRGI_BMR_{SSAO,SSM,SSGI}_{VARIANCE,WEIGHT}_{1..4}.
  *
  * Insert the block after the shader's `#version` line (a `#define` may not
  * precede it).
@@ -56,7 +59,7 @@ extern "C" {
 #endif
 
 /** An upper bound of mrgi_glsl_defines_size(): a buffer this large always suffices. */
-#define MRGI_GLSL_DEFINES_MAX_SIZE 4096
+#define MRGI_GLSL_DEFINES_MAX_SIZE 8192
 
 /** @brief Bytes the block needs, terminating NUL included (<= MRGI_GLSL_DEFINES_MAX_SIZE). */
 size_t mrgi_glsl_defines_size(void);
