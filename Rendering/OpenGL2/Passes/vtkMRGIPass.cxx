@@ -179,10 +179,13 @@ namespace
 // order (vtkOpenGLRenderer::UpdateLightingUniforms numbers them so).
 // `slots[s]`: the collection index of shader light s, or -1. Returns how
 // many shader lights can cast a visible shadow: lit (intensity > 0) and not
-// a headlight, whose shadows hide behind what it lights.
-int ShaderLights(vtkRenderer* renderer, int slots[MRGI_SHADOW_SLOTS])
+// a headlight, whose shadows hide behind what it lights. `unshadowedScene`:
+// how many of those past the slots are scene lights (camera lights past
+// the slots are a light kit's fill and back lights, unshadowed by design).
+int ShaderLights(vtkRenderer* renderer, int slots[MRGI_SHADOW_SLOTS], int& unshadowedScene)
 {
   std::fill(slots, slots + MRGI_SHADOW_SLOTS, -1);
+  unshadowedScene = 0;
   vtkLightCollection* lights = renderer->GetLights();
   vtkCollectionSimpleIterator it;
   lights->InitTraversal(it);
@@ -191,12 +194,17 @@ int ShaderLights(vtkRenderer* renderer, int slots[MRGI_SHADOW_SLOTS])
   {
     if (light->GetSwitch() > 0)
     {
+      const bool casts = light->GetIntensity() > 0 && !light->LightTypeIsHeadlight();
       if (shaderLight < MRGI_SHADOW_SLOTS)
       {
         slots[shaderLight] = index;
       }
+      else if (casts && light->LightTypeIsSceneLight())
+      {
+        ++unshadowedScene;
+      }
       ++shaderLight;
-      casting += light->GetIntensity() > 0 && !light->LightTypeIsHeadlight();
+      casting += casts;
     }
     ++index;
   }
@@ -975,8 +983,10 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   const bool areaLights = this->AreaLightStage->GetNumberOfLights() > 0;
   const bool indirect = this->IndirectMode != IndirectOff && this->GetNumberOfVPLs() > 0;
   int slotLights[MRGI_SHADOW_SLOTS];
-  const int shadowedLights =
-    this->DirectShadows != DirectShadowsOff ? ShaderLights(renderer, slotLights) : 0;
+  int unshadowedSceneLights = 0;
+  const int shadowedLights = this->DirectShadows != DirectShadowsOff
+    ? ShaderLights(renderer, slotLights, unshadowedSceneLights)
+    : 0;
   const bool shadows = shadowedLights > 0;
   const bool capture = indirect || areaLights || this->OuterGBuffer || shadows || this->SSAO;
   const bool split = vtkRenderStepsPass::SafeDownCast(this->DelegatePass) != nullptr;
@@ -986,11 +996,12 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   this->Captured = capture;
   this->ShadowsCaptured = shadows;
   this->ShadowsComputed = false;
-  if (shadowedLights > MRGI_SHADOW_SLOTS && !in.ExtraLightsReported)
+  if (unshadowedSceneLights > 0 && !in.ExtraLightsReported)
   {
     in.ExtraLightsReported = true;
-    vtkWarningMacro(<< shadowedLights << " lights are switched on: direct shadows are cast for the first "
-                    << MRGI_SHADOW_SLOTS << " only; the others light as VTK lights them, unshadowed");
+    vtkWarningMacro(<< "direct shadows are cast by the first " << MRGI_SHADOW_SLOTS
+                    << " switched-on lights only; " << unshadowedSceneLights
+                    << " more scene light(s) light as VTK lights them, unshadowed");
   }
   // The specular pass cannot change the image when no visible prop has a
   // specular material: then neither it nor its G-buffer targets run.
