@@ -346,6 +346,40 @@ static void test_grazing_plane(void)
   }
 }
 
+/* Receivers nearly edge-on to the light: under an occluder the umbra fades
+ * out below twice the clamp's cosine and is gone below it (no stripes of
+ * self-shadowing on lit grazing faces); a receiver facing the light keeps it. */
+static void test_grazing_fade(void)
+{
+  const double c0 =
+    1.0 / sqrt(1.0 + MRGI_DIRECT_SHADOW_MAX_SLOPE * MRGI_DIRECT_SHADOW_MAX_SLOPE);
+  MRGI_CHECK(mrgi_direct_shadow_grazing_weight(0.0) == 0.0);
+  MRGI_CHECK(mrgi_direct_shadow_grazing_weight(c0) == 0.0);
+  MRGI_CHECK_NEAR(mrgi_direct_shadow_grazing_weight(1.5 * c0), 0.5, 1e-12);
+  MRGI_CHECK(mrgi_direct_shadow_grazing_weight(2.0 * c0) == 1.0);
+  MRGI_CHECK(mrgi_direct_shadow_grazing_weight(1.0) == 1.0);
+  mrgi_direct_shadow_view view;
+  sun_view(&view, 1.0);
+  const scene sc = { 1.0, 1, 1, 0.5, 1.0, 0, { 0, 0, 0 } };
+  setup(&view, &sc);
+  const double cosines[3] = { 0.5 * c0, 1.5 * c0, 0.2 };
+  const double expected[3] = { 1.0, 0.5, 0.0 };
+  for (int mode = 0; mode < 2; ++mode)
+  {
+    mrgi_direct_shadow_params p;
+    mrgi_direct_shadow_params_default(&p);
+    p.mode = mode;
+    p.light_radius = 0.05;
+    for (int k = 0; k < 3; ++k)
+    {
+      const double n[3] = { sqrt(1.0 - cosines[k] * cosines[k]), 0.0, cosines[k] };
+      const double f = factor_at(&view, &p, 0.0, 0.0, 0.0, n, NULL);
+      printf("grazing cosine %.4f, mode %d: factor %g\n", cosines[k], mode, f);
+      MRGI_CHECK_NEAR(f, expected[k], 1e-9);
+    }
+  }
+}
+
 /* An occluder 3 texel footprints above the plane still casts its umbra (no peter panning beyond ~2 texels). */
 static void test_contact(void)
 {
@@ -538,7 +572,7 @@ int main(int argc, char** argv)
     MRGI_TEST_CASE(test_penumbra_width),
     MRGI_TEST_CASE(test_scale_invariance),
     MRGI_TEST_CASE(test_grazing_plane),
-    MRGI_TEST_CASE(test_contact),
+    MRGI_TEST_CASE(test_grazing_fade), MRGI_TEST_CASE(test_contact),
     MRGI_TEST_CASE(test_invalid_texels),
     MRGI_TEST_CASE(test_cube_faces),
     MRGI_TEST_CASE(test_degenerate),

@@ -279,6 +279,16 @@ double mrgi_direct_shadow_factor(const mrgi_direct_shadow_view* views, const flo
     r.n[1] = -r.n[1];
     r.n[2] = -r.n[2];
   }
+  /* Grazing receivers: past the slope clamp the receiver plane no longer
+   * bounds the taps and a lit surface would shadow itself in stripes; the
+   * shadow fades out over one more clamp angle instead (the header). */
+  const double qn = sqrt(r.q[0] * r.q[0] + r.q[1] * r.q[1] + r.q[2] * r.q[2]);
+  const double cosine = perspective ? (qn > 0.0 ? fabs(facing) / qn : 1.0) : fabs(facing);
+  const double grazing = mrgi_direct_shadow_grazing_weight(cosine);
+  if (!(grazing > 0.0))
+  {
+    return 1.0;
+  }
   const double S = (double)r.view->size;
   const double sMin = fmin(r.view->scale[0], r.view->scale[1]);
   r.d = -r.q[2];
@@ -294,7 +304,7 @@ double mrgi_direct_shadow_factor(const mrgi_direct_shadow_view* views, const flo
   {
     const int side = MRGI_DIRECT_SHADOW_HARD_SIDE;
     const int blocked = grid_occluders(&r, side, 0.5 * (double)side, &sum);
-    return 1.0 - (double)blocked / (double)(side * side);
+    return 1.0 - grazing * (double)blocked / (double)(side * side);
   }
 
   /* PCSS: the blocker search over the region a blocker at depth >= d_n can shadow. */
@@ -314,7 +324,14 @@ double mrgi_direct_shadow_factor(const mrgi_direct_shadow_view* views, const flo
     perspective ? radius * (r.d - db) / (r.d * db * r.T) : theta * (r.d - db) / r.T);
   const int side = params->samples_side;
   const int blocked = grid_occluders(&r, side, width, &sum);
-  return 1.0 - (double)blocked / (double)(side * side);
+  return 1.0 - grazing * (double)blocked / (double)(side * side);
+}
+
+double mrgi_direct_shadow_grazing_weight(double cosine)
+{
+  const double c0 = 1.0 / sqrt(1.0 + MRGI_DIRECT_SHADOW_MAX_SLOPE * MRGI_DIRECT_SHADOW_MAX_SLOPE);
+  const double w = (cosine - c0) / c0;
+  return w > 1.0 ? 1.0 : (w > 0.0 ? w : 0.0);
 }
 
 mrgi_status mrgi_direct_shadow_gbuffer(int width, int height, const float* positions,

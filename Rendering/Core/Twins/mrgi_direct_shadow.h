@@ -82,6 +82,16 @@
  *   MRGI_DIRECT_SHADOW_MAX_RADIUS] texels. r -> 0 gives the PCF of
  *   radius MRGI_DIRECT_SHADOW_MIN_RADIUS (a hard edge).
  *
+ * **Grazing receivers.** Where the cosine between the (light-facing)
+ * normal and the direction to the light falls below c0 = 1 / sqrt(1 +
+ * MRGI_DIRECT_SHADOW_MAX_SLOPE^2) (about 1.8 degrees above the surface),
+ * the slope clamp no longer bounds the receiver plane and a lit surface
+ * would shadow itself in stripes. The occluded fraction is therefore
+ * scaled by g = clamp((cos - c0) / c0, 0, 1)
+ * (mrgi_direct_shadow_grazing_weight()): full above 2 c0, none below c0.
+ * VTK's diffuse light there is at most 2 c0 (6%) of the light's, so a
+ * grazing surface in true shadow keeps at most that much light.
+ *
  * **Errors.** Never NaN: a receiver with a non-finite position or normal,
  * a zero normal, a view with S < 1, no positions, a non-finite matrix or
  * scale <= 0 (perspective: near <= 0) give factor 1 (the view is skipped)
@@ -165,6 +175,9 @@ void mrgi_direct_shadow_params_default(mrgi_direct_shadow_params* params);
 
 /** @brief Whether `params` is in range; MRGI_ERR_INVALID_ARGUMENT naming the field otherwise. */
 mrgi_status mrgi_direct_shadow_params_check(const mrgi_direct_shadow_params* params, mrgi_error* err);
+
+/** @brief The grazing weight g of a receiver whose light-facing cosine is `cosine` ("Grazing receivers"). */
+double mrgi_direct_shadow_grazing_weight(double cosine);
 
 /** @brief Whether `view` can be used (see "Errors"); 1 or 0. */
 int mrgi_direct_shadow_view_usable(const mrgi_direct_shadow_view* view);

@@ -175,6 +175,16 @@ void main()
   {
     mrgiN = -mrgiN;
   }
+  // Grazing receivers: the shadow fades out past the slope clamp
+  // (mrgi_direct_shadow_grazing_weight()).
+  float qn = length(mrgiQ);
+  float cosine = mrgiPerspective ? (qn > 0.0 ? abs(facing) / qn : 1.0) : abs(facing);
+  float c0 = 1.0 / sqrt(1.0 + MRGI_DIRECT_SHADOW_MAX_SLOPE * MRGI_DIRECT_SHADOW_MAX_SLOPE);
+  float grazing = clamp((cosine - c0) / c0, 0.0, 1.0);
+  if (!(grazing > 0.0))
+  {
+    discard; // factor 1
+  }
   float S = float(mrgiSize);
   float sMin = min(mrgiScale.x, mrgiScale.y);
   mrgiD = -mrgiQ.z;
@@ -190,7 +200,7 @@ void main()
   {
     int side = MRGI_DIRECT_SHADOW_HARD_SIDE;
     int blocked = mrgiGridOccluders(side, 0.5 * float(side), sum);
-    factor = 1.0 - float(blocked) / float(side * side);
+    factor = 1.0 - grazing * float(blocked) / float(side * side);
   }
   else
   {
@@ -208,7 +218,7 @@ void main()
                                                     : theta * (mrgiD - db) / mrgiT);
       int side = mrgiSamplesSide;
       int blocked = mrgiGridOccluders(side, width, sum);
-      factor = 1.0 - float(blocked) / float(side * side);
+      factor = 1.0 - grazing * float(blocked) / float(side * side);
     }
   }
   gl_FragData[0] = vec4(factor, factor, factor, 1.0);
