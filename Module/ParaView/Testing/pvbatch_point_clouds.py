@@ -176,15 +176,19 @@ view.CameraFocalPoint = center
 view.CameraPosition = [center[0], center[1] - 2.0 * extent, center[2] + 1.2 * extent]
 view.CameraViewUp = [0, 0, 1]
 simple._DisableFirstRenderCameraReset()
+# GI off and on without direct shadows (this test is about the surfels:
+# a hole shows as a black pixel), then on with the view's default soft
+# shadows, which may darken but must not open holes in the light kit's fill.
 images = {}
-for gi in (0, 1):
+for gi, shadows, name in ((0, 0, "off.png"), (1, 0, "on.png"), (1, 2, "on-shadows.png")):
     view.GlobalIllumination = gi
+    view.DirectShadows = shadows
     simple.Render(view)
-    path = os.path.join(out_dir, "on.png" if gi else "off.png")
+    path = os.path.join(out_dir, name)
     simple.SaveScreenshot(path, view, ImageResolution=[size, size])
-    images[gi] = pixels_of(path)
+    images[(gi, shadows)] = pixels_of(path)
 
-off, on = images[0], images[1]
+off, on, shadowed = images[(0, 0)], images[(1, 0)], images[(1, 2)]
 covered = off.sum(axis=1) > 0  # the background is black
 fraction = covered.mean()
 print("pvbatch_point_clouds: covered fraction %.3f" % fraction)
@@ -198,6 +202,12 @@ print("pvbatch_point_clouds: GI on vs off: relative RMS %.4f, mean covered brigh
       % (rms, gain))
 check(rms > 0.02, "GI changes the image (relative RMS %.4f > 0.02)" % rms)
 check(gain > 1.01, "GI adds light (covered pixels x%.3f)" % gain)
+dark = float(shadowed[covered].mean() / on[covered].mean())
+black = int((shadowed[covered].sum(axis=1) == 0).sum())
+print("pvbatch_point_clouds: soft shadows: mean covered brightness x%.3f, %d black pixels" % (dark, black))
+check(dark <= 1.0 + 1e-3, "shadows only take light away (x%.3f)" % dark)
+check(dark < 0.999, "the surfels cast shadows (x%.3f)" % dark)
+check(black <= 0.01 * int(covered.sum()), "under 1%% of the cloud black with shadows (%d)" % black)
 if written:
     # Colour bleeding: the red slope (left half of the image) tints the
     # white one (right half) only through the indirect light.
