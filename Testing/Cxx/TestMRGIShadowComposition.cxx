@@ -374,6 +374,54 @@ void Viewport()
   }
 }
 
+// A sub-tile viewport renders what a window of the tile's size renders:
+// shadows and SSAO land on the same pixels, with nothing stretched or
+// shifted (the tile is 165 x 140 pixels of a 300 x 200 window).
+void TileEqualsWindow()
+{
+  for (bool ssao : { false, true })
+  {
+    vtkSmartPointer<vtkImageData> images[2];
+    for (int tiled = 0; tiled < 2; ++tiled)
+    {
+      Scene s(tiled ? 300 : 165, tiled ? 200 : 140);
+      if (tiled)
+      {
+        s.Renderer->SetViewport(0.4, 0.1, 0.95, 0.8);
+      }
+      s.Pass->SetSSAO(ssao);
+      images[tiled] = s.Render(vtkMRGIPass::DirectShadowsSoft);
+      if (!tiled)
+      {
+        // Not an empty comparison: the shadow is in the window's image.
+        MRGI_TEST_CHECK(Differ(images[0], s.Render(vtkMRGIPass::DirectShadowsOff), 8) > 500);
+      }
+    }
+    vtkDataArray* a = images[0]->GetPointData()->GetScalars();
+    vtkDataArray* b = images[1]->GetPointData()->GetScalars();
+    double worst = 0;
+    int differ = 0;
+    for (int y = 0; y < 140; ++y)
+    {
+      for (int x = 0; x < 165; ++x)
+      {
+        const vtkIdType p = static_cast<vtkIdType>(y) * 165 + x;
+        const vtkIdType q = static_cast<vtkIdType>(y + 20) * 300 + x + 120;
+        double d = 0;
+        for (int c = 0; c < 3; ++c)
+        {
+          d = std::max(d, std::fabs(a->GetComponent(p, c) - b->GetComponent(q, c)));
+        }
+        worst = std::max(worst, d);
+        differ += d > 1;
+      }
+    }
+    std::printf("tile vs window%s: %d pixels differ by more than 1, largest difference %.0f\n",
+      ssao ? " (SSAO on)" : "", differ, worst);
+    MRGI_TEST_CHECK(differ == 0);
+  }
+}
+
 // PBR receivers and casters: shadowed where expected, lit pixels VTK's own.
 void PBR()
 {
@@ -389,10 +437,12 @@ void PBR()
 
 // Depth peeling with a translucent sphere in front: where it does not
 // cover the floor the shadow is the opaque one; where it does, it is
-// blended (neither absent nor opaque).
-void DepthPeeling()
+// blended (neither absent nor opaque). With and without SSAO.
+void DepthPeelingWith(bool ssao)
 {
+  std::printf("SSAO %s\n", ssao ? "on" : "off");
   Scene s(240, 180);
+  s.Pass->SetSSAO(ssao);
   s.Renderer->SetUseDepthPeeling(1);
   s.Renderer->SetMaximumNumberOfPeels(4);
   auto without = s.Render(vtkMRGIPass::DirectShadowsSoft);
@@ -514,10 +564,16 @@ void SecondLayer()
 }
 
 // renderer->UseFXAAOn(): the shadow is there and its interior (and the lit
-// floor) equals the render without FXAA; edges are smoothed.
-void FXAA()
+// floor) equals the render without FXAA; edges are smoothed. With and
+// without SSAO.
+void FXAAWith(bool ssao)
 {
+  std::printf("SSAO %s\n", ssao ? "on" : "off");
   Scene s(240, 180);
+  s.Pass->SetSSAO(ssao);
+  // Unblurred SSAO speckles the flat floor at this grazing angle (as
+  // vtkSSAOPass does), and FXAA rightly smooths speckle: blur it first.
+  s.Pass->SetSSAOBlur(ssao);
   auto plainOn = s.Render(vtkMRGIPass::DirectShadowsSoft);
   s.Renderer->UseFXAAOn();
   auto off = s.Render(vtkMRGIPass::DirectShadowsOff);
@@ -552,6 +608,19 @@ void FXAA()
     edges, umbra, worst);
   MRGI_TEST_CHECK(edges >= 20);
   MRGI_TEST_CHECK(worst <= 2);
+}
+
+// Both with SSAO off and on.
+void DepthPeeling()
+{
+  DepthPeelingWith(false);
+  DepthPeelingWith(true);
+}
+
+void FXAA()
+{
+  FXAAWith(false);
+  FXAAWith(true);
 }
 
 // Two shadowed lights (slots 0 and 1) and a third one: each slot's factor
@@ -624,7 +693,8 @@ void Lights()
 int main(int argc, char* argv[])
 {
   return mrgitest::RunCases(argc, argv,
-    { MRGI_TEST_CASE(NonSquare), MRGI_TEST_CASE(Viewport), MRGI_TEST_CASE(PBR),
+    { MRGI_TEST_CASE(NonSquare), MRGI_TEST_CASE(Viewport),
+      MRGI_TEST_CASE(TileEqualsWindow), MRGI_TEST_CASE(PBR),
       MRGI_TEST_CASE(DepthPeeling), MRGI_TEST_CASE(SecondLayer), MRGI_TEST_CASE(FXAA),
       MRGI_TEST_CASE(Lights) });
 }
