@@ -44,6 +44,11 @@ inline vtkSmartPointer<vtkMRGIPass> Install(vtkRenderer* renderer)
   vtkNew<vtkRenderStepsPass> steps;
   auto pass = vtkSmartPointer<vtkMRGIPass>::New();
   pass->SetDelegatePass(steps);
+  // These tests check that VTK's features keep working with the indirect
+  // light, several against VTK's own image with IndirectMode Off; direct
+  // shadows (on by default) change that image on purpose and have their
+  // own tests (cxx.TestMRGIShadowComposite, cxx.TestMRGIShadowComposition).
+  pass->SetDirectShadowsToOff();
   renderer->SetPass(pass);
   return pass;
 }
