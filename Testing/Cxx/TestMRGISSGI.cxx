@@ -12,7 +12,9 @@
 //    is computed while SSGI is on;
 // 3. level 1 (a level texel evaluates its block's centre pixel) against
 //    the twin's level 1;
-// 4. bad input: every argument out of range is refused.
+// 4. bad input: every argument out of range is refused;
+// 5. a renderer in part of the window, on a second layer, with FXAA: the
+//    same parity on the viewport, nothing outside it changes.
 // The measured errors are printed for the documentation.
 #include "mrgiTestUtilities.h"
 
@@ -150,6 +152,55 @@ bool ReadTexture(vtkTextureObject* t, std::vector<float>& rgba)
   return glGetError() == GL_NO_ERROR;
 }
 
+
+// The twin's inputs from the last frame: G-buffer, direct light, projection.
+struct TwinInputs
+{
+  mrgi_image Position = {}, Normal = {}, Albedo = {}, Direct = {};
+  std::vector<float> Kernel;
+  mrgi_ssgi_params Params = {};
+
+  TwinInputs(Scene& s, vtkImageData* directImage)
+  {
+    vtkNew<vtkImageData> p, n, a;
+    MRGI_TEST_CHECK(s.Pass->GetGBuffer(s.Window, p, n, a));
+    int w = 0, h = 0, x0 = 0, y0 = 0;
+    s.Renderer->GetTiledSizeAndOrigin(&w, &h, &x0, &y0);
+    MRGI_TEST_CHECK(p->GetDimensions()[0] == w && p->GetDimensions()[1] == h);
+    ToImage(p, w, h, this->Position);
+    ToImage(n, w, h, this->Normal);
+    ToImage(a, w, h, this->Albedo);
+    ToImage(directImage, w, h, this->Direct);
+    this->Kernel.resize(3 * Samples);
+    MRGI_TEST_CHECK(mrgi_ssgi_kernel(Samples, this->Kernel.data(), nullptr) == MRGI_OK);
+    this->Params.kernel = this->Kernel.data();
+    this->Params.sample_count = Samples;
+    this->Params.radius = static_cast<float>(Radius);
+    this->Params.bias = static_cast<float>(Bias);
+    vtkMatrix4x4* m = s.Renderer->GetActiveCamera()->GetProjectionTransformMatrix(
+      s.Renderer->GetTiledAspectRatio(), -1, 1);
+    for (int r = 0; r < 4; ++r)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        this->Params.projection[c * 4 + r] = static_cast<float>(m->GetElement(r, c));
+      }
+    }
+  }
+  ~TwinInputs()
+  {
+    mrgi_image_destroy(&this->Position);
+    mrgi_image_destroy(&this->Normal);
+    mrgi_image_destroy(&this->Albedo);
+    mrgi_image_destroy(&this->Direct);
+  }
+  bool Compute(int level, mrgi_image& out)
+  {
+    return mrgi_ssgi_compute(&this->Params, &this->Position, &this->Normal, &this->Albedo,
+             &this->Direct, level, &out, nullptr) == MRGI_OK;
+  }
+};
+
 void TestCornell()
 {
   Scene s;
@@ -164,32 +215,9 @@ void TestCornell()
   MRGI_TEST_CHECK(s.Pass->GetSSGIStage()->ReadResult(s.Window, result));
   MRGI_TEST_CHECK(result->GetNumberOfTuples() == Width * Height);
 
-  vtkNew<vtkImageData> p, n, a;
-  MRGI_TEST_CHECK(s.Pass->GetGBuffer(s.Window, p, n, a));
-  mrgi_image position, normal, albedo, direct, twin;
-  ToImage(p, Width, Height, position);
-  ToImage(n, Width, Height, normal);
-  ToImage(a, Width, Height, albedo);
-  ToImage(directImage, Width, Height, direct);
-  std::vector<float> kernel(3 * Samples);
-  MRGI_TEST_CHECK(mrgi_ssgi_kernel(Samples, kernel.data(), nullptr) == MRGI_OK);
-  mrgi_ssgi_params params = {};
-  params.kernel = kernel.data();
-  params.sample_count = Samples;
-  params.radius = static_cast<float>(Radius);
-  params.bias = static_cast<float>(Bias);
-  vtkMatrix4x4* m = s.Renderer->GetActiveCamera()->GetProjectionTransformMatrix(
-    s.Renderer->GetTiledAspectRatio(), -1, 1);
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      params.projection[c * 4 + r] = static_cast<float>(m->GetElement(r, c));
-    }
-  }
-  mrgi_error err;
-  MRGI_TEST_CHECK(
-    mrgi_ssgi_compute(&params, &position, &normal, &albedo, &direct, 0, &twin, &err) == MRGI_OK);
+  TwinInputs in(s, directImage);
+  mrgi_image twin;
+  MRGI_TEST_CHECK(in.Compute(0, twin));
   Compare("level 0", result->GetPointer(0), Width, twin);
   mrgi_image_destroy(&twin);
 
@@ -238,8 +266,7 @@ void TestCornell()
   MRGI_TEST_CHECK(stage->Compute(frame, directTexture, Samples, Radius, Bias, 1, target));
   std::vector<float> rgba;
   MRGI_TEST_CHECK(ReadTexture(target, rgba));
-  MRGI_TEST_CHECK(
-    mrgi_ssgi_compute(&params, &position, &normal, &albedo, &direct, 1, &twin, nullptr) == MRGI_OK);
+  MRGI_TEST_CHECK(in.Compute(1, twin));
   Compare("level 1", rgba.data(), Width, twin);
   mrgi_image_destroy(&twin);
 
@@ -261,10 +288,85 @@ void TestCornell()
   MRGI_TEST_CHECK(!stage->Apply(empty, target, target));
   target->ReleaseGraphicsResources(gl);
   directTexture->ReleaseGraphicsResources(gl);
-  mrgi_image_destroy(&position);
-  mrgi_image_destroy(&normal);
-  mrgi_image_destroy(&albedo);
-  mrgi_image_destroy(&direct);
+}
+
+// A renderer in part of the window (a second one, without MRGI, behind
+// it), FXAA on: the result on the viewport equals the twin's on the
+// viewport's buffers, colour = direct + bounce there, and the window
+// outside the viewport is untouched.
+void TestViewport()
+{
+  Scene s;
+  s.Renderer->SetViewport(0.15, 0.1, 0.9, 0.95);
+  s.Renderer->UseFXAAOn();
+  vtkNew<vtkRenderer> back;
+  back->SetBackground(0.2, 0.4, 0.6);
+  back->SetLayer(0);
+  s.Window->SetNumberOfLayers(2);
+  s.Renderer->SetLayer(1);
+  s.Window->AddRenderer(back);
+  s.Window->Render();
+  vtkSmartPointer<vtkImageData> plain = mrgitest::GrabRGB(s.Window);
+  vtkNew<vtkImageData> direct;
+  MRGI_TEST_CHECK(s.Pass->GetColorBuffer(s.Window, direct));
+  s.Pass->SSGIOn();
+  s.Window->Render();
+  vtkSmartPointer<vtkImageData> shaded = mrgitest::GrabRGB(s.Window);
+  vtkNew<vtkImageData> colour;
+  MRGI_TEST_CHECK(s.Pass->GetColorBuffer(s.Window, colour));
+  int w = 0, h = 0, x0 = 0, y0 = 0;
+  s.Renderer->GetTiledSizeAndOrigin(&w, &h, &x0, &y0);
+  MRGI_TEST_CHECK(x0 > 0 && y0 > 0 && w < Width && h < Height);
+  vtkNew<vtkFloatArray> result;
+  MRGI_TEST_CHECK(s.Pass->GetSSGIStage()->ReadResult(s.Window, result));
+  MRGI_TEST_CHECK(result->GetNumberOfTuples() == w * h);
+  {
+    TwinInputs in(s, direct);
+    mrgi_image twin;
+    MRGI_TEST_CHECK(in.Compute(0, twin));
+    Compare("viewport", result->GetPointer(0), w, twin);
+    mrgi_image_destroy(&twin);
+  }
+  double worst = 0.0;
+  const float* d = Floats(direct);
+  const float* c = Floats(colour);
+  const float* r = result->GetPointer(0);
+  for (int i = 0; i < w * h; ++i)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const double expected = static_cast<double>(d[4 * i + k]) + r[4 * i + k];
+      worst =
+        std::max(worst, std::fabs(c[4 * i + k] - expected) / std::max(1e-3, std::fabs(expected)));
+    }
+  }
+  std::printf("viewport %d x %d at (%d, %d): max relative |colour - (direct + bounce)| = %.3g\n",
+    w, h, x0, y0, worst);
+  MRGI_TEST_CHECK(worst <= 1e-5);
+  const unsigned char* a = static_cast<unsigned char*>(plain->GetScalarPointer());
+  const unsigned char* b = static_cast<unsigned char*>(shaded->GetScalarPointer());
+  int changedOutside = 0, changedInside = 0;
+  for (int y = 0; y < Height; ++y)
+  {
+    for (int x = 0; x < Width; ++x)
+    {
+      const int i = 3 * (y * Width + x);
+      const bool same = a[i] == b[i] && a[i + 1] == b[i + 1] && a[i + 2] == b[i + 2];
+      if (x < x0 || x >= x0 + w || y < y0 || y >= y0 + h)
+      {
+        changedOutside += !same;
+      }
+      else
+      {
+        changedInside += !same;
+      }
+    }
+  }
+  std::printf("window pixels changed by SSGI: %d inside the viewport, %d outside\n",
+    changedInside, changedOutside);
+  MRGI_TEST_CHECK(changedOutside == 0);
+  MRGI_TEST_CHECK(changedInside > 0);
+  s.Window->RemoveRenderer(back);
 }
 
 // SSGI and the VPL gather are exclusive: with an indirect mode set, the
@@ -286,5 +388,6 @@ void TestExclusive()
 int main(int argc, char* argv[])
 {
   return mrgitest::RunCases(
-    argc, argv, { MRGI_TEST_CASE(TestCornell), MRGI_TEST_CASE(TestExclusive) });
+    argc, argv, { MRGI_TEST_CASE(TestCornell), MRGI_TEST_CASE(TestViewport),
+                   MRGI_TEST_CASE(TestExclusive) });
 }
