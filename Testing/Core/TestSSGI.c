@@ -166,8 +166,8 @@ static void test_wall_bleeding(void)
   const float radius = 0.5f;
   make_scene(&s, 96, 64, -1.0f, 5.0f, 1.0f, 128, radius, 0.01f);
   mrgi_image out;
-  MRGI_CHECK(mrgi_ssgi_compute(&s.params, &s.position, &s.normal, &s.albedo, &s.direct, 0, &out,
-               NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_ssgi_compute(
+               &s.params, &s.position, &s.normal, &s.albedo, &s.direct, 0, &out, NULL) == MRGI_OK);
   const int x = 48;
   float previous = -1.0f;
   int near = 0, far = 0, rising = 0, rows = 0;
@@ -215,10 +215,10 @@ static void test_scale_invariance(void)
   make_scene(&a, 64, 48, -1.0f, 5.0f, 1.0f, 64, 0.5f, 0.01f);
   make_scene(&b, 64, 48, -1.0f, 5.0f, 4.0f, 64, 0.5f, 0.01f);
   mrgi_image oa, ob;
-  MRGI_CHECK(mrgi_ssgi_compute(&a.params, &a.position, &a.normal, &a.albedo, &a.direct, 0, &oa,
-               NULL) == MRGI_OK);
-  MRGI_CHECK(mrgi_ssgi_compute(&b.params, &b.position, &b.normal, &b.albedo, &b.direct, 0, &ob,
-               NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_ssgi_compute(
+               &a.params, &a.position, &a.normal, &a.albedo, &a.direct, 0, &oa, NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_ssgi_compute(
+               &b.params, &b.position, &b.normal, &b.albedo, &b.direct, 0, &ob, NULL) == MRGI_OK);
   double sum = 0.0;
   for (int y = 0; y < oa.height; ++y)
   {
@@ -246,12 +246,12 @@ static void test_levels(void)
   static scene s;
   make_scene(&s, 61, 47, -1.0f, 5.0f, 1.0f, 32, 0.5f, 0.01f);
   mrgi_image full, l1, l2;
-  MRGI_CHECK(mrgi_ssgi_compute(&s.params, &s.position, &s.normal, &s.albedo, &s.direct, 0, &full,
-               NULL) == MRGI_OK);
-  MRGI_CHECK(mrgi_ssgi_compute(&s.params, &s.position, &s.normal, &s.albedo, &s.direct, 1, &l1,
-               NULL) == MRGI_OK);
-  MRGI_CHECK(mrgi_ssgi_compute(&s.params, &s.position, &s.normal, &s.albedo, &s.direct, 2, &l2,
-               NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_ssgi_compute(
+               &s.params, &s.position, &s.normal, &s.albedo, &s.direct, 0, &full, NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_ssgi_compute(
+               &s.params, &s.position, &s.normal, &s.albedo, &s.direct, 1, &l1, NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_ssgi_compute(
+               &s.params, &s.position, &s.normal, &s.albedo, &s.direct, 2, &l2, NULL) == MRGI_OK);
   MRGI_CHECK(l1.width == 31 && l1.height == 24 && l2.width == 16 && l2.height == 12);
   for (int j = 0; j < l2.height; ++j)
   {
@@ -300,8 +300,8 @@ static void test_energy(void)
     }
   }
   mrgi_image out;
-  MRGI_CHECK(mrgi_ssgi_compute(&s.params, &s.position, &s.normal, &s.albedo, &s.direct, 0, &out,
-               NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_ssgi_compute(
+               &s.params, &s.position, &s.normal, &s.albedo, &s.direct, 0, &out, NULL) == MRGI_OK);
   float largest = 0.0f;
   for (int y = 0; y < 48; ++y)
   {
@@ -351,8 +351,8 @@ static void test_invalid_input(void)
     }
   }
   mrgi_image out;
-  MRGI_CHECK(mrgi_ssgi_compute(&s.params, &s.position, &s.normal, &s.albedo, &s.direct, 0, &out,
-               NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_ssgi_compute(
+               &s.params, &s.position, &s.normal, &s.albedo, &s.direct, 0, &out, NULL) == MRGI_OK);
   int64_t bad = -1;
   /* The margin channel may be FLT_MAX, finite; none is NaN or infinite. */
   MRGI_CHECK(mrgi_image_count_nonfinite(&out, &bad, NULL) == MRGI_OK && bad == 0);
@@ -390,8 +390,8 @@ static void test_invalid_input(void)
   MRGI_CHECK(mrgi_ssgi_compute(&s.params, &s.position, &s.normal, &s.albedo, &small, 0, &out,
                &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "direct") != NULL);
-  MRGI_CHECK(mrgi_ssgi_compute(&s.params, &s.position, NULL, &s.albedo, &s.direct, 0, &out,
-               &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_ssgi_compute(&s.params, &s.position, NULL, &s.albedo, &s.direct, 0, &out, &err) ==
+    MRGI_ERR_INVALID_ARGUMENT);
   mrgi_image_destroy(&small);
   free_scene(&s);
 }

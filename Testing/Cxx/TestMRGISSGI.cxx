@@ -152,7 +152,6 @@ bool ReadTexture(vtkTextureObject* t, std::vector<float>& rgba)
   return glGetError() == GL_NO_ERROR;
 }
 
-
 // The twin's inputs from the last frame: G-buffer, direct light, projection.
 struct TwinInputs
 {
@@ -340,8 +339,8 @@ void TestViewport()
         std::max(worst, std::fabs(c[4 * i + k] - expected) / std::max(1e-3, std::fabs(expected)));
     }
   }
-  std::printf("viewport %d x %d at (%d, %d): max relative |colour - (direct + bounce)| = %.3g\n",
-    w, h, x0, y0, worst);
+  std::printf("viewport %d x %d at (%d, %d): max relative |colour - (direct + bounce)| = %.3g\n", w,
+    h, x0, y0, worst);
   MRGI_TEST_CHECK(worst <= 1e-5);
   const unsigned char* a = static_cast<unsigned char*>(plain->GetScalarPointer());
   const unsigned char* b = static_cast<unsigned char*>(shaded->GetScalarPointer());
@@ -362,8 +361,8 @@ void TestViewport()
       }
     }
   }
-  std::printf("window pixels changed by SSGI: %d inside the viewport, %d outside\n",
-    changedInside, changedOutside);
+  std::printf("window pixels changed by SSGI: %d inside the viewport, %d outside\n", changedInside,
+    changedOutside);
   MRGI_TEST_CHECK(changedOutside == 0);
   MRGI_TEST_CHECK(changedInside > 0);
   s.Window->RemoveRenderer(back);
@@ -387,7 +386,6 @@ void TestExclusive()
 
 int main(int argc, char* argv[])
 {
-  return mrgitest::RunCases(
-    argc, argv, { MRGI_TEST_CASE(TestCornell), MRGI_TEST_CASE(TestViewport),
-                   MRGI_TEST_CASE(TestExclusive) });
+  return mrgitest::RunCases(argc, argv,
+    { MRGI_TEST_CASE(TestCornell), MRGI_TEST_CASE(TestViewport), MRGI_TEST_CASE(TestExclusive) });
 }

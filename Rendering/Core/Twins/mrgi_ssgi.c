@@ -66,7 +66,8 @@ mrgi_status mrgi_ssgi_params_validate(const mrgi_ssgi_params* params, mrgi_error
   }
   if (!mrgi_ssgi_finite(params->kernel, 3 * (size_t)params->sample_count))
   {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "SSGI: the kernel holds a non-finite value");
+    return mrgi_error_set(
+      err, MRGI_ERR_INVALID_ARGUMENT, "SSGI: the kernel holds a non-finite value");
   }
   for (int32_t i = 0; i < params->sample_count; ++i)
   {
@@ -83,8 +84,8 @@ mrgi_status mrgi_ssgi_params_validate(const mrgi_ssgi_params* params, mrgi_error
   }
   if (!(params->bias >= 0.0f) || !isfinite(params->bias))
   {
-    return mrgi_error_set(
-      err, MRGI_ERR_INVALID_ARGUMENT, "SSGI: bias %g must be finite and >= 0", (double)params->bias);
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "SSGI: bias %g must be finite and >= 0",
+      (double)params->bias);
   }
   if (!mrgi_ssgi_finite(params->projection, 16))
   {
@@ -230,15 +231,15 @@ void mrgi_ssgi_receiver(const mrgi_ssgi_params* params, const mrgi_image* positi
   out->margin = m;
 }
 
-static mrgi_status mrgi_ssgi_check_image(
-  const mrgi_image* img, const mrgi_image* like, int32_t channels, const char* name, mrgi_error* err)
+static mrgi_status mrgi_ssgi_check_image(const mrgi_image* img, const mrgi_image* like,
+  int32_t channels, const char* name, mrgi_error* err)
 {
   if (mrgi_image_validate(img, err) != MRGI_OK || img->width != like->width ||
     img->height != like->height || img->channels < channels)
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-      "SSGI: the %s image must be a valid %dx%d image of >= %d channels", name,
-      (int)like->width, (int)like->height, (int)channels);
+      "SSGI: the %s image must be a valid %dx%d image of >= %d channels", name, (int)like->width,
+      (int)like->height, (int)channels);
   }
   return MRGI_OK;
 }
@@ -256,8 +257,7 @@ mrgi_status mrgi_ssgi_compute(const mrgi_ssgi_params* params, const mrgi_image* 
   {
     return status;
   }
-  if (!out || !position || mrgi_image_validate(position, err) != MRGI_OK ||
-    position->channels != 4)
+  if (!out || !position || mrgi_image_validate(position, err) != MRGI_OK || position->channels != 4)
   {
     return mrgi_error_set(
       err, MRGI_ERR_INVALID_ARGUMENT, "SSGI: invalid position image (4 channels) or no output");
@@ -267,9 +267,9 @@ mrgi_status mrgi_ssgi_compute(const mrgi_ssgi_params* params, const mrgi_image* 
     (status = mrgi_ssgi_check_image(albedo, position, 3, "albedo", err)) != MRGI_OK ||
     (status = mrgi_ssgi_check_image(direct, position, 3, "direct", err)) != MRGI_OK)
   {
-    return status != MRGI_OK
-      ? status
-      : mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "SSGI: missing normal, albedo or direct image");
+    return status != MRGI_OK ? status
+                             : mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                                 "SSGI: missing normal, albedo or direct image");
   }
   if (level < 0 || level > MRGI_SSGI_MAX_LEVEL)
   {

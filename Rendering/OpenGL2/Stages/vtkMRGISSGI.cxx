@@ -76,14 +76,14 @@ void vtkMRGISSGI::ReleaseGraphicsResources(vtkWindow* w)
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGISSGI::Compute(const vtkMRGIFrameContext& frame, vtkTextureObject* direct,
-  int samples, double radius, double bias, int level, vtkTextureObject* target)
+bool vtkMRGISSGI::Compute(const vtkMRGIFrameContext& frame, vtkTextureObject* direct, int samples,
+  double radius, double bias, int level, vtkTextureObject* target)
 {
   Internals& in = *this->Internal;
   vtkOpenGLRenderWindow* window = frame.Window;
   const int w = frame.Viewport[2], h = frame.Viewport[3];
-  if (!window || !frame.Renderer || !frame.Position || !frame.Normal || !frame.Albedo ||
-    !direct || !target || w < 1 || h < 1)
+  if (!window || !frame.Renderer || !frame.Position || !frame.Normal || !frame.Albedo || !direct ||
+    !target || w < 1 || h < 1)
   {
     vtkErrorMacro("SSGI needs the frame's window, renderer, G-buffer position, normal and "
                   "albedo, a direct-light texture, a viewport and a target");
@@ -222,8 +222,8 @@ bool vtkMRGISSGI::Apply(
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGISSGI::Render(const vtkMRGIFrameContext& frame, int samples, double radius,
-  double bias, vtkTextureObject* colour)
+bool vtkMRGISSGI::Render(const vtkMRGIFrameContext& frame, int samples, double radius, double bias,
+  vtkTextureObject* colour)
 {
   Internals& in = *this->Internal;
   const int w = frame.Viewport[2], h = frame.Viewport[3];
