@@ -55,7 +55,10 @@
  * section 4), bounded near d = 0. The clamp F_i <= c_i / C keeps a sender
  * from covering more than its sample's share of the projected hemisphere, so
  * sum_i F_i <= 1 and X <= max L(q): the bounce never exceeds rho times the
- * brightest sender (energy sanity).
+ * brightest sender (energy sanity). The estimator is biased: senders far
+ * across the disk get less than their share of the hemisphere, so a
+ * receiver 0.1 R in front of a uniform wall, whose exact X is the wall's
+ * radiance, gets about a third of it (core.TestSSGI, test_energy_crevice).
  *
  * A sample whose pixel holds a surface in front of it (toward the eye) is
  * taken as blocked in that direction; the blocking surface is the sender
