@@ -564,6 +564,21 @@ int main(int argc, char* argv[])
     mrgi->SetSSAOKernelSize(static_cast<int>(o.SSAOSamples));
     mrgi->SetSSAOBlur(o.SSAOBlur);
   }
+  mrgi->SetSSGI(o.SSGI);
+  if (o.SSGI)
+  {
+    // As SSAO's: a default radius that scales with the scene.
+    double bounds[6];
+    renderer->ComputeVisiblePropBounds(bounds);
+    const double dx = bounds[1] - bounds[0], dy = bounds[3] - bounds[2], dz = bounds[5] - bounds[4];
+    const double diagonal = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double radius = o.HasSSGIRadius       ? o.SSGIRadius
+      : std::isfinite(diagonal) && diagonal > 0 ? 0.1 * diagonal
+                                                : o.SSGIRadius;
+    mrgi->SetSSGIRadius(radius);
+    mrgi->SetSSGIBias(radius / 50.0);
+    mrgi->SetSSGISamples(static_cast<int>(o.SSGISamples));
+  }
   mrgi->SetAreaLightVisibility(o.AreaLightVisibility);
   mrgi->SetAreaLightSpecular(o.AreaLightSpecular);
   mrgi->SetAreaLightSpecularResolution(o.AreaLightSpecularResolution);

@@ -37,6 +37,7 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkPointData.h"
 #include "mrgi_ssao.h"
+#include "mrgi_ssgi.h"
 #include "mrgi_error.h"
 #include "mrgi_area_light.h"
 #include "mrgi_box_filter.h"
@@ -817,6 +818,21 @@ const std::vector<OptionSection>& OptionTable()
             "expected a finite number", &Options::HasSSAOBias) },
         { { "--ssao-blur" }, "on|off", "vtkSSAOPass's 3x3 blur of the occlusion (default off)",
           OnOff(&Options::SSAOBlur) },
+      } },
+    { "Screen-space one-bounce light (Documentation/ScreenSpaceEffects-SSGI.md)",
+      {
+        { { "--ssgi" }, "on|off",
+          "screen-space one bounce from the direct light (default off); it\n"
+          "replaces the VPL gather (the two are exclusive)",
+          OnOff(&Options::SSGI) },
+        { { "--ssgi-samples" }, "N", "SSGI hemisphere samples, 1..512 (default 64)",
+          Integer(&Options::SSGISamples, 1, MRGI_SSGI_MAX_SAMPLES) },
+        { { "--ssgi-radius" }, "R",
+          "SSGI sample radius in world units, > 0 (default 10% of the scene's\n"
+          "bounding-box diagonal; depth bias radius / 50)",
+          Number(
+            &Options::SSGIRadius, [](double r) { return r > 0 && r <= MaxFloatValue; },
+            "expected a finite number > 0", &Options::HasSSGIRadius) },
       } },
     { "Exposure and anti-aliasing (the PNG; EXR files keep the unscaled HDR radiance)",
       {

@@ -61,6 +61,10 @@ struct Options
   double SSAOBias = 0.01;
   bool HasSSAOBias = false; // else radius / 50
   bool SSAOBlur = false;
+  bool SSGI = false;
+  long long SSGISamples = 64; // MRGI_SSGI_DEFAULT_SAMPLES
+  double SSGIRadius = 0.5;
+  bool HasSSGIRadius = false; // else 10% of the scene's diagonal
   // NaN / -1: not given, the preset's value stands.
   double DepthThreshold = std::nan("");
   double NormalThreshold = std::nan("");

@@ -12,6 +12,7 @@
 #include "mrgi_multires.h"
 #include "mrgi_specular_stencil.h"
 #include "mrgi_ssao.h"
+#include "mrgi_ssgi.h"
 #include "mrgi_upsample.h"
 #include "mrgi_test.h"
 #include "mrgi_variance_shadow.h"
@@ -56,6 +57,8 @@ static expected_constant expected[] = {
   EXPECT(MRGI_LUMINANCE_B, EXPECT_DOUBLE),
   EXPECT(MRGI_PI, EXPECT_DOUBLE),
   EXPECT(MRGI_SSAO_NOISE_SIZE, EXPECT_INT),
+  EXPECT(MRGI_SSGI_MAX_SAMPLES, EXPECT_INT),
+  EXPECT(MRGI_SSGI_RANGE, EXPECT_FLOAT),
   EXPECT(MRGI_GBUFFER_VALID, EXPECT_FLOAT),
   EXPECT(MRGI_GBUFFER_VALID_THRESHOLD, EXPECT_FLOAT),
   EXPECT(MRGI_GBUFFER_DIRECT, EXPECT_INT),

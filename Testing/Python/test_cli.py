@@ -117,6 +117,12 @@ def main():
                        "--ssao", "on", "--ssao-samples", "8", "--ssao-radius", "20",
                        "--ssao-bias", "0.5", "--ssao-blur", "on")
     check(code == 0, "--ssao with every knob: " + err)
+    # --ssgi adds a bounce to the direct light; the stage is timed.
+    gi_exr = fresh("cli_ssgi_on.exr")
+    code, out, err = run("cornell", "-o", gi_exr, "--size", "48x40", "-q", "--gi", "off",
+                         "--ssgi", "on", "--ssgi-samples", "16", "--ssgi-radius", "80", "--timings")
+    check(code == 0 and "ssgi" in out, "--ssgi on renders and times its stage: " + err)
+    check(open(gi_exr, "rb").read() != open(noao_exr, "rb").read(), "--ssgi on changes the image")
     mr_exr = fresh("cli_multires.exr")
     code, out, err = run("cornell-spot", "-o", mr_exr, "--size", "48x48", "-q", "--gi", "multires",
                          "--depth-threshold", "8", "--normal-threshold", "inf", "--upsample", "mask",
@@ -328,6 +334,12 @@ def bad_input():
         (["cornell", "-o", target, "--ssao-bias", "inf"], "--ssao-bias"),
         (["cornell", "-o", target, "--ssao-bias", "0.1.2"], "--ssao-bias"),
         (["cornell", "-o", target, "--ssao-blur", "maybe"], "--ssao-blur"),
+        (["cornell", "-o", target, "--ssgi", "yes"], "--ssgi"),
+        (["cornell", "-o", target, "--ssgi-samples", "0"], "--ssgi-samples"),
+        (["cornell", "-o", target, "--ssgi-samples", "513"], "--ssgi-samples"),
+        (["cornell", "-o", target, "--ssgi-radius", "0"], "--ssgi-radius"),
+        (["cornell", "-o", target, "--ssgi-radius", "nan"], "--ssgi-radius"),
+        (["cornell", "-o", target, "--ssgi-radius", "1e39"], "--ssgi-radius"),
         (["cornell", "-o", "/nonexistent-dir/out.png", "--size", "8x8"], "nonexistent-dir"),
         # Every value outside its documented range is refused, naming the option.
         (["cornell", "-o", target, "--voxel-size", "16384"], "[1, 4096]"),

@@ -9,6 +9,7 @@
 #include "mrgi_shadow_composite.h"
 #include "mrgi_specular_stencil.h"
 #include "mrgi_ssao.h"
+#include "mrgi_ssgi.h"
 #include "mrgi_upsample.h"
 #include "mrgi_variance_shadow.h"
 #include "mrgi_visibility_pyramid.h"
@@ -53,6 +54,8 @@ static const mrgi_glsl_constant mrgi_glsl_constants[] = {
   MRGI_GLSL_CONSTANT(MRGI_LUMINANCE_B, MRGI_GLSL_DOUBLE),
   MRGI_GLSL_CONSTANT(MRGI_PI, MRGI_GLSL_DOUBLE),
   MRGI_GLSL_CONSTANT(MRGI_SSAO_NOISE_SIZE, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_SSGI_MAX_SAMPLES, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_SSGI_RANGE, MRGI_GLSL_FLOAT),
   MRGI_GLSL_CONSTANT(MRGI_GBUFFER_VALID, MRGI_GLSL_FLOAT),
   MRGI_GLSL_CONSTANT(MRGI_GBUFFER_VALID_THRESHOLD, MRGI_GLSL_FLOAT),
   MRGI_GLSL_CONSTANT(MRGI_GBUFFER_DIRECT, MRGI_GLSL_INT),

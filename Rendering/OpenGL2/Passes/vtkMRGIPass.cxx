@@ -20,6 +20,7 @@
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIRenderSteps.h"
 #include "vtkMRGISSAO.h"
+#include "vtkMRGISSGI.h"
 #include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIShadowComposite.h"
@@ -106,6 +107,7 @@ vtkMRGIPass::vtkMRGIPass()
   this->Gather = vtkMRGIGather::New();
   this->Upsample = vtkMRGIUpsample::New();
   this->SSAOStage = vtkMRGISSAO::New();
+  this->SSGIStage = vtkMRGISSGI::New();
   this->AreaLightStage = vtkMRGIAreaLightStage::New();
   this->ShadowComposite = vtkMRGIShadowComposite::New();
   this->DirectShadowStage = vtkMRGIDirectShadows::New();
@@ -131,6 +133,7 @@ vtkMRGIPass::~vtkMRGIPass()
   this->Gather->Delete();
   this->Upsample->Delete();
   this->SSAOStage->Delete();
+  this->SSGIStage->Delete();
   this->AreaLightStage->Delete();
   this->ShadowComposite->Delete();
   this->DirectShadowStage->Delete();
@@ -147,6 +150,7 @@ void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
   this->Gather->ReleaseGraphicsResources(w);
   this->Upsample->ReleaseGraphicsResources(w);
   this->SSAOStage->ReleaseGraphicsResources(w);
+  this->SSGIStage->ReleaseGraphicsResources(w);
   this->AreaLightStage->ReleaseGraphicsResources(w);
   this->ShadowComposite->ReleaseGraphicsResources(w);
   this->DirectShadowStage->ReleaseGraphicsResources(w);
@@ -981,14 +985,17 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   // when indirect light is off or cannot contribute.
   Internals& in = *this->Internal;
   const bool areaLights = this->AreaLightStage->GetNumberOfLights() > 0;
-  const bool indirect = this->IndirectMode != IndirectOff && this->GetNumberOfVPLs() > 0;
+  // SSGI and the VPL gather are exclusive (no bounce counted twice).
+  const bool indirect =
+    !this->SSGI && this->IndirectMode != IndirectOff && this->GetNumberOfVPLs() > 0;
   int slotLights[MRGI_SHADOW_SLOTS];
   int unshadowedSceneLights = 0;
   const int shadowedLights = this->DirectShadows != DirectShadowsOff
     ? ShaderLights(renderer, slotLights, unshadowedSceneLights)
     : 0;
   const bool shadows = shadowedLights > 0;
-  const bool capture = indirect || areaLights || this->OuterGBuffer || shadows || this->SSAO;
+  const bool capture = indirect || areaLights || this->OuterGBuffer || shadows || this->SSAO ||
+    this->SSGI;
   const bool split = vtkRenderStepsPass::SafeDownCast(this->DelegatePass) != nullptr;
   vtkRenderTimerLog* timer = vtkMRGIShaderUtilities::StageTimer(renderer, this->StageTimingEnabled);
   this->IndirectComputed = false;
@@ -1055,6 +1062,23 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
       vtkErrorMacro("SSAO could not be computed (kernel size "
         << this->SSAOKernelSize << ", radius " << this->SSAORadius << ", bias " << this->SSAOBias
         << "): this frame has no ambient occlusion");
+    }
+  }
+  // SSGI sends the direct light as it is now (shadowed, occluded).
+  if (this->SSGI && framed)
+  {
+    ScopedStage stage(timer, "ssgi");
+    if (this->SSGIStage->Render(
+          frame, this->SSGISamples, this->SSGIRadius, this->SSGIBias, in.GBuffer.Color))
+    {
+      this->SSGIFailureReported = false;
+    }
+    else if (!this->SSGIFailureReported)
+    {
+      this->SSGIFailureReported = true;
+      vtkErrorMacro("SSGI could not be computed (samples "
+        << this->SSGISamples << ", radius " << this->SSGIRadius << ", bias " << this->SSGIBias
+        << "): this frame has no screen-space bounce");
     }
   }
   if (indirect)
@@ -1377,6 +1401,8 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SSAO: " << (this->SSAO ? "on" : "off") << " (kernel " << this->SSAOKernelSize
      << ", radius " << this->SSAORadius << ", bias " << this->SSAOBias << ", blur "
      << (this->SSAOBlur ? "on" : "off") << ")\n";
+  os << indent << "SSGI: " << (this->SSGI ? "on" : "off") << " (samples " << this->SSGISamples
+     << ", radius " << this->SSGIRadius << ", bias " << this->SSGIBias << ")\n";
   os << indent << "IndirectStrength: " << this->IndirectStrength << "\n";
   os << indent << "NumberOfVPLs: " << this->VPLSelection->GetNumberOfVPLs() << "\n";
   os << indent << "VPLSelectionMode: " << this->VPLSelection->GetMode() << "\n";

@@ -76,6 +76,7 @@ class vtkMRGIGather;
 class vtkMRGIMultiresolution;
 class vtkMRGIUpsample;
 class vtkMRGISSAO;
+class vtkMRGISSGI;
 class vtkMRGIVarianceShadowQuery;
 class vtkMRGIVisibilityPyramid;
 class vtkMRGIVoxelization;
@@ -268,6 +269,29 @@ public:
   vtkGetMacro(SSAOBlur, bool);
   vtkBooleanMacro(SSAOBlur, bool);
   vtkMRGISSAO* GetSSAOStage() { return this->SSAOStage; }
+  ///@}
+
+  ///@{
+  /**
+   * Screen-space one-bounce light (SSGI, Ritschel et al. 2009 as BMR
+   * evaluates it) from the direct light after shadows and SSAO, added to
+   * the colour. Exclusive with the VPL gather: while SSGI is on, the frame
+   * gathers no VPL light (IndirectMode is kept, the RSMs still cast direct
+   * shadows), so no bounce is counted twice (Documentation/
+   * ScreenSpaceEffects-SSGI.md). Off by default; Samples 1..512 (64),
+   * Radius > 0 (0.5) and Bias >= 0 (0.01) in world units. vtkMRGISSGI is
+   * the stage.
+   */
+  vtkSetMacro(SSGI, bool);
+  vtkGetMacro(SSGI, bool);
+  vtkBooleanMacro(SSGI, bool);
+  vtkSetClampMacro(SSGISamples, int, 1, 512);
+  vtkGetMacro(SSGISamples, int);
+  vtkSetMacro(SSGIRadius, double);
+  vtkGetMacro(SSGIRadius, double);
+  vtkSetMacro(SSGIBias, double);
+  vtkGetMacro(SSGIBias, double);
+  vtkMRGISSGI* GetSSGIStage() { return this->SSGIStage; }
   ///@}
 
   ///@{
@@ -609,6 +633,11 @@ protected:
   double SSAOBias = 0.01;  // MRGI_SSAO_DEFAULT_BIAS
   bool SSAOBlur = false;
   bool SSAOFailureReported = false;
+  bool SSGI = false;
+  int SSGISamples = 64;   // MRGI_SSGI_DEFAULT_SAMPLES
+  double SSGIRadius = 0.5; // MRGI_SSGI_DEFAULT_RADIUS
+  double SSGIBias = 0.01;  // MRGI_SSGI_DEFAULT_BIAS
+  bool SSGIFailureReported = false;
   bool StageTimingEnabled = false;
   int BufferSize[2] = { 0, 0 };
   int Viewport[4] = { 0, 0, 0, 0 };
@@ -638,6 +667,7 @@ protected:
   vtkMRGIGather* Gather = nullptr;
   vtkMRGIUpsample* Upsample = nullptr;
   vtkMRGISSAO* SSAOStage = nullptr;
+  vtkMRGISSGI* SSGIStage = nullptr;
   vtkMRGIAreaLightStage* AreaLightStage = nullptr;
   vtkMRGIShadowComposite* ShadowComposite = nullptr;
   vtkMRGIDirectShadows* DirectShadowStage = nullptr;

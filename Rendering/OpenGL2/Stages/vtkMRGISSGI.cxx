@@ -1,0 +1,282 @@
+#include "vtk_glew.h"
+
+#include "vtkMRGISSGI.h"
+
+#include "vtkCamera.h"
+#include "vtkFloatArray.h"
+#include "vtkMRGIFrameContext.h"
+#include "vtkMRGIFullScreenStep.h"
+#include "vtkMRGIProgramCache.h"
+#include "vtkMRGIShaderUtilities.h"
+#include "vtkMRGIStageResources.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+
+#include "vtkMRGISSGIFS.h"
+
+#include "mrgi_ssgi.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkMRGISSGI);
+
+struct vtkMRGISSGI::Internals
+{
+  vtkTextureObject* Result = nullptr; // full-resolution result of Render(), RGBA32F
+  int Size[2] = { 0, 0 };
+  std::vector<float> Kernel; // the kernel of Samples samples
+  int Samples = 0;
+  vtkMRGIStageResources GL;
+
+  // 0: compute (one program per sample count: the kernel is a uniform
+  // array), 1: apply.
+  vtkOpenGLQuadHelper* Ready(vtkOpenGLRenderWindow* window, int stage, int samples)
+  {
+    std::string defines = "#define MRGI_SSGI_STAGE " + std::to_string(stage) + "\n";
+    if (stage == 0)
+    {
+      defines += "#define MRGI_SSGI_SAMPLES " + std::to_string(samples) + "\n";
+    }
+    return this->GL.Programs.Ready(
+      window, stage == 0 ? "ssgi" : "ssgi.apply", defines, [] { return vtkMRGISSGIFS; });
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkMRGISSGI::vtkMRGISSGI()
+  : Internal(new Internals)
+{
+}
+
+//------------------------------------------------------------------------------
+vtkMRGISSGI::~vtkMRGISSGI()
+{
+  if (this->Internal->GL.FrameBuffer || this->Internal->Result)
+  {
+    vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
+  }
+  vtkMRGIShaderUtilities::ReleaseTexture(this->Internal->Result, nullptr);
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGISSGI::ReleaseGraphicsResources(vtkWindow* w)
+{
+  vtkMRGIShaderUtilities::ReleaseTexture(this->Internal->Result, w);
+  this->Internal->Size[0] = this->Internal->Size[1] = 0;
+  this->Internal->GL.Release(w);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISSGI::Compute(const vtkMRGIFrameContext& frame, vtkTextureObject* direct, int samples,
+  double radius, double bias, int level, vtkTextureObject* target)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  const int w = frame.Viewport[2], h = frame.Viewport[3];
+  if (!window || !frame.Renderer || !frame.Position || !frame.Normal || !frame.Albedo || !direct ||
+    !target || w < 1 || h < 1)
+  {
+    vtkErrorMacro("SSGI needs the frame's window, renderer, G-buffer position, normal and "
+                  "albedo, a direct-light texture, a viewport and a target");
+    return false;
+  }
+  if (samples < 1 || samples > MRGI_SSGI_MAX_SAMPLES)
+  {
+    vtkErrorMacro("SSGI samples " << samples << " is outside 1.." << MRGI_SSGI_MAX_SAMPLES);
+    return false;
+  }
+  if (!(radius > 0.0) || !std::isfinite(static_cast<float>(radius)) || !(bias >= 0.0) ||
+    !std::isfinite(static_cast<float>(bias)))
+  {
+    vtkErrorMacro(
+      "SSGI radius " << radius << " must be finite and > 0, bias " << bias << " finite and >= 0");
+    return false;
+  }
+  if (level < 0 || level > MRGI_SSGI_MAX_LEVEL)
+  {
+    vtkErrorMacro("SSGI level " << level << " is outside 0.." << MRGI_SSGI_MAX_LEVEL);
+    return false;
+  }
+  const int side = 1 << level;
+  const int lw = (w + side - 1) / side, lh = (h + side - 1) / side;
+  if (target->GetWidth() < static_cast<unsigned int>(lw) ||
+    target->GetHeight() < static_cast<unsigned int>(lh))
+  {
+    vtkErrorMacro("SSGI target " << target->GetWidth() << " x " << target->GetHeight()
+                                 << " is smaller than level " << level << " (" << lw << " x " << lh
+                                 << ")");
+    return false;
+  }
+  if (in.Samples != samples)
+  {
+    in.Kernel.resize(3 * static_cast<size_t>(samples));
+    mrgi_error err;
+    if (mrgi_ssgi_kernel(samples, in.Kernel.data(), &err) != MRGI_OK)
+    {
+      vtkErrorMacro(<< err.message);
+      in.Samples = 0;
+      return false;
+    }
+    in.Samples = samples;
+  }
+  // The camera's projection at the tile's aspect ratio, depth in [-1, 1]
+  // (as vtkMRGISSAO); column-major for GLSL.
+  vtkMatrix4x4* projection = frame.Renderer->GetActiveCamera()->GetProjectionTransformMatrix(
+    frame.Renderer->GetTiledAspectRatio(), -1, 1);
+  float matrix[16];
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      matrix[c * 4 + r] = static_cast<float>(projection->GetElement(r, c));
+    }
+  }
+  in.GL.Prepare(window);
+  vtkOpenGLQuadHelper* quad = in.Ready(window, 0, samples);
+  if (!quad)
+  {
+    vtkErrorMacro("could not build the SSGI shader (" << samples << " samples)");
+    return false;
+  }
+  vtkShaderProgram* program = quad->Program;
+  {
+    vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssgi");
+    vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
+    steps.Target(target, nullptr, 0, 0, lw, lh);
+    vtkMRGIFullScreenStep::BindInputs(
+      program, { frame.Position, frame.Normal, frame.Albedo, direct });
+    const int origin[2] = { frame.Viewport[0], frame.Viewport[1] };
+    const int size[2] = { w, h };
+    program->SetUniform2i("mrgiOrigin", origin);
+    program->SetUniform2i("mrgiSize", size);
+    program->SetUniformi("mrgiLevel", level);
+    program->SetUniformMatrix4x4("mrgiProjection", matrix);
+    program->SetUniformf("mrgiRadius", static_cast<float>(radius));
+    program->SetUniformf("mrgiBias", static_cast<float>(bias));
+    program->SetUniform3fv("mrgiKernel", samples, in.Kernel.data());
+    quad->Render();
+    vtkMRGIFullScreenStep::UnbindInputs({ frame.Position, frame.Normal, frame.Albedo, direct });
+  }
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("OpenGL error " << error << " in the SSGI stage");
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISSGI::Apply(
+  const vtkMRGIFrameContext& frame, vtkTextureObject* ssgi, vtkTextureObject* colour)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  if (!window || !ssgi || !colour || frame.Viewport[2] < 1 || frame.Viewport[3] < 1)
+  {
+    vtkErrorMacro("SSGI Apply needs the frame's window and viewport, an SSGI texture and a colour");
+    return false;
+  }
+  in.GL.Prepare(window);
+  vtkOpenGLQuadHelper* quad = in.Ready(window, 1, 0);
+  if (!quad)
+  {
+    vtkErrorMacro("could not build the SSGI apply shader");
+    return false;
+  }
+  vtkShaderProgram* program = quad->Program;
+  {
+    vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssgi.apply");
+    vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
+    steps.Target(
+      colour, nullptr, frame.Viewport[0], frame.Viewport[1], frame.Viewport[2], frame.Viewport[3]);
+    // colour.rgb + bounce in place (additive blending), alpha kept.
+    vtkOpenGLState* ostate = steps.GetState();
+    vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
+    ostate->vtkglEnable(GL_BLEND);
+    ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
+    vtkMRGIFullScreenStep::BindInputs(program, { ssgi });
+    const int origin[2] = { frame.Viewport[0], frame.Viewport[1] };
+    const int size[2] = { frame.Viewport[2], frame.Viewport[3] };
+    program->SetUniform2i("mrgiOrigin", origin);
+    program->SetUniform2i("mrgiSize", size);
+    quad->Render();
+    vtkMRGIFullScreenStep::UnbindInputs({ ssgi });
+  }
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("OpenGL error " << error << " in the SSGI apply step");
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISSGI::Render(const vtkMRGIFrameContext& frame, int samples, double radius, double bias,
+  vtkTextureObject* colour)
+{
+  Internals& in = *this->Internal;
+  const int w = frame.Viewport[2], h = frame.Viewport[3];
+  if (!frame.Window || !colour || w < 1 || h < 1)
+  {
+    vtkErrorMacro("SSGI needs the frame's window, a colour texture and a viewport");
+    return false;
+  }
+  if (!in.Result || in.Size[0] != w || in.Size[1] != h)
+  {
+    vtkMRGIShaderUtilities::ReleaseTexture(in.Result, frame.Window);
+    in.Result = vtkMRGIShaderUtilities::NewTexture(frame.Window, GL_RGBA32F, w, h);
+    in.Size[0] = in.Result ? w : 0;
+    in.Size[1] = in.Result ? h : 0;
+    if (!in.Result)
+    {
+      vtkErrorMacro("could not allocate the SSGI target (" << w << " x " << h << ")");
+      return false;
+    }
+  }
+  return this->Compute(frame, colour, samples, radius, bias, 0, in.Result) &&
+    this->Apply(frame, in.Result, colour);
+}
+
+//------------------------------------------------------------------------------
+vtkTextureObject* vtkMRGISSGI::GetTexture()
+{
+  return this->Internal->Result;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISSGI::ReadResult(vtkRenderWindow* window, vtkFloatArray* result)
+{
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
+  Internals& in = *this->Internal;
+  std::vector<float> rgba;
+  if (!renWin || !result || !in.Result ||
+    !vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.Result, rgba))
+  {
+    vtkErrorMacro("ReadResult: no SSGI rendered yet");
+    return false;
+  }
+  result->SetNumberOfComponents(4);
+  result->SetNumberOfTuples(static_cast<vtkIdType>(rgba.size() / 4));
+  std::copy(rgba.begin(), rgba.end(), result->GetPointer(0));
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGISSGI::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Samples (cached): " << this->Internal->Samples << "\n";
+  os << indent << "Result size: " << this->Internal->Size[0] << " x " << this->Internal->Size[1]
+     << "\n";
+}
