@@ -639,7 +639,7 @@ void Lights()
   auto on = s.Render(vtkMRGIPass::DirectShadowsSoft);
   on = s.Render(vtkMRGIPass::DirectShadowsSoft);
   MRGI_TEST_CHECK(warnings->Count == 1);
-  MRGI_TEST_CHECK(warnings->Last.find("first 2 only") != std::string::npos);
+  MRGI_TEST_CHECK(warnings->Last.find("first 2 switched-on lights only") != std::string::npos);
   vtkNew<vtkImageData> factors;
   MRGI_TEST_CHECK(s.Pass->GetShadowFactorBuffer(s.Window, factors));
   const float* f =
