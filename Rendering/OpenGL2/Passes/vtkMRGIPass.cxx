@@ -1033,8 +1033,12 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   if (this->SSAO && framed)
   {
     ScopedStage stage(timer, "ssao");
-    if (this->SSAOStage->Render(frame, this->SSAOKernelSize, this->SSAORadius, this->SSAOBias,
-          this->SSAOBlur, in.GBuffer.Color))
+    const bool multires = this->SSAOResolution == ResolutionMultiresolution;
+    if (multires
+        ? this->SSAOStage->RenderMultiresolution(frame, this->SSAOKernelSize, this->SSAORadius,
+            this->SSAOBias, this->SSAOBlur, in.GBuffer.Color)
+        : this->SSAOStage->Render(frame, this->SSAOKernelSize, this->SSAORadius, this->SSAOBias,
+            this->SSAOBlur, in.GBuffer.Color))
     {
       this->SSAOFailureReported = false;
     }
@@ -1365,7 +1369,9 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
      << ")\n";
   os << indent << "SSAO: " << (this->SSAO ? "on" : "off") << " (kernel " << this->SSAOKernelSize
      << ", radius " << this->SSAORadius << ", bias " << this->SSAOBias << ", blur "
-     << (this->SSAOBlur ? "on" : "off") << ")\n";
+     << (this->SSAOBlur ? "on" : "off") << ", "
+     << (this->SSAOResolution == ResolutionMultiresolution ? "multiresolution" : "full resolution")
+     << ")\n";
   os << indent << "IndirectStrength: " << this->IndirectStrength << "\n";
   os << indent << "NumberOfVPLs: " << this->VPLSelection->GetNumberOfVPLs() << "\n";
   os << indent << "VPLSelectionMode: " << this->VPLSelection->GetMode() << "\n";

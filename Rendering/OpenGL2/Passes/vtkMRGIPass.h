@@ -270,6 +270,24 @@ public:
   vtkMRGISSAO* GetSSAOStage() { return this->SSAOStage; }
   ///@}
 
+  /** Where a screen-space effect is evaluated. */
+  enum ScreenSpaceResolutions
+  {
+    ResolutionFull = 0,           ///< every pixel at full resolution
+    ResolutionMultiresolution = 1 ///< BMR: four levels under edge stencils, blended
+  };
+
+  ///@{
+  /**
+   * SSAO's resolution: ResolutionFull (default: on llvmpipe the masks and
+   * the blend cost more than the AO they save, see
+   * Documentation/ScreenSpaceEffects-SSAO.md) or ResolutionMultiresolution
+   * (vtkMRGISSAO::RenderMultiresolution(), BMR's SSAO preset).
+   */
+  vtkSetClampMacro(SSAOResolution, int, ResolutionFull, ResolutionMultiresolution);
+  vtkGetMacro(SSAOResolution, int);
+  ///@}
+
   ///@{
   /**
    * Area lights (vtkMRGIAreaLight: textured rectangles, direct light;
@@ -608,6 +626,7 @@ protected:
   double SSAORadius = 0.5; // MRGI_SSAO_DEFAULT_RADIUS
   double SSAOBias = 0.01;  // MRGI_SSAO_DEFAULT_BIAS
   bool SSAOBlur = false;
+  int SSAOResolution = ResolutionFull;
   bool SSAOFailureReported = false;
   bool StageTimingEnabled = false;
   int BufferSize[2] = { 0, 0 };
