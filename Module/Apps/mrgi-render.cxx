@@ -563,6 +563,8 @@ int main(int argc, char* argv[])
     mrgi->SetSSAOBias(o.HasSSAOBias ? o.SSAOBias : radius / 50.0);
     mrgi->SetSSAOKernelSize(static_cast<int>(o.SSAOSamples));
     mrgi->SetSSAOBlur(o.SSAOBlur);
+    mrgi->SetSSAOResolution(
+      o.SSAOMultires ? vtkMRGIPass::ResolutionMultiresolution : vtkMRGIPass::ResolutionFull);
   }
   mrgi->SetAreaLightVisibility(o.AreaLightVisibility);
   mrgi->SetAreaLightSpecular(o.AreaLightSpecular);

@@ -817,6 +817,10 @@ const std::vector<OptionSection>& OptionTable()
             "expected a finite number", &Options::HasSSAOBias) },
         { { "--ssao-blur" }, "on|off", "vtkSSAOPass's 3x3 blur of the occlusion (default off)",
           OnOff(&Options::SSAOBlur) },
+        { { "--ssao-resolution" }, "full|multires",
+          "every pixel (default) or BMR's four levels under edge stencils,\n"
+          "blended (Documentation/ScreenSpaceEffects-SSAO.md)",
+          Choice<bool>(&Options::SSAOMultires, { { "full", false }, { "multires", true } }) },
       } },
     { "Exposure and anti-aliasing (the PNG; EXR files keep the unscaled HDR radiance)",
       {

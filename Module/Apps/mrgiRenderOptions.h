@@ -61,6 +61,7 @@ struct Options
   double SSAOBias = 0.01;
   bool HasSSAOBias = false; // else radius / 50
   bool SSAOBlur = false;
+  bool SSAOMultires = false; // --ssao-resolution multires
   // NaN / -1: not given, the preset's value stands.
   double DepthThreshold = std::nan("");
   double NormalThreshold = std::nan("");

@@ -117,6 +117,11 @@ def main():
                        "--ssao", "on", "--ssao-samples", "8", "--ssao-radius", "20",
                        "--ssao-bias", "0.5", "--ssao-blur", "on")
     check(code == 0, "--ssao with every knob: " + err)
+    # --ssao-resolution multires: BMR's masks and blend run and are timed.
+    code, out, err = run("cornell", "-o", fresh("cli_ssao_multires.png"), "--size", "40x48", "-q",
+                         "--ssao", "on", "--ssao-resolution", "multires", "--timings")
+    check(code == 0 and "bmr.mask" in out and "bmr.blend" in out,
+          "--ssao-resolution multires renders and times the masks and blend: " + err)
     mr_exr = fresh("cli_multires.exr")
     code, out, err = run("cornell-spot", "-o", mr_exr, "--size", "48x48", "-q", "--gi", "multires",
                          "--depth-threshold", "8", "--normal-threshold", "inf", "--upsample", "mask",
@@ -327,6 +332,8 @@ def bad_input():
         (["cornell", "-o", target, "--ssao-radius", "1e39"], "--ssao-radius"),
         (["cornell", "-o", target, "--ssao-bias", "inf"], "--ssao-bias"),
         (["cornell", "-o", target, "--ssao-bias", "0.1.2"], "--ssao-bias"),
+        (["cornell", "-o", target, "--ssao-resolution", "half"], "--ssao-resolution"),
+        (["cornell", "-o", target, "--ssao-resolution", ""], "--ssao-resolution"),
         (["cornell", "-o", target, "--ssao-blur", "maybe"], "--ssao-blur"),
         (["cornell", "-o", "/nonexistent-dir/out.png", "--size", "8x8"], "nonexistent-dir"),
         # Every value outside its documented range is refused, naming the option.
