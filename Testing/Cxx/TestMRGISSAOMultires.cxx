@@ -32,6 +32,7 @@ const double Bias = 0.6;
 
 struct Compared
 {
+  std::vector<float> Difference; // multiresolution - full AO per pixel, 0 at background
   double RMS = 0.0;
   double BlurredRMS = 0.0; // both AOs through vtkSSAOPass's 3x3 Gaussian (Blur on)
   double MaxError = 0.0;
@@ -95,6 +96,7 @@ Compared Compare(bmrtest::Scene& s, vtkMRGISSAO* ssao, int kernelSize)
       ++c.Bad;
       continue;
     }
+    c.Difference.push_back(valid ? static_cast<float>(ao - a[4 * p]) : 0.0f);
     if (valid)
     {
       const double d = ao - static_cast<double>(a[4 * p]);
@@ -106,6 +108,7 @@ Compared Compare(bmrtest::Scene& s, vtkMRGISSAO* ssao, int kernelSize)
     }
   }
   MRGI_TEST_CHECK(n > 0);
+  c.Difference.resize(pixels);
   c.RMS = std::sqrt(sum / static_cast<double>(n));
   c.BlurredRMS = std::sqrt(blurredSum / static_cast<double>(n));
   return c;
@@ -277,9 +280,54 @@ void Benchmark()
       }
       const Compared c = Compare(s, ssao, kernel);
       std::printf("BENCH ssao %d %d kernel %d full_ms %.2f multires_ms %.2f speedup %.3f "
-                  "rms %.5f\n",
-        s.W, s.H, kernel, Median(a), Median(b), Median(a) / Median(b), c.RMS);
+                  "rms %.5f blurred_rms %.5f\n",
+        s.W, s.H, kernel, Median(a), Median(b), Median(a) / Median(b), c.RMS, c.BlurredRMS);
+      std::fflush(stdout);
+      // The difference image for the page (float32, rows bottom-up).
+      const char* out = std::getenv("MRGI_BMR_OUT");
+      if (out && kernel == kernelSizes.back())
+      {
+        const std::string path = std::string(out) + "/ssao_diff_" + std::to_string(s.W) + "x" +
+          std::to_string(s.H) + ".f32";
+        FILE* f = std::fopen(path.c_str(), "wb");
+        MRGI_TEST_CHECK(f);
+        MRGI_TEST_CHECK(std::fwrite(c.Difference.data(), sizeof(float), c.Difference.size(), f) ==
+          c.Difference.size());
+        std::fclose(f);
+      }
     }
+    // Where the levels are: the finest level of each valid pixel.
+    bmrtest::GPUMasks g;
+    bmrtest::ReadMasks(s.Window, ssao->GetBMRLevels(), g);
+    mrgi_bmr_stats stats;
+    mrgi_error err;
+    MRGI_TEST_CHECK(mrgi_bmr_stats_compute(&g.Masks, &stats, &err) == MRGI_OK);
+    const double v = static_cast<double>(std::max<int64_t>(stats.valid_pixels, 1));
+    std::printf("BENCH levels ssao %d %d finest %.4f %.4f %.4f %.4f work %.4f\n", s.W, s.H,
+      stats.finest_pixels[0] / v, stats.finest_pixels[1] / v, stats.finest_pixels[2] / v,
+      stats.finest_pixels[3] / v, stats.work_fraction);
+    // Mask and blend alone (the effect-independent overhead), median of the repeats.
+    std::vector<double> maskMs, blendMs;
+    vtkMRGIFrameContext atOrigin = s.Frame;
+    for (int r = 0; r <= repeats; ++r)
+    {
+      s.GL->WaitForCompletion();
+      auto t0 = std::chrono::steady_clock::now();
+      MRGI_TEST_CHECK(ssao->GetBMRMask()->Build(s.Frame, ssao->GetBMRLevels(), nullptr));
+      s.GL->WaitForCompletion();
+      auto t1 = std::chrono::steady_clock::now();
+      MRGI_TEST_CHECK(ssao->GetBMRBlend()->Blend(atOrigin, ssao->GetBMRLevels(), multi));
+      s.GL->WaitForCompletion();
+      auto t2 = std::chrono::steady_clock::now();
+      if (r > 0)
+      {
+        maskMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+        blendMs.push_back(std::chrono::duration<double, std::milli>(t2 - t1).count());
+      }
+    }
+    std::printf("BENCH overhead ssao %d %d mask_ms %.2f blend_ms %.2f\n", s.W, s.H,
+      Median(maskMs), Median(blendMs));
+    std::fflush(stdout);
     ssao->ReleaseGraphicsResources(s.Window);
   }
 }
