@@ -704,7 +704,11 @@ bool vtkMRGIPass::RenderDirectShadows(
     params.light_radius = std::isfinite(diagonal) ? 0.5 * diagonal * MRGI_SHADOW_AUTO_LIGHT_RADIUS : 0.0;
   }
   bool applied =
-    this->DirectShadowStage->Compute(frame, this->RSMPass, slotLights, params, g.ShadowFactors);
+    (this->ShadowResolution == ResolutionMultiresolution
+        ? this->DirectShadowStage->ComputeMultiresolution(
+            frame, this->RSMPass, slotLights, params, g.ShadowFactors)
+        : this->DirectShadowStage->Compute(
+            frame, this->RSMPass, slotLights, params, g.ShadowFactors));
   applied = applied &&
     this->ShadowComposite->Apply(frame, g.Color, g.LightTerms, g.ShadowFactors, g.Shadowed);
   if (applied)
@@ -1366,6 +1370,9 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
            : this->DirectShadows == DirectShadowsHard ? "Hard"
                                                       : "Soft")
      << " (kernel " << this->SoftShadowKernelSize << ", light radius " << this->ShadowLightRadius
+     << ", "
+     << (this->ShadowResolution == ResolutionMultiresolution ? "multiresolution"
+                                                             : "full resolution")
      << ")\n";
   os << indent << "SSAO: " << (this->SSAO ? "on" : "off") << " (kernel " << this->SSAOKernelSize
      << ", radius " << this->SSAORadius << ", bias " << this->SSAOBias << ", blur "

@@ -279,6 +279,16 @@ public:
 
   ///@{
   /**
+   * The direct shadows' resolution: ResolutionFull (default) or
+   * ResolutionMultiresolution (vtkMRGIDirectShadows::ComputeMultiresolution(),
+   * BMR's SSM preset; Documentation/ScreenSpaceEffects-Benchmark.md).
+   */
+  vtkSetClampMacro(ShadowResolution, int, ResolutionFull, ResolutionMultiresolution);
+  vtkGetMacro(ShadowResolution, int);
+  ///@}
+
+  ///@{
+  /**
    * SSAO's resolution: ResolutionFull (default: on llvmpipe the masks and
    * the blend cost more than the AO they save, see
    * Documentation/ScreenSpaceEffects-SSAO.md) or ResolutionMultiresolution
@@ -627,6 +637,7 @@ protected:
   double SSAOBias = 0.01;  // MRGI_SSAO_DEFAULT_BIAS
   bool SSAOBlur = false;
   int SSAOResolution = ResolutionFull;
+  int ShadowResolution = ResolutionFull;
   bool SSAOFailureReported = false;
   bool StageTimingEnabled = false;
   int BufferSize[2] = { 0, 0 };
