@@ -739,6 +739,10 @@ const std::vector<OptionSection>& OptionTable()
           Number(
             &Options::ShadowLightRadius, [](double r) { return r > 0 && r <= MaxFloatValue; },
             "expected a positive finite number") },
+        { { "--shadow-resolution" }, "full|multires",
+          "shadow factors at every pixel (default) or BMR's four levels under\n"
+          "edge stencils, blended (Documentation/ScreenSpaceEffects-Benchmark.md)",
+          Choice<bool>(&Options::ShadowMultires, { { "full", false }, { "multires", true } }) },
       } },
     { "Indirect light (one bounce; Documentation/IndirectLight.md)",
       {

@@ -84,6 +84,7 @@ struct Options
   int DirectShadows = -1; // not given: soft with indirect light, off without
   long long ShadowKernel = MRGI_DIRECT_SHADOW_DEFAULT_SIDE;
   double ShadowLightRadius = 0.0; // 0: automatic
+  bool ShadowMultires = false;    // --shadow-resolution multires
   long long VPLs = 256;
   bool ImportanceVPLs = false;
   long long RSMSize = 256;
