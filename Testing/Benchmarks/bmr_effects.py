@@ -13,8 +13,10 @@ and prints a Markdown table for Documentation/ScreenSpaceEffects-Benchmark.md.
 
     /usr/bin/python3 Testing/Benchmarks/bmr_effects.py --build build --out build/bmr-bench
 
-Soft shadows at multiple resolutions are not measured: that path does not
-exist yet (see the page).
+Soft shadows: the Benchmark case of cxx.TestMRGIShadowsMultires
+(`cornell-spot`, PCSS at 36, 100 and 196 taps): whole frames through
+vtkMRGIPass with ShadowResolution full and multires, A B A B, medians; the
+absolute RMS of the factors (slot 0). --effects picks the effects.
 """
 import argparse
 import csv
@@ -50,7 +52,9 @@ def main():
     parser.add_argument("--kernels", default="16,32,64,128",
                         help="SSAO sample counts; the last one's difference image is written")
     parser.add_argument("--repeats", type=int, default=3, help="timed A B pairs per row")
+    parser.add_argument("--effects", default="ssao,shadows")
     args = parser.parse_args()
+    effects = args.effects.split(",")
     os.makedirs(args.out, exist_ok=True)
     exe = os.path.join(args.build, "Testing", "Cxx", "TestMRGISSAOMultires")
     if not os.access(exe, os.X_OK):
@@ -59,12 +63,26 @@ def main():
     env = dict(os.environ, MRGI_BMR_BENCHMARK="1", MRGI_BMR_KERNELS=args.kernels,
                MRGI_BMR_REPEATS=str(args.repeats), MRGI_BMR_OUT=os.path.abspath(args.out))
     env.pop("DISPLAY", None)
-    run = subprocess.run([exe, "--case", "Benchmark"], env=env, capture_output=True, text=True)
-    if run.returncode != 0:
-        sys.stderr.write(run.stdout + run.stderr)
-        sys.exit("bmr_effects.py: the benchmark failed")
-    rows, levels, overhead = [], {}, {}
-    for line in run.stdout.splitlines():
+    stdout = ""
+    for effect, program in (("ssao", exe),
+                            ("shadows", exe.replace("TestMRGISSAOMultires",
+                                                    "TestMRGIShadowsMultires"))):
+        if effect not in effects:
+            continue
+        run = subprocess.run([program, "--case", "Benchmark"], env=env, capture_output=True,
+                             text=True)
+        if run.returncode != 0:
+            sys.stderr.write(run.stdout + run.stderr)
+            sys.exit("bmr_effects.py: the %s benchmark failed" % effect)
+        stdout += run.stdout
+    rows, levels, overhead, shadows = [], {}, {}, []
+    for line in stdout.splitlines():
+        m = re.match(r"BENCH shadows (\d+) (\d+) taps (\d+) full_frame_ms (\S+) "
+                     r"multires_frame_ms (\S+) speedup (\S+) rms (\S+)", line)
+        if m:
+            shadows.append(dict(size="%sx%s" % (m[1], m[2]), taps=int(m[3]),
+                                full_ms=float(m[4]), multires_ms=float(m[5]),
+                                speedup=float(m[6]), rms=float(m[7])))
         m = re.match(r"BENCH ssao (\d+) (\d+) kernel (\d+) full_ms (\S+) multires_ms (\S+) "
                      r"speedup (\S+) rms (\S+) blurred_rms (\S+)", line)
         if m:
@@ -79,8 +97,19 @@ def main():
         m = re.match(r"BENCH overhead ssao (\d+) (\d+) mask_ms (\S+) blend_ms (\S+)", line)
         if m:
             overhead["%sx%s" % (m[1], m[2])] = (float(m[3]), float(m[4]))
+    if shadows:
+        with open(os.path.join(args.out, "bmr_shadows.csv"), "w", newline="") as f:
+            writer = csv.DictWriter(f, fieldnames=list(shadows[0].keys()))
+            writer.writeheader()
+            writer.writerows(shadows)
+        print("| size | taps | full frame ms | multires frame ms | speed-up | abs RMS of factors |")
+        print("|---|---|---|---|---|---|")
+        for r in shadows:
+            print("| %s | %d | %.0f | %.0f | %.2f | %.5f |" % (
+                r["size"], r["taps"], r["full_ms"], r["multires_ms"], r["speedup"], r["rms"]))
+        print()
     if not rows:
-        sys.exit("bmr_effects.py: no BENCH lines in the output:\n" + run.stdout)
+        return
     with open(os.path.join(args.out, "bmr_effects.csv"), "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         writer.writeheader()
