@@ -538,6 +538,8 @@ int main(int argc, char* argv[])
                                               : vtkMRGIPass::DirectShadowsOff);
   mrgi->SetSoftShadowKernelSize(static_cast<int>(o.ShadowKernel));
   mrgi->SetShadowLightRadius(o.ShadowLightRadius);
+  mrgi->SetShadowResolution(
+    o.ShadowMultires ? vtkMRGIPass::ResolutionMultiresolution : vtkMRGIPass::ResolutionFull);
   // The preset first, then every knob given explicitly.
   mrgi->GetMultiresolution()->SetPreset(static_cast<int>(o.Preset));
   if (!std::isnan(o.DepthThreshold))
@@ -563,6 +565,8 @@ int main(int argc, char* argv[])
     mrgi->SetSSAOBias(o.HasSSAOBias ? o.SSAOBias : radius / 50.0);
     mrgi->SetSSAOKernelSize(static_cast<int>(o.SSAOSamples));
     mrgi->SetSSAOBlur(o.SSAOBlur);
+    mrgi->SetSSAOResolution(
+      o.SSAOMultires ? vtkMRGIPass::ResolutionMultiresolution : vtkMRGIPass::ResolutionFull);
   }
   mrgi->SetSSGI(o.SSGI);
   if (o.SSGI)

@@ -740,6 +740,10 @@ const std::vector<OptionSection>& OptionTable()
           Number(
             &Options::ShadowLightRadius, [](double r) { return r > 0 && r <= MaxFloatValue; },
             "expected a positive finite number") },
+        { { "--shadow-resolution" }, "full|multires",
+          "shadow factors at every pixel (default) or BMR's four levels under\n"
+          "edge stencils, blended (Documentation/ScreenSpaceEffects-Benchmark.md)",
+          Choice<bool>(&Options::ShadowMultires, { { "full", false }, { "multires", true } }) },
       } },
     { "Indirect light (one bounce; Documentation/IndirectLight.md)",
       {
@@ -818,6 +822,10 @@ const std::vector<OptionSection>& OptionTable()
             "expected a finite number", &Options::HasSSAOBias) },
         { { "--ssao-blur" }, "on|off", "vtkSSAOPass's 3x3 blur of the occlusion (default off)",
           OnOff(&Options::SSAOBlur) },
+        { { "--ssao-resolution" }, "full|multires",
+          "every pixel (default) or BMR's four levels under edge stencils,\n"
+          "blended (Documentation/ScreenSpaceEffects-SSAO.md)",
+          Choice<bool>(&Options::SSAOMultires, { { "full", false }, { "multires", true } }) },
       } },
     { "Screen-space one-bounce light (Documentation/ScreenSpaceEffects-SSGI.md)",
       {

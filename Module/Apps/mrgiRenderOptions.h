@@ -65,6 +65,7 @@ struct Options
   long long SSGISamples = 64; // MRGI_SSGI_DEFAULT_SAMPLES
   double SSGIRadius = 0.5;
   bool HasSSGIRadius = false; // else 10% of the scene's diagonal
+  bool SSAOMultires = false; // --ssao-resolution multires
   // NaN / -1: not given, the preset's value stands.
   double DepthThreshold = std::nan("");
   double NormalThreshold = std::nan("");
@@ -87,6 +88,7 @@ struct Options
   int DirectShadows = -1; // not given: soft with indirect light, off without
   long long ShadowKernel = MRGI_DIRECT_SHADOW_DEFAULT_SIDE;
   double ShadowLightRadius = 0.0; // 0: automatic
+  bool ShadowMultires = false;    // --shadow-resolution multires
   long long VPLs = 256;
   bool ImportanceVPLs = false;
   long long RSMSize = 256;

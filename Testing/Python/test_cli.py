@@ -123,6 +123,15 @@ def main():
                          "--ssgi", "on", "--ssgi-samples", "16", "--ssgi-radius", "80", "--timings")
     check(code == 0 and "ssgi" in out, "--ssgi on renders and times its stage: " + err)
     check(open(gi_exr, "rb").read() != open(noao_exr, "rb").read(), "--ssgi on changes the image")
+    # --ssao-resolution multires: BMR's masks and blend run and are timed.
+    code, out, err = run("cornell", "-o", fresh("cli_ssao_multires.png"), "--size", "40x48", "-q",
+                         "--ssao", "on", "--ssao-resolution", "multires", "--timings")
+    check(code == 0 and "bmr.mask" in out and "bmr.blend" in out,
+          "--ssao-resolution multires renders and times the masks and blend: " + err)
+    code, out, err = run("cornell-spot", "-o", fresh("cli_shadow_multires.png"), "--size", "40x48",
+                         "-q", "--shadow-resolution", "multires", "--timings")
+    check(code == 0 and "shadows.factors.invert" in out,
+          "--shadow-resolution multires renders and times its steps: " + err)
     mr_exr = fresh("cli_multires.exr")
     code, out, err = run("cornell-spot", "-o", mr_exr, "--size", "48x48", "-q", "--gi", "multires",
                          "--depth-threshold", "8", "--normal-threshold", "inf", "--upsample", "mask",
@@ -333,6 +342,9 @@ def bad_input():
         (["cornell", "-o", target, "--ssao-radius", "1e39"], "--ssao-radius"),
         (["cornell", "-o", target, "--ssao-bias", "inf"], "--ssao-bias"),
         (["cornell", "-o", target, "--ssao-bias", "0.1.2"], "--ssao-bias"),
+        (["cornell", "-o", target, "--ssao-resolution", "half"], "--ssao-resolution"),
+        (["cornell", "-o", target, "--shadow-resolution", "multi"], "--shadow-resolution"),
+        (["cornell", "-o", target, "--ssao-resolution", ""], "--ssao-resolution"),
         (["cornell", "-o", target, "--ssao-blur", "maybe"], "--ssao-blur"),
         (["cornell", "-o", target, "--ssgi", "yes"], "--ssgi"),
         (["cornell", "-o", target, "--ssgi-samples", "0"], "--ssgi-samples"),

@@ -716,7 +716,11 @@ bool vtkMRGIPass::RenderDirectShadows(
     params.light_radius = std::isfinite(diagonal) ? 0.5 * diagonal * MRGI_SHADOW_AUTO_LIGHT_RADIUS : 0.0;
   }
   bool applied =
-    this->DirectShadowStage->Compute(frame, this->RSMPass, slotLights, params, g.ShadowFactors);
+    (this->ShadowResolution == ResolutionMultiresolution
+        ? this->DirectShadowStage->ComputeMultiresolution(
+            frame, this->RSMPass, slotLights, params, g.ShadowFactors)
+        : this->DirectShadowStage->Compute(
+            frame, this->RSMPass, slotLights, params, g.ShadowFactors));
   applied = applied &&
     this->ShadowComposite->Apply(frame, g.Color, g.LightTerms, g.ShadowFactors, g.Shadowed);
   if (applied)
@@ -1051,8 +1055,12 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   if (this->SSAO && framed)
   {
     ScopedStage stage(timer, "ssao");
-    if (this->SSAOStage->Render(frame, this->SSAOKernelSize, this->SSAORadius, this->SSAOBias,
-          this->SSAOBlur, in.GBuffer.Color))
+    const bool multires = this->SSAOResolution == ResolutionMultiresolution;
+    if (multires
+        ? this->SSAOStage->RenderMultiresolution(frame, this->SSAOKernelSize, this->SSAORadius,
+            this->SSAOBias, this->SSAOBlur, in.GBuffer.Color)
+        : this->SSAOStage->Render(frame, this->SSAOKernelSize, this->SSAORadius, this->SSAOBias,
+            this->SSAOBlur, in.GBuffer.Color))
     {
       this->SSAOFailureReported = false;
     }
@@ -1397,10 +1405,15 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
            : this->DirectShadows == DirectShadowsHard ? "Hard"
                                                       : "Soft")
      << " (kernel " << this->SoftShadowKernelSize << ", light radius " << this->ShadowLightRadius
+     << ", "
+     << (this->ShadowResolution == ResolutionMultiresolution ? "multiresolution"
+                                                             : "full resolution")
      << ")\n";
   os << indent << "SSAO: " << (this->SSAO ? "on" : "off") << " (kernel " << this->SSAOKernelSize
      << ", radius " << this->SSAORadius << ", bias " << this->SSAOBias << ", blur "
-     << (this->SSAOBlur ? "on" : "off") << ")\n";
+     << (this->SSAOBlur ? "on" : "off") << ", "
+     << (this->SSAOResolution == ResolutionMultiresolution ? "multiresolution" : "full resolution")
+     << ")\n";
   os << indent << "SSGI: " << (this->SSGI ? "on" : "off") << " (samples " << this->SSGISamples
      << ", radius " << this->SSGIRadius << ", bias " << this->SSGIBias << ")\n";
   os << indent << "IndirectStrength: " << this->IndirectStrength << "\n";

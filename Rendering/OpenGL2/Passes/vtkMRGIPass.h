@@ -271,6 +271,34 @@ public:
   vtkMRGISSAO* GetSSAOStage() { return this->SSAOStage; }
   ///@}
 
+  /** Where a screen-space effect is evaluated. */
+  enum ScreenSpaceResolutions
+  {
+    ResolutionFull = 0,           ///< every pixel at full resolution
+    ResolutionMultiresolution = 1 ///< BMR: four levels under edge stencils, blended
+  };
+
+  ///@{
+  /**
+   * The direct shadows' resolution: ResolutionFull (default) or
+   * ResolutionMultiresolution (vtkMRGIDirectShadows::ComputeMultiresolution(),
+   * BMR's SSM preset; Documentation/ScreenSpaceEffects-Benchmark.md).
+   */
+  vtkSetClampMacro(ShadowResolution, int, ResolutionFull, ResolutionMultiresolution);
+  vtkGetMacro(ShadowResolution, int);
+  ///@}
+
+  ///@{
+  /**
+   * SSAO's resolution: ResolutionFull (default: on llvmpipe the masks and
+   * the blend cost more than the AO they save, see
+   * Documentation/ScreenSpaceEffects-SSAO.md) or ResolutionMultiresolution
+   * (vtkMRGISSAO::RenderMultiresolution(), BMR's SSAO preset).
+   */
+  vtkSetClampMacro(SSAOResolution, int, ResolutionFull, ResolutionMultiresolution);
+  vtkGetMacro(SSAOResolution, int);
+  ///@}
+
   ///@{
   /**
    * Screen-space one-bounce light (SSGI, Ritschel et al. 2009 as BMR
@@ -632,6 +660,8 @@ protected:
   double SSAORadius = 0.5; // MRGI_SSAO_DEFAULT_RADIUS
   double SSAOBias = 0.01;  // MRGI_SSAO_DEFAULT_BIAS
   bool SSAOBlur = false;
+  int SSAOResolution = ResolutionFull;
+  int ShadowResolution = ResolutionFull;
   bool SSAOFailureReported = false;
   bool SSGI = false;
   int SSGISamples = 64;   // MRGI_SSGI_DEFAULT_SAMPLES

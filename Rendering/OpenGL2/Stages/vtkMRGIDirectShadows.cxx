@@ -3,12 +3,16 @@
 #include "vtkMRGIDirectShadows.h"
 
 #include "vtkFloatArray.h"
+#include "vtkMRGIBMRBlend.h"
+#include "vtkMRGIBMRLevels.h"
+#include "vtkMRGIBMRMask.h"
 #include "vtkMRGIFrameContext.h"
 #include "vtkMRGIFullScreenStep.h"
 #include "vtkMRGIProgramCache.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIStageResources.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLQuadHelper.h"
@@ -39,6 +43,13 @@ struct vtkMRGIDirectShadows::Internals
   vtkMTimeType DepthTime = 0;
   int DepthSize = 0;
   vtkIdType DepthUpdates = 0;
+  // The multiresolution path's: the hard factors (shadow edges), the
+  // blended 1 - factor (viewport-sized), levels, mask and blend.
+  vtkTextureObject* Edges = nullptr;
+  vtkTextureObject* Blended = nullptr;
+  vtkNew<vtkMRGIBMRLevels> Levels;
+  vtkNew<vtkMRGIBMRMask> Mask;
+  vtkNew<vtkMRGIBMRBlend> Blend;
 
   void ReleaseDepth(vtkWindow* w)
   {
@@ -63,23 +74,51 @@ struct vtkMRGIDirectShadows::Internals
 vtkMRGIDirectShadows::vtkMRGIDirectShadows()
   : Internal(new Internals)
 {
+  this->Internal->Mask->SetPreset(vtkMRGIBMRMask::SSM);
+  this->Internal->Blend->SetPreset(vtkMRGIBMRMask::SSM);
 }
 
 //------------------------------------------------------------------------------
 vtkMRGIDirectShadows::~vtkMRGIDirectShadows()
 {
-  if (this->Internal->GL.FrameBuffer || !this->Internal->Depth.empty())
+  if (this->Internal->GL.FrameBuffer || !this->Internal->Depth.empty() ||
+    this->Internal->Edges || this->Internal->Blended)
   {
     vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
   }
   this->Internal->ReleaseDepth(nullptr);
+  vtkMRGIShaderUtilities::ReleaseTexture(this->Internal->Edges, nullptr);
+  vtkMRGIShaderUtilities::ReleaseTexture(this->Internal->Blended, nullptr);
 }
 
 //------------------------------------------------------------------------------
 void vtkMRGIDirectShadows::ReleaseGraphicsResources(vtkWindow* w)
 {
   this->Internal->ReleaseDepth(w);
+  vtkMRGIShaderUtilities::ReleaseTexture(this->Internal->Edges, w);
+  vtkMRGIShaderUtilities::ReleaseTexture(this->Internal->Blended, w);
+  this->Internal->Levels->ReleaseGraphicsResources(w);
+  this->Internal->Mask->ReleaseGraphicsResources(w);
+  this->Internal->Blend->ReleaseGraphicsResources(w);
   this->Internal->GL.Release(w);
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIBMRMask* vtkMRGIDirectShadows::GetBMRMask()
+{
+  return this->Internal->Mask;
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIBMRBlend* vtkMRGIDirectShadows::GetBMRBlend()
+{
+  return this->Internal->Blend;
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIBMRLevels* vtkMRGIDirectShadows::GetBMRLevels()
+{
+  return this->Internal->Levels;
 }
 
 //------------------------------------------------------------------------------
@@ -131,23 +170,124 @@ bool vtkMRGIDirectShadows::Compute(const vtkMRGIFrameContext& frame,
   vtkMRGIReflectiveShadowMapPass* rsm, const int* slotLights,
   const mrgi_direct_shadow_params& params, vtkTextureObject* factors)
 {
+  return this->Run(frame, rsm, slotLights, params, factors, nullptr);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIDirectShadows::ComputeLevels(const vtkMRGIFrameContext& frame,
+  vtkMRGIReflectiveShadowMapPass* rsm, const int* slotLights,
+  const mrgi_direct_shadow_params& params, vtkMRGIBMRLevels* levels)
+{
+  if (!levels || levels->GetWidth() != frame.Viewport[2] ||
+    levels->GetHeight() != frame.Viewport[3])
+  {
+    vtkErrorMacro("ComputeLevels: the BMR levels must be prepared for the frame's viewport ("
+      << frame.Viewport[2] << " x " << frame.Viewport[3] << ")");
+    return false;
+  }
+  return this->Run(frame, rsm, slotLights, params, nullptr, levels);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIDirectShadows::ComputeMultiresolution(const vtkMRGIFrameContext& frame,
+  vtkMRGIReflectiveShadowMapPass* rsm, const int* slotLights,
+  const mrgi_direct_shadow_params& params, vtkTextureObject* factors)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  const int w = frame.Viewport[2], h = frame.Viewport[3];
+  if (!window || !factors || w < 1 || h < 1 ||
+    frame.Viewport[0] + w > static_cast<int>(factors->GetWidth()) ||
+    frame.Viewport[1] + h > static_cast<int>(factors->GetHeight()))
+  {
+    vtkErrorMacro("ComputeMultiresolution needs the frame's window and viewport and a factor "
+                  "texture that holds the viewport");
+    return false;
+  }
+  const int tw = static_cast<int>(factors->GetWidth());
+  const int th = static_cast<int>(factors->GetHeight());
+  if (!in.Edges || static_cast<int>(in.Edges->GetWidth()) != tw ||
+    static_cast<int>(in.Edges->GetHeight()) != th)
+  {
+    vtkMRGIShaderUtilities::ReleaseTexture(in.Edges, window);
+    in.Edges = vtkMRGIShaderUtilities::NewTexture(window, GL_RGBA32F, tw, th);
+  }
+  if (!in.Blended || static_cast<int>(in.Blended->GetWidth()) != w ||
+    static_cast<int>(in.Blended->GetHeight()) != h)
+  {
+    vtkMRGIShaderUtilities::ReleaseTexture(in.Blended, window);
+    in.Blended = vtkMRGIShaderUtilities::NewTexture(window, GL_RGBA32F, w, h);
+  }
+  if (!in.Edges || !in.Blended || !in.Levels->Prepare(window, w, h))
+  {
+    vtkErrorMacro("ComputeMultiresolution: could not allocate its targets (" << w << " x " << h
+                                                                            << ")");
+    return false;
+  }
+  // The shadow edges of the SSM mask: the hard (PCF) factors of the first
+  // slot, cheap against the soft ones.
+  mrgi_direct_shadow_params hard = params;
+  hard.mode = MRGI_DIRECT_SHADOW_HARD;
+  vtkMRGIFrameContext atOrigin = frame;
+  atOrigin.Viewport[0] = atOrigin.Viewport[1] = 0;
+  if (!this->Run(frame, rsm, slotLights, hard, in.Edges, nullptr) ||
+    !in.Mask->Build(frame, in.Levels, in.Edges) ||
+    !this->Run(frame, rsm, slotLights, params, nullptr, in.Levels) ||
+    !in.Blend->Blend(atOrigin, in.Levels, in.Blended))
+  {
+    return false;
+  }
+  // factors = 1 - blended shadowing over the viewport.
+  vtkOpenGLQuadHelper* quad = in.Ready(window, 2);
+  if (!quad)
+  {
+    vtkErrorMacro("could not build the direct-shadow conversion shader");
+    return false;
+  }
+  {
+    vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "shadows.factors.invert");
+    vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
+    steps.Target(factors, nullptr, frame.Viewport[0], frame.Viewport[1], w, h);
+    window->GetShaderCache()->ReadyShaderProgram(quad->Program);
+    vtkMRGIFullScreenStep::BindInputs(quad->Program, { in.Blended });
+    const int origin[2] = { frame.Viewport[0], frame.Viewport[1] };
+    quad->Program->SetUniform2i("mrgiOrigin", origin);
+    quad->Render();
+    vtkMRGIFullScreenStep::UnbindInputs({ in.Blended });
+  }
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("OpenGL error " << error << " in the multiresolution direct-shadow stage");
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIDirectShadows::Run(const vtkMRGIFrameContext& frame,
+  vtkMRGIReflectiveShadowMapPass* rsm, const int* slotLights,
+  const mrgi_direct_shadow_params& params, vtkTextureObject* factors, vtkMRGIBMRLevels* levels)
+{
   this->NumberOfDraws = 0;
   vtkOpenGLRenderWindow* window = frame.Window;
   const int x0 = frame.Viewport[0], y0 = frame.Viewport[1];
   const int w = frame.Viewport[2], h = frame.Viewport[3];
-  if (!window || !frame.Position || !frame.Normal || !rsm || !slotLights || !factors)
+  if (!window || !frame.Position || !frame.Normal || !rsm || !slotLights || (!factors && !levels))
   {
     vtkErrorMacro("Compute needs the frame's window and G-buffer (position, normal), the RSM "
                   "pass, the slots' lights and a factor texture");
     return false;
   }
   if (w < 1 || h < 1 || x0 < 0 || y0 < 0 ||
-    x0 + w > static_cast<int>(factors->GetWidth()) ||
-    y0 + h > static_cast<int>(factors->GetHeight()))
+    (factors &&
+      (x0 + w > static_cast<int>(factors->GetWidth()) ||
+        y0 + h > static_cast<int>(factors->GetHeight()))))
   {
     vtkErrorMacro("Compute: the viewport (" << x0 << ", " << y0 << ", " << w << ", " << h
-                                            << ") does not fit in the " << factors->GetWidth()
-                                            << " x " << factors->GetHeight()
+                                            << ") does not fit in the "
+                                            << (factors ? factors->GetWidth() : 0) << " x "
+                                            << (factors ? factors->GetHeight() : 0)
                                             << " factor texture");
     return false;
   }
@@ -250,49 +390,76 @@ bool vtkMRGIDirectShadows::Compute(const vtkMRGIFrameContext& frame,
   }
   vtkOpenGLState::ScopedglColorMask colorMask(ostate);
   vtkOpenGLState::ScopedglScissor scissorBox(ostate); // the step saves only its enable
-  steps.Target(factors, nullptr, x0, y0, w, h);
-  // Every channel starts lit (1) over the viewport only.
-  ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  ostate->vtkglEnable(GL_SCISSOR_TEST);
-  ostate->vtkglScissor(x0, y0, w, h);
-  ostate->vtkglClearColor(1.0, 1.0, 1.0, 1.0);
-  ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
-  ostate->vtkglDisable(GL_SCISSOR_TEST);
-
-  window->GetShaderCache()->ReadyShaderProgram(program);
-  program->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
-  program->SetUniformi("mrgiSize", size);
-  program->SetUniformi("mrgiMode", params.mode);
-  program->SetUniformi("mrgiSamplesSide", params.samples_side);
-  program->SetUniformf("mrgiLightRadius", static_cast<float>(params.light_radius));
-  for (int s = 0; s < MRGI_SHADOW_SLOTS; ++s)
+  // The per-slot draws of one target: the factors (level -1), or one BMR
+  // level's colour target under its stencil, 1 - factor (LevelStep clears
+  // it to 0: lit).
+  auto draw = [&](int level) {
+    window->GetShaderCache()->ReadyShaderProgram(program);
+    program->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
+    program->SetUniformi("mrgiSize", size);
+    program->SetUniformi("mrgiMode", params.mode);
+    program->SetUniformi("mrgiSamplesSide", params.samples_side);
+    program->SetUniformf("mrgiLightRadius", static_cast<float>(params.light_radius));
+    const int origin[2] = { x0, y0 };
+    const int frameSize[2] = { w, h };
+    program->SetUniformi("mrgiLevel", level);
+    program->SetUniform2i("mrgiOrigin", origin);
+    program->SetUniform2i("mrgiFrameSize", frameSize);
+    for (int s = 0; s < MRGI_SHADOW_SLOTS; ++s)
+    {
+      const std::vector<ViewUniforms>& views = slotViews[s];
+      if (views.empty())
+      {
+        continue;
+      }
+      ostate->vtkglColorMask(s == 0, s == 1, s == 2, s == 3);
+      float matrices[16 * MRGI_DIRECT_SHADOW_MAX_VIEWS];
+      float terms[MRGI_DIRECT_SHADOW_MAX_VIEWS][4];
+      for (size_t k = 0; k < views.size(); ++k)
+      {
+        std::copy(views[k].WorldToView, views[k].WorldToView + 16, matrices + 16 * k);
+        std::copy(views[k].Terms, views[k].Terms + 4, terms[k]);
+      }
+      const int count = static_cast<int>(views.size());
+      program->SetUniformMatrix4x4v("mrgiWorldToView", count, matrices);
+      program->SetUniform4fv("mrgiViewTerms", count, terms);
+      program->SetUniformi("mrgiViewCount", count);
+      for (int k = 0; k < count; ++k)
+      {
+        vtkTextureObject* depth = in.Depth[static_cast<size_t>(views[k].Index)];
+        vtkMRGIFullScreenStep::BindInputs(program, { frame.Position, frame.Normal, depth });
+        program->SetUniformi("mrgiView", k);
+        quad->Render();
+        vtkMRGIFullScreenStep::UnbindInputs({ frame.Position, frame.Normal, depth });
+        ++this->NumberOfDraws;
+      }
+    }
+    ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  };
+  if (levels)
   {
-    const std::vector<ViewUniforms>& views = slotViews[s];
-    if (views.empty())
+    for (int k = 0; k < vtkMRGIBMRLevels::GetNumberOfLevels(); ++k)
     {
-      continue;
+      vtkMRGIBMRLevels::LevelStep levelStep(window, levels, k);
+      if (!levelStep.IsValid())
+      {
+        vtkErrorMacro("Compute: could not bind BMR level " << k);
+        return false;
+      }
+      draw(k);
     }
-    ostate->vtkglColorMask(s == 0, s == 1, s == 2, s == 3);
-    float matrices[16 * MRGI_DIRECT_SHADOW_MAX_VIEWS];
-    float terms[MRGI_DIRECT_SHADOW_MAX_VIEWS][4];
-    for (size_t k = 0; k < views.size(); ++k)
-    {
-      std::copy(views[k].WorldToView, views[k].WorldToView + 16, matrices + 16 * k);
-      std::copy(views[k].Terms, views[k].Terms + 4, terms[k]);
-    }
-    const int count = static_cast<int>(views.size());
-    program->SetUniformMatrix4x4v("mrgiWorldToView", count, matrices);
-    program->SetUniform4fv("mrgiViewTerms", count, terms);
-    program->SetUniformi("mrgiViewCount", count);
-    for (int k = 0; k < count; ++k)
-    {
-      vtkTextureObject* depth = in.Depth[static_cast<size_t>(views[k].Index)];
-      vtkMRGIFullScreenStep::BindInputs(program, { frame.Position, frame.Normal, depth });
-      program->SetUniformi("mrgiView", k);
-      quad->Render();
-      vtkMRGIFullScreenStep::UnbindInputs({ frame.Position, frame.Normal, depth });
-      ++this->NumberOfDraws;
-    }
+  }
+  else
+  {
+    steps.Target(factors, nullptr, x0, y0, w, h);
+    // Every channel starts lit (1) over the viewport only.
+    ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    ostate->vtkglEnable(GL_SCISSOR_TEST);
+    ostate->vtkglScissor(x0, y0, w, h);
+    ostate->vtkglClearColor(1.0, 1.0, 1.0, 1.0);
+    ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
+    ostate->vtkglDisable(GL_SCISSOR_TEST);
+    draw(-1);
   }
   const GLenum error = glGetError();
   if (error != GL_NO_ERROR)

@@ -19,6 +19,13 @@
  * mrgi_direct_shadow_depth_map()) is derived once per RSM render; then one
  * draw per (slot, view): the slot's channel only (colour mask), each draw
  * writing the pixels its view holds.
+ *
+ * Multiresolution (BMR 3-4, SSM preset of Table 1): ComputeLevels() runs
+ * the same draws into each level of a vtkMRGIBMRLevels buffer under its
+ * stencil (a level-k texel is the receiver at its 2^k block's centre
+ * pixel, as vtkMRGISSAO does); ComputeMultiresolution() builds the masks
+ * with the shadow edges of the hard factors of slot 0, blends the levels
+ * and writes the factors as Compute() does.
  */
 #ifndef vtkMRGIDirectShadows_h
 #define vtkMRGIDirectShadows_h
@@ -31,6 +38,9 @@
 struct mrgi_direct_shadow_params;
 struct vtkMRGIFrameContext;
 class vtkFloatArray;
+class vtkMRGIBMRBlend;
+class vtkMRGIBMRLevels;
+class vtkMRGIBMRMask;
 class vtkMRGIReflectiveShadowMapPass;
 class vtkRenderWindow;
 class vtkTextureObject;
@@ -58,7 +68,33 @@ public:
    */
   bool Compute(const vtkMRGIFrameContext& frame, vtkMRGIReflectiveShadowMapPass* rsm,
     const int* slotLights, const mrgi_direct_shadow_params& params, vtkTextureObject* factors);
+  /**
+   * Compute()'s draws into every level of `levels` (prepared for the
+   * frame's viewport, stencils built) under its stencil: level k texel t
+   * holds 1 - factor of the receiver at pixel min(t 2^k + 2^(k-1), size - 1)
+   * (level 0: t), channel s = slot s; 0 (lit) where nothing was drawn.
+   * 1 - factor because the blend writes 0 at background pixels.
+   * Timer step "shadows.factors". False (with an error) on bad input.
+   */
+  bool ComputeLevels(const vtkMRGIFrameContext& frame, vtkMRGIReflectiveShadowMapPass* rsm,
+    const int* slotLights, const mrgi_direct_shadow_params& params, vtkMRGIBMRLevels* levels);
+  /**
+   * The factors of Compute() (same target, layout and contract) at
+   * multiple resolutions: hard factors for the shadow edges, the stage's
+   * masks (GetBMRMask(), SSM preset), ComputeLevels(), the stage's blend
+   * (GetBMRBlend()), then factor = 1 - blended over the viewport (timer
+   * step "shadows.factors.invert"). False (with an error) on failure.
+   */
+  bool ComputeMultiresolution(const vtkMRGIFrameContext& frame,
+    vtkMRGIReflectiveShadowMapPass* rsm, const int* slotLights,
+    const mrgi_direct_shadow_params& params, vtkTextureObject* factors);
 #endif
+  ///@{
+  /** The multiresolution path's mask, blend (SSM preset unless changed) and levels; never null. */
+  vtkMRGIBMRMask* GetBMRMask();
+  vtkMRGIBMRBlend* GetBMRBlend();
+  vtkMRGIBMRLevels* GetBMRLevels();
+  ///@}
 
   /** Read `factors` back (RGBA floats, the whole texture, rows bottom-up). */
   static bool ReadFactors(vtkRenderWindow* window, vtkTextureObject* factors, vtkFloatArray* out);
@@ -87,6 +123,12 @@ protected:
   std::unique_ptr<Internals> Internal;
 
 private:
+#ifndef __VTK_WRAP__
+  // Compute() into `factors`, or ComputeLevels() into `levels` (the other null).
+  bool Run(const vtkMRGIFrameContext& frame, vtkMRGIReflectiveShadowMapPass* rsm,
+    const int* slotLights, const mrgi_direct_shadow_params& params, vtkTextureObject* factors,
+    vtkMRGIBMRLevels* levels);
+#endif
   vtkMRGIDirectShadows(const vtkMRGIDirectShadows&) = delete;
   void operator=(const vtkMRGIDirectShadows&) = delete;
 };

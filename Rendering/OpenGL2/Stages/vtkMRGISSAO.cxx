@@ -4,12 +4,16 @@
 
 #include "vtkCamera.h"
 #include "vtkFloatArray.h"
+#include "vtkMRGIBMRBlend.h"
+#include "vtkMRGIBMRLevels.h"
+#include "vtkMRGIBMRMask.h"
 #include "vtkMRGIFrameContext.h"
 #include "vtkMRGIFullScreenStep.h"
 #include "vtkMRGIProgramCache.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIStageResources.h"
 #include "vtkMatrix4x4.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLQuadHelper.h"
@@ -35,6 +39,11 @@ struct vtkMRGISSAO::Internals
 {
   vtkTextureObject* AO = nullptr; // full-resolution AO of Render(), R32F
   int Size[2] = { 0, 0 };
+  vtkTextureObject* Occlusion = nullptr; // 1 - AO of RenderMultiresolution(), RGBA32F
+  int OcclusionSize[2] = { 0, 0 };
+  vtkNew<vtkMRGIBMRLevels> Levels;
+  vtkNew<vtkMRGIBMRMask> Mask;
+  vtkNew<vtkMRGIBMRBlend> Blend;
   std::vector<float> Kernel; // the kernel of KernelSize samples
   int KernelSize = 0;
   vtkMRGIStageResources GL;
@@ -57,16 +66,19 @@ struct vtkMRGISSAO::Internals
 vtkMRGISSAO::vtkMRGISSAO()
   : Internal(new Internals)
 {
+  this->Internal->Mask->SetPreset(vtkMRGIBMRMask::SSAO);
+  this->Internal->Blend->SetPreset(vtkMRGIBMRMask::SSAO);
 }
 
 //------------------------------------------------------------------------------
 vtkMRGISSAO::~vtkMRGISSAO()
 {
-  if (this->Internal->GL.FrameBuffer || this->Internal->AO)
+  if (this->Internal->GL.FrameBuffer || this->Internal->AO || this->Internal->Occlusion)
   {
     vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
   }
   vtkMRGIShaderUtilities::ReleaseTexture(this->Internal->AO, nullptr);
+  vtkMRGIShaderUtilities::ReleaseTexture(this->Internal->Occlusion, nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -74,17 +86,21 @@ void vtkMRGISSAO::ReleaseGraphicsResources(vtkWindow* w)
 {
   vtkMRGIShaderUtilities::ReleaseTexture(this->Internal->AO, w);
   this->Internal->Size[0] = this->Internal->Size[1] = 0;
+  vtkMRGIShaderUtilities::ReleaseTexture(this->Internal->Occlusion, w);
+  this->Internal->OcclusionSize[0] = this->Internal->OcclusionSize[1] = 0;
+  this->Internal->Levels->ReleaseGraphicsResources(w);
+  this->Internal->Mask->ReleaseGraphicsResources(w);
+  this->Internal->Blend->ReleaseGraphicsResources(w);
   this->Internal->GL.Release(w);
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGISSAO::ComputeAO(const vtkMRGIFrameContext& frame, int kernelSize, double radius,
-  double bias, int level, vtkTextureObject* target)
+bool vtkMRGISSAO::CheckAO(
+  const vtkMRGIFrameContext& frame, int kernelSize, double radius, double bias)
 {
   Internals& in = *this->Internal;
-  vtkOpenGLRenderWindow* window = frame.Window;
   const int w = frame.Viewport[2], h = frame.Viewport[3];
-  if (!window || !frame.Renderer || !frame.Position || !frame.Normal || !target || w < 1 || h < 1)
+  if (!frame.Window || !frame.Renderer || !frame.Position || !frame.Normal || w < 1 || h < 1)
   {
     vtkErrorMacro("SSAO needs the frame's window, renderer, G-buffer position and normal, a "
                   "viewport and a target");
@@ -103,6 +119,76 @@ bool vtkMRGISSAO::ComputeAO(const vtkMRGIFrameContext& frame, int kernelSize, do
       "SSAO radius " << radius << " must be finite and > 0, bias " << bias << " finite");
     return false;
   }
+  if (in.KernelSize != kernelSize)
+  {
+    in.Kernel.resize(3 * static_cast<size_t>(kernelSize));
+    mrgi_error err;
+    if (mrgi_ssao_kernel(kernelSize, in.Kernel.data(), &err) != MRGI_OK)
+    {
+      vtkErrorMacro(<< err.message);
+      in.KernelSize = 0;
+      return false;
+    }
+    in.KernelSize = kernelSize;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+vtkOpenGLQuadHelper* vtkMRGISSAO::ReadyAO(
+  const vtkMRGIFrameContext& frame, int kernelSize, double radius, double bias, int level)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  // vtkSSAOPass's projection: the camera's at the tile's aspect ratio,
+  // depth in [-1, 1]; column-major for GLSL.
+  vtkMatrix4x4* projection = frame.Renderer->GetActiveCamera()->GetProjectionTransformMatrix(
+    frame.Renderer->GetTiledAspectRatio(), -1, 1);
+  float matrix[16];
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      matrix[c * 4 + r] = static_cast<float>(projection->GetElement(r, c));
+    }
+  }
+  vtkOpenGLQuadHelper* quad = in.Ready(window, 0, kernelSize);
+  if (!quad)
+  {
+    vtkErrorMacro("could not build the SSAO shader (kernel size " << kernelSize << ")");
+    return nullptr;
+  }
+  vtkShaderProgram* program = quad->Program;
+  vtkMRGIFullScreenStep::BindInputs(program, { frame.Position, frame.Normal });
+  program->SetUniformi("mrgiNoise", window->GetNoiseTextureUnit());
+  const int origin[2] = { frame.Viewport[0], frame.Viewport[1] };
+  const int size[2] = { frame.Viewport[2], frame.Viewport[3] };
+  program->SetUniform2i("mrgiOrigin", origin);
+  program->SetUniform2i("mrgiSize", size);
+  program->SetUniformi("mrgiLevel", level);
+  program->SetUniformMatrix4x4("mrgiProjection", matrix);
+  program->SetUniformf("mrgiRadius", static_cast<float>(radius));
+  program->SetUniformf("mrgiBias", static_cast<float>(bias));
+  program->SetUniform3fv("mrgiKernel", kernelSize, in.Kernel.data());
+  return quad;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISSAO::ComputeAO(const vtkMRGIFrameContext& frame, int kernelSize, double radius,
+  double bias, int level, vtkTextureObject* target)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  const int w = frame.Viewport[2], h = frame.Viewport[3];
+  if (!target)
+  {
+    vtkErrorMacro("SSAO needs a target");
+    return false;
+  }
+  if (!this->CheckAO(frame, kernelSize, radius, bias))
+  {
+    return false;
+  }
   if (level < 0 || level > MRGI_SSAO_MAX_LEVEL)
   {
     vtkErrorMacro("SSAO level " << level << " is outside 0.." << MRGI_SSAO_MAX_LEVEL);
@@ -118,53 +204,17 @@ bool vtkMRGISSAO::ComputeAO(const vtkMRGIFrameContext& frame, int kernelSize, do
                                  << ")");
     return false;
   }
-  if (in.KernelSize != kernelSize)
-  {
-    in.Kernel.resize(3 * static_cast<size_t>(kernelSize));
-    mrgi_error err;
-    if (mrgi_ssao_kernel(kernelSize, in.Kernel.data(), &err) != MRGI_OK)
-    {
-      vtkErrorMacro(<< err.message);
-      in.KernelSize = 0;
-      return false;
-    }
-    in.KernelSize = kernelSize;
-  }
-  // vtkSSAOPass's projection: the camera's at the tile's aspect ratio,
-  // depth in [-1, 1]; column-major for GLSL.
-  vtkMatrix4x4* projection = frame.Renderer->GetActiveCamera()->GetProjectionTransformMatrix(
-    frame.Renderer->GetTiledAspectRatio(), -1, 1);
-  float matrix[16];
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      matrix[c * 4 + r] = static_cast<float>(projection->GetElement(r, c));
-    }
-  }
   in.GL.Prepare(window);
-  vtkOpenGLQuadHelper* quad = in.Ready(window, 0, kernelSize);
-  if (!quad)
-  {
-    vtkErrorMacro("could not build the SSAO shader (kernel size " << kernelSize << ")");
-    return false;
-  }
-  vtkShaderProgram* program = quad->Program;
   {
     vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssao.ao");
     vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
     steps.Target(target, nullptr, 0, 0, lw, lh);
-    vtkMRGIFullScreenStep::BindInputs(program, { frame.Position, frame.Normal });
-    program->SetUniformi("mrgiNoise", window->GetNoiseTextureUnit());
-    const int origin[2] = { frame.Viewport[0], frame.Viewport[1] };
-    const int size[2] = { w, h };
-    program->SetUniform2i("mrgiOrigin", origin);
-    program->SetUniform2i("mrgiSize", size);
-    program->SetUniformi("mrgiLevel", level);
-    program->SetUniformMatrix4x4("mrgiProjection", matrix);
-    program->SetUniformf("mrgiRadius", static_cast<float>(radius));
-    program->SetUniformf("mrgiBias", static_cast<float>(bias));
-    program->SetUniform3fv("mrgiKernel", kernelSize, in.Kernel.data());
+    vtkOpenGLQuadHelper* quad = this->ReadyAO(frame, kernelSize, radius, bias, level);
+    if (!quad)
+    {
+      return false;
+    }
+    quad->Program->SetUniformi("mrgiOcclusion", 0);
     quad->Render();
     vtkMRGIFullScreenStep::UnbindInputs({ frame.Position, frame.Normal });
   }
@@ -178,8 +228,136 @@ bool vtkMRGISSAO::ComputeAO(const vtkMRGIFrameContext& frame, int kernelSize, do
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGISSAO::ComputeOcclusionLevels(const vtkMRGIFrameContext& frame, int kernelSize,
+  double radius, double bias, vtkMRGIBMRLevels* levels)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  if (!levels || levels->GetWidth() != frame.Viewport[2] ||
+    levels->GetHeight() != frame.Viewport[3])
+  {
+    vtkErrorMacro("SSAO levels must be prepared for the frame's viewport ("
+      << frame.Viewport[2] << " x " << frame.Viewport[3] << ")");
+    return false;
+  }
+  if (!this->CheckAO(frame, kernelSize, radius, bias))
+  {
+    return false;
+  }
+  in.GL.Prepare(window);
+  {
+    vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssao.ao");
+    for (int k = 0; k < vtkMRGIBMRLevels::GetNumberOfLevels(); ++k)
+    {
+      vtkMRGIBMRLevels::LevelStep levelStep(window, levels, k);
+      if (!levelStep.IsValid())
+      {
+        vtkErrorMacro("SSAO could not bind BMR level " << k);
+        return false;
+      }
+      vtkOpenGLQuadHelper* quad = this->ReadyAO(frame, kernelSize, radius, bias, k);
+      if (!quad)
+      {
+        return false;
+      }
+      quad->Program->SetUniformi("mrgiOcclusion", 1);
+      quad->Render();
+      vtkMRGIFullScreenStep::UnbindInputs({ frame.Position, frame.Normal });
+    }
+  }
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("OpenGL error " << error << " in the multiresolution SSAO stage");
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISSAO::ComputeOcclusionMultiresolution(const vtkMRGIFrameContext& frame,
+  int kernelSize, double radius, double bias, vtkTextureObject* target)
+{
+  Internals& in = *this->Internal;
+  const int w = frame.Viewport[2], h = frame.Viewport[3];
+  if (!frame.Window || !target || w < 1 || h < 1 ||
+    target->GetWidth() < static_cast<unsigned int>(w) ||
+    target->GetHeight() < static_cast<unsigned int>(h))
+  {
+    vtkErrorMacro("multiresolution SSAO needs the frame's window, a viewport and a target at "
+                  "least as large");
+    return false;
+  }
+  if (!in.Levels->Prepare(frame.Window, w, h))
+  {
+    vtkErrorMacro("could not allocate the BMR levels (" << w << " x " << h << ")");
+    return false;
+  }
+  // The blend writes the frame's viewport at its origin; the target is
+  // viewport-sized at (0, 0) like ComputeAO()'s, so the origin is moved.
+  vtkMRGIFrameContext atOrigin = frame;
+  atOrigin.Viewport[0] = atOrigin.Viewport[1] = 0;
+  return in.Mask->Build(frame, in.Levels, nullptr) &&
+    this->ComputeOcclusionLevels(frame, kernelSize, radius, bias, in.Levels) &&
+    in.Blend->Blend(atOrigin, in.Levels, target);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISSAO::RenderMultiresolution(const vtkMRGIFrameContext& frame, int kernelSize,
+  double radius, double bias, bool blur, vtkTextureObject* colour)
+{
+  Internals& in = *this->Internal;
+  const int w = frame.Viewport[2], h = frame.Viewport[3];
+  if (!frame.Window || w < 1 || h < 1)
+  {
+    vtkErrorMacro("SSAO needs the frame's window and a viewport");
+    return false;
+  }
+  if (!in.Occlusion || in.OcclusionSize[0] != w || in.OcclusionSize[1] != h)
+  {
+    vtkMRGIShaderUtilities::ReleaseTexture(in.Occlusion, frame.Window);
+    in.Occlusion = vtkMRGIShaderUtilities::NewTexture(frame.Window, GL_RGBA32F, w, h);
+    in.OcclusionSize[0] = in.Occlusion ? w : 0;
+    in.OcclusionSize[1] = in.Occlusion ? h : 0;
+    if (!in.Occlusion)
+    {
+      vtkErrorMacro("could not allocate the multiresolution SSAO target (" << w << " x " << h
+                                                                          << ")");
+      return false;
+    }
+  }
+  return this->ComputeOcclusionMultiresolution(frame, kernelSize, radius, bias, in.Occlusion) &&
+    this->ApplyTexture(frame, in.Occlusion, true, blur, colour);
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIBMRMask* vtkMRGISSAO::GetBMRMask()
+{
+  return this->Internal->Mask;
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIBMRBlend* vtkMRGISSAO::GetBMRBlend()
+{
+  return this->Internal->Blend;
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIBMRLevels* vtkMRGISSAO::GetBMRLevels()
+{
+  return this->Internal->Levels;
+}
+
+//------------------------------------------------------------------------------
 bool vtkMRGISSAO::Apply(
   const vtkMRGIFrameContext& frame, vtkTextureObject* ao, bool blur, vtkTextureObject* colour)
+{
+  return this->ApplyTexture(frame, ao, false, blur, colour);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISSAO::ApplyTexture(const vtkMRGIFrameContext& frame, vtkTextureObject* ao,
+  bool occlusion, bool blur, vtkTextureObject* colour)
 {
   Internals& in = *this->Internal;
   vtkOpenGLRenderWindow* window = frame.Window;
@@ -213,6 +391,7 @@ bool vtkMRGISSAO::Apply(
     program->SetUniform2i("mrgiOrigin", origin);
     program->SetUniform2i("mrgiSize", size);
     program->SetUniformi("mrgiBlur", blur ? 1 : 0);
+    program->SetUniformi("mrgiOcclusion", occlusion ? 1 : 0);
     quad->Render();
     vtkMRGIFullScreenStep::UnbindInputs({ ao });
   }

@@ -15,6 +15,13 @@
  * from vtkSSAOPass, and why, are listed there). Shader vtkMRGISSAOFS.glsl.
  * Each invocation loops over the kernel once (at most 1000 samples: below
  * llvmpipe's 65535 iterations).
+ *
+ * Multiresolution (BMR 3-4, RenderMultiresolution()): the stage's own
+ * vtkMRGIBMRMask and vtkMRGIBMRBlend (SSAO preset of Table 1; GetBMRMask()
+ * and GetBMRBlend() to tune them) and vtkMRGIBMRLevels; each level's AO is
+ * the same shader as ComputeAO() at that level, drawn under the level's
+ * stencil; the blended image is applied as Apply() does.
+ * Documentation/ScreenSpaceEffects-SSAO.md has the measured error and cost.
  */
 #ifndef vtkMRGISSAO_h
 #define vtkMRGISSAO_h
@@ -27,6 +34,10 @@
 
 struct vtkMRGIFrameContext;
 class vtkFloatArray;
+class vtkMRGIBMRBlend;
+class vtkMRGIBMRLevels;
+class vtkMRGIBMRMask;
+class vtkOpenGLQuadHelper;
 class vtkOpenGLRenderWindow;
 class vtkRenderWindow;
 class vtkTextureObject;
@@ -71,6 +82,43 @@ public:
   bool Render(const vtkMRGIFrameContext& frame, int kernelSize, double radius, double bias,
     bool blur, vtkTextureObject* colour);
 
+#ifndef __VTK_WRAP__
+  /**
+   * The occlusion 1 - AO of every stencilled texel of every level of
+   * `levels` (prepared for the frame's viewport, stencils built by a
+   * vtkMRGIBMRMask) into the levels' colour targets' red channel: for each
+   * level k, ComputeAO()'s shader at level k under vtkMRGIBMRLevels::LevelStep.
+   * Occlusion rather than AO because the blend writes 0 at background
+   * pixels, where AO is 1. Same argument ranges as ComputeAO(). Timer step
+   * "ssao.ao". False, with an error, on bad input or a GL failure.
+   */
+  bool ComputeOcclusionLevels(const vtkMRGIFrameContext& frame, int kernelSize, double radius,
+    double bias, vtkMRGIBMRLevels* levels);
+  /**
+   * The multiresolution occlusion 1 - AO of the frame's viewport into the
+   * red channel of `target` (RGBA32F, at least viewport-sized) at (0, 0):
+   * the stage's masks (GetBMRMask()), ComputeOcclusionLevels() and the
+   * stage's blend (GetBMRBlend()). False, with an error, on failure.
+   */
+  bool ComputeOcclusionMultiresolution(const vtkMRGIFrameContext& frame, int kernelSize,
+    double radius, double bias, vtkTextureObject* target);
+#endif
+  /**
+   * RenderMultiresolution: as Render(), with the AO of
+   * ComputeOcclusionMultiresolution() (BMR) instead of the full-resolution
+   * one. GetAOTexture() and ReadAO() then return nothing new.
+   */
+  bool RenderMultiresolution(const vtkMRGIFrameContext& frame, int kernelSize, double radius,
+    double bias, bool blur, vtkTextureObject* colour);
+  ///@{
+  /**
+   * The multiresolution path's mask and blend (vtkMRGIBMRMask::SSAO preset
+   * unless changed) and levels; never null.
+   */
+  vtkMRGIBMRMask* GetBMRMask();
+  vtkMRGIBMRBlend* GetBMRBlend();
+  vtkMRGIBMRLevels* GetBMRLevels();
+  ///@}
   /** The full-resolution AO of the last Render() (R32F, viewport-sized); null before. */
   vtkTextureObject* GetAOTexture();
 
@@ -97,6 +145,16 @@ protected:
   std::unique_ptr<Internals> Internal;
 
 private:
+#ifndef __VTK_WRAP__
+  // Apply() of an AO (occlusion false) or 1 - AO (true) texture.
+  bool ApplyTexture(const vtkMRGIFrameContext& frame, vtkTextureObject* ao, bool occlusion,
+    bool blur, vtkTextureObject* colour);
+  // The checks of ComputeAO() but the level's; the kernel of `kernelSize` cached.
+  bool CheckAO(const vtkMRGIFrameContext& frame, int kernelSize, double radius, double bias);
+  // Ready the AO program and set every uniform (level `level`); null on error.
+  vtkOpenGLQuadHelper* ReadyAO(const vtkMRGIFrameContext& frame, int kernelSize, double radius,
+    double bias, int level);
+#endif
   vtkMRGISSAO(const vtkMRGISSAO&) = delete;
   void operator=(const vtkMRGISSAO&) = delete;
 };

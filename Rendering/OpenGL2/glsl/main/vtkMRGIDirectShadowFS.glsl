@@ -6,6 +6,8 @@
 //   one of its views (hard PCF or PCSS). One draw per (light slot, view); a
 //   pixel is written only by the view that holds it (the rule of
 //   mrgi_direct_shadow_select_view), into the slot's channel (colour mask).
+// MRGI_DS_STAGE 2: factor = 1 - the blended 1 - factor of the BMR levels
+//   (input 0, viewport-sized at (0, 0)) over the viewport.
 in vec2 texCoord; // bound by vtkOpenGLQuadHelper; texels are addressed by gl_FragCoord
 uniform sampler2D mrgiInput0; // 0: the view's RSM world positions, w = valid; 1: G-buffer eye-space position
 uniform sampler2D mrgiInput1; // 1: G-buffer eye-space normal
@@ -19,6 +21,9 @@ uniform int mrgiSize;         // S of the views
 uniform int mrgiMode;         // MRGI_DIRECT_SHADOW_HARD or _SOFT
 uniform int mrgiSamplesSide;  // SOFT: PCF side n
 uniform float mrgiLightRadius; // world units
+uniform int mrgiLevel;        // 1: -1 the factors at each pixel; k >= 0: BMR level k, 1 - factor
+uniform ivec2 mrgiOrigin;     // 1 (level >= 0), 2: the viewport's origin in the G-buffer
+uniform ivec2 mrgiFrameSize;  // 1 (level >= 0): the viewport's size
 //VTK::Output::Dec
 
 // c of the view rule, -1 when view v does not hold view-space point q.
@@ -134,7 +139,15 @@ void main()
   ivec2 pixel = ivec2(gl_FragCoord.xy);
 #if MRGI_DS_STAGE == 0
   gl_FragData[0] = vec4(mrgiPositionDepth(pixel), 0.0, 0.0, 1.0);
+#elif MRGI_DS_STAGE == 2
+  gl_FragData[0] = vec4(1.0) - texelFetch(mrgiInput0, pixel - mrgiOrigin, 0);
 #else
+  if (mrgiLevel >= 0)
+  {
+    // A level texel is the receiver at its block's centre pixel.
+    int side = 1 << mrgiLevel;
+    pixel = mrgiOrigin + min(pixel * side + ivec2(side / 2), mrgiFrameSize - ivec2(1));
+  }
   vec4 e = texelFetch(mrgiInput0, pixel, 0);
   if (!(e.w > MRGI_GBUFFER_VALID_THRESHOLD))
   {
@@ -220,6 +233,10 @@ void main()
       int blocked = mrgiGridOccluders(side, width, sum);
       factor = 1.0 - grazing * float(blocked) / float(side * side);
     }
+  }
+  if (mrgiLevel >= 0)
+  {
+    factor = 1.0 - factor;
   }
   gl_FragData[0] = vec4(factor, factor, factor, 1.0);
 #endif

@@ -17,6 +17,7 @@ uniform mat4 mrgiProjection;  // 0: eye -> clip
 uniform float mrgiRadius;     // 0: kernel radius (eye units)
 uniform float mrgiBias;       // 0: depth bias (eye units)
 uniform int mrgiBlur;         // 1: vtkSSAOPass's Blur
+uniform int mrgiOcclusion;    // 0: write 1 - AO (BMR levels); 1: the input holds 1 - AO
 #if MRGI_SSAO_STAGE == 0
 uniform vec3 mrgiKernel[MRGI_SSAO_KERNEL_SIZE];
 #endif
@@ -92,9 +93,11 @@ void main()
   ivec2 t = ivec2(gl_FragCoord.xy);
   int side = 1 << mrgiLevel;
   ivec2 px = min(t * side + ivec2(side / 2), mrgiSize - ivec2(1));
-  gl_FragData[0] = vec4(mrgiAO(px), 0.0, 0.0, 1.0);
+  float ao = mrgiAO(px);
+  gl_FragData[0] = vec4(mrgiOcclusion != 0 ? 1.0 - ao : ao, 0.0, 0.0, 1.0);
 #else
   ivec2 t = ivec2(gl_FragCoord.xy) - mrgiOrigin;
+  // 1 - AO is blurred as AO is (the Gaussian's weights sum to 1).
   float ao = texelFetch(mrgiInput0, t, 0).r;
   if (mrgiBlur != 0)
   {
@@ -110,6 +113,10 @@ void main()
     ao += 0.123317 * texelFetch(mrgiInput0, clamp(t + ivec2(1, 0), ivec2(0), hi), 0).r;
     ao += 0.123317 * texelFetch(mrgiInput0, clamp(t + ivec2(0, -1), ivec2(0), hi), 0).r;
     ao += 0.123317 * texelFetch(mrgiInput0, clamp(t + ivec2(0, 1), ivec2(0), hi), 0).r;
+  }
+  if (mrgiOcclusion != 0)
+  {
+    ao = 1.0 - ao;
   }
   gl_FragData[0] = vec4(vec3(ao), 1.0);
 #endif
