@@ -11,7 +11,8 @@ bmr_effects.csv, speedup_vs_samples.png, rms_vs_samples.png and
 ssao_diff_<size>.png (|multires - full| AO around the mask borders, x10),
 and prints a Markdown table for Documentation/ScreenSpaceEffects-Benchmark.md.
 
-    /usr/bin/python3 Testing/Benchmarks/bmr_effects.py --build build --out build/bmr-bench
+    /usr/bin/python3 Testing/Benchmarks/bmr_effects.py --build build --out build/bmr-bench \
+        --docs Documentation   # also rewrites the page's tables, PNGs and CSVs
 
 Soft shadows: the Benchmark case of cxx.TestMRGIShadowsMultires
 (`cornell-spot`, PCSS at 36, 100 and 196 taps): whole frames through
@@ -53,6 +54,10 @@ def main():
                         help="SSAO sample counts; the last one's difference image is written")
     parser.add_argument("--repeats", type=int, default=3, help="timed A B pairs per row")
     parser.add_argument("--effects", default="ssao,shadows")
+    parser.add_argument("--docs", default="",
+                        help="a Documentation folder: copy the PNGs and CSVs there and rewrite the "
+                             "tables between the <!-- bmr:NAME --> markers of "
+                             "ScreenSpaceEffects-Benchmark.md")
     args = parser.parse_args()
     effects = args.effects.split(",")
     os.makedirs(args.out, exist_ok=True)
@@ -102,12 +107,13 @@ def main():
             writer = csv.DictWriter(f, fieldnames=list(shadows[0].keys()))
             writer.writeheader()
             writer.writerows(shadows)
-        print("| size | taps | full frame ms | multires frame ms | speed-up | abs RMS of factors |")
-        print("|---|---|---|---|---|---|")
+        table = ["| size | taps | full frame ms | multires frame ms | speed-up | abs RMS of factors |",
+                 "|---|---|---|---|---|---|"]
         for r in shadows:
-            print("| %s | %d | %.0f | %.0f | %.2f | %.5f |" % (
+            table.append("| %s | %d | %.0f | %.0f | %.2f | %.5f |" % (
                 r["size"], r["taps"], r["full_ms"], r["multires_ms"], r["speedup"], r["rms"]))
-        print()
+        print("\n".join(table) + "\n")
+        publish(args, "shadows-table", table, {"bmr_shadows.csv": "data/bmr_shadows.csv"})
     if not rows:
         return
     with open(os.path.join(args.out, "bmr_effects.csv"), "w", newline="") as f:
@@ -135,19 +141,50 @@ def main():
         plt.close(fig)
     difference_images(args.out, levels)
 
-    print("| size | samples | full ms | multires ms | speed-up | abs RMS | abs RMS, both blurred |")
-    print("|---|---|---|---|---|---|---|")
+    table = ["| size | samples | full ms | multires ms | speed-up | abs RMS | abs RMS, both blurred |",
+             "|---|---|---|---|---|---|---|"]
     for r in rows:
-        print("| %s | %d | %.0f | %.0f | %.2f | %.4f | %.4f |" % (
+        table.append("| %s | %d | %.0f | %.0f | %.2f | %.4f | %.4f |" % (
             r["size"], r["samples"], r["full_ms"], r["multires_ms"], r["speedup"], r["rms"],
             r["blurred_rms"]))
-    print()
-    print("| size | finest level 1 | 2 | 3 | 4 | work (of one full pass) | mask ms | blend ms |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("\n".join(table) + "\n")
+    level_table = ["| size | finest level 1 | 2 | 3 | 4 | work | mask ms | blend ms |",
+                   "|---|---|---|---|---|---|---|---|"]
     for size, v in levels.items():
         mask, blend = overhead.get(size, (float("nan"), float("nan")))
-        print("| %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.0f | %.0f |" % (
+        level_table.append("| %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.0f | %.0f |" % (
             size, v[0], v[1], v[2], v[3], v[4], mask, blend))
+    print("\n".join(level_table))
+    files = {"bmr_effects.csv": "data/bmr_effects.csv",
+             "speedup_vs_samples.png": "images/bmr-ssao-speedup.png",
+             "rms_vs_samples.png": "images/bmr-ssao-rms.png"}
+    for size in levels:
+        files["ssao_diff_%s.png" % size] = "images/bmr-ssao-diff-%s.png" % size
+    publish(args, "ssao-table", table, files)
+    publish(args, "levels-table", level_table, {})
+
+
+def publish(args, marker, table, files):
+    """With --docs: copy `files` (name in --out -> path under --docs) and put
+    `table` between <!-- bmr:marker --> and <!-- /bmr:marker --> of the page."""
+    if not args.docs:
+        return
+    import shutil
+    for name, target in files.items():
+        source = os.path.join(args.out, name)
+        if os.path.isfile(source):
+            shutil.copyfile(source, os.path.join(args.docs, target))
+    page = os.path.join(args.docs, "ScreenSpaceEffects-Benchmark.md")
+    with open(page) as f:
+        text = f.read()
+    begin, end = "<!-- bmr:%s -->" % marker, "<!-- /bmr:%s -->" % marker
+    if begin not in text or end not in text:
+        raise SystemExit("%s has no %s ... %s markers" % (page, begin, end))
+    head, rest = text.split(begin, 1)
+    tail = rest.split(end, 1)[1]
+    with open(page, "w") as f:
+        f.write(head + begin + "\n" + "\n".join(table) + "\n" + end + tail)
+    print("wrote the %s table into %s" % (marker, page))
 
 
 if __name__ == "__main__":
