@@ -155,6 +155,9 @@ def in_pvbatch():
     gi = mrgi.vtkMRGIPass()
     gi.SetDelegatePass(vtkRenderStepsPass())
     gi.SetIndirectMode(mrgi.vtkMRGIPass.IndirectOff)
+    # VTK's direct light as ParaView draws it: the checks below compare the
+    # indirect light alone (direct shadows are on by default).
+    gi.SetDirectShadowsToOff()
     renderer.SetPass(gi)
     off = shot("off")
     gi.SetIndirectMode(mrgi.vtkMRGIPass.IndirectMultires)
