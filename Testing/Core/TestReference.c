@@ -5,13 +5,17 @@
  * and bad input; area lights: the closed-form rectangle-to-point form factor
  * (with an emitter quad on the light, with and without visibility), an
  * occluder's umbra and penumbra, the no-visibility mode against the C
- * sample sum of mrgi_area_light_diffuse(). Tolerances of noisy quantities come from the standard
+ * sample sum of mrgi_area_light_diffuse(); the per-pixel stopping rule (its
+ * quantile against a sort, synthetic accumulators, the Cornell box where the
+ * image-mean rule would stop after two passes). Tolerances of noisy quantities come from the standard
  * errors the renderer reports. The camera math below is written again from
  * vtkCamera's definition, independently of the renderer's. */
 #include "mrgi_reference.h"
 #include "mrgi_scene_cornell.h"
 #include "mrgi_test.h"
 
+#include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const double pi = 3.14159265358979323846;
@@ -576,11 +580,14 @@ static void test_determinism_and_convergence(void)
   MRGI_CHECK(a.relative_error > 0.0 && isfinite(a.relative_error));
   MRGI_CHECK(b.relative_error < 0.6 * a.relative_error);
   MRGI_CHECK(b.passes == 16);
-  /* the target stops early */
-  o.target_relative_error = 1.5 * b.relative_error;
+  /* the per-pixel statistic falls as 1/sqrt(passes) too (8x the passes: /2.8) */
+  MRGI_CHECK(a.pixel_error > 0.0 && isfinite(a.pixel_error));
+  MRGI_CHECK(b.pixel_error < 0.6 * a.pixel_error);
+  /* the target stops early, on the per-pixel statistic */
+  o.target_relative_error = 1.5 * b.pixel_error;
   o.max_passes = 1000;
   render(&scene, &o, &c);
-  MRGI_CHECK(c.passes >= 2 && c.passes < 1000 && c.relative_error <= o.target_relative_error);
+  MRGI_CHECK(c.passes >= 2 && c.passes < 1000 && c.pixel_error <= o.target_relative_error);
   mrgi_reference_result_destroy(&a);
   mrgi_reference_result_destroy(&b);
   mrgi_reference_result_destroy(&c);
@@ -654,6 +661,234 @@ static void test_progress_and_cancel(void)
                mrgi_image_value_count(&r.indirect) * sizeof(float)) == 0);
   mrgi_reference_result_destroy(&two);
   mrgi_reference_result_destroy(&r);
+  mrgi_scene_destroy(&scene);
+}
+
+/* ---- 5b. the per-pixel stopping rule (mrgi_reference_noise.h) ---- */
+
+static int compare_doubles(const void* a, const void* b)
+{
+  const double x = *(const double*)a, y = *(const double*)b;
+  return (x > y) - (x < y);
+}
+
+/* The nearest-rank quantile equals the sorted array's element at
+ * ceil(p * n) - 1, on random data with and without ties. */
+static void test_quantile(void)
+{
+  enum
+  {
+    max_count = 1000
+  };
+  static double values[max_count], sorted[max_count];
+  static const double percentiles[] = { 1e-6, 0.01, 0.25, 0.5, 0.9, 0.95, 0.999, 1.0 };
+  uint64_t state = 12345;
+  int checked = 0;
+  for (size_t count = 1; count <= max_count; count = count * 3 + 1)
+  {
+    for (int ties = 0; ties < 2; ++ties)
+    {
+      for (size_t i = 0; i < count; ++i)
+      {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        const double u = (double)(state >> 11) / 9007199254740992.0;
+        /* with ties: 5 distinct values, many zeros as in a dark image */
+        sorted[i] = ties ? floor(5.0 * u * u) : u;
+      }
+      qsort(sorted, count, sizeof(double), compare_doubles);
+      for (size_t p = 0; p < sizeof(percentiles) / sizeof(percentiles[0]); ++p)
+      {
+        /* shuffle from the sorted order so the input is not presorted */
+        for (size_t i = 0; i < count; ++i)
+        {
+          values[i] = sorted[(i * 7919u) % count];
+        }
+        if (count % 7919u == 0)
+        {
+          memcpy(values, sorted, count * sizeof(double));
+        }
+        double q = -1.0;
+        MRGI_CHECK(mrgi_reference_quantile(values, count, percentiles[p], &q, NULL) == MRGI_OK);
+        size_t rank = (size_t)ceil(percentiles[p] * (double)count);
+        rank = rank < 1 ? 1 : rank;
+        MRGI_CHECK(q == sorted[rank - 1]);
+        ++checked;
+      }
+    }
+  }
+  /* reverse-sorted and constant inputs */
+  for (size_t i = 0; i < max_count; ++i)
+  {
+    values[i] = (double)(max_count - i);
+  }
+  double q = 0.0;
+  MRGI_CHECK(mrgi_reference_quantile(values, max_count, 0.95, &q, NULL) == MRGI_OK && q == 950.0);
+  for (size_t i = 0; i < max_count; ++i)
+  {
+    values[i] = 2.5;
+  }
+  MRGI_CHECK(mrgi_reference_quantile(values, max_count, 0.5, &q, NULL) == MRGI_OK && q == 2.5);
+  printf("quantile: %d cases equal the sort\n", checked);
+  /* bad input names the problem */
+  mrgi_error err;
+  MRGI_CHECK(mrgi_reference_quantile(values, 0, 0.5, &q, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(message_has(&err, "count"));
+  MRGI_CHECK(mrgi_reference_quantile(values, 4, 0.0, &q, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(message_has(&err, "percentile"));
+  MRGI_CHECK(mrgi_reference_quantile(values, 4, NAN, &q, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_reference_quantile(NULL, 4, 0.5, &q, &err) == MRGI_ERR_INVALID_ARGUMENT);
+}
+
+/* mrgi_reference_pixel_error on synthetic accumulators. */
+static void test_pixel_error(void)
+{
+  enum
+  {
+    n = 256 * 256
+  };
+  static double mean[n], m2[n], scratch[n];
+  static uint8_t mask[n];
+  /* Every pixel has mean 1 and a per-pixel relative standard error of 0.3
+   * after 4 passes (m2 = s^2 (n-1) n): the image-mean rule (sqrt of the
+   * summed variances over the summed means, mrgi_reference.h) says
+   * 0.3 / 256 = 0.0012 and would stop at a target of 0.01; the per-pixel
+   * rule says 0.3 and goes on. */
+  const int32_t passes = 4;
+  for (size_t i = 0; i < n; ++i)
+  {
+    mean[i] = 1.0;
+    m2[i] = 0.3 * 0.3 * (double)(passes - 1) * (double)passes;
+    mask[i] = 1;
+  }
+  double sum_var = 0.0, sum_mean = 0.0;
+  for (size_t i = 0; i < n; ++i)
+  {
+    sum_var += m2[i] / ((double)(passes - 1) * (double)passes);
+    sum_mean += mean[i];
+  }
+  const double image_mean_rule = sqrt(sum_var) / sum_mean;
+  double e = -1.0;
+  MRGI_CHECK(mrgi_reference_pixel_error(mean, m2, mask, n, passes, 0.95, scratch, &e, NULL) ==
+             MRGI_OK);
+  printf("synthetic: image-mean rule %.5f, per-pixel rule %.4f (target 0.01)\n", image_mean_rule,
+         e);
+  MRGI_CHECK(image_mean_rule <= 0.01);
+  MRGI_CHECK_NEAR(e, 0.3, 1e-12);
+
+  /* 10 % of the pixels noisy (0.5), the rest exact: the 0.95 quantile sees
+   * them, the 0.5 quantile does not */
+  for (size_t i = 0; i < n; ++i)
+  {
+    m2[i] = (i % 10 == 3) ? 0.5 * 0.5 * (double)(passes - 1) * (double)passes : 0.0;
+  }
+  MRGI_CHECK(mrgi_reference_pixel_error(mean, m2, mask, n, passes, 0.95, scratch, &e, NULL) ==
+               MRGI_OK &&
+             fabs(e - 0.5) < 1e-12);
+  MRGI_CHECK(mrgi_reference_pixel_error(mean, m2, mask, n, passes, 0.5, scratch, &e, NULL) ==
+               MRGI_OK &&
+             e == 0.0);
+  /* masked pixels do not count: mask out the noisy ones */
+  for (size_t i = 0; i < n; ++i)
+  {
+    mask[i] = (i % 10 != 3);
+  }
+  MRGI_CHECK(mrgi_reference_pixel_error(mean, m2, mask, n, passes, 1.0, scratch, &e, NULL) ==
+               MRGI_OK &&
+             e == 0.0);
+
+  /* the floor: a dark pixel (mean 0.01 of the image's ~1) is measured
+   * against the image's mean pixel value, not its own */
+  for (size_t i = 0; i < n; ++i)
+  {
+    mask[i] = 1;
+    mean[i] = 1.0;
+    m2[i] = 0.0;
+  }
+  mean[0] = 0.01;
+  m2[0] = 0.05 * 0.05 * (double)(passes - 1) * (double)passes; /* stderr 0.05 */
+  const double image_mean = (double)(n - 1) / (double)n + 0.01 / (double)n;
+  MRGI_CHECK(mrgi_reference_pixel_error(mean, m2, mask, n, passes, 1.0, scratch, &e, NULL) ==
+             MRGI_OK);
+  MRGI_CHECK_NEAR(e, 0.05 / (MRGI_REFERENCE_NOISE_FLOOR * image_mean), 1e-12);
+  /* a pixel brighter than the mean is held to its own value */
+  mean[0] = 10.0;
+  MRGI_CHECK(mrgi_reference_pixel_error(mean, m2, mask, n, passes, 1.0, scratch, &e, NULL) ==
+             MRGI_OK);
+  MRGI_CHECK_NEAR(e, 0.05 / 10.0, 1e-12);
+
+  /* one pass: unknown, +inf; no light at all: 0, known exactly */
+  MRGI_CHECK(mrgi_reference_pixel_error(mean, m2, mask, n, 1, 0.95, scratch, &e, NULL) ==
+               MRGI_OK &&
+             isinf(e) && e > 0.0);
+  for (size_t i = 0; i < n; ++i)
+  {
+    mean[i] = 0.0;
+    m2[i] = 0.0;
+  }
+  MRGI_CHECK(mrgi_reference_pixel_error(mean, m2, mask, n, 1, 0.95, scratch, &e, NULL) ==
+               MRGI_OK &&
+             e == 0.0);
+  MRGI_CHECK(mrgi_reference_pixel_error(mean, m2, mask, n, 5, 0.95, scratch, &e, NULL) ==
+               MRGI_OK &&
+             e == 0.0);
+  /* bad input names the problem */
+  mrgi_error err;
+  MRGI_CHECK(mrgi_reference_pixel_error(mean, m2, mask, n, 0, 0.95, scratch, &e, &err) ==
+             MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(message_has(&err, "passes 0"));
+  MRGI_CHECK(mrgi_reference_pixel_error(mean, m2, mask, n, 2, 1.5, scratch, &e, &err) ==
+             MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(message_has(&err, "percentile 1.5"));
+  MRGI_CHECK(mrgi_reference_pixel_error(mean, m2, mask, n, 2, 0.5, NULL, &e, &err) ==
+             MRGI_ERR_INVALID_ARGUMENT);
+}
+
+/* The renderer stops on the per-pixel statistic: on the Cornell box the
+ * image-mean rule would stop after two passes at a target it already meets,
+ * the per-pixel rule runs on until the per-pixel statistic meets it. */
+static void test_per_pixel_stopping_rule(void)
+{
+  mrgi_scene scene;
+  MRGI_CHECK(mrgi_scene_cornell_box(MRGI_CORNELL_SPOT, &scene, NULL) == MRGI_OK);
+  mrgi_reference_options o = base_options(32, 32);
+  o.indirect_samples = 4;
+  o.max_passes = 2;
+  mrgi_reference_result two, stopped;
+  render(&scene, &o, &two);
+  /* a target the image-mean statistic meets after two passes */
+  const double target = 1.01 * two.relative_error;
+  printf("stopping rule: after 2 passes image-mean %.4f, per-pixel %.4f, RMS per-pixel %.4f\n",
+         two.relative_error, two.pixel_error, two.pixel_relative_error);
+  MRGI_CHECK(two.relative_error <= target && two.pixel_error > 4.0 * target);
+  o.target_relative_error = target;
+  o.max_passes = 20000;
+  render(&scene, &o, &stopped);
+  printf("stopping rule: target %.4f reached after %d passes (per-pixel %.4f)\n", target,
+         (int)stopped.passes, stopped.pixel_error);
+  /* the statistic falls as 1/sqrt(passes): (4x)^2 = 16x the passes at least */
+  MRGI_CHECK(stopped.passes > 16 * 2 && stopped.passes < o.max_passes);
+  MRGI_CHECK(stopped.pixel_error <= target && stopped.relative_error < target);
+  mrgi_reference_result_destroy(&two);
+  mrgi_reference_result_destroy(&stopped);
+
+  /* one pass: +inf (never NaN); no indirect light: 0 after one pass */
+  o.max_passes = 1;
+  render(&scene, &o, &two);
+  MRGI_CHECK(two.passes == 1 && isinf(two.pixel_error) && two.direct_pixel_error == 0.0);
+  mrgi_reference_result_destroy(&two);
+  o.indirect_samples = 0;
+  o.max_passes = 10;
+  render(&scene, &o, &two);
+  MRGI_CHECK(two.passes == 1 && two.pixel_error == 0.0);
+  mrgi_reference_result_destroy(&two);
+
+  /* a percentile outside (0, 1] is refused, naming the option */
+  mrgi_error err;
+  o.target_percentile = 0.0;
+  MRGI_CHECK(mrgi_reference_render(&scene, &o, &two, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(message_has(&err, "target_percentile"));
+  o.target_percentile = NAN;
+  MRGI_CHECK(mrgi_reference_render(&scene, &o, &two, &err) == MRGI_ERR_INVALID_ARGUMENT);
   mrgi_scene_destroy(&scene);
 }
 
@@ -1183,13 +1418,14 @@ static void test_area_determinism_and_input(void)
   stop.max_passes = 1;
   render_area(&scene, &stop, &light, 1, &r);
   MRGI_CHECK(r.passes == 1 && isinf(r.direct_relative_error) && r.relative_error == 0.0);
+  MRGI_CHECK(isinf(r.direct_pixel_error) && r.pixel_error == 0.0);
   mrgi_reference_result_destroy(&r);
   stop.max_passes = 1000;
-  stop.target_relative_error = 3e-3;
+  stop.target_relative_error = 0.03;
   render_area(&scene, &stop, &light, 1, &r);
-  printf("area light stopping rule: %d passes to direct rel. error %.2g (target 3e-3)\n",
-         (int)r.passes, r.direct_relative_error);
-  MRGI_CHECK(r.passes >= 3 && r.passes < 1000 && r.direct_relative_error <= 3e-3);
+  printf("area light stopping rule: %d passes to direct per-pixel error %.2g (target 0.03)\n",
+         (int)r.passes, r.direct_pixel_error);
+  MRGI_CHECK(r.passes >= 3 && r.passes < 1000 && r.direct_pixel_error <= 0.03);
   mrgi_reference_result_destroy(&r);
 
   /* bad input */
@@ -1261,6 +1497,9 @@ int main(int argc, char** argv)
     MRGI_TEST_CASE(test_cornell),
     MRGI_TEST_CASE(test_determinism_and_convergence),
     MRGI_TEST_CASE(test_progress_and_cancel),
+    MRGI_TEST_CASE(test_quantile),
+    MRGI_TEST_CASE(test_pixel_error),
+    MRGI_TEST_CASE(test_per_pixel_stopping_rule),
     MRGI_TEST_CASE(test_bad_input),
     MRGI_TEST_CASE(test_area_unoccluded),
     MRGI_TEST_CASE(test_area_penumbra),

@@ -5,6 +5,7 @@
 /* clock_gettime, sysconf(_SC_NPROCESSORS_ONLN): POSIX.1-2008 */
 #define _POSIX_C_SOURCE 200809L
 #include "mrgi_reference.h"
+#include "mrgi_reference_noise.h"
 
 #include <embree3/rtcore.h>
 
@@ -91,8 +92,9 @@ void mrgi_reference_options_default(mrgi_reference_options* options)
   options->height = 256;
   options->pixel_samples = 1;
   options->indirect_samples = 16;
-  options->target_relative_error = 0.01;
-  options->max_passes = 64;
+  options->target_relative_error = MRGI_REFERENCE_DEFAULT_TARGET;
+  options->target_percentile = MRGI_REFERENCE_DEFAULT_PERCENTILE;
+  options->max_passes = MRGI_REFERENCE_DEFAULT_MAX_PASSES;
   options->max_seconds = 0.0;
   options->shadows = 1;
   options->secondary_visibility = 1;
@@ -154,6 +156,12 @@ mrgi_status mrgi_reference_options_validate(const mrgi_reference_options* o, mrg
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
                           "mrgi_reference: option target_relative_error = %g is not finite and >= 0",
                           o->target_relative_error);
+  }
+  if (!(o->target_percentile > 0.0 && o->target_percentile <= 1.0))
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "mrgi_reference: option target_percentile = %g is outside (0, 1]",
+                          o->target_percentile);
   }
   if (!(isfinite(o->max_seconds) && o->max_seconds >= 0.0))
   {
@@ -226,6 +234,7 @@ typedef struct ref_shared
   double* dir_mean;   /* the same for the per-pass direct estimate (area lights only) */
   double* dir_m2;
   uint8_t* hit;       /* 1 once any primary ray of the pixel hit a surface */
+  double* noise_scratch; /* one double per pixel for the percentile, allocated once */
   int32_t pass;
   atomic_int next_row;
 } ref_shared;
@@ -1100,6 +1109,27 @@ static double ref_direct_noise(const ref_shared* shared, int32_t passes)
   return relative;
 }
 
+/* The stopping statistic (mrgi_reference_noise.h) of the per-pass estimates
+ * (mean, m2); `enabled` = 0 or NULL accumulators: known exactly, 0. The
+ * arguments were checked when the call began, so this cannot fail. */
+static double ref_pixel_error_of(const ref_shared* shared, const double* est_mean,
+                                 const double* est_m2, int enabled, int32_t passes)
+{
+  if (!enabled || !est_mean)
+  {
+    return 0.0;
+  }
+  const size_t count = (size_t)shared->options.width * (size_t)shared->options.height;
+  double error = INFINITY;
+  if (mrgi_reference_pixel_error(est_mean, est_m2, shared->hit, count, passes,
+                                 shared->options.target_percentile, shared->noise_scratch,
+                                 &error, NULL) != MRGI_OK)
+  {
+    return INFINITY; /* unreachable: keeps rendering rather than stopping on a bad value */
+  }
+  return error;
+}
+
 static int32_t ref_thread_count(const mrgi_reference_options* o)
 {
   int64_t n = o->threads;
@@ -1156,6 +1186,7 @@ static void ref_call_release(ref_call* c)
   free(c->shared.dir_mean);
   free(c->shared.dir_m2);
   free(c->shared.hit);
+  free(c->shared.noise_scratch);
 }
 
 /* Run one pass with `thread_count` workers; the calling thread is worker 0.
@@ -1179,12 +1210,14 @@ static void ref_run_pass(ref_call* c, int32_t thread_count)
 }
 
 /* Fills a progress report after `passes` passes that took `pass_seconds`
- * (the Embree build not included). The error falls as 1/sqrt(passes): the
+ * (the Embree build not included). The stopping statistic (the worse of
+ * the indirect's and the direct's pixel_error) falls as 1/sqrt(passes): the
  * target is expected after passes * (worst / target)^2 passes. */
 static void ref_progress(const mrgi_reference_options* o, int32_t passes, double relative,
-  double direct_relative, double seconds, double pass_seconds, mrgi_reference_progress* p)
+  double direct_relative, double pixel, double direct_pixel, double seconds, double pass_seconds,
+  mrgi_reference_progress* p)
 {
-  const double worst = direct_relative > relative ? direct_relative : relative;
+  const double worst = direct_pixel > pixel ? direct_pixel : pixel;
   double expected = (double)o->max_passes;
   if (o->target_relative_error > 0.0 && isfinite(worst))
   {
@@ -1203,6 +1236,8 @@ static void ref_progress(const mrgi_reference_options* o, int32_t passes, double
   p->max_passes = o->max_passes;
   p->relative_error = relative;
   p->direct_relative_error = direct_relative;
+  p->pixel_error = pixel;
+  p->direct_pixel_error = direct_pixel;
   p->target_relative_error = o->target_relative_error;
   p->seconds = seconds;
   p->passes_expected = expected;
@@ -1384,13 +1419,14 @@ mrgi_status mrgi_reference_render_area_lights(const mrgi_scene* scene,
   c.shared.est_mean = calloc(count, sizeof(double));
   c.shared.est_m2 = calloc(count, sizeof(double));
   c.shared.hit = calloc(count, 1);
+  c.shared.noise_scratch = malloc(count * sizeof(double));
   if (area_light_count > 0)
   {
     c.shared.dir_mean = calloc(count, sizeof(double));
     c.shared.dir_m2 = calloc(count, sizeof(double));
   }
   if (!c.geometries || !c.workers || !c.thread_ids || !c.hit_storage || !c.shared.sums ||
-      !c.shared.est_mean || !c.shared.est_m2 || !c.shared.hit ||
+      !c.shared.est_mean || !c.shared.est_m2 || !c.shared.hit || !c.shared.noise_scratch ||
       (area_light_count > 0 && (!c.shared.dir_mean || !c.shared.dir_m2)))
   {
     ref_call_release(&c);
@@ -1438,6 +1474,7 @@ mrgi_status mrgi_reference_render_area_lights(const mrgi_scene* scene,
   int32_t passes = 0;
   int32_t cancelled = 0;
   double relative = INFINITY, per_pixel = INFINITY, direct_relative = INFINITY;
+  double pixel = INFINITY, direct_pixel = INFINITY;
   const double passes_start = ref_seconds_now();
   while (passes < options->max_passes)
   {
@@ -1446,11 +1483,17 @@ mrgi_status mrgi_reference_render_area_lights(const mrgi_scene* scene,
     ++passes;
     ref_noise(&c.shared, passes, &relative, &per_pixel);
     direct_relative = ref_direct_noise(&c.shared, passes); /* 0 without area lights */
-    const double worst = direct_relative > relative ? direct_relative : relative;
+    /* The stopping rule: per pixel (mrgi_reference_noise.h), on the direct
+     * image too when area lights make it noisy. */
+    pixel = ref_pixel_error_of(&c.shared, c.shared.est_mean, c.shared.est_m2,
+                               options->indirect_samples != 0, passes);
+    direct_pixel = ref_pixel_error_of(&c.shared, c.shared.dir_mean, c.shared.dir_m2, 1, passes);
+    const double worst = direct_pixel > pixel ? direct_pixel : pixel;
     if (options->progress)
     {
       mrgi_reference_progress p;
-      ref_progress(options, passes, relative, direct_relative, ref_seconds_now() - start,
+      ref_progress(options, passes, relative, direct_relative, pixel, direct_pixel,
+        ref_seconds_now() - start,
         ref_seconds_now() - passes_start, &p);
       if (options->progress(options->progress_user_data, &p) != 0)
       {
@@ -1490,6 +1533,8 @@ mrgi_status mrgi_reference_render_area_lights(const mrgi_scene* scene,
   out->relative_error = relative;
   out->pixel_relative_error = per_pixel;
   out->direct_relative_error = direct_relative;
+  out->pixel_error = pixel;
+  out->direct_pixel_error = direct_pixel;
   out->passes = passes;
   out->cancelled = cancelled;
   out->threads = thread_count;
