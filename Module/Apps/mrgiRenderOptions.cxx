@@ -60,6 +60,10 @@
 #define MRGI_VERSION_STRING "unknown"
 #endif
 
+// A default defined once in the core, spelled into help text: "0.02".
+#define MRGI_OPTIONS_TEXT_(x) #x
+#define MRGI_OPTIONS_TEXT(x) MRGI_OPTIONS_TEXT_(x)
+
 namespace mrgirender
 {
 // Parses "on"/"off" (and "full"/"off" for --gi); false for anything else.
@@ -683,7 +687,7 @@ const std::vector<OptionSection>& OptionTable()
           Integer(&Options::Triangles, 12, 20000000) },
         { { "--objects" }, "N", "number of objects, 1..4096 (default 64)",
           Integer(&Options::Objects, 1, 4096) },
-        { { "--seed" }, "N", "random seed, >= 0 (default 1)",
+        { { "--seed" }, "N", "random seed of the generated scenes and of --reference, >= 0 (default 1)",
           Integer(&Options::Seed, 0, INT64_MAX) },
       } },
     { "Staging of data files (Documentation/Staging.md; built-in scenes bring\n"
@@ -909,13 +913,26 @@ const std::vector<OptionSection>& OptionTable()
           "shadows in the direct part (default on; VTK's direct light has none)",
           OnOff(&Options::ReferenceShadows) },
         { { "--reference-error" }, "E",
-          "stop at this relative standard error of the indirect part (default 0.01)",
+          "stop when the per-pixel relative standard error of the indirect part (each pixel's\n"
+          "over max(its value, the image's mean)) is at most E at --reference-percentile;\n"
+          "0 = run all passes (default " MRGI_OPTIONS_TEXT(MRGI_REFERENCE_DEFAULT_TARGET) ")",
           Number(
             &Options::ReferenceError, [](double e) { return e >= 0 && e <= 1; },
             "expected a number in [0, 1]") },
+        { { "--reference-percentile" }, "P",
+          "the share of pixels that must reach --reference-error, in (0, 1]\n"
+          "(default " MRGI_OPTIONS_TEXT(MRGI_REFERENCE_DEFAULT_PERCENTILE) ")",
+          Number(
+            &Options::ReferencePercentile, [](double p) { return p > 0 && p <= 1; },
+            "expected a number in (0, 1]") },
         { { "--reference-passes" }, "N",
-          "at most N passes of 16 bounce rays per pixel (default 64)",
+          "at most N passes of 16 bounce rays per pixel (default " MRGI_OPTIONS_TEXT(
+            MRGI_REFERENCE_DEFAULT_MAX_PASSES) ")",
           Integer(&Options::ReferencePasses, 1, 100000) },
+        { { "--progress" }, nullptr,
+          "the ground truth's progress (passes, error, time left), at most once a second,\n"
+          "even when stderr is no terminal (a terminal always gets it, unless -q)",
+          Set(&Options::ReferenceProgress) },
       } },
     { "Measurement",
       {

@@ -11,6 +11,7 @@
 #include "vtkSmartPointer.h" // For vtkSmartPointer
 
 #include "mrgi_exposure.h" // For MRGI_EXPOSURE_KEY
+#include "mrgi_reference.h" // For the ground truth's defaults
 
 #include <cmath>
 #include <string>
@@ -111,8 +112,10 @@ struct Options
   bool Reference = false;
   bool ReferenceVisibility = true;
   bool ReferenceShadows = true;
-  double ReferenceError = 0.01;
-  long long ReferencePasses = 64;
+  double ReferenceError = MRGI_REFERENCE_DEFAULT_TARGET;
+  double ReferencePercentile = MRGI_REFERENCE_DEFAULT_PERCENTILE;
+  long long ReferencePasses = MRGI_REFERENCE_DEFAULT_MAX_PASSES;
+  bool ReferenceProgress = false; // per-pass lines even when stderr is no terminal
   // Staging of data files (vtkMRGIStaging); built-in scenes are never staged.
   bool Stage = true;
   int StageUp = -1; // vtkMRGIStaging::UpAxis

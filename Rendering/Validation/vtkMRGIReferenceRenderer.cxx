@@ -29,6 +29,7 @@
 #include "mrgi_scene.h"
 #include "vtkMRGIAreaLight.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -116,6 +117,12 @@ vtkMRGIReferenceRenderer::vtkMRGIReferenceRenderer()
 {
   this->DirectImage = vtkImageData::New();
   this->IndirectImage = vtkImageData::New();
+  // The stopping rule's defaults are the core's (mrgi_reference.h), not typed twice.
+  mrgi_reference_options defaults;
+  mrgi_reference_options_default(&defaults);
+  this->TargetRelativeError = defaults.target_relative_error;
+  this->TargetPercentile = defaults.target_percentile;
+  this->MaxPasses = defaults.max_passes;
 }
 
 //------------------------------------------------------------------------------
@@ -307,6 +314,7 @@ bool vtkMRGIReferenceRenderer::Render(vtkRenderer* renderer)
   options.height = height;
   options.indirect_samples = this->IndirectSamples;
   options.target_relative_error = this->TargetRelativeError;
+  options.target_percentile = this->TargetPercentile;
   options.max_passes = this->MaxPasses;
   options.secondary_visibility = this->SecondaryVisibility ? 1 : 0;
   options.shadows = this->Shadows ? 1 : 0;
@@ -340,6 +348,7 @@ bool vtkMRGIReferenceRenderer::Render(vtkRenderer* renderer)
   this->Progress = 0;
   this->ProgressPasses = 0;
   this->ProgressRelativeError = 0;
+  this->ProgressPixelError = 0;
   this->ProgressSecondsLeft = 0;
   this->InvokeEvent(vtkCommand::StartEvent, nullptr);
   const mrgi_status status = mrgi_reference_render_area_lights(&scene, &options,
@@ -354,6 +363,7 @@ bool vtkMRGIReferenceRenderer::Render(vtkRenderer* renderer)
   const bool ok = vtkMRGIImageIO::FromCoreImage(&result.direct, this->DirectImage, this->LastErrorMessage) &&
     vtkMRGIImageIO::FromCoreImage(&result.indirect, this->IndirectImage, this->LastErrorMessage);
   this->RelativeError = result.relative_error;
+  this->PixelError = std::max(result.pixel_error, result.direct_pixel_error);
   this->Passes = result.passes;
   this->Seconds = result.seconds;
   this->Cancelled = result.cancelled != 0;
@@ -370,6 +380,7 @@ int vtkMRGIReferenceRenderer::ReportProgress(void* self, const mrgi_reference_pr
   renderer->Progress = progress->fraction;
   renderer->ProgressPasses = progress->passes;
   renderer->ProgressRelativeError = progress->relative_error;
+  renderer->ProgressPixelError = std::max(progress->pixel_error, progress->direct_pixel_error);
   renderer->ProgressSecondsLeft = progress->seconds_left;
   double fraction = progress->fraction;
   renderer->InvokeEvent(vtkCommand::ProgressEvent, &fraction);
@@ -399,6 +410,7 @@ void vtkMRGIReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Size: " << this->Width << " x " << this->Height << "\n";
   os << indent << "IndirectSamples: " << this->IndirectSamples << "\n";
   os << indent << "TargetRelativeError: " << this->TargetRelativeError << "\n";
+  os << indent << "TargetPercentile: " << this->TargetPercentile << "\n";
   os << indent << "MaxPasses: " << this->MaxPasses << "\n";
   os << indent << "SecondaryVisibility: " << (this->SecondaryVisibility ? "On" : "Off") << "\n";
   os << indent << "Shadows: " << (this->Shadows ? "On" : "Off") << "\n";
@@ -407,9 +419,14 @@ void vtkMRGIReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AreaLightSamples: " << this->AreaLightSamples << "\n";
   os << indent << "Threads: " << this->Threads << "\n";
   os << indent << "RelativeError: " << this->RelativeError << "\n";
+  os << indent << "PixelError: " << this->PixelError << "\n";
   os << indent << "Passes: " << this->Passes << "\n";
   os << indent << "Seconds: " << this->Seconds << "\n";
   os << indent << "AbortRender: " << this->AbortRender << "\n";
   os << indent << "Cancelled: " << this->Cancelled << "\n";
   os << indent << "Progress: " << this->Progress << "\n";
+  os << indent << "ProgressPasses: " << this->ProgressPasses << "\n";
+  os << indent << "ProgressRelativeError: " << this->ProgressRelativeError << "\n";
+  os << indent << "ProgressPixelError: " << this->ProgressPixelError << "\n";
+  os << indent << "ProgressSecondsLeft: " << this->ProgressSecondsLeft << "\n";
 }

@@ -20,7 +20,8 @@
  *
  * Progress and cancel: Render() fires StartEvent, then after each pass
  * vtkCommand::ProgressEvent (call data: a double, the fraction done; also
- * GetProgress()), with GetProgressPasses(), GetProgressRelativeError() and
+ * GetProgress()), with GetProgressPasses(), GetProgressPixelError() (the
+ * stopping statistic), GetProgressRelativeError() and
  * GetProgressSecondsLeft() up to date, then EndEvent. An observer (or another
  * thread) that sets AbortRender stops the render after the current pass:
  * Render() then returns true with the images of the passes done (consistent:
@@ -65,13 +66,23 @@ public:
   ///@}
 
   ///@{
-  /** Stop once the relative standard error of the indirect image is below this (default 0.01). */
+  /**
+   * The stopping rule (mrgi_reference.h, mrgi_reference_noise.h): stop once
+   * the TargetPercentile quantile of the per-pixel relative standard error
+   * (each pixel's standard error over max(its value, the image's mean
+   * pixel value)) is at or below TargetRelativeError, in the indirect image
+   * and, with area lights, in the direct image. 0 = run MaxPasses.
+   * Defaults: the core's, 0.02 at the 95th percentile, a converged image
+   * (Documentation/Fidelity.md).
+   */
   vtkSetClampMacro(TargetRelativeError, double, 0.0, 1.0);
   vtkGetMacro(TargetRelativeError, double);
+  vtkSetClampMacro(TargetPercentile, double, 0.001, 1.0);
+  vtkGetMacro(TargetPercentile, double);
   ///@}
 
   ///@{
-  /** Most progressive passes (default 64). */
+  /** Most progressive passes (default the core's, 4096). */
   vtkSetClampMacro(MaxPasses, int, 1, 100000);
   vtkGetMacro(MaxPasses, int);
   ///@}
@@ -122,11 +133,14 @@ public:
    * The render in progress (after the pass last reported; ProgressEvent):
    * fraction done in [0, 1] (passes done over the passes expected, fewer
    * than MaxPasses when the error falls to the target sooner), passes done,
-   * the relative error so far (+inf after one pass) and the estimated
-   * seconds left.
+   * the stopping statistic so far (the per-pixel error, as GetPixelError();
+   * +inf after one pass), the relative error of the image mean (as
+   * GetRelativeError()) and the estimated seconds left (the statistic falls
+   * as 1/sqrt(passes)).
    */
   vtkGetMacro(Progress, double);
   vtkGetMacro(ProgressPasses, int);
+  vtkGetMacro(ProgressPixelError, double);
   vtkGetMacro(ProgressRelativeError, double);
   vtkGetMacro(ProgressSecondsLeft, double);
   ///@}
@@ -152,7 +166,10 @@ public:
   /** Results of the last Render(). */
   vtkImageData* GetDirectImage() { return this->DirectImage; }
   vtkImageData* GetIndirectImage() { return this->IndirectImage; }
+  /** Relative standard error of the indirect image's mean (reported, not the stopping rule). */
   vtkGetMacro(RelativeError, double);
+  /** The stopping statistic reached: the larger of the indirect's and (area lights) the direct's per-pixel error. */
+  vtkGetMacro(PixelError, double);
   vtkGetMacro(Passes, int);
   vtkGetMacro(Seconds, double);
   vtkGetMacro(TriangleCount, vtkIdType);
@@ -173,8 +190,9 @@ protected:
   int Width = 0;
   int Height = 0;
   int IndirectSamples = 16;
-  double TargetRelativeError = 0.01;
-  int MaxPasses = 64;
+  double TargetRelativeError; // the core's default, set by the constructor
+  double TargetPercentile;
+  int MaxPasses;
   bool SecondaryVisibility = true;
   bool Shadows = true;
   vtkTypeUInt64 Seed = 1;
@@ -183,6 +201,7 @@ protected:
   vtkImageData* DirectImage;
   vtkImageData* IndirectImage;
   double RelativeError = 0;
+  double PixelError = 0;
   int Passes = 0;
   double Seconds = 0;
   vtkIdType TriangleCount = 0;
@@ -194,6 +213,7 @@ protected:
   double Progress = 0;
   int ProgressPasses = 0;
   double ProgressRelativeError = 0;
+  double ProgressPixelError = 0;
   double ProgressSecondsLeft = 0;
 
 private:

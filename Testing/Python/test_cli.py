@@ -201,10 +201,18 @@ def main():
     code, _, err = run("cornell-spot", "-o", ref_exr, "--size", "32x32", "--reference",
                        "--reference-passes", "2", "--reference-error", "0")
     check(code == 0 and os.path.getsize(ref_exr) > 0, "--reference: " + err)
-    check("ground truth:" in err, "--reference reports passes and error")
-    check(re.search(r"ground truth: pass 1, \d+%, relative error unknown", err) and
-          re.search(r"ground truth: pass 2, 100%, relative error [0-9.]+ .*s left", err),
-          "--reference prints a progress line per pass here: " + err)
+    check(re.search(r"ground truth: 2 passes, per-pixel error [0-9.]+ at the 0.95 quantile", err),
+          "--reference reports passes and the per-pixel error: " + err)
+    # stderr is a pipe here, no terminal: no per-pass lines unless --progress
+    check("ground truth: pass" not in err, "no progress lines into a pipe without --progress: " + err)
+    code, _, err = run("cornell-spot", "-o", ref_exr, "--size", "32x32", "--reference",
+                       "--reference-passes", "2", "--reference-error", "0", "--progress",
+                       "--reference-percentile", "0.5")
+    check(code == 0, "--progress --reference-percentile 0.5: " + err)
+    check(re.search(r"ground truth: pass 1, \d+%, per-pixel error unknown", err) and
+          re.search(r"ground truth: pass 2, 100%, per-pixel error [0-9.]+ \(target 0 at the 0.5 "
+                    r"quantile\), about [0-9]+ s left", err),
+          "--progress prints a line per pass here: " + err)
 
     # Scaling scene and a file scene.
     out_png = fresh("cli_scaling.png")
@@ -375,6 +383,8 @@ def bad_input():
         (["cornell", "-o", target, "--camera-view-angle", "180"], "--camera-view-angle"),
         (["cornell", "-o", target, "--specular", "0.5:nan"], "--specular"),
         (["cornell", "-o", target, "--reference-error", "1.5"], "--reference-error"),
+        (["cornell", "-o", target, "--reference-percentile", "0"], "--reference-percentile"),
+        (["cornell", "-o", target, "--reference-percentile", "1.5"], "--reference-percentile"),
         (["cornell", "-o", target, "--finest-level", "24"], "--finest-level"),
         (["cornell", "-o", target, "--stage", "yes"], "--stage"),
         (["cornell", "-o", target, "--up", "w"], "--up 'w': expected auto, x, y, z, -x, -y or -z"),

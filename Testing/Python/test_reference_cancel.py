@@ -42,7 +42,8 @@ def main():
 
     def on_progress(caller, _event):
         events.append((caller.GetProgressPasses(), caller.GetProgress(),
-                       caller.GetProgressRelativeError(), caller.GetProgressSecondsLeft()))
+                       caller.GetProgressRelativeError(), caller.GetProgressSecondsLeft(),
+                       caller.GetProgressPixelError()))
         if caller.GetProgressPasses() >= 3:
             caller.AbortRenderOn()
 
@@ -61,6 +62,13 @@ def main():
           "fractions in (0, 1], growing: %s" % fractions)
     check(abs(fractions[-1] - 3 / 40) < 1e-9, "3 of 40 passes: %s" % fractions[-1])
     check(np.isinf(events[0][2]) and np.isfinite(events[1][2]), "error unknown after one pass only")
+    # the stopping statistic: per pixel, unknown after one pass, then finite
+    # and (sqrt(N) times, N = 768 pixels) larger than the image mean's error
+    check(np.isinf(events[0][4]) and np.isfinite(events[1][4]) and events[2][4] > 0,
+          "per-pixel error unknown after one pass only: %s" % events)
+    check(events[2][4] > 5 * events[2][2], "per-pixel error well above the image mean's: %s" % events)
+    check(reference.GetTargetPercentile() == 0.95, "default percentile 0.95")
+    check(reference.GetPixelError() == events[2][4], "GetPixelError() is the last pass's statistic")
     check(all(e[3] >= 0 for e in events), "seconds left >= 0")
     cancelled = {"direct": as_array(reference.GetDirectImage()),
                  "indirect": as_array(reference.GetIndirectImage())}
@@ -78,6 +86,14 @@ def main():
     check(np.array_equal(as_array(reference.GetIndirectImage()), cancelled["indirect"]),
           "the cancelled image equals a 3-pass render")
     check(abs(reference.GetProgress() - 1.0) < 1e-12, "progress ends at 1")
+    check(reference.GetPixelError() == events[2][4], "the same three passes, the same statistic")
+    # a lower percentile is a smaller statistic on the same passes
+    reference.SetTargetPercentile(0.5)
+    check(reference.Render(renderer), "three passes at the median")
+    check(reference.GetPixelError() < events[2][4],
+          "median %g below the 95th percentile %g" % (reference.GetPixelError(), events[2][4]))
+    reference.SetTargetPercentile(0.0)
+    check(reference.GetTargetPercentile() > 0, "the percentile is clamped into (0, 1]")
     print("ok")
 
 
