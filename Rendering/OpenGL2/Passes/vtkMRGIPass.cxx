@@ -22,7 +22,6 @@
 #include "vtkMRGISceneChecks.h"
 #include "vtkMRGISSAO.h"
 #include "vtkMRGISSGI.h"
-#include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIShadowedDirectLight.h"
 #include "vtkMRGIUpsample.h"
@@ -33,7 +32,6 @@
 #include "vtkOpenGLFXAAFilter.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLPolyDataMapper.h"
-#include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLRenderer.h"
 #include "vtkOpenGLState.h"
@@ -95,7 +93,7 @@ void ReportAsPass(vtkObject*, unsigned long event, void* pass, void* text)
 struct vtkMRGIPass::Internals
 {
   vtkMRGIGBuffer GBuffer;
-  // The full-resolution gather, the add and the output programs.
+  // The add and the output programs.
   vtkMRGIProgramCache Programs;
   // A stage that fails (e.g. a buffer larger than GL_MAX_TEXTURE_SIZE) fails
   // every frame: the pass says so once, until the light is computed again.
@@ -471,50 +469,6 @@ void vtkMRGIPass::RenderForward(const vtkRenderState* s)
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIPass::RenderGather(const vtkMRGIFrameContext& frame, int vplCount)
-{
-  Internals& in = *this->Internal;
-  vtkOpenGLRenderWindow* renWin = frame.Window;
-  vtkOpenGLQuadHelper* quad = in.Programs.Ready(
-    renWin, "gather.full", "", [] { return vtkMRGIShaderLibraries::Compose({ "vtkMRGIGatherFS" }); });
-  if (!quad)
-  {
-    vtkErrorMacro("could not build the MRGI gather shader");
-    return false;
-  }
-  vtkShaderProgram* program = quad->Program;
-  vtkTextureObject* vpls = this->VPLSelection->GetVPLTexture();
-  vtkOpenGLFramebufferObject* fbo = in.GBuffer.FrameBuffer;
-  vtkMRGIViewportStep state(renWin->GetState(), frame.Viewport);
-  fbo->SaveCurrentBindingsAndBuffers();
-  fbo->Bind();
-  fbo->RemoveColorAttachments(MRGI_GBUFFER_MAX_ATTACHMENTS);
-  fbo->AddColorAttachment(0, in.GBuffer.Irradiance);
-  fbo->AddColorAttachment(1, in.GBuffer.Indirect);
-  vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 2);
-  in.GBuffer.Position->Activate();
-  in.GBuffer.Normal->Activate();
-  in.GBuffer.Albedo->Activate();
-  vpls->Activate();
-  program->SetUniformi("mrgiPosition", in.GBuffer.Position->GetTextureUnit());
-  program->SetUniformi("mrgiNormal", in.GBuffer.Normal->GetTextureUnit());
-  program->SetUniformi("mrgiAlbedo", in.GBuffer.Albedo->GetTextureUnit());
-  program->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
-  program->SetUniformi("mrgiVPLCount", vplCount);
-  program->SetUniformf("mrgiStrength", static_cast<float>(this->IndirectStrength));
-  program->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
-  quad->Render();
-  vpls->Deactivate();
-  in.GBuffer.Albedo->Deactivate();
-  in.GBuffer.Normal->Deactivate();
-  in.GBuffer.Position->Deactivate();
-  fbo->RemoveColorAttachments(2);
-  fbo->UnBind();
-  fbo->RestorePreviousBindingsAndBuffers();
-  return true;
-}
-
-//------------------------------------------------------------------------------
 bool vtkMRGIPass::MakeFrame(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer,
   vtkRenderTimerLog* timer, bool capture, vtkMRGIFrameContext& frame)
 {
@@ -840,7 +794,8 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
       else
       {
         ScopedStage stage(timer, "gather");
-        gathered = this->RenderGather(frame, vplCount);
+        gathered = this->Gather->GatherFull(frame, this->VPLSelection->GetVPLTexture(), vplCount,
+          this->IndirectStrength, in.GBuffer.Irradiance, in.GBuffer.Indirect);
       }
       if (gathered)
       {

@@ -628,8 +628,6 @@ protected:
   // error) an undefined pixel size.
   bool MakeFrame(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, vtkRenderTimerLog* timer,
     bool capture, vtkMRGIFrameContext& frame);
-  // Full-resolution gather: every pixel gathers every VPL.
-  bool RenderGather(const vtkMRGIFrameContext& frame, int vplCount);
   // Selection, gather, upsampling and resolve of the multiresolution gather.
   bool RenderMultiresolution(const vtkMRGIFrameContext& frame, int vplCount);
   // Adds `source`'s RGB to `target`'s (additive blending, target alpha kept).
