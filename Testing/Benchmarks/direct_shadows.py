@@ -29,17 +29,8 @@ from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
 MODES = (("off", 0), ("hard", 1), ("soft", 2))
 
 
-def boxes(array, n=4):
-    h, w, c = array.shape
-    return array[: h - h % n, : w - w % n].reshape(h // n, n, w // n, n, c).mean(axis=(1, 3))
-
-
 def box_error(compare_tool, image, reference, scratch, tag, diff_png=None):
-    a = os.path.join(scratch, "direct-shadows-%s-image.exr" % tag)
-    b = os.path.join(scratch, "direct-shadows-%s-ref.exr" % tag)
-    mb.write(boxes(image[..., :3]), a)
-    mb.write(boxes(reference[..., :3]), b)
-    return mb.compare(compare_tool, a, b, diff_png, 4.0)["relative_rms"]
+    return mb.box_error(compare_tool, image, reference, scratch, "direct-shadows-" + tag, diff_png)
 
 
 def ground_truth(renderer, shadows, seed, passes):
@@ -62,11 +53,7 @@ def main():
     parser.add_argument("--frames", type=int, default=5)
     parser.add_argument("--scenes", default="cornell-spot,cornell")
     args = parser.parse_args()
-    compare_tool = os.path.join(args.build, "bin", "mrgi-compare")
-    images = os.path.join(args.out, "images")
-    os.makedirs(images, exist_ok=True)
-    scratch = os.path.join(args.build, "Testing", "Temporary")
-    os.makedirs(scratch, exist_ok=True)
+    compare_tool, images, scratch = mb.folders(args.build, args.out)
 
     rows = []
     for name in args.scenes.split(","):

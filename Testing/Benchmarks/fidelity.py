@@ -29,11 +29,7 @@ def main():
     parser.add_argument("--passes", type=int, default=64, help="ground-truth passes (16 bounce rays each)")
     parser.add_argument("--scenes", default="cornell-spot,bunny-cornell")
     args = parser.parse_args()
-    compare_tool = os.path.join(args.build, "bin", "mrgi-compare")
-    images = os.path.join(args.out, "images")
-    os.makedirs(images, exist_ok=True)
-    scratch = os.path.join(args.build, "Testing", "Temporary")
-    os.makedirs(scratch, exist_ok=True)
+    compare_tool, images, scratch = mb.folders(args.build, args.out)
 
     rows = []
     for name in args.scenes.split(","):

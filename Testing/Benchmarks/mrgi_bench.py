@@ -116,6 +116,36 @@ def write_display(array, path, scale):
     write(np.clip(array[..., :3] * scale, 0.0, 1.0), path)
 
 
+def folders(build, out):
+    """What a fidelity benchmark writes with: the path of BUILD's
+    mrgi-compare, OUT/images (the page's pictures) and BUILD's scratch
+    folder Testing/Temporary, both created."""
+    images = os.path.join(out, "images")
+    scratch = os.path.join(build, "Testing", "Temporary")
+    os.makedirs(images, exist_ok=True)
+    os.makedirs(scratch, exist_ok=True)
+    return os.path.join(build, "bin", "mrgi-compare"), images, scratch
+
+
+def boxes(array, n=4):
+    """Means of n x n pixel boxes of an H x W (x C) array: the 4 x 4 box
+    averages the issues' relative RMS is taken over. Rows and columns past
+    the last whole box are dropped."""
+    h, w = array.shape[:2]
+    cropped = array[: h - h % n, : w - w % n]
+    return cropped.reshape((h // n, n, w // n, n) + array.shape[2:]).mean(axis=(1, 3))
+
+
+def box_error(compare_tool, image, reference, scratch, name, diff_png=None):
+    """Relative RMS (mrgi-compare) of the box averages of two H x W x 3+
+    images, written as NAME-image.exr and NAME-ref.exr into `scratch`."""
+    a = os.path.join(scratch, "%s-image.exr" % name)
+    b = os.path.join(scratch, "%s-ref.exr" % name)
+    write(boxes(image[..., :3]), a)
+    write(boxes(reference[..., :3]), b)
+    return compare(compare_tool, a, b, diff_png)["relative_rms"]
+
+
 def compare(compare_tool, image_path, reference_path, diff_path=None, diff_scale=4.0):
     """Metrics from the C core (mrgi-compare): dict of floats."""
     command = [compare_tool, image_path, reference_path]

@@ -138,11 +138,6 @@ def indirect(window, gi_pass):
     return mb.to_numpy(image)[..., :3]
 
 
-def boxes(array, n=4):
-    h, w, c = array.shape
-    return array[: h - h % n, : w - w % n].reshape(h // n, n, w // n, n, c).mean(axis=(1, 3))
-
-
 def coverage(size, actor):
     """The object alone, no MRGI: covered pixels from the depth buffer (rows top-down)."""
     window, renderer = mb.make_window(size, size)
@@ -212,8 +207,8 @@ def mesh_vs_cloud(args):
         renderer.RemoveActor(mesh)
         renderer.AddActor(cloud)
         e_cloud = indirect(window, gi)
-        mb.write(boxes(e_mesh), os.path.join(tmp, "mesh.exr"))
-        mb.write(boxes(e_cloud), os.path.join(tmp, "cloud.exr"))
+        mb.write(mb.boxes(e_mesh), os.path.join(tmp, "mesh.exr"))
+        mb.write(mb.boxes(e_cloud), os.path.join(tmp, "cloud.exr"))
         metrics = mb.compare(COMPARE, os.path.join(tmp, "cloud.exr"), os.path.join(tmp, "mesh.exr"))
         assert np.isfinite(e_cloud).all(), "NaN in the cloud's indirect light"
         mask_mesh = coverage(size, mesh)
@@ -223,7 +218,7 @@ def mesh_vs_cloud(args):
         rows, cols = np.nonzero(mask_mesh)
         y0, y1 = max(rows.min() - 16, 0) // 4, (rows.max() + 16) // 4 + 1
         x0, x1 = max(cols.min() - 16, 0) // 4, (cols.max() + 16) // 4 + 1
-        near_mesh, near_cloud = boxes(e_mesh)[y0:y1, x0:x1], boxes(e_cloud)[y0:y1, x0:x1]
+        near_mesh, near_cloud = mb.boxes(e_mesh)[y0:y1, x0:x1], mb.boxes(e_cloud)[y0:y1, x0:x1]
         near = float(np.sqrt(((near_cloud - near_mesh) ** 2).sum() / (near_mesh ** 2).sum()))
         results[size] = (max(metrics["relative_rms"], near), sil)
         print("mesh-vs-cloud %dx%d, %s, %d points (radius %.3g, scale %.2g): indirect light on 4x4 "
@@ -369,7 +364,7 @@ def truth(args):
                                                                           reference.GetPasses(), seconds))
     worst = 0.0
     for k, what in ((0, "direct"), (1, "indirect")):
-        a, b = boxes(images["cloud"][k]), boxes(images["mesh"][k])
+        a, b = mb.boxes(images["cloud"][k]), mb.boxes(images["mesh"][k])
         assert np.isfinite(a).all(), "NaN in the ground truth of the cloud"
         rel = float(np.sqrt(((a - b) ** 2).sum() / (b ** 2).sum()))
         worst = max(worst, rel)

@@ -30,17 +30,8 @@ import mrgi  # noqa: E402
 from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
 
 
-def boxes(array, n=4):
-    h, w, c = array.shape
-    return array[: h - h % n, : w - w % n].reshape(h // n, n, w // n, n, c).mean(axis=(1, 3))
-
-
 def box_error(compare_tool, image, reference, scratch, tag):
-    a = os.path.join(scratch, "ssgi-%s-image.exr" % tag)
-    b = os.path.join(scratch, "ssgi-%s-ref.exr" % tag)
-    mb.write(boxes(image[..., :3]), a)
-    mb.write(boxes(reference[..., :3]), b)
-    return mb.compare(compare_tool, a, b)["relative_rms"]
+    return mb.box_error(compare_tool, image, reference, scratch, "ssgi-" + tag)
 
 
 def ground_truth(renderer, seed, passes):
@@ -77,11 +68,7 @@ def main():
     parser.add_argument("--radius", type=float, default=0.1, help="R as a fraction of the scene's diagonal")
     parser.add_argument("--no-cost", action="store_true", help="skip the cost measurement (and the CSV)")
     args = parser.parse_args()
-    compare_tool = os.path.join(args.build, "bin", "mrgi-compare")
-    images = os.path.join(args.out, "images")
-    os.makedirs(images, exist_ok=True)
-    scratch = os.path.join(args.build, "Testing", "Temporary")
-    os.makedirs(scratch, exist_ok=True)
+    compare_tool, images, scratch = mb.folders(args.build, args.out)
     samples = [int(s) for s in args.samples.split(",")]
 
     window, renderer = mb.make_window(args.size, args.size)

@@ -565,6 +565,82 @@ static void test_degenerate(void)
   MRGI_CHECK(out[0] == 1.0f && out[1] == 1.0f);
 }
 
+/* BMR levels (mrgi_direct_shadow_level): on a random G-buffer (receivers on
+ * the plane, some under the occluder, some without geometry, odd sizes),
+ * level k texel (i, j) is 1 - the full-resolution factor of its block's
+ * centre pixel, 0 without geometry; level 0 is 1 - the factors. */
+static void test_levels(void)
+{
+  mrgi_direct_shadow_view view;
+  spot_view(&view, 1.0);
+  const scene sc = { 1.0, 1, 1, 0.5, 1.0, 0, { 0, 0, 0 } };
+  setup(&view, &sc);
+  enum { W = 45, H = 29 };
+  static float pos[4 * W * H], nor[4 * W * H], full[W * H], level[W * H];
+  unsigned state = 12345u;
+  for (int t = 0; t < W * H; ++t)
+  {
+    double r[4];
+    for (int k = 0; k < 4; ++k)
+    {
+      state = state * 1664525u + 1013904223u;
+      r[k] = (double)(state >> 8) / (double)(1u << 24);
+    }
+    pos[4 * t + 0] = (float)(3.0 * r[0] - 1.5);
+    pos[4 * t + 1] = (float)(3.0 * r[1] - 1.5);
+    pos[4 * t + 2] = 0.0f;
+    pos[4 * t + 3] = r[2] < 0.15 ? 0.0f : MRGI_GBUFFER_VALID;
+    nor[4 * t + 0] = (float)(0.2 * (r[3] - 0.5));
+    nor[4 * t + 1] = 0.0f;
+    nor[4 * t + 2] = 1.0f;
+    nor[4 * t + 3] = 1.0f;
+  }
+  const double identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+  mrgi_error err;
+  for (int mode = 0; mode < 2; ++mode)
+  {
+    mrgi_direct_shadow_params p;
+    mrgi_direct_shadow_params_default(&p);
+    p.mode = mode;
+    p.light_radius = 0.05;
+    MRGI_CHECK(mrgi_direct_shadow_gbuffer(W, H, pos, nor, identity, &view, 1, &p, full, NULL, &err) ==
+      MRGI_OK);
+    for (int k = 0; k <= 3; ++k)
+    {
+      MRGI_CHECK(mrgi_direct_shadow_level(W, H, k, pos, nor, identity, &view, 1, &p, level, NULL,
+                   &err) == MRGI_OK);
+      const int side = 1 << k, w = (W + side - 1) / side, h = (H + side - 1) / side;
+      int shadowed = 0, lit = 0, empty = 0, bad = 0;
+      for (int j = 0; j < h; ++j)
+      {
+        for (int i = 0; i < w; ++i)
+        {
+          const int x = i * side + side / 2 < W - 1 ? i * side + side / 2 : W - 1;
+          const int y = j * side + side / 2 < H - 1 ? j * side + side / 2 : H - 1;
+          const int t = y * W + x;
+          const float got = level[j * w + i];
+          const int valid = pos[4 * t + 3] > MRGI_GBUFFER_VALID_THRESHOLD;
+          const double want = valid ? 1.0 - (double)full[t] : 0.0;
+          bad += !(fabs(got - want) <= 1e-6);
+          empty += !valid;
+          shadowed += valid && got > 0.5f;
+          lit += valid && got == 0.0f;
+        }
+      }
+      MRGI_CHECK(bad == 0);
+      MRGI_CHECK(shadowed > 0 && lit > 0 && (k > 1 || empty > 0));
+    }
+  }
+  /* Levels out of range: a clear error. */
+  mrgi_direct_shadow_params p;
+  mrgi_direct_shadow_params_default(&p);
+  MRGI_CHECK(mrgi_direct_shadow_level(W, H, -1, pos, nor, identity, &view, 1, &p, level, NULL,
+               &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(strstr(err.message, "level -1") != NULL);
+  MRGI_CHECK(mrgi_direct_shadow_level(W, H, MRGI_DIRECT_SHADOW_MAX_LEVEL + 1, pos, nor, identity,
+               &view, 1, &p, level, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
+}
+
 int main(int argc, char** argv)
 {
   static const mrgi_test_case cases[] = {
@@ -576,6 +652,7 @@ int main(int argc, char** argv)
     MRGI_TEST_CASE(test_invalid_texels),
     MRGI_TEST_CASE(test_cube_faces),
     MRGI_TEST_CASE(test_degenerate),
+    MRGI_TEST_CASE(test_levels),
   };
   const int status = MRGI_TEST_MAIN(argc, argv, cases);
   free(g_positions);

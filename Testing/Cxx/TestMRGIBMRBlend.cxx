@@ -211,10 +211,8 @@ void SumEvents(const vtkRenderTimerLog::Event& event, std::map<std::string, doub
 
 void Benchmark()
 {
-  const char* enabled = std::getenv("MRGI_BMR_BENCHMARK");
-  if (!enabled || std::string(enabled) != "1")
+  if (!bmrtest::BenchmarkRequested())
   {
-    std::printf("Benchmark: set MRGI_BMR_BENCHMARK=1 to run it\n");
     return;
   }
   const int sizes[2][2] = { { 1280, 720 }, { 1920, 1080 } };

@@ -233,6 +233,17 @@ void TestShadowMap()
   // MRGI(camera(baker, shadows)).
   auto inside = s.Render(s.NewMRGI(NewShadowCamera(nullptr)), "mrgi(shadow)");
   ExpectBoth("mrgi(shadow)", inside, mrgiAlone, shadowAlone, true);
+  // The two nestings agree but for a few pixels at the shadow map's edges
+  // (Documentation/Composition.md): fewer than 5% of the pixels differ by
+  // more than kStep, where either nesting losing VTK's shadows would change
+  // the pixels they darken (4230 of 19200 in this scene).
+  double worst = 0;
+  const int differ = Differ(inside, around, 0.0, &worst);
+  const int visibly = Differ(inside, around, kStep);
+  std::printf("%-22s %5d pixels differ from shadow(mrgi) (%d by more than %.0f / 255), by at "
+              "most %.0f / 255\n",
+    "mrgi(shadow)", differ, visibly, kStep, worst);
+  MRGI_TEST_CHECK(visibly < W * H / 20);
   MRGI_TEST_CHECK(s.Errors->Count == 0);
 }
 

@@ -9,6 +9,11 @@
 //     tile keep what the texture held; a slot naming a light without views
 //     stays 1; the depth maps are derived again only when the RSMs are
 //     re-rendered (then the factors still match the twin).
+// (4) Levels: the multiresolution path's level draws
+//     (vtkMRGIDirectShadows::ComputeLevels, levels 1..3, under the stencils
+//     ComputeMultiresolution built) against mrgi_direct_shadow_level() on
+//     the same G-buffer: each stenciled texel is 1 - the factor of its
+//     block's centre pixel, every other texel 0; for (1) and (2).
 // Each in hard (3 x 3 PCF) and soft (PCSS, 196 taps) mode, on a non-square
 // window. Compared per pixel: within 1e-4 on >= 99.9% of the pixels; the
 // rest may differ where float (GPU) and double (twin) put a tap on the
@@ -32,6 +37,7 @@
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkMRGIBMRLevels.h"
 #include "vtkMRGIDirectShadows.h"
 #include "vtkMRGIFrameContext.h"
 #include "vtkMRGIPass.h"
@@ -43,6 +49,7 @@
 #include "vtkRenderTimerLog.h"
 #include "vtkRenderer.h"
 #include "vtkTextureObject.h"
+#include "vtkUnsignedCharArray.h"
 
 #include "mrgi_buffers.h"
 #include "mrgi_box_filter.h"
@@ -152,6 +159,23 @@ mrgi_direct_shadow_view TwinView(
   return view;
 }
 
+// The twin's views of light `light` (positions read back into `stores`).
+std::vector<mrgi_direct_shadow_view> LightViews(Scene& s, int light,
+  std::vector<vtkSmartPointer<vtkImageData>>& stores)
+{
+  vtkMRGIReflectiveShadowMapPass* rsm = s.Pass->GetReflectiveShadowMapPass();
+  std::vector<mrgi_direct_shadow_view> views;
+  for (int i = 0; i < rsm->GetNumberOfViews(); ++i)
+  {
+    if (rsm->GetViewLight(i) == light)
+    {
+      stores.push_back(vtkSmartPointer<vtkImageData>::New());
+      views.push_back(TwinView(s.Window, rsm, i, stores.back()));
+    }
+  }
+  return views;
+}
+
 void Compare(Scene& s, const int slots[MRGI_SHADOW_SLOTS], int mode, const char* label)
 {
   mrgi_direct_shadow_params params;
@@ -180,18 +204,11 @@ void Compare(Scene& s, const int slots[MRGI_SHADOW_SLOTS], int mode, const char*
   for (int slot = 0; slot < MRGI_SHADOW_SLOTS; ++slot)
   {
     std::vector<float> twin(static_cast<size_t>(W) * H, 1.0f);
-    std::vector<mrgi_direct_shadow_view> views;
     std::vector<vtkSmartPointer<vtkImageData>> stores;
+    const std::vector<mrgi_direct_shadow_view> views =
+      slots[slot] >= 0 ? LightViews(s, slots[slot], stores) : std::vector<mrgi_direct_shadow_view>();
     if (slots[slot] >= 0)
     {
-      for (int i = 0; i < rsm->GetNumberOfViews(); ++i)
-      {
-        if (rsm->GetViewLight(i) == slots[slot])
-        {
-          stores.push_back(vtkSmartPointer<vtkImageData>::New());
-          views.push_back(TwinView(s.Window, rsm, i, stores.back()));
-        }
-      }
       MRGI_TEST_CHECK(!views.empty());
       expectedDraws += static_cast<int>(views.size());
       mrgi_direct_shadow_stats stats = { 0, 0, 0 };
@@ -262,6 +279,94 @@ void Compare(Scene& s, const int slots[MRGI_SHADOW_SLOTS], int mode, const char*
   gpu->ReleaseGraphicsResources(s.Window);
 }
 
+// (4): the level draws of both modes against the twin, levels 1..3.
+void CompareLevels(Scene& s, const int slots[MRGI_SHADOW_SLOTS], const char* label)
+{
+  vtkMRGIReflectiveShadowMapPass* rsm = s.Pass->GetReflectiveShadowMapPass();
+  vtkNew<vtkMRGIDirectShadows> gpu;
+  mrgi_direct_shadow_params params;
+  mrgi_direct_shadow_params_default(&params);
+  params.samples_side = MRGI_DIRECT_SHADOW_MAX_SIDE;
+  params.light_radius = 10.0;
+  // Prepares the levels and builds their masks and stencils.
+  MRGI_TEST_CHECK(gpu->ComputeMultiresolution(s.Frame, rsm, slots, params, s.Factors));
+  vtkMRGIBMRLevels* levels = gpu->GetBMRLevels();
+  vtkNew<vtkImageData> position, normal, albedo;
+  MRGI_TEST_CHECK(s.Pass->GetGBuffer(s.Window, position, normal, albedo));
+  const int W = s.Frame.Viewport[2], H = s.Frame.Viewport[3];
+  const float* P = static_cast<const float*>(position->GetScalarPointer());
+  const float* N = static_cast<const float*>(normal->GetScalarPointer());
+  for (int mode : { MRGI_DIRECT_SHADOW_HARD, MRGI_DIRECT_SHADOW_SOFT })
+  {
+    params.mode = mode;
+    const double taps = mode == MRGI_DIRECT_SHADOW_HARD
+      ? MRGI_DIRECT_SHADOW_HARD_SIDE * MRGI_DIRECT_SHADOW_HARD_SIDE
+      : params.samples_side * params.samples_side;
+    MRGI_TEST_CHECK(gpu->ComputeLevels(s.Frame, rsm, slots, params, levels));
+    for (int level = 1; level <= 3; ++level)
+    {
+      int size[2];
+      MRGI_TEST_CHECK(levels->GetLevelSize(level, size));
+      vtkNew<vtkFloatArray> colour;
+      vtkNew<vtkUnsignedCharArray> stencil;
+      MRGI_TEST_CHECK(levels->ReadColor(s.Window, level, colour) &&
+        levels->ReadStencil(s.Window, level, stencil));
+      const size_t texels = static_cast<size_t>(size[0]) * size[1];
+      MRGI_TEST_CHECK(static_cast<size_t>(stencil->GetNumberOfTuples()) == texels &&
+        static_cast<size_t>(colour->GetNumberOfValues()) >= 4 * texels);
+      for (int slot = 0; slot < MRGI_SHADOW_SLOTS; ++slot)
+      {
+        std::vector<float> twin(texels, 0.0f);
+        if (slots[slot] >= 0)
+        {
+          std::vector<vtkSmartPointer<vtkImageData>> stores;
+          const std::vector<mrgi_direct_shadow_view> views = LightViews(s, slots[slot], stores);
+          mrgi_error err;
+          MRGI_TEST_CHECK(mrgi_direct_shadow_level(W, H, level, P, N, s.Frame.ViewToWorldDouble,
+                            views.data(), static_cast<int>(views.size()), &params, twin.data(),
+                            nullptr, &err) == MRGI_OK);
+        }
+        size_t drawn = 0, close = 0, blank = 0, shadowed = 0, lit = 0;
+        double worst = 0.0;
+        for (size_t t = 0; t < texels; ++t)
+        {
+          const float g = colour->GetValue(static_cast<vtkIdType>(4 * t + slot));
+          MRGI_TEST_CHECK(std::isfinite(g) && g >= 0.0f && g <= 1.0f);
+          if (stencil->GetValue(static_cast<vtkIdType>(t)) == 0)
+          {
+            blank += g == 0.0f; // not drawn: the cleared 0
+            continue;
+          }
+          ++drawn;
+          const double e = std::fabs(static_cast<double>(g) - twin[t]);
+          close += e <= 1e-4;
+          worst = std::max(worst, e);
+          shadowed += twin[t] > 0.5f;
+          lit += twin[t] == 0.0f;
+        }
+        const double fraction =
+          drawn ? static_cast<double>(close) / static_cast<double>(drawn) : 0.0;
+        std::printf("%s %s level %d slot %d: %zu of %zu texels stenciled, %zu shadowed, %zu lit; "
+                    "within 1e-4: %.5f; largest difference %.4g (%.2f taps)\n",
+          label, mode == MRGI_DIRECT_SHADOW_HARD ? "hard" : "soft", level, slot, drawn, texels,
+          shadowed, lit, fraction, worst, worst * taps);
+        MRGI_TEST_CHECK(blank == texels - drawn);
+        MRGI_TEST_CHECK(drawn > 0 && fraction >= 0.999);
+        MRGI_TEST_CHECK(worst <= 2.0 * std::sqrt(taps) / taps + 1e-5);
+        if (slots[slot] < 0)
+        {
+          MRGI_TEST_CHECK(worst == 0.0); // no light: every texel lit, 0
+        }
+        else if (level == 1)
+        {
+          MRGI_TEST_CHECK(shadowed > 0 && lit > 0); // not vacuous
+        }
+      }
+    }
+  }
+  gpu->ReleaseGraphicsResources(s.Window);
+}
+
 void SpotAndDirectional()
 {
   Scene s;
@@ -270,6 +375,7 @@ void SpotAndDirectional()
   const int slots[MRGI_SHADOW_SLOTS] = { 0, 1 };
   Compare(s, slots, MRGI_DIRECT_SHADOW_HARD, "spot+directional hard");
   Compare(s, slots, MRGI_DIRECT_SHADOW_SOFT, "spot+directional soft");
+  CompareLevels(s, slots, "spot+directional");
 }
 
 void PointCube()
@@ -281,6 +387,7 @@ void PointCube()
   const int slots[MRGI_SHADOW_SLOTS] = { 0, -1 };
   Compare(s, slots, MRGI_DIRECT_SHADOW_HARD, "point hard");
   Compare(s, slots, MRGI_DIRECT_SHADOW_SOFT, "point soft");
+  CompareLevels(s, slots, "point");
 }
 
 // A renderer on part of a non-square window: the stage writes its tile only.

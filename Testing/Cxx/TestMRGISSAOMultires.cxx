@@ -26,6 +26,8 @@
 
 namespace
 {
+using bmrtest::Median;
+
 const int KernelSize = 64;
 const double Radius = 30.0; // the Cornell box is 556 units wide
 const double Bias = 0.6;
@@ -225,19 +227,11 @@ void BadInput()
   ssao->ReleaseGraphicsResources(s.Window);
 }
 
-double Median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
 // Full (A) and multiresolution (B) AO, A B A B, wall clock after a warm-up.
 void Benchmark()
 {
-  const char* enabled = std::getenv("MRGI_BMR_BENCHMARK");
-  if (!enabled || std::string(enabled) != "1")
+  if (!bmrtest::BenchmarkRequested())
   {
-    std::printf("Benchmark: set MRGI_BMR_BENCHMARK=1 to run it\n");
     return;
   }
   const int sizes[2][2] = { { 1280, 720 }, { 1920, 1080 } };

@@ -18,6 +18,11 @@
 // A shadow stretched or shifted by a wrong aspect or viewport puts lit
 // points in the shadow or umbra points in the light. A small box on the
 // floor gives SSAO a crease; points near it are left out.
+//
+// LightRadius: the automatic light radius (ShadowLightRadius 0) is
+// MRGI_SHADOW_AUTO_LIGHT_RADIUS of the visible props' bounding radius,
+// computed again only when the reflective shadow maps are re-rendered
+// (an actor moved), not for an unchanged frame nor a camera move.
 #include "mrgiTestUtilities.h"
 
 #include "vtkActor.h"
@@ -27,6 +32,8 @@
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkMRGIPass.h"
+#include "vtkMRGIReflectiveShadowMapPass.h"
+#include "vtkMRGIShadowedDirectLight.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
 #include "vtkPolyDataMapper.h"
@@ -35,6 +42,8 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
+
+#include "mrgi_direct_shadow.h"
 
 #include <algorithm>
 #include <cmath>
@@ -688,6 +697,59 @@ void Lights()
   MRGI_TEST_CHECK(bad == 0);
   (void)c;
 }
+
+// MRGI_SHADOW_AUTO_LIGHT_RADIUS of the renderer's visible bounding radius.
+double ExpectedAutoRadius(vtkRenderer* renderer)
+{
+  double b[6];
+  renderer->ComputeVisiblePropBounds(b);
+  const double dx = b[1] - b[0], dy = b[3] - b[2], dz = b[5] - b[4];
+  return 0.5 * std::sqrt(dx * dx + dy * dy + dz * dz) * MRGI_SHADOW_AUTO_LIGHT_RADIUS;
+}
+
+// The automatic light radius follows the scene, computed once per
+// re-render of the reflective shadow maps.
+void LightRadius()
+{
+  Scene s(160, 120);
+  vtkMRGIShadowedDirectLight* step = s.Pass->GetShadowedDirectLight();
+  vtkMRGIReflectiveShadowMapPass* rsm = s.Pass->GetReflectiveShadowMapPass();
+  MRGI_TEST_CHECK(step && step->GetNumberOfLightRadiusUpdates() == 0);
+  s.Render(vtkMRGIPass::DirectShadowsSoft);
+  const double first = step->GetLastLightRadius();
+  const double expected = ExpectedAutoRadius(s.Renderer);
+  std::printf("light radius: %.6g (expected %.6g), %lld update(s)\n", first, expected,
+    static_cast<long long>(step->GetNumberOfLightRadiusUpdates()));
+  vtkNew<vtkImageData> factors;
+  MRGI_TEST_CHECK(s.Pass->GetShadowFactorBuffer(s.Window, factors)); // shadows were applied
+  MRGI_TEST_CHECK(step->GetNumberOfLightRadiusUpdates() == 1);
+  MRGI_TEST_CHECK(first > 0 && std::fabs(first - expected) <= 1e-12 * expected);
+  // Unchanged frames and a camera move: the maps are kept, so is the radius.
+  const vtkIdType renders = rsm->GetNumberOfRenders();
+  s.Render(vtkMRGIPass::DirectShadowsSoft);
+  s.Renderer->GetActiveCamera()->Azimuth(15);
+  s.Renderer->ResetCameraClippingRange();
+  s.Render(vtkMRGIPass::DirectShadowsSoft);
+  MRGI_TEST_CHECK(rsm->GetNumberOfRenders() == renders);
+  MRGI_TEST_CHECK(step->GetNumberOfLightRadiusUpdates() == 1);
+  MRGI_TEST_CHECK(step->GetLastLightRadius() == first);
+  // The small box moves 3 units out: the bounds and the radius grow.
+  s.Actors[2]->SetPosition(3, 0, 0);
+  s.Render(vtkMRGIPass::DirectShadowsSoft);
+  const double moved = step->GetLastLightRadius();
+  const double expectedMoved = ExpectedAutoRadius(s.Renderer);
+  std::printf("light radius after the move: %.6g (expected %.6g), %lld update(s)\n", moved,
+    expectedMoved, static_cast<long long>(step->GetNumberOfLightRadiusUpdates()));
+  MRGI_TEST_CHECK(rsm->GetNumberOfRenders() > renders);
+  MRGI_TEST_CHECK(step->GetNumberOfLightRadiusUpdates() == 2);
+  MRGI_TEST_CHECK(moved > first * 1.05);
+  MRGI_TEST_CHECK(std::fabs(moved - expectedMoved) <= 1e-12 * expectedMoved);
+  // A radius set on the pass is used as it is; the bounds are not read.
+  s.Pass->SetShadowLightRadius(0.05);
+  s.Render(vtkMRGIPass::DirectShadowsSoft);
+  MRGI_TEST_CHECK(step->GetLastLightRadius() == 0.05);
+  MRGI_TEST_CHECK(step->GetNumberOfLightRadiusUpdates() == 2);
+}
 }
 
 int main(int argc, char* argv[])
@@ -696,5 +758,5 @@ int main(int argc, char* argv[])
     { MRGI_TEST_CASE(NonSquare), MRGI_TEST_CASE(Viewport),
       MRGI_TEST_CASE(TileEqualsWindow), MRGI_TEST_CASE(PBR),
       MRGI_TEST_CASE(DepthPeeling), MRGI_TEST_CASE(SecondLayer), MRGI_TEST_CASE(FXAA),
-      MRGI_TEST_CASE(Lights) });
+      MRGI_TEST_CASE(Lights), MRGI_TEST_CASE(LightRadius) });
 }

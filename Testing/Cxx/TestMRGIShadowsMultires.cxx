@@ -25,6 +25,8 @@
 
 namespace
 {
+using bmrtest::Median;
+
 std::vector<float> Factors(bmrtest::Scene& s)
 {
   s.Window->Render();
@@ -154,19 +156,11 @@ void CornellSpot()
   MRGI_TEST_CHECK(s.Pass->GetShadowResolution() == vtkMRGIPass::ResolutionMultiresolution);
 }
 
-double Median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
 // Full (A) and multiresolution (B) frames, A B A B, wall clock after a warm-up.
 void Benchmark()
 {
-  const char* enabled = std::getenv("MRGI_BMR_BENCHMARK");
-  if (!enabled || std::string(enabled) != "1")
+  if (!bmrtest::BenchmarkRequested())
   {
-    std::printf("Benchmark: set MRGI_BMR_BENCHMARK=1 to run it\n");
     return;
   }
   const char* repeatsEnv = std::getenv("MRGI_BMR_REPEATS");

@@ -35,14 +35,37 @@
 #include "mrgi_bmr_mask.h"
 #include "mrgi_multires.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace bmrtest
 {
+/** The benchmark cases run only with MRGI_BMR_BENCHMARK=1 (not under ctest); says so otherwise. */
+inline bool BenchmarkRequested()
+{
+  const char* enabled = std::getenv("MRGI_BMR_BENCHMARK");
+  if (!enabled || std::string(enabled) != "1")
+  {
+    std::printf("Benchmark: set MRGI_BMR_BENCHMARK=1 to run it\n");
+    return false;
+  }
+  return true;
+}
+
+/** The median of `v` (the upper one of an even count); 0 when empty. */
+inline double Median(std::vector<double> v)
+{
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
 /** A window-sized RGBA32F texture holding `rgba` (w x h x 4 floats; null: allocated only). */
 inline vtkSmartPointer<vtkTextureObject> Upload(
   vtkOpenGLRenderWindow* window, int w, int h, const float* rgba)

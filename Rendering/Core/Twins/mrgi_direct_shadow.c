@@ -334,12 +334,15 @@ double mrgi_direct_shadow_grazing_weight(double cosine)
   return w > 1.0 ? 1.0 : (w > 0.0 ? w : 0.0);
 }
 
-mrgi_status mrgi_direct_shadow_gbuffer(int width, int height, const float* positions,
+/* Factors (level -1: every pixel, `factor`, 1 without geometry) or BMR
+ * level `level` >= 0 (1 - factor at each block's centre pixel, 0 without
+ * geometry) of a G-buffer; the public functions check `level`. */
+static mrgi_status shadow_gbuffer(int width, int height, int level, const float* positions,
   const float* normals, const double view_to_world[16], const mrgi_direct_shadow_view* views,
-  int count, const mrgi_direct_shadow_params* params, float* factors,
+  int count, const mrgi_direct_shadow_params* params, float* out,
   mrgi_direct_shadow_stats* stats, mrgi_error* err)
 {
-  if (width < 1 || height < 1 || !positions || !normals || !view_to_world || !factors)
+  if (width < 1 || height < 1 || !positions || !normals || !view_to_world || !out)
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
       "direct shadows: a %d x %d G-buffer needs positions, normals, a view-to-world matrix "
@@ -380,22 +383,34 @@ mrgi_status mrgi_direct_shadow_gbuffer(int width, int height, const float* posit
   if (status == MRGI_OK)
   {
     const double* m = view_to_world;
-    const size_t pixels = (size_t)width * (size_t)height;
-    for (size_t t = 0; t < pixels; ++t)
+    /* Level k: texel (i, j) is the receiver at its 2^k block's centre pixel
+     * (vtkMRGIDirectShadowFS.glsl, mrgiLevel >= 0). */
+    const int side = level > 0 ? 1 << level : 1;
+    const int centre = side / 2;
+    const int out_w = (width + side - 1) / side, out_h = (height + side - 1) / side;
+    for (int j = 0; j < out_h; ++j)
     {
-      const float* e = positions + 4 * t;
-      const float* en = normals + 4 * t;
-      if (!(e[3] > MRGI_GBUFFER_VALID_THRESHOLD))
+      for (int i = 0; i < out_w; ++i)
       {
-        factors[t] = 1.0f;
-        continue;
+        const int x = i * side + centre < width - 1 ? i * side + centre : width - 1;
+        const int y = j * side + centre < height - 1 ? j * side + centre : height - 1;
+        const size_t t = (size_t)y * (size_t)width + (size_t)x;
+        float* o = out + (size_t)j * (size_t)out_w + (size_t)i;
+        const float* e = positions + 4 * t;
+        const float* en = normals + 4 * t;
+        if (!(e[3] > MRGI_GBUFFER_VALID_THRESHOLD))
+        {
+          *o = level < 0 ? 1.0f : 0.0f;
+          continue;
+        }
+        const double pe[3] = { e[0], e[1], e[2] }, ne[3] = { en[0], en[1], en[2] };
+        double p[3], n[3];
+        to_view(m, pe, 1.0, p);
+        to_view(m, ne, 0.0, n);
+        const double f =
+          mrgi_direct_shadow_factor(views, (const float* const*)maps, count, params, p, n, stats);
+        *o = level < 0 ? (float)f : (float)(1.0 - f);
       }
-      const double pe[3] = { e[0], e[1], e[2] }, ne[3] = { en[0], en[1], en[2] };
-      double p[3], n[3];
-      to_view(m, pe, 1.0, p);
-      to_view(m, ne, 0.0, n);
-      factors[t] = (float)mrgi_direct_shadow_factor(
-        views, (const float* const*)maps, count, params, p, n, stats);
     }
   }
   for (int v = 0; v < count; ++v)
@@ -403,4 +418,27 @@ mrgi_status mrgi_direct_shadow_gbuffer(int width, int height, const float* posit
     free(maps[v]);
   }
   return status;
+}
+
+mrgi_status mrgi_direct_shadow_gbuffer(int width, int height, const float* positions,
+  const float* normals, const double view_to_world[16], const mrgi_direct_shadow_view* views,
+  int count, const mrgi_direct_shadow_params* params, float* factors,
+  mrgi_direct_shadow_stats* stats, mrgi_error* err)
+{
+  return shadow_gbuffer(width, height, -1, positions, normals, view_to_world, views, count,
+    params, factors, stats, err);
+}
+
+mrgi_status mrgi_direct_shadow_level(int width, int height, int level, const float* positions,
+  const float* normals, const double view_to_world[16], const mrgi_direct_shadow_view* views,
+  int count, const mrgi_direct_shadow_params* params, float* occlusion,
+  mrgi_direct_shadow_stats* stats, mrgi_error* err)
+{
+  if (level < 0 || level > MRGI_DIRECT_SHADOW_MAX_LEVEL)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+      "direct shadows: level %d (0..%d allowed)", level, MRGI_DIRECT_SHADOW_MAX_LEVEL);
+  }
+  return shadow_gbuffer(width, height, level, positions, normals, view_to_world, views, count,
+    params, occlusion, stats, err);
 }

@@ -142,6 +142,8 @@ extern "C" {
  * Documentation/DirectShadows.md).
  */
 #define MRGI_SHADOW_AUTO_LIGHT_RADIUS 0.01
+/** Largest BMR level mrgi_direct_shadow_level() takes (blocks of 2^8 = 256 pixels). */
+#define MRGI_DIRECT_SHADOW_MAX_LEVEL 8
 
 /** One shadow-map view (see the file comment). Plain data, nothing owned. */
 typedef struct mrgi_direct_shadow_view
@@ -221,6 +223,29 @@ double mrgi_direct_shadow_factor(const mrgi_direct_shadow_view* views, const flo
 mrgi_status mrgi_direct_shadow_gbuffer(int width, int height, const float* positions,
   const float* normals, const double view_to_world[16], const mrgi_direct_shadow_view* views,
   int count, const mrgi_direct_shadow_params* params, float* factors,
+  mrgi_direct_shadow_stats* stats, mrgi_error* err);
+
+/**
+ * @brief One level of the multiresolution path (BMR 3-4), as
+ *        vtkMRGIDirectShadows::ComputeLevels() writes it for one light:
+ *        level `level` of a `width` x `height` G-buffer has
+ *        ceil(width / 2^level) x ceil(height / 2^level) texels (rows
+ *        bottom-up, into `occlusion`). Texel (i, j) stands for the 2^level
+ *        x 2^level block of pixels it covers and is evaluated at the block's
+ *        centre pixel (min(i 2^l + c, width - 1), min(j 2^l + c,
+ *        height - 1)), c = 2^l / 2 (c = 0 at level 0), with that pixel's
+ *        position and normal; it holds 1 - factor (the blend of the levels
+ *        then writes 0 where nothing was drawn), 0 where the pixel has no
+ *        geometry. The shadow-map taps are those of the full-resolution
+ *        factor of that receiver (lengths in shadow-map texels and the
+ *        receiver's shadow-map footprint, not in screen pixels), so level 0
+ *        is 1 - mrgi_direct_shadow_gbuffer().
+ * @return MRGI_ERR_INVALID_ARGUMENT for a level outside
+ *         0..MRGI_DIRECT_SHADOW_MAX_LEVEL and as mrgi_direct_shadow_gbuffer().
+ */
+mrgi_status mrgi_direct_shadow_level(int width, int height, int level, const float* positions,
+  const float* normals, const double view_to_world[16], const mrgi_direct_shadow_view* views,
+  int count, const mrgi_direct_shadow_params* params, float* occlusion,
   mrgi_direct_shadow_stats* stats, mrgi_error* err);
 
 #ifdef __cplusplus

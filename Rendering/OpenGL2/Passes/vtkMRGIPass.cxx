@@ -2,49 +2,42 @@
 
 #include "vtkMRGIPass.h"
 
-#include "vtkActor.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCommand.h"
 #include "vtkCameraPass.h"
 #include "vtkFloatArray.h"
 #include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
-#include "vtkLight.h"
-#include "vtkLightCollection.h"
 #include "vtkMRGIAreaLightStage.h"
 #include "vtkMRGIFrameContext.h"
 #include "vtkMRGIFullScreenStep.h"
 #include "vtkMRGIGBuffer.h"
 #include "vtkMRGIGather.h"
 #include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIOutput.h"
 #include "vtkMRGIProgramCache.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIRenderSteps.h"
+#include "vtkMRGISceneChecks.h"
 #include "vtkMRGISSAO.h"
 #include "vtkMRGISSGI.h"
-#include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
-#include "vtkMRGIShadowComposite.h"
-#include "vtkMRGIDirectShadows.h"
+#include "vtkMRGIShadowedDirectLight.h"
 #include "vtkMRGIUpsample.h"
 #include "vtkMRGIVPLSelection.h"
-#include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLFXAAFilter.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLPolyDataMapper.h"
-#include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLRenderer.h"
 #include "vtkOpenGLState.h"
+#include "vtkOutputWindow.h"
 #include "vtkPointData.h"
-#include "vtkPolyData.h"
-#include "vtkPolyDataMapper.h"
 #include "vtkProp.h"
-#include "vtkProp3D.h"
-#include "vtkPropCollection.h"
-#include "vtkProperty.h"
 #include "vtkRenderPassCollection.h"
 #include "vtkRenderState.h"
 #include "vtkRenderStepsPass.h"
@@ -56,11 +49,9 @@
 #include "vtkTextureObject.h"
 #include "vtkWeakPointer.h"
 
-#include "vtkMRGICompositeFS.h"
 #include "vtkMRGIGBufferCapture.h"
 
 #include "mrgi_buffers.h"
-#include "mrgi_direct_shadow.h"
 #include "mrgi_exposure.h"
 #include "mrgi_multires.h"
 #include "mrgi_vpl.h"
@@ -78,20 +69,36 @@ namespace
 using vtkMRGIShaderUtilities::ScopedStage;
 using vtkMRGIShaderUtilities::StagePrefix;
 
-
+// A step's errors and warnings are the pass's: observers of the pass (an
+// application's, ParaView's) receive them; without one they are printed,
+// as vtkErrorMacro does.
+void ReportAsPass(vtkObject*, unsigned long event, void* pass, void* text)
+{
+  vtkObject* self = static_cast<vtkObject*>(pass);
+  if (self->HasObserver(event))
+  {
+    self->InvokeEvent(event, text);
+  }
+  else if (event == vtkCommand::ErrorEvent)
+  {
+    vtkOutputWindowDisplayErrorText(static_cast<const char*>(text));
+  }
+  else
+  {
+    vtkOutputWindowDisplayWarningText(static_cast<const char*>(text));
+  }
+}
 }
 
 struct vtkMRGIPass::Internals
 {
   vtkMRGIGBuffer GBuffer;
-  // The full-resolution gather, the add and the output programs.
+  // The add and the output programs.
   vtkMRGIProgramCache Programs;
   // A stage that fails (e.g. a buffer larger than GL_MAX_TEXTURE_SIZE) fails
   // every frame: the pass says so once, until the light is computed again.
   bool IndirectFailureReported = false;
   bool AreaLightFailureReported = false;
-  bool ShadowFailureReported = false;
-  bool ExtraLightsReported = false; // lights past MRGI_SHADOW_SLOTS stay unshadowed
   // Actors already warned about as point clouds drawn as pixels (once each).
   std::vector<vtkWeakPointer<vtkProp>> PointCloudsReported;
 };
@@ -109,8 +116,12 @@ vtkMRGIPass::vtkMRGIPass()
   this->SSAOStage = vtkMRGISSAO::New();
   this->SSGIStage = vtkMRGISSGI::New();
   this->AreaLightStage = vtkMRGIAreaLightStage::New();
-  this->ShadowComposite = vtkMRGIShadowComposite::New();
-  this->DirectShadowStage = vtkMRGIDirectShadows::New();
+  this->DirectLight = vtkMRGIShadowedDirectLight::New();
+  vtkNew<vtkCallbackCommand> report;
+  report->SetCallback(ReportAsPass);
+  report->SetClientData(this);
+  this->DirectLight->AddObserver(vtkCommand::ErrorEvent, report);
+  this->DirectLight->AddObserver(vtkCommand::WarningEvent, report);
   this->OpaqueSequence = vtkSequencePass::New();
   for (int i = 0; i < 16; ++i)
   {
@@ -135,8 +146,7 @@ vtkMRGIPass::~vtkMRGIPass()
   this->SSAOStage->Delete();
   this->SSGIStage->Delete();
   this->AreaLightStage->Delete();
-  this->ShadowComposite->Delete();
-  this->DirectShadowStage->Delete();
+  this->DirectLight->Delete();
   this->OpaqueSequence->Delete();
 }
 
@@ -152,8 +162,7 @@ void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
   this->SSAOStage->ReleaseGraphicsResources(w);
   this->SSGIStage->ReleaseGraphicsResources(w);
   this->AreaLightStage->ReleaseGraphicsResources(w);
-  this->ShadowComposite->ReleaseGraphicsResources(w);
-  this->DirectShadowStage->ReleaseGraphicsResources(w);
+  this->DirectLight->ReleaseGraphicsResources(w);
   this->ReleaseResources(w);
 }
 
@@ -174,121 +183,6 @@ void vtkMRGIPass::ReleaseResources(vtkWindow* w)
   this->BufferSize[0] = this->BufferSize[1] = 0;
   this->IndirectComputed = false;
   this->AreaLightsComputed = false;
-}
-
-//------------------------------------------------------------------------------
-namespace
-{
-// VTK's shader lights are the renderer's switched-on lights, in collection
-// order (vtkOpenGLRenderer::UpdateLightingUniforms numbers them so).
-// `slots[s]`: the collection index of shader light s, or -1. Returns how
-// many shader lights can cast a visible shadow: lit (intensity > 0) and not
-// a headlight, whose shadows hide behind what it lights. `unshadowedScene`:
-// how many of those past the slots are scene lights (camera lights past
-// the slots are a light kit's fill and back lights, unshadowed by design).
-int ShaderLights(vtkRenderer* renderer, int slots[MRGI_SHADOW_SLOTS], int& unshadowedScene)
-{
-  std::fill(slots, slots + MRGI_SHADOW_SLOTS, -1);
-  unshadowedScene = 0;
-  vtkLightCollection* lights = renderer->GetLights();
-  vtkCollectionSimpleIterator it;
-  lights->InitTraversal(it);
-  int index = 0, shaderLight = 0, casting = 0;
-  while (vtkLight* light = lights->GetNextLight(it))
-  {
-    if (light->GetSwitch() > 0)
-    {
-      const bool casts = light->GetIntensity() > 0 && !light->LightTypeIsHeadlight();
-      if (shaderLight < MRGI_SHADOW_SLOTS)
-      {
-        slots[shaderLight] = index;
-      }
-      else if (casts && light->LightTypeIsSceneLight())
-      {
-        ++unshadowedScene;
-      }
-      ++shaderLight;
-      casting += casts;
-    }
-    ++index;
-  }
-  return casting;
-}
-
-// Whether some visible prop may reflect specularly: an actor with Specular
-// > 0; other 3D props (assemblies, volumes) are not looked into and count
-// as possibly specular; 2D props (text, overlays) never reach the G-buffer.
-bool AnySpecularProp(vtkRenderer* renderer)
-{
-  vtkPropCollection* props = renderer->GetViewProps();
-  vtkCollectionSimpleIterator it;
-  props->InitTraversal(it);
-  while (vtkProp* prop = props->GetNextProp(it))
-  {
-    if (!prop->GetVisibility() || !vtkProp3D::SafeDownCast(prop))
-    {
-      continue;
-    }
-    vtkActor* actor = vtkActor::SafeDownCast(prop);
-    if (!actor || actor->GetProperty()->GetSpecular() > 0.0)
-    {
-      return true;
-    }
-  }
-  return false;
-}
-}
-
-//------------------------------------------------------------------------------
-namespace
-{
-// Points of an actor's polydata input that is a point cloud (vertex cells
-// only, or no cells at all), or 0: such an actor is drawn as pixels, so the
-// G-buffer and the RSMs get no surface and no usable normal from it.
-vtkIdType PointCloudPoints(vtkActor* actor)
-{
-  vtkPolyDataMapper* mapper = vtkPolyDataMapper::SafeDownCast(actor->GetMapper());
-  vtkPolyData* data = mapper ? mapper->GetInput() : nullptr;
-  if (!data || data->GetNumberOfPoints() == 0)
-  {
-    return 0;
-  }
-  const bool surfaceless = data->GetNumberOfPolys() == 0 && data->GetNumberOfStrips() == 0 &&
-    data->GetNumberOfLines() == 0;
-  return surfaceless ? data->GetNumberOfPoints() : 0;
-}
-}
-
-//------------------------------------------------------------------------------
-void vtkMRGIPass::WarnPointClouds(vtkRenderer* renderer)
-{
-  std::vector<vtkWeakPointer<vtkProp>>& reported = this->Internal->PointCloudsReported;
-  // Forget actors that were deleted, so the list stays as short as the scene.
-  reported.erase(std::remove_if(reported.begin(), reported.end(),
-                   [](const vtkWeakPointer<vtkProp>& p) { return p == nullptr; }),
-    reported.end());
-  vtkPropCollection* props = renderer->GetViewProps();
-  vtkCollectionSimpleIterator it;
-  props->InitTraversal(it);
-  while (vtkProp* prop = props->GetNextProp(it))
-  {
-    vtkActor* actor = vtkActor::SafeDownCast(prop);
-    if (!actor || !actor->GetVisibility())
-    {
-      continue;
-    }
-    const vtkIdType points = PointCloudPoints(actor);
-    if (points == 0 ||
-      std::find(reported.begin(), reported.end(), vtkWeakPointer<vtkProp>(prop)) != reported.end())
-    {
-      continue;
-    }
-    reported.emplace_back(prop);
-    vtkWarningMacro("actor " << actor << " draws " << points
-                             << " points as pixels: the indirect light sees no surface; put "
-                                "vtkMRGISurfels (after vtkMRGIPointCloudNormals) before its mapper "
-                                "(Documentation/PointClouds-Surfels.md)");
-  }
 }
 
 //------------------------------------------------------------------------------
@@ -379,6 +273,12 @@ void vtkMRGIPass::SetUpsampleMaskWeight(double weight)
 double vtkMRGIPass::GetUpsampleMaskWeight()
 {
   return this->AreaLightStage->GetUpsampleMaskWeight();
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIDirectShadows* vtkMRGIPass::GetDirectShadowStage()
+{
+  return this->DirectLight->GetDirectShadows();
 }
 
 //------------------------------------------------------------------------------
@@ -569,50 +469,6 @@ void vtkMRGIPass::RenderForward(const vtkRenderState* s)
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIPass::RenderGather(const vtkMRGIFrameContext& frame, int vplCount)
-{
-  Internals& in = *this->Internal;
-  vtkOpenGLRenderWindow* renWin = frame.Window;
-  vtkOpenGLQuadHelper* quad = in.Programs.Ready(
-    renWin, "gather.full", "", [] { return vtkMRGIShaderLibraries::Compose({ "vtkMRGIGatherFS" }); });
-  if (!quad)
-  {
-    vtkErrorMacro("could not build the MRGI gather shader");
-    return false;
-  }
-  vtkShaderProgram* program = quad->Program;
-  vtkTextureObject* vpls = this->VPLSelection->GetVPLTexture();
-  vtkOpenGLFramebufferObject* fbo = in.GBuffer.FrameBuffer;
-  vtkMRGIViewportStep state(renWin->GetState(), frame.Viewport);
-  fbo->SaveCurrentBindingsAndBuffers();
-  fbo->Bind();
-  fbo->RemoveColorAttachments(MRGI_GBUFFER_MAX_ATTACHMENTS);
-  fbo->AddColorAttachment(0, in.GBuffer.Irradiance);
-  fbo->AddColorAttachment(1, in.GBuffer.Indirect);
-  vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 2);
-  in.GBuffer.Position->Activate();
-  in.GBuffer.Normal->Activate();
-  in.GBuffer.Albedo->Activate();
-  vpls->Activate();
-  program->SetUniformi("mrgiPosition", in.GBuffer.Position->GetTextureUnit());
-  program->SetUniformi("mrgiNormal", in.GBuffer.Normal->GetTextureUnit());
-  program->SetUniformi("mrgiAlbedo", in.GBuffer.Albedo->GetTextureUnit());
-  program->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
-  program->SetUniformi("mrgiVPLCount", vplCount);
-  program->SetUniformf("mrgiStrength", static_cast<float>(this->IndirectStrength));
-  program->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
-  quad->Render();
-  vpls->Deactivate();
-  in.GBuffer.Albedo->Deactivate();
-  in.GBuffer.Normal->Deactivate();
-  in.GBuffer.Position->Deactivate();
-  fbo->RemoveColorAttachments(2);
-  fbo->UnBind();
-  fbo->RestorePreviousBindingsAndBuffers();
-  return true;
-}
-
-//------------------------------------------------------------------------------
 bool vtkMRGIPass::MakeFrame(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer,
   vtkRenderTimerLog* timer, bool capture, vtkMRGIFrameContext& frame)
 {
@@ -690,57 +546,6 @@ bool vtkMRGIPass::RenderMultiresolution(const vtkMRGIFrameContext& frame, int vp
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIPass::RenderDirectShadows(
-  const vtkMRGIFrameContext& frame, const int slotLights[MRGI_SHADOW_SLOTS])
-{
-  Internals& in = *this->Internal;
-  vtkMRGIGBuffer& g = in.GBuffer;
-  ScopedStage stage(frame.Timer, "shadows");
-  mrgi_direct_shadow_params params;
-  mrgi_direct_shadow_params_default(&params);
-  params.mode =
-    this->DirectShadows == DirectShadowsHard ? MRGI_DIRECT_SHADOW_HARD : MRGI_DIRECT_SHADOW_SOFT;
-  params.samples_side = this->SoftShadowKernelSize;
-  params.light_radius = this->ShadowLightRadius;
-  if (params.light_radius <= 0)
-  {
-    // Automatic: a light of MRGI_SHADOW_AUTO_LIGHT_RADIUS of the visible
-    // scene's bounding radius (Documentation/DirectShadows.md).
-    double bounds[6];
-    frame.Renderer->ComputeVisiblePropBounds(bounds);
-    const double diagonal = vtkMath::AreBoundsInitialized(bounds)
-      ? std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
-          (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
-          (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]))
-      : 0.0;
-    params.light_radius = std::isfinite(diagonal) ? 0.5 * diagonal * MRGI_SHADOW_AUTO_LIGHT_RADIUS : 0.0;
-  }
-  bool applied =
-    (this->ShadowResolution == ResolutionMultiresolution
-        ? this->DirectShadowStage->ComputeMultiresolution(
-            frame, this->RSMPass, slotLights, params, g.ShadowFactors)
-        : this->DirectShadowStage->Compute(
-            frame, this->RSMPass, slotLights, params, g.ShadowFactors));
-  applied = applied &&
-    this->ShadowComposite->Apply(frame, g.Color, g.LightTerms, g.ShadowFactors, g.Shadowed);
-  if (applied)
-  {
-    // Color is the frame's colour from here on; Shadowed keeps VTK's
-    // unshadowed light for GetUnshadowedBuffer().
-    std::swap(g.Color, g.Shadowed);
-    in.ShadowFailureReported = false;
-  }
-  else if (!in.ShadowFailureReported)
-  {
-    in.ShadowFailureReported = true;
-    vtkErrorMacro("the direct shadows could not be computed at "
-      << frame.Viewport[2] << " x " << frame.Viewport[3]
-      << " pixels: this frame has VTK's unshadowed direct light");
-  }
-  return applied;
-}
-
-//------------------------------------------------------------------------------
 void vtkMRGIPass::RenderAdd(
   const vtkMRGIFrameContext& frame, vtkTextureObject* source, vtkTextureObject* target)
 {
@@ -750,129 +555,6 @@ void vtkMRGIPass::RenderAdd(
   {
     vtkErrorMacro("could not build the MRGI composite shader");
   }
-}
-
-//------------------------------------------------------------------------------
-void vtkMRGIPass::RenderOutput(
-  const vtkMRGIFrameContext& frame, vtkTextureObject* source, float scale, bool toneMap, bool depth)
-{
-  Internals& in = *this->Internal;
-  vtkOpenGLRenderWindow* renWin = frame.Window;
-  // The enclosing pass's G-buffer (vtkSSAOPass) is written with the depth.
-  const bool gbuffer = depth && this->OuterGBuffer && this->Captured;
-  vtkOpenGLQuadHelper* quad = in.Programs.Ready(renWin, "output",
-    !depth      ? "#define MRGI_OUTPUT_NO_DEPTH\n"
-      : gbuffer ? "#define MRGI_OUTPUT_GBUFFER\n"
-                : "",
-    [] { return vtkMRGICompositeFS; });
-  if (!quad)
-  {
-    vtkErrorMacro("could not build the MRGI output shader");
-    return;
-  }
-  vtkShaderProgram* program = quad->Program;
-  vtkOpenGLState* ostate = renWin->GetState();
-  vtkMRGIViewportStep state(ostate, frame.Viewport);
-  vtkOpenGLState::ScopedglDepthFunc depthFunc(ostate);
-  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
-  if (depth)
-  {
-    ostate->vtkglEnable(GL_DEPTH_TEST); // writes the scene's depth (GL_ALWAYS)
-    ostate->vtkglDepthFunc(GL_ALWAYS);
-    ostate->vtkglDepthMask(GL_TRUE);
-    in.GBuffer.Depth->Activate();
-    program->SetUniformi("mrgiDepth", in.GBuffer.Depth->GetTextureUnit());
-  }
-  else
-  {
-    ostate->vtkglDisable(GL_DEPTH_TEST);
-    ostate->vtkglDepthMask(GL_FALSE);
-  }
-  if (gbuffer)
-  {
-    in.GBuffer.Position->Activate();
-    in.GBuffer.Normal->Activate();
-    program->SetUniformi("mrgiPosition", in.GBuffer.Position->GetTextureUnit());
-    program->SetUniformi("mrgiNormal", in.GBuffer.Normal->GetTextureUnit());
-  }
-  source->Activate();
-  program->SetUniformi("mrgiColor", source->GetTextureUnit());
-  program->SetUniformf("mrgiExposureScale", scale);
-  program->SetUniformi("mrgiToneMap", toneMap ? 1 : 0);
-  quad->Render();
-  source->Deactivate();
-  if (gbuffer)
-  {
-    in.GBuffer.Normal->Deactivate();
-    in.GBuffer.Position->Deactivate();
-  }
-  if (depth)
-  {
-    in.GBuffer.Depth->Deactivate();
-  }
-}
-
-//------------------------------------------------------------------------------
-void vtkMRGIPass::RenderOutputFXAA(const vtkMRGIFrameContext& frame, float scale)
-{
-  Internals& in = *this->Internal;
-  vtkOpenGLFramebufferObject* fbo = in.GBuffer.FrameBuffer;
-  fbo->SaveCurrentBindingsAndBuffers();
-  fbo->Bind();
-  fbo->RemoveColorAttachments(MRGI_GBUFFER_MAX_ATTACHMENTS);
-  fbo->AddColorAttachment(0, in.GBuffer.Display);
-  vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
-  this->RenderOutput(frame, in.GBuffer.Color, scale, this->ToneMapping, false);
-  fbo->UnBind();
-  fbo->RestorePreviousBindingsAndBuffers();
-  vtkMRGIRenderSteps::RenderFXAA(
-    frame.Renderer, fbo, in.GBuffer.Display, frame.Viewport, this->FXAAFilter);
-  // The display image is final: copied as it is.
-  this->RenderOutput(frame, in.GBuffer.Display, 1.0f, false, true);
-}
-
-//------------------------------------------------------------------------------
-double vtkMRGIPass::MeasureAutoExposure(vtkOpenGLRenderWindow* renWin)
-{
-  Internals& in = *this->Internal;
-  std::vector<float> rgba;
-  if (!vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, in.GBuffer.Color, rgba))
-  {
-    vtkErrorMacro("automatic exposure: reading the colour back failed; EV 0 used");
-    return 0.0;
-  }
-  const int x0 = this->Viewport[0], y0 = this->Viewport[1];
-  const int w = this->Viewport[2], h = this->Viewport[3];
-  const size_t fullWidth = in.GBuffer.Color->GetWidth();
-  std::vector<float> depth(static_cast<size_t>(w) * h);
-  vtkOpenGLFramebufferObject* fbo = in.GBuffer.FrameBuffer;
-  fbo->SaveCurrentBindingsAndBuffers();
-  fbo->Bind();
-  fbo->AddDepthAttachment(in.GBuffer.Depth);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(x0, y0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
-  fbo->UnBind();
-  fbo->RestorePreviousBindingsAndBuffers();
-  // The viewport's pixels, in the depth's order.
-  std::vector<float> colour(static_cast<size_t>(w) * h * 4);
-  for (int y = 0; y < h; ++y)
-  {
-    std::copy(rgba.begin() + static_cast<long>(4 * ((y + y0) * fullWidth + x0)),
-      rgba.begin() + static_cast<long>(4 * ((y + y0) * fullWidth + x0 + w)),
-      colour.begin() + static_cast<long>(4 * static_cast<size_t>(y) * w));
-  }
-  double logAverage = 0.0, highlight = 0.0;
-  mrgi_error err;
-  const int64_t count = static_cast<int64_t>(w) * h;
-  if (mrgi_exposure_log_average(
-        colour.data(), 4, depth.data(), count, &logAverage, nullptr, &err) != MRGI_OK ||
-    mrgi_exposure_quantile(colour.data(), 4, depth.data(), count, MRGI_EXPOSURE_HIGHLIGHT_FRACTION,
-      &highlight, &err) != MRGI_OK)
-  {
-    vtkErrorMacro(<< "automatic exposure: " << err.message);
-    return 0.0;
-  }
-  return mrgi_exposure_auto_ev(logAverage, highlight, this->AutoExposureKey);
 }
 
 //------------------------------------------------------------------------------
@@ -992,12 +674,10 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   // SSGI and the VPL gather are exclusive (no bounce counted twice).
   const bool indirect =
     !this->SSGI && this->IndirectMode != IndirectOff && this->GetNumberOfVPLs() > 0;
-  int slotLights[MRGI_SHADOW_SLOTS];
-  int unshadowedSceneLights = 0;
-  const int shadowedLights = this->DirectShadows != DirectShadowsOff
-    ? ShaderLights(renderer, slotLights, unshadowedSceneLights)
-    : 0;
-  const bool shadows = shadowedLights > 0;
+  const vtkMRGIShadowedDirectLight::Lights shadowLights = this->DirectShadows != DirectShadowsOff
+    ? this->DirectLight->AssignLights(renderer)
+    : vtkMRGIShadowedDirectLight::Lights();
+  const bool shadows = shadowLights.Casting > 0;
   const bool capture = indirect || areaLights || this->OuterGBuffer || shadows || this->SSAO ||
     this->SSGI;
   const bool split = vtkRenderStepsPass::SafeDownCast(this->DelegatePass) != nullptr;
@@ -1007,17 +687,10 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   this->Captured = capture;
   this->ShadowsCaptured = shadows;
   this->ShadowsComputed = false;
-  if (unshadowedSceneLights > 0 && !in.ExtraLightsReported)
-  {
-    in.ExtraLightsReported = true;
-    vtkWarningMacro(<< "direct shadows are cast by the first " << MRGI_SHADOW_SLOTS
-                    << " switched-on lights only; " << unshadowedSceneLights
-                    << " more scene light(s) light as VTK lights them, unshadowed");
-  }
   // The specular pass cannot change the image when no visible prop has a
   // specular material: then neither it nor its G-buffer targets run.
   this->SpecularCaptured =
-    capture && areaLights && this->AreaLightStage->GetSpecular() && AnySpecularProp(renderer);
+    capture && areaLights && this->AreaLightStage->GetSpecular() && vtkMRGISceneChecks::AnySpecularProp(renderer);
 
   const bool fxaa = renderer->GetUseFXAA() && !multisampled;
   in.GBuffer.Prepare(renWin, x + w, y + h, capture, this->SpecularCaptured, shadows, fxaa);
@@ -1030,7 +703,7 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   if (capture)
   {
     // After the scene pass: the mappers' inputs are up to date now.
-    this->WarnPointClouds(renderer);
+    vtkMRGISceneChecks::WarnPointClouds(this, renderer, in.PointCloudsReported);
   }
   // The frame's context, built once; `framed`: the multiresolution terms
   // (pixel size) are defined, which only a captured frame needs.
@@ -1046,7 +719,21 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   }
   if (shadows && framed)
   {
-    this->ShadowsComputed = this->RenderDirectShadows(frame, slotLights);
+    vtkMRGIShadowedDirectLight::Settings settings;
+    settings.Mode =
+      this->DirectShadows == DirectShadowsHard ? MRGI_DIRECT_SHADOW_HARD : MRGI_DIRECT_SHADOW_SOFT;
+    settings.SamplesSide = this->SoftShadowKernelSize;
+    settings.LightRadius = this->ShadowLightRadius;
+    settings.Multiresolution = this->ShadowResolution == ResolutionMultiresolution;
+    vtkMRGIGBuffer& g = in.GBuffer;
+    this->ShadowsComputed = this->DirectLight->Apply(frame, this->RSMPass, shadowLights, settings,
+      g.Color, g.LightTerms, g.ShadowFactors, g.Shadowed);
+    if (this->ShadowsComputed)
+    {
+      // Color is the frame's colour from here on; Shadowed keeps VTK's
+      // unshadowed light for GetUnshadowedBuffer().
+      std::swap(g.Color, g.Shadowed);
+    }
   }
   // SSAO as vtkSSAOPass applies it, to the direct light only: the indirect
   // and area light added below are not ambient terms and model their own
@@ -1107,7 +794,8 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
       else
       {
         ScopedStage stage(timer, "gather");
-        gathered = this->RenderGather(frame, vplCount);
+        gathered = this->Gather->GatherFull(frame, this->VPLSelection->GetVPLTexture(), vplCount,
+          this->IndirectStrength, in.GBuffer.Irradiance, in.GBuffer.Indirect);
       }
       if (gathered)
       {
@@ -1147,15 +835,25 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   }
   {
     ScopedStage stage(timer, "output");
-    this->LastExposure = this->AutoExposure ? this->MeasureAutoExposure(renWin) : this->Exposure;
-    const float scale = mrgi_exposure_scale(this->LastExposure);
-    if (fxaa)
+    this->LastExposure = this->Exposure;
+    std::string problem;
+    if (this->AutoExposure &&
+      !vtkMRGIOutput::MeasureExposure(
+        renWin, in.GBuffer, this->Viewport, this->AutoExposureKey, this->LastExposure, problem))
     {
-      this->RenderOutputFXAA(frame, scale);
+      vtkErrorMacro(<< "automatic exposure: " << problem << "; EV 0 used");
     }
-    else
+    const float scale = mrgi_exposure_scale(this->LastExposure);
+    // The enclosing pass's G-buffer (vtkSSAOPass) is written with the depth.
+    const vtkMRGIOutput::DepthMode depth =
+      this->OuterGBuffer && this->Captured ? vtkMRGIOutput::DepthAndGBuffer
+                                           : vtkMRGIOutput::Depth;
+    if (!(fxaa ? vtkMRGIOutput::WriteWithFXAA(renderer, renWin, in.Programs, in.GBuffer,
+                   this->Viewport, scale, this->ToneMapping, depth, this->FXAAFilter)
+               : vtkMRGIOutput::Write(renWin, in.Programs, in.GBuffer, this->Viewport,
+                   in.GBuffer.Color, scale, this->ToneMapping, depth)))
     {
-      this->RenderOutput(frame, in.GBuffer.Color, scale, this->ToneMapping, true);
+      vtkErrorMacro("could not build the MRGI output shader");
     }
     if (split)
     {
@@ -1409,6 +1107,8 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
      << (this->ShadowResolution == ResolutionMultiresolution ? "multiresolution"
                                                              : "full resolution")
      << ")\n";
+  os << indent << "ShadowedDirectLight:\n";
+  this->DirectLight->PrintSelf(os, indent.GetNextIndent());
   os << indent << "SSAO: " << (this->SSAO ? "on" : "off") << " (kernel " << this->SSAOKernelSize
      << ", radius " << this->SSAORadius << ", bias " << this->SSAOBias << ", blur "
      << (this->SSAOBlur ? "on" : "off") << ", "

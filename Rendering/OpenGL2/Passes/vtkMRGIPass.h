@@ -81,8 +81,8 @@ class vtkMRGIVarianceShadowQuery;
 class vtkMRGIVisibilityPyramid;
 class vtkMRGIVoxelization;
 class vtkMRGIReflectiveShadowMapPass;
-class vtkMRGIShadowComposite;
 class vtkMRGIDirectShadows;
+class vtkMRGIShadowedDirectLight;
 class vtkMRGIRSMCompositor;
 class vtkMRGIVPLSelection;
 class vtkOpenGLFXAAFilter;
@@ -232,8 +232,14 @@ public:
   vtkGetMacro(ShadowLightRadius, double);
   ///@}
 
-  /** The stage that computes the shadow factors (vtkMRGIDirectShadows). */
-  vtkMRGIDirectShadows* GetDirectShadowStage() { return this->DirectShadowStage; }
+  /**
+   * The direct-shadow step (vtkMRGIShadowedDirectLight): the shadowed
+   * lights, the automatic light radius (GetLastLightRadius(),
+   * GetNumberOfLightRadiusUpdates()), the factors and their composite.
+   */
+  vtkMRGIShadowedDirectLight* GetShadowedDirectLight() { return this->DirectLight; }
+  /** The stage that computes the shadow factors (the direct-shadow step's vtkMRGIDirectShadows). */
+  vtkMRGIDirectShadows* GetDirectShadowStage();
 
   ///@{
   /**
@@ -622,35 +628,16 @@ protected:
   // error) an undefined pixel size.
   bool MakeFrame(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, vtkRenderTimerLog* timer,
     bool capture, vtkMRGIFrameContext& frame);
-  // Full-resolution gather: every pixel gathers every VPL.
-  bool RenderGather(const vtkMRGIFrameContext& frame, int vplCount);
   // Selection, gather, upsampling and resolve of the multiresolution gather.
   bool RenderMultiresolution(const vtkMRGIFrameContext& frame, int vplCount);
-  // Shadow factors of the frame's lights and their application to the
-  // direct light (Color holds the shadowed light afterwards). False (with
-  // an error, once) when they could not be computed.
-  bool RenderDirectShadows(
-    const vtkMRGIFrameContext& frame, const int slotLights[MRGI_SHADOW_SLOTS]);
   // Adds `source`'s RGB to `target`'s (additive blending, target alpha kept).
   void RenderAdd(const vtkMRGIFrameContext& frame, vtkTextureObject* source, vtkTextureObject* target);
-  // Writes `source` (window-sized) to the framebuffer bound now: scaled,
-  // tone mapped when asked, with the scene's depth when `depth`.
-  void RenderOutput(const vtkMRGIFrameContext& frame, vtkTextureObject* source, float scale,
-    bool toneMap, bool depth);
-  // The output transform into the display image, FXAA on it, then the
-  // display image with depth to the framebuffer VTK was drawing into.
-  void RenderOutputFXAA(const vtkMRGIFrameContext& frame, float scale);
-  // The automatic EV of this frame's colour (viewport, foreground only).
-  double MeasureAutoExposure(vtkOpenGLRenderWindow* renWin);
 #endif
   bool ReadViewport(vtkRenderWindow* window, vtkTextureObject* texture, int components,
     vtkImageData* image, const char* what);
   // Frees every GL resource (with `w`) or, without, the C++ objects that
   // hold them: the destructor and ReleaseGraphicsResources() share it.
   void ReleaseResources(vtkWindow* w);
-  // Warns once per visible actor whose polydata is a point cloud (vertex
-  // cells or none): drawn as pixels, it gives the indirect light no surface.
-  void WarnPointClouds(vtkRenderer* renderer);
 
   int IndirectMode = IndirectMultires;
   double IndirectStrength = 1.0;
@@ -699,8 +686,7 @@ protected:
   vtkMRGISSAO* SSAOStage = nullptr;
   vtkMRGISSGI* SSGIStage = nullptr;
   vtkMRGIAreaLightStage* AreaLightStage = nullptr;
-  vtkMRGIShadowComposite* ShadowComposite = nullptr;
-  vtkMRGIDirectShadows* DirectShadowStage = nullptr;
+  vtkMRGIShadowedDirectLight* DirectLight = nullptr;
   vtkSequencePass* OpaqueSequence = nullptr;
   vtkOpenGLFXAAFilter* FXAAFilter = nullptr;
 

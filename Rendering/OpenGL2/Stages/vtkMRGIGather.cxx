@@ -155,6 +155,50 @@ bool vtkMRGIGather::GatherVPLs(const vtkMRGIFrameContext& frame, vtkMRGIMultires
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIGather::GatherFull(const vtkMRGIFrameContext& frame, vtkTextureObject* vpls,
+  int vplCount, double strength, vtkTextureObject* irradiance, vtkTextureObject* indirect)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  if (!window || !frame.Position || !frame.Normal || !frame.Albedo || !vpls || vplCount < 1 ||
+    !irradiance || !indirect)
+  {
+    vtkErrorMacro("the full-resolution gather needs a window, the G-buffer, at least one VPL "
+                  "and its two targets");
+    return false;
+  }
+  in.GL.Prepare(window);
+  vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(window, "gather.full", "",
+    [] { return vtkMRGIShaderLibraries::Compose({ "vtkMRGIGatherFS" }); });
+  if (!quad)
+  {
+    vtkErrorMacro("could not build the MRGI gather shader");
+    return false;
+  }
+  vtkShaderProgram* program = quad->Program;
+  vtkMRGIFullScreenStep step(window, in.GL.FrameBuffer);
+  step.Target(irradiance, indirect, frame.Viewport[0], frame.Viewport[1], frame.Viewport[2],
+    frame.Viewport[3]);
+  frame.Position->Activate();
+  frame.Normal->Activate();
+  frame.Albedo->Activate();
+  vpls->Activate();
+  program->SetUniformi("mrgiPosition", frame.Position->GetTextureUnit());
+  program->SetUniformi("mrgiNormal", frame.Normal->GetTextureUnit());
+  program->SetUniformi("mrgiAlbedo", frame.Albedo->GetTextureUnit());
+  program->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
+  program->SetUniformi("mrgiVPLCount", vplCount);
+  program->SetUniformf("mrgiStrength", static_cast<float>(strength));
+  program->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
+  quad->Render();
+  vpls->Deactivate();
+  frame.Albedo->Deactivate();
+  frame.Normal->Deactivate();
+  frame.Position->Deactivate();
+  return true;
+}
+
+//------------------------------------------------------------------------------
 bool vtkMRGIGather::GatherAreaLight(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
   const vtkMRGIAreaLightTerm& term, vtkTextureObject* stencil)
 {

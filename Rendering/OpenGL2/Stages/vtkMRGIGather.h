@@ -125,6 +125,18 @@ public:
     vtkTextureObject* vpls, int vplCount);
 
   /**
+   * The full-resolution gather (vtkMRGIPass::IndirectFull, the reference
+   * the multiresolution one approximates): every pixel of frame.Viewport
+   * gathers all `vplCount` VPLs (nichols-shopf-wyman-2009 eq. 1 and 5)
+   * from the frame's position, normal and albedo, writing E into
+   * `irradiance` and strength x albedo x E into `indirect` (window-sized
+   * textures, the viewport only). No timer step of its own. False (with an
+   * error) on missing input or a program that does not build.
+   */
+  bool GatherFull(const vtkMRGIFrameContext& frame, vtkTextureObject* vpls, int vplCount,
+    double strength, vtkTextureObject* irradiance, vtkTextureObject* indirect);
+
+  /**
    * Gather the direct light of one area light (its term, see
    * vtkMRGIAreaLightTerm) at the texels `stencil` selects: the buffer's
    * selection (GetStencilTexture()) or the incremental stencil
