@@ -340,6 +340,19 @@ public:
   vtkMRGIAreaLight* GetAreaLight(int index) const;
   ///@}
 
+  ///@{
+  /**
+   * Whether area lights also cast one bounce of indirect light (default
+   * on): their reflective shadow maps (hemicube views from each emitter's
+   * centre, mrgi_area_light_rsm.h) join the vtkLights' maps, so the same
+   * VPL selection and gather use them. Like the vtkLights' bounce, it needs
+   * IndirectMode not Off (mrgi-render --gi off turns both off).
+   */
+  vtkSetMacro(AreaLightIndirect, bool);
+  vtkGetMacro(AreaLightIndirect, bool);
+  vtkBooleanMacro(AreaLightIndirect, bool);
+  ///@}
+
   enum AreaLightVisibilityModes
   {
     VisibilityOff = 0,        ///< no shadows from area lights (NPW10 3.2)
@@ -654,6 +667,7 @@ protected:
 
   int IndirectMode = IndirectMultires;
   double IndirectStrength = 1.0;
+  bool AreaLightIndirect = true;
   double SurfaceDetail = 0.0;
   bool SSAO = false;
   int SSAOKernelSize = 32; // MRGI_SSAO_DEFAULT_KERNEL_SIZE
