@@ -324,7 +324,8 @@ public:
 
   ///@{
   /**
-   * Area lights (vtkMRGIAreaLight: textured rectangles, direct light;
+   * Area lights (vtkMRGIAreaLight: textured rectangles, direct light and,
+   * with AreaLightIndirect, one bounce through the RSMs;
    * nichols-penmatsa-wyman-2010). Each adds albedo x X to the image, X its
    * irradiance gathered from its light samples at the multiresolution
    * texels (the selection of GetMultiresolution(), shared with the indirect
