@@ -69,7 +69,7 @@ int main(int argc, char** argv)
   double sum_gpu = 0.0, sum_truth = 0.0;
   for (int64_t i = 0; i < on.width * on.height; ++i)
   {
-    for (int c = 0; c < on.channels; ++c)
+    for (int c = 0; c < 3; ++c)
     {
       on.pixels[i * on.channels + c] -= off.pixels[i * off.channels + c];
     }
