@@ -379,6 +379,12 @@ def write_page(args, rows, notes, path, speed=()):
              "naive visibility); on sharp lobes each lobe-grid cell is weighted by the variance shadow query "
              "(`vtkMRGIVarianceShadowQuery`: moments of the occluder distance per query, 2x2 interleaved, "
              "box-blurred, Chebyshev's bound).",
+             "- **One bounce** (`vtkMRGIPass::AreaLightIndirect`, default on; `--gi off` removes it with the "
+             "vtkLights' bounce): each light gets reflective shadow maps from its centre (the hemicube faces of "
+             "its emitting sides, texel flux lit by 16 of its samples, so a picture bleeds its colours where its "
+             "parts shine), which join the vtkLights' maps: the same VPL selection and gather. Derivation, "
+             "measured error and pictures: [IndirectLight.md](IndirectLight.md#area-lights-bounce). The tables "
+             "below measure the direct light alone (`IndirectMode` off).",
              "- Every GPU stage has a C twin in `Rendering/Core` and a parity test (diffuse 3e-7, march 0 of 1.1M "
              "rays, visibility masks bit-equal, incremental stencil bit-equal, specular 2e-7 in the pass).",
              "- On Mesa's llvmpipe a shader invocation stops all its loops after 65535 iterations in total, "

@@ -4,6 +4,7 @@
 #include "mrgi_glsl_defines.h"
 
 #include "mrgi_area_light.h"
+#include "mrgi_area_light_rsm.h"
 #include "mrgi_direct_shadow.h"
 #include "mrgi_shadow_composite.h"
 #include "mrgi_bmr_mask.h"
@@ -110,6 +111,7 @@ static expected_constant expected[] = {
   EXPECT(MRGI_VOXEL_INTERLEAVE_MIN_COS, EXPECT_FLOAT),
   EXPECT(MRGI_VOXEL_INTERLEAVE_MAX_SLOPE, EXPECT_FLOAT),
   EXPECT(MRGI_AREA_LIGHT_MIN_SAMPLES, EXPECT_INT),
+  EXPECT(MRGI_AREA_LIGHT_RSM_SAMPLES, EXPECT_INT),
   EXPECT(MRGI_AREA_LIGHT_MAX_SAMPLES, EXPECT_INT),
   EXPECT(MRGI_AREA_LIGHT_SAMPLE_TEXELS, EXPECT_INT),
   EXPECT(MRGI_AREA_LIGHT_SAMPLE_TEXEL_POSITION, EXPECT_INT),

@@ -1374,10 +1374,85 @@ static void test_area_no_visibility(void)
   mrgi_image_destroy(&texture);
 }
 
+/* The area light's one bounce (mrgi_reference.h: L(q) includes X_area(q)):
+ * a two-sided 0.2 x 0.2 light of radiance 3 (1, 0.5, 0.25) at height 0.5
+ * between the floor (albedo 0.5, half-size 0.5) and the ceiling (albedo
+ * 0.8, half-size 1, height 1). The ceiling, lit by the light's upper side
+ * with X_area(q) = L F(q) (Hottel's parallel-rectangle factor at distance
+ * 0.5), sends the floor point p the VTK irradiance
+ *     X_ind(p) = (1/pi) int_ceiling 0.8 X_area(q) h^2 / r^4 dA_q,  h = 1,
+ * integrated here by the midpoint rule on 200 x 200 cells. No point light:
+ * the floor's indirect light is the area light's bounce alone. */
+static double area_bounce_expected(double px, double pz)
+{
+  const int cells = 200;
+  const double size = 2.0 / cells;
+  double sum = 0.0;
+  for (int j = 0; j < cells; ++j)
+  {
+    for (int i = 0; i < cells; ++i)
+    {
+      const double qx = -1.0 + (i + 0.5) * size, qz = -1.0 + (j + 0.5) * size;
+      const double f = view_factor_rect(-0.1 - qx, 0.1 - qx, -0.1 - qz, 0.1 - qz, 0.5);
+      const double dx = qx - px, dz = qz - pz;
+      const double r2 = dx * dx + dz * dz + 1.0;
+      sum += f / (r2 * r2) * size * size;
+    }
+  }
+  /* mean of the three channels: 0.5 * 0.8 * 3 * (1 + 0.5 + 0.25) / 3 */
+  return 0.5 * 0.8 * 1.75 * sum / pi;
+}
+
+static void test_area_bounce(void)
+{
+  mrgi_scene scene;
+  MRGI_CHECK(mrgi_scene_create(&scene, 2, NULL) == MRGI_OK);
+  make_square(&scene.meshes[0], "floor", 0, 0, 0, 0.5, 1, 0.5f);
+  make_square(&scene.meshes[1], "ceiling", 0, 1, 0, 1, 0, 0.8f);
+  camera_down(&scene, 0.3, 60);
+  mrgi_area_light light = square_light(3.0);
+  light.center[1] = 0.5;
+  light.edge_u[0] = 0.2;
+  light.edge_v[2] = 0.2;
+  light.two_sided = 1;
+  mrgi_reference_options o = base_options(8, 8);
+  o.indirect_samples = 64;
+  o.area_light_samples = 16;
+  o.max_passes = 16;
+  mrgi_reference_result r;
+  render_area(&scene, &o, &light, 1, &r);
+  const double half_h = 0.3 * tan(pi / 6.0);
+  double diff = 0.0, expect = 0.0, var = 0.0;
+  for (int32_t y = 0; y < 8; ++y)
+  {
+    for (int32_t x = 0; x < 8; ++x)
+    {
+      double gx, gz;
+      ground_point(x + 0.5, y + 0.5, 8, 8, half_h, &gx, &gz);
+      const double e = area_bounce_expected(gx, gz);
+      const float* v = mrgi_image_at(&r.indirect, x, y);
+      const double m = ((double)v[0] + v[1] + v[2]) / 3.0;
+      const double se = mrgi_image_at(&r.indirect_stderr, x, y)[0];
+      MRGI_CHECK(fabs(m - e) <= 6.0 * se + 0.02 * e);
+      diff += m - e;
+      expect += e;
+      var += se * se;
+    }
+  }
+  const double tol = 4.0 * sqrt(var) / 64.0 + 0.01 * expect / 64.0;
+  printf("area light bounce: mean indirect %.6f, numeric integral %.6f (diff %.1e, tolerance "
+         "%.1e), %d passes\n",
+         (expect + diff) / 64.0, expect / 64.0, diff / 64.0, tol, (int)r.passes);
+  MRGI_CHECK(expect > 0.0 && fabs(diff / 64.0) <= tol);
+  mrgi_reference_result_destroy(&r);
+  mrgi_scene_destroy(&scene);
+}
+
 static void test_area_determinism_and_input(void)
 {
-  /* area lights leave the indirect image bit for bit unchanged, the same
-   * seed gives the same direct image, another seed another one */
+  /* area lights bounce (the indirect image changes), a black one leaves it
+   * bit for bit unchanged (its points draw from streams of their own), the
+   * same seed gives the same direct image, another seed another one */
   mrgi_scene scene;
   make_bounce_scene(&scene, 1, 0);
   camera_down(&scene, 0.2, 30);
@@ -1391,12 +1466,23 @@ static void test_area_determinism_and_input(void)
   mrgi_reference_result plain, lit, again, other;
   render(&scene, &o, &plain);
   render_area(&scene, &o, &light, 1, &lit);
+  {
+    /* same seed and threads as `plain` */
+    mrgi_area_light black = light;
+    black.intensity = 0.0;
+    mrgi_reference_result dark;
+    render_area(&scene, &o, &black, 1, &dark);
+    const size_t n = mrgi_image_value_count(&plain.indirect) * sizeof(float);
+    MRGI_CHECK(memcmp(plain.indirect.pixels, dark.indirect.pixels, n) == 0);
+    MRGI_CHECK(memcmp(plain.direct.pixels, dark.direct.pixels, n) == 0);
+    mrgi_reference_result_destroy(&dark);
+  }
   o.threads = 1;
   render_area(&scene, &o, &light, 1, &again);
   o.seed = 9;
   render_area(&scene, &o, &light, 1, &other);
   const size_t bytes = mrgi_image_value_count(&plain.indirect) * sizeof(float);
-  MRGI_CHECK(memcmp(plain.indirect.pixels, lit.indirect.pixels, bytes) == 0);
+  MRGI_CHECK(memcmp(plain.indirect.pixels, lit.indirect.pixels, bytes) != 0);
   MRGI_CHECK(memcmp(plain.direct.pixels, lit.direct.pixels, bytes) != 0);
   MRGI_CHECK(memcmp(lit.direct.pixels, again.direct.pixels, bytes) == 0);
   MRGI_CHECK(memcmp(lit.direct.pixels, other.direct.pixels, bytes) != 0);
@@ -1492,6 +1578,7 @@ int main(int argc, char** argv)
 {
   static const mrgi_test_case cases[] = {
     MRGI_TEST_CASE(test_direct),
+    MRGI_TEST_CASE(test_area_bounce),
     MRGI_TEST_CASE(test_shadows),
     MRGI_TEST_CASE(test_bounce),
     MRGI_TEST_CASE(test_cornell),

@@ -187,6 +187,13 @@ def main():
     sizes = [os.path.getsize(p) for p in (area["off"], area["naive"], dark)]
     check(open(area["off"], "rb").read() != open(area["naive"], "rb").read(), "voxel shadows change the image")
     check(open(area["off"], "rb").read() != open(dark, "rb").read(), "the area light lights the box")
+    # The area light bounces (mrgi_area_light_rsm.h) and --gi off removes that.
+    flat = fresh("cli_area_gi_off.exr")
+    code, _, err = run("cornell-area", "-o", flat, "--size", "48x48", "-q", "--area-light-samples",
+                       "16", "--area-light-visibility", "off", "--voxel-size", "64", "--gi", "off")
+    check(code == 0, "cornell-area --gi off: " + err)
+    check(open(area["off"], "rb").read() != open(flat, "rb").read(),
+          "the area light's bounce is in the image with --gi on only")
     check(min(sizes) > 0, "area-light outputs written")
     lit = fresh("cli_area_rect.png")
     code, _, err = run("cornell-spot", "-o", lit, "--size", "32x32", "-q", "--gi", "off",

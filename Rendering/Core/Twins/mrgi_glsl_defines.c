@@ -1,6 +1,7 @@
 #include "mrgi_glsl_defines.h"
 
 #include "mrgi_area_light.h"
+#include "mrgi_area_light_rsm.h"
 #include "mrgi_direct_shadow.h"
 #include "mrgi_bmr_mask.h"
 #include "mrgi_exposure.h"
@@ -107,6 +108,7 @@ static const mrgi_glsl_constant mrgi_glsl_constants[] = {
   MRGI_GLSL_CONSTANT(MRGI_VOXEL_INTERLEAVE_MIN_COS, MRGI_GLSL_FLOAT),
   MRGI_GLSL_CONSTANT(MRGI_VOXEL_INTERLEAVE_MAX_SLOPE, MRGI_GLSL_FLOAT),
   MRGI_GLSL_CONSTANT(MRGI_AREA_LIGHT_MIN_SAMPLES, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_AREA_LIGHT_RSM_SAMPLES, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_AREA_LIGHT_MAX_SAMPLES, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_AREA_LIGHT_SAMPLE_TEXELS, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_AREA_LIGHT_SAMPLE_TEXEL_POSITION, MRGI_GLSL_INT),

@@ -35,7 +35,7 @@
  * and lobe numbers MRGI_AREA_LIGHT_MIN_SAMPLES, _MAX_SAMPLES, _SAMPLE_TEXELS,
  * _SAMPLE_TEXEL_POSITION, _SAMPLE_TEXEL_NORMAL, _SAMPLE_TEXEL_RADIANCE,
  * _SAMPLE_FLOATS, _LOBE_GRID, _LOBE_MIN_SAMPLES, _LOBE_CUTOFF, _LOBE_DISCARD,
- * _MIN_COS, _MIN_ALONG and the specular paths (::mrgi_area_light_specular_path)
+ * _MIN_COS, _MIN_ALONG, MRGI_AREA_LIGHT_RSM_SAMPLES (mrgi_area_light_rsm.h) and the specular paths (::mrgi_area_light_specular_path)
  * MRGI_AREA_LIGHT_SPECULAR_SAMPLES, _LOBE_GRID, _BEHIND, _FACING_AWAY,
  * _LOBE_MISS; from mrgi_direct_shadow.h MRGI_DIRECT_SHADOW_HARD, _SOFT,
  * _MAX_VIEWS, _HARD_SIDE, _BLOCKER_SIDE, _MAX_SIDE, _BIAS_TEXELS, _MAX_SLOPE,

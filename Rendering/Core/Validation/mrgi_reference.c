@@ -263,6 +263,9 @@ typedef struct ref_worker
   ref_hit_record* hits; /* MRGI_REFERENCE_MAX_RAY_HITS, allocated once per render */
   int64_t rays;
   int64_t overflows;
+  /* Area-light points of the bounce's L(q): a stream of its own per (pass,
+   * pixel), so the point lights' bounce is unchanged by area lights. */
+  uint64_t bounce_area_rng;
 } ref_worker;
 
 /* A surface point as the kernel sees it. */
@@ -533,6 +536,17 @@ static void ref_bounce_radiance(ref_worker* w, const ref_surface* q, double out[
   }
   double x[3];
   ref_irradiance(w, q, 1, x);
+  if (w->shared->area_light_count > 0)
+  {
+    /* The area lights' one bounce: X_area(q), shadowed as the direct path
+     * shadows it (an RSM holds lit surfaces; mrgi_area_light_rsm.h). */
+    double x_area[3];
+    ref_area_irradiance(w, q, 1, &w->bounce_area_rng, x_area);
+    for (int k = 0; k < 3; ++k)
+    {
+      x[k] += x_area[k];
+    }
+  }
   const float* albedo = q->geometry->mesh->albedo;
   for (int k = 0; k < 3; ++k)
   {
@@ -719,6 +733,7 @@ static void ref_render_pixel(ref_worker* w, int32_t x, int32_t y)
   double estimate = 0.0;
   /* Area-light points draw from a stream of their own (indirect unchanged). */
   uint64_t area_rng = ref_mix64(rng ^ 0xA5EA1167A5EA1167ULL);
+  w->bounce_area_rng = ref_mix64(rng ^ 0xB0B0CE0FA5EA1167ULL);
   double direct_estimate = 0.0;
   for (int32_t sample = 0; sample < o->pixel_samples; ++sample)
   {

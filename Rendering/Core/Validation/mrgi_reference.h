@@ -47,10 +47,13 @@
  *   the light's plane (the emitter quad drawn for it, as in the Cornell box)
  *   does not hide it; V = 1 when `shadows` is 0, the no-visibility gather
  *   of mrgi_area_light_diffuse() to compare with. Area lights are invisible
- *   to primary rays (draw an emitter mesh to see one) and light only the
- *   direct image: the one bounce comes from the point-like lights, as before.
- *   Their samples come from a stream of their own, so adding area lights
- *   leaves the indirect image bit for bit unchanged.
+ *   to primary rays (draw an emitter mesh to see one). They light the
+ *   direct image and the bounce: the L(q) of the indirect image (next list)
+ *   includes albedo_q * X_area(q), with exact shadows, from the same
+ *   number of stratified points per light. Their samples come from streams
+ *   of their own (one for the direct image, one for the bounce), so the
+ *   point-like lights' part of both images is bit for bit unchanged by
+ *   adding area lights.
  *
  * Images (all width x height, row 0 = TOP, box filter over the jittered
  * primary rays of all passes; a primary ray that misses contributes 0):
@@ -62,6 +65,7 @@
  * - indirect: albedo_p * X_ind(p), X_ind(p) = (1/pi) * integral over the
  *   hemisphere of p of L_direct_shadowed(q) cos(theta_p) d omega, q being the
  *   surface seen from p in direction omega and L(q) = albedo_q * X_q
+ *   (X_q: the point-like lights' X plus X_area(q) of the area lights)
  *   evaluated with q's normal turned towards p (light arriving on the other
  *   side of q does not count). q's lighting is ALWAYS shadowed, whatever
  *   `shadows` says (a reflective shadow map only holds lit surfaces).

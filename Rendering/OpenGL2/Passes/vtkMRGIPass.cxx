@@ -715,7 +715,17 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
     // The reflective shadow maps are the indirect light's VPLs and the
     // direct light's shadow maps: rendered once for both.
     ScopedStage stage(timer, "rsm");
-    this->RSMPass->Render(s);
+    // Area lights bounce with the vtkLights (their maps are no shadow maps:
+    // only when the indirect light needs them).
+    std::vector<vtkMRGIAreaLight*> bouncing;
+    if (indirect && this->AreaLightIndirect)
+    {
+      for (int i = 0; i < this->AreaLightStage->GetNumberOfLights(); ++i)
+      {
+        bouncing.push_back(this->AreaLightStage->GetLight(i));
+      }
+    }
+    this->RSMPass->RenderWithAreaLights(s, bouncing.data(), static_cast<int>(bouncing.size()));
   }
   if (shadows && framed)
   {
@@ -1117,6 +1127,7 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SSGI: " << (this->SSGI ? "on" : "off") << " (samples " << this->SSGISamples
      << ", radius " << this->SSGIRadius << ", bias " << this->SSGIBias << ")\n";
   os << indent << "IndirectStrength: " << this->IndirectStrength << "\n";
+  os << indent << "AreaLightIndirect: " << (this->AreaLightIndirect ? "On" : "Off") << "\n";
   os << indent << "NumberOfVPLs: " << this->VPLSelection->GetNumberOfVPLs() << "\n";
   os << indent << "VPLSelectionMode: " << this->VPLSelection->GetMode() << "\n";
   os << indent << "RSMResolution: " << this->RSMPass->GetResolution() << "\n";

@@ -330,7 +330,8 @@ public:
 
   ///@{
   /**
-   * Area lights (vtkMRGIAreaLight: textured rectangles, direct light;
+   * Area lights (vtkMRGIAreaLight: textured rectangles, direct light and,
+   * with AreaLightIndirect, one bounce through the RSMs;
    * nichols-penmatsa-wyman-2010). Each adds albedo x X to the image, X its
    * irradiance gathered from its light samples at the multiresolution
    * texels (the selection of GetMultiresolution(), shared with the indirect
@@ -344,6 +345,19 @@ public:
   void RemoveAllAreaLights();
   int GetNumberOfAreaLights() const;
   vtkMRGIAreaLight* GetAreaLight(int index) const;
+  ///@}
+
+  ///@{
+  /**
+   * Whether area lights also cast one bounce of indirect light (default
+   * on): their reflective shadow maps (hemicube views from each emitter's
+   * centre, mrgi_area_light_rsm.h) join the vtkLights' maps, so the same
+   * VPL selection and gather use them. Like the vtkLights' bounce, it needs
+   * IndirectMode not Off (mrgi-render --gi off turns both off).
+   */
+  vtkSetMacro(AreaLightIndirect, bool);
+  vtkGetMacro(AreaLightIndirect, bool);
+  vtkBooleanMacro(AreaLightIndirect, bool);
   ///@}
 
   enum AreaLightVisibilityModes
@@ -641,6 +655,7 @@ protected:
 
   int IndirectMode = IndirectMultires;
   double IndirectStrength = 1.0;
+  bool AreaLightIndirect = true;
   double SurfaceDetail = 0.0;
   bool SSAO = false;
   int SSAOKernelSize = 32; // MRGI_SSAO_DEFAULT_KERNEL_SIZE

@@ -8,6 +8,10 @@
  * flux and the surface area the texel covers (layout in mrgi_buffers.h,
  * definitions in mrgi_vpl.h and Documentation/IndirectLight.md).
  *
+ * Area lights (vtkMRGIAreaLight, RenderWithAreaLights()) get the hemicube
+ * of their emitting side(s) from the emitter's centre (mrgi_area_light_rsm.h,
+ * Documentation/IndirectLight.md "Area lights bounce").
+ *
  * Views per light (the light's transformed position and focal point, so
  * headlights and camera lights, e.g. ParaView's light kit, work):
  * - spot light with a half-angle up to MRGI_RSM_MAX_SPOT_HALF_ANGLE_DEG:
@@ -54,6 +58,7 @@ class vtkRenderWindow;
 class vtkRenderer;
 class vtkTextureObject;
 class vtkMatrix4x4;
+class vtkMRGIAreaLight;
 class vtkMRGIRSMCompositor;
 
 class MRGIRENDERING_EXPORT vtkMRGIReflectiveShadowMapPass : public vtkOpenGLRenderPass
@@ -69,6 +74,18 @@ public:
    * be placed for this frame (VTK's lights pass has run).
    */
   void Render(const vtkRenderState* s) override;
+
+  /**
+   * Render() with, in addition, the views of `count` area lights
+   * (mrgi_area_light_rsm.h): from each emitter's centre, the hemicube faces
+   * of its emitting side(s) (5 one-sided, 6 two-sided), their texels' flux
+   * lit by the emitter's MRGI_AREA_LIGHT_RSM_SAMPLES light samples. Area
+   * light k's views have GetViewLight() == -2 - k. Lights with zero
+   * intensity or colour, or invalid ones (reported by the light), get no
+   * view. Re-rendered only when the lights' samples, the vtkLights, the
+   * props or the resolution changed, as Render().
+   */
+  void RenderWithAreaLights(const vtkRenderState* s, vtkMRGIAreaLight* const* areaLights, int count);
 
   /** Free every GL resource. */
   void ReleaseGraphicsResources(vtkWindow* w) override;
@@ -94,7 +111,10 @@ public:
   bool ReadView(vtkRenderWindow* window, int i, vtkImageData* position, vtkImageData* normal,
     vtkImageData* flux);
 
-  /** Index, in the renderer's light collection, of the light of view `i`. */
+  /**
+   * Index, in the renderer's light collection, of the light of view `i`;
+   * -2 - k for area light k of RenderWithAreaLights(); -1 for no such view.
+   */
   int GetViewLight(int i) const;
 
   ///@{

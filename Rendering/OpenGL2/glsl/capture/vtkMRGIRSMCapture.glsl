@@ -39,6 +39,29 @@
     vec3 mrgiX = mrgiLightColor * (mrgiCosTheta * mrgiAttenuation);
     vec3 mrgiPositionWC = (mrgiLightVCToWC * vec4(mrgiP, 1.0)).xyz;
     vec3 mrgiNormalWC = normalize(mat3(mrgiLightVCToWC) * mrgiN);
+    if (mrgiAreaSampleCount > 0)
+    {
+      // An area light's view from its centre: X = the emitter's VTK
+      // irradiance without visibility over its samples, [NSW09] eq. 1 per
+      // sample (twin: mrgi_area_light_rsm_texel(), mrgi_area_light_diffuse()).
+      mrgiX = vec3(0.0);
+      for (int j = 0; j < MRGI_AREA_LIGHT_RSM_SAMPLES; ++j)
+      {
+        if (j >= mrgiAreaSampleCount) { break; }
+        vec4 mrgiSP = mrgiAreaSamples[3 * j];
+        vec3 mrgiSN = mrgiAreaSamples[3 * j + 1].xyz;
+        vec3 mrgiD = mrgiSP.xyz - mrgiPositionWC;
+        float mrgiR2 = dot(mrgiD, mrgiD);
+        float mrgiCosI = dot(mrgiNormalWC, mrgiD);
+        float mrgiCosJ = -dot(mrgiSN, mrgiD);
+        if (mrgiAreaTwoSided != 0) { mrgiCosJ = abs(mrgiCosJ); }
+        if (mrgiR2 > 0.0 && mrgiCosI > 0.0 && mrgiCosJ > 0.0)
+        {
+          mrgiX += mrgiAreaSamples[3 * j + 2].rgb *
+            (mrgiSP.w * (mrgiCosI * mrgiCosJ / mrgiR2) / (float(MRGI_PI) * mrgiR2 + mrgiSP.w));
+        }
+      }
+    }
     vec4 mrgiFlux = vec4(mrgiAlbedo * mrgiX * mrgiArea, mrgiArea);
     // NaN/Inf coordinates or zero/NaN normals in the input data: the texel
     // reflects nothing (invalid), so no VPL inherits a non-finite value.

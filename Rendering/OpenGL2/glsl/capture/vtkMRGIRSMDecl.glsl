@@ -7,3 +7,10 @@ uniform vec3 mrgiAttenuationValues;
 uniform vec3 mrgiSpotAxisVC;       // spot axis in this view's eye coordinates
 uniform float mrgiSpotCosCutoff;   // cos(cone half angle); < -1.5 for no cone
 uniform float mrgiSpotExponent;
+// Area-light views (mrgi_area_light_rsm.h): > 0 samples replace the VTK
+// light's X by the emitter's, in world coordinates. Sample j is texels
+// 3j (position xyz, area), 3j + 1 (light normal xyz) and 3j + 2 (radiance
+// rgb), the record of mrgi_area_light_sample.
+uniform int mrgiAreaSampleCount;
+uniform int mrgiAreaTwoSided;
+uniform vec4 mrgiAreaSamples[3 * MRGI_AREA_LIGHT_RSM_SAMPLES];
