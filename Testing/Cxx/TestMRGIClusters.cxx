@@ -7,13 +7,18 @@
 //    at most MRGI_VPL_CLUSTER_MAX, whose total flux equals the grid's within
 //    1e-4 relative (energy conservation through read-back and upload);
 // 3. every rendered pixel and irradiance value is finite and >= 0;
-// 4. nothing is reselected while the RSMs and settings are unchanged.
+// 4. nothing is reselected while the RSMs and settings are unchanged;
+// 5. the uploaded VPLs equal mrgi_vpl_select_clusters() run here on the
+//    read-back RSM, with the light view's camera rebuilt from the RSM pass's
+//    matrices, bit for bit (the stage is C; this checks its inputs and upload).
 #include "mrgiTestUtilities.h"
 
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkMath.h"
 #include "vtkMRGIPass.h"
+#include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGISceneBuilder.h"
 #include "vtkMRGIVPLSelection.h"
 #include "vtkPointData.h"
@@ -68,6 +73,42 @@ double CheckFinite(vtkImageData* image)
     sum += v;
   }
   return sum;
+}
+
+// 5. A fresh C selection on the read-back RSM (the Cornell box has one spot light: view 0).
+void CheckAgainstCore(vtkMRGIPass* pass, vtkRenderWindow* window, const std::vector<mrgi_vpl>& gpu)
+{
+  vtkMRGIReflectiveShadowMapPass* rsm = pass->GetReflectiveShadowMapPass();
+  MRGI_TEST_CHECK(rsm->GetNumberOfViews() == 1);
+  vtkNew<vtkImageData> p, n, f;
+  MRGI_TEST_CHECK(rsm->ReadView(window, 0, p, n, f));
+  auto floats = [](vtkImageData* image) {
+    return vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars())->GetPointer(0);
+  };
+  const mrgi_rsm map = { rsm->GetResolution(), 1, floats(p), floats(n), floats(f) };
+  double worldToView[16], projection[16];
+  MRGI_TEST_CHECK(rsm->GetViewWorldToView(0, worldToView));
+  MRGI_TEST_CHECK(rsm->GetViewProjection(0, projection));
+  MRGI_TEST_CHECK(rsm->GetViewPerspective(0));
+  mrgi_rsm_view_camera camera;
+  for (int i = 0; i < 16; ++i)
+  {
+    camera.world_to_view[i] = static_cast<float>(worldToView[(i % 4) * 4 + i / 4]); // transpose
+  }
+  camera.projection.parallel = 0;
+  camera.projection.view_angle_deg = 2.0 * std::atan(1.0 / projection[5]) * 180.0 / vtkMath::Pi();
+  camera.projection.parallel_scale = 1.0;
+  mrgi_vpl_cluster_params params;
+  mrgi_vpl_cluster_params_default(&params);
+  params.depth_threshold = pass->GetClusterDepthThreshold();
+  params.normal_threshold = pass->GetClusterNormalThreshold();
+  std::vector<mrgi_vpl> c(MRGI_VPL_CLUSTER_MAX);
+  mrgi_vpl_cluster_info info;
+  mrgi_error err;
+  MRGI_TEST_CHECK(mrgi_vpl_select_clusters(&map, &camera, &params, c.data(), MRGI_VPL_CLUSTER_MAX,
+                    &info, &err) == MRGI_OK);
+  MRGI_TEST_CHECK(static_cast<size_t>(info.vpl_count) == gpu.size());
+  MRGI_TEST_CHECK(std::memcmp(c.data(), gpu.data(), sizeof(mrgi_vpl) * gpu.size()) == 0);
 }
 
 void CheckSameFlux(const double a[4], const double b[4], const char* what)
@@ -151,6 +192,7 @@ int main()
     double flux[4];
     TotalFlux(clusters, flux);
     CheckSameFlux(flux, gridFlux, "cluster VPLs");
+    CheckAgainstCore(pass, window, clusters);
     vtkNew<vtkImageData> color, irradiance;
     MRGI_TEST_CHECK(pass->GetColorBuffer(window, color));
     MRGI_TEST_CHECK(pass->GetIrradianceBuffer(window, irradiance));
