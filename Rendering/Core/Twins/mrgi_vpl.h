@@ -109,9 +109,9 @@ typedef struct mrgi_vpl
   float position[3]; /**< World position (texel MRGI_VPL_TEXEL_POSITION, xyz). */
   float area;        /**< Surface area A_j >= 0 the VPL stands for (texel MRGI_VPL_TEXEL_POSITION, w). */
   float normal[3];   /**< World unit normal (texel MRGI_VPL_TEXEL_NORMAL, xyz); zero for an empty VPL. */
-  float pad0;        /**< Always 0. */
+  float pad0;        /**< 0 in a VPL texture (mrgi_vpl_tree.h nodes keep R_P here). */
   float flux[3];     /**< Reflected flux Phi_j rgb >= 0 (texel MRGI_VPL_TEXEL_FLUX, xyz). */
-  float pad1;        /**< Always 0. */
+  float pad1;        /**< 0 in a VPL texture (mrgi_vpl_tree.h nodes keep Dmax_P here). */
 } mrgi_vpl;
 
 /** A reflective shadow map as read back from the GPU; see the file comment. Borrowed pointers. */

@@ -119,8 +119,8 @@ mrgi_status mrgi_vpl_cluster_flags(const mrgi_rsm* rsm, const mrgi_rsm_view_came
  * @param flags     From mrgi_vpl_cluster_flags() with the same params.
  * @param selected  Receives tree->node_count bytes, 1 for a selected node.
  * @param vpls      Receives the VPLs; `capacity` records.
- * @param capacity  At least min(params->max_count, ...) records: the count
- *                  never exceeds params->max_count, so that many suffice.
+ * @param capacity  Records `vpls` holds; at least params->max_count (the
+ *                  count never exceeds it).
  * @return ::MRGI_ERR_INVALID_ARGUMENT for NULL pointers, short buffers, a cap
  *         below the roots' count (V * 16 * 16 for S >= 16) or above
  *         MRGI_VPL_CLUSTER_MAX, a capacity below the cap.
