@@ -633,7 +633,11 @@ int main(int argc, char* argv[])
   mrgi->SetUpsampleMode(
     o.MaskUpsampling ? vtkMRGIUpsample::UpsampleMaskWeighted : vtkMRGIUpsample::UpsampleTent);
   mrgi->SetNumberOfVPLs(static_cast<int>(o.VPLs));
-  mrgi->SetVPLSelectionMode(o.ImportanceVPLs ? vtkMRGIVPLSelection::FluxImportance : vtkMRGIVPLSelection::Grid);
+  mrgi->SetVPLSelectionMode(o.VPLSelection);
+  if (!std::isnan(o.ClusterDepthThreshold))
+    mrgi->SetClusterDepthThreshold(o.ClusterDepthThreshold);
+  if (!std::isnan(o.ClusterNormalThreshold))
+    mrgi->SetClusterNormalThreshold(o.ClusterNormalThreshold);
   mrgi->SetRSMResolution(static_cast<int>(o.RSMSize));
   mrgi->SetIndirectStrength(o.IndirectStrength);
   mrgi->SetToneMapping(o.ToneMapping);

@@ -51,6 +51,7 @@
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <strings.h>
@@ -511,6 +512,26 @@ OptionHandler Threshold(double Options::*field)
   };
 }
 
+// --cluster-depth-threshold / --cluster-normal-threshold: a number >= 0, or
+// inf (never splits; the VPL selection takes +inf for it).
+OptionHandler ClusterThreshold(double Options::*field)
+{
+  return [field](Options& o, const std::string& option, const char* v) {
+    double value = 0;
+    mrgi_error err;
+    if (std::strcmp(v, "inf") == 0)
+    {
+      value = std::numeric_limits<double>::infinity();
+    }
+    else if (mrgi_parse_double(v, &value, &err) != MRGI_OK || !(value >= 0) || !(value <= 1e30))
+    {
+      return Fail(option + " '" + v + "': expected a number in [0, 1e30] or inf");
+    }
+    o.*field = value;
+    return -1;
+  };
+}
+
 std::vector<std::pair<std::string, long long>> PresetChoices()
 {
   std::vector<std::pair<std::string, long long>> choices;
@@ -794,9 +815,22 @@ const std::vector<OptionSection>& OptionTable()
             "expected a number in [0, 1]") },
         { { "--vpls" }, "N", "virtual point lights, 0..4096 (default 256 = 16x16)",
           Integer(&Options::VPLs, 0, 4096) },
-        { { "--vpl-selection" }, "grid|importance",
-          "regular grid over the light's view (default) or flux importance sampling",
-          Choice<bool>(&Options::ImportanceVPLs, { { "grid", false }, { "importance", true } }) },
+        { { "--vpl-selection" }, "grid|importance|clusters",
+          "regular grid over the light's view (default), flux importance sampling,\n"
+          "or multiresolution clusters (nichols-shopf-wyman-2009 3.4; a variable\n"
+          "count up to 4096, --vpls does not apply)",
+          Choice<int>(&Options::VPLSelection,
+            { { "grid", vtkMRGIVPLSelection::Grid },
+              { "importance", vtkMRGIVPLSelection::FluxImportance },
+              { "clusters", vtkMRGIVPLSelection::Clusters } }) },
+        { { "--cluster-depth-threshold" }, "D",
+          "clusters: light-space depth change per texel width that splits a patch,\n"
+          "0..1e30 (inf: never; default 4)",
+          ClusterThreshold(&Options::ClusterDepthThreshold) },
+        { { "--cluster-normal-threshold" }, "N",
+          "clusters: light-space normal-component spread that splits a patch,\n"
+          "0..1e30 (inf: never; default 0.25)",
+          ClusterThreshold(&Options::ClusterNormalThreshold) },
         { { "--rsm-size" }, "N", "reflective shadow map texels per side, 16..2048 (default 256)",
           Integer(&Options::RSMSize, 16, 2048) },
         { { "--indirect-strength" }, "S", "factor on the indirect light (default 1)",

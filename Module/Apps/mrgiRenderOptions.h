@@ -91,7 +91,9 @@ struct Options
   double ShadowLightRadius = 0.0; // 0: automatic
   bool ShadowMultires = false;    // --shadow-resolution multires
   long long VPLs = 256;
-  bool ImportanceVPLs = false;
+  int VPLSelection = 0; // vtkMRGIVPLSelection::SelectionMode (grid, importance, clusters)
+  double ClusterDepthThreshold = std::nan(""); // not given: the selection's default
+  double ClusterNormalThreshold = std::nan("");
   long long RSMSize = 256;
   double IndirectStrength = 1.0;
   bool IndirectOnly = false;

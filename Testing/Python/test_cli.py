@@ -102,6 +102,19 @@ def main():
     check(code == 0, "GI render: " + err)
     code, _, err = run("cornell-spot", "-o", off_png, "--size", "48x48", "-q", "--gi", "off")
     check(code == 0, "direct-only render: " + err)
+    # Multiresolution VPL clusters, with and without thresholds; +inf for both
+    # is the 16x16 grid, so its image differs from the split one.
+    split_exr, grid_exr = fresh("cli_clusters.exr"), fresh("cli_clusters_inf.exr")
+    code, _, err = run("cornell-spot", "-o", split_exr, "--size", "48x48", "-q", "--rsm-size",
+                       "64", "--indirect-only", "--vpl-selection", "clusters",
+                       "--cluster-depth-threshold", "1", "--cluster-normal-threshold", "0.1")
+    check(code == 0, "clusters render: " + err)
+    code, _, err = run("cornell-spot", "-o", grid_exr, "--size", "48x48", "-q", "--rsm-size",
+                       "64", "--indirect-only", "--vpl-selection", "clusters",
+                       "--cluster-depth-threshold", "inf", "--cluster-normal-threshold", "inf")
+    check(code == 0, "clusters render, thresholds inf: " + err)
+    check(open(split_exr, "rb").read() != open(grid_exr, "rb").read(),
+          "cluster thresholds change the indirect light")
     check(os.path.getsize(on_png) != os.path.getsize(off_png) or
           open(on_png, "rb").read() != open(off_png, "rb").read(), "--gi off changes the image")
     # --ssao darkens the direct light (corners and contacts), with the
@@ -344,6 +357,9 @@ def bad_input():
         (["cornell", "-o", target, "--vpls", "-1"], "--vpls"),
         (["cornell", "-o", target, "--rsm-size", "8"], "--rsm-size"),
         (["cornell", "-o", target, "--vpl-selection", "random"], "--vpl-selection"),
+        (["cornell", "-o", target, "--cluster-depth-threshold", "-1"], "--cluster-depth-threshold"),
+        (["cornell", "-o", target, "--cluster-normal-threshold", "nan"],
+         "--cluster-normal-threshold"),
         (["cornell", "-o", target, "--indirect-strength", "nan"], "--indirect-strength"),
         (["cornell", "-o", target, "--gi", "off", "--indirect-only"], "--indirect-only"),
         (["cornell", "-o", target, "--reference-visibility", "maybe"], "--reference-visibility"),

@@ -117,6 +117,11 @@ static mrgi_texel_kind mrgi_rsm_texel_kind(const mrgi_rsm* rsm, size_t index)
   return MRGI_TEXEL_USABLE;
 }
 
+int mrgi_rsm_texel_usable(const mrgi_rsm* rsm, int64_t index)
+{
+  return mrgi_rsm_texel_kind(rsm, (size_t)index) == MRGI_TEXEL_USABLE;
+}
+
 /* Common argument checks of both selections. */
 static mrgi_status mrgi_vpl_check_output(const mrgi_rsm* rsm, int32_t count, const mrgi_vpl* vpls,
                                          mrgi_error* err)
@@ -138,10 +143,9 @@ static mrgi_status mrgi_vpl_check_output(const mrgi_rsm* rsm, int32_t count, con
   return MRGI_OK;
 }
 
-/* Sum of a block's usable texels and its representative texel (header rule). */
-static void mrgi_vpl_from_block(const mrgi_rsm* rsm, int32_t view, int32_t x0, int32_t x1,
-                                int32_t y0, int32_t y1, mrgi_vpl* out, int64_t* usable,
-                                int64_t* rejected)
+int64_t mrgi_vpl_from_rsm_block(const mrgi_rsm* rsm, int32_t view, int32_t x0, int32_t x1,
+                                int32_t y0, int32_t y1, mrgi_vpl* out, double sums[4],
+                                int64_t* usable, int64_t* rejected)
 {
   const int64_t size = rsm->size;
   double flux_sum[3] = { 0.0, 0.0, 0.0 };
@@ -177,10 +181,17 @@ static void mrgi_vpl_from_block(const mrgi_rsm* rsm, int32_t view, int32_t x0, i
       }
     }
   }
+  if (sums)
+  {
+    sums[0] = flux_sum[0];
+    sums[1] = flux_sum[1];
+    sums[2] = flux_sum[2];
+    sums[3] = area_sum;
+  }
   memset(out, 0, sizeof(*out));
   if (best_index < 0)
   {
-    return; /* empty block: zero flux, zero area, zero normal */
+    return -1; /* empty block: zero flux, zero area, zero normal */
   }
   const float* position = rsm->position + 4 * best_index;
   const float* normal = rsm->normal + 4 * best_index;
@@ -192,6 +203,7 @@ static void mrgi_vpl_from_block(const mrgi_rsm* rsm, int32_t view, int32_t x0, i
     out->flux[c] = flux_sum[c] < FLT_MAX ? (float)flux_sum[c] : FLT_MAX;
   }
   out->area = area_sum < FLT_MAX ? (float)area_sum : FLT_MAX;
+  return best_index;
 }
 
 mrgi_status mrgi_vpl_select_grid(const mrgi_rsm* rsm, int32_t requested_count, mrgi_vpl* vpls,
@@ -230,8 +242,8 @@ mrgi_status mrgi_vpl_select_grid(const mrgi_rsm* rsm, int32_t requested_count, m
         const int32_t x0 = (int32_t)(i * size / side);
         const int32_t x1 = (int32_t)((i + 1) * size / side);
         mrgi_vpl* vpl = vpls + ((int64_t)view * side + j) * side + i;
-        mrgi_vpl_from_block(rsm, view, x0, x1, y0, y1, vpl, &info.usable_texel_count,
-                            &info.rejected_texel_count);
+        (void)mrgi_vpl_from_rsm_block(rsm, view, x0, x1, y0, y1, vpl, NULL,
+                                      &info.usable_texel_count, &info.rejected_texel_count);
         info.empty_vpl_count += vpl->flux[0] == 0.0f && vpl->flux[1] == 0.0f &&
                                 vpl->flux[2] == 0.0f;
       }

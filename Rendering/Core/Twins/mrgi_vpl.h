@@ -109,9 +109,9 @@ typedef struct mrgi_vpl
   float position[3]; /**< World position (texel MRGI_VPL_TEXEL_POSITION, xyz). */
   float area;        /**< Surface area A_j >= 0 the VPL stands for (texel MRGI_VPL_TEXEL_POSITION, w). */
   float normal[3];   /**< World unit normal (texel MRGI_VPL_TEXEL_NORMAL, xyz); zero for an empty VPL. */
-  float pad0;        /**< Always 0. */
+  float pad0;        /**< 0 in a VPL texture (mrgi_vpl_tree.h nodes keep R_P here). */
   float flux[3];     /**< Reflected flux Phi_j rgb >= 0 (texel MRGI_VPL_TEXEL_FLUX, xyz). */
-  float pad1;        /**< Always 0. */
+  float pad1;        /**< 0 in a VPL texture (mrgi_vpl_tree.h nodes keep Dmax_P here). */
 } mrgi_vpl;
 
 /** A reflective shadow map as read back from the GPU; see the file comment. Borrowed pointers. */
@@ -184,6 +184,33 @@ mrgi_status mrgi_vpl_grid_layout(int32_t requested_count, int32_t view_count, in
 mrgi_status mrgi_vpl_select_grid(const mrgi_rsm* rsm, int32_t requested_count, mrgi_vpl* vpls,
                                  int32_t capacity, mrgi_vpl_selection_info* out_info,
                                  mrgi_error* err);
+
+/**
+ * @brief 1 when texel `index` ((v*S + y)*S + x) is usable (see the file
+ *        comment), 0 otherwise. No checks: the caller validated the RSM and index.
+ */
+int mrgi_rsm_texel_usable(const mrgi_rsm* rsm, int64_t index);
+
+/**
+ * @brief One grid block's VPL (the rule of mrgi_vpl_select_grid()), shared
+ *        with the light-space tree (mrgi_vpl_tree.h) so both apply the same
+ *        sums and tie rule.
+ *
+ * Block = texels x in [x0, x1), y in [y0, y1) of `view`. Sums the usable
+ * texels' flux and area in double in scan order (y outer, x inner), picks
+ * the usable texel nearest the block centre ((x0 + x1)/2, (y0 + y1)/2), ties
+ * to the lowest index, and fills `out` as mrgi_vpl_select_grid() documents
+ * (all zero without a usable texel). No argument checks (hot loop): the
+ * caller validated the RSM, 0 <= view < V, 0 <= x0 < x1 <= S, 0 <= y0 < y1 <= S.
+ *
+ * @param sums     Receives the double sums (flux rgb, area); may be NULL.
+ * @param usable   Incremented by the block's usable texels.
+ * @param rejected Incremented by its valid texels that are not usable.
+ * @return The representative's texel index ((v*S + y)*S + x), -1 for none.
+ */
+int64_t mrgi_vpl_from_rsm_block(const mrgi_rsm* rsm, int32_t view, int32_t x0, int32_t x1,
+                                int32_t y0, int32_t y1, mrgi_vpl* out, double sums[4],
+                                int64_t* usable, int64_t* rejected);
 
 /**
  * @brief Scratch doubles mrgi_vpl_select_importance() needs: one per texel, V*S*S.

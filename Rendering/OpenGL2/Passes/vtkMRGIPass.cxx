@@ -346,6 +346,24 @@ int vtkMRGIPass::GetVPLSelectionMode()
 {
   return this->VPLSelection->GetMode();
 }
+void vtkMRGIPass::SetClusterDepthThreshold(double threshold)
+{
+  this->VPLSelection->SetClusterDepthThreshold(threshold);
+  this->Modified();
+}
+double vtkMRGIPass::GetClusterDepthThreshold()
+{
+  return this->VPLSelection->GetClusterDepthThreshold();
+}
+void vtkMRGIPass::SetClusterNormalThreshold(double threshold)
+{
+  this->VPLSelection->SetClusterNormalThreshold(threshold);
+  this->Modified();
+}
+double vtkMRGIPass::GetClusterNormalThreshold()
+{
+  return this->VPLSelection->GetClusterNormalThreshold();
+}
 void vtkMRGIPass::SetRSMResolution(int resolution)
 {
   this->RSMPass->SetResolution(resolution);
@@ -1130,6 +1148,10 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AreaLightIndirect: " << (this->AreaLightIndirect ? "On" : "Off") << "\n";
   os << indent << "NumberOfVPLs: " << this->VPLSelection->GetNumberOfVPLs() << "\n";
   os << indent << "VPLSelectionMode: " << this->VPLSelection->GetMode() << "\n";
+  os << indent << "ClusterDepthThreshold: " << this->VPLSelection->GetClusterDepthThreshold()
+     << "\n";
+  os << indent << "ClusterNormalThreshold: " << this->VPLSelection->GetClusterNormalThreshold()
+     << "\n";
   os << indent << "RSMResolution: " << this->RSMPass->GetResolution() << "\n";
   os << indent << "RSMCompositor: " << this->RSMPass->GetCompositor() << "\n";
   os << indent << "Exposure: " << this->Exposure << " EV\n";

@@ -132,9 +132,22 @@ public:
   ///@}
 
   ///@{
-  /** VPL selection: 0 grid (default), 1 flux importance. */
+  /** VPL selection: 0 grid (default), 1 flux importance, 2 multiresolution clusters. */
   void SetVPLSelectionMode(int mode);
   int GetVPLSelectionMode();
+  ///@}
+
+  ///@{
+  /**
+   * Light-space discontinuity thresholds of the Clusters VPL selection
+   * (nichols-shopf-wyman-2009 section 3.4), with the eye side's meaning
+   * (mrgi_multires.h section 3): >= 0, +inf turns a test off (+inf for both
+   * gives the 16 x 16 grid). Defaults 4 and 0.25. Forwarded to the VPL selection.
+   */
+  void SetClusterDepthThreshold(double threshold);
+  double GetClusterDepthThreshold();
+  void SetClusterNormalThreshold(double threshold);
+  double GetClusterNormalThreshold();
   ///@}
 
   ///@{

@@ -2,6 +2,7 @@
 
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIShaderUtilities.h"
+#include "vtkMath.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLQuadHelper.h"
@@ -15,6 +16,9 @@
 #include "vtkMRGIVPLGridFS.h"
 
 #include "mrgi_vpl.h"
+#include "mrgi_vpl_clusters.h"
+
+#include <cmath>
 
 #include <map>
 #include <vector>
@@ -38,6 +42,11 @@ struct vtkMRGIVPLSelection::Internals
 vtkMRGIVPLSelection::vtkMRGIVPLSelection()
   : Internal(new Internals)
 {
+  mrgi_vpl_cluster_params defaults;
+  mrgi_vpl_cluster_params_default(&defaults);
+  this->ClusterDepthThreshold = defaults.depth_threshold;
+  this->ClusterNormalThreshold = defaults.normal_threshold;
+  this->ClusterFinestLevel = defaults.finest_level;
 }
 
 //------------------------------------------------------------------------------
@@ -119,6 +128,116 @@ int vtkMRGIVPLSelection::GetVPLCount() const
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+// Read back the RSM views `views` into one mrgi_rsm's arrays (view order).
+bool ReadViews(vtkOpenGLRenderWindow* window, vtkMRGIReflectiveShadowMapPass* rsm,
+  const std::vector<int>& views, std::vector<float>& position, std::vector<float>& normal,
+  std::vector<float>& flux)
+{
+  const int size = rsm->GetResolution();
+  const size_t texels = static_cast<size_t>(size) * static_cast<size_t>(size) * 4;
+  position.resize(texels * views.size());
+  normal.resize(texels * views.size());
+  flux.resize(texels * views.size());
+  std::vector<float> scratch;
+  for (size_t i = 0; i < views.size(); ++i)
+  {
+    const long at = static_cast<long>(i * texels);
+    if (!vtkMRGIShaderUtilities::ReadTextureRGBA(window, rsm->GetPositionTexture(views[i]), scratch))
+      return false;
+    std::copy(scratch.begin(), scratch.end(), position.begin() + at);
+    if (!vtkMRGIShaderUtilities::ReadTextureRGBA(window, rsm->GetNormalTexture(views[i]), scratch))
+      return false;
+    std::copy(scratch.begin(), scratch.end(), normal.begin() + at);
+    if (!vtkMRGIShaderUtilities::ReadTextureRGBA(window, rsm->GetFluxTexture(views[i]), scratch))
+      return false;
+    std::copy(scratch.begin(), scratch.end(), flux.begin() + at);
+  }
+  return true;
+}
+
+// The light-space camera of RSM view `view` (mrgi_vpl_tree.h section 1): the
+// RSM pass's row-major world -> view matrix, column-major as floats, and the
+// projection's field of view (perspective: P[1][1] = 1 / tan(fov/2)) or
+// half extent (orthographic: P[1][1] = 1 / parallel scale).
+bool ViewCamera(vtkMRGIReflectiveShadowMapPass* rsm, int view, mrgi_rsm_view_camera& camera)
+{
+  double worldToView[16];
+  double projection[16];
+  if (!rsm->GetViewWorldToView(view, worldToView) || !rsm->GetViewProjection(view, projection) ||
+    !(projection[5] > 0.0))
+  {
+    return false;
+  }
+  for (int row = 0; row < 4; ++row)
+  {
+    for (int col = 0; col < 4; ++col)
+    {
+      camera.world_to_view[col * 4 + row] = static_cast<float>(worldToView[row * 4 + col]);
+    }
+  }
+  camera.projection.parallel = rsm->GetViewPerspective(view) ? 0 : 1;
+  camera.projection.view_angle_deg =
+    camera.projection.parallel ? 90.0 : 2.0 * std::atan(1.0 / projection[5]) * 180.0 / vtkMath::Pi();
+  camera.projection.parallel_scale = camera.projection.parallel ? 1.0 / projection[5] : 1.0;
+  return true;
+}
+}
+
+//------------------------------------------------------------------------------
+int vtkMRGIVPLSelection::SelectClusters(vtkOpenGLRenderWindow* window,
+  vtkMRGIReflectiveShadowMapPass* rsm, const std::vector<std::vector<int>>& lights,
+  std::vector<mrgi_vpl>& vpls)
+{
+  vpls.clear();
+  this->ClusterRefinementsCapped = 0;
+  mrgi_vpl_cluster_params params;
+  mrgi_vpl_cluster_params_default(&params);
+  params.depth_threshold = this->ClusterDepthThreshold;
+  params.normal_threshold = this->ClusterNormalThreshold;
+  params.finest_level = this->ClusterFinestLevel;
+  params.max_count = MRGI_VPL_CLUSTER_MAX / static_cast<int>(lights.size());
+  std::vector<float> position, normal, flux;
+  std::vector<mrgi_vpl> light(static_cast<size_t>(params.max_count));
+  for (const std::vector<int>& views : lights)
+  {
+    mrgi_rsm_view_camera cameras[MRGI_RSM_MAX_VIEWS];
+    if (views.size() > MRGI_RSM_MAX_VIEWS)
+    {
+      vtkErrorMacro(<< "VPL clusters: a light has " << views.size() << " views");
+      return 0;
+    }
+    for (size_t i = 0; i < views.size(); ++i)
+    {
+      if (!ViewCamera(rsm, views[i], cameras[i]))
+      {
+        vtkErrorMacro(<< "VPL clusters: RSM view " << views[i] << " has no camera");
+        return 0;
+      }
+    }
+    if (!ReadViews(window, rsm, views, position, normal, flux))
+    {
+      return 0;
+    }
+    const mrgi_rsm map = { rsm->GetResolution(), static_cast<int32_t>(views.size()),
+      position.data(), normal.data(), flux.data() };
+    mrgi_vpl_cluster_info info;
+    mrgi_error err;
+    if (mrgi_vpl_select_clusters(&map, cameras, &params, light.data(), params.max_count, &info,
+          &err) != MRGI_OK)
+    {
+      vtkErrorMacro(<< "VPL clusters: " << err.message);
+      vpls.clear();
+      return 0;
+    }
+    this->ClusterRefinementsCapped += info.capped;
+    vpls.insert(vpls.end(), light.begin(), light.begin() + info.vpl_count);
+  }
+  return static_cast<int>(vpls.size());
+}
+
+//------------------------------------------------------------------------------
 int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflectiveShadowMapPass* rsm)
 {
   if (!window || !rsm)
@@ -150,6 +269,19 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
     lightViews[light].push_back(v);
   }
   const int size = rsm->GetResolution();
+  std::vector<mrgi_vpl> clusters;
+  if (this->Mode == Clusters)
+  {
+    std::vector<std::vector<int>> lights;
+    for (int light : lightOrder)
+    {
+      lights.push_back(lightViews[light]);
+    }
+    if (this->SelectClusters(window, rsm, lights, clusters) == 0)
+    {
+      return this->Internal->Count = 0;
+    }
+  }
   const int perLight = std::max(MRGI_VPL_MIN_COUNT, this->NumberOfVPLs / static_cast<int>(lightOrder.size()));
 
   // Rows each light gets.
@@ -179,6 +311,10 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
     blocks.push_back({ light, rows, count, side });
     rows += count;
   }
+  if (this->Mode == Clusters)
+  {
+    rows = static_cast<int>(clusters.size()); // a variable count, not NumberOfVPLs
+  }
 
   vtkTextureObject*& texture = this->Internal->Texture;
   if (!texture)
@@ -194,7 +330,14 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
   }
   texture->Resize(MRGI_VPL_TEXELS, rows);
 
-  if (this->Mode == FluxImportance)
+  if (this->Mode == Clusters)
+  {
+    texture->Bind();
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, MRGI_VPL_TEXELS, rows, GL_RGBA, GL_FLOAT,
+      mrgi_vpl_texture_data(clusters.data()));
+    texture->Deactivate();
+  }
+  else if (this->Mode == FluxImportance)
   {
     // Read the maps back and let the C core sample them; upload the records.
     std::vector<mrgi_vpl> vpls(static_cast<size_t>(rows));
@@ -358,7 +501,13 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
 void vtkMRGIVPLSelection::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Mode: " << (this->Mode == Grid ? "Grid" : "FluxImportance") << "\n";
+  os << indent << "Mode: "
+     << (this->Mode == Grid ? "Grid" : (this->Mode == FluxImportance ? "FluxImportance" : "Clusters"))
+     << "\n";
+  os << indent << "ClusterDepthThreshold: " << this->ClusterDepthThreshold << "\n";
+  os << indent << "ClusterNormalThreshold: " << this->ClusterNormalThreshold << "\n";
+  os << indent << "ClusterFinestLevel: " << this->ClusterFinestLevel << "\n";
+  os << indent << "ClusterRefinementsCapped: " << this->ClusterRefinementsCapped << "\n";
   os << indent << "NumberOfVPLs: " << this->NumberOfVPLs << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "VPLCount: " << this->Internal->Count << "\n";

@@ -15,6 +15,15 @@
  *   weighted by 1 / (N p) so the estimate stays unbiased. The RSMs are read
  *   back and mrgi_vpl_select_importance() (C core) selects; the result is
  *   uploaded.
+ * - Clusters: multiresolution VPL clusters (image-space radiosity,
+ *   nichols-shopf-wyman-2009 sections 3.3-3.4). The RSMs are read back;
+ *   mrgi_vpl_select_clusters() (C core) splits each light view into patches
+ *   from 16 x 16 roots down to the finest light level, refining where the
+ *   light-space depth or normal changes (ClusterDepthThreshold,
+ *   ClusterNormalThreshold, the eye side's meanings). Each patch is one VPL
+ *   carrying its patch's flux and area sums, so the count varies per frame;
+ *   it is capped at MRGI_VPL_CLUSTER_MAX, split evenly among the lights
+ *   (NumberOfVPLs does not apply). Thresholds +inf give the 16 x 16 grid.
  *
  * With several lights, the VPL budget is split evenly among the lights that
  * have views. Nothing is recomputed while the RSMs and the settings are unchanged.
@@ -25,7 +34,11 @@
 #include "MRGIRenderingModule.h" // For export macro
 #include "vtkObject.h"
 
+#include <limits> // For std::numeric_limits
 #include <memory> // For std::unique_ptr
+#include <vector> // For std::vector
+
+struct mrgi_vpl;
 
 class vtkMRGIReflectiveShadowMapPass;
 class vtkOpenGLRenderWindow;
@@ -42,12 +55,13 @@ public:
   enum SelectionMode
   {
     Grid = 0,
-    FluxImportance = 1
+    FluxImportance = 1,
+    Clusters = 2
   };
 
   ///@{
-  /** Grid (default) or FluxImportance. */
-  vtkSetClampMacro(Mode, int, Grid, FluxImportance);
+  /** Grid (default), FluxImportance or Clusters. */
+  vtkSetClampMacro(Mode, int, Grid, Clusters);
   vtkGetMacro(Mode, int);
   ///@}
 
@@ -62,6 +76,33 @@ public:
   vtkSetMacro(Seed, vtkTypeUInt64);
   vtkGetMacro(Seed, vtkTypeUInt64);
   ///@}
+
+  ///@{
+  /**
+   * Clusters mode: light-space depth and normal thresholds (>= 0; +inf
+   * turns a test off; defaults MRGI_MULTIRES_DEFAULT_DEPTH_THRESHOLD and
+   * MRGI_MULTIRES_DEFAULT_NORMAL_THRESHOLD). NaN is reported by Update().
+   */
+  vtkSetClampMacro(ClusterDepthThreshold, double, 0.0, std::numeric_limits<double>::infinity());
+  vtkGetMacro(ClusterDepthThreshold, double);
+  vtkSetClampMacro(ClusterNormalThreshold, double, 0.0, std::numeric_limits<double>::infinity());
+  vtkGetMacro(ClusterNormalThreshold, double);
+  ///@}
+
+  ///@{
+  /**
+   * Clusters mode: finest light level f_L a patch may reach (0 = single
+   * texels), or -1 (default) for the level 64 texels wide (mrgi_vpl_clusters.h).
+   */
+  vtkSetClampMacro(ClusterFinestLevel, int, -1, 23);
+  vtkGetMacro(ClusterFinestLevel, int);
+  ///@}
+
+  /**
+   * Clusters mode, last selection: refinements the cap refused (0 when the
+   * thresholds alone decided the VPLs).
+   */
+  vtkGetMacro(ClusterRefinementsCapped, int);
 
   /**
    * Bring the VPL cache up to date for `rsm`'s current maps. Returns the
@@ -88,7 +129,16 @@ protected:
   int Mode = Grid;
   int NumberOfVPLs = 256;
   vtkTypeUInt64 Seed = 1;
+  double ClusterDepthThreshold;  // set from mrgi_vpl_cluster_params_default()
+  double ClusterNormalThreshold;
+  int ClusterFinestLevel;
+  int ClusterRefinementsCapped = 0;
   vtkIdType NumberOfSelections = 0;
+
+  // Clusters mode: read back each light's views, select with the C core;
+  // `lights` lists each light's RSM views. Returns the VPL count (0 on error).
+  int SelectClusters(vtkOpenGLRenderWindow* window, vtkMRGIReflectiveShadowMapPass* rsm,
+    const std::vector<std::vector<int>>& lights, std::vector<mrgi_vpl>& vpls);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
