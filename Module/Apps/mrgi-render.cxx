@@ -536,10 +536,19 @@ int main(int argc, char* argv[])
   mrgi->SetDirectShadows(o.DirectShadows >= 0 ? o.DirectShadows
       : o.GI                                  ? vtkMRGIPass::DirectShadowsSoft
                                               : vtkMRGIPass::DirectShadowsOff);
-  mrgi->SetSoftShadowKernelSize(static_cast<int>(o.ShadowKernel));
+  // The screen-space preset first, then every knob given explicitly (all
+  // of them without a preset: their defaults are Balanced's values).
+  const bool screenPreset = o.ScreenSpacePreset >= 0;
+  if (screenPreset && !mrgi->SetScreenSpacePreset(static_cast<int>(o.ScreenSpacePreset)))
+  {
+    return Fail("--screen-space-preset could not be applied");
+  }
+  if (!screenPreset || o.HasShadowKernel)
+    mrgi->SetSoftShadowKernelSize(static_cast<int>(o.ShadowKernel));
   mrgi->SetShadowLightRadius(o.ShadowLightRadius);
-  mrgi->SetShadowResolution(
-    o.ShadowMultires ? vtkMRGIPass::ResolutionMultiresolution : vtkMRGIPass::ResolutionFull);
+  if (!screenPreset || o.HasShadowResolution)
+    mrgi->SetShadowResolution(
+      o.ShadowMultires ? vtkMRGIPass::ResolutionMultiresolution : vtkMRGIPass::ResolutionFull);
   // The preset first, then every knob given explicitly.
   mrgi->GetMultiresolution()->SetPreset(static_cast<int>(o.Preset));
   if (!std::isnan(o.DepthThreshold))
@@ -563,10 +572,12 @@ int main(int argc, char* argv[])
                                                 : o.SSAORadius;
     mrgi->SetSSAORadius(radius);
     mrgi->SetSSAOBias(o.HasSSAOBias ? o.SSAOBias : radius / 50.0);
-    mrgi->SetSSAOKernelSize(static_cast<int>(o.SSAOSamples));
+    if (!screenPreset || o.HasSSAOSamples)
+      mrgi->SetSSAOKernelSize(static_cast<int>(o.SSAOSamples));
     mrgi->SetSSAOBlur(o.SSAOBlur);
-    mrgi->SetSSAOResolution(
-      o.SSAOMultires ? vtkMRGIPass::ResolutionMultiresolution : vtkMRGIPass::ResolutionFull);
+    if (!screenPreset || o.HasSSAOResolution)
+      mrgi->SetSSAOResolution(
+        o.SSAOMultires ? vtkMRGIPass::ResolutionMultiresolution : vtkMRGIPass::ResolutionFull);
   }
   mrgi->SetSSGI(o.SSGI);
   if (o.SSGI)
@@ -581,7 +592,11 @@ int main(int argc, char* argv[])
                                                 : o.SSGIRadius;
     mrgi->SetSSGIRadius(radius);
     mrgi->SetSSGIBias(radius / 50.0);
-    mrgi->SetSSGISamples(static_cast<int>(o.SSGISamples));
+    if (!screenPreset || o.HasSSGISamples)
+      mrgi->SetSSGISamples(static_cast<int>(o.SSGISamples));
+    if (!screenPreset || o.HasSSGIResolution)
+      mrgi->SetSSGIResolution(
+        o.SSGIMultires ? vtkMRGIPass::ResolutionMultiresolution : vtkMRGIPass::ResolutionFull);
   }
   mrgi->SetAreaLightVisibility(o.AreaLightVisibility);
   mrgi->SetAreaLightSpecular(o.AreaLightSpecular);

@@ -11,6 +11,7 @@
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMRGIAreaLightStage.h"
+#include "vtkMRGIBMRMask.h"
 #include "vtkMRGIFrameContext.h"
 #include "vtkMRGIFullScreenStep.h"
 #include "vtkMRGIGBuffer.h"
@@ -62,6 +63,7 @@
 #include "mrgi_buffers.h"
 #include "mrgi_direct_shadow.h"
 #include "mrgi_exposure.h"
+#include "mrgi_screen_space_preset.h"
 #include "mrgi_multires.h"
 #include "mrgi_vpl.h"
 
@@ -1076,8 +1078,11 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   if (this->SSGI && framed)
   {
     ScopedStage stage(timer, "ssgi");
-    if (this->SSGIStage->Render(
-          frame, this->SSGISamples, this->SSGIRadius, this->SSGIBias, in.GBuffer.Color))
+    const bool multires = this->SSGIResolution == ResolutionMultiresolution;
+    if (multires ? this->SSGIStage->RenderMultiresolution(frame, this->SSGISamples,
+                     this->SSGIRadius, this->SSGIBias, in.GBuffer.Color)
+                 : this->SSGIStage->Render(frame, this->SSGISamples, this->SSGIRadius,
+                     this->SSGIBias, in.GBuffer.Color))
     {
       this->SSGIFailureReported = false;
     }
@@ -1391,6 +1396,33 @@ bool vtkMRGIPass::GetVPLs(vtkRenderWindow* window, vtkFloatArray* vpls)
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIPass::SetScreenSpacePreset(int preset)
+{
+  mrgi_screen_space_preset_params p;
+  mrgi_error err;
+  if (mrgi_screen_space_preset_get(preset, &p, &err) != MRGI_OK)
+  {
+    vtkErrorMacro("SetScreenSpacePreset: " << err.message);
+    return false;
+  }
+  this->SetSSAOKernelSize(p.ssao_kernel_size);
+  this->SetSoftShadowKernelSize(p.shadow_kernel_side);
+  this->SetSSGISamples(p.ssgi_samples);
+  this->SetSSAOResolution(p.ssao_resolution);
+  this->SetShadowResolution(p.shadow_resolution);
+  this->SetSSGIResolution(p.ssgi_resolution);
+  for (vtkMRGIBMRMask* mask : { this->SSAOStage->GetBMRMask(), this->SSGIStage->GetBMRMask(),
+         this->DirectShadowStage->GetBMRMask() })
+  {
+    mask->SetDepthThreshold(p.bmr_depth_threshold);
+    mask->SetNormalThreshold(p.bmr_normal_threshold);
+  }
+  this->ScreenSpacePreset = preset;
+  this->Modified();
+  return true;
+}
+
+//------------------------------------------------------------------------------
 void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -1414,8 +1446,14 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
      << (this->SSAOBlur ? "on" : "off") << ", "
      << (this->SSAOResolution == ResolutionMultiresolution ? "multiresolution" : "full resolution")
      << ")\n";
+  os << indent << "ScreenSpacePreset: "
+     << (this->ScreenSpacePreset >= 0 ? mrgi_screen_space_preset_name(this->ScreenSpacePreset)
+                                      : "none")
+     << "\n";
   os << indent << "SSGI: " << (this->SSGI ? "on" : "off") << " (samples " << this->SSGISamples
-     << ", radius " << this->SSGIRadius << ", bias " << this->SSGIBias << ")\n";
+     << ", radius " << this->SSGIRadius << ", bias " << this->SSGIBias << ", "
+     << (this->SSGIResolution == ResolutionMultiresolution ? "multiresolution" : "full resolution")
+     << ")\n";
   os << indent << "IndirectStrength: " << this->IndirectStrength << "\n";
   os << indent << "NumberOfVPLs: " << this->VPLSelection->GetNumberOfVPLs() << "\n";
   os << indent << "VPLSelectionMode: " << this->VPLSelection->GetMode() << "\n";
