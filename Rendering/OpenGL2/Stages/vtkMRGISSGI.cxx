@@ -2,7 +2,6 @@
 
 #include "vtkMRGISSGI.h"
 
-#include "vtkCamera.h"
 #include "vtkFloatArray.h"
 #include "vtkMRGIBMRBlend.h"
 #include "vtkMRGIBMRLevels.h"
@@ -12,7 +11,6 @@
 #include "vtkMRGIProgramCache.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIStageResources.h"
-#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFramebufferObject.h"
@@ -133,18 +131,8 @@ vtkOpenGLQuadHelper* vtkMRGISSGI::ReadyCompute(const vtkMRGIFrameContext& frame,
   vtkTextureObject* direct, int samples, double radius, double bias, int level)
 {
   Internals& in = *this->Internal;
-  // The camera's projection at the tile's aspect ratio, depth in [-1, 1]
-  // (as vtkMRGISSAO); column-major for GLSL.
-  vtkMatrix4x4* projection = frame.Renderer->GetActiveCamera()->GetProjectionTransformMatrix(
-    frame.Renderer->GetTiledAspectRatio(), -1, 1);
   float matrix[16];
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      matrix[c * 4 + r] = static_cast<float>(projection->GetElement(r, c));
-    }
-  }
+  vtkMRGIShaderUtilities::CameraProjection(frame.Renderer, matrix);
   vtkOpenGLQuadHelper* quad = in.Ready(frame.Window, 0, samples);
   if (!quad)
   {
@@ -236,34 +224,17 @@ bool vtkMRGISSGI::ComputeLevels(const vtkMRGIFrameContext& frame, vtkTextureObje
     return false;
   }
   in.GL.Prepare(window);
-  {
-    vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssgi");
-    for (int k = 0; k < vtkMRGIBMRLevels::GetNumberOfLevels(); ++k)
+  vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssgi");
+  return vtkMRGIBMRLevels::RenderLevels(window, levels, [&](int k) {
+    vtkOpenGLQuadHelper* quad = this->ReadyCompute(frame, direct, samples, radius, bias, k);
+    if (!quad)
     {
-      // A skipped level (Table 1's SSGI row skips level 2) has an empty
-      // stencil: its colour is cleared by LevelStep and never read.
-      vtkMRGIBMRLevels::LevelStep levelStep(window, levels, k);
-      if (!levelStep.IsValid())
-      {
-        vtkErrorMacro("SSGI could not bind BMR level " << k);
-        return false;
-      }
-      vtkOpenGLQuadHelper* quad = this->ReadyCompute(frame, direct, samples, radius, bias, k);
-      if (!quad)
-      {
-        return false;
-      }
-      quad->Render();
-      vtkMRGIFullScreenStep::UnbindInputs({ frame.Position, frame.Normal, frame.Albedo, direct });
+      return false;
     }
-  }
-  const GLenum error = glGetError();
-  if (error != GL_NO_ERROR)
-  {
-    vtkErrorMacro("OpenGL error " << error << " in the multiresolution SSGI stage");
-    return false;
-  }
-  return true;
+    quad->Render();
+    vtkMRGIFullScreenStep::UnbindInputs({ frame.Position, frame.Normal, frame.Albedo, direct });
+    return true;
+  });
 }
 
 //------------------------------------------------------------------------------
@@ -271,27 +242,11 @@ bool vtkMRGISSGI::ComputeMultiresolution(const vtkMRGIFrameContext& frame,
   vtkTextureObject* direct, int samples, double radius, double bias, vtkTextureObject* target)
 {
   Internals& in = *this->Internal;
-  const int w = frame.Viewport[2], h = frame.Viewport[3];
-  if (!frame.Window || !target || w < 1 || h < 1 ||
-    target->GetWidth() < static_cast<unsigned int>(w) ||
-    target->GetHeight() < static_cast<unsigned int>(h))
-  {
-    vtkErrorMacro("multiresolution SSGI needs the frame's window, a viewport and a target at "
-                  "least as large");
-    return false;
-  }
-  if (!in.Levels->Prepare(frame.Window, w, h))
-  {
-    vtkErrorMacro("could not allocate the BMR levels (" << w << " x " << h << ")");
-    return false;
-  }
-  // The blend writes the frame's viewport at its origin; the target is
-  // viewport-sized at (0, 0) like Compute()'s, so the origin is moved.
-  vtkMRGIFrameContext atOrigin = frame;
-  atOrigin.Viewport[0] = atOrigin.Viewport[1] = 0;
-  return in.Mask->Build(frame, in.Levels, nullptr) &&
-    this->ComputeLevels(frame, direct, samples, radius, bias, in.Levels) &&
-    in.Blend->Blend(atOrigin, in.Levels, target);
+  return vtkMRGIBMRLevels::RenderMultiresolution(frame, in.Mask, in.Blend, in.Levels,
+    [&](vtkMRGIBMRLevels* levels) {
+      return this->ComputeLevels(frame, direct, samples, radius, bias, levels);
+    },
+    target);
 }
 
 //------------------------------------------------------------------------------
@@ -330,29 +285,12 @@ bool vtkMRGISSGI::Apply(
     vtkErrorMacro("could not build the SSGI apply shader");
     return false;
   }
-  vtkShaderProgram* program = quad->Program;
+  vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssgi.apply");
+  // colour.rgb + bounce in place (additive blending), alpha kept.
+  if (!vtkMRGIFullScreenStep::BlendInto(
+        window, in.GL.FrameBuffer, quad, frame.Viewport, ssgi, GL_ONE, GL_ONE, colour, nullptr))
   {
-    vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssgi.apply");
-    vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
-    steps.Target(
-      colour, nullptr, frame.Viewport[0], frame.Viewport[1], frame.Viewport[2], frame.Viewport[3]);
-    // colour.rgb + bounce in place (additive blending), alpha kept.
-    vtkOpenGLState* ostate = steps.GetState();
-    vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
-    ostate->vtkglEnable(GL_BLEND);
-    ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
-    vtkMRGIFullScreenStep::BindInputs(program, { ssgi });
-    const int origin[2] = { frame.Viewport[0], frame.Viewport[1] };
-    const int size[2] = { frame.Viewport[2], frame.Viewport[3] };
-    program->SetUniform2i("mrgiOrigin", origin);
-    program->SetUniform2i("mrgiSize", size);
-    quad->Render();
-    vtkMRGIFullScreenStep::UnbindInputs({ ssgi });
-  }
-  const GLenum error = glGetError();
-  if (error != GL_NO_ERROR)
-  {
-    vtkErrorMacro("OpenGL error " << error << " in the SSGI apply step");
+    vtkErrorMacro("OpenGL error in the SSGI apply step");
     return false;
   }
   return true;
@@ -368,17 +306,10 @@ bool vtkMRGISSGI::PrepareResult(const vtkMRGIFrameContext& frame, vtkTextureObje
     vtkErrorMacro("SSGI needs the frame's window, a colour texture and a viewport");
     return false;
   }
-  if (!in.Result || in.Size[0] != w || in.Size[1] != h)
+  if (!vtkMRGIShaderUtilities::EnsureTexture(frame.Window, in.Result, in.Size, GL_RGBA32F, w, h))
   {
-    vtkMRGIShaderUtilities::ReleaseTexture(in.Result, frame.Window);
-    in.Result = vtkMRGIShaderUtilities::NewTexture(frame.Window, GL_RGBA32F, w, h);
-    in.Size[0] = in.Result ? w : 0;
-    in.Size[1] = in.Result ? h : 0;
-    if (!in.Result)
-    {
-      vtkErrorMacro("could not allocate the SSGI target (" << w << " x " << h << ")");
-      return false;
-    }
+    vtkErrorMacro("could not allocate the SSGI target (" << w << " x " << h << ")");
+    return false;
   }
   return true;
 }
