@@ -210,32 +210,16 @@ void BadInput()
   ssgi->ReleaseGraphicsResources(s.Window);
 }
 
-double Median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
 // Full (A) and multiresolution (B) SSGI, A B A B, wall clock after a warm-up.
 void Benchmark()
 {
-  const char* enabled = std::getenv("MRGI_BMR_BENCHMARK");
-  if (!enabled || std::string(enabled) != "1")
+  if (!bmrtest::BenchmarkEnabled())
   {
-    std::printf("Benchmark: set MRGI_BMR_BENCHMARK=1 to run it\n");
     return;
   }
   const int sizes[2][2] = { { 1280, 720 }, { 1920, 1080 } };
-  const char* samplesEnv = std::getenv("MRGI_BMR_SSGI_SAMPLES");
-  std::vector<int> sampleCounts;
-  for (std::string k = samplesEnv ? samplesEnv : "228"; !k.empty();)
-  {
-    const size_t comma = k.find(',');
-    sampleCounts.push_back(std::atoi(k.substr(0, comma).c_str()));
-    k = comma == std::string::npos ? "" : k.substr(comma + 1);
-  }
-  const char* repeatsEnv = std::getenv("MRGI_BMR_REPEATS");
-  const int repeats = std::max(1, std::atoi(repeatsEnv ? repeatsEnv : "3"));
+  const std::vector<int> sampleCounts = bmrtest::EnvInts("MRGI_BMR_SSGI_SAMPLES", "228");
+  const int repeats = bmrtest::BenchmarkRepeats();
   for (const auto& size : sizes)
   {
     bmrtest::Scene s;
@@ -267,7 +251,7 @@ void Benchmark()
       const Compared c = Compare(s, ssgi, direct, samples);
       std::printf("BENCH ssgi %d %d samples %d full_ms %.2f multires_ms %.2f speedup %.3f "
                   "rms %.5f max %.5f largest %.4f\n",
-        s.W, s.H, samples, Median(a), Median(b), Median(a) / Median(b), c.RMS, c.MaxError,
+        s.W, s.H, samples, bmrtest::Median(a), bmrtest::Median(b), bmrtest::Median(a) / bmrtest::Median(b), c.RMS, c.MaxError,
         c.Largest);
       std::fflush(stdout);
     }
