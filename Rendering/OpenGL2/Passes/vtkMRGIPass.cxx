@@ -1050,49 +1050,9 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   {
     this->ShadowsComputed = this->RenderDirectShadows(frame, slotLights);
   }
-  // SSAO as vtkSSAOPass applies it, to the direct light only: the indirect
-  // and area light added below are not ambient terms and model their own
-  // visibility. (After the direct shadows, which subtract shadowed light
-  // terms from the unshadowed colour: AO multiplies their result.)
-  if (this->SSAO && framed)
+  if (framed)
   {
-    ScopedStage stage(timer, "ssao");
-    const bool multires = this->SSAOResolution == ResolutionMultiresolution;
-    if (multires
-        ? this->SSAOStage->RenderMultiresolution(frame, this->SSAOKernelSize, this->SSAORadius,
-            this->SSAOBias, this->SSAOBlur, in.GBuffer.Color)
-        : this->SSAOStage->Render(frame, this->SSAOKernelSize, this->SSAORadius, this->SSAOBias,
-            this->SSAOBlur, in.GBuffer.Color))
-    {
-      this->SSAOFailureReported = false;
-    }
-    else if (!this->SSAOFailureReported)
-    {
-      this->SSAOFailureReported = true;
-      vtkErrorMacro("SSAO could not be computed (kernel size "
-        << this->SSAOKernelSize << ", radius " << this->SSAORadius << ", bias " << this->SSAOBias
-        << "): this frame has no ambient occlusion");
-    }
-  }
-  // SSGI sends the direct light as it is now (shadowed, occluded).
-  if (this->SSGI && framed)
-  {
-    ScopedStage stage(timer, "ssgi");
-    const bool multires = this->SSGIResolution == ResolutionMultiresolution;
-    if (multires ? this->SSGIStage->RenderMultiresolution(frame, this->SSGISamples,
-                     this->SSGIRadius, this->SSGIBias, in.GBuffer.Color)
-                 : this->SSGIStage->Render(frame, this->SSGISamples, this->SSGIRadius,
-                     this->SSGIBias, in.GBuffer.Color))
-    {
-      this->SSGIFailureReported = false;
-    }
-    else if (!this->SSGIFailureReported)
-    {
-      this->SSGIFailureReported = true;
-      vtkErrorMacro("SSGI could not be computed (samples "
-        << this->SSGISamples << ", radius " << this->SSGIRadius << ", bias " << this->SSGIBias
-        << "): this frame has no screen-space bounce");
-    }
+    this->RenderScreenSpaceEffects(frame, in.GBuffer.Color);
   }
   if (indirect)
   {
@@ -1393,6 +1353,55 @@ bool vtkMRGIPass::GetVPLs(vtkRenderWindow* window, vtkFloatArray* vpls)
   std::copy(rgba.begin(), rgba.begin() + static_cast<long>(MRGI_VPL_FLOATS) * this->VPLSelection->GetVPLCount(),
     vpls->GetPointer(0));
   return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIPass::RenderScreenSpaceEffects(const vtkMRGIFrameContext& frame, vtkTextureObject* colour)
+{
+  // SSAO as vtkSSAOPass applies it, to the direct light only: the indirect
+  // and area light added below are not ambient terms and model their own
+  // visibility. (After the direct shadows, which subtract shadowed light
+  // terms from the unshadowed colour: AO multiplies their result.)
+  if (this->SSAO)
+  {
+    ScopedStage stage(frame.Timer, "ssao");
+    const bool multires = this->SSAOResolution == ResolutionMultiresolution;
+    if (multires
+        ? this->SSAOStage->RenderMultiresolution(frame, this->SSAOKernelSize, this->SSAORadius,
+            this->SSAOBias, this->SSAOBlur, colour)
+        : this->SSAOStage->Render(frame, this->SSAOKernelSize, this->SSAORadius, this->SSAOBias,
+            this->SSAOBlur, colour))
+    {
+      this->SSAOFailureReported = false;
+    }
+    else if (!this->SSAOFailureReported)
+    {
+      this->SSAOFailureReported = true;
+      vtkErrorMacro("SSAO could not be computed (kernel size "
+        << this->SSAOKernelSize << ", radius " << this->SSAORadius << ", bias " << this->SSAOBias
+        << "): this frame has no ambient occlusion");
+    }
+  }
+  // SSGI sends the direct light as it is now (shadowed, occluded).
+  if (this->SSGI)
+  {
+    ScopedStage stage(frame.Timer, "ssgi");
+    const bool multires = this->SSGIResolution == ResolutionMultiresolution;
+    if (multires ? this->SSGIStage->RenderMultiresolution(frame, this->SSGISamples,
+                     this->SSGIRadius, this->SSGIBias, colour)
+                 : this->SSGIStage->Render(frame, this->SSGISamples, this->SSGIRadius,
+                     this->SSGIBias, colour))
+    {
+      this->SSGIFailureReported = false;
+    }
+    else if (!this->SSGIFailureReported)
+    {
+      this->SSGIFailureReported = true;
+      vtkErrorMacro("SSGI could not be computed (samples "
+        << this->SSGISamples << ", radius " << this->SSGIRadius << ", bias " << this->SSGIBias
+        << "): this frame has no screen-space bounce");
+    }
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -661,6 +661,10 @@ protected:
   bool RenderGather(const vtkMRGIFrameContext& frame, int vplCount);
   // Selection, gather, upsampling and resolve of the multiresolution gather.
   bool RenderMultiresolution(const vtkMRGIFrameContext& frame, int vplCount);
+  // SSAO, then SSGI (each at its resolution) on `colour`, the frame's
+  // direct light after the shadows; a failure is reported once per run of
+  // failures and leaves the frame without that effect.
+  void RenderScreenSpaceEffects(const vtkMRGIFrameContext& frame, vtkTextureObject* colour);
   // Shadow factors of the frame's lights and their application to the
   // direct light (Color holds the shadowed light afterwards). False (with
   // an error, once) when they could not be computed.
