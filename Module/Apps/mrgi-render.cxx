@@ -558,18 +558,20 @@ int main(int argc, char* argv[])
   if (o.FinestLevel >= 0)
     mrgi->GetMultiresolution()->SetFinestLevel(static_cast<int>(o.FinestLevel));
   mrgi->SetSurfaceDetail(o.SurfaceDetail);
-  mrgi->SetSSAO(o.SSAO);
-  if (o.SSAO)
-  {
-    // vtkSSAOPass's radius (0.5) and bias are in world units and suit only
-    // scenes of about unit size: the default scales with the scene.
+  // The screen-space effects' radius: the one given, else `fraction` of
+  // the scene's bounding-box diagonal (vtkSSAOPass's radius 0.5 and bias
+  // are world units that suit only scenes of about unit size), else `value`.
+  auto sceneRadius = [&renderer](bool given, double value, double fraction) {
     double bounds[6];
     renderer->ComputeVisiblePropBounds(bounds);
     const double dx = bounds[1] - bounds[0], dy = bounds[3] - bounds[2], dz = bounds[5] - bounds[4];
     const double diagonal = std::sqrt(dx * dx + dy * dy + dz * dz);
-    const double radius = o.HasSSAORadius       ? o.SSAORadius
-      : std::isfinite(diagonal) && diagonal > 0 ? 0.02 * diagonal
-                                                : o.SSAORadius;
+    return given || !(std::isfinite(diagonal) && diagonal > 0) ? value : fraction * diagonal;
+  };
+  mrgi->SetSSAO(o.SSAO);
+  if (o.SSAO)
+  {
+    const double radius = sceneRadius(o.HasSSAORadius, o.SSAORadius, 0.02);
     mrgi->SetSSAORadius(radius);
     mrgi->SetSSAOBias(o.HasSSAOBias ? o.SSAOBias : radius / 50.0);
     if (!screenPreset || o.HasSSAOSamples)
@@ -582,14 +584,7 @@ int main(int argc, char* argv[])
   mrgi->SetSSGI(o.SSGI);
   if (o.SSGI)
   {
-    // As SSAO's: a default radius that scales with the scene.
-    double bounds[6];
-    renderer->ComputeVisiblePropBounds(bounds);
-    const double dx = bounds[1] - bounds[0], dy = bounds[3] - bounds[2], dz = bounds[5] - bounds[4];
-    const double diagonal = std::sqrt(dx * dx + dy * dy + dz * dz);
-    const double radius = o.HasSSGIRadius       ? o.SSGIRadius
-      : std::isfinite(diagonal) && diagonal > 0 ? 0.1 * diagonal
-                                                : o.SSGIRadius;
+    const double radius = sceneRadius(o.HasSSGIRadius, o.SSGIRadius, 0.1);
     mrgi->SetSSGIRadius(radius);
     mrgi->SetSSGIBias(radius / 50.0);
     if (!screenPreset || o.HasSSGISamples)
