@@ -537,10 +537,19 @@ int main(int argc, char* argv[])
   mrgi->SetDirectShadows(o.DirectShadows >= 0 ? o.DirectShadows
       : o.GI                                  ? vtkMRGIPass::DirectShadowsSoft
                                               : vtkMRGIPass::DirectShadowsOff);
-  mrgi->SetSoftShadowKernelSize(static_cast<int>(o.ShadowKernel));
+  // The screen-space preset first, then every knob given explicitly (all
+  // of them without a preset: their defaults are Balanced's values).
+  const bool screenPreset = o.ScreenSpacePreset >= 0;
+  if (screenPreset && !mrgi->SetScreenSpacePreset(static_cast<int>(o.ScreenSpacePreset)))
+  {
+    return Fail("--screen-space-preset could not be applied");
+  }
+  if (!screenPreset || o.HasShadowKernel)
+    mrgi->SetSoftShadowKernelSize(static_cast<int>(o.ShadowKernel));
   mrgi->SetShadowLightRadius(o.ShadowLightRadius);
-  mrgi->SetShadowResolution(
-    o.ShadowMultires ? vtkMRGIPass::ResolutionMultiresolution : vtkMRGIPass::ResolutionFull);
+  if (!screenPreset || o.HasShadowResolution)
+    mrgi->SetShadowResolution(
+      o.ShadowMultires ? vtkMRGIPass::ResolutionMultiresolution : vtkMRGIPass::ResolutionFull);
   // The preset first, then every knob given explicitly.
   mrgi->GetMultiresolution()->SetPreset(static_cast<int>(o.Preset));
   if (!std::isnan(o.DepthThreshold))
@@ -550,39 +559,40 @@ int main(int argc, char* argv[])
   if (o.FinestLevel >= 0)
     mrgi->GetMultiresolution()->SetFinestLevel(static_cast<int>(o.FinestLevel));
   mrgi->SetSurfaceDetail(o.SurfaceDetail);
-  mrgi->SetSSAO(o.SSAO);
-  if (o.SSAO)
-  {
-    // vtkSSAOPass's radius (0.5) and bias are in world units and suit only
-    // scenes of about unit size: the default scales with the scene.
+  // The screen-space effects' radius: the one given, else `fraction` of
+  // the scene's bounding-box diagonal (vtkSSAOPass's radius 0.5 and bias
+  // are world units that suit only scenes of about unit size), else `value`.
+  auto sceneRadius = [&renderer](bool given, double value, double fraction) {
     double bounds[6];
     renderer->ComputeVisiblePropBounds(bounds);
     const double dx = bounds[1] - bounds[0], dy = bounds[3] - bounds[2], dz = bounds[5] - bounds[4];
     const double diagonal = std::sqrt(dx * dx + dy * dy + dz * dz);
-    const double radius = o.HasSSAORadius       ? o.SSAORadius
-      : std::isfinite(diagonal) && diagonal > 0 ? 0.02 * diagonal
-                                                : o.SSAORadius;
+    return given || !(std::isfinite(diagonal) && diagonal > 0) ? value : fraction * diagonal;
+  };
+  mrgi->SetSSAO(o.SSAO);
+  if (o.SSAO)
+  {
+    const double radius = sceneRadius(o.HasSSAORadius, o.SSAORadius, 0.02);
     mrgi->SetSSAORadius(radius);
     mrgi->SetSSAOBias(o.HasSSAOBias ? o.SSAOBias : radius / 50.0);
-    mrgi->SetSSAOKernelSize(static_cast<int>(o.SSAOSamples));
+    if (!screenPreset || o.HasSSAOSamples)
+      mrgi->SetSSAOKernelSize(static_cast<int>(o.SSAOSamples));
     mrgi->SetSSAOBlur(o.SSAOBlur);
-    mrgi->SetSSAOResolution(
-      o.SSAOMultires ? vtkMRGIPass::ResolutionMultiresolution : vtkMRGIPass::ResolutionFull);
+    if (!screenPreset || o.HasSSAOResolution)
+      mrgi->SetSSAOResolution(
+        o.SSAOMultires ? vtkMRGIPass::ResolutionMultiresolution : vtkMRGIPass::ResolutionFull);
   }
   mrgi->SetSSGI(o.SSGI);
   if (o.SSGI)
   {
-    // As SSAO's: a default radius that scales with the scene.
-    double bounds[6];
-    renderer->ComputeVisiblePropBounds(bounds);
-    const double dx = bounds[1] - bounds[0], dy = bounds[3] - bounds[2], dz = bounds[5] - bounds[4];
-    const double diagonal = std::sqrt(dx * dx + dy * dy + dz * dz);
-    const double radius = o.HasSSGIRadius       ? o.SSGIRadius
-      : std::isfinite(diagonal) && diagonal > 0 ? 0.1 * diagonal
-                                                : o.SSGIRadius;
+    const double radius = sceneRadius(o.HasSSGIRadius, o.SSGIRadius, 0.1);
     mrgi->SetSSGIRadius(radius);
     mrgi->SetSSGIBias(radius / 50.0);
-    mrgi->SetSSGISamples(static_cast<int>(o.SSGISamples));
+    if (!screenPreset || o.HasSSGISamples)
+      mrgi->SetSSGISamples(static_cast<int>(o.SSGISamples));
+    if (!screenPreset || o.HasSSGIResolution)
+      mrgi->SetSSGIResolution(
+        o.SSGIMultires ? vtkMRGIPass::ResolutionMultiresolution : vtkMRGIPass::ResolutionFull);
   }
   mrgi->SetAreaLightVisibility(o.AreaLightVisibility);
   mrgi->SetAreaLightSpecular(o.AreaLightSpecular);

@@ -37,6 +37,7 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtkPointData.h"
 #include "mrgi_ssao.h"
+#include "mrgi_screen_space_preset.h"
 #include "mrgi_ssgi.h"
 #include "mrgi_error.h"
 #include "mrgi_area_light.h"
@@ -532,6 +533,30 @@ OptionHandler ClusterThreshold(double Options::*field)
   };
 }
 
+// `handler`, and `given` set when it accepted the value (a knob that
+// overrides a preset's).
+OptionHandler Given(OptionHandler handler, bool Options::*given)
+{
+  return [handler, given](Options& o, const std::string& option, const char* v) {
+    const int rc = handler(o, option, v);
+    if (rc < 0)
+    {
+      o.*given = true;
+    }
+    return rc;
+  };
+}
+
+std::vector<std::pair<std::string, long long>> ScreenSpacePresetChoices()
+{
+  std::vector<std::pair<std::string, long long>> choices;
+  for (int p = 0; p < MRGI_SCREEN_SPACE_PRESET_COUNT; ++p)
+  {
+    choices.emplace_back(mrgi_screen_space_preset_name(p), p);
+  }
+  return choices;
+}
+
 std::vector<std::pair<std::string, long long>> PresetChoices()
 {
   std::vector<std::pair<std::string, long long>> choices;
@@ -758,7 +783,8 @@ const std::vector<OptionSection>& OptionTable()
               { "soft", vtkMRGIPass::DirectShadowsSoft } }) },
         { { "--shadow-kernel" }, "N",
           "soft shadows: filter taps per side, 1..14 (N x N taps; default 8)",
-          Integer(&Options::ShadowKernel, 1, MRGI_DIRECT_SHADOW_MAX_SIDE) },
+          Given(Integer(&Options::ShadowKernel, 1, MRGI_DIRECT_SHADOW_MAX_SIDE),
+            &Options::HasShadowKernel) },
         { { "--shadow-light-radius" }, "R",
           "soft shadows: the lights' radius in scene units, > 0 (default: 1% of\n"
           "the scene's bounding radius)",
@@ -768,7 +794,8 @@ const std::vector<OptionSection>& OptionTable()
         { { "--shadow-resolution" }, "full|multires",
           "shadow factors at every pixel (default) or BMR's four levels under\n"
           "edge stencils, blended (Documentation/ScreenSpaceEffects-Benchmark.md)",
-          Choice<bool>(&Options::ShadowMultires, { { "full", false }, { "multires", true } }) },
+          Given(Choice<bool>(&Options::ShadowMultires, { { "full", false }, { "multires", true } }),
+            &Options::HasShadowResolution) },
       } },
     { "Indirect light (one bounce; Documentation/IndirectLight.md)",
       {
@@ -840,13 +867,24 @@ const std::vector<OptionSection>& OptionTable()
         { { "--indirect-only" }, nullptr, "write only the indirect light (EXR: float RGB)",
           Set(&Options::IndirectOnly) },
       } },
+    { "Screen-space effects' preset (SSAO, soft shadows, SSGI;\n"
+      "Documentation/ScreenSpaceEffects.md)",
+      {
+        { { "--screen-space-preset" }, "fast|balanced|accurate",
+          "SSAO samples, soft-shadow taps, SSGI samples, the three resolutions\n"
+          "and the BMR mask thresholds from one table (default none: the\n"
+          "values of balanced); the knobs given explicitly override it. It\n"
+          "switches no effect on, and is independent of --preset (indirect light)",
+          Choice<long long>(&Options::ScreenSpacePreset, ScreenSpacePresetChoices()) },
+      } },
     { "Ambient occlusion of the direct light, as vtkSSAOPass computes it\n"
       "(Documentation/ScreenSpaceEffects-SSAO.md)",
       {
         { { "--ssao" }, "on|off", "screen-space ambient occlusion (default off)",
           OnOff(&Options::SSAO) },
         { { "--ssao-samples" }, "N", "SSAO kernel samples, 1..1000 (default 32, vtkSSAOPass's)",
-          Integer(&Options::SSAOSamples, 1, MRGI_SSAO_MAX_KERNEL_SIZE) },
+          Given(Integer(&Options::SSAOSamples, 1, MRGI_SSAO_MAX_KERNEL_SIZE),
+            &Options::HasSSAOSamples) },
         { { "--ssao-radius" }, "R",
           "SSAO kernel radius in world units, > 0 (default 2% of the scene's\n"
           "bounding-box diagonal)",
@@ -863,7 +901,8 @@ const std::vector<OptionSection>& OptionTable()
         { { "--ssao-resolution" }, "full|multires",
           "every pixel (default) or BMR's four levels under edge stencils,\n"
           "blended (Documentation/ScreenSpaceEffects-SSAO.md)",
-          Choice<bool>(&Options::SSAOMultires, { { "full", false }, { "multires", true } }) },
+          Given(Choice<bool>(&Options::SSAOMultires, { { "full", false }, { "multires", true } }),
+            &Options::HasSSAOResolution) },
       } },
     { "Screen-space one-bounce light (Documentation/ScreenSpaceEffects-SSGI.md)",
       {
@@ -872,13 +911,19 @@ const std::vector<OptionSection>& OptionTable()
           "replaces the VPL gather (the two are exclusive)",
           OnOff(&Options::SSGI) },
         { { "--ssgi-samples" }, "N", "SSGI hemisphere samples, 1..512 (default 64)",
-          Integer(&Options::SSGISamples, 1, MRGI_SSGI_MAX_SAMPLES) },
+          Given(Integer(&Options::SSGISamples, 1, MRGI_SSGI_MAX_SAMPLES),
+            &Options::HasSSGISamples) },
         { { "--ssgi-radius" }, "R",
           "SSGI sample radius in world units, > 0 (default 10% of the scene's\n"
           "bounding-box diagonal; depth bias radius / 50)",
           Number(
             &Options::SSGIRadius, [](double r) { return r > 0 && r <= MaxFloatValue; },
             "expected a finite number > 0", &Options::HasSSGIRadius) },
+        { { "--ssgi-resolution" }, "full|multires",
+          "every pixel (default) or BMR's levels under edge stencils (Table 1's\n"
+          "SSGI row: level 2 skipped), blended (Documentation/ScreenSpaceEffects-SSGI.md)",
+          Given(Choice<bool>(&Options::SSGIMultires, { { "full", false }, { "multires", true } }),
+            &Options::HasSSGIResolution) },
       } },
     { "Exposure and anti-aliasing (the PNG; EXR files keep the unscaled HDR radiance)",
       {

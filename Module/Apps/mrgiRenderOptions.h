@@ -67,6 +67,11 @@ struct Options
   double SSGIRadius = 0.5;
   bool HasSSGIRadius = false; // else 10% of the scene's diagonal
   bool SSAOMultires = false; // --ssao-resolution multires
+  bool SSGIMultires = false; // --ssgi-resolution multires
+  // --screen-space-preset (-1: none); a knob given explicitly overrides it.
+  long long ScreenSpacePreset = -1;
+  bool HasSSAOSamples = false, HasShadowKernel = false, HasSSGISamples = false;
+  bool HasSSAOResolution = false, HasShadowResolution = false, HasSSGIResolution = false;
   // NaN / -1: not given, the preset's value stands.
   double DepthThreshold = std::nan("");
   double NormalThreshold = std::nan("");

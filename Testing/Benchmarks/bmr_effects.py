@@ -17,7 +17,14 @@ and prints a Markdown table for Documentation/ScreenSpaceEffects-Benchmark.md.
 Soft shadows: the Benchmark case of cxx.TestMRGIShadowsMultires
 (`cornell-spot`, PCSS at 36, 100 and 196 taps): whole frames through
 vtkMRGIPass with ShadowResolution full and multires, A B A B, medians; the
-absolute RMS of the factors (slot 0). --effects picks the effects.
+absolute RMS of the factors (slot 0).
+
+SSGI: the Benchmark case of cxx.TestMRGISSGIMultires (Cornell box, radius
+60, bias 0.6, the direct light as senders; --ssgi-samples, default 228 as
+BMR figure 6): vtkMRGISSGI::Compute level 0 against ComputeMultiresolution
+(masks, levels, blend), A B A B, medians; the absolute RMS of the bounce.
+--effects picks the effects (e.g. `--effects ssgi` runs and rewrites the
+SSGI table only, leaving the others as they are).
 """
 import argparse
 import csv
@@ -53,7 +60,8 @@ def main():
     parser.add_argument("--kernels", default="16,32,64,128",
                         help="SSAO sample counts; the last one's difference image is written")
     parser.add_argument("--repeats", type=int, default=3, help="timed A B pairs per row")
-    parser.add_argument("--effects", default="ssao,shadows")
+    parser.add_argument("--ssgi-samples", default="228", help="SSGI sample counts (BMR fig. 6: 228)")
+    parser.add_argument("--effects", default="ssao,shadows,ssgi")
     parser.add_argument("--docs", default="",
                         help="a Documentation folder: copy the PNGs and CSVs there and rewrite the "
                              "tables between the <!-- bmr:NAME --> markers of "
@@ -66,12 +74,14 @@ def main():
         sys.exit("bmr_effects.py: %s is not built (cmake --build %s --target "
                  "TestMRGISSAOMultires)" % (exe, args.build))
     env = dict(os.environ, MRGI_BMR_BENCHMARK="1", MRGI_BMR_KERNELS=args.kernels,
-               MRGI_BMR_REPEATS=str(args.repeats), MRGI_BMR_OUT=os.path.abspath(args.out))
+               MRGI_BMR_REPEATS=str(args.repeats), MRGI_BMR_OUT=os.path.abspath(args.out),
+               MRGI_BMR_SSGI_SAMPLES=args.ssgi_samples)
     env.pop("DISPLAY", None)
     stdout = ""
     for effect, program in (("ssao", exe),
                             ("shadows", exe.replace("TestMRGISSAOMultires",
-                                                    "TestMRGIShadowsMultires"))):
+                                                    "TestMRGIShadowsMultires")),
+                            ("ssgi", exe.replace("TestMRGISSAOMultires", "TestMRGISSGIMultires"))):
         if effect not in effects:
             continue
         run = subprocess.run([program, "--case", "Benchmark"], env=env, capture_output=True,
@@ -80,8 +90,15 @@ def main():
             sys.stderr.write(run.stdout + run.stderr)
             sys.exit("bmr_effects.py: the %s benchmark failed" % effect)
         stdout += run.stdout
-    rows, levels, overhead, shadows = [], {}, {}, []
+    rows, levels, overhead, shadows, ssgi = [], {}, {}, [], []
     for line in stdout.splitlines():
+        m = re.match(r"BENCH ssgi (\d+) (\d+) samples (\d+) full_ms (\S+) multires_ms (\S+) "
+                     r"speedup (\S+) rms (\S+) max (\S+) largest (\S+)", line)
+        if m:
+            ssgi.append(dict(size="%sx%s" % (m[1], m[2]), samples=int(m[3]),
+                             full_ms=float(m[4]), multires_ms=float(m[5]),
+                             speedup=float(m[6]), rms=float(m[7]), max=float(m[8]),
+                             largest=float(m[9])))
         m = re.match(r"BENCH shadows (\d+) (\d+) taps (\d+) full_frame_ms (\S+) "
                      r"multires_frame_ms (\S+) speedup (\S+) rms (\S+)", line)
         if m:
@@ -114,6 +131,20 @@ def main():
                 r["size"], r["taps"], r["full_ms"], r["multires_ms"], r["speedup"], r["rms"]))
         print("\n".join(table) + "\n")
         publish(args, "shadows-table", table, {"bmr_shadows.csv": "data/bmr_shadows.csv"})
+    if ssgi:
+        with open(os.path.join(args.out, "bmr_ssgi.csv"), "w", newline="") as f:
+            writer = csv.DictWriter(f, fieldnames=list(ssgi[0].keys()))
+            writer.writeheader()
+            writer.writerows(ssgi)
+        table = ["| size | samples | full ms | multires ms | speed-up | abs RMS of the bounce | "
+                 "max abs | largest bounce |",
+                 "|---|---|---|---|---|---|---|---|"]
+        for r in ssgi:
+            table.append("| %s | %d | %.0f | %.0f | %.2f | %.5f | %.4f | %.4f |" % (
+                r["size"], r["samples"], r["full_ms"], r["multires_ms"], r["speedup"], r["rms"],
+                r["max"], r["largest"]))
+        print("\n".join(table) + "\n")
+        publish(args, "ssgi-table", table, {"bmr_ssgi.csv": "data/bmr_ssgi.csv"})
     if not rows:
         return
     with open(os.path.join(args.out, "bmr_effects.csv"), "w", newline="") as f:

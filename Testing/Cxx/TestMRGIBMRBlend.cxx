@@ -211,7 +211,7 @@ void SumEvents(const vtkRenderTimerLog::Event& event, std::map<std::string, doub
 
 void Benchmark()
 {
-  if (!bmrtest::BenchmarkRequested())
+  if (!bmrtest::BenchmarkEnabled())
   {
     return;
   }

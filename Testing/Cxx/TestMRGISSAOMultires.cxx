@@ -230,21 +230,13 @@ void BadInput()
 // Full (A) and multiresolution (B) AO, A B A B, wall clock after a warm-up.
 void Benchmark()
 {
-  if (!bmrtest::BenchmarkRequested())
+  if (!bmrtest::BenchmarkEnabled())
   {
     return;
   }
   const int sizes[2][2] = { { 1280, 720 }, { 1920, 1080 } };
-  const char* kernels = std::getenv("MRGI_BMR_KERNELS");
-  std::vector<int> kernelSizes;
-  for (std::string k = kernels ? kernels : "64"; !k.empty();)
-  {
-    const size_t comma = k.find(',');
-    kernelSizes.push_back(std::atoi(k.substr(0, comma).c_str()));
-    k = comma == std::string::npos ? "" : k.substr(comma + 1);
-  }
-  const char* repeatsEnv = std::getenv("MRGI_BMR_REPEATS");
-  const int repeats = std::max(1, std::atoi(repeatsEnv ? repeatsEnv : "3"));
+  const std::vector<int> kernelSizes = bmrtest::EnvInts("MRGI_BMR_KERNELS", "64");
+  const int repeats = bmrtest::BenchmarkRepeats();
   for (const auto& size : sizes)
   {
     bmrtest::Scene s;
@@ -275,7 +267,7 @@ void Benchmark()
       const Compared c = Compare(s, ssao, kernel);
       std::printf("BENCH ssao %d %d kernel %d full_ms %.2f multires_ms %.2f speedup %.3f "
                   "rms %.5f blurred_rms %.5f\n",
-        s.W, s.H, kernel, Median(a), Median(b), Median(a) / Median(b), c.RMS, c.BlurredRMS);
+        s.W, s.H, kernel, bmrtest::Median(a), bmrtest::Median(b), bmrtest::Median(a) / bmrtest::Median(b), c.RMS, c.BlurredRMS);
       std::fflush(stdout);
       // The difference image for the page (float32, rows bottom-up).
       const char* out = std::getenv("MRGI_BMR_OUT");
@@ -320,7 +312,7 @@ void Benchmark()
       }
     }
     std::printf("BENCH overhead ssao %d %d mask_ms %.2f blend_ms %.2f\n", s.W, s.H,
-      Median(maskMs), Median(blendMs));
+      bmrtest::Median(maskMs), bmrtest::Median(blendMs));
     std::fflush(stdout);
     ssao->ReleaseGraphicsResources(s.Window);
   }

@@ -159,7 +159,7 @@ void CornellSpot()
 // Full (A) and multiresolution (B) frames, A B A B, wall clock after a warm-up.
 void Benchmark()
 {
-  if (!bmrtest::BenchmarkRequested())
+  if (!bmrtest::BenchmarkEnabled())
   {
     return;
   }

@@ -47,25 +47,6 @@
 
 namespace bmrtest
 {
-/** The benchmark cases run only with MRGI_BMR_BENCHMARK=1 (not under ctest); says so otherwise. */
-inline bool BenchmarkRequested()
-{
-  const char* enabled = std::getenv("MRGI_BMR_BENCHMARK");
-  if (!enabled || std::string(enabled) != "1")
-  {
-    std::printf("Benchmark: set MRGI_BMR_BENCHMARK=1 to run it\n");
-    return false;
-  }
-  return true;
-}
-
-/** The median of `v` (the upper one of an even count); 0 when empty. */
-inline double Median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
 /** A window-sized RGBA32F texture holding `rgba` (w x h x 4 floats; null: allocated only). */
 inline vtkSmartPointer<vtkTextureObject> Upload(
   vtkOpenGLRenderWindow* window, int w, int h, const float* rgba)
@@ -426,6 +407,49 @@ private:
   vtkOpenGLRenderWindow* Window;
   vtkOpenGLQuadHelper* Quad = nullptr;
 };
+
+/**
+ * The Benchmark cases' switch: true with MRGI_BMR_BENCHMARK=1, else false
+ * after printing how to run it (the case then passes without timing).
+ */
+inline bool BenchmarkEnabled()
+{
+  const char* enabled = std::getenv("MRGI_BMR_BENCHMARK");
+  if (!enabled || std::string(enabled) != "1")
+  {
+    std::printf("Benchmark: set MRGI_BMR_BENCHMARK=1 to run it\n");
+    return false;
+  }
+  return true;
+}
+
+/** Timed A B pairs per row: MRGI_BMR_REPEATS, at least 1 (default 3). */
+inline int BenchmarkRepeats()
+{
+  const char* repeats = std::getenv("MRGI_BMR_REPEATS");
+  return std::max(1, std::atoi(repeats ? repeats : "3"));
+}
+
+/** A comma-separated list of integers from environment variable `name`, or `fallback`. */
+inline std::vector<int> EnvInts(const char* name, const char* fallback)
+{
+  const char* text = std::getenv(name);
+  std::vector<int> values;
+  for (std::string k = text ? text : fallback; !k.empty();)
+  {
+    const size_t comma = k.find(',');
+    values.push_back(std::atoi(k.substr(0, comma).c_str()));
+    k = comma == std::string::npos ? "" : k.substr(comma + 1);
+  }
+  return values;
+}
+
+/** The median (upper for an even count) of `v`; 0 when empty. */
+inline double Median(std::vector<double> v)
+{
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
 
 /** |a - b| <= 1e-4 |b| (+ a floor for values near 0). */
 inline bool Near(double a, double b, double floor = 1e-6)

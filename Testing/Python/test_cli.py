@@ -141,6 +141,12 @@ def main():
                          "--ssao", "on", "--ssao-resolution", "multires", "--timings")
     check(code == 0 and "bmr.mask" in out and "bmr.blend" in out,
           "--ssao-resolution multires renders and times the masks and blend: " + err)
+    # --ssgi-resolution multires: the same masks and blend for SSGI.
+    code, out, err = run("cornell", "-o", fresh("cli_ssgi_multires.png"), "--size", "40x48", "-q",
+                         "--gi", "off", "--ssgi", "on", "--ssgi-samples", "16",
+                         "--ssgi-resolution", "multires", "--timings")
+    check(code == 0 and "ssgi" in out and "bmr.mask" in out and "bmr.blend" in out,
+          "--ssgi-resolution multires renders and times the masks and blend: " + err)
     code, out, err = run("cornell-spot", "-o", fresh("cli_shadow_multires.png"), "--size", "40x48",
                          "-q", "--shadow-resolution", "multires", "--timings")
     check(code == 0 and "shadows.factors.invert" in out,
@@ -383,6 +389,7 @@ def bad_input():
         (["cornell", "-o", target, "--ssgi-radius", "0"], "--ssgi-radius"),
         (["cornell", "-o", target, "--ssgi-radius", "nan"], "--ssgi-radius"),
         (["cornell", "-o", target, "--ssgi-radius", "1e39"], "--ssgi-radius"),
+        (["cornell", "-o", target, "--ssgi-resolution", "half"], "--ssgi-resolution"),
         (["cornell", "-o", "/nonexistent-dir/out.png", "--size", "8x8"], "nonexistent-dir"),
         # Every value outside its documented range is refused, naming the option.
         (["cornell", "-o", target, "--voxel-size", "16384"], "[1, 4096]"),

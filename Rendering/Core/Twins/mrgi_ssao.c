@@ -1,6 +1,7 @@
 #include "mrgi_ssao.h"
 
 #include "mrgi_buffers.h"
+#include "mrgi_finite.h"
 
 #include <float.h>
 #include <math.h>
@@ -62,18 +63,6 @@ mrgi_status mrgi_ssao_kernel(int32_t size, float* out, mrgi_error* err)
   return MRGI_OK;
 }
 
-static int mrgi_ssao_all_finite(const float* v, size_t n)
-{
-  for (size_t i = 0; i < n; ++i)
-  {
-    if (!isfinite(v[i]))
-    {
-      return 0;
-    }
-  }
-  return 1;
-}
-
 mrgi_status mrgi_ssao_params_validate(const mrgi_ssao_params* params, mrgi_error* err)
 {
   if (!params)
@@ -86,7 +75,7 @@ mrgi_status mrgi_ssao_params_validate(const mrgi_ssao_params* params, mrgi_error
       "SSAO: kernel size %d is outside 1..%d (or no kernel)", (int)params->kernel_size,
       MRGI_SSAO_MAX_KERNEL_SIZE);
   }
-  if (!mrgi_ssao_all_finite(params->kernel, 3 * (size_t)params->kernel_size))
+  if (!mrgi_floats_finite(params->kernel, 3 * (size_t)params->kernel_size))
   {
     return mrgi_error_set(
       err, MRGI_ERR_INVALID_ARGUMENT, "SSAO: the kernel holds a non-finite value");
@@ -100,12 +89,12 @@ mrgi_status mrgi_ssao_params_validate(const mrgi_ssao_params* params, mrgi_error
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "SSAO: bias must be finite");
   }
-  if (!mrgi_ssao_all_finite(params->projection, 16))
+  if (!mrgi_floats_finite(params->projection, 16))
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "SSAO: the projection is not finite");
   }
   if (!params->noise ||
-    !mrgi_ssao_all_finite(params->noise, (size_t)MRGI_SSAO_NOISE_SIZE * MRGI_SSAO_NOISE_SIZE))
+    !mrgi_floats_finite(params->noise, (size_t)MRGI_SSAO_NOISE_SIZE * MRGI_SSAO_NOISE_SIZE))
   {
     return mrgi_error_set(
       err, MRGI_ERR_INVALID_ARGUMENT, "SSAO: no noise tile, or a non-finite one");
@@ -159,8 +148,8 @@ float mrgi_ssao_receiver(const mrgi_ssao_params* params, const mrgi_image* posit
   }
   const float* p = mrgi_image_at(position, x, y);
   const float* nv = mrgi_image_at(normal, x, y);
-  if (!(p[3] > MRGI_GBUFFER_VALID_THRESHOLD) || !mrgi_ssao_all_finite(p, 3) ||
-    !mrgi_ssao_all_finite(nv, 3) || !(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2] > 0.0f))
+  if (!(p[3] > MRGI_GBUFFER_VALID_THRESHOLD) || !mrgi_floats_finite(p, 3) ||
+    !mrgi_floats_finite(nv, 3) || !(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2] > 0.0f))
   {
     return 1.0f; /* background, non-finite or zero normal: no receiver */
   }

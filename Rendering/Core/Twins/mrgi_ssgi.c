@@ -1,6 +1,7 @@
 #include "mrgi_ssgi.h"
 
 #include "mrgi_buffers.h"
+#include "mrgi_finite.h"
 
 #include <float.h>
 #include <math.h>
@@ -40,18 +41,6 @@ mrgi_status mrgi_ssgi_kernel(int32_t count, float* out, mrgi_error* err)
   return MRGI_OK;
 }
 
-static int mrgi_ssgi_finite(const float* v, size_t n)
-{
-  for (size_t i = 0; i < n; ++i)
-  {
-    if (!isfinite(v[i]))
-    {
-      return 0;
-    }
-  }
-  return 1;
-}
-
 mrgi_status mrgi_ssgi_params_validate(const mrgi_ssgi_params* params, mrgi_error* err)
 {
   if (!params)
@@ -64,7 +53,7 @@ mrgi_status mrgi_ssgi_params_validate(const mrgi_ssgi_params* params, mrgi_error
       "SSGI: sample count %d is outside 1..%d (or no kernel)", (int)params->sample_count,
       MRGI_SSGI_MAX_SAMPLES);
   }
-  if (!mrgi_ssgi_finite(params->kernel, 3 * (size_t)params->sample_count))
+  if (!mrgi_floats_finite(params->kernel, 3 * (size_t)params->sample_count))
   {
     return mrgi_error_set(
       err, MRGI_ERR_INVALID_ARGUMENT, "SSGI: the kernel holds a non-finite value");
@@ -87,7 +76,7 @@ mrgi_status mrgi_ssgi_params_validate(const mrgi_ssgi_params* params, mrgi_error
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "SSGI: bias %g must be finite and >= 0",
       (double)params->bias);
   }
-  if (!mrgi_ssgi_finite(params->projection, 16))
+  if (!mrgi_floats_finite(params->projection, 16))
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "SSGI: the projection is not finite");
   }
@@ -134,8 +123,8 @@ void mrgi_ssgi_receiver(const mrgi_ssgi_params* params, const mrgi_image* positi
   out->visibility = 1.0f;
   out->margin = FLT_MAX;
   const float* p = eye_position;
-  if (!mrgi_ssgi_finite(p, 3) || !mrgi_ssgi_finite(normal_vector, 3) ||
-    !mrgi_ssgi_finite(albedo, 3))
+  if (!mrgi_floats_finite(p, 3) || !mrgi_floats_finite(normal_vector, 3) ||
+    !mrgi_floats_finite(albedo, 3))
   {
     return;
   }
@@ -187,7 +176,7 @@ void mrgi_ssgi_receiver(const mrgi_ssgi_params* params, const mrgi_image* positi
       continue; /* off screen or behind the eye: unknown, taken as open */
     }
     const float* q = mrgi_image_at(position, qx, qy);
-    if (!(q[3] > MRGI_GBUFFER_VALID_THRESHOLD) || !mrgi_ssgi_finite(q, 3))
+    if (!(q[3] > MRGI_GBUFFER_VALID_THRESHOLD) || !mrgi_floats_finite(q, 3))
     {
       continue; /* the background neither blocks nor sends */
     }
@@ -209,7 +198,7 @@ void mrgi_ssgi_receiver(const mrgi_ssgi_params* params, const mrgi_image* positi
     blocked += c;
     const float* nq = mrgi_image_at(normal, qx, qy);
     const float* lq = mrgi_image_at(direct, qx, qy);
-    if (!(d > 0.0f) || !mrgi_ssgi_finite(nq, 3) || !mrgi_ssgi_finite(lq, 3))
+    if (!(d > 0.0f) || !mrgi_floats_finite(nq, 3) || !mrgi_floats_finite(lq, 3))
     {
       continue; /* blocks, but cannot send */
     }

@@ -10,6 +10,8 @@
 #include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
 #include "vtkMRGIAreaLightStage.h"
+#include "vtkMRGIBMRMask.h"
+#include "vtkMRGIDirectShadows.h"
 #include "vtkMRGIFrameContext.h"
 #include "vtkMRGIFullScreenStep.h"
 #include "vtkMRGIGBuffer.h"
@@ -53,6 +55,7 @@
 
 #include "mrgi_buffers.h"
 #include "mrgi_exposure.h"
+#include "mrgi_screen_space_preset.h"
 #include "mrgi_multires.h"
 #include "mrgi_vpl.h"
 
@@ -763,46 +766,9 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
       std::swap(g.Color, g.Shadowed);
     }
   }
-  // SSAO as vtkSSAOPass applies it, to the direct light only: the indirect
-  // and area light added below are not ambient terms and model their own
-  // visibility. (After the direct shadows, which subtract shadowed light
-  // terms from the unshadowed colour: AO multiplies their result.)
-  if (this->SSAO && framed)
+  if (framed)
   {
-    ScopedStage stage(timer, "ssao");
-    const bool multires = this->SSAOResolution == ResolutionMultiresolution;
-    if (multires
-        ? this->SSAOStage->RenderMultiresolution(frame, this->SSAOKernelSize, this->SSAORadius,
-            this->SSAOBias, this->SSAOBlur, in.GBuffer.Color)
-        : this->SSAOStage->Render(frame, this->SSAOKernelSize, this->SSAORadius, this->SSAOBias,
-            this->SSAOBlur, in.GBuffer.Color))
-    {
-      this->SSAOFailureReported = false;
-    }
-    else if (!this->SSAOFailureReported)
-    {
-      this->SSAOFailureReported = true;
-      vtkErrorMacro("SSAO could not be computed (kernel size "
-        << this->SSAOKernelSize << ", radius " << this->SSAORadius << ", bias " << this->SSAOBias
-        << "): this frame has no ambient occlusion");
-    }
-  }
-  // SSGI sends the direct light as it is now (shadowed, occluded).
-  if (this->SSGI && framed)
-  {
-    ScopedStage stage(timer, "ssgi");
-    if (this->SSGIStage->Render(
-          frame, this->SSGISamples, this->SSGIRadius, this->SSGIBias, in.GBuffer.Color))
-    {
-      this->SSGIFailureReported = false;
-    }
-    else if (!this->SSGIFailureReported)
-    {
-      this->SSGIFailureReported = true;
-      vtkErrorMacro("SSGI could not be computed (samples "
-        << this->SSGISamples << ", radius " << this->SSGIRadius << ", bias " << this->SSGIBias
-        << "): this frame has no screen-space bounce");
-    }
+    this->RenderScreenSpaceEffects(frame, in.GBuffer.Color);
   }
   if (indirect)
   {
@@ -1117,6 +1083,82 @@ bool vtkMRGIPass::GetVPLs(vtkRenderWindow* window, vtkFloatArray* vpls)
 }
 
 //------------------------------------------------------------------------------
+void vtkMRGIPass::RenderScreenSpaceEffects(const vtkMRGIFrameContext& frame, vtkTextureObject* colour)
+{
+  // SSAO as vtkSSAOPass applies it, to the direct light only: the indirect
+  // and area light added below are not ambient terms and model their own
+  // visibility. (After the direct shadows, which subtract shadowed light
+  // terms from the unshadowed colour: AO multiplies their result.)
+  if (this->SSAO)
+  {
+    ScopedStage stage(frame.Timer, "ssao");
+    const bool multires = this->SSAOResolution == ResolutionMultiresolution;
+    if (multires
+        ? this->SSAOStage->RenderMultiresolution(frame, this->SSAOKernelSize, this->SSAORadius,
+            this->SSAOBias, this->SSAOBlur, colour)
+        : this->SSAOStage->Render(frame, this->SSAOKernelSize, this->SSAORadius, this->SSAOBias,
+            this->SSAOBlur, colour))
+    {
+      this->SSAOFailureReported = false;
+    }
+    else if (!this->SSAOFailureReported)
+    {
+      this->SSAOFailureReported = true;
+      vtkErrorMacro("SSAO could not be computed (kernel size "
+        << this->SSAOKernelSize << ", radius " << this->SSAORadius << ", bias " << this->SSAOBias
+        << "): this frame has no ambient occlusion");
+    }
+  }
+  // SSGI sends the direct light as it is now (shadowed, occluded).
+  if (this->SSGI)
+  {
+    ScopedStage stage(frame.Timer, "ssgi");
+    const bool multires = this->SSGIResolution == ResolutionMultiresolution;
+    if (multires ? this->SSGIStage->RenderMultiresolution(frame, this->SSGISamples,
+                     this->SSGIRadius, this->SSGIBias, colour)
+                 : this->SSGIStage->Render(frame, this->SSGISamples, this->SSGIRadius,
+                     this->SSGIBias, colour))
+    {
+      this->SSGIFailureReported = false;
+    }
+    else if (!this->SSGIFailureReported)
+    {
+      this->SSGIFailureReported = true;
+      vtkErrorMacro("SSGI could not be computed (samples "
+        << this->SSGISamples << ", radius " << this->SSGIRadius << ", bias " << this->SSGIBias
+        << "): this frame has no screen-space bounce");
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIPass::SetScreenSpacePreset(int preset)
+{
+  mrgi_screen_space_preset_params p;
+  mrgi_error err;
+  if (mrgi_screen_space_preset_get(preset, &p, &err) != MRGI_OK)
+  {
+    vtkErrorMacro("SetScreenSpacePreset: " << err.message);
+    return false;
+  }
+  this->SetSSAOKernelSize(p.ssao_kernel_size);
+  this->SetSoftShadowKernelSize(p.shadow_kernel_side);
+  this->SetSSGISamples(p.ssgi_samples);
+  this->SetSSAOResolution(p.ssao_resolution);
+  this->SetShadowResolution(p.shadow_resolution);
+  this->SetSSGIResolution(p.ssgi_resolution);
+  for (vtkMRGIBMRMask* mask : { this->SSAOStage->GetBMRMask(), this->SSGIStage->GetBMRMask(),
+         this->GetDirectShadowStage()->GetBMRMask() })
+  {
+    mask->SetDepthThreshold(p.bmr_depth_threshold);
+    mask->SetNormalThreshold(p.bmr_normal_threshold);
+  }
+  this->ScreenSpacePreset = preset;
+  this->Modified();
+  return true;
+}
+
+//------------------------------------------------------------------------------
 void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -1142,8 +1184,14 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
      << (this->SSAOBlur ? "on" : "off") << ", "
      << (this->SSAOResolution == ResolutionMultiresolution ? "multiresolution" : "full resolution")
      << ")\n";
+  os << indent << "ScreenSpacePreset: "
+     << (this->ScreenSpacePreset >= 0 ? mrgi_screen_space_preset_name(this->ScreenSpacePreset)
+                                      : "none")
+     << "\n";
   os << indent << "SSGI: " << (this->SSGI ? "on" : "off") << " (samples " << this->SSGISamples
-     << ", radius " << this->SSGIRadius << ", bias " << this->SSGIBias << ")\n";
+     << ", radius " << this->SSGIRadius << ", bias " << this->SSGIBias << ", "
+     << (this->SSGIResolution == ResolutionMultiresolution ? "multiresolution" : "full resolution")
+     << ")\n";
   os << indent << "IndirectStrength: " << this->IndirectStrength << "\n";
   os << indent << "AreaLightIndirect: " << (this->AreaLightIndirect ? "On" : "Off") << "\n";
   os << indent << "NumberOfVPLs: " << this->VPLSelection->GetNumberOfVPLs() << "\n";

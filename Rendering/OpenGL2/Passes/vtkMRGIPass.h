@@ -343,6 +343,41 @@ public:
 
   ///@{
   /**
+   * SSGI's resolution: ResolutionFull (default, like the other effects) or
+   * ResolutionMultiresolution (vtkMRGISSGI::RenderMultiresolution(), BMR's
+   * SSGI preset of Table 1; Documentation/ScreenSpaceEffects-SSGI.md).
+   */
+  vtkSetClampMacro(SSGIResolution, int, ResolutionFull, ResolutionMultiresolution);
+  vtkGetMacro(SSGIResolution, int);
+  ///@}
+
+  /** The screen-space presets (mrgi_screen_space_preset.h). */
+  enum ScreenSpacePresets
+  {
+    ScreenSpaceFast = 0,     ///< fewer samples and taps, coarser BMR masks
+    ScreenSpaceBalanced = 1, ///< the defaults
+    ScreenSpaceAccurate = 2  ///< BMR figure 6's sample counts, finer BMR masks
+  };
+
+  /**
+   * Apply a screen-space preset: the SSAO kernel size, the soft-shadow
+   * kernel, the SSGI samples, the three effects' resolutions and the BMR
+   * mask thresholds of the SSAO, SSGI and direct-shadow stages, from the one
+   * table of mrgi_screen_space_preset_get(). Effects are not switched on or
+   * off; radii and biases are kept. Setters called afterwards override
+   * single knobs. Measured error and time of each preset:
+   * Documentation/ScreenSpaceEffects.md. False, with an error and nothing
+   * changed, for an unknown preset.
+   */
+  bool SetScreenSpacePreset(int preset);
+  /**
+   * The last preset applied by SetScreenSpacePreset(), -1 before (a knob
+   * set afterwards does not reset it).
+   */
+  vtkGetMacro(ScreenSpacePreset, int);
+
+  ///@{
+  /**
    * Area lights (vtkMRGIAreaLight: textured rectangles, direct light and,
    * with AreaLightIndirect, one bounce through the RSMs;
    * nichols-penmatsa-wyman-2010). Each adds albedo x X to the image, X its
@@ -657,6 +692,10 @@ protected:
     bool capture, vtkMRGIFrameContext& frame);
   // Selection, gather, upsampling and resolve of the multiresolution gather.
   bool RenderMultiresolution(const vtkMRGIFrameContext& frame, int vplCount);
+  // SSAO, then SSGI (each at its resolution) on `colour`, the frame's
+  // direct light after the shadows; a failure is reported once per run of
+  // failures and leaves the frame without that effect.
+  void RenderScreenSpaceEffects(const vtkMRGIFrameContext& frame, vtkTextureObject* colour);
   // Adds `source`'s RGB to `target`'s (additive blending, target alpha kept).
   void RenderAdd(const vtkMRGIFrameContext& frame, vtkTextureObject* source, vtkTextureObject* target);
 #endif
@@ -682,6 +721,8 @@ protected:
   int SSGISamples = 64;   // MRGI_SSGI_DEFAULT_SAMPLES
   double SSGIRadius = 0.5; // MRGI_SSGI_DEFAULT_RADIUS
   double SSGIBias = 0.01;  // MRGI_SSGI_DEFAULT_BIAS
+  int SSGIResolution = ResolutionFull;
+  int ScreenSpacePreset = -1;
   bool SSGIFailureReported = false;
   bool StageTimingEnabled = false;
   int BufferSize[2] = { 0, 0 };

@@ -209,6 +209,35 @@ bool vtkMRGIFullScreenStep::ReadMask(vtkOpenGLRenderWindow* window,
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIFullScreenStep::BlendInto(vtkOpenGLRenderWindow* window,
+  vtkOpenGLFramebufferObject* fbo, vtkOpenGLQuadHelper* quad, const int viewport[4],
+  vtkTextureObject* input, unsigned int srcRGB, unsigned int dstRGB, vtkTextureObject* colour,
+  const std::function<void(vtkShaderProgram*)>& uniforms)
+{
+  vtkShaderProgram* program = quad->Program;
+  {
+    vtkMRGIFullScreenStep steps(window, fbo);
+    steps.Target(colour, nullptr, viewport[0], viewport[1], viewport[2], viewport[3]);
+    vtkOpenGLState* ostate = steps.GetState();
+    vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
+    ostate->vtkglEnable(GL_BLEND);
+    ostate->vtkglBlendFuncSeparate(srcRGB, dstRGB, GL_ZERO, GL_ONE);
+    BindInputs(program, { input });
+    const int origin[2] = { viewport[0], viewport[1] };
+    const int size[2] = { viewport[2], viewport[3] };
+    program->SetUniform2i("mrgiOrigin", origin);
+    program->SetUniform2i("mrgiSize", size);
+    if (uniforms)
+    {
+      uniforms(program);
+    }
+    quad->Render();
+    UnbindInputs({ input });
+  }
+  return glGetError() == GL_NO_ERROR;
+}
+
+//------------------------------------------------------------------------------
 bool vtkMRGIFullScreenStep::AddRGB(vtkOpenGLRenderWindow* window, vtkMRGIProgramCache& programs,
   vtkOpenGLFramebufferObject* fbo, const int viewport[4], vtkTextureObject* source,
   vtkTextureObject* target)

@@ -15,11 +15,13 @@
 
 #include "vtkOpenGLState.h" // For the scoped state savers
 
+#include <functional>       // For std::function
 #include <initializer_list> // For std::initializer_list
 #include <vector>           // For std::vector
 
 struct mrgi_multires_layout;
 class vtkMRGIProgramCache;
+class vtkOpenGLQuadHelper;
 class vtkOpenGLFramebufferObject;
 class vtkOpenGLRenderWindow;
 class vtkShaderProgram;
@@ -66,6 +68,20 @@ public:
   static bool AddRGB(vtkOpenGLRenderWindow* window, vtkMRGIProgramCache& programs,
     vtkOpenGLFramebufferObject* fbo, const int viewport[4], vtkTextureObject* source,
     vtkTextureObject* target);
+
+  /**
+   * Draw `quad` over `viewport` of `colour` through `fbo` with the blending
+   * colour.rgb = quad.rgb * srcRGB + colour.rgb * dstRGB (GL blend factors;
+   * alpha kept): the apply step of the screen-space effects (SSAO
+   * multiplies, GL_ZERO / GL_SRC_COLOR; SSGI adds, GL_ONE / GL_ONE).
+   * `input` is bound as mrgiInput0, mrgiOrigin and mrgiSize are the
+   * viewport's origin and size; `uniforms` (may be empty) sets the rest.
+   * False on a GL error (the caller names its stage).
+   */
+  static bool BlendInto(vtkOpenGLRenderWindow* window, vtkOpenGLFramebufferObject* fbo,
+    vtkOpenGLQuadHelper* quad, const int viewport[4], vtkTextureObject* input,
+    unsigned int srcRGB, unsigned int dstRGB, vtkTextureObject* colour,
+    const std::function<void(vtkShaderProgram*)>& uniforms);
 
   /** Activate `textures` and bind them to the samplers mrgiInput0, mrgiInput1, ... of `program`. */
   static void BindInputs(vtkShaderProgram* program, std::initializer_list<vtkTextureObject*> textures);

@@ -1,5 +1,8 @@
 #include "vtkMRGIShaderUtilities.h"
 
+#include "vtkCamera.h"
+#include "vtkMatrix4x4.h"
+
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLRenderUtilities.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -271,6 +274,33 @@ vtkTextureObject* NewTexture(vtkOpenGLRenderWindow* window, int internalFormat, 
     return nullptr;
   }
   return t;
+}
+
+bool EnsureTexture(
+  vtkOpenGLRenderWindow* window, vtkTextureObject*& t, int size[2], int internalFormat, int w, int h)
+{
+  if (t && size[0] == w && size[1] == h)
+  {
+    return true;
+  }
+  ReleaseTexture(t, window);
+  t = NewTexture(window, internalFormat, w, h);
+  size[0] = t ? w : 0;
+  size[1] = t ? h : 0;
+  return t != nullptr;
+}
+
+void CameraProjection(vtkRenderer* renderer, float matrix[16])
+{
+  vtkMatrix4x4* projection = renderer->GetActiveCamera()->GetProjectionTransformMatrix(
+    renderer->GetTiledAspectRatio(), -1, 1);
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      matrix[c * 4 + r] = static_cast<float>(projection->GetElement(r, c));
+    }
+  }
 }
 
 //------------------------------------------------------------------------------

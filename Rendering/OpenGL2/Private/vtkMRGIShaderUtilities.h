@@ -108,6 +108,21 @@ void ReleaseTexture(vtkTextureObject*& t, vtkWindow* w);
 vtkTextureObject* NewTexture(vtkOpenGLRenderWindow* window, int internalFormat, int w, int h);
 
 /**
+ * Keep `t` a w x h NewTexture() of `internalFormat`: reallocated when
+ * `size` (the size it was made at, updated here) differs. False, with `t`
+ * null and `size` 0 x 0, when the allocation fails.
+ */
+bool EnsureTexture(
+  vtkOpenGLRenderWindow* window, vtkTextureObject*& t, int size[2], int internalFormat, int w, int h);
+
+/**
+ * The camera's projection (eye -> clip) at the renderer's tiled aspect
+ * ratio, depth in [-1, 1], as vtkSSAOPass takes it; column-major floats
+ * for a GLSL mat4 uniform (the screen-space effects and their twins).
+ */
+void CameraProjection(vtkRenderer* renderer, float matrix[16]);
+
+/**
  * A new w x h selection mask (the flattened selections of the
  * multiresolution, incremental and specular stencils): the selecting shader
  * writes 1 to red where a texel is selected, the clear leaves 0, and every

@@ -20,9 +20,13 @@
 #include "MRGIRenderingModule.h" // For export macro
 #include "vtkObject.h"
 
-#include <memory> // For std::unique_ptr
+#include <functional> // For std::function
+#include <memory>     // For std::unique_ptr
 
+struct vtkMRGIFrameContext;
 class vtkFloatArray;
+class vtkMRGIBMRBlend;
+class vtkMRGIBMRMask;
 class vtkMRGIFullScreenStep;
 class vtkOpenGLFramebufferObject;
 class vtkOpenGLRenderWindow;
@@ -102,6 +106,30 @@ public:
     void operator=(const LevelStep&) = delete;
     std::unique_ptr<vtkMRGIFullScreenStep> Step;
   };
+
+  /**
+   * An effect at every level of `levels` under the level's stencil: for
+   * k = 0..3, `renderLevel(k)` draws one full-screen step (binding its own
+   * program and inputs) while a LevelStep for k is active. A skipped level
+   * has an empty stencil: its colour is cleared and nothing passes. False,
+   * with an error, when a level cannot be bound, `renderLevel` fails or GL
+   * reports an error.
+   */
+  static bool RenderLevels(vtkOpenGLRenderWindow* window, vtkMRGIBMRLevels* levels,
+    const std::function<bool(int level)>& renderLevel);
+
+  /**
+   * The multiresolution path of a screen-space effect (BMR 3-4) over the
+   * frame's viewport into `target` (RGBA32F, at least viewport-sized,
+   * written at (0, 0)): `levels` prepared for the viewport's size, `mask`
+   * built from the frame's G-buffer, `computeLevels(levels)` (the effect,
+   * e.g. through RenderLevels()), `blend` into the target. The one
+   * sequence vtkMRGISSAO and vtkMRGISSGI share. False, with an error, on
+   * failure.
+   */
+  static bool RenderMultiresolution(const vtkMRGIFrameContext& frame, vtkMRGIBMRMask* mask,
+    vtkMRGIBMRBlend* blend, vtkMRGIBMRLevels* levels,
+    const std::function<bool(vtkMRGIBMRLevels*)>& computeLevels, vtkTextureObject* target);
 #endif
 
   /** Free every GL resource. */

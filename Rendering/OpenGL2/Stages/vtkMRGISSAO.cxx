@@ -2,7 +2,6 @@
 
 #include "vtkMRGISSAO.h"
 
-#include "vtkCamera.h"
 #include "vtkFloatArray.h"
 #include "vtkMRGIBMRBlend.h"
 #include "vtkMRGIBMRLevels.h"
@@ -12,7 +11,6 @@
 #include "vtkMRGIProgramCache.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIStageResources.h"
-#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFramebufferObject.h"
@@ -140,18 +138,9 @@ vtkOpenGLQuadHelper* vtkMRGISSAO::ReadyAO(
 {
   Internals& in = *this->Internal;
   vtkOpenGLRenderWindow* window = frame.Window;
-  // vtkSSAOPass's projection: the camera's at the tile's aspect ratio,
-  // depth in [-1, 1]; column-major for GLSL.
-  vtkMatrix4x4* projection = frame.Renderer->GetActiveCamera()->GetProjectionTransformMatrix(
-    frame.Renderer->GetTiledAspectRatio(), -1, 1);
+  // vtkSSAOPass's projection: the camera's at the tile's aspect ratio.
   float matrix[16];
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      matrix[c * 4 + r] = static_cast<float>(projection->GetElement(r, c));
-    }
-  }
+  vtkMRGIShaderUtilities::CameraProjection(frame.Renderer, matrix);
   vtkOpenGLQuadHelper* quad = in.Ready(window, 0, kernelSize);
   if (!quad)
   {
@@ -245,33 +234,18 @@ bool vtkMRGISSAO::ComputeOcclusionLevels(const vtkMRGIFrameContext& frame, int k
     return false;
   }
   in.GL.Prepare(window);
-  {
-    vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssao.ao");
-    for (int k = 0; k < vtkMRGIBMRLevels::GetNumberOfLevels(); ++k)
+  vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssao.ao");
+  return vtkMRGIBMRLevels::RenderLevels(window, levels, [&](int k) {
+    vtkOpenGLQuadHelper* quad = this->ReadyAO(frame, kernelSize, radius, bias, k);
+    if (!quad)
     {
-      vtkMRGIBMRLevels::LevelStep levelStep(window, levels, k);
-      if (!levelStep.IsValid())
-      {
-        vtkErrorMacro("SSAO could not bind BMR level " << k);
-        return false;
-      }
-      vtkOpenGLQuadHelper* quad = this->ReadyAO(frame, kernelSize, radius, bias, k);
-      if (!quad)
-      {
-        return false;
-      }
-      quad->Program->SetUniformi("mrgiOcclusion", 1);
-      quad->Render();
-      vtkMRGIFullScreenStep::UnbindInputs({ frame.Position, frame.Normal });
+      return false;
     }
-  }
-  const GLenum error = glGetError();
-  if (error != GL_NO_ERROR)
-  {
-    vtkErrorMacro("OpenGL error " << error << " in the multiresolution SSAO stage");
-    return false;
-  }
-  return true;
+    quad->Program->SetUniformi("mrgiOcclusion", 1);
+    quad->Render();
+    vtkMRGIFullScreenStep::UnbindInputs({ frame.Position, frame.Normal });
+    return true;
+  });
 }
 
 //------------------------------------------------------------------------------
@@ -279,27 +253,11 @@ bool vtkMRGISSAO::ComputeOcclusionMultiresolution(const vtkMRGIFrameContext& fra
   int kernelSize, double radius, double bias, vtkTextureObject* target)
 {
   Internals& in = *this->Internal;
-  const int w = frame.Viewport[2], h = frame.Viewport[3];
-  if (!frame.Window || !target || w < 1 || h < 1 ||
-    target->GetWidth() < static_cast<unsigned int>(w) ||
-    target->GetHeight() < static_cast<unsigned int>(h))
-  {
-    vtkErrorMacro("multiresolution SSAO needs the frame's window, a viewport and a target at "
-                  "least as large");
-    return false;
-  }
-  if (!in.Levels->Prepare(frame.Window, w, h))
-  {
-    vtkErrorMacro("could not allocate the BMR levels (" << w << " x " << h << ")");
-    return false;
-  }
-  // The blend writes the frame's viewport at its origin; the target is
-  // viewport-sized at (0, 0) like ComputeAO()'s, so the origin is moved.
-  vtkMRGIFrameContext atOrigin = frame;
-  atOrigin.Viewport[0] = atOrigin.Viewport[1] = 0;
-  return in.Mask->Build(frame, in.Levels, nullptr) &&
-    this->ComputeOcclusionLevels(frame, kernelSize, radius, bias, in.Levels) &&
-    in.Blend->Blend(atOrigin, in.Levels, target);
+  return vtkMRGIBMRLevels::RenderMultiresolution(frame, in.Mask, in.Blend, in.Levels,
+    [&](vtkMRGIBMRLevels* levels) {
+      return this->ComputeOcclusionLevels(frame, kernelSize, radius, bias, levels);
+    },
+    target);
 }
 
 //------------------------------------------------------------------------------
@@ -313,18 +271,12 @@ bool vtkMRGISSAO::RenderMultiresolution(const vtkMRGIFrameContext& frame, int ke
     vtkErrorMacro("SSAO needs the frame's window and a viewport");
     return false;
   }
-  if (!in.Occlusion || in.OcclusionSize[0] != w || in.OcclusionSize[1] != h)
+  if (!vtkMRGIShaderUtilities::EnsureTexture(
+        frame.Window, in.Occlusion, in.OcclusionSize, GL_RGBA32F, w, h))
   {
-    vtkMRGIShaderUtilities::ReleaseTexture(in.Occlusion, frame.Window);
-    in.Occlusion = vtkMRGIShaderUtilities::NewTexture(frame.Window, GL_RGBA32F, w, h);
-    in.OcclusionSize[0] = in.Occlusion ? w : 0;
-    in.OcclusionSize[1] = in.Occlusion ? h : 0;
-    if (!in.Occlusion)
-    {
-      vtkErrorMacro("could not allocate the multiresolution SSAO target (" << w << " x " << h
-                                                                          << ")");
-      return false;
-    }
+    vtkErrorMacro("could not allocate the multiresolution SSAO target (" << w << " x " << h
+                                                                        << ")");
+    return false;
   }
   return this->ComputeOcclusionMultiresolution(frame, kernelSize, radius, bias, in.Occlusion) &&
     this->ApplyTexture(frame, in.Occlusion, true, blur, colour);
@@ -373,32 +325,16 @@ bool vtkMRGISSAO::ApplyTexture(const vtkMRGIFrameContext& frame, vtkTextureObjec
     vtkErrorMacro("could not build the SSAO apply shader");
     return false;
   }
-  vtkShaderProgram* program = quad->Program;
+  vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssao.apply");
+  // colour.rgb * AO in place: multiplicative blending (the same float
+  // product as vtkSSAOPass's col.rgb * ao), alpha kept.
+  if (!vtkMRGIFullScreenStep::BlendInto(window, in.GL.FrameBuffer, quad, frame.Viewport, ao,
+        GL_ZERO, GL_SRC_COLOR, colour, [&](vtkShaderProgram* program) {
+          program->SetUniformi("mrgiBlur", blur ? 1 : 0);
+          program->SetUniformi("mrgiOcclusion", occlusion ? 1 : 0);
+        }))
   {
-    vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssao.apply");
-    vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
-    steps.Target(
-      colour, nullptr, frame.Viewport[0], frame.Viewport[1], frame.Viewport[2], frame.Viewport[3]);
-    // colour.rgb * AO in place: multiplicative blending (the same float
-    // product as vtkSSAOPass's col.rgb * ao), alpha kept.
-    vtkOpenGLState* ostate = steps.GetState();
-    vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
-    ostate->vtkglEnable(GL_BLEND);
-    ostate->vtkglBlendFuncSeparate(GL_ZERO, GL_SRC_COLOR, GL_ZERO, GL_ONE);
-    vtkMRGIFullScreenStep::BindInputs(program, { ao });
-    const int origin[2] = { frame.Viewport[0], frame.Viewport[1] };
-    const int size[2] = { frame.Viewport[2], frame.Viewport[3] };
-    program->SetUniform2i("mrgiOrigin", origin);
-    program->SetUniform2i("mrgiSize", size);
-    program->SetUniformi("mrgiBlur", blur ? 1 : 0);
-    program->SetUniformi("mrgiOcclusion", occlusion ? 1 : 0);
-    quad->Render();
-    vtkMRGIFullScreenStep::UnbindInputs({ ao });
-  }
-  const GLenum error = glGetError();
-  if (error != GL_NO_ERROR)
-  {
-    vtkErrorMacro("OpenGL error " << error << " in the SSAO apply step");
+    vtkErrorMacro("OpenGL error in the SSAO apply step");
     return false;
   }
   return true;
@@ -415,17 +351,10 @@ bool vtkMRGISSAO::Render(const vtkMRGIFrameContext& frame, int kernelSize, doubl
     vtkErrorMacro("SSAO needs the frame's window and a viewport");
     return false;
   }
-  if (!in.AO || in.Size[0] != w || in.Size[1] != h)
+  if (!vtkMRGIShaderUtilities::EnsureTexture(frame.Window, in.AO, in.Size, GL_R32F, w, h))
   {
-    vtkMRGIShaderUtilities::ReleaseTexture(in.AO, frame.Window);
-    in.AO = vtkMRGIShaderUtilities::NewTexture(frame.Window, GL_R32F, w, h);
-    in.Size[0] = in.AO ? w : 0;
-    in.Size[1] = in.AO ? h : 0;
-    if (!in.AO)
-    {
-      vtkErrorMacro("could not allocate the SSAO target (" << w << " x " << h << ")");
-      return false;
-    }
+    vtkErrorMacro("could not allocate the SSAO target (" << w << " x " << h << ")");
+    return false;
   }
   return this->ComputeAO(frame, kernelSize, radius, bias, 0, in.AO) &&
     this->Apply(frame, in.AO, blur, colour);

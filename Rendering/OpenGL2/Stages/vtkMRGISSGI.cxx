@@ -2,14 +2,16 @@
 
 #include "vtkMRGISSGI.h"
 
-#include "vtkCamera.h"
 #include "vtkFloatArray.h"
+#include "vtkMRGIBMRBlend.h"
+#include "vtkMRGIBMRLevels.h"
+#include "vtkMRGIBMRMask.h"
 #include "vtkMRGIFrameContext.h"
 #include "vtkMRGIFullScreenStep.h"
 #include "vtkMRGIProgramCache.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIStageResources.h"
-#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLQuadHelper.h"
@@ -31,8 +33,11 @@ vtkStandardNewMacro(vtkMRGISSGI);
 
 struct vtkMRGISSGI::Internals
 {
-  vtkTextureObject* Result = nullptr; // full-resolution result of Render(), RGBA32F
+  vtkTextureObject* Result = nullptr; // result of Render() / RenderMultiresolution(), RGBA32F
   int Size[2] = { 0, 0 };
+  vtkNew<vtkMRGIBMRLevels> Levels;
+  vtkNew<vtkMRGIBMRMask> Mask;
+  vtkNew<vtkMRGIBMRBlend> Blend;
   std::vector<float> Kernel; // the kernel of Samples samples
   int Samples = 0;
   vtkMRGIStageResources GL;
@@ -55,6 +60,9 @@ struct vtkMRGISSGI::Internals
 vtkMRGISSGI::vtkMRGISSGI()
   : Internal(new Internals)
 {
+  // BMR Table 1's SSGI row: level 2 skipped, its own variances and weights.
+  this->Internal->Mask->SetPreset(vtkMRGIBMRMask::SSGI);
+  this->Internal->Blend->SetPreset(vtkMRGIBMRMask::SSGI);
 }
 
 //------------------------------------------------------------------------------
@@ -72,18 +80,20 @@ void vtkMRGISSGI::ReleaseGraphicsResources(vtkWindow* w)
 {
   vtkMRGIShaderUtilities::ReleaseTexture(this->Internal->Result, w);
   this->Internal->Size[0] = this->Internal->Size[1] = 0;
+  this->Internal->Levels->ReleaseGraphicsResources(w);
+  this->Internal->Mask->ReleaseGraphicsResources(w);
+  this->Internal->Blend->ReleaseGraphicsResources(w);
   this->Internal->GL.Release(w);
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGISSGI::Compute(const vtkMRGIFrameContext& frame, vtkTextureObject* direct, int samples,
-  double radius, double bias, int level, vtkTextureObject* target)
+bool vtkMRGISSGI::CheckCompute(const vtkMRGIFrameContext& frame, vtkTextureObject* direct,
+  int samples, double radius, double bias)
 {
   Internals& in = *this->Internal;
-  vtkOpenGLRenderWindow* window = frame.Window;
   const int w = frame.Viewport[2], h = frame.Viewport[3];
-  if (!window || !frame.Renderer || !frame.Position || !frame.Normal || !frame.Albedo || !direct ||
-    !target || w < 1 || h < 1)
+  if (!frame.Window || !frame.Renderer || !frame.Position || !frame.Normal || !frame.Albedo ||
+    !direct || w < 1 || h < 1)
   {
     vtkErrorMacro("SSGI needs the frame's window, renderer, G-buffer position, normal and "
                   "albedo, a direct-light texture, a viewport and a target");
@@ -101,6 +111,64 @@ bool vtkMRGISSGI::Compute(const vtkMRGIFrameContext& frame, vtkTextureObject* di
       "SSGI radius " << radius << " must be finite and > 0, bias " << bias << " finite and >= 0");
     return false;
   }
+  if (in.Samples != samples)
+  {
+    in.Kernel.resize(3 * static_cast<size_t>(samples));
+    mrgi_error err;
+    if (mrgi_ssgi_kernel(samples, in.Kernel.data(), &err) != MRGI_OK)
+    {
+      vtkErrorMacro(<< err.message);
+      in.Samples = 0;
+      return false;
+    }
+    in.Samples = samples;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+vtkOpenGLQuadHelper* vtkMRGISSGI::ReadyCompute(const vtkMRGIFrameContext& frame,
+  vtkTextureObject* direct, int samples, double radius, double bias, int level)
+{
+  Internals& in = *this->Internal;
+  float matrix[16];
+  vtkMRGIShaderUtilities::CameraProjection(frame.Renderer, matrix);
+  vtkOpenGLQuadHelper* quad = in.Ready(frame.Window, 0, samples);
+  if (!quad)
+  {
+    vtkErrorMacro("could not build the SSGI shader (" << samples << " samples)");
+    return nullptr;
+  }
+  vtkShaderProgram* program = quad->Program;
+  vtkMRGIFullScreenStep::BindInputs(program, { frame.Position, frame.Normal, frame.Albedo, direct });
+  const int origin[2] = { frame.Viewport[0], frame.Viewport[1] };
+  const int size[2] = { frame.Viewport[2], frame.Viewport[3] };
+  program->SetUniform2i("mrgiOrigin", origin);
+  program->SetUniform2i("mrgiSize", size);
+  program->SetUniformi("mrgiLevel", level);
+  program->SetUniformMatrix4x4("mrgiProjection", matrix);
+  program->SetUniformf("mrgiRadius", static_cast<float>(radius));
+  program->SetUniformf("mrgiBias", static_cast<float>(bias));
+  program->SetUniform3fv("mrgiKernel", samples, in.Kernel.data());
+  return quad;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISSGI::Compute(const vtkMRGIFrameContext& frame, vtkTextureObject* direct, int samples,
+  double radius, double bias, int level, vtkTextureObject* target)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  const int w = frame.Viewport[2], h = frame.Viewport[3];
+  if (!target)
+  {
+    vtkErrorMacro("SSGI needs a target");
+    return false;
+  }
+  if (!this->CheckCompute(frame, direct, samples, radius, bias))
+  {
+    return false;
+  }
   if (level < 0 || level > MRGI_SSGI_MAX_LEVEL)
   {
     vtkErrorMacro("SSGI level " << level << " is outside 0.." << MRGI_SSGI_MAX_LEVEL);
@@ -116,53 +184,16 @@ bool vtkMRGISSGI::Compute(const vtkMRGIFrameContext& frame, vtkTextureObject* di
                                  << ")");
     return false;
   }
-  if (in.Samples != samples)
-  {
-    in.Kernel.resize(3 * static_cast<size_t>(samples));
-    mrgi_error err;
-    if (mrgi_ssgi_kernel(samples, in.Kernel.data(), &err) != MRGI_OK)
-    {
-      vtkErrorMacro(<< err.message);
-      in.Samples = 0;
-      return false;
-    }
-    in.Samples = samples;
-  }
-  // The camera's projection at the tile's aspect ratio, depth in [-1, 1]
-  // (as vtkMRGISSAO); column-major for GLSL.
-  vtkMatrix4x4* projection = frame.Renderer->GetActiveCamera()->GetProjectionTransformMatrix(
-    frame.Renderer->GetTiledAspectRatio(), -1, 1);
-  float matrix[16];
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      matrix[c * 4 + r] = static_cast<float>(projection->GetElement(r, c));
-    }
-  }
   in.GL.Prepare(window);
-  vtkOpenGLQuadHelper* quad = in.Ready(window, 0, samples);
-  if (!quad)
-  {
-    vtkErrorMacro("could not build the SSGI shader (" << samples << " samples)");
-    return false;
-  }
-  vtkShaderProgram* program = quad->Program;
   {
     vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssgi");
     vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
     steps.Target(target, nullptr, 0, 0, lw, lh);
-    vtkMRGIFullScreenStep::BindInputs(
-      program, { frame.Position, frame.Normal, frame.Albedo, direct });
-    const int origin[2] = { frame.Viewport[0], frame.Viewport[1] };
-    const int size[2] = { w, h };
-    program->SetUniform2i("mrgiOrigin", origin);
-    program->SetUniform2i("mrgiSize", size);
-    program->SetUniformi("mrgiLevel", level);
-    program->SetUniformMatrix4x4("mrgiProjection", matrix);
-    program->SetUniformf("mrgiRadius", static_cast<float>(radius));
-    program->SetUniformf("mrgiBias", static_cast<float>(bias));
-    program->SetUniform3fv("mrgiKernel", samples, in.Kernel.data());
+    vtkOpenGLQuadHelper* quad = this->ReadyCompute(frame, direct, samples, radius, bias, level);
+    if (!quad)
+    {
+      return false;
+    }
     quad->Render();
     vtkMRGIFullScreenStep::UnbindInputs({ frame.Position, frame.Normal, frame.Albedo, direct });
   }
@@ -173,6 +204,67 @@ bool vtkMRGISSGI::Compute(const vtkMRGIFrameContext& frame, vtkTextureObject* di
     return false;
   }
   return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISSGI::ComputeLevels(const vtkMRGIFrameContext& frame, vtkTextureObject* direct,
+  int samples, double radius, double bias, vtkMRGIBMRLevels* levels)
+{
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  if (!levels || levels->GetWidth() != frame.Viewport[2] ||
+    levels->GetHeight() != frame.Viewport[3])
+  {
+    vtkErrorMacro("SSGI levels must be prepared for the frame's viewport ("
+      << frame.Viewport[2] << " x " << frame.Viewport[3] << ")");
+    return false;
+  }
+  if (!this->CheckCompute(frame, direct, samples, radius, bias))
+  {
+    return false;
+  }
+  in.GL.Prepare(window);
+  vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssgi");
+  return vtkMRGIBMRLevels::RenderLevels(window, levels, [&](int k) {
+    vtkOpenGLQuadHelper* quad = this->ReadyCompute(frame, direct, samples, radius, bias, k);
+    if (!quad)
+    {
+      return false;
+    }
+    quad->Render();
+    vtkMRGIFullScreenStep::UnbindInputs({ frame.Position, frame.Normal, frame.Albedo, direct });
+    return true;
+  });
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISSGI::ComputeMultiresolution(const vtkMRGIFrameContext& frame,
+  vtkTextureObject* direct, int samples, double radius, double bias, vtkTextureObject* target)
+{
+  Internals& in = *this->Internal;
+  return vtkMRGIBMRLevels::RenderMultiresolution(frame, in.Mask, in.Blend, in.Levels,
+    [&](vtkMRGIBMRLevels* levels) {
+      return this->ComputeLevels(frame, direct, samples, radius, bias, levels);
+    },
+    target);
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIBMRMask* vtkMRGISSGI::GetBMRMask()
+{
+  return this->Internal->Mask;
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIBMRBlend* vtkMRGISSGI::GetBMRBlend()
+{
+  return this->Internal->Blend;
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIBMRLevels* vtkMRGISSGI::GetBMRLevels()
+{
+  return this->Internal->Levels;
 }
 
 //------------------------------------------------------------------------------
@@ -193,29 +285,30 @@ bool vtkMRGISSGI::Apply(
     vtkErrorMacro("could not build the SSGI apply shader");
     return false;
   }
-  vtkShaderProgram* program = quad->Program;
+  vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssgi.apply");
+  // colour.rgb + bounce in place (additive blending), alpha kept.
+  if (!vtkMRGIFullScreenStep::BlendInto(
+        window, in.GL.FrameBuffer, quad, frame.Viewport, ssgi, GL_ONE, GL_ONE, colour, nullptr))
   {
-    vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssgi.apply");
-    vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
-    steps.Target(
-      colour, nullptr, frame.Viewport[0], frame.Viewport[1], frame.Viewport[2], frame.Viewport[3]);
-    // colour.rgb + bounce in place (additive blending), alpha kept.
-    vtkOpenGLState* ostate = steps.GetState();
-    vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
-    ostate->vtkglEnable(GL_BLEND);
-    ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
-    vtkMRGIFullScreenStep::BindInputs(program, { ssgi });
-    const int origin[2] = { frame.Viewport[0], frame.Viewport[1] };
-    const int size[2] = { frame.Viewport[2], frame.Viewport[3] };
-    program->SetUniform2i("mrgiOrigin", origin);
-    program->SetUniform2i("mrgiSize", size);
-    quad->Render();
-    vtkMRGIFullScreenStep::UnbindInputs({ ssgi });
+    vtkErrorMacro("OpenGL error in the SSGI apply step");
+    return false;
   }
-  const GLenum error = glGetError();
-  if (error != GL_NO_ERROR)
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISSGI::PrepareResult(const vtkMRGIFrameContext& frame, vtkTextureObject* colour)
+{
+  Internals& in = *this->Internal;
+  const int w = frame.Viewport[2], h = frame.Viewport[3];
+  if (!frame.Window || !colour || w < 1 || h < 1)
   {
-    vtkErrorMacro("OpenGL error " << error << " in the SSGI apply step");
+    vtkErrorMacro("SSGI needs the frame's window, a colour texture and a viewport");
+    return false;
+  }
+  if (!vtkMRGIShaderUtilities::EnsureTexture(frame.Window, in.Result, in.Size, GL_RGBA32F, w, h))
+  {
+    vtkErrorMacro("could not allocate the SSGI target (" << w << " x " << h << ")");
     return false;
   }
   return true;
@@ -225,27 +318,20 @@ bool vtkMRGISSGI::Apply(
 bool vtkMRGISSGI::Render(const vtkMRGIFrameContext& frame, int samples, double radius, double bias,
   vtkTextureObject* colour)
 {
-  Internals& in = *this->Internal;
-  const int w = frame.Viewport[2], h = frame.Viewport[3];
-  if (!frame.Window || !colour || w < 1 || h < 1)
-  {
-    vtkErrorMacro("SSGI needs the frame's window, a colour texture and a viewport");
-    return false;
-  }
-  if (!in.Result || in.Size[0] != w || in.Size[1] != h)
-  {
-    vtkMRGIShaderUtilities::ReleaseTexture(in.Result, frame.Window);
-    in.Result = vtkMRGIShaderUtilities::NewTexture(frame.Window, GL_RGBA32F, w, h);
-    in.Size[0] = in.Result ? w : 0;
-    in.Size[1] = in.Result ? h : 0;
-    if (!in.Result)
-    {
-      vtkErrorMacro("could not allocate the SSGI target (" << w << " x " << h << ")");
-      return false;
-    }
-  }
-  return this->Compute(frame, colour, samples, radius, bias, 0, in.Result) &&
-    this->Apply(frame, in.Result, colour);
+  return this->PrepareResult(frame, colour) &&
+    this->Compute(frame, colour, samples, radius, bias, 0, this->Internal->Result) &&
+    this->Apply(frame, this->Internal->Result, colour);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGISSGI::RenderMultiresolution(const vtkMRGIFrameContext& frame, int samples,
+  double radius, double bias, vtkTextureObject* colour)
+{
+  // The levels read `colour` (the senders) before Apply() writes it.
+  return this->PrepareResult(frame, colour) &&
+    this->ComputeMultiresolution(
+      frame, colour, samples, radius, bias, this->Internal->Result) &&
+    this->Apply(frame, this->Internal->Result, colour);
 }
 
 //------------------------------------------------------------------------------
@@ -279,4 +365,8 @@ void vtkMRGISSGI::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Samples (cached): " << this->Internal->Samples << "\n";
   os << indent << "Result size: " << this->Internal->Size[0] << " x " << this->Internal->Size[1]
      << "\n";
+  os << indent << "BMRMask:\n";
+  this->Internal->Mask->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "BMRBlend:\n";
+  this->Internal->Blend->PrintSelf(os, indent.GetNextIndent());
 }
