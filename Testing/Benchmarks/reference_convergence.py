@@ -25,11 +25,6 @@ sys.path.insert(0, os.path.dirname(__file__))
 import mrgi_bench as mb  # noqa: E402
 
 
-def boxes(array, n=4):
-    h, w, c = array.shape
-    return array[: h - h % n, : w - w % n].reshape(h // n, n, w // n, n, c).mean(axis=(1, 3))
-
-
 def read_exr(path):
     """An EXR as an (height, width, 3) float array, rows top-down (the project's reader)."""
     image = mb.vtkImageData()
@@ -41,11 +36,9 @@ def read_exr(path):
 def errors(compare_tool, scratch, image_path, reference_path, tag):
     """Relative RMS per pixel and on 4x4 boxes."""
     per_pixel = mb.compare(compare_tool, image_path, reference_path)["relative_rms"]
-    a = os.path.join(scratch, "convergence-%s-image-boxes.exr" % tag)
-    b = os.path.join(scratch, "convergence-%s-ref-boxes.exr" % tag)
-    mb.write(boxes(read_exr(image_path)), a)
-    mb.write(boxes(read_exr(reference_path)), b)
-    return per_pixel, mb.compare(compare_tool, a, b)["relative_rms"]
+    boxed = mb.box_error(compare_tool, read_exr(image_path), read_exr(reference_path), scratch,
+                         "convergence-%s-boxes" % tag)
+    return per_pixel, boxed
 
 
 def render(tool, path, args):

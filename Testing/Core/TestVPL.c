@@ -4,53 +4,17 @@
  * bad input. */
 #include "mrgi_vpl.h"
 #include "mrgi_test.h"
+#include "mrgi_test_rsm.h"
 
 #include <float.h>
 #include <stddef.h>
 #include <string.h>
 
-/* An RSM with owned arrays, all texels invalid and zero. */
-typedef struct test_rsm
-{
-  mrgi_rsm rsm;
-  float* position;
-  float* normal;
-  float* flux;
-} test_rsm;
-
-static test_rsm make_rsm(int32_t size, int32_t views)
-{
-  test_rsm t;
-  const size_t floats = 4 * (size_t)views * (size_t)size * (size_t)size;
-  t.position = (float*)calloc(floats, sizeof(float));
-  t.normal = (float*)calloc(floats, sizeof(float));
-  t.flux = (float*)calloc(floats, sizeof(float));
-  MRGI_CHECK(t.position && t.normal && t.flux);
-  t.rsm.size = size;
-  t.rsm.view_count = views;
-  t.rsm.position = t.position;
-  t.rsm.normal = t.normal;
-  t.rsm.flux = t.flux;
-  return t;
-}
-
-static void free_rsm(test_rsm* t)
-{
-  free(t->position);
-  free(t->normal);
-  free(t->flux);
-}
-
-static size_t texel_index(const test_rsm* t, int32_t view, int32_t x, int32_t y)
-{
-  return ((size_t)view * (size_t)t->rsm.size + (size_t)y) * (size_t)t->rsm.size + (size_t)x;
-}
-
 /* A valid texel whose position encodes (view, x, y) so a VPL can be traced back. */
 static void set_texel(test_rsm* t, int32_t view, int32_t x, int32_t y, float r, float g, float b,
                       float area)
 {
-  const size_t i = texel_index(t, view, x, y);
+  const size_t i = test_rsm_index(t, view, x, y);
   t->position[4 * i + 0] = (float)x + 0.25f;
   t->position[4 * i + 1] = (float)y - 0.5f;
   t->position[4 * i + 2] = (float)view * 100.0f + 1.0f;
@@ -175,11 +139,11 @@ static void test_grid_layout(void)
 /* S = 10 with G = 3: blocks of 3, 3 and 4 texels per side. */
 static void test_grid_energy_not_divisible(void)
 {
-  test_rsm t = make_rsm(10, 1);
+  test_rsm t = test_rsm_make(10, 1);
   fill_random(&t, 7u);
   /* An invalid texel holding flux, and a valid one holding NaN: both ignored. */
-  t.position[4 * texel_index(&t, 0, 9, 9) + 3] = 0.0f;
-  t.flux[4 * texel_index(&t, 0, 0, 9)] = NAN;
+  t.position[4 * test_rsm_index(&t, 0, 9, 9) + 3] = 0.0f;
+  t.flux[4 * test_rsm_index(&t, 0, 0, 9)] = NAN;
   mrgi_vpl vpls[9];
   mrgi_vpl_selection_info info;
   MRGI_CHECK(mrgi_vpl_select_grid(&t.rsm, 9, vpls, 9, &info, NULL) == MRGI_OK);
@@ -205,7 +169,7 @@ static void test_grid_energy_not_divisible(void)
     {
       for (int c = 0; c < 4; ++c)
       {
-        block[c] += t.flux[4 * texel_index(&t, 0, x, y) + c];
+        block[c] += t.flux[4 * test_rsm_index(&t, 0, x, y) + c];
       }
     }
   }
@@ -216,12 +180,12 @@ static void test_grid_energy_not_divisible(void)
   MRGI_CHECK_NEAR(vpls[7].area, block[3], 1e-5 * block[3]);
   /* Its centre is (4.5, 8): texel (4, 7) and (4, 8) tie at distance 0.5; (4, 7) has the lower index. */
   MRGI_CHECK(vpls[7].position[0] == 4.25f && vpls[7].position[1] == 6.5f);
-  free_rsm(&t);
+  test_rsm_free(&t);
 }
 
 static void test_grid_representative(void)
 {
-  test_rsm t = make_rsm(4, 1);
+  test_rsm t = test_rsm_make(4, 1);
   for (int32_t y = 0; y < 4; ++y)
   {
     for (int32_t x = 0; x < 4; ++x)
@@ -235,29 +199,29 @@ static void test_grid_representative(void)
   MRGI_CHECK(vpl.position[0] == 1.25f && vpl.position[1] == 0.5f);
   MRGI_CHECK(vpl.normal[1] == 0.6f && vpl.normal[2] == 0.8f);
   /* Without (1, 1): (2, 1) is next in index order. */
-  t.position[4 * texel_index(&t, 0, 1, 1) + 3] = 0.0f;
+  t.position[4 * test_rsm_index(&t, 0, 1, 1) + 3] = 0.0f;
   MRGI_CHECK(mrgi_vpl_select_grid(&t.rsm, 1, &vpl, 1, NULL, NULL) == MRGI_OK);
   MRGI_CHECK(vpl.position[0] == 2.25f && vpl.position[1] == 0.5f);
   MRGI_CHECK(vpl.flux[0] == 15.0f && vpl.area == 15.0f);
   /* A rejected (non-finite) texel is never the representative. */
-  t.normal[4 * texel_index(&t, 0, 2, 1) + 0] = INFINITY;
+  t.normal[4 * test_rsm_index(&t, 0, 2, 1) + 0] = INFINITY;
   MRGI_CHECK(mrgi_vpl_select_grid(&t.rsm, 1, &vpl, 1, NULL, NULL) == MRGI_OK);
   MRGI_CHECK(vpl.position[0] == 1.25f && vpl.position[1] == 1.5f);
-  free_rsm(&t);
+  test_rsm_free(&t);
 
   /* Odd size: the centre (2.5, 2.5) is texel (2, 2)'s own centre. */
-  test_rsm odd = make_rsm(5, 1);
+  test_rsm odd = test_rsm_make(5, 1);
   set_texel(&odd, 0, 0, 0, 1.0f, 1.0f, 1.0f, 1.0f);
   set_texel(&odd, 0, 2, 2, 1.0f, 1.0f, 1.0f, 1.0f);
   set_texel(&odd, 0, 4, 4, 1.0f, 1.0f, 1.0f, 1.0f);
   MRGI_CHECK(mrgi_vpl_select_grid(&odd.rsm, 1, &vpl, 1, NULL, NULL) == MRGI_OK);
   MRGI_CHECK(vpl.position[0] == 2.25f && vpl.position[1] == 1.5f);
-  free_rsm(&odd);
+  test_rsm_free(&odd);
 }
 
 static void test_grid_empty_blocks(void)
 {
-  test_rsm t = make_rsm(8, 1);
+  test_rsm t = test_rsm_make(8, 1);
   set_texel(&t, 0, 1, 2, 2.0f, 3.0f, 4.0f, 0.5f);
   mrgi_vpl vpls[4];
   memset(vpls, 0xFF, sizeof(vpls)); /* NaN patterns: every field must be written */
@@ -275,13 +239,13 @@ static void test_grid_empty_blocks(void)
       MRGI_CHECK(data[k] == 0.0f);
     }
   }
-  free_rsm(&t);
+  test_rsm_free(&t);
 }
 
 static void test_grid_views(void)
 {
   /* One view, one texel per block. */
-  test_rsm one = make_rsm(64, 1);
+  test_rsm one = test_rsm_make(64, 1);
   fill_random(&one, 3u);
   mrgi_vpl* vpls = (mrgi_vpl*)malloc(sizeof(mrgi_vpl) * MRGI_VPL_MAX_COUNT);
   MRGI_CHECK(vpls != NULL);
@@ -289,13 +253,13 @@ static void test_grid_views(void)
   MRGI_CHECK(mrgi_vpl_select_grid(&one.rsm, MRGI_VPL_MAX_COUNT, vpls, MRGI_VPL_MAX_COUNT, &info,
                                   NULL) == MRGI_OK);
   MRGI_CHECK(info.vpl_count == 4096);
-  const size_t probe = texel_index(&one, 0, 37, 5);
+  const size_t probe = test_rsm_index(&one, 0, 37, 5);
   MRGI_CHECK(vpls[5 * 64 + 37].flux[1] == one.flux[4 * probe + 1]);
   MRGI_CHECK(vpls[5 * 64 + 37].position[0] == one.position[4 * probe]);
-  free_rsm(&one);
+  test_rsm_free(&one);
 
   /* Six cube faces, S = 13 (not a multiple of G = 4). */
-  test_rsm cube = make_rsm(13, 6);
+  test_rsm cube = test_rsm_make(13, 6);
   fill_random(&cube, 11u);
   MRGI_CHECK(mrgi_vpl_select_grid(&cube.rsm, 100, vpls, 100, &info, NULL) == MRGI_OK);
   MRGI_CHECK(info.vpl_count == 96 && info.usable_texel_count == 6 * 13 * 13);
@@ -319,7 +283,7 @@ static void test_grid_views(void)
   MRGI_CHECK(mrgi_vpl_select_grid(&cube.rsm, 5, vpls, 5, &info, &err) ==
              MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "makes 6") != NULL);
-  free_rsm(&cube);
+  test_rsm_free(&cube);
   free(vpls);
 }
 
@@ -331,7 +295,7 @@ static size_t traced_texel(const test_rsm* t, const mrgi_vpl* vpl)
   const int32_t view = (int32_t)((vpl->position[2] - 1.0f) / 100.0f);
   MRGI_CHECK(x >= 0 && x < t->rsm.size && y >= 0 && y < t->rsm.size && view >= 0 &&
              view < t->rsm.view_count);
-  return texel_index(t, view, x, y);
+  return test_rsm_index(t, view, x, y);
 }
 
 static double luminance(const float* rgb)
@@ -341,11 +305,11 @@ static double luminance(const float* rgb)
 
 static void test_importance_unbiased(void)
 {
-  test_rsm t = make_rsm(16, 2);
+  test_rsm t = test_rsm_make(16, 2);
   fill_random(&t, 5u);
   for (int32_t x = 0; x < 16; ++x)
   {
-    t.position[4 * texel_index(&t, 1, x, 3) + 3] = 0.0f; /* a row seeing nothing */
+    t.position[4 * test_rsm_index(&t, 1, x, 3) + 3] = 0.0f; /* a row seeing nothing */
   }
   double exact[4];
   rsm_sums(&t, exact);
@@ -404,12 +368,12 @@ static void test_importance_unbiased(void)
       MRGI_CHECK(0);
     }
   }
-  free_rsm(&t);
+  test_rsm_free(&t);
 }
 
 static void test_importance_concentrated_and_deterministic(void)
 {
-  test_rsm t = make_rsm(8, 1);
+  test_rsm t = test_rsm_make(8, 1);
   for (int32_t y = 0; y < 8; ++y)
   {
     for (int32_t x = 0; x < 8; ++x)
@@ -427,7 +391,7 @@ static void test_importance_concentrated_and_deterministic(void)
   int32_t on_bright = 0;
   for (int32_t j = 0; j < N; ++j)
   {
-    on_bright += traced_texel(&t, vpls + j) == texel_index(&t, 0, 5, 6);
+    on_bright += traced_texel(&t, vpls + j) == test_rsm_index(&t, 0, 5, 6);
   }
   /* Expected 200 * 1000 / 1006.3 = 198.7; stratification keeps it within one. */
   MRGI_CHECK(on_bright >= 197);
@@ -445,12 +409,12 @@ static void test_importance_concentrated_and_deterministic(void)
              MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "64 texels") != NULL);
   MRGI_CHECK(mrgi_vpl_importance_scratch_count(&t.rsm) == 64);
-  free_rsm(&t);
+  test_rsm_free(&t);
 }
 
 static void test_zero_and_extreme_rsm(void)
 {
-  test_rsm t = make_rsm(6, 1);
+  test_rsm t = test_rsm_make(6, 1);
   mrgi_vpl vpls[9];
   mrgi_vpl_selection_info info;
   /* Nothing seen at all. */
@@ -496,15 +460,15 @@ static void test_zero_and_extreme_rsm(void)
   MRGI_CHECK(mrgi_vpl_select_importance(&t.rsm, 9, 0u, NULL, 0, vpls, 9, &info, NULL) == MRGI_OK);
   check_all_finite(vpls, 9);
   /* A negative flux is rejected, not sampled. */
-  t.flux[4 * texel_index(&t, 0, 1, 1) + 1] = -1.0f;
+  t.flux[4 * test_rsm_index(&t, 0, 1, 1) + 1] = -1.0f;
   MRGI_CHECK(mrgi_vpl_select_grid(&t.rsm, 9, vpls, 9, &info, NULL) == MRGI_OK);
   MRGI_CHECK(info.rejected_texel_count == 1 && info.usable_texel_count == 35);
-  free_rsm(&t);
+  test_rsm_free(&t);
 }
 
 static void test_bad_input(void)
 {
-  test_rsm t = make_rsm(4, 1);
+  test_rsm t = test_rsm_make(4, 1);
   mrgi_vpl vpls[4];
   mrgi_error err;
   MRGI_CHECK(mrgi_vpl_select_grid(NULL, 4, vpls, 4, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
@@ -534,7 +498,7 @@ static void test_bad_input(void)
   MRGI_CHECK(mrgi_rsm_validate(&bad, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "flux") != NULL);
   MRGI_CHECK(mrgi_rsm_validate(&t.rsm, NULL) == MRGI_OK);
-  free_rsm(&t);
+  test_rsm_free(&t);
 }
 
 int main(int argc, char** argv)

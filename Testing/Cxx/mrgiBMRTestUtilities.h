@@ -41,6 +41,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <initializer_list>
 #include <random>
 #include <string>
 #include <vector>
@@ -407,6 +408,61 @@ private:
   vtkOpenGLRenderWindow* Window;
   vtkOpenGLQuadHelper* Quad = nullptr;
 };
+
+/** RGB difference of two same-sized RGBA images: `a` the reference, `b` the one tested. */
+struct ImageDifference
+{
+  double RMS = 0.0;      ///< over the RGB channels
+  double MaxError = 0.0; ///< largest |b - a|
+  double MaxValue = 0.0; ///< largest channel of `a`
+  size_t Bad = 0;        ///< non-finite channels of `b`
+};
+
+inline ImageDifference CompareRGB(const std::vector<float>& a, const std::vector<float>& b)
+{
+  ImageDifference d;
+  double sum = 0.0;
+  size_t n = 0;
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i)
+  {
+    if (i % 4 == 3)
+    {
+      continue;
+    }
+    d.Bad += !std::isfinite(b[i]);
+    d.MaxValue = std::max(d.MaxValue, static_cast<double>(a[i]));
+    const double e = static_cast<double>(b[i]) - a[i];
+    d.MaxError = std::max(d.MaxError, std::fabs(e));
+    sum += e * e;
+    ++n;
+  }
+  d.RMS = n ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
+  return d;
+}
+
+/**
+ * The pass's colour buffer after one render at each of `resolutions`
+ * (`setResolution` switches the effect's resolution before each render).
+ */
+template <typename SetResolution>
+std::vector<std::vector<float>> RenderResolutions(
+  Scene& s, std::initializer_list<int> resolutions, SetResolution setResolution)
+{
+  std::vector<std::vector<float>> images;
+  for (int r : resolutions)
+  {
+    setResolution(r);
+    s.Window->Render();
+    vtkNew<vtkImageData> colour;
+    if (!s.Pass->GetColorBuffer(s.Window, colour))
+    {
+      return {};
+    }
+    const float* c = static_cast<const float*>(colour->GetScalarPointer());
+    images.emplace_back(c, c + 4 * static_cast<size_t>(s.W) * static_cast<size_t>(s.H));
+  }
+  return images;
+}
 
 /**
  * The Benchmark cases' switch: true with MRGI_BMR_BENCHMARK=1, else false

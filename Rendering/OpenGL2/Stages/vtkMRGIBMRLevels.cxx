@@ -248,6 +248,36 @@ vtkMRGIBMRLevels::LevelStep::~LevelStep()
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIBMRLevels::CheckLevelTarget(vtkObject* reporter, const char* effect, int level,
+  int maxLevel, int width, int height, vtkTextureObject* target, int levelSize[2])
+{
+  if (!target)
+  {
+    vtkErrorWithObjectMacro(reporter, << effect << " needs a target");
+    return false;
+  }
+  if (level < 0 || level > maxLevel)
+  {
+    vtkErrorWithObjectMacro(
+      reporter, << effect << " level " << level << " is outside 0.." << maxLevel);
+    return false;
+  }
+  const int side = 1 << level;
+  levelSize[0] = (width + side - 1) / side;
+  levelSize[1] = (height + side - 1) / side;
+  if (target->GetWidth() < static_cast<unsigned int>(levelSize[0]) ||
+    target->GetHeight() < static_cast<unsigned int>(levelSize[1]))
+  {
+    vtkErrorWithObjectMacro(reporter,
+      << effect << " target " << target->GetWidth() << " x " << target->GetHeight()
+      << " is smaller than level " << level << " (" << levelSize[0] << " x " << levelSize[1]
+      << ")");
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 bool vtkMRGIBMRLevels::RenderLevels(vtkOpenGLRenderWindow* window, vtkMRGIBMRLevels* levels,
   const std::function<bool(int level)>& renderLevel)
 {

@@ -108,6 +108,16 @@ public:
   };
 
   /**
+   * The size of level `level` (0..`maxLevel`) of a `width` x `height`
+   * viewport, ceil(size / 2^level), into `levelSize`, checking that
+   * `target` holds it. False, with an error from `reporter` naming
+   * `effect`, for a null target, a level out of range or a target that is
+   * too small. The one check the effects' single-level Compute() share.
+   */
+  static bool CheckLevelTarget(vtkObject* reporter, const char* effect, int level, int maxLevel,
+    int width, int height, vtkTextureObject* target, int levelSize[2]);
+
+  /**
    * An effect at every level of `levels` under the level's stencil: for
    * k = 0..3, `renderLevel(k)` draws one full-screen step (binding its own
    * program and inputs) while a LevelStep for k is active. A skipped level

@@ -169,30 +169,17 @@ bool vtkMRGISSAO::ComputeAO(const vtkMRGIFrameContext& frame, int kernelSize, do
   Internals& in = *this->Internal;
   vtkOpenGLRenderWindow* window = frame.Window;
   const int w = frame.Viewport[2], h = frame.Viewport[3];
-  if (!target)
-  {
-    vtkErrorMacro("SSAO needs a target");
-    return false;
-  }
   if (!this->CheckAO(frame, kernelSize, radius, bias))
   {
     return false;
   }
-  if (level < 0 || level > MRGI_SSAO_MAX_LEVEL)
+  int levelSize[2];
+  if (!vtkMRGIBMRLevels::CheckLevelTarget(
+        this, "SSAO", level, MRGI_SSAO_MAX_LEVEL, w, h, target, levelSize))
   {
-    vtkErrorMacro("SSAO level " << level << " is outside 0.." << MRGI_SSAO_MAX_LEVEL);
     return false;
   }
-  const int side = 1 << level;
-  const int lw = (w + side - 1) / side, lh = (h + side - 1) / side;
-  if (target->GetWidth() < static_cast<unsigned int>(lw) ||
-    target->GetHeight() < static_cast<unsigned int>(lh))
-  {
-    vtkErrorMacro("SSAO target " << target->GetWidth() << " x " << target->GetHeight()
-                                 << " is smaller than level " << level << " (" << lw << " x " << lh
-                                 << ")");
-    return false;
-  }
+  const int lw = levelSize[0], lh = levelSize[1];
   in.GL.Prepare(window);
   {
     vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssao.ao");

@@ -160,30 +160,17 @@ bool vtkMRGISSGI::Compute(const vtkMRGIFrameContext& frame, vtkTextureObject* di
   Internals& in = *this->Internal;
   vtkOpenGLRenderWindow* window = frame.Window;
   const int w = frame.Viewport[2], h = frame.Viewport[3];
-  if (!target)
-  {
-    vtkErrorMacro("SSGI needs a target");
-    return false;
-  }
   if (!this->CheckCompute(frame, direct, samples, radius, bias))
   {
     return false;
   }
-  if (level < 0 || level > MRGI_SSGI_MAX_LEVEL)
+  int levelSize[2];
+  if (!vtkMRGIBMRLevels::CheckLevelTarget(
+        this, "SSGI", level, MRGI_SSGI_MAX_LEVEL, w, h, target, levelSize))
   {
-    vtkErrorMacro("SSGI level " << level << " is outside 0.." << MRGI_SSGI_MAX_LEVEL);
     return false;
   }
-  const int side = 1 << level;
-  const int lw = (w + side - 1) / side, lh = (h + side - 1) / side;
-  if (target->GetWidth() < static_cast<unsigned int>(lw) ||
-    target->GetHeight() < static_cast<unsigned int>(lh))
-  {
-    vtkErrorMacro("SSGI target " << target->GetWidth() << " x " << target->GetHeight()
-                                 << " is smaller than level " << level << " (" << lw << " x " << lh
-                                 << ")");
-    return false;
-  }
+  const int lw = levelSize[0], lh = levelSize[1];
   in.GL.Prepare(window);
   {
     vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "ssgi");
