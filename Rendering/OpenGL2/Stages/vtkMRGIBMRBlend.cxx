@@ -3,6 +3,7 @@
 #include "vtkMRGIBMRBlend.h"
 
 #include "vtkMRGIBMRLevels.h"
+#include "vtkMRGIBMRMask.h"
 #include "vtkMRGIFrameContext.h"
 #include "vtkMRGIFullScreenStep.h"
 #include "vtkMRGIProgramCache.h"
@@ -164,4 +165,37 @@ void vtkMRGIBMRBlend::PrintSelf(ostream& os, vtkIndent indent)
   {
     os << indent << "Weight " << k + 1 << ": " << this->Weight[k] << "\n";
   }
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIBMRBlend::RenderMultiresolution(const vtkMRGIFrameContext& frame,
+  vtkMRGIBMRMask* mask, vtkMRGIBMRBlend* blend, vtkMRGIBMRLevels* levels,
+  const std::function<bool(vtkMRGIBMRLevels*)>& computeLevels, vtkTextureObject* target)
+{
+  const int w = frame.Viewport[2], h = frame.Viewport[3];
+  if (!levels)
+  {
+    vtkGenericWarningMacro("a multiresolution effect needs its BMR levels");
+    return false;
+  }
+  if (!frame.Window || !mask || !blend || !target || w < 1 || h < 1 ||
+    target->GetWidth() < static_cast<unsigned int>(w) ||
+    target->GetHeight() < static_cast<unsigned int>(h))
+  {
+    vtkErrorWithObjectMacro(levels,
+      "a multiresolution effect needs the frame's window, a viewport, its mask, blend and "
+      "levels, and a target at least as large as the viewport");
+    return false;
+  }
+  if (!levels->Prepare(frame.Window, w, h))
+  {
+    vtkErrorWithObjectMacro(levels, "could not allocate the BMR levels (" << w << " x " << h << ")");
+    return false;
+  }
+  // The blend writes the frame's viewport at its origin; the target is
+  // viewport-sized at (0, 0), so the origin is moved.
+  vtkMRGIFrameContext atOrigin = frame;
+  atOrigin.Viewport[0] = atOrigin.Viewport[1] = 0;
+  return mask->Build(frame, levels, nullptr) && computeLevels(levels) &&
+    blend->Blend(atOrigin, levels, target);
 }

@@ -18,10 +18,12 @@
 #include "MRGIRenderingModule.h" // For export macro
 #include "vtkObject.h"
 
-#include <memory> // For std::unique_ptr
+#include <functional> // For std::function
+#include <memory>     // For std::unique_ptr
 
 struct vtkMRGIFrameContext;
 class vtkMRGIBMRLevels;
+class vtkMRGIBMRMask;
 class vtkTextureObject;
 class vtkWindow;
 
@@ -47,6 +49,19 @@ public:
    * prepared for its size). False (with an error) on bad input or a GL error.
    */
   bool Blend(const vtkMRGIFrameContext& frame, vtkMRGIBMRLevels* levels, vtkTextureObject* target);
+
+  /**
+   * The multiresolution path of a screen-space effect (BMR 3-4) over the
+   * frame's viewport into `target` (RGBA32F, at least viewport-sized,
+   * written at (0, 0)): `levels` prepared for the viewport's size, `mask`
+   * built from the frame's G-buffer, `computeLevels(levels)` (the effect,
+   * e.g. through RenderLevels()), `blend` into the target. The one
+   * sequence vtkMRGISSAO and vtkMRGISSGI share. False, with an error, on
+   * failure.
+   */
+  static bool RenderMultiresolution(const vtkMRGIFrameContext& frame, vtkMRGIBMRMask* mask,
+    vtkMRGIBMRBlend* blend, vtkMRGIBMRLevels* levels,
+    const std::function<bool(vtkMRGIBMRLevels*)>& computeLevels, vtkTextureObject* target);
 #endif
 
   /** Free every GL resource. */

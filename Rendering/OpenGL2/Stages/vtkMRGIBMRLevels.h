@@ -25,8 +25,6 @@
 
 struct vtkMRGIFrameContext;
 class vtkFloatArray;
-class vtkMRGIBMRBlend;
-class vtkMRGIBMRMask;
 class vtkMRGIFullScreenStep;
 class vtkOpenGLFramebufferObject;
 class vtkOpenGLRenderWindow;
@@ -127,19 +125,6 @@ public:
    */
   static bool RenderLevels(vtkOpenGLRenderWindow* window, vtkMRGIBMRLevels* levels,
     const std::function<bool(int level)>& renderLevel);
-
-  /**
-   * The multiresolution path of a screen-space effect (BMR 3-4) over the
-   * frame's viewport into `target` (RGBA32F, at least viewport-sized,
-   * written at (0, 0)): `levels` prepared for the viewport's size, `mask`
-   * built from the frame's G-buffer, `computeLevels(levels)` (the effect,
-   * e.g. through RenderLevels()), `blend` into the target. The one
-   * sequence vtkMRGISSAO and vtkMRGISSGI share. False, with an error, on
-   * failure.
-   */
-  static bool RenderMultiresolution(const vtkMRGIFrameContext& frame, vtkMRGIBMRMask* mask,
-    vtkMRGIBMRBlend* blend, vtkMRGIBMRLevels* levels,
-    const std::function<bool(vtkMRGIBMRLevels*)>& computeLevels, vtkTextureObject* target);
 #endif
 
   /** Free every GL resource. */

@@ -240,7 +240,7 @@ bool vtkMRGISSAO::ComputeOcclusionMultiresolution(const vtkMRGIFrameContext& fra
   int kernelSize, double radius, double bias, vtkTextureObject* target)
 {
   Internals& in = *this->Internal;
-  return vtkMRGIBMRLevels::RenderMultiresolution(frame, in.Mask, in.Blend, in.Levels,
+  return vtkMRGIBMRBlend::RenderMultiresolution(frame, in.Mask, in.Blend, in.Levels,
     [&](vtkMRGIBMRLevels* levels) {
       return this->ComputeOcclusionLevels(frame, kernelSize, radius, bias, levels);
     },

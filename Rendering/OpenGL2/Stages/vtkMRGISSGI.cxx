@@ -229,7 +229,7 @@ bool vtkMRGISSGI::ComputeMultiresolution(const vtkMRGIFrameContext& frame,
   vtkTextureObject* direct, int samples, double radius, double bias, vtkTextureObject* target)
 {
   Internals& in = *this->Internal;
-  return vtkMRGIBMRLevels::RenderMultiresolution(frame, in.Mask, in.Blend, in.Levels,
+  return vtkMRGIBMRBlend::RenderMultiresolution(frame, in.Mask, in.Blend, in.Levels,
     [&](vtkMRGIBMRLevels* levels) {
       return this->ComputeLevels(frame, direct, samples, radius, bias, levels);
     },
