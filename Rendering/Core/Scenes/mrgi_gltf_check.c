@@ -519,7 +519,8 @@ static mrgi_status check_document(gltf* g, int32_t root)
         if (x->type != J_NUMBER || x->number != floor(x->number) || x->number < 0 ||
           x->number >= g->accessors)
           return fail(g, "mesh %lld: an attribute names accessor %lld, which does not exist",
-            (long long)i, (long long)(x->type == J_NUMBER ? (long long)x->number : -1));
+            (long long)i,
+            (long long)(x->type == J_NUMBER && fabs(x->number) < 9e18 ? (long long)x->number : -1));
       }
       if ((s = j_ref(g, p, "indices", g->accessors, 0, "mesh", i)) ||
         (s = j_ref(g, p, "material", g->materials, 0, "mesh", i)))
