@@ -206,15 +206,9 @@ def publish(args, marker, table, files):
         if os.path.isfile(source):
             shutil.copyfile(source, os.path.join(args.docs, target))
     page = os.path.join(args.docs, "ScreenSpaceEffects-Benchmark.md")
-    with open(page) as f:
-        text = f.read()
-    begin, end = "<!-- bmr:%s -->" % marker, "<!-- /bmr:%s -->" % marker
-    if begin not in text or end not in text:
-        raise SystemExit("%s has no %s ... %s markers" % (page, begin, end))
-    head, rest = text.split(begin, 1)
-    tail = rest.split(end, 1)[1]
-    with open(page, "w") as f:
-        f.write(head + begin + "\n" + "\n".join(table) + "\n" + end + tail)
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from doc_markers import replace_between_markers
+    replace_between_markers(page, "bmr:%s" % marker, table)
     print("wrote the %s table into %s" % (marker, page))
 
 
