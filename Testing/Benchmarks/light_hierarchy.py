@@ -139,7 +139,11 @@ def errors(compare_tool, scratch, images, image, references, name, diff=False):
     return result
 
 
-def measure(window, gi, settings, indirect_mode, references, args, compare_tool, scratch, images, scene, diff_tags):
+def measure(window, gi, settings, indirect_mode, references, args, compare_tool, scratch, images, scene, diff_tags,
+            full_images=None):
+    """One row per setting. With `full_images` (label -> full-gather image of
+    the same selection), also the eye-side error: the multiresolution image
+    against the full gather with the same VPLs (4x4 boxes)."""
     rows = []
     gi.SetIndirectMode(indirect_mode)
     for label, mode, vpls, knobs in settings:
@@ -152,6 +156,10 @@ def measure(window, gi, settings, indirect_mode, references, args, compare_tool,
         name = "%s-%s-%s" % (scene, "full" if indirect_mode == INDIRECT_FULL else "multires", tag_of(label))
         row = {"label": label, "mode": mode}
         row.update(errors(compare_tool, scratch, images, image, references, name, diff=tag_of(label) in diff_tags))
+        if full_images is None:
+            row["image"] = image
+        elif label in full_images:
+            row["eye_box"] = mb.box_error(compare_tool, image, full_images[label], scratch, "lh-%s-eye" % name)
         repeats = 1 if (mode == TREE and knobs is not None and knobs <= 0.01) else args.repeats
         row["gather_ms"] = gather_ms(window, gi, repeats)
         row["vpls_per_pixel"] = vpls_per_pixel(window, gi, mode)
@@ -170,6 +178,10 @@ def table(rows, base_ms, dense):
     if dense:
         head += " dense: per pixel | dense: 4x4 boxes |"
         rule += "---|---|"
+    eye = any("eye_box" in r for r in rows)
+    if eye:
+        head += " eye side: vs full gather, 4x4 boxes |"
+        rule += "---|"
     head += " gather ms | gather / grid 256 (full) |"
     rule += "---|---|"
     lines = [head, rule]
@@ -177,6 +189,8 @@ def table(rows, base_ms, dense):
         line = "| %s | %.1f | %.3f | %.3f |" % (r["label"], r["vpls_per_pixel"], r["truth_pixel"], r["truth_box"])
         if dense:
             line += " %.3f | %.3f |" % (r["dense_pixel"], r["dense_box"])
+        if eye:
+            line += " %s |" % ("%.3f" % r["eye_box"] if "eye_box" in r else "-")
         line += " %.1f | %.2f |" % (r["gather_ms"], r["gather_ms"] / base_ms)
         lines.append(line)
     return lines
@@ -237,8 +251,9 @@ def run_scene(scene, args, compare_tool, scratch, images):
                    scene, diff_tags)
     if dense_row is not None:
         full.append(dense_row)
+    full_images = {r["label"]: r.pop("image") for r in full if "image" in r}
     multires = measure(window, gi, multires_settings, INDIRECT_MULTIRES, references, args, compare_tool, scratch,
-                       images, scene, set())
+                       images, scene, set(), full_images)
     base_ms = full[0]["gather_ms"]
     has_dense = dense_row is not None
     lines = ["Scene: %s, %d x %d, RSM %d x %d. Ground truth: %d passes; its own noise: 95th percentile of the "
