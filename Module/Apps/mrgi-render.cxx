@@ -516,6 +516,14 @@ int main(int argc, char* argv[])
   if (o.HasAngle)
     camera->SetViewAngle(o.Angle);
   camera->SetParallelProjection(o.Parallel);
+  if (o.Parallel)
+  {
+    // VTK's parallel scale (half the view height in world units) defaults
+    // to 1 whatever the scene's size: frame what the perspective view shows
+    // at the focal point instead (ResetCamera() below sets it too).
+    camera->SetParallelScale(
+      camera->GetDistance() * std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) / 2.0));
+  }
   if (o.AutoCamera)
   {
     renderer->ResetCamera();

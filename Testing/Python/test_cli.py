@@ -247,11 +247,36 @@ def main():
     check(code == 0 and os.path.exists(out_png), "scaling renders: " + err)
     check(err == "", "--quiet prints nothing")
 
+    parallel_framing()
     staging()
     bad_input()
     quiet_and_plain(corrupt_stl())
     signal_during_write()
     print("ok")
+
+
+def parallel_framing():
+    """--parallel frames what the perspective view shows: VTK's parallel
+    scale defaults to 1 world unit, which in the millimetre Cornell box
+    showed one uniform patch of wall."""
+    import numpy as np
+    import mrgi
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    means = {}
+    for name, extra in (("persp", ()), ("parallel", ("--parallel",))):
+        path = fresh("cli_%s.exr" % name)
+        code, _, err = run("cornell-spot", "-o", path, "--size", "48x48", "--gi", "off", *extra)
+        check(code == 0, "cornell-spot %s renders: %s" % (name, err))
+        image = vtkImageData()
+        check(mrgi.vtkMRGIImageIO().Read(path, image), "read " + path)
+        pixels = vtk_to_numpy(image.GetPointData().GetScalars())[:, :3]
+        means[name] = (float(pixels.mean()), float(pixels.std()))
+    mean, spread = means["parallel"]
+    # The perspective view's own spread is about its mean; a uniform wall's is ~0.
+    check(spread > 0.3 * mean and spread > 0.3 * means["persp"][1],
+          "--parallel shows the box, not one patch of wall: mean %.4f, spread %.4f (perspective %s)"
+          % (mean, spread, means["persp"]))
 
 
 def staging():
