@@ -666,6 +666,12 @@ int main(int argc, char* argv[])
   {
     return Fail("--indirect-only needs indirect light (--gi full) or --reference");
   }
+  if (o.IndirectOnly && o.SSGI && !o.Reference)
+  {
+    // SSGI replaces the VPL gather and is composited into the colour only.
+    return Fail("--indirect-only writes the VPL gather's indirect light, which --ssgi on "
+                "replaces; use --ssgi off, or write the composited image");
+  }
   if (o.Timings)
   {
     // Logging must be on before the window opens the first frame.

@@ -272,6 +272,10 @@ def parallel_framing():
         check(mrgi.vtkMRGIImageIO().Read(path, image), "read " + path)
         pixels = vtk_to_numpy(image.GetPointData().GetScalars())[:, :3]
         means[name] = (float(pixels.mean()), float(pixels.std()))
+    code, _, err = run("cornell-spot", "-o", fresh("cli_ssgi.exr"), "--size", "16x16", "--ssgi", "on",
+                       "--indirect-only")
+    check(code != 0 and "--ssgi on" in err and "--indirect-only" in err,
+          "--indirect-only with --ssgi on is refused by name: " + err)
     mean, spread = means["parallel"]
     # The perspective view's own spread is about its mean; a uniform wall's is ~0.
     check(spread > 0.3 * mean and spread > 0.3 * means["persp"][1],
