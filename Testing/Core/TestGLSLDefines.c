@@ -19,6 +19,7 @@
 #include "mrgi_variance_shadow.h"
 #include "mrgi_visibility_pyramid.h"
 #include "mrgi_vpl.h"
+#include "mrgi_vpl_tree_gather.h"
 
 #include <ctype.h>
 #include <locale.h>
@@ -52,6 +53,8 @@ static expected_constant expected[] = {
   EXPECT(MRGI_VPL_MAX_COUNT, EXPECT_INT),
   EXPECT(MRGI_RSM_MIN_COS, EXPECT_FLOAT),
   EXPECT(MRGI_RSM_MAX_VIEWS, EXPECT_INT),
+  EXPECT(MRGI_VPL_TREE_RECORDS_PER_ROW, EXPECT_INT),
+  EXPECT(MRGI_VPL_TREE_STACK_SIZE, EXPECT_INT),
   EXPECT(MRGI_VALID_THRESHOLD, EXPECT_FLOAT),
   EXPECT(MRGI_LUMINANCE_R, EXPECT_DOUBLE),
   EXPECT(MRGI_LUMINANCE_G, EXPECT_DOUBLE),

@@ -15,6 +15,7 @@
 #include "mrgi_variance_shadow.h"
 #include "mrgi_visibility_pyramid.h"
 #include "mrgi_vpl.h"
+#include "mrgi_vpl_tree_gather.h"
 
 #include <locale.h>
 #include <stdio.h>
@@ -49,6 +50,8 @@ static const mrgi_glsl_constant mrgi_glsl_constants[] = {
   MRGI_GLSL_CONSTANT(MRGI_VPL_MAX_COUNT, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_RSM_MIN_COS, MRGI_GLSL_FLOAT),
   MRGI_GLSL_CONSTANT(MRGI_RSM_MAX_VIEWS, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_VPL_TREE_RECORDS_PER_ROW, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_VPL_TREE_STACK_SIZE, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_VALID_THRESHOLD, MRGI_GLSL_FLOAT),
   MRGI_GLSL_CONSTANT(MRGI_LUMINANCE_R, MRGI_GLSL_DOUBLE),
   MRGI_GLSL_CONSTANT(MRGI_LUMINANCE_G, MRGI_GLSL_DOUBLE),
