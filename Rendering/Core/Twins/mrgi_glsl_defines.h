@@ -45,8 +45,7 @@
  * _SEARCH_NEAR, _MIN_RADIUS, _MAX_RADIUS, _NO_OCCLUDER;
  * from mrgi_bmr_mask.h MRGI_BMR_LEVELS, _MAX_RADIUS, _COMBINE_MAX,
  * _COMBINE_MIN, _SSGI_SKIP_LEVEL and Table 1's presets
- * MRGI_BMR_{SSAO,SSM,SSGI}_{VARIANCE,WEIGHT}_{1..4}; from mrgi_vpl_tree_gather.h
- * the tree texture's MRGI_VPL_TREE_RECORDS_PER_ROW.
+ * MRGI_BMR_{SSAO,SSM,SSGI}_{VARIANCE,WEIGHT}_{1..4}.
  *
  * Insert the block after the shader's `#version` line (a `#define` may not
  * precede it).
