@@ -128,7 +128,8 @@ struct Scene
     this->Renderer->SetPass(this->Pass);
     this->Window->Render();
     MRGI_TEST_CHECK(this->Pass->GetIndirectComputed());
-    MRGI_TEST_CHECK(this->Pass->GetGBuffer(this->Window, this->Position, this->Normal, this->Albedo));
+    MRGI_TEST_CHECK(
+      this->Pass->GetGBuffer(this->Window, this->Position, this->Normal, this->Albedo));
     const int* vp = this->Pass->GetViewport();
     this->W = vp[2];
     this->H = vp[3];
@@ -230,7 +231,8 @@ void CheckFull(Scene& s, vtkMRGIGather* gather, double tau, std::vector<float>* 
   mrgi_image cE{}, cCount{};
   mrgi_vpl_tree_gather_info info{};
   mrgi_error err;
-  if (mrgi_vpl_tree_gather(&receivers, &s.Tree, tau, s.WorldToView, &cE, &cCount, &info, &err) != MRGI_OK)
+  if (mrgi_vpl_tree_gather(&receivers, &s.Tree, tau, s.WorldToView, &cE, &cCount, &info, &err) !=
+    MRGI_OK)
   {
     MRGI_TEST_FAIL("mrgi_vpl_tree_gather: %s", err.message);
   }
@@ -244,14 +246,16 @@ void CheckFull(Scene& s, vtkMRGIGather* gather, double tau, std::vector<float>* 
       {
         continue;
       }
-      const size_t g = static_cast<size_t>(y + s.Frame.Viewport[1]) * winW + x + s.Frame.Viewport[0];
+      const size_t g =
+        static_cast<size_t>(y + s.Frame.Viewport[1]) * winW + x + s.Frame.Viewport[0];
       c.Add(gpu.data() + 4 * g, cE.pixels + 3 * p);
     }
   }
   char what[96];
   std::snprintf(what, sizeof(what), "full, RSM %d (%d roots per batch), tau %g", s.Tree.rsm_size,
     mrgi_vpl_tree_roots_per_batch(&s.Tree), tau);
-  std::printf("%s: %zu receivers, relative RMS %.3g against the twin\n", what, c.Compared, c.Error());
+  std::printf(
+    "%s: %zu receivers, relative RMS %.3g against the twin\n", what, c.Compared, c.Error());
   MRGI_TEST_CHECK(c.Compared > 0 && c.BadAlpha == 0);
   MRGI_TEST_CHECK(c.Error() < 1e-4);
   CheckCounts(gather, info, what);
@@ -277,8 +281,8 @@ void CheckStenciled(Scene& s, vtkMRGIGather* gather, double tau)
   mrgi_error err;
   MRGI_TEST_CHECK(mrgi_multires_pixel_size_coefficients(&projection, s.H, ab, &err) == MRGI_OK);
   const int* vp = s.Frame.Viewport;
-  MRGI_TEST_CHECK(buffer->Update(s.GL, s.Frame.Position, s.Frame.Normal, vp[0], vp[1], s.W, s.H,
-    ab[0], ab[1]));
+  MRGI_TEST_CHECK(
+    buffer->Update(s.GL, s.Frame.Position, s.Frame.Normal, vp[0], vp[1], s.W, s.H, ab[0], ab[1]));
   MRGI_TEST_CHECK(buffer->BuildReceivers(s.GL, s.Frame.Position, s.Frame.Normal, vp[0], vp[1]));
   vtkNew<vtkTextureObject> nodes;
   MRGI_TEST_CHECK(vtkMRGIGather::UploadVPLTree(s.GL, &s.Tree, nodes));
@@ -310,7 +314,8 @@ void CheckStenciled(Scene& s, vtkMRGIGather* gather, double tau)
   mrgi_gather_receivers flat = { layout.total_width, layout.total_height, P.data(), N.data() };
   mrgi_image cE{};
   mrgi_vpl_tree_gather_info info{};
-  if (mrgi_vpl_tree_gather(&flat, &s.Tree, tau, s.WorldToView, &cE, nullptr, &info, &err) != MRGI_OK)
+  if (mrgi_vpl_tree_gather(&flat, &s.Tree, tau, s.WorldToView, &cE, nullptr, &info, &err) !=
+    MRGI_OK)
   {
     MRGI_TEST_FAIL("mrgi_vpl_tree_gather: %s", err.message);
   }
@@ -350,8 +355,8 @@ void CheckGrid(Scene& s, vtkMRGIGather* gather, const std::vector<float>& tree)
   vtkSmartPointer<vtkTextureObject> indirect = Target(s.GL, winW, winH);
   vtkMRGIVPLSelection* selection = s.Pass->GetVPLSelection();
   MRGI_TEST_CHECK(selection->GetVPLCount() == 256);
-  MRGI_TEST_CHECK(gather->GatherFull(s.Frame, selection->GetVPLTexture(), selection->GetVPLCount(),
-    1.0, irradiance, indirect));
+  MRGI_TEST_CHECK(gather->GatherFull(
+    s.Frame, selection->GetVPLTexture(), selection->GetVPLCount(), 1.0, irradiance, indirect));
   MRGI_TEST_CHECK(gather->GetMeanVPLsPerPixel() == -1.0); // not a tree gather
   std::vector<float> grid;
   MRGI_TEST_CHECK(ReadTexture(irradiance, grid));

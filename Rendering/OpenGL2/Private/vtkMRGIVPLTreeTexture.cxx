@@ -43,8 +43,8 @@ bool TextureSize(const mrgi_vpl_tree* tree, int32_t& width, int32_t& height, std
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIVPLTreeTexture::Upload(
-  vtkOpenGLRenderWindow* window, const mrgi_vpl_tree* tree, vtkTextureObject* nodes, std::string& error)
+bool vtkMRGIVPLTreeTexture::Upload(vtkOpenGLRenderWindow* window, const mrgi_vpl_tree* tree,
+  vtkTextureObject* nodes, std::string& error)
 {
   int32_t width = 0, height = 0;
   if (!window || !nodes)
@@ -60,8 +60,8 @@ bool vtkMRGIVPLTreeTexture::Upload(
   std::vector<float> texels(static_cast<size_t>(width) * static_cast<size_t>(height) * 4, 0.0f);
   std::memcpy(texels.data(), tree->nodes, sizeof(mrgi_vpl) * static_cast<size_t>(tree->node_count));
   nodes->SetContext(window);
-  if (!nodes->Create2DFromRaw(static_cast<unsigned int>(width), static_cast<unsigned int>(height), 4,
-        VTK_FLOAT, texels.data()))
+  if (!nodes->Create2DFromRaw(static_cast<unsigned int>(width), static_cast<unsigned int>(height),
+        4, VTK_FLOAT, texels.data()))
   {
     std::ostringstream message;
     message << "could not allocate the VPL tree texture (" << width << " x " << height << ")";
@@ -179,7 +179,8 @@ bool vtkMRGIVPLTreeTexture::ReadCounts(vtkOpenGLRenderWindow* window, vtkTexture
   {
     for (int x = region[0]; x < region[0] + region[2]; ++x)
     {
-      const float* texel = rgba.data() + 4 * (static_cast<size_t>(y) * width + static_cast<size_t>(x));
+      const float* texel =
+        rgba.data() + 4 * (static_cast<size_t>(y) * width + static_cast<size_t>(x));
       if (texel[3] > 0.5f)
       {
         ++gathered;

@@ -624,9 +624,8 @@ bool vtkMRGIGather::RunStenciledTree(const vtkMRGIFrameContext& frame, vtkMRGIMu
     {
       const std::array<vtkTextureObject*, 2> receivers = buffer->BindReceivers(gather, i);
       ostate->vtkglViewport(layout.level_offset[i], 0, layout.level_width[i], layout.level_height[i]);
-      vtkMRGIVPLTreeTexture::DrawBatches(gather, tree.Tree, tree.Nodes, tree.Threshold, roots, rootsPerBatch,
-        ostate, [&](int batch) {
-        // The first batch's query counts the texels gathered at this level.
+      // The first batch's query counts the texels gathered at this level.
+      const auto draw = [&](int batch) {
         const bool query = this->CollectStatistics && batch == 0;
         if (query)
         {
@@ -637,7 +636,9 @@ bool vtkMRGIGather::RunStenciledTree(const vtkMRGIFrameContext& frame, vtkMRGIMu
         {
           glEndQuery(GL_SAMPLES_PASSED);
         }
-      });
+      };
+      vtkMRGIVPLTreeTexture::DrawBatches(
+        gather, tree.Tree, tree.Nodes, tree.Threshold, roots, rootsPerBatch, ostate, draw);
       receivers[1]->Deactivate();
       receivers[0]->Deactivate();
     }
