@@ -10,7 +10,8 @@
 //    roots); and RSM 256 with every texel lit at tau 0, where receivers
 //    on the ceiling pop every nonempty node (measured: with all 256 roots in
 //    one batch llvmpipe silently cut the loop, relative RMS 0.015 and fewer
-//    VPLs than usable texels; batched, every usable texel is used);
+//    VPLs than usable texels; batched, every usable texel is used); and a
+//    point light's six cube views (RSM 128, 1,536 roots in two draws);
 // 2. nothing written outside the selected texels (stenciled), alpha 1 at
 //    gathered receivers;
 // 3. the VPLs-per-pixel statistic: the mean within 1e-3 relative of the
@@ -25,6 +26,8 @@
 #include "vtkCommand.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkMRGIFrameContext.h"
 #include "vtkMRGIGather.h"
 #include "vtkMRGIMultiresolution.h"
@@ -113,7 +116,8 @@ struct Scene
   mrgi_vpl_tree Tree{};
   int W = 0, H = 0;
 
-  Scene(int width, int height, int rsmSize)
+  // `point`: the spot becomes a point light (cone 90 degrees): six cube views.
+  Scene(int width, int height, int rsmSize, bool point = false)
   {
     this->Window = mrgitest::HeadlessWindow(width, height);
     this->GL = vtkOpenGLRenderWindow::SafeDownCast(this->Window);
@@ -121,6 +125,15 @@ struct Scene
     vtkNew<vtkMRGISceneBuilder> builder;
     builder->SetScene("cornell-spot");
     MRGI_TEST_CHECK(builder->Build(this->Renderer));
+    if (point)
+    {
+      vtkLightCollection* lights = this->Renderer->GetLights();
+      lights->InitTraversal();
+      while (vtkLight* light = lights->GetNextItem())
+      {
+        light->SetConeAngle(90.0);
+      }
+    }
     this->Pass->SetDelegatePass(this->Steps);
     this->Pass->SetIndirectMode(vtkMRGIPass::IndirectFull);
     this->Pass->SetNumberOfVPLs(256);
@@ -165,15 +178,37 @@ struct Scene
   {
     mrgi_vpl_tree_destroy(&this->Tree);
     vtkMRGIReflectiveShadowMapPass* rsm = this->Pass->GetReflectiveShadowMapPass();
-    MRGI_TEST_CHECK(rsm->GetNumberOfViews() == 1);
-    vtkNew<vtkImageData> p, n, f;
-    MRGI_TEST_CHECK(rsm->ReadView(this->Window, 0, p, n, f));
+    const int views = rsm->GetNumberOfViews();
+    const size_t S = static_cast<size_t>(rsm->GetResolution());
+    MRGI_TEST_CHECK(views >= 1 && views <= MRGI_RSM_MAX_VIEWS);
+    // The views one after another, as mrgi_rsm holds them.
+    std::vector<float> position(4 * S * S * views), normal(position.size()), flux(position.size());
+    std::vector<mrgi_rsm_view_camera> cameras(static_cast<size_t>(views));
+    for (int v = 0; v < views; ++v)
+    {
+      vtkNew<vtkImageData> p, n, f;
+      MRGI_TEST_CHECK(rsm->ReadView(this->Window, v, p, n, f));
+      const size_t first = 4 * S * S * static_cast<size_t>(v);
+      std::copy(Floats(p), Floats(p) + 4 * S * S, position.begin() + first);
+      std::copy(Floats(n), Floats(n) + 4 * S * S, normal.begin() + first);
+      std::copy(Floats(f), Floats(f) + 4 * S * S, flux.begin() + first);
+      double worldToView[16], projection[16];
+      MRGI_TEST_CHECK(rsm->GetViewWorldToView(v, worldToView));
+      MRGI_TEST_CHECK(rsm->GetViewProjection(v, projection));
+      MRGI_TEST_CHECK(rsm->GetViewPerspective(v));
+      mrgi_rsm_view_camera& camera = cameras[static_cast<size_t>(v)];
+      for (int i = 0; i < 16; ++i)
+      {
+        camera.world_to_view[i] = static_cast<float>(worldToView[(i % 4) * 4 + i / 4]); // transpose
+      }
+      camera.projection.parallel = 0;
+      camera.projection.view_angle_deg =
+        2.0 * std::atan(1.0 / projection[5]) * 180.0 / vtkMath::Pi();
+      camera.projection.parallel_scale = 1.0;
+    }
     if (lightEverything)
     {
-      float* position = Floats(p);
-      float* flux = Floats(f);
-      const size_t texels = static_cast<size_t>(rsm->GetResolution()) * rsm->GetResolution();
-      for (size_t t = 0; t < texels; ++t)
+      for (size_t t = 0; 4 * t < position.size(); ++t)
       {
         if (position[4 * t + 3] > MRGI_VALID_THRESHOLD)
         {
@@ -181,24 +216,15 @@ struct Scene
         }
       }
     }
-    const mrgi_rsm map = { rsm->GetResolution(), 1, Floats(p), Floats(n), Floats(f) };
-    double worldToView[16], projection[16];
-    MRGI_TEST_CHECK(rsm->GetViewWorldToView(0, worldToView));
-    MRGI_TEST_CHECK(rsm->GetViewProjection(0, projection));
-    mrgi_rsm_view_camera camera;
-    for (int i = 0; i < 16; ++i)
-    {
-      camera.world_to_view[i] = static_cast<float>(worldToView[(i % 4) * 4 + i / 4]); // transpose
-    }
-    camera.projection.parallel = 0;
-    camera.projection.view_angle_deg = 2.0 * std::atan(1.0 / projection[5]) * 180.0 / vtkMath::Pi();
-    camera.projection.parallel_scale = 1.0;
+    const mrgi_rsm map = { static_cast<int32_t>(S), views, position.data(), normal.data(),
+      flux.data() };
     mrgi_error err;
-    if (mrgi_vpl_tree_build(&map, &camera, &this->Tree, &err) != MRGI_OK)
+    if (mrgi_vpl_tree_build(&map, cameras.data(), &this->Tree, &err) != MRGI_OK)
     {
       MRGI_TEST_FAIL("mrgi_vpl_tree_build: %s", err.message);
     }
   }
+
 };
 
 void CheckCounts(vtkMRGIGather* gather, const mrgi_vpl_tree_gather_info& info, const char* what)
@@ -457,6 +483,19 @@ int main()
     std::printf("  every texel lit: %lld usable texels, GPU max VPLs per pixel %.0f\n",
       static_cast<long long>(s.Tree.usable_texel_count), gather->GetMaxVPLsPerPixel());
     MRGI_TEST_CHECK(gather->GetMaxVPLsPerPixel() == static_cast<double>(s.Tree.usable_texel_count));
+    gather->ReleaseGraphicsResources(s.Window);
+  }
+  {
+    // A point light: six cube views of RSM 128, 1,536 roots in two draws
+    // (771 + 765): roots and children of views 1-5.
+    Scene s(40, 32, 128, true);
+    MRGI_TEST_CHECK(s.Tree.view_count == 6);
+    MRGI_TEST_CHECK(mrgi_vpl_tree_root_count(&s.Tree) > mrgi_vpl_tree_roots_per_batch(&s.Tree));
+    for (const double tau : { 1.0, 0.05 })
+    {
+      CheckFull(s, gather, tau, nullptr);
+    }
+    CheckStenciled(s, gather, 0.05);
     gather->ReleaseGraphicsResources(s.Window);
   }
   return EXIT_SUCCESS;
