@@ -53,6 +53,7 @@
 #include "mrgi_voxel.h"
 #include "mrgi_multires.h"
 #include "mrgi_parse.h"
+#include "mrgi_vpl_tree_gather.h"
 
 #include "mrgiRenderOptions.h"
 #include "mrgiRenderOutputWindow.h"
@@ -648,6 +649,14 @@ int main(int argc, char* argv[])
     mrgi->SetClusterDepthThreshold(o.ClusterDepthThreshold);
   if (!std::isnan(o.ClusterNormalThreshold))
     mrgi->SetClusterNormalThreshold(o.ClusterNormalThreshold);
+  if (!std::isnan(o.TreeThreshold))
+    mrgi->SetTreeThreshold(o.TreeThreshold);
+  if (o.VPLSelection == vtkMRGIVPLSelection::Tree && o.RSMSize > MRGI_VPL_TREE_GATHER_MAX_RSM_SIZE)
+  {
+    return Fail("--vpl-selection tree takes --rsm-size up to " +
+      std::to_string(MRGI_VPL_TREE_GATHER_MAX_RSM_SIZE) + " (the tree gather's limit), not " +
+      std::to_string(o.RSMSize));
+  }
   mrgi->SetRSMResolution(static_cast<int>(o.RSMSize));
   mrgi->SetIndirectStrength(o.IndirectStrength);
   mrgi->SetToneMapping(o.ToneMapping);

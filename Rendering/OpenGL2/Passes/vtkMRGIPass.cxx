@@ -6,7 +6,7 @@
 #include "vtkCamera.h"
 #include "vtkCommand.h"
 #include "vtkCameraPass.h"
-#include "vtkFloatArray.h"
+#include "vtkDataArray.h"
 #include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
 #include "vtkMRGIAreaLightStage.h"
@@ -57,7 +57,6 @@
 #include "mrgi_exposure.h"
 #include "mrgi_screen_space_preset.h"
 #include "mrgi_multires.h"
-#include "mrgi_vpl.h"
 
 #include <algorithm>
 #include <cmath>
@@ -366,6 +365,15 @@ void vtkMRGIPass::SetClusterNormalThreshold(double threshold)
 double vtkMRGIPass::GetClusterNormalThreshold()
 {
   return this->VPLSelection->GetClusterNormalThreshold();
+}
+void vtkMRGIPass::SetTreeThreshold(double threshold)
+{
+  this->VPLSelection->SetTreeThreshold(threshold);
+  this->Modified();
+}
+double vtkMRGIPass::GetTreeThreshold()
+{
+  return this->VPLSelection->GetTreeThreshold();
 }
 void vtkMRGIPass::SetRSMResolution(int resolution)
 {
@@ -1067,19 +1075,7 @@ bool vtkMRGIPass::GetSpecularGBuffer(vtkRenderWindow* window, vtkImageData* spec
 
 bool vtkMRGIPass::GetVPLs(vtkRenderWindow* window, vtkFloatArray* vpls)
 {
-  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
-  vtkTextureObject* texture = this->VPLSelection->GetVPLTexture();
-  std::vector<float> rgba;
-  if (!renWin || !vpls || !texture || !vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, texture, rgba))
-  {
-    vtkErrorMacro("no VPLs to read back");
-    return false;
-  }
-  vpls->SetNumberOfComponents(MRGI_VPL_FLOATS);
-  vpls->SetNumberOfTuples(this->VPLSelection->GetVPLCount());
-  std::copy(rgba.begin(), rgba.begin() + static_cast<long>(MRGI_VPL_FLOATS) * this->VPLSelection->GetVPLCount(),
-    vpls->GetPointer(0));
-  return true;
+  return this->VPLSelection->ReadVPLs(vtkOpenGLRenderWindow::SafeDownCast(window), vpls);
 }
 
 //------------------------------------------------------------------------------
@@ -1200,6 +1196,7 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "ClusterNormalThreshold: " << this->VPLSelection->GetClusterNormalThreshold()
      << "\n";
+  os << indent << "TreeThreshold: " << this->VPLSelection->GetTreeThreshold() << "\n";
   os << indent << "RSMResolution: " << this->RSMPass->GetResolution() << "\n";
   os << indent << "RSMCompositor: " << this->RSMPass->GetCompositor() << "\n";
   os << indent << "Exposure: " << this->Exposure << " EV\n";

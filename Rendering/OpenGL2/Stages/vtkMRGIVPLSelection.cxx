@@ -1,5 +1,6 @@
 #include "vtkMRGIVPLSelection.h"
 
+#include "vtkFloatArray.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMath.h"
@@ -17,8 +18,13 @@
 
 #include "mrgi_vpl.h"
 #include "mrgi_vpl_clusters.h"
+#include "mrgi_vpl_tree.h"
+#include "mrgi_vpl_tree_gather.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include <map>
 #include <vector>
@@ -33,6 +39,8 @@ struct vtkMRGIVPLSelection::Internals
   vtkOpenGLQuadHelper* RowsQuad = nullptr;
   vtkTextureObject* RowSums = nullptr; // grid stage 0 outputs, G x S
   vtkTextureObject* RowBest = nullptr;
+  vtkTextureObject* TreeTexture = nullptr; // Tree mode: node records (mrgi_vpl_tree_gather.h 3)
+  mrgi_vpl_tree Tree = {};                 // Tree mode: node_count 0 when there is none
   int Count = 0;
   vtkMTimeType SourceTime = 0;
   vtkMTimeType SettingsTime = 0;
@@ -47,13 +55,15 @@ vtkMRGIVPLSelection::vtkMRGIVPLSelection()
   this->ClusterDepthThreshold = defaults.depth_threshold;
   this->ClusterNormalThreshold = defaults.normal_threshold;
   this->ClusterFinestLevel = defaults.finest_level;
+  this->TreeThreshold = MRGI_VPL_TREE_DEFAULT_THRESHOLD;
 }
 
 //------------------------------------------------------------------------------
 vtkMRGIVPLSelection::~vtkMRGIVPLSelection()
 {
   if (this->Internal->Texture || this->Internal->FrameBuffer || this->Internal->GridQuad ||
-    this->Internal->RowsQuad || this->Internal->RowSums || this->Internal->RowBest)
+    this->Internal->RowsQuad || this->Internal->RowSums || this->Internal->RowBest ||
+    this->Internal->TreeTexture)
   {
     vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
   }
@@ -74,6 +84,22 @@ vtkMRGIVPLSelection::~vtkMRGIVPLSelection()
   }
   delete this->Internal->GridQuad;
   delete this->Internal->RowsQuad;
+  this->ReleaseTree(nullptr);
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIVPLSelection::ReleaseTree(vtkWindow* w)
+{
+  if (this->Internal->TreeTexture)
+  {
+    if (w)
+    {
+      this->Internal->TreeTexture->ReleaseGraphicsResources(w);
+    }
+    this->Internal->TreeTexture->Delete();
+    this->Internal->TreeTexture = nullptr;
+  }
+  mrgi_vpl_tree_destroy(&this->Internal->Tree);
 }
 
 //------------------------------------------------------------------------------
@@ -112,6 +138,7 @@ void vtkMRGIVPLSelection::ReleaseGraphicsResources(vtkWindow* w)
     this->Internal->Texture->Delete();
     this->Internal->Texture = nullptr;
   }
+  this->ReleaseTree(w);
   this->Internal->Count = 0;
   this->Internal->SourceTime = 0;
 }
@@ -125,6 +152,54 @@ vtkTextureObject* vtkMRGIVPLSelection::GetVPLTexture() const
 int vtkMRGIVPLSelection::GetVPLCount() const
 {
   return this->Internal->Count;
+}
+
+vtkTextureObject* vtkMRGIVPLSelection::GetTreeTexture() const
+{
+  return this->Internal->Tree.node_count > 0 ? this->Internal->TreeTexture : nullptr;
+}
+
+vtkIdType vtkMRGIVPLSelection::GetNumberOfTreeNodes() const
+{
+  return static_cast<vtkIdType>(this->Internal->Tree.node_count);
+}
+
+const mrgi_vpl_tree* vtkMRGIVPLSelection::GetTree() const
+{
+  return this->Internal->Tree.node_count > 0 ? &this->Internal->Tree : nullptr;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIVPLSelection::ReadVPLs(vtkOpenGLRenderWindow* window, vtkFloatArray* vpls)
+{
+  vtkTextureObject* texture = this->GetVPLTexture();
+  std::vector<float> rgba;
+  if (!window || !vpls || !texture || !vtkMRGIShaderUtilities::ReadTextureRGBA(window, texture, rgba))
+  {
+    vtkErrorMacro("no VPLs to read back");
+    return false;
+  }
+  const int count = this->Internal->Count;
+  vpls->SetNumberOfComponents(MRGI_VPL_FLOATS);
+  vpls->SetNumberOfTuples(count);
+  std::copy(rgba.begin(), rgba.begin() + static_cast<long>(MRGI_VPL_FLOATS) * count, vpls->GetPointer(0));
+  return true;
+}
+
+bool vtkMRGIVPLSelection::ReadTreeTexture(vtkOpenGLRenderWindow* window, vtkFloatArray* records)
+{
+  vtkTextureObject* texture = this->GetTreeTexture();
+  std::vector<float> rgba;
+  if (!window || !records || !texture ||
+    !vtkMRGIShaderUtilities::ReadTextureRGBA(window, texture, rgba))
+  {
+    vtkErrorMacro("no VPL tree texture to read back");
+    return false;
+  }
+  records->SetNumberOfComponents(MRGI_VPL_FLOATS);
+  records->SetNumberOfTuples(static_cast<vtkIdType>(rgba.size() / MRGI_VPL_FLOATS));
+  std::copy(rgba.begin(), rgba.end(), records->GetPointer(0));
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -183,6 +258,155 @@ bool ViewCamera(vtkMRGIReflectiveShadowMapPass* rsm, int view, mrgi_rsm_view_cam
   camera.projection.parallel_scale = camera.projection.parallel ? 1.0 / projection[5] : 1.0;
   return true;
 }
+
+// TODO(treecore): mrgi_vpl_tree_texture_size() and mrgi_vpl_tree_root_count()
+// once branch treecore is merged. Until then the header's formulas
+// (mrgi_vpl_tree_gather.h section 3).
+bool TreeTextureSize(const mrgi_vpl_tree& tree, int32_t& width, int32_t& height)
+{
+  if (tree.node_count < 1)
+  {
+    return false;
+  }
+  width = MRGI_VPL_TREE_RECORDS_PER_ROW * MRGI_VPL_TEXELS;
+  const int64_t rows =
+    (tree.node_count + MRGI_VPL_TREE_RECORDS_PER_ROW - 1) / MRGI_VPL_TREE_RECORDS_PER_ROW;
+  height = static_cast<int32_t>(std::min<int64_t>(rows, INT32_MAX));
+  return true;
+}
+
+int32_t TreeRootCount(const mrgi_vpl_tree& tree)
+{
+  if (tree.node_count < 1)
+  {
+    return 0;
+  }
+  const int64_t w = tree.layout.level_width[tree.layout.level_count - 1];
+  return static_cast<int32_t>(tree.view_count * w * w);
+}
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIVPLSelection::ReadLight(vtkOpenGLRenderWindow* window,
+  vtkMRGIReflectiveShadowMapPass* rsm, const std::vector<int>& views, const char* what,
+  mrgi_rsm_view_camera* cameras, std::vector<float>& position, std::vector<float>& normal,
+  std::vector<float>& flux)
+{
+  if (views.empty() || views.size() > MRGI_RSM_MAX_VIEWS)
+  {
+    vtkErrorMacro(<< what << ": " << views.size() << " RSM views, the C core takes 1.."
+                  << MRGI_RSM_MAX_VIEWS << " (MRGI_RSM_MAX_VIEWS) in one map");
+    return false;
+  }
+  for (size_t i = 0; i < views.size(); ++i)
+  {
+    if (!ViewCamera(rsm, views[i], cameras[i]))
+    {
+      vtkErrorMacro(<< what << ": RSM view " << views[i] << " has no camera");
+      return false;
+    }
+  }
+  if (!ReadViews(window, rsm, views, position, normal, flux))
+  {
+    vtkErrorMacro(<< what << ": could not read back the RSM views");
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+int vtkMRGIVPLSelection::SelectTree(
+  vtkOpenGLRenderWindow* window, vtkMRGIReflectiveShadowMapPass* rsm, std::vector<mrgi_vpl>& roots)
+{
+  roots.clear();
+  this->ReleaseTree(window);
+  if (std::isnan(this->TreeThreshold))
+  {
+    vtkErrorMacro("VPL tree: TreeThreshold is NaN; expected a number >= 0 or +inf");
+    return 0;
+  }
+  const int size = rsm->GetResolution();
+  if (size > MRGI_VPL_TREE_GATHER_MAX_RSM_SIZE)
+  {
+    vtkErrorMacro(<< "VPL tree: the RSM has " << size << " texels per side, the tree gather takes at most "
+                  << MRGI_VPL_TREE_GATHER_MAX_RSM_SIZE
+                  << " (MRGI_VPL_TREE_GATHER_MAX_RSM_SIZE); no tree, no indirect light");
+    return 0;
+  }
+  // Every view of every light in one tree: the views are independent
+  // patches, each with its own camera (mrgi_vpl_tree.h section 2).
+  std::vector<int> views(static_cast<size_t>(rsm->GetNumberOfViews()));
+  for (size_t v = 0; v < views.size(); ++v)
+  {
+    views[v] = static_cast<int>(v);
+  }
+  mrgi_rsm_view_camera cameras[MRGI_RSM_MAX_VIEWS];
+  std::vector<float> position, normal, flux;
+  if (!this->ReadLight(window, rsm, views, "VPL tree", cameras, position, normal, flux))
+  {
+    return 0;
+  }
+  const mrgi_rsm map = { size, static_cast<int32_t>(views.size()), position.data(), normal.data(),
+    flux.data() };
+  mrgi_vpl_tree& tree = this->Internal->Tree;
+  mrgi_error err;
+  if (mrgi_vpl_tree_build(&map, cameras, &tree, &err) != MRGI_OK)
+  {
+    vtkErrorMacro(<< "VPL tree: " << err.message);
+    return 0;
+  }
+
+  // The texture (mrgi_vpl_tree_gather.h section 3): records row-major,
+  // MRGI_VPL_TREE_RECORDS_PER_ROW per row, zero records after the last.
+  int32_t width = 0, height = 0;
+  if (!TreeTextureSize(tree, width, height))
+  {
+    vtkErrorMacro("VPL tree: the tree has no nodes");
+    this->ReleaseTree(window);
+    return 0;
+  }
+  GLint maxSize = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  if (width > maxSize || height > maxSize)
+  {
+    vtkErrorMacro(<< "VPL tree: its texture of " << width << " x " << height
+                  << " texels exceeds GL_MAX_TEXTURE_SIZE (" << maxSize << ") for "
+                  << tree.node_count << " nodes; use a smaller RSM");
+    this->ReleaseTree(window);
+    return 0;
+  }
+  const size_t records = static_cast<size_t>(width / MRGI_VPL_TEXELS) * static_cast<size_t>(height);
+  std::vector<mrgi_vpl> padded(records); // value-initialized: zero padding
+  std::memcpy(padded.data(), tree.nodes, sizeof(mrgi_vpl) * static_cast<size_t>(tree.node_count));
+  vtkTextureObject*& texture = this->Internal->TreeTexture;
+  texture = vtkTextureObject::New();
+  texture->SetContext(window);
+  texture->SetFormat(GL_RGBA);
+  texture->SetInternalFormat(GL_RGBA32F);
+  texture->SetDataType(GL_FLOAT);
+  texture->SetMinificationFilter(vtkTextureObject::Nearest);
+  texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+  if (!texture->Allocate2D(static_cast<unsigned int>(width), static_cast<unsigned int>(height), 4,
+        VTK_FLOAT))
+  {
+    vtkErrorMacro(<< "VPL tree: could not allocate its " << width << " x " << height << " texture");
+    this->ReleaseTree(window);
+    return 0;
+  }
+  texture->Bind();
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT,
+    mrgi_vpl_texture_data(padded.data()));
+  texture->Deactivate();
+
+  // The flat cache: the roots (level L, records 0..V w_L^2 - 1), pads cleared (mrgi_vpl.h).
+  const int32_t rootCount = TreeRootCount(tree);
+  roots.assign(tree.nodes, tree.nodes + rootCount);
+  for (mrgi_vpl& root : roots)
+  {
+    root.pad0 = 0.0f;
+    root.pad1 = 0.0f;
+  }
+  return rootCount;
 }
 
 //------------------------------------------------------------------------------
@@ -203,20 +427,7 @@ int vtkMRGIVPLSelection::SelectClusters(vtkOpenGLRenderWindow* window,
   for (const std::vector<int>& views : lights)
   {
     mrgi_rsm_view_camera cameras[MRGI_RSM_MAX_VIEWS];
-    if (views.size() > MRGI_RSM_MAX_VIEWS)
-    {
-      vtkErrorMacro(<< "VPL clusters: a light has " << views.size() << " views");
-      return 0;
-    }
-    for (size_t i = 0; i < views.size(); ++i)
-    {
-      if (!ViewCamera(rsm, views[i], cameras[i]))
-      {
-        vtkErrorMacro(<< "VPL clusters: RSM view " << views[i] << " has no camera");
-        return 0;
-      }
-    }
-    if (!ReadViews(window, rsm, views, position, normal, flux))
+    if (!this->ReadLight(window, rsm, views, "VPL clusters", cameras, position, normal, flux))
     {
       return 0;
     }
@@ -247,6 +458,7 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
   const int views = rsm->GetNumberOfViews();
   if (views == 0 || this->NumberOfVPLs == 0)
   {
+    this->ReleaseTree(window);
     this->Internal->Count = 0;
     return 0;
   }
@@ -269,7 +481,18 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
     lightViews[light].push_back(v);
   }
   const int size = rsm->GetResolution();
-  std::vector<mrgi_vpl> clusters;
+  std::vector<mrgi_vpl> clusters; // Clusters: the clusters; Tree: the roots
+  if (this->Mode == Tree)
+  {
+    if (this->SelectTree(window, rsm, clusters) == 0)
+    {
+      return this->Internal->Count = 0;
+    }
+  }
+  else
+  {
+    this->ReleaseTree(window);
+  }
   if (this->Mode == Clusters)
   {
     std::vector<std::vector<int>> lights;
@@ -311,7 +534,7 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
     blocks.push_back({ light, rows, count, side });
     rows += count;
   }
-  if (this->Mode == Clusters)
+  if (this->Mode == Clusters || this->Mode == Tree)
   {
     rows = static_cast<int>(clusters.size()); // a variable count, not NumberOfVPLs
   }
@@ -330,7 +553,7 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
   }
   texture->Resize(MRGI_VPL_TEXELS, rows);
 
-  if (this->Mode == Clusters)
+  if (this->Mode == Clusters || this->Mode == Tree)
   {
     texture->Bind();
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, MRGI_VPL_TEXELS, rows, GL_RGBA, GL_FLOAT,
@@ -344,20 +567,10 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
     for (const Block& block : blocks)
     {
       const std::vector<int>& v = lightViews[block.Light];
-      const size_t texels = static_cast<size_t>(size) * static_cast<size_t>(size) * 4;
-      std::vector<float> position(texels * v.size()), normal(texels * v.size()), flux(texels * v.size());
-      std::vector<float> scratch;
-      for (size_t i = 0; i < v.size(); ++i)
+      std::vector<float> position, normal, flux;
+      if (!ReadViews(window, rsm, v, position, normal, flux))
       {
-        if (!vtkMRGIShaderUtilities::ReadTextureRGBA(window, rsm->GetPositionTexture(v[i]), scratch))
-          return this->Internal->Count = 0;
-        std::copy(scratch.begin(), scratch.end(), position.begin() + static_cast<long>(i * texels));
-        if (!vtkMRGIShaderUtilities::ReadTextureRGBA(window, rsm->GetNormalTexture(v[i]), scratch))
-          return this->Internal->Count = 0;
-        std::copy(scratch.begin(), scratch.end(), normal.begin() + static_cast<long>(i * texels));
-        if (!vtkMRGIShaderUtilities::ReadTextureRGBA(window, rsm->GetFluxTexture(v[i]), scratch))
-          return this->Internal->Count = 0;
-        std::copy(scratch.begin(), scratch.end(), flux.begin() + static_cast<long>(i * texels));
+        return this->Internal->Count = 0;
       }
       const mrgi_rsm map = { size, static_cast<int32_t>(v.size()), position.data(), normal.data(),
         flux.data() };
@@ -501,13 +714,14 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
 void vtkMRGIVPLSelection::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Mode: "
-     << (this->Mode == Grid ? "Grid" : (this->Mode == FluxImportance ? "FluxImportance" : "Clusters"))
-     << "\n";
+  static const char* const modes[] = { "Grid", "FluxImportance", "Clusters", "Tree" };
+  os << indent << "Mode: " << modes[this->Mode] << "\n";
   os << indent << "ClusterDepthThreshold: " << this->ClusterDepthThreshold << "\n";
   os << indent << "ClusterNormalThreshold: " << this->ClusterNormalThreshold << "\n";
   os << indent << "ClusterFinestLevel: " << this->ClusterFinestLevel << "\n";
   os << indent << "ClusterRefinementsCapped: " << this->ClusterRefinementsCapped << "\n";
+  os << indent << "TreeThreshold: " << this->TreeThreshold << "\n";
+  os << indent << "NumberOfTreeNodes: " << this->GetNumberOfTreeNodes() << "\n";
   os << indent << "NumberOfVPLs: " << this->NumberOfVPLs << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "VPLCount: " << this->Internal->Count << "\n";
