@@ -1,37 +1,10 @@
 #include "mrgi_gather.h"
 
+#include "mrgi_gather_term.h"
+
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
-
-/* A VPL brought into receiver space, in double, ready for the inner loop. */
-typedef struct mrgi_gather_vpl
-{
-  double position[3];
-  double normal[3]; /* unit */
-  double flux[3];
-  double area;
-} mrgi_gather_vpl;
-
-static double mrgi_dot3(const double a[3], const double b[3])
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-/* Scale `v` to unit length; 0 (and v untouched) if its length is 0 or not finite. */
-static int mrgi_normalize3(double v[3])
-{
-  const double length2 = mrgi_dot3(v, v);
-  if (!(length2 > 0.0) || !isfinite(length2))
-  {
-    return 0;
-  }
-  const double inverse_length = 1.0 / sqrt(length2);
-  v[0] *= inverse_length;
-  v[1] *= inverse_length;
-  v[2] *= inverse_length;
-  return 1;
-}
 
 mrgi_status mrgi_gather_check_transform(const float world_to_receiver[16], mrgi_error* err)
 {
@@ -76,51 +49,24 @@ mrgi_status mrgi_gather_check_transform(const float world_to_receiver[16], mrgi_
   return MRGI_OK;
 }
 
-/* Bring VPL `in` into receiver space (m = column-major rigid matrix or NULL).
+/* Bring VPL `in` into receiver space (mrgi_gather_term.h).
  * Returns 1 when usable, 0 when skipped; counts the reason in `info`. */
 static int mrgi_gather_prepare_vpl(const mrgi_vpl* in, const float* m, mrgi_gather_vpl* out,
                                    mrgi_gather_info* info)
 {
-  int finite = isfinite(in->area) && in->area >= 0.0f;
-  for (int c = 0; c < 3; ++c)
+  switch (mrgi_gather_vpl_prepare(in, m, out))
   {
-    finite = finite && isfinite(in->position[c]) && isfinite(in->normal[c]) &&
-             isfinite(in->flux[c]) && in->flux[c] >= 0.0f;
+    case MRGI_GATHER_VPL_USABLE:
+      ++info->vpls_used;
+      return 1;
+    case MRGI_GATHER_VPL_ZERO_FLUX:
+      ++info->vpls_zero_flux;
+      return 0;
+    case MRGI_GATHER_VPL_MALFORMED:
+    default:
+      ++info->vpls_malformed;
+      return 0;
   }
-  if (!finite)
-  {
-    ++info->vpls_malformed;
-    return 0;
-  }
-  if (in->flux[0] == 0.0f && in->flux[1] == 0.0f && in->flux[2] == 0.0f)
-  {
-    ++info->vpls_zero_flux;
-    return 0;
-  }
-  for (int row = 0; row < 3; ++row)
-  {
-    if (m)
-    {
-      out->position[row] = (double)m[row] * in->position[0] + (double)m[4 + row] * in->position[1] +
-                           (double)m[8 + row] * in->position[2] + (double)m[12 + row];
-      out->normal[row] = (double)m[row] * in->normal[0] + (double)m[4 + row] * in->normal[1] +
-                         (double)m[8 + row] * in->normal[2];
-    }
-    else
-    {
-      out->position[row] = in->position[row];
-      out->normal[row] = in->normal[row];
-    }
-    out->flux[row] = in->flux[row];
-  }
-  out->area = in->area;
-  if (!mrgi_normalize3(out->normal) || !isfinite(mrgi_dot3(out->position, out->position)))
-  {
-    ++info->vpls_malformed;
-    return 0;
-  }
-  ++info->vpls_used;
-  return 1;
 }
 
 /* E_i of one receiver (file comment of the header), accumulated in double. */
@@ -132,39 +78,17 @@ static void mrgi_gather_receiver(const double receiver_position[3],
   for (int32_t j = 0; j < vpl_count; ++j)
   {
     const mrgi_gather_vpl* vpl = vpls + j;
-    const double d[3] = { vpl->position[0] - receiver_position[0],
-                          vpl->position[1] - receiver_position[1],
-                          vpl->position[2] - receiver_position[2] };
-    const double r2 = mrgi_dot3(d, d);
-    if (!(r2 > 0.0))
+    const double transfer = mrgi_gather_transfer(receiver_position, receiver_normal, vpl);
+    if (transfer > 0.0)
     {
-      continue; /* coincident: w_ij undefined, contribution 0 */
+      sum[0] += vpl->flux[0] * transfer;
+      sum[1] += vpl->flux[1] * transfer;
+      sum[2] += vpl->flux[2] * transfer;
     }
-    const double cos_i_r = mrgi_dot3(receiver_normal, d); /* (N_i . w_ij) * r */
-    const double cos_j_r = -mrgi_dot3(vpl->normal, d);    /* (N_j . w_ji) * r */
-    if (cos_i_r <= 0.0 || cos_j_r <= 0.0)
-    {
-      continue; /* back-facing or grazing */
-    }
-    /* eq. 1 times Phi_j / A_j: Phi_j cos_i cos_j / (pi r^2 + A_j); the
-     * denominator is > 0 since r2 > 0 and A_j >= 0. */
-    const double transfer = (cos_i_r * cos_j_r / r2) / (MRGI_PI * r2 + vpl->area);
-    sum[0] += vpl->flux[0] * transfer;
-    sum[1] += vpl->flux[1] * transfer;
-    sum[2] += vpl->flux[2] * transfer;
   }
   irradiance[0] = sum[0];
   irradiance[1] = sum[1];
   irradiance[2] = sum[2];
-}
-
-static float mrgi_gather_store(double value)
-{
-  if (!(value > 0.0))
-  {
-    return 0.0f;
-  }
-  return value < FLT_MAX ? (float)value : FLT_MAX;
 }
 
 mrgi_status mrgi_gather_full(const mrgi_gather_receivers* receivers, const mrgi_vpl* vpls,
@@ -231,18 +155,17 @@ mrgi_status mrgi_gather_full(const mrgi_gather_receivers* receivers, const mrgi_
   const size_t pixel_count = (size_t)receivers->width * (size_t)receivers->height;
   for (size_t p = 0; p < pixel_count; ++p)
   {
-    const float* position = receivers->position + 4 * p;
-    const float* normal = receivers->normal + 4 * p;
     float* out = out_irradiance->pixels + 3 * p; /* same (bottom-up) order as the input */
-    if (!(position[3] > MRGI_VALID_THRESHOLD))
+    double receiver_position[3];
+    double receiver_normal[3];
+    const int receiver = mrgi_gather_receiver_prepare(receivers, p, receiver_position,
+                                                      receiver_normal);
+    if (receiver == 0)
     {
       ++info.receivers_invalid;
       continue; /* the image is zero-filled */
     }
-    const double receiver_position[3] = { position[0], position[1], position[2] };
-    double receiver_normal[3] = { normal[0], normal[1], normal[2] };
-    if (!isfinite(mrgi_dot3(receiver_position, receiver_position)) ||
-        !mrgi_normalize3(receiver_normal))
+    if (receiver < 0)
     {
       ++info.receivers_malformed;
       continue;

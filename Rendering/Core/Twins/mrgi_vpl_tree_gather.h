@@ -29,8 +29,13 @@
  *     B_P(x) = A_P / (pi d_min^2 + A_P)                     (B_P = 0 when A_P = 0)
  *
  * bounds the patch's form factor from above (it is increasing in A_P and
- * decreasing in d). B_P is in [0, 1]: B_P = 1 exactly when d_min = 0 (the
- * receiver is inside the patch's bounding sphere).
+ * decreasing in d): F_P(x) <= B_P(x) wherever within R_P of c_P the
+ * representative lies, and every texel t of P has
+ * A_t cos_x cos_t / (pi d_t^2 + A_t) <= B_P(x) (A_t <= A_P, d_t >= d_min).
+ * It does not bound the sum of the texels' disk form factors (the disk
+ * model counts overlapping solid angle twice when d_min is small); that
+ * sum is bounded by A_P / (pi d_min^2) instead. B_P is in [0, 1]: B_P = 1
+ * exactly when d_min = 0 (the receiver is inside the patch's bounding sphere).
  *
  * ## 2. The traversal (per receiver, every view, every root)
  *
@@ -39,7 +44,8 @@
  * while the stack is not empty, pop node P (level i) and:
  *
  * 1. skip P when its flux is (0, 0, 0): every descendant has zero flux too
- *    (fluxes are sums of non-negative texel fluxes);
+ *    (fluxes are sums of non-negative texel fluxes); a malformed record
+ *    (mrgi_gather.h; mrgi_vpl_tree_build() makes none) is skipped too;
  * 2. cull P when its whole bounding sphere is behind the receiver's plane,
  *    n_x . (c_P - x) + R_P <= 0: every texel of P has cos_x <= 0 and adds 0,
  *    so culling is exact for every tau;
@@ -50,10 +56,18 @@
  *    record (position, normal, area, flux; the pads are ignored), and count
  *    one VPL for the receiver.
  *
+ * Every node popped counts in nodes_visited; only step 4 counts a VPL (a
+ * culled node is no VPL). The node is brought into receiver space first
+ * (P' = R P + t, N' = normalize(R N), mrgi_gather.h); the cull and B_P use
+ * P' and the receiver, which a rigid map leaves at the same distances.
+ *
  * Consequences (the invariants core.TestVPLTreeGather checks):
  * - tau >= 1: no node is refined (B_P <= 1), every receiver uses the roots:
- *   the same sum as mrgi_gather_full() over mrgi_vpl_select_grid() with
- *   G = w_L (16 for S >= 16) on every view;
+ *   the same sum, term for term and in the same order, as mrgi_gather_full()
+ *   over the level-L records (pads ignored); for a power-of-two S those are
+ *   mrgi_vpl_select_grid() with G = w_L (16 for S >= 16) on every view
+ *   (mrgi_vpl_tree.h section 3). For another S the roots cover T/16-texel
+ *   blocks clipped to S, not the grid's floor(i S / 16) blocks;
  * - tau = 0: every node with A_P > 0 is refined down to level 0, so the sum
  *   is mrgi_gather_full() over every usable texel of the RSM as its own VPL
  *   (texels with A_t = 0 and flux > 0, which an RSM does not produce, would
@@ -86,11 +100,15 @@
  * ## Errors
  *
  * ::MRGI_ERR_INVALID_ARGUMENT for NULL arguments, a tree that was not
- * built (no nodes) or whose side exceeds MRGI_VPL_TREE_GATHER_MAX_RSM_SIZE,
+ * built (no nodes), whose layout, level offsets or node count are not what
+ * mrgi_vpl_tree_build() makes for its RSM size, or whose RSM side exceeds
+ * MRGI_VPL_TREE_GATHER_MAX_RSM_SIZE,
  * a tau that is NaN or negative (+inf is allowed and means tau >= 1), bad
  * receiver sizes, a non-rigid matrix (mrgi_gather_check_transform());
- * ::MRGI_ERR_OUT_OF_MEMORY. Invalid and malformed receivers get E = 0 and
- * 0 VPLs, as in mrgi_gather_full().
+ * ::MRGI_ERR_OUT_OF_MEMORY. On error both images are empty (zeroed structs)
+ * and the info is zero. Invalid and malformed receivers get E = 0 and
+ * 0 VPLs, as in mrgi_gather_full(). The gather allocates only its output
+ * images; the stack is MRGI_VPL_TREE_STACK_SIZE entries on the C stack.
  */
 #ifndef MRGI_VPL_TREE_GATHER_H
 #define MRGI_VPL_TREE_GATHER_H
@@ -132,8 +150,9 @@ typedef struct mrgi_vpl_tree_gather_info
 
 /**
  * @brief Roots per GPU batch (section 3): the largest K >= 1 with
- *        K * N_sub <= MRGI_VPL_TREE_MAX_LOOP_ITERATIONS; 0 for a tree
- *        that was not built.
+ *        K * N_sub <= MRGI_VPL_TREE_MAX_LOOP_ITERATIONS (not capped by the
+ *        root count: 65,535 for a one-level tree); 0 for a tree that was
+ *        not built or whose one root's subtree alone exceeds the limit (S > 2048).
  */
 int32_t mrgi_vpl_tree_roots_per_batch(const mrgi_vpl_tree* tree);
 
@@ -149,7 +168,11 @@ int32_t mrgi_vpl_tree_root_count(const mrgi_vpl_tree* tree);
 mrgi_status mrgi_vpl_tree_texture_size(const mrgi_vpl_tree* tree, int32_t* out_width,
                                        int32_t* out_height, mrgi_error* err);
 
-/** @brief B_P(x) of section 1 in double, for one node record and a world-space receiver. */
+/**
+ * @brief B_P(x) of section 1 in double, for one node record (c_P = position,
+ *        A_P = area, R_P = pad0) and a world-space receiver; 0 when A_P <= 0;
+ *        1 (refine) for NULL arguments or a distance that is not a number.
+ */
 double mrgi_vpl_tree_refinement_bound(const mrgi_vpl* node, const double receiver[3]);
 
 /**
@@ -159,7 +182,8 @@ double mrgi_vpl_tree_refinement_bound(const mrgi_vpl* node, const double receive
  * @param threshold          tau >= 0 (+inf allowed).
  * @param world_to_receiver  Rigid column-major 4x4, or NULL for identity (as mrgi_gather_full()).
  * @param out_irradiance     Receives a new W x H x 3 image of E (row 0 = bottom), as mrgi_gather_full().
- * @param out_vpls_per_pixel NULL, or receives a new W x H x 1 image: the VPLs each receiver used.
+ * @param out_vpls_per_pixel NULL, or receives a new W x H x 1 image: the VPLs each receiver used
+ *                           (row 0 = bottom; 0 for invalid and malformed receivers).
  * @param out_info           Receives counts; may be NULL.
  */
 mrgi_status mrgi_vpl_tree_gather(const mrgi_gather_receivers* receivers, const mrgi_vpl_tree* tree,
