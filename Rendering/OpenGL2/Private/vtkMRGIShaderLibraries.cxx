@@ -8,6 +8,7 @@
 #include "vtkMRGIMultiresSplatVS.h"
 #include "vtkMRGISpecularStencilFS.h"
 #include "vtkMRGIVPLIrradiance.h"
+#include "vtkMRGIVPLTree.h"
 #include "vtkMRGIVarianceShadowMomentsFS.h"
 #include "vtkMRGIVarianceShadowResolve.h"
 #include "vtkMRGIVisibilityBits.h"
@@ -38,6 +39,7 @@ const Library Libraries[] = {
   { "vtkMRGIVoxelMarch", vtkMRGIVoxelMarch, { "vtkMRGIVoxelBits", nullptr } },
   { "vtkMRGIVisibilityBits", vtkMRGIVisibilityBits, { nullptr } },
   { "vtkMRGIVPLIrradiance", vtkMRGIVPLIrradiance, { nullptr } },
+  { "vtkMRGIVPLTree", vtkMRGIVPLTree, { "vtkMRGIVPLIrradiance", nullptr } },
   // Ends with MRGI_AREA_LIGHT_DIFFUSE_DECLARED: the specular library then
   // skips the uniforms both declare.
   { "vtkMRGIAreaLightDiffuse", vtkMRGIAreaLightDiffuse, { nullptr } },

@@ -11,6 +11,7 @@
 #include "vtkMRGIShaderLibraries.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGISpecularStencil.h"
+#include "vtkMRGIVPLTreeTexture.h"
 #include "vtkMRGIVisibilityPyramid.h"
 #include "vtkMRGIVoxelization.h"
 #include "vtkObjectFactory.h"
@@ -27,6 +28,7 @@
 #include "mrgi_area_light.h"
 #include "mrgi_multires.h"
 #include "mrgi_voxel_march.h"
+#include "mrgi_vpl_tree.h"
 
 #include <algorithm>
 #include <array>
@@ -44,6 +46,12 @@ struct vtkMRGIGather::Internals
   std::vector<unsigned int> Queries;
   std::vector<long long> GatheredTexels;
   long long ValidPixels = -1;
+  // The tree gathers' VPLs per gathered texel (-1: not counted) and their
+  // count target (RGBA32F: nodes used, 0, 0, 1 where gathered).
+  double MeanVPLs = -1.0;
+  double MaxVPLs = -1.0;
+  vtkTextureObject* TreeCounts = nullptr;
+  int TreeCountsSize[2] = { 0, 0 };
   // Multiresolution splatting: the subsplat list (the selected texels,
   // sorted by level; host copy kept so that its capacity is reused from
   // frame to frame) in a vertex buffer with its vertex array.
@@ -69,6 +77,32 @@ struct vtkMRGIGather::Internals
     }
     this->GL.Prepare(window);
     return this->FlatIrradiance != nullptr;
+  }
+
+  // One occlusion query per level (texels gathered).
+  void AllocateQueries(vtkWindow* w, int levels)
+  {
+    if (this->Queries.size() != static_cast<size_t>(levels))
+    {
+      this->ReleaseQueries(w);
+      this->Queries.resize(static_cast<size_t>(levels));
+      glGenQueries(levels, this->Queries.data());
+    }
+  }
+
+  // The queries' counts into GatheredTexels (0 below `finest`). Blocking
+  // reads, which is why statistics are opt-in.
+  void ReadQueries(int finest, int levels)
+  {
+    for (int i = 0; i < levels; ++i)
+    {
+      GLuint passed = 0;
+      if (i >= finest)
+      {
+        glGetQueryObjectuiv(this->Queries[static_cast<size_t>(i)], GL_QUERY_RESULT, &passed);
+      }
+      this->GatheredTexels[static_cast<size_t>(i)] = static_cast<long long>(passed);
+    }
   }
 
   // Occlusion queries need the context: only with a window.
@@ -105,11 +139,12 @@ vtkMRGIGather::vtkMRGIGather()
 //------------------------------------------------------------------------------
 vtkMRGIGather::~vtkMRGIGather()
 {
-  if (this->Internal->GL.FrameBuffer || this->Internal->FlatIrradiance)
+  if (this->Internal->GL.FrameBuffer || this->Internal->FlatIrradiance || this->Internal->TreeCounts)
   {
     vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
   }
   vtkMRGIShaderUtilities::ReleaseTexture(this->Internal->FlatIrradiance, nullptr);
+  vtkMRGIShaderUtilities::ReleaseTexture(this->Internal->TreeCounts, nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -120,8 +155,11 @@ void vtkMRGIGather::ReleaseGraphicsResources(vtkWindow* w)
   in.ReleaseSplats(w);
   in.GL.Release(w);
   vtkMRGIShaderUtilities::ReleaseTexture(in.FlatIrradiance, w);
+  vtkMRGIShaderUtilities::ReleaseTexture(in.TreeCounts, w);
+  in.TreeCountsSize[0] = in.TreeCountsSize[1] = 0;
   in.GatheredTexels.clear();
   in.ValidPixels = -1;
+  in.MeanVPLs = in.MaxVPLs = -1.0;
 }
 
 //------------------------------------------------------------------------------
@@ -155,46 +193,114 @@ bool vtkMRGIGather::GatherVPLs(const vtkMRGIFrameContext& frame, vtkMRGIMultires
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIGather::GatherVPLTree(
+  const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer, const vtkMRGIVPLTreeTerm& tree)
+{
+  return this->Run(frame, buffer, nullptr, 0, nullptr, buffer ? buffer->GetStencilTexture() : nullptr,
+    &tree);
+}
+
+//------------------------------------------------------------------------------
 bool vtkMRGIGather::GatherFull(const vtkMRGIFrameContext& frame, vtkTextureObject* vpls,
   int vplCount, double strength, vtkTextureObject* irradiance, vtkTextureObject* indirect)
 {
+  if (!vpls || vplCount < 1)
+  {
+    this->Internal->MeanVPLs = this->Internal->MaxVPLs = -1.0;
+    vtkErrorMacro("the full-resolution gather needs at least one VPL");
+    return false;
+  }
+  return this->RunFull(frame, vpls, vplCount, nullptr, strength, irradiance, indirect);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIGather::GatherFullTree(const vtkMRGIFrameContext& frame, const vtkMRGIVPLTreeTerm& tree,
+  double strength, vtkTextureObject* irradiance, vtkTextureObject* indirect)
+{
+  return this->RunFull(frame, nullptr, 0, &tree, strength, irradiance, indirect);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIGather::RunFull(const vtkMRGIFrameContext& frame, vtkTextureObject* vpls, int vplCount,
+  const vtkMRGIVPLTreeTerm* tree, double strength, vtkTextureObject* irradiance,
+  vtkTextureObject* indirect)
+{
+  // Every pixel of the viewport gathers the VPL cache or traverses the tree.
   Internals& in = *this->Internal;
   vtkOpenGLRenderWindow* window = frame.Window;
-  if (!window || !frame.Position || !frame.Normal || !frame.Albedo || !vpls || vplCount < 1 ||
-    !irradiance || !indirect)
+  in.MeanVPLs = in.MaxVPLs = -1.0;
+  if (!window || !frame.Position || !frame.Normal || !frame.Albedo || !irradiance || !indirect)
   {
-    vtkErrorMacro("the full-resolution gather needs a window, the G-buffer, at least one VPL "
-                  "and its two targets");
+    vtkErrorMacro("the full-resolution gather needs a window, the G-buffer and its two targets");
+    return false;
+  }
+  int roots = 0, rootsPerBatch = 0;
+  if (tree && !this->CheckTree(window, *tree, roots, rootsPerBatch))
+  {
     return false;
   }
   in.GL.Prepare(window);
-  vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(window, "gather.full", "",
-    [] { return vtkMRGIShaderLibraries::Compose({ "vtkMRGIGatherFS" }); });
-  if (!quad)
+  const bool count = tree && this->CollectStatistics;
+  const std::string defines = std::string(tree ? "#define MRGI_GATHER_TREE 1\n" : "") +
+    (count ? "#define MRGI_GATHER_COUNT_TARGET 2\n" : "");
+  vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(window, "gather.full", defines, [tree] {
+    return tree ? vtkMRGIShaderLibraries::Compose({ "vtkMRGIVPLTree", "vtkMRGIGatherFS" })
+                : vtkMRGIShaderLibraries::Compose({ "vtkMRGIGatherFS" });
+  });
+  if (!quad ||
+    (count &&
+      !vtkMRGIShaderUtilities::EnsureTexture(window, in.TreeCounts, in.TreeCountsSize, GL_RGBA32F,
+        static_cast<int>(irradiance->GetWidth()), static_cast<int>(irradiance->GetHeight()))))
   {
-    vtkErrorMacro("could not build the MRGI gather shader");
+    vtkErrorMacro("could not build the MRGI gather shader or its count target");
     return false;
   }
   vtkShaderProgram* program = quad->Program;
-  vtkMRGIFullScreenStep step(window, in.GL.FrameBuffer);
-  step.Target(irradiance, indirect, frame.Viewport[0], frame.Viewport[1], frame.Viewport[2],
-    frame.Viewport[3]);
-  frame.Position->Activate();
-  frame.Normal->Activate();
-  frame.Albedo->Activate();
-  vpls->Activate();
-  program->SetUniformi("mrgiPosition", frame.Position->GetTextureUnit());
-  program->SetUniformi("mrgiNormal", frame.Normal->GetTextureUnit());
-  program->SetUniformi("mrgiAlbedo", frame.Albedo->GetTextureUnit());
-  program->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
-  program->SetUniformi("mrgiVPLCount", vplCount);
-  program->SetUniformf("mrgiStrength", static_cast<float>(strength));
-  program->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
-  quad->Render();
-  vpls->Deactivate();
-  frame.Albedo->Deactivate();
-  frame.Normal->Deactivate();
-  frame.Position->Deactivate();
+  {
+    vtkMRGIFullScreenStep step(window, in.GL.FrameBuffer);
+    step.Target(irradiance, indirect, frame.Viewport[0], frame.Viewport[1], frame.Viewport[2],
+      frame.Viewport[3]);
+    if (count)
+    {
+      in.GL.FrameBuffer->AddColorAttachment(2, in.TreeCounts);
+      vtkMRGIShaderUtilities::SelectDrawBuffers(in.GL.FrameBuffer, 3);
+    }
+    vtkTextureObject* light = tree ? tree->Nodes : vpls;
+    frame.Position->Activate();
+    frame.Normal->Activate();
+    frame.Albedo->Activate();
+    light->Activate();
+    program->SetUniformi("mrgiPosition", frame.Position->GetTextureUnit());
+    program->SetUniformi("mrgiNormal", frame.Normal->GetTextureUnit());
+    program->SetUniformi("mrgiAlbedo", frame.Albedo->GetTextureUnit());
+    program->SetUniformf("mrgiStrength", static_cast<float>(strength));
+    program->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
+    if (tree)
+    {
+      vtkMRGIVPLTreeTexture::DrawBatches(program, tree->Tree, tree->Nodes, tree->Threshold, roots,
+        rootsPerBatch, step.GetState(), [&](int) { quad->Render(); });
+    }
+    else
+    {
+      program->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
+      program->SetUniformi("mrgiVPLCount", vplCount);
+      quad->Render();
+    }
+    light->Deactivate();
+    frame.Albedo->Deactivate();
+    frame.Normal->Deactivate();
+    frame.Position->Deactivate();
+  }
+  if (count)
+  {
+    vtkMRGIVPLTreeTexture::ReadCounts(window, in.TreeCounts, frame.Viewport, in.MeanVPLs, in.MaxVPLs);
+  }
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("OpenGL error " << error << " in the full-resolution gather");
+    return false;
+  }
   return true;
 }
 
@@ -215,7 +321,8 @@ bool vtkMRGIGather::GatherAreaLight(const vtkMRGIFrameContext& frame, vtkMRGIMul
 
 //------------------------------------------------------------------------------
 bool vtkMRGIGather::Run(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
-  vtkTextureObject* vpls, int vplCount, const vtkMRGIAreaLightTerm* term, vtkTextureObject* stencil)
+  vtkTextureObject* vpls, int vplCount, const vtkMRGIAreaLightTerm* term, vtkTextureObject* stencil,
+  const vtkMRGIVPLTreeTerm* tree)
 {
   Internals& in = *this->Internal;
   vtkOpenGLRenderWindow* window = frame.Window;
@@ -232,7 +339,9 @@ bool vtkMRGIGather::Run(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution
   const int levels = layout.level_count;
   in.GatheredTexels.assign(static_cast<size_t>(levels), -1);
   in.ValidPixels = -1;
-  bool ok = this->GatherMode == GatherSplatting && !term
+  in.MeanVPLs = in.MaxVPLs = -1.0;
+  bool ok = tree ? this->RunStenciledTree(frame, buffer, layout, *tree, stencil)
+    : this->GatherMode == GatherSplatting && !term
     ? this->RunSplatting(frame, buffer, layout, vpls, vplCount)
     : this->RunStenciled(frame, buffer, layout, vpls, vplCount, term, stencil);
   if (ok && this->CollectStatistics)
@@ -309,11 +418,9 @@ bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultir
   {
     return false;
   }
-  if (this->CollectStatistics && in.Queries.size() != static_cast<size_t>(levels))
+  if (this->CollectStatistics)
   {
-    in.ReleaseQueries(window);
-    in.Queries.resize(static_cast<size_t>(levels));
-    glGenQueries(levels, in.Queries.data());
+    in.AllocateQueries(window, levels);
   }
   vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
   vtkOpenGLState* ostate = steps.GetState();
@@ -435,16 +542,113 @@ bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultir
   steps.EndStencilRead();
   if (this->CollectStatistics)
   {
-    // Blocking reads, which is why statistics are opt-in.
-    for (int i = 0; i < levels; ++i)
+    in.ReadQueries(finest, levels);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIGather::UploadVPLTree(
+  vtkOpenGLRenderWindow* window, const mrgi_vpl_tree* tree, vtkTextureObject* nodes)
+{
+  std::string error;
+  if (!vtkMRGIVPLTreeTexture::Upload(window, tree, nodes, error))
+  {
+    vtkGenericWarningMacro("vtkMRGIGather::UploadVPLTree: " << error);
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIGather::CheckTree(
+  vtkOpenGLRenderWindow* window, const vtkMRGIVPLTreeTerm& tree, int& roots, int& rootsPerBatch)
+{
+  std::string error;
+  if (!window)
+  {
+    error = "the tree gather needs a window";
+  }
+  if (!window ||
+    !vtkMRGIVPLTreeTexture::Check(tree.Tree, tree.Nodes, tree.Threshold, roots, rootsPerBatch, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIGather::RunStenciledTree(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
+  const mrgi_multires_layout& layout, const vtkMRGIVPLTreeTerm& tree, vtkTextureObject* stencil)
+{
+  // The stenciled gather (one draw per level, early stencil culling) with
+  // the tree as the light term: per level, one draw per batch of roots.
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  int roots = 0, rootsPerBatch = 0;
+  if (!this->CheckTree(window, tree, roots, rootsPerBatch))
+  {
+    return false;
+  }
+  const bool count = this->CollectStatistics;
+  const int levels = layout.level_count;
+  const int finest = buffer->GetFinestGatherLevel();
+  vtkMRGIShaderUtilities::ScopedStage gatherStep(frame.Timer, "gather.tree");
+  const std::string defines = std::string("#define MRGI_GATHER_IRRADIANCE_ONLY 1\n"
+                                          "#define MRGI_GATHER_TREE 1\n") +
+    (count ? "#define MRGI_GATHER_COUNT_TARGET 1\n" : "");
+  vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(window, "gather.tree", defines,
+    [] { return vtkMRGIShaderLibraries::Compose({ "vtkMRGIVPLTree", "vtkMRGIGatherFS" }); });
+  vtkShaderProgram* gather = quad ? quad->Program : nullptr;
+  if (!gather ||
+    (count &&
+      !vtkMRGIShaderUtilities::EnsureTexture(window, in.TreeCounts, in.TreeCountsSize, GL_RGBA32F,
+        layout.total_width, layout.total_height)))
+  {
+    return false;
+  }
+  if (this->CollectStatistics)
+  {
+    in.AllocateQueries(window, levels);
+  }
+  {
+    vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
+    vtkOpenGLState* ostate = steps.GetState();
+    steps.Target(in.FlatIrradiance, count ? in.TreeCounts : nullptr, 0, 0, layout.total_width,
+      layout.total_height);
+    steps.BeginStencilRead(stencil);
+    tree.Nodes->Activate();
+    gather->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
+    for (int i = finest; i < levels; ++i)
     {
-      GLuint passed = 0;
-      if (i >= finest)
-      {
-        glGetQueryObjectuiv(in.Queries[static_cast<size_t>(i)], GL_QUERY_RESULT, &passed);
-      }
-      in.GatheredTexels[static_cast<size_t>(i)] = static_cast<long long>(passed);
+      const std::array<vtkTextureObject*, 2> receivers = buffer->BindReceivers(gather, i);
+      ostate->vtkglViewport(layout.level_offset[i], 0, layout.level_width[i], layout.level_height[i]);
+      vtkMRGIVPLTreeTexture::DrawBatches(gather, tree.Tree, tree.Nodes, tree.Threshold, roots, rootsPerBatch,
+        ostate, [&](int batch) {
+        // The first batch's query counts the texels gathered at this level.
+        const bool query = this->CollectStatistics && batch == 0;
+        if (query)
+        {
+          glBeginQuery(GL_SAMPLES_PASSED, in.Queries[static_cast<size_t>(i)]);
+        }
+        quad->Render();
+        if (query)
+        {
+          glEndQuery(GL_SAMPLES_PASSED);
+        }
+      });
+      receivers[1]->Deactivate();
+      receivers[0]->Deactivate();
     }
+    tree.Nodes->Deactivate();
+    steps.EndStencilRead();
+  }
+  if (this->CollectStatistics)
+  {
+    in.ReadQueries(finest, levels);
+    const int region[4] = { 0, 0, layout.total_width, layout.total_height };
+    vtkMRGIVPLTreeTexture::ReadCounts(window, in.TreeCounts, region, in.MeanVPLs, in.MaxVPLs);
   }
   return true;
 }
@@ -670,6 +874,18 @@ double vtkMRGIGather::GetGatherWorkFraction() const
     return -1.0;
   }
   return in.ValidPixels > 0 ? static_cast<double>(total) / static_cast<double>(in.ValidPixels) : 0.0;
+}
+
+//------------------------------------------------------------------------------
+double vtkMRGIGather::GetMeanVPLsPerPixel() const
+{
+  return this->Internal->MeanVPLs;
+}
+
+//------------------------------------------------------------------------------
+double vtkMRGIGather::GetMaxVPLsPerPixel() const
+{
+  return this->Internal->MaxVPLs;
 }
 
 //------------------------------------------------------------------------------

@@ -22,14 +22,25 @@
  * vtkMRGIAreaLightDiffuse.glsl; multiresolution splatting
  * vtkMRGIMultiresSplat{VS,FS}.glsl.
  *
+ * The VPL-tree gather (nichols-shopf-wyman-2009 3.5, GatherVPLTree() and
+ * GatherFullTree()): the light term is the light-space VPL tree of
+ * mrgi_vpl_tree.h in one texture (vtkMRGIVPLTreeTerm); every receiver walks
+ * it from its roots and refines a node where its form-factor bound exceeds
+ * tau. C twin mrgi_vpl_tree_gather() (mrgi_vpl_tree_gather.h, whose section
+ * 3 fixes the texture layout and the batches of roots); shader
+ * vtkMRGIGatherFS.glsl with MRGI_GATHER_TREE and vtkMRGIVPLTree.glsl.
+ *
  * With CollectStatistics on, an occlusion query per level counts the
- * texels gathered (nichols-shopf-wyman-2009 table 1).
+ * texels gathered (nichols-shopf-wyman-2009 table 1), and the tree gathers
+ * count the VPLs (tree nodes) each gathered texel used.
  */
 #ifndef vtkMRGIGather_h
 #define vtkMRGIGather_h
 
 #include "MRGIRenderingModule.h" // For export macro
 #include "vtkObject.h"
+
+#include "mrgi_vpl_tree_gather.h" // For MRGI_VPL_TREE_DEFAULT_THRESHOLD
 
 #include <functional> // For std::function
 #include <memory>     // For std::unique_ptr
@@ -66,6 +77,22 @@ struct vtkMRGIAreaLightTerm
   const mrgi_area_light_uniforms* Light = nullptr;
   vtkMRGIVoxelization* Voxels = nullptr;
   vtkMRGIVisibilityPyramid* Masks = nullptr;
+};
+
+/**
+ * The light term of a VPL-tree gather (nichols-shopf-wyman-2009 3.5): the
+ * tree's node records in one RGBA32F texture of the
+ * mrgi_vpl_tree_texture_size() layout (UploadVPLTree() makes it), the C
+ * tree the texture holds (its layout, level_first and view count drive the
+ * traversal; its records are not read here), and the refinement threshold
+ * tau (>= 0; >= 1 gathers the 16 x 16 roots of each view only, 0 every
+ * RSM texel).
+ */
+struct vtkMRGIVPLTreeTerm
+{
+  vtkTextureObject* Nodes = nullptr;     // RGBA32F tree texture, mrgi_vpl_tree_texture_size() layout
+  const mrgi_vpl_tree* Tree = nullptr;   // the C tree the texture holds (layout, level_first, view_count)
+  double Threshold = MRGI_VPL_TREE_DEFAULT_THRESHOLD; // tau
 };
 #endif
 
@@ -137,6 +164,43 @@ public:
     double strength, vtkTextureObject* irradiance, vtkTextureObject* indirect);
 
   /**
+   * The stenciled multiresolution gather with the VPL tree as the light
+   * term: the texels the buffer's selection selects (receivers built this
+   * frame) each traverse the tree (mrgi_vpl_tree_gather.h section 2) into
+   * the flattened irradiance buffer, as GatherVPLs() does with the VPL
+   * cache. Always stenciled: the splatting mode (GatherMode) has no tree
+   * form, since each receiver chooses its own VPLs. The roots are gathered
+   * in batches of mrgi_vpl_tree_roots_per_batch(), one draw per level and
+   * batch, added by blending (llvmpipe stops a loop silently after 65,535
+   * iterations). Timer step "gather.tree". False, with an error naming the
+   * problem, on a missing or unbuilt tree, a texture of the wrong size, a
+   * tau that is NaN or negative, an RSM larger than
+   * MRGI_VPL_TREE_GATHER_MAX_RSM_SIZE or a tree texture taller than
+   * GL_MAX_TEXTURE_SIZE.
+   */
+  bool GatherVPLTree(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
+    const vtkMRGIVPLTreeTerm& tree);
+
+  /**
+   * The full-resolution gather (as GatherFull()) with the VPL tree as the
+   * light term: every pixel of frame.Viewport traverses the tree, writing E
+   * into `irradiance` and strength x albedo x E into `indirect`. Batches and
+   * errors as GatherVPLTree(); no timer step of its own.
+   */
+  bool GatherFullTree(const vtkMRGIFrameContext& frame, const vtkMRGIVPLTreeTerm& tree,
+    double strength, vtkTextureObject* irradiance, vtkTextureObject* indirect);
+
+  /**
+   * Upload `tree`'s node records into `nodes` in the layout of
+   * mrgi_vpl_tree_texture_size() (RGBA32F, records followed by zero
+   * records), reallocating it when its size differs. False, with an error,
+   * for a tree that was not built or a texture larger than
+   * GL_MAX_TEXTURE_SIZE.
+   */
+  static bool UploadVPLTree(vtkOpenGLRenderWindow* window, const mrgi_vpl_tree* tree,
+    vtkTextureObject* nodes);
+
+  /**
    * Gather the direct light of one area light (its term, see
    * vtkMRGIAreaLightTerm) at the texels `stencil` selects: the buffer's
    * selection (GetStencilTexture()) or the incremental stencil
@@ -182,6 +246,16 @@ public:
    */
   double GetGatherWorkFraction() const;
 
+  /**
+   * VPLs (tree nodes) per gathered texel of the last tree gather with
+   * CollectStatistics on: the mean and the largest count over the texels
+   * gathered (stenciled: the selected texels, full: the viewport's pixels;
+   * background and malformed receivers not counted); -1 when not counted
+   * (statistics off, or the last gather was not a tree gather).
+   */
+  double GetMeanVPLsPerPixel() const;
+  double GetMaxVPLsPerPixel() const;
+
   /** Free every GL resource. */
   void ReleaseGraphicsResources(vtkWindow* w);
 
@@ -197,14 +271,26 @@ protected:
   // cannot be allocated.
   bool PrepareTarget(vtkOpenGLRenderWindow* window, const mrgi_multires_layout& layout);
   // The gathers after their inputs are checked: the stenciled one (VPLs, or
-  // the area light of `term`) and the splatting (VPLs only).
+  // the area light of `term`), the splatting (VPLs only) and the stenciled
+  // tree gather (CheckTree() passed).
   bool Run(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer, vtkTextureObject* vpls,
-    int vplCount, const vtkMRGIAreaLightTerm* term, vtkTextureObject* stencil);
+    int vplCount, const vtkMRGIAreaLightTerm* term, vtkTextureObject* stencil,
+    const vtkMRGIVPLTreeTerm* tree = nullptr);
   bool RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
     const mrgi_multires_layout& layout, vtkTextureObject* vpls, int vplCount,
     const vtkMRGIAreaLightTerm* term, vtkTextureObject* stencil);
   bool RunSplatting(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
     const mrgi_multires_layout& layout, vtkTextureObject* vpls, int vplCount);
+  // The full-resolution gather of the VPL cache (`tree` null) or the tree.
+  bool RunFull(const vtkMRGIFrameContext& frame, vtkTextureObject* vpls, int vplCount,
+    const vtkMRGIVPLTreeTerm* tree, double strength, vtkTextureObject* irradiance,
+    vtkTextureObject* indirect);
+  bool RunStenciledTree(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
+    const mrgi_multires_layout& layout, const vtkMRGIVPLTreeTerm& tree, vtkTextureObject* stencil);
+  // The tree term checked (section "Errors" of GatherVPLTree()): its roots
+  // and roots per batch. False, with an error, when it cannot be gathered.
+  bool CheckTree(vtkOpenGLRenderWindow* window, const vtkMRGIVPLTreeTerm& tree, int& roots,
+    int& rootsPerBatch);
 #endif
 
   struct Internals;

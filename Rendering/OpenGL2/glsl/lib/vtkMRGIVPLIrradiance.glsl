@@ -28,20 +28,31 @@ int mrgiClassifyReceiver(vec4 positionVC, vec3 normalVC, mat4 viewToWorld, out v
   return 2;
 }
 
+// E_ij of one VPL record (its three texels: position.xyz and area in w,
+// normal.xyz, flux.rgb; the w of the normal and flux texels is ignored, so
+// the VPL tree's pads R_P and Dmax_P may ride along) at receiver (P, N),
+// world space. Zero-flux VPLs, coincident points and back-facing pairs
+// give 0. The cache gather and the tree gather (vtkMRGIVPLTree.glsl) both
+// call this, so their terms are the same float operations.
+vec3 mrgiVPLRecordIrradiance(vec4 position, vec3 normal, vec3 flux, vec3 P, vec3 N)
+{
+  if (flux.r == 0.0 && flux.g == 0.0 && flux.b == 0.0) { return vec3(0.0); }
+  vec3 d = position.xyz - P;
+  float r2 = dot(d, d);
+  if (r2 == 0.0) { return vec3(0.0); }
+  vec3 Nj = normalize(normal);
+  float cosIr = dot(N, d);
+  float cosJr = -dot(Nj, d);
+  if (cosIr <= 0.0 || cosJr <= 0.0) { return vec3(0.0); }
+  return flux * ((cosIr * cosJr / r2) / (MRGI_PI * r2 + position.w));
+}
+
 // E_ij: VPL j of the cache (MRGI_VPL_TEXELS texels per VPL) at receiver
-// (P, N), world space. Zero-flux VPLs, coincident points and back-facing
-// pairs give 0.
+// (P, N), world space. The flux is read first: zero-flux VPLs fetch nothing more.
 vec3 mrgiVPLIrradiance(sampler2D vpls, int j, vec3 P, vec3 N)
 {
   vec4 flux = texelFetch(vpls, ivec2(MRGI_VPL_TEXEL_FLUX, j), 0);
   if (flux.r == 0.0 && flux.g == 0.0 && flux.b == 0.0) { return vec3(0.0); }
-  vec4 position = texelFetch(vpls, ivec2(MRGI_VPL_TEXEL_POSITION, j), 0);
-  vec3 d = position.xyz - P;
-  float r2 = dot(d, d);
-  if (r2 == 0.0) { return vec3(0.0); }
-  vec3 Nj = normalize(texelFetch(vpls, ivec2(MRGI_VPL_TEXEL_NORMAL, j), 0).xyz);
-  float cosIr = dot(N, d);
-  float cosJr = -dot(Nj, d);
-  if (cosIr <= 0.0 || cosJr <= 0.0) { return vec3(0.0); }
-  return flux.rgb * ((cosIr * cosJr / r2) / (MRGI_PI * r2 + position.w));
+  return mrgiVPLRecordIrradiance(texelFetch(vpls, ivec2(MRGI_VPL_TEXEL_POSITION, j), 0),
+    texelFetch(vpls, ivec2(MRGI_VPL_TEXEL_NORMAL, j), 0).xyz, flux.rgb, P, N);
 }

@@ -4,7 +4,12 @@
 // are vtkMRGIVPLIrradiance.glsl, prepended by the C++ side. With
 // MRGI_GATHER_AREA_LIGHT defined (and vtkMRGIAreaLightDiffuse.glsl prepended) the
 // same pass gathers an area light's samples instead of the VPLs
-// (nichols-penmatsa-wyman-2010 3.2): same receivers, same selection.
+// (nichols-penmatsa-wyman-2010 3.2): same receivers, same selection. With
+// MRGI_GATHER_TREE defined (and vtkMRGIVPLTree.glsl prepended) the light
+// term is one batch of the VPL tree's roots (nichols-shopf-wyman-2009 3.5,
+// C twin mrgi_vpl_tree_gather()); with MRGI_GATHER_COUNT_TARGET also
+// defined, that output gets (nodes used as VPLs, 0, 0, 1) at gathered
+// receivers (the VPLs-per-pixel statistic), batches summed by blending.
 // MRGI's buffers are as large as the window: gl_FragCoord addresses them
 // directly; the multiresolution gather, drawn level by level into the
 // flattened layout, reads each level's receivers at gl_FragCoord + mrgiReceiverOffset.
@@ -18,6 +23,14 @@ uniform mat4 mrgiVCToWC;         // eye -> world (rigid)
 uniform float mrgiStrength;      // IndirectStrength
 uniform ivec2 mrgiReceiverOffset; // receiver texel of fragment (0, 0); 0 for the full gather
 //VTK::Output::Dec
+// The count target's write (VTK renames gl_FragData[i] by its literal index).
+#if defined(MRGI_GATHER_COUNT_TARGET) && MRGI_GATHER_COUNT_TARGET == 1
+#define mrgiWriteCount(value) gl_FragData[1] = (value)
+#elif defined(MRGI_GATHER_COUNT_TARGET)
+#define mrgiWriteCount(value) gl_FragData[2] = (value)
+#else
+#define mrgiWriteCount(value)
+#endif
 void main()
 {
   ivec2 pixel = ivec2(gl_FragCoord.xy) + mrgiReceiverOffset;
@@ -28,6 +41,7 @@ void main()
 #ifndef MRGI_GATHER_IRRADIANCE_ONLY
     gl_FragData[1] = vec4(0.0);
 #endif
+    mrgiWriteCount(vec4(0.0));
     return;
   }
   vec3 P;
@@ -39,11 +53,17 @@ void main()
 #ifndef MRGI_GATHER_IRRADIANCE_ONLY
     gl_FragData[1] = vec4(0.0, 0.0, 0.0, 1.0);
 #endif
+    mrgiWriteCount(vec4(0.0)); // malformed: not a gathered receiver
     return;
   }
 #ifdef MRGI_GATHER_AREA_LIGHT
   // Direct light of one area light (vtkMRGIAreaLightDiffuse.glsl, prepended).
   vec3 E = mrgiAreaLightDiffuse(P, N, positionVC.xyz, normalVC);
+#elif defined(MRGI_GATHER_TREE)
+  // One batch of roots of the VPL tree (vtkMRGIVPLTree.glsl, prepended).
+  int used;
+  vec3 E = mrgiVPLTreeIrradiance(P, N, used);
+  mrgiWriteCount(vec4(float(used), 0.0, 0.0, 1.0));
 #else
   vec3 E = vec3(0.0);
   for (int j = 0; j < mrgiVPLCount; ++j)
