@@ -858,6 +858,12 @@ int main(int argc, char* argv[])
       std::printf("gathered / valid pixels: %.4f (of %lld valid pixels)\n",
         gather->GetGatherWorkFraction(), static_cast<long long>(gather->GetNumberOfValidPixels()));
     }
+    if (mrgi->GetGather()->GetMeanVPLsPerPixel() >= 0)
+    {
+      // The VPL tree (NSW09 3.5): nodes each gathered pixel used, last frame.
+      std::printf("VPLs per pixel (tree): mean %.2f, max %.0f\n",
+        mrgi->GetGather()->GetMeanVPLsPerPixel(), mrgi->GetGather()->GetMaxVPLsPerPixel());
+    }
     std::printf("%-24s %12.3f\n", "frame (wall)", Median(frameTimes));
     if (stageOrder.empty())
     {

@@ -561,7 +561,9 @@ bool vtkMRGIPass::RenderMultiresolution(const vtkMRGIFrameContext& frame, int vp
     ScopedStage stage(timer, "gather");
     if (!mr->BuildReceivers(
           frame.Window, frame.Position, frame.Normal, frame.Viewport[0], frame.Viewport[1], timer) ||
-      !this->Gather->GatherVPLs(frame, mr, this->VPLSelection->GetVPLTexture(), vplCount))
+      !(this->VPLSelection->GetMode() == vtkMRGIVPLSelection::Tree
+          ? this->Gather->GatherVPLTree(frame, mr, this->VPLSelection->GetTreeTerm())
+          : this->Gather->GatherVPLs(frame, mr, this->VPLSelection->GetVPLTexture(), vplCount)))
     {
       return false;
     }
@@ -796,8 +798,11 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
       else
       {
         ScopedStage stage(timer, "gather");
-        gathered = this->Gather->GatherFull(frame, this->VPLSelection->GetVPLTexture(), vplCount,
-          this->IndirectStrength, in.GBuffer.Irradiance, in.GBuffer.Indirect);
+        gathered = this->VPLSelection->GetMode() == vtkMRGIVPLSelection::Tree
+          ? this->Gather->GatherFullTree(frame, this->VPLSelection->GetTreeTerm(),
+              this->IndirectStrength, in.GBuffer.Irradiance, in.GBuffer.Indirect)
+          : this->Gather->GatherFull(frame, this->VPLSelection->GetVPLTexture(), vplCount,
+              this->IndirectStrength, in.GBuffer.Irradiance, in.GBuffer.Indirect);
       }
       if (gathered)
       {

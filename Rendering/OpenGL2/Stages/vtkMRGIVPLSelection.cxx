@@ -1,6 +1,7 @@
 #include "vtkMRGIVPLSelection.h"
 
 #include "vtkFloatArray.h"
+#include "vtkMRGIGather.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMath.h"
@@ -13,6 +14,8 @@
 #include "vtkOpenGLState.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
+
+#include "vtkMRGIVPLTreeTexture.h"
 
 #include "vtkMRGIVPLGridFS.h"
 
@@ -169,6 +172,15 @@ const mrgi_vpl_tree* vtkMRGIVPLSelection::GetTree() const
   return this->Internal->Tree.node_count > 0 ? &this->Internal->Tree : nullptr;
 }
 
+vtkMRGIVPLTreeTerm vtkMRGIVPLSelection::GetTreeTerm() const
+{
+  vtkMRGIVPLTreeTerm term;
+  term.Nodes = this->GetTreeTexture();
+  term.Tree = this->GetTree();
+  term.Threshold = this->TreeThreshold;
+  return term;
+}
+
 //------------------------------------------------------------------------------
 bool vtkMRGIVPLSelection::ReadVPLs(vtkOpenGLRenderWindow* window, vtkFloatArray* vpls)
 {
@@ -258,32 +270,6 @@ bool ViewCamera(vtkMRGIReflectiveShadowMapPass* rsm, int view, mrgi_rsm_view_cam
   camera.projection.parallel_scale = camera.projection.parallel ? 1.0 / projection[5] : 1.0;
   return true;
 }
-
-// TODO(treecore): mrgi_vpl_tree_texture_size() and mrgi_vpl_tree_root_count()
-// once branch treecore is merged. Until then the header's formulas
-// (mrgi_vpl_tree_gather.h section 3).
-bool TreeTextureSize(const mrgi_vpl_tree& tree, int32_t& width, int32_t& height)
-{
-  if (tree.node_count < 1)
-  {
-    return false;
-  }
-  width = MRGI_VPL_TREE_RECORDS_PER_ROW * MRGI_VPL_TEXELS;
-  const int64_t rows =
-    (tree.node_count + MRGI_VPL_TREE_RECORDS_PER_ROW - 1) / MRGI_VPL_TREE_RECORDS_PER_ROW;
-  height = static_cast<int32_t>(std::min<int64_t>(rows, INT32_MAX));
-  return true;
-}
-
-int32_t TreeRootCount(const mrgi_vpl_tree& tree)
-{
-  if (tree.node_count < 1)
-  {
-    return 0;
-  }
-  const int64_t w = tree.layout.level_width[tree.layout.level_count - 1];
-  return static_cast<int32_t>(tree.view_count * w * w);
-}
 }
 
 //------------------------------------------------------------------------------
@@ -319,7 +305,7 @@ int vtkMRGIVPLSelection::SelectTree(
   vtkOpenGLRenderWindow* window, vtkMRGIReflectiveShadowMapPass* rsm, std::vector<mrgi_vpl>& roots)
 {
   roots.clear();
-  this->ReleaseTree(window);
+  mrgi_vpl_tree_destroy(&this->Internal->Tree); // the texture stays for the next upload
   if (std::isnan(this->TreeThreshold))
   {
     vtkErrorMacro("VPL tree: TreeThreshold is NaN; expected a number >= 0 or +inf");
@@ -357,49 +343,22 @@ int vtkMRGIVPLSelection::SelectTree(
   }
 
   // The texture (mrgi_vpl_tree_gather.h section 3): records row-major,
-  // MRGI_VPL_TREE_RECORDS_PER_ROW per row, zero records after the last.
-  int32_t width = 0, height = 0;
-  if (!TreeTextureSize(tree, width, height))
+  // MRGI_VPL_TREE_RECORDS_PER_ROW per row, zero records after the last; the
+  // tree gather's own upload, so that the layout has one implementation.
+  if (!this->Internal->TreeTexture)
   {
-    vtkErrorMacro("VPL tree: the tree has no nodes");
+    this->Internal->TreeTexture = vtkTextureObject::New();
+  }
+  std::string error;
+  if (!vtkMRGIVPLTreeTexture::Upload(window, &tree, this->Internal->TreeTexture, error))
+  {
+    vtkErrorMacro(<< "VPL tree: " << error << "; no tree, no indirect light");
     this->ReleaseTree(window);
     return 0;
   }
-  GLint maxSize = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-  if (width > maxSize || height > maxSize)
-  {
-    vtkErrorMacro(<< "VPL tree: its texture of " << width << " x " << height
-                  << " texels exceeds GL_MAX_TEXTURE_SIZE (" << maxSize << ") for "
-                  << tree.node_count << " nodes; use a smaller RSM");
-    this->ReleaseTree(window);
-    return 0;
-  }
-  const size_t records = static_cast<size_t>(width / MRGI_VPL_TEXELS) * static_cast<size_t>(height);
-  std::vector<mrgi_vpl> padded(records); // value-initialized: zero padding
-  std::memcpy(padded.data(), tree.nodes, sizeof(mrgi_vpl) * static_cast<size_t>(tree.node_count));
-  vtkTextureObject*& texture = this->Internal->TreeTexture;
-  texture = vtkTextureObject::New();
-  texture->SetContext(window);
-  texture->SetFormat(GL_RGBA);
-  texture->SetInternalFormat(GL_RGBA32F);
-  texture->SetDataType(GL_FLOAT);
-  texture->SetMinificationFilter(vtkTextureObject::Nearest);
-  texture->SetMagnificationFilter(vtkTextureObject::Nearest);
-  if (!texture->Allocate2D(static_cast<unsigned int>(width), static_cast<unsigned int>(height), 4,
-        VTK_FLOAT))
-  {
-    vtkErrorMacro(<< "VPL tree: could not allocate its " << width << " x " << height << " texture");
-    this->ReleaseTree(window);
-    return 0;
-  }
-  texture->Bind();
-  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT,
-    mrgi_vpl_texture_data(padded.data()));
-  texture->Deactivate();
 
   // The flat cache: the roots (level L, records 0..V w_L^2 - 1), pads cleared (mrgi_vpl.h).
-  const int32_t rootCount = TreeRootCount(tree);
+  const int32_t rootCount = mrgi_vpl_tree_root_count(&tree);
   roots.assign(tree.nodes, tree.nodes + rootCount);
   for (mrgi_vpl& root : roots)
   {

@@ -55,6 +55,7 @@
 struct mrgi_vpl;
 struct mrgi_vpl_tree;
 struct mrgi_rsm_view_camera;
+struct vtkMRGIVPLTreeTerm;
 
 class vtkFloatArray;
 class vtkMRGIReflectiveShadowMapPass;
@@ -159,6 +160,9 @@ public:
 #ifndef __VTK_WRAP__
   /** Tree mode: the C tree the texture was uploaded from (world space), or nullptr. */
   const mrgi_vpl_tree* GetTree() const;
+
+  /** Tree mode: the gather's light term (texture, tree, TreeThreshold); null members without a tree. */
+  vtkMRGIVPLTreeTerm GetTreeTerm() const;
 #endif
 
   /**
