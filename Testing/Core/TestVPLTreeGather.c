@@ -269,7 +269,8 @@ static void test_threshold_one_is_the_grid(void)
     {
       memcpy(reference, tree.nodes, sizeof(mrgi_vpl) * (size_t)roots); /* level L first */
     }
-    test_receivers sets[2] = { light_view_receivers(&map), random_receivers(31u + (uint32_t)which, 32, 24) };
+    test_receivers sets[2] = { light_view_receivers(&map),
+                                random_receivers(31u + (uint32_t)which, 32, 24) };
     for (int s = 0; s < 2; ++s)
     {
       mrgi_image grid;
@@ -324,7 +325,8 @@ static void test_threshold_zero_is_every_texel(void)
     int64_t count = 0;
     mrgi_vpl* texels = texel_vpls(&map, &count);
     MRGI_CHECK(count == tree.usable_texel_count && count > 0);
-    test_receivers sets[2] = { light_view_receivers(&map), random_receivers(41u + (uint32_t)which, 32, 32) };
+    test_receivers sets[2] = { light_view_receivers(&map),
+                                random_receivers(41u + (uint32_t)which, 32, 32) };
     for (int s = 0; s < 2; ++s)
     {
       const size_t pixels = (size_t)sets[s].r.width * (size_t)sets[s].r.height;
@@ -492,7 +494,8 @@ static void check_bounds(const test_rsm* map, uint32_t seed)
                 const float* p = map->position + 4 * i;
                 const double d[3] = { p[0] - rx[0], p[1] - rx[1], p[2] - rx[2] };
                 const double area = map->flux[4 * i + 3];
-                const double form = area / (MRGI_PI * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) + area);
+                const double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                const double form = area / (MRGI_PI * d2 + area);
                 if (!(form <= limit))
                 {
                   MRGI_FAIL("level %d node (%d, %d): texel (%d, %d) has form factor %.9g > "
@@ -820,7 +823,8 @@ static void test_bad_arguments(void)
     MRGI_CHECK(mrgi_vpl_tree_build(&dark.rsm, dark.cameras, &dark_tree, NULL) == MRGI_OK);
     tree_gather(&rec, &dark_tree, 0.0, &image, &vpls, &info);
     MRGI_CHECK(info.vpls_used == 0 && info.receivers_gathered > 0);
-    MRGI_CHECK(info.nodes_visited == info.receivers_gathered * mrgi_vpl_tree_root_count(&dark_tree));
+    MRGI_CHECK(info.nodes_visited ==
+               info.receivers_gathered * mrgi_vpl_tree_root_count(&dark_tree));
     for (size_t k = 0; k < 3 * 64; ++k)
     {
       MRGI_CHECK(image.pixels[k] == 0.0f);

@@ -23,76 +23,92 @@ vec4 mrgiTreeTexel(int k, int t)
 }
 
 // E of this batch's roots at receiver (P, N) (world space), and the nodes
-// used as VPLs. One loop iteration per node popped: the loop runs at most
-// mrgiTreeRootCount * N_sub times, the budget the batch was sized for (a
-// stack entry is record * MRGI_MULTIRES_MAX_LEVELS + level).
+// used as VPLs. The depth-first order of the contract's explicit stack
+// (children pop in scan order (2x, 2y), (2x+1, 2y), (2x, 2y+1),
+// (2x+1, 2y+1)) follows from the quadtree's indexing alone, so the stack is
+// implicit: after a node that is not refined, the next one is the next
+// sibling of the nearest ancestor-or-self that is not a last child (bit j
+// of x & y is set when the ancestor j levels up is one), or the next root.
+// Same nodes, same order, same sums as a stack, without a per-invocation
+// array (which llvmpipe keeps in memory). One loop iteration per node
+// visited: at most mrgiTreeRootCount * N_sub, the batch's budget.
 vec3 mrgiVPLTreeIrradiance(vec3 P, vec3 N, out int used)
 {
-  int stack[MRGI_VPL_TREE_STACK_SIZE];
-  int top = 0;
-  int root = mrgiTreeRootFirst;
-  int rootEnd = mrgiTreeRootFirst + mrgiTreeRootCount;
   int rootLevel = mrgiTreeLevels - 1;
+  int rootSide = mrgiTreeSide >> rootLevel;
+  int root = mrgiTreeRootFirst; // global index r = (v * w_L + y) * w_L + x
+  int rootEnd = mrgiTreeRootFirst + mrgiTreeRootCount;
+  int level = rootLevel;
+  int view = root / (rootSide * rootSide);
+  int x = root % rootSide;
+  int y = (root / rootSide) % rootSide;
   vec3 E = vec3(0.0);
   used = 0;
-  while (top > 0 || root < rootEnd)
+  while (root < rootEnd)
   {
-    int entry;
-    if (top > 0)
+    int w = mrgiTreeSide >> level;
+    int k = mrgiTreeLevelFirst[level] + (view * w + y) * w + x;
+    bool refine = false;
+    // 1. Zero flux: every descendant has zero flux too.
+    vec4 flux = mrgiTreeTexel(k, MRGI_VPL_TEXEL_FLUX);
+    if (flux.r != 0.0 || flux.g != 0.0 || flux.b != 0.0)
     {
-      entry = stack[--top];
+      vec4 position = mrgiTreeTexel(k, MRGI_VPL_TEXEL_POSITION);
+      vec4 normal = mrgiTreeTexel(k, MRGI_VPL_TEXEL_NORMAL);
+      float radius = normal.w; // R_P
+      vec3 d = position.xyz - P;
+      // 2. The bounding sphere wholly behind the receiver's plane: exact cull.
+      if (dot(N, d) + radius > 0.0)
+      {
+        // 3. Refine while the form-factor bound B_P = A_P / (pi d_min^2 + A_P)
+        // exceeds tau (section 1; B_P = 0 for A_P = 0).
+        float area = position.w;
+        float dMin = max(0.0, length(d) - radius);
+        float bound = area > 0.0 ? area / (MRGI_PI * dMin * dMin + area) : 0.0;
+        refine = level > 0 && bound > mrgiTreeThreshold;
+        if (!refine)
+        {
+          // 4. P as one VPL: the cache gather's term on its record.
+          E += mrgiVPLRecordIrradiance(position, normal.xyz, flux.rgb, P, N);
+          ++used;
+        }
+      }
+    }
+    if (refine)
+    {
+      // The first child, (2x, 2y) one level down.
+      --level;
+      x *= 2;
+      y *= 2;
+      continue;
+    }
+    // Climb past the last children: `up` trailing ones of x & y (the
+    // lowest zero bit of x & y isolated, then its exponent).
+    int last = x & y;
+    int up = int(log2(float((last + 1) & ~last)) + 0.5);
+    if (up >= rootLevel - level)
+    {
+      // This root's subtree is done: the next root.
+      ++root;
+      level = rootLevel;
+      view = root / (rootSide * rootSide);
+      x = root % rootSide;
+      y = (root / rootSide) % rootSide;
+      continue;
+    }
+    level += up;
+    x >>= up;
+    y >>= up;
+    // The next sibling in scan order.
+    if ((x & 1) == 0)
+    {
+      ++x;
     }
     else
     {
-      // Roots in increasing global index r = (v * w_L + y) * w_L + x.
-      entry = (mrgiTreeLevelFirst[rootLevel] + root) * MRGI_MULTIRES_MAX_LEVELS + rootLevel;
-      ++root;
+      --x;
+      ++y;
     }
-    int level = entry % MRGI_MULTIRES_MAX_LEVELS;
-    int k = entry / MRGI_MULTIRES_MAX_LEVELS;
-    // 1. Zero flux: every descendant has zero flux too.
-    vec4 flux = mrgiTreeTexel(k, MRGI_VPL_TEXEL_FLUX);
-    if (flux.r == 0.0 && flux.g == 0.0 && flux.b == 0.0)
-    {
-      continue;
-    }
-    vec4 position = mrgiTreeTexel(k, MRGI_VPL_TEXEL_POSITION);
-    vec4 normal = mrgiTreeTexel(k, MRGI_VPL_TEXEL_NORMAL);
-    float radius = normal.w; // R_P
-    vec3 d = position.xyz - P;
-    // 2. The bounding sphere wholly behind the receiver's plane: exact cull.
-    if (dot(N, d) + radius <= 0.0)
-    {
-      continue;
-    }
-    // 3. Refine while the form-factor bound B_P = A_P / (pi d_min^2 + A_P)
-    // exceeds tau (section 1; B_P = 0 for A_P = 0).
-    if (level > 0)
-    {
-      float area = position.w;
-      float dMin = max(0.0, length(d) - radius);
-      float bound = area > 0.0 ? area / (MRGI_PI * dMin * dMin + area) : 0.0;
-      if (bound > mrgiTreeThreshold)
-      {
-        // Children of (x, y) at level - 1, pushed so that (2x, 2y) pops first.
-        int w = mrgiTreeSide >> level;
-        int local = k - mrgiTreeLevelFirst[level];
-        int view = local / (w * w);
-        int y = (local / w) % w;
-        int x = local % w;
-        int cw = 2 * w;
-        int child = level - 1;
-        int base = mrgiTreeLevelFirst[child] + (view * cw + 2 * y) * cw + 2 * x;
-        stack[top++] = (base + cw + 1) * MRGI_MULTIRES_MAX_LEVELS + child;
-        stack[top++] = (base + cw) * MRGI_MULTIRES_MAX_LEVELS + child;
-        stack[top++] = (base + 1) * MRGI_MULTIRES_MAX_LEVELS + child;
-        stack[top++] = base * MRGI_MULTIRES_MAX_LEVELS + child;
-        continue;
-      }
-    }
-    // 4. P as one VPL: the cache gather's term on its record.
-    E += mrgiVPLRecordIrradiance(position, normal.xyz, flux.rgb, P, N);
-    ++used;
   }
   return E;
 }
