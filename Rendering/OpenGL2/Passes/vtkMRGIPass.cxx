@@ -1195,13 +1195,6 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
      << ")\n";
   os << indent << "IndirectStrength: " << this->IndirectStrength << "\n";
   os << indent << "AreaLightIndirect: " << (this->AreaLightIndirect ? "On" : "Off") << "\n";
-  os << indent << "NumberOfVPLs: " << this->VPLSelection->GetNumberOfVPLs() << "\n";
-  os << indent << "VPLSelectionMode: " << this->VPLSelection->GetMode() << "\n";
-  os << indent << "ClusterDepthThreshold: " << this->VPLSelection->GetClusterDepthThreshold()
-     << "\n";
-  os << indent << "ClusterNormalThreshold: " << this->VPLSelection->GetClusterNormalThreshold()
-     << "\n";
-  os << indent << "TreeThreshold: " << this->VPLSelection->GetTreeThreshold() << "\n";
   os << indent << "RSMResolution: " << this->RSMPass->GetResolution() << "\n";
   os << indent << "RSMCompositor: " << this->RSMPass->GetCompositor() << "\n";
   os << indent << "Exposure: " << this->Exposure << " EV\n";
@@ -1212,6 +1205,8 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StageTimingEnabled: " << (this->StageTimingEnabled ? "On" : "Off") << "\n";
   os << indent << "Multiresolution:\n";
   this->Multiresolution->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "VPLSelection:\n"; // NumberOfVPLs, Mode and its thresholds
+  this->VPLSelection->PrintSelf(os, indent.GetNextIndent());
   os << indent << "Gather:\n";
   this->Gather->PrintSelf(os, indent.GetNextIndent());
   os << indent << "AreaLightStage:\n";
