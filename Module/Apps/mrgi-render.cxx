@@ -53,6 +53,7 @@
 #include "mrgi_voxel.h"
 #include "mrgi_multires.h"
 #include "mrgi_parse.h"
+#include "mrgi_vpl_tree_gather.h"
 
 #include "mrgiRenderOptions.h"
 #include "mrgiRenderOutputWindow.h"
@@ -656,6 +657,14 @@ int main(int argc, char* argv[])
     mrgi->SetClusterDepthThreshold(o.ClusterDepthThreshold);
   if (!std::isnan(o.ClusterNormalThreshold))
     mrgi->SetClusterNormalThreshold(o.ClusterNormalThreshold);
+  if (!std::isnan(o.TreeThreshold))
+    mrgi->SetTreeThreshold(o.TreeThreshold);
+  if (o.VPLSelection == vtkMRGIVPLSelection::Tree && o.RSMSize > MRGI_VPL_TREE_GATHER_MAX_RSM_SIZE)
+  {
+    return Fail("--vpl-selection tree takes --rsm-size up to " +
+      std::to_string(MRGI_VPL_TREE_GATHER_MAX_RSM_SIZE) + " (the tree gather's limit), not " +
+      std::to_string(o.RSMSize));
+  }
   mrgi->SetRSMResolution(static_cast<int>(o.RSMSize));
   mrgi->SetIndirectStrength(o.IndirectStrength);
   mrgi->SetToneMapping(o.ToneMapping);
@@ -862,6 +871,12 @@ int main(int argc, char* argv[])
       }
       std::printf("gathered / valid pixels: %.4f (of %lld valid pixels)\n",
         gather->GetGatherWorkFraction(), static_cast<long long>(gather->GetNumberOfValidPixels()));
+    }
+    if (mrgi->GetGather()->GetMeanVPLsPerPixel() >= 0)
+    {
+      // The VPL tree (NSW09 3.5): nodes each gathered pixel used, last frame.
+      std::printf("VPLs per pixel (tree): mean %.2f, max %.0f\n",
+        mrgi->GetGather()->GetMeanVPLsPerPixel(), mrgi->GetGather()->GetMaxVPLsPerPixel());
     }
     std::printf("%-24s %12.3f\n", "frame (wall)", Median(frameTimes));
     if (stageOrder.empty())

@@ -46,6 +46,7 @@
 #include "mrgi_voxel.h"
 #include "mrgi_multires.h"
 #include "mrgi_parse.h"
+#include "mrgi_vpl_tree_gather.h"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -513,8 +514,11 @@ OptionHandler Threshold(double Options::*field)
   };
 }
 
-// --cluster-depth-threshold / --cluster-normal-threshold: a number >= 0, or
-// inf (never splits; the VPL selection takes +inf for it).
+// The help of --tree-threshold states the default.
+static_assert(MRGI_VPL_TREE_DEFAULT_THRESHOLD == 0.05, "update the --tree-threshold help");
+
+// --cluster-depth-threshold / --cluster-normal-threshold / --tree-threshold:
+// a number >= 0, or inf (never splits; the VPL selection takes +inf for it).
 OptionHandler ClusterThreshold(double Options::*field)
 {
   return [field](Options& o, const std::string& option, const char* v) {
@@ -842,14 +846,16 @@ const std::vector<OptionSection>& OptionTable()
             "expected a number in [0, 1]") },
         { { "--vpls" }, "N", "virtual point lights, 0..4096 (default 256 = 16x16)",
           Integer(&Options::VPLs, 0, 4096) },
-        { { "--vpl-selection" }, "grid|importance|clusters",
+        { { "--vpl-selection" }, "grid|importance|clusters|tree",
           "regular grid over the light's view (default), flux importance sampling,\n"
-          "or multiresolution clusters (nichols-shopf-wyman-2009 3.4; a variable\n"
-          "count up to 4096, --vpls does not apply)",
+          "multiresolution clusters (nichols-shopf-wyman-2009 3.4; a variable\n"
+          "count up to 4096, --vpls does not apply) or the VPL tree (3.5; each\n"
+          "pixel walks the RSM's pyramid, --tree-threshold; --vpls does not apply)",
           Choice<int>(&Options::VPLSelection,
             { { "grid", vtkMRGIVPLSelection::Grid },
               { "importance", vtkMRGIVPLSelection::FluxImportance },
-              { "clusters", vtkMRGIVPLSelection::Clusters } }) },
+              { "clusters", vtkMRGIVPLSelection::Clusters },
+              { "tree", vtkMRGIVPLSelection::Tree } }) },
         { { "--cluster-depth-threshold" }, "D",
           "clusters: light-space depth change per texel width that splits a patch,\n"
           "0..1e30 (inf: never; default 4)",
@@ -858,6 +864,10 @@ const std::vector<OptionSection>& OptionTable()
           "clusters: light-space normal-component spread that splits a patch,\n"
           "0..1e30 (inf: never; default 0.25)",
           ClusterThreshold(&Options::ClusterNormalThreshold) },
+        { { "--tree-threshold" }, "T",
+          "tree: a node is split where its form-factor bound exceeds T, 0..1e30\n"
+          "(0: every RSM texel is a VPL; >= 1 or inf: the 16x16 roots; default 0.05)",
+          ClusterThreshold(&Options::TreeThreshold) },
         { { "--rsm-size" }, "N", "reflective shadow map texels per side, 16..2048 (default 256)",
           Integer(&Options::RSMSize, 16, 2048) },
         { { "--indirect-strength" }, "S", "factor on the indirect light (default 1)",

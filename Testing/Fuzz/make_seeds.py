@@ -167,6 +167,8 @@ for i, argv in enumerate([
          "--reference-passes", "2", "--reference-error", "0"],
         ["--help"],
         ["--version"],
-        ["cornell", "-o", "x.png", "--size", "0x64"]]):
+        ["cornell", "-o", "x.png", "--size", "0x64"],
+        ["cornell-spot", "-o", "t.exr", "--rsm-size", "64", "--vpl-selection", "tree",
+         "--tree-threshold", "0.02", "--timings"]]):
     put("RenderOptions", "argv-%02d" % i, "\0".join(argv))
 print("seeds written under", os.path.join(HERE, "Seeds"))

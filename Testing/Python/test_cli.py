@@ -115,6 +115,20 @@ def main():
     check(code == 0, "clusters render, thresholds inf: " + err)
     check(open(split_exr, "rb").read() != open(grid_exr, "rb").read(),
           "cluster thresholds change the indirect light")
+    # The VPL tree (NSW09 3.5): its threshold changes the indirect light (inf
+    # gathers the 16x16 roots only); --timings reports the VPLs per pixel.
+    tree_exr, roots_exr = fresh("cli_tree.exr"), fresh("cli_tree_inf.exr")
+    code, out, err = run("cornell-spot", "-o", tree_exr, "--size", "48x48", "-q", "--rsm-size",
+                         "64", "--indirect-only", "--vpl-selection", "tree", "--tree-threshold",
+                         "0.02", "--timings")
+    check(code == 0, "tree render: " + err)
+    check("VPLs per pixel (tree)" in out, "--timings prints the tree's VPLs per pixel: " + out)
+    code, _, err = run("cornell-spot", "-o", roots_exr, "--size", "48x48", "-q", "--rsm-size",
+                       "64", "--indirect-only", "--vpl-selection", "tree", "--tree-threshold",
+                       "inf")
+    check(code == 0, "tree render, threshold inf: " + err)
+    check(open(tree_exr, "rb").read() != open(roots_exr, "rb").read(),
+          "the tree threshold changes the indirect light")
     check(os.path.getsize(on_png) != os.path.getsize(off_png) or
           open(on_png, "rb").read() != open(off_png, "rb").read(), "--gi off changes the image")
     # --ssao darkens the direct light (corners and contacts), with the
@@ -395,6 +409,10 @@ def bad_input():
         (["cornell", "-o", target, "--cluster-depth-threshold", "-1"], "--cluster-depth-threshold"),
         (["cornell", "-o", target, "--cluster-normal-threshold", "nan"],
          "--cluster-normal-threshold"),
+        (["cornell", "-o", target, "--tree-threshold", "-1"], "--tree-threshold"),
+        (["cornell", "-o", target, "--tree-threshold", "nan"], "--tree-threshold"),
+        (["cornell", "-o", target, "--vpl-selection", "tree", "--rsm-size", "2048"],
+         "--rsm-size"),
         (["cornell", "-o", target, "--indirect-strength", "nan"], "--indirect-strength"),
         (["cornell", "-o", target, "--gi", "off", "--indirect-only"], "--indirect-only"),
         (["cornell", "-o", target, "--reference-visibility", "maybe"], "--reference-visibility"),

@@ -6,7 +6,7 @@
 #include "vtkCamera.h"
 #include "vtkCommand.h"
 #include "vtkCameraPass.h"
-#include "vtkFloatArray.h"
+#include "vtkDataArray.h"
 #include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
 #include "vtkMRGIAreaLightStage.h"
@@ -57,7 +57,6 @@
 #include "mrgi_exposure.h"
 #include "mrgi_screen_space_preset.h"
 #include "mrgi_multires.h"
-#include "mrgi_vpl.h"
 
 #include <algorithm>
 #include <cmath>
@@ -367,6 +366,15 @@ double vtkMRGIPass::GetClusterNormalThreshold()
 {
   return this->VPLSelection->GetClusterNormalThreshold();
 }
+void vtkMRGIPass::SetTreeThreshold(double threshold)
+{
+  this->VPLSelection->SetTreeThreshold(threshold);
+  this->Modified();
+}
+double vtkMRGIPass::GetTreeThreshold()
+{
+  return this->VPLSelection->GetTreeThreshold();
+}
 void vtkMRGIPass::SetRSMResolution(int resolution)
 {
   this->RSMPass->SetResolution(resolution);
@@ -553,7 +561,9 @@ bool vtkMRGIPass::RenderMultiresolution(const vtkMRGIFrameContext& frame, int vp
     ScopedStage stage(timer, "gather");
     if (!mr->BuildReceivers(
           frame.Window, frame.Position, frame.Normal, frame.Viewport[0], frame.Viewport[1], timer) ||
-      !this->Gather->GatherVPLs(frame, mr, this->VPLSelection->GetVPLTexture(), vplCount))
+      !(this->VPLSelection->GetMode() == vtkMRGIVPLSelection::Tree
+          ? this->Gather->GatherVPLTree(frame, mr, this->VPLSelection->GetTreeTerm())
+          : this->Gather->GatherVPLs(frame, mr, this->VPLSelection->GetVPLTexture(), vplCount)))
     {
       return false;
     }
@@ -788,8 +798,11 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
       else
       {
         ScopedStage stage(timer, "gather");
-        gathered = this->Gather->GatherFull(frame, this->VPLSelection->GetVPLTexture(), vplCount,
-          this->IndirectStrength, in.GBuffer.Irradiance, in.GBuffer.Indirect);
+        gathered = this->VPLSelection->GetMode() == vtkMRGIVPLSelection::Tree
+          ? this->Gather->GatherFullTree(frame, this->VPLSelection->GetTreeTerm(),
+              this->IndirectStrength, in.GBuffer.Irradiance, in.GBuffer.Indirect)
+          : this->Gather->GatherFull(frame, this->VPLSelection->GetVPLTexture(), vplCount,
+              this->IndirectStrength, in.GBuffer.Irradiance, in.GBuffer.Indirect);
       }
       if (gathered)
       {
@@ -1067,19 +1080,7 @@ bool vtkMRGIPass::GetSpecularGBuffer(vtkRenderWindow* window, vtkImageData* spec
 
 bool vtkMRGIPass::GetVPLs(vtkRenderWindow* window, vtkFloatArray* vpls)
 {
-  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
-  vtkTextureObject* texture = this->VPLSelection->GetVPLTexture();
-  std::vector<float> rgba;
-  if (!renWin || !vpls || !texture || !vtkMRGIShaderUtilities::ReadTextureRGBA(renWin, texture, rgba))
-  {
-    vtkErrorMacro("no VPLs to read back");
-    return false;
-  }
-  vpls->SetNumberOfComponents(MRGI_VPL_FLOATS);
-  vpls->SetNumberOfTuples(this->VPLSelection->GetVPLCount());
-  std::copy(rgba.begin(), rgba.begin() + static_cast<long>(MRGI_VPL_FLOATS) * this->VPLSelection->GetVPLCount(),
-    vpls->GetPointer(0));
-  return true;
+  return this->VPLSelection->ReadVPLs(vtkOpenGLRenderWindow::SafeDownCast(window), vpls);
 }
 
 //------------------------------------------------------------------------------
@@ -1194,12 +1195,6 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
      << ")\n";
   os << indent << "IndirectStrength: " << this->IndirectStrength << "\n";
   os << indent << "AreaLightIndirect: " << (this->AreaLightIndirect ? "On" : "Off") << "\n";
-  os << indent << "NumberOfVPLs: " << this->VPLSelection->GetNumberOfVPLs() << "\n";
-  os << indent << "VPLSelectionMode: " << this->VPLSelection->GetMode() << "\n";
-  os << indent << "ClusterDepthThreshold: " << this->VPLSelection->GetClusterDepthThreshold()
-     << "\n";
-  os << indent << "ClusterNormalThreshold: " << this->VPLSelection->GetClusterNormalThreshold()
-     << "\n";
   os << indent << "RSMResolution: " << this->RSMPass->GetResolution() << "\n";
   os << indent << "RSMCompositor: " << this->RSMPass->GetCompositor() << "\n";
   os << indent << "Exposure: " << this->Exposure << " EV\n";
@@ -1210,6 +1205,8 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StageTimingEnabled: " << (this->StageTimingEnabled ? "On" : "Off") << "\n";
   os << indent << "Multiresolution:\n";
   this->Multiresolution->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "VPLSelection:\n"; // NumberOfVPLs, Mode and its thresholds
+  this->VPLSelection->PrintSelf(os, indent.GetNextIndent());
   os << indent << "Gather:\n";
   this->Gather->PrintSelf(os, indent.GetNextIndent());
   os << indent << "AreaLightStage:\n";

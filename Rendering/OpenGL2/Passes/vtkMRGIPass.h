@@ -132,7 +132,11 @@ public:
   ///@}
 
   ///@{
-  /** VPL selection: 0 grid (default), 1 flux importance, 2 multiresolution clusters. */
+  /**
+   * VPL selection (vtkMRGIVPLSelection::SelectionMode): 0 grid (default),
+   * 1 flux importance, 2 multiresolution clusters, 3 the VPL tree
+   * (nichols-shopf-wyman-2009 section 3.5; the gather walks it per pixel).
+   */
   void SetVPLSelectionMode(int mode);
   int GetVPLSelectionMode();
   ///@}
@@ -148,6 +152,16 @@ public:
   double GetClusterDepthThreshold();
   void SetClusterNormalThreshold(double threshold);
   double GetClusterNormalThreshold();
+  ///@}
+
+  ///@{
+  /**
+   * Refinement threshold tau of the Tree VPL selection on the form-factor
+   * bound (mrgi_vpl_tree_gather.h section 1): 0 (every RSM texel) .. +inf
+   * (>= 1: the 16 x 16 roots), default 0.05. Forwarded to the VPL selection.
+   */
+  void SetTreeThreshold(double threshold);
+  double GetTreeThreshold();
   ///@}
 
   ///@{

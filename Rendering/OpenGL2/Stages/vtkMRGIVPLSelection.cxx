@@ -1,5 +1,7 @@
 #include "vtkMRGIVPLSelection.h"
 
+#include "vtkFloatArray.h"
+#include "vtkMRGIGather.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMath.h"
@@ -13,12 +15,19 @@
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 
+#include "vtkMRGIVPLTreeTexture.h"
+
 #include "vtkMRGIVPLGridFS.h"
 
 #include "mrgi_vpl.h"
 #include "mrgi_vpl_clusters.h"
+#include "mrgi_vpl_tree.h"
+#include "mrgi_vpl_tree_gather.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include <map>
 #include <vector>
@@ -33,6 +42,8 @@ struct vtkMRGIVPLSelection::Internals
   vtkOpenGLQuadHelper* RowsQuad = nullptr;
   vtkTextureObject* RowSums = nullptr; // grid stage 0 outputs, G x S
   vtkTextureObject* RowBest = nullptr;
+  vtkTextureObject* TreeTexture = nullptr; // Tree mode: node records (mrgi_vpl_tree_gather.h 3)
+  mrgi_vpl_tree Tree = {};                 // Tree mode: node_count 0 when there is none
   int Count = 0;
   vtkMTimeType SourceTime = 0;
   vtkMTimeType SettingsTime = 0;
@@ -47,13 +58,15 @@ vtkMRGIVPLSelection::vtkMRGIVPLSelection()
   this->ClusterDepthThreshold = defaults.depth_threshold;
   this->ClusterNormalThreshold = defaults.normal_threshold;
   this->ClusterFinestLevel = defaults.finest_level;
+  this->TreeThreshold = MRGI_VPL_TREE_DEFAULT_THRESHOLD;
 }
 
 //------------------------------------------------------------------------------
 vtkMRGIVPLSelection::~vtkMRGIVPLSelection()
 {
   if (this->Internal->Texture || this->Internal->FrameBuffer || this->Internal->GridQuad ||
-    this->Internal->RowsQuad || this->Internal->RowSums || this->Internal->RowBest)
+    this->Internal->RowsQuad || this->Internal->RowSums || this->Internal->RowBest ||
+    this->Internal->TreeTexture)
   {
     vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
   }
@@ -74,6 +87,22 @@ vtkMRGIVPLSelection::~vtkMRGIVPLSelection()
   }
   delete this->Internal->GridQuad;
   delete this->Internal->RowsQuad;
+  this->ReleaseTree(nullptr);
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIVPLSelection::ReleaseTree(vtkWindow* w)
+{
+  if (this->Internal->TreeTexture)
+  {
+    if (w)
+    {
+      this->Internal->TreeTexture->ReleaseGraphicsResources(w);
+    }
+    this->Internal->TreeTexture->Delete();
+    this->Internal->TreeTexture = nullptr;
+  }
+  mrgi_vpl_tree_destroy(&this->Internal->Tree);
 }
 
 //------------------------------------------------------------------------------
@@ -112,6 +141,7 @@ void vtkMRGIVPLSelection::ReleaseGraphicsResources(vtkWindow* w)
     this->Internal->Texture->Delete();
     this->Internal->Texture = nullptr;
   }
+  this->ReleaseTree(w);
   this->Internal->Count = 0;
   this->Internal->SourceTime = 0;
 }
@@ -125,6 +155,63 @@ vtkTextureObject* vtkMRGIVPLSelection::GetVPLTexture() const
 int vtkMRGIVPLSelection::GetVPLCount() const
 {
   return this->Internal->Count;
+}
+
+vtkTextureObject* vtkMRGIVPLSelection::GetTreeTexture() const
+{
+  return this->Internal->Tree.node_count > 0 ? this->Internal->TreeTexture : nullptr;
+}
+
+vtkIdType vtkMRGIVPLSelection::GetNumberOfTreeNodes() const
+{
+  return static_cast<vtkIdType>(this->Internal->Tree.node_count);
+}
+
+const mrgi_vpl_tree* vtkMRGIVPLSelection::GetTree() const
+{
+  return this->Internal->Tree.node_count > 0 ? &this->Internal->Tree : nullptr;
+}
+
+vtkMRGIVPLTreeTerm vtkMRGIVPLSelection::GetTreeTerm() const
+{
+  vtkMRGIVPLTreeTerm term;
+  term.Nodes = this->GetTreeTexture();
+  term.Tree = this->GetTree();
+  term.Threshold = this->TreeThreshold;
+  return term;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIVPLSelection::ReadVPLs(vtkOpenGLRenderWindow* window, vtkFloatArray* vpls)
+{
+  vtkTextureObject* texture = this->GetVPLTexture();
+  std::vector<float> rgba;
+  if (!window || !vpls || !texture || !vtkMRGIShaderUtilities::ReadTextureRGBA(window, texture, rgba))
+  {
+    vtkErrorMacro("no VPLs to read back");
+    return false;
+  }
+  const int count = this->Internal->Count;
+  vpls->SetNumberOfComponents(MRGI_VPL_FLOATS);
+  vpls->SetNumberOfTuples(count);
+  std::copy(rgba.begin(), rgba.begin() + static_cast<long>(MRGI_VPL_FLOATS) * count, vpls->GetPointer(0));
+  return true;
+}
+
+bool vtkMRGIVPLSelection::ReadTreeTexture(vtkOpenGLRenderWindow* window, vtkFloatArray* records)
+{
+  vtkTextureObject* texture = this->GetTreeTexture();
+  std::vector<float> rgba;
+  if (!window || !records || !texture ||
+    !vtkMRGIShaderUtilities::ReadTextureRGBA(window, texture, rgba))
+  {
+    vtkErrorMacro("no VPL tree texture to read back");
+    return false;
+  }
+  records->SetNumberOfComponents(MRGI_VPL_FLOATS);
+  records->SetNumberOfTuples(static_cast<vtkIdType>(rgba.size() / MRGI_VPL_FLOATS));
+  std::copy(rgba.begin(), rgba.end(), records->GetPointer(0));
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -186,6 +273,102 @@ bool ViewCamera(vtkMRGIReflectiveShadowMapPass* rsm, int view, mrgi_rsm_view_cam
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIVPLSelection::ReadLight(vtkOpenGLRenderWindow* window,
+  vtkMRGIReflectiveShadowMapPass* rsm, const std::vector<int>& views, const char* what,
+  mrgi_rsm_view_camera* cameras, std::vector<float>& position, std::vector<float>& normal,
+  std::vector<float>& flux)
+{
+  if (views.empty() || views.size() > MRGI_RSM_MAX_VIEWS)
+  {
+    vtkErrorMacro(<< what << ": " << views.size() << " RSM views, the C core takes 1.."
+                  << MRGI_RSM_MAX_VIEWS << " (MRGI_RSM_MAX_VIEWS) in one map");
+    return false;
+  }
+  for (size_t i = 0; i < views.size(); ++i)
+  {
+    if (!ViewCamera(rsm, views[i], cameras[i]))
+    {
+      vtkErrorMacro(<< what << ": RSM view " << views[i] << " has no camera");
+      return false;
+    }
+  }
+  if (!ReadViews(window, rsm, views, position, normal, flux))
+  {
+    vtkErrorMacro(<< what << ": could not read back the RSM views");
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+int vtkMRGIVPLSelection::SelectTree(
+  vtkOpenGLRenderWindow* window, vtkMRGIReflectiveShadowMapPass* rsm, std::vector<mrgi_vpl>& roots)
+{
+  roots.clear();
+  mrgi_vpl_tree_destroy(&this->Internal->Tree); // the texture stays for the next upload
+  if (std::isnan(this->TreeThreshold))
+  {
+    vtkErrorMacro("VPL tree: TreeThreshold is NaN; expected a number >= 0 or +inf");
+    return 0;
+  }
+  const int size = rsm->GetResolution();
+  if (size > MRGI_VPL_TREE_GATHER_MAX_RSM_SIZE)
+  {
+    vtkErrorMacro(<< "VPL tree: the RSM has " << size << " texels per side, the tree gather takes at most "
+                  << MRGI_VPL_TREE_GATHER_MAX_RSM_SIZE
+                  << " (MRGI_VPL_TREE_GATHER_MAX_RSM_SIZE); no tree, no indirect light");
+    return 0;
+  }
+  // Every view of every light in one tree: the views are independent
+  // patches, each with its own camera (mrgi_vpl_tree.h section 2).
+  std::vector<int> views(static_cast<size_t>(rsm->GetNumberOfViews()));
+  for (size_t v = 0; v < views.size(); ++v)
+  {
+    views[v] = static_cast<int>(v);
+  }
+  mrgi_rsm_view_camera cameras[MRGI_RSM_MAX_VIEWS];
+  std::vector<float> position, normal, flux;
+  if (!this->ReadLight(window, rsm, views, "VPL tree", cameras, position, normal, flux))
+  {
+    return 0;
+  }
+  const mrgi_rsm map = { size, static_cast<int32_t>(views.size()), position.data(), normal.data(),
+    flux.data() };
+  mrgi_vpl_tree& tree = this->Internal->Tree;
+  mrgi_error err;
+  if (mrgi_vpl_tree_build(&map, cameras, &tree, &err) != MRGI_OK)
+  {
+    vtkErrorMacro(<< "VPL tree: " << err.message);
+    return 0;
+  }
+
+  // The texture (mrgi_vpl_tree_gather.h section 3): records row-major,
+  // MRGI_VPL_TREE_RECORDS_PER_ROW per row, zero records after the last; the
+  // tree gather's own upload, so that the layout has one implementation.
+  if (!this->Internal->TreeTexture)
+  {
+    this->Internal->TreeTexture = vtkTextureObject::New();
+  }
+  std::string error;
+  if (!vtkMRGIVPLTreeTexture::Upload(window, &tree, this->Internal->TreeTexture, error))
+  {
+    vtkErrorMacro(<< "VPL tree: " << error << "; no tree, no indirect light");
+    this->ReleaseTree(window);
+    return 0;
+  }
+
+  // The flat cache: the roots (level L, records 0..V w_L^2 - 1), pads cleared (mrgi_vpl.h).
+  const int32_t rootCount = mrgi_vpl_tree_root_count(&tree);
+  roots.assign(tree.nodes, tree.nodes + rootCount);
+  for (mrgi_vpl& root : roots)
+  {
+    root.pad0 = 0.0f;
+    root.pad1 = 0.0f;
+  }
+  return rootCount;
+}
+
+//------------------------------------------------------------------------------
 int vtkMRGIVPLSelection::SelectClusters(vtkOpenGLRenderWindow* window,
   vtkMRGIReflectiveShadowMapPass* rsm, const std::vector<std::vector<int>>& lights,
   std::vector<mrgi_vpl>& vpls)
@@ -203,20 +386,7 @@ int vtkMRGIVPLSelection::SelectClusters(vtkOpenGLRenderWindow* window,
   for (const std::vector<int>& views : lights)
   {
     mrgi_rsm_view_camera cameras[MRGI_RSM_MAX_VIEWS];
-    if (views.size() > MRGI_RSM_MAX_VIEWS)
-    {
-      vtkErrorMacro(<< "VPL clusters: a light has " << views.size() << " views");
-      return 0;
-    }
-    for (size_t i = 0; i < views.size(); ++i)
-    {
-      if (!ViewCamera(rsm, views[i], cameras[i]))
-      {
-        vtkErrorMacro(<< "VPL clusters: RSM view " << views[i] << " has no camera");
-        return 0;
-      }
-    }
-    if (!ReadViews(window, rsm, views, position, normal, flux))
+    if (!this->ReadLight(window, rsm, views, "VPL clusters", cameras, position, normal, flux))
     {
       return 0;
     }
@@ -247,6 +417,7 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
   const int views = rsm->GetNumberOfViews();
   if (views == 0 || this->NumberOfVPLs == 0)
   {
+    this->ReleaseTree(window);
     this->Internal->Count = 0;
     return 0;
   }
@@ -269,7 +440,18 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
     lightViews[light].push_back(v);
   }
   const int size = rsm->GetResolution();
-  std::vector<mrgi_vpl> clusters;
+  std::vector<mrgi_vpl> clusters; // Clusters: the clusters; Tree: the roots
+  if (this->Mode == Tree)
+  {
+    if (this->SelectTree(window, rsm, clusters) == 0)
+    {
+      return this->Internal->Count = 0;
+    }
+  }
+  else
+  {
+    this->ReleaseTree(window);
+  }
   if (this->Mode == Clusters)
   {
     std::vector<std::vector<int>> lights;
@@ -311,7 +493,7 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
     blocks.push_back({ light, rows, count, side });
     rows += count;
   }
-  if (this->Mode == Clusters)
+  if (this->Mode == Clusters || this->Mode == Tree)
   {
     rows = static_cast<int>(clusters.size()); // a variable count, not NumberOfVPLs
   }
@@ -330,7 +512,7 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
   }
   texture->Resize(MRGI_VPL_TEXELS, rows);
 
-  if (this->Mode == Clusters)
+  if (this->Mode == Clusters || this->Mode == Tree)
   {
     texture->Bind();
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, MRGI_VPL_TEXELS, rows, GL_RGBA, GL_FLOAT,
@@ -344,20 +526,10 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
     for (const Block& block : blocks)
     {
       const std::vector<int>& v = lightViews[block.Light];
-      const size_t texels = static_cast<size_t>(size) * static_cast<size_t>(size) * 4;
-      std::vector<float> position(texels * v.size()), normal(texels * v.size()), flux(texels * v.size());
-      std::vector<float> scratch;
-      for (size_t i = 0; i < v.size(); ++i)
+      std::vector<float> position, normal, flux;
+      if (!ReadViews(window, rsm, v, position, normal, flux))
       {
-        if (!vtkMRGIShaderUtilities::ReadTextureRGBA(window, rsm->GetPositionTexture(v[i]), scratch))
-          return this->Internal->Count = 0;
-        std::copy(scratch.begin(), scratch.end(), position.begin() + static_cast<long>(i * texels));
-        if (!vtkMRGIShaderUtilities::ReadTextureRGBA(window, rsm->GetNormalTexture(v[i]), scratch))
-          return this->Internal->Count = 0;
-        std::copy(scratch.begin(), scratch.end(), normal.begin() + static_cast<long>(i * texels));
-        if (!vtkMRGIShaderUtilities::ReadTextureRGBA(window, rsm->GetFluxTexture(v[i]), scratch))
-          return this->Internal->Count = 0;
-        std::copy(scratch.begin(), scratch.end(), flux.begin() + static_cast<long>(i * texels));
+        return this->Internal->Count = 0;
       }
       const mrgi_rsm map = { size, static_cast<int32_t>(v.size()), position.data(), normal.data(),
         flux.data() };
@@ -501,13 +673,14 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
 void vtkMRGIVPLSelection::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Mode: "
-     << (this->Mode == Grid ? "Grid" : (this->Mode == FluxImportance ? "FluxImportance" : "Clusters"))
-     << "\n";
+  static const char* const modes[] = { "Grid", "FluxImportance", "Clusters", "Tree" };
+  os << indent << "Mode: " << modes[this->Mode] << "\n";
   os << indent << "ClusterDepthThreshold: " << this->ClusterDepthThreshold << "\n";
   os << indent << "ClusterNormalThreshold: " << this->ClusterNormalThreshold << "\n";
   os << indent << "ClusterFinestLevel: " << this->ClusterFinestLevel << "\n";
   os << indent << "ClusterRefinementsCapped: " << this->ClusterRefinementsCapped << "\n";
+  os << indent << "TreeThreshold: " << this->TreeThreshold << "\n";
+  os << indent << "NumberOfTreeNodes: " << this->GetNumberOfTreeNodes() << "\n";
   os << indent << "NumberOfVPLs: " << this->NumberOfVPLs << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "VPLCount: " << this->Internal->Count << "\n";

@@ -24,6 +24,20 @@
  *   carrying its patch's flux and area sums, so the count varies per frame;
  *   it is capped at MRGI_VPL_CLUSTER_MAX, split evenly among the lights
  *   (NumberOfVPLs does not apply). Thresholds +inf give the 16 x 16 grid.
+ * - Tree: the hierarchical image-space radiosity VPL tree
+ *   (nichols-shopf-wyman-2009 section 3.5). The RSMs are read back as in
+ *   Clusters mode; mrgi_vpl_tree_build() (C core) builds one record per node
+ *   of every view's light-space pyramid, and the records go into ONE RGBA32F
+ *   texture (GetTreeTexture()) in the layout of mrgi_vpl_tree_gather.h
+ *   section 3 (MRGI_VPL_TREE_RECORDS_PER_ROW records per row, coarse levels
+ *   first, zero records after the last). The gather walks it per receiver
+ *   with TreeThreshold (tau). The flat VPL cache holds the tree's 16 x 16
+ *   roots of every view (the 256-per-view grid, pads cleared), so what reads
+ *   the cache (area-light bounce, splatting, GetVPLs()) keeps working;
+ *   NumberOfVPLs does not apply. All lights' views go into one tree: at
+ *   most MRGI_RSM_MAX_VIEWS views (one point light, or up to six spot or
+ *   directional lights) and RSMs of at most MRGI_VPL_TREE_GATHER_MAX_RSM_SIZE
+ *   texels per side; beyond that Update() reports an error and builds no tree.
  *
  * With several lights, the VPL budget is split evenly among the lights that
  * have views. Nothing is recomputed while the RSMs and the settings are unchanged.
@@ -39,7 +53,11 @@
 #include <vector> // For std::vector
 
 struct mrgi_vpl;
+struct mrgi_vpl_tree;
+struct mrgi_rsm_view_camera;
+struct vtkMRGIVPLTreeTerm;
 
+class vtkFloatArray;
 class vtkMRGIReflectiveShadowMapPass;
 class vtkOpenGLRenderWindow;
 class vtkTextureObject;
@@ -56,13 +74,18 @@ public:
   {
     Grid = 0,
     FluxImportance = 1,
-    Clusters = 2
+    Clusters = 2,
+    Tree = 3
   };
 
   ///@{
-  /** Grid (default), FluxImportance or Clusters. */
-  vtkSetClampMacro(Mode, int, Grid, Clusters);
+  /** Grid (default), FluxImportance, Clusters or Tree. */
+  vtkSetClampMacro(Mode, int, Grid, Tree);
   vtkGetMacro(Mode, int);
+  void SetModeToGrid() { this->SetMode(Grid); }
+  void SetModeToFluxImportance() { this->SetMode(FluxImportance); }
+  void SetModeToClusters() { this->SetMode(Clusters); }
+  void SetModeToTree() { this->SetMode(Tree); }
   ///@}
 
   ///@{
@@ -104,6 +127,44 @@ public:
    */
   vtkGetMacro(ClusterRefinementsCapped, int);
 
+  ///@{
+  /**
+   * Tree mode: the refinement threshold tau on the form-factor bound
+   * (mrgi_vpl_tree_gather.h section 1), 0..+inf, default
+   * MRGI_VPL_TREE_DEFAULT_THRESHOLD. tau >= 1 gathers the 16 x 16 roots,
+   * tau = 0 every RSM texel. Negative values clamp to 0; NaN is reported by
+   * Update() (no tree, no VPLs). The tree itself does not depend on tau; the
+   * gather reads it (GetTreeThreshold()).
+   */
+  vtkSetClampMacro(TreeThreshold, double, 0.0, std::numeric_limits<double>::infinity());
+  vtkGetMacro(TreeThreshold, double);
+  ///@}
+
+  /**
+   * Tree mode: the node texture of the last Update() (RGBA32F,
+   * MRGI_VPL_TREE_RECORDS_PER_ROW * MRGI_VPL_TEXELS texels wide), or nullptr
+   * when there is no tree (another mode, or an error).
+   */
+  vtkTextureObject* GetTreeTexture() const;
+
+  /** Tree mode: nodes of the last tree (all views, all levels); 0 without one. */
+  vtkIdType GetNumberOfTreeNodes() const;
+
+  /**
+   * Tree mode: read the whole tree texture back, padding included: width *
+   * height / MRGI_VPL_TEXELS tuples of MRGI_VPL_FLOATS floats (node records
+   * in texture order, then the zero records). False, with an error, without a tree.
+   */
+  bool ReadTreeTexture(vtkOpenGLRenderWindow* window, vtkFloatArray* records);
+
+#ifndef __VTK_WRAP__
+  /** Tree mode: the C tree the texture was uploaded from (world space), or nullptr. */
+  const mrgi_vpl_tree* GetTree() const;
+
+  /** Tree mode: the gather's light term (texture, tree, TreeThreshold); null members without a tree. */
+  vtkMRGIVPLTreeTerm GetTreeTerm() const;
+#endif
+
   /**
    * Bring the VPL cache up to date for `rsm`'s current maps. Returns the
    * number of VPL rows in the cache (0: no light reaches anything, or no VPLs asked).
@@ -115,6 +176,12 @@ public:
 
   /** Rows of the VPL cache after the last Update(). */
   int GetVPLCount() const;
+
+  /**
+   * Read the VPL cache back: GetVPLCount() tuples of MRGI_VPL_FLOATS floats
+   * (mrgi_vpl records). False, with an error, when there is no cache.
+   */
+  bool ReadVPLs(vtkOpenGLRenderWindow* window, vtkFloatArray* vpls);
 
   /** How many times the cache was recomputed. */
   vtkGetMacro(NumberOfSelections, vtkIdType);
@@ -133,12 +200,28 @@ protected:
   double ClusterNormalThreshold;
   int ClusterFinestLevel;
   int ClusterRefinementsCapped = 0;
+  double TreeThreshold;          // MRGI_VPL_TREE_DEFAULT_THRESHOLD
   vtkIdType NumberOfSelections = 0;
 
   // Clusters mode: read back each light's views, select with the C core;
   // `lights` lists each light's RSM views. Returns the VPL count (0 on error).
   int SelectClusters(vtkOpenGLRenderWindow* window, vtkMRGIReflectiveShadowMapPass* rsm,
     const std::vector<std::vector<int>>& lights, std::vector<mrgi_vpl>& vpls);
+
+  // Read back the RSM views `views` (of any lights) into one mrgi_rsm's
+  // arrays, and their light-space cameras (at most MRGI_RSM_MAX_VIEWS).
+  // `what` names the mode in the errors. Returns false after an error.
+  bool ReadLight(vtkOpenGLRenderWindow* window, vtkMRGIReflectiveShadowMapPass* rsm,
+    const std::vector<int>& views, const char* what, mrgi_rsm_view_camera* cameras,
+    std::vector<float>& position, std::vector<float>& normal, std::vector<float>& flux);
+
+  // Tree mode: read back every view, build the tree, upload its texture;
+  // `roots` receives the flat cache's VPLs. Returns the root count (0 on error).
+  int SelectTree(vtkOpenGLRenderWindow* window, vtkMRGIReflectiveShadowMapPass* rsm,
+    std::vector<mrgi_vpl>& roots);
+
+  // Tree mode: free the tree (CPU) and its texture (GL, with `w`).
+  void ReleaseTree(vtkWindow* w);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
