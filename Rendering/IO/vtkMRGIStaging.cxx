@@ -5,31 +5,19 @@
 #include "vtkMRGIStagingPieces.h"
 
 #include "vtkActor.h"
-#include "vtkActorCollection.h"
 #include "vtkCamera.h"
-#include "vtkCellArray.h"
-#include "vtkCellArrayIterator.h"
-#include "vtkCompositeDataIterator.h"
-#include "vtkCompositeDataSet.h"
 #include "vtkContourFilter.h"
 #include "vtkDataArray.h"
-#include "vtkFieldData.h"
-#include "vtkFloatArray.h"
 #include "vtkFlyingEdges3D.h"
 #include "vtkGenericCell.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
-#include "vtkLightCollection.h"
-#include "vtkMapper.h"
 #include "vtkMath.h"
-#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkPolyDataMapper.h"
-#include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 
@@ -40,8 +28,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <utility>
 #include <vector>
 
