@@ -4,6 +4,7 @@
 // onto the tall block's side facing the red wall, green onto the short
 // block's side facing the green wall, both onto the ceiling), and the image
 // matches its baseline.
+#include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"
 
 #include "vtkMRGIPass.h"
@@ -17,18 +18,12 @@ int main()
 {
   MRGI_TEST_CHECK(std::getenv("DISPLAY") == nullptr || std::getenv("DISPLAY")[0] == '\0');
   const int size = 256;
-  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(size, size);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkMRGISceneBuilder> builder;
-  builder->SetScene("cornell");
-  MRGI_TEST_CHECK(builder->Build(renderer));
-  MRGI_TEST_CHECK(builder->GetBuiltTriangleCount() > 20);
+  mrgitest::PassScene scene(size, size, "cornell");
+  vtkRenderWindow* window = scene.Window;
+  vtkRenderer* renderer = scene.Renderer;
+  vtkMRGIPass* pass = scene.Pass;
+  MRGI_TEST_CHECK(scene.Builder->GetBuiltTriangleCount() > 20);
 
-  vtkNew<vtkRenderStepsPass> steps;
-  vtkNew<vtkMRGIPass> pass;
-  pass->SetDelegatePass(steps);
-  renderer->SetPass(pass);
   window->Render();
 
   vtkSmartPointer<vtkImageData> image = mrgitest::GrabRGB(window);

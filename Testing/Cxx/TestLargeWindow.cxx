@@ -1,5 +1,6 @@
 // The extremes of window size: 4096x4096 renders through vtkMRGIPass with a
 // finite HDR buffer of the right size, and the Cornell box is still there.
+#include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"
 
 #include "vtkFloatArray.h"
@@ -13,15 +14,9 @@
 int main()
 {
   const int size = 4096;
-  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(size, size);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkMRGISceneBuilder> builder;
-  MRGI_TEST_CHECK(builder->Build(renderer));
-  vtkNew<vtkRenderStepsPass> steps;
-  vtkNew<vtkMRGIPass> pass;
-  pass->SetDelegatePass(steps);
-  renderer->SetPass(pass);
+  mrgitest::PassScene scene(size, size, "cornell");
+  vtkRenderWindow* window = scene.Window;
+  vtkMRGIPass* pass = scene.Pass;
   window->Render();
   MRGI_TEST_CHECK(pass->GetBufferSize()[0] == size && pass->GetBufferSize()[1] == size);
   vtkNew<vtkImageData> hdr;
@@ -37,7 +32,7 @@ int main()
   }
   std::printf("lit fraction %.3f\n", lit / (double(size) * size));
   MRGI_TEST_CHECK(lit / (double(size) * size) > 0.5);
-  renderer->SetPass(nullptr);
+  scene.Renderer->SetPass(nullptr);
   pass->ReleaseGraphicsResources(window);
   return 0;
 }

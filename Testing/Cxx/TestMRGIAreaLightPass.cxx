@@ -5,7 +5,9 @@
 // re-uploaded only when the light changes, and a changed texture image
 // shows on the next render; an invalid light draws nothing, with an error,
 // and leaves the image finite.
+#include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"
+#include "mrgiVoxelTestUtilities.h"
 
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
@@ -79,19 +81,13 @@ double Sum(vtkImageData* image)
 int main()
 {
   const int W = 96, H = 80;
-  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(W, H);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkMRGISceneBuilder> builder;
-  builder->SetScene("cornell-spot");
-  MRGI_TEST_CHECK(builder->Build(renderer));
+  mrgitest::PassScene scene(W, H, "cornell-spot");
+  vtkRenderWindow* window = scene.Window;
+  vtkRenderer* renderer = scene.Renderer;
+  vtkMRGIPass* pass = scene.Pass;
   double b[6];
   renderer->ComputeVisiblePropBounds(b);
-  vtkNew<vtkRenderStepsPass> steps;
-  vtkNew<vtkMRGIPass> pass;
-  pass->SetDelegatePass(steps);
   pass->SetIndirectMode(vtkMRGIPass::IndirectOff);
-  renderer->SetPass(pass);
 
   // A textured light just under the ceiling, facing down (u x v = -y).
   vtkNew<vtkImageData> picture;
@@ -182,16 +178,9 @@ int main()
   vtkSmartPointer<vtkImageData> shadowed = AreaBuffer(pass, window);
   vtkMRGIVoxelization* voxelization = pass->GetVoxelization();
   vtkNew<vtkTypeUInt32Array> voxelWords;
-  mrgi_voxel_view view{};
-  MRGI_TEST_CHECK(voxelization->ReadVoxels(window, voxelWords));
-  MRGI_TEST_CHECK(voxelization->GetGrid(&view.grid, &view.projection));
-  voxelization->GetMarchParams(&view.params);
-  view.voxels = voxelWords->GetPointer(0);
-  view.voxel_words = static_cast<size_t>(voxelWords->GetNumberOfValues());
-  mrgi_error err;
-  MRGI_TEST_CHECK(mrgi_voxel_view_check(&view, &err) == MRGI_OK);
   double w2v[16];
-  MRGI_TEST_CHECK(voxelization->GetLastWorldToView(w2v));
+  const mrgi_voxel_view view = mrgitest::ReadVoxelView(voxelization, window, voxelWords, w2v);
+  mrgi_error err;
   vtkDataArray* S = shadowed->GetPointData()->GetScalars();
   num = den = 0;
   double unshadowedSum = 0, shadowedSum = 0;

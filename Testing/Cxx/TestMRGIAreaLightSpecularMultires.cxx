@@ -7,6 +7,7 @@
 // and lowers the error (with it off, fewer texels and a larger error), so
 // the test can fail; (3) the multiresolution highlight stays within a
 // stated error of the full-resolution one.
+#include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"
 
 #include "vtkActor.h"
@@ -63,20 +64,14 @@ double RelativeError(vtkImageData* a, vtkImageData* b, vtkImageData* ref, vtkIma
 int main()
 {
   const int W = 96, H = 80;
-  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(W, H);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkMRGISceneBuilder> builder;
-  builder->SetScene("cornell-spot");
-  MRGI_TEST_CHECK(builder->Build(renderer));
+  mrgitest::PassScene scene(W, H, "cornell-spot");
+  vtkRenderWindow* window = scene.Window;
+  vtkRenderer* renderer = scene.Renderer;
+  vtkMRGIPass* pass = scene.Pass;
   double b[6];
   renderer->ComputeVisiblePropBounds(b);
-  vtkNew<vtkRenderStepsPass> steps;
-  vtkNew<vtkMRGIPass> pass;
-  pass->SetDelegatePass(steps);
   pass->SetIndirectMode(vtkMRGIPass::IndirectOff);
   pass->SetAreaLightVisibility(vtkMRGIPass::VisibilityOff);
-  renderer->SetPass(pass);
   vtkNew<vtkMRGIAreaLight> light;
   light->SetCenter(0.5 * (b[0] + b[1]), b[2] + 0.95 * (b[3] - b[2]), 0.5 * (b[4] + b[5]));
   light->SetEdgeU(0.35 * (b[1] - b[0]), 0.0, 0.0);

@@ -818,16 +818,9 @@ void PassCase(const SceneCase& sc)
     vtkDataArray* E = gE->GetPointData()->GetScalars();
     vtkMRGIVoxelization* voxelization = pass->GetVoxelization();
     vtkNew<vtkTypeUInt32Array> voxelWords;
-    mrgi_voxel_view view{};
-    MRGI_TEST_CHECK(voxelization->ReadVoxels(window, voxelWords));
-    MRGI_TEST_CHECK(voxelization->GetGrid(&view.grid, &view.projection));
-    voxelization->GetMarchParams(&view.params);
-    view.voxels = voxelWords->GetPointer(0);
-    view.voxel_words = static_cast<size_t>(voxelWords->GetNumberOfValues());
-    mrgi_error err;
-    MRGI_TEST_CHECK(mrgi_voxel_view_check(&view, &err) == MRGI_OK);
     double w2vd[16];
-    MRGI_TEST_CHECK(voxelization->GetLastWorldToView(w2vd));
+    const mrgi_voxel_view view = mrgitest::ReadVoxelView(voxelization, window, voxelWords, w2vd);
+    mrgi_error err;
     float w2v[16], v2w[16];
     std::copy(w2vd, w2vd + 16, w2v);
     std::copy(pass->GetLastViewToWorld(), pass->GetLastViewToWorld() + 16, v2w);

@@ -5,6 +5,7 @@
 // The area lights' light is not recomputed while nothing it depends on
 // changed, and is when the camera, a light, its picture, a prop or a setting
 // changes.
+#include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"
 
 #include "vtkActor.h"
@@ -48,17 +49,12 @@ std::vector<double> Values(vtkImageData* image)
 
 void TestAreaLightReuse()
 {
-  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(64, 64);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkMRGISceneBuilder> builder;
-  builder->SetScene("cornell-area");
-  MRGI_TEST_CHECK(builder->Build(renderer) && builder->GetNumberOfAreaLights() == 1);
-  vtkNew<vtkRenderStepsPass> steps;
-  vtkNew<vtkMRGIPass> pass;
-  pass->SetDelegatePass(steps);
-  renderer->SetPass(pass);
-  vtkMRGIAreaLight* light = builder->GetAreaLight(0);
+  mrgitest::PassScene scene(64, 64, "cornell-area");
+  vtkRenderWindow* window = scene.Window;
+  vtkRenderer* renderer = scene.Renderer;
+  vtkMRGIPass* pass = scene.Pass;
+  MRGI_TEST_CHECK(scene.Builder->GetNumberOfAreaLights() == 1);
+  vtkMRGIAreaLight* light = scene.Builder->GetAreaLight(0);
   light->SetNumberOfSamples(32);
   pass->AddAreaLight(light);
   MRGI_TEST_CHECK(pass->GetAreaLightReuse()); // the default
@@ -132,16 +128,10 @@ void TestAreaLightReuse()
 // settings, not the camera; NaN input warns once per change of the data.
 static void TestMapsAndVPLCache()
 {
-  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(96, 96);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkMRGISceneBuilder> builder;
-  builder->SetScene("cornell-spot");
-  MRGI_TEST_CHECK(builder->Build(renderer));
-  vtkNew<vtkRenderStepsPass> steps;
-  vtkNew<vtkMRGIPass> pass;
-  pass->SetDelegatePass(steps);
-  renderer->SetPass(pass);
+  mrgitest::PassScene scene(96, 96, "cornell-spot");
+  vtkRenderWindow* window = scene.Window;
+  vtkRenderer* renderer = scene.Renderer;
+  vtkMRGIPass* pass = scene.Pass;
   vtkMRGIReflectiveShadowMapPass* rsm = pass->GetReflectiveShadowMapPass();
   vtkMRGIVPLSelection* vpls = pass->GetVPLSelection();
 

@@ -11,6 +11,7 @@
 // 5. the uploaded VPLs equal mrgi_vpl_select_clusters() run here on the
 //    read-back RSM, with the light view's camera rebuilt from the RSM pass's
 //    matrices, bit for bit (the stage is C; this checks its inputs and upload).
+#include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"
 
 #include "vtkDataArray.h"
@@ -36,16 +37,6 @@
 
 namespace
 {
-std::vector<mrgi_vpl> ReadVPLs(vtkMRGIPass* pass, vtkRenderWindow* window)
-{
-  vtkNew<vtkFloatArray> array;
-  MRGI_TEST_CHECK(pass->GetVPLs(window, array));
-  MRGI_TEST_CHECK(array->GetNumberOfComponents() == MRGI_VPL_FLOATS);
-  std::vector<mrgi_vpl> vpls(static_cast<size_t>(array->GetNumberOfTuples()));
-  std::memcpy(vpls.data(), array->GetPointer(0), sizeof(mrgi_vpl) * vpls.size());
-  return vpls;
-}
-
 void TotalFlux(const std::vector<mrgi_vpl>& vpls, double total[4])
 {
   total[0] = total[1] = total[2] = total[3] = 0.0;
@@ -130,25 +121,18 @@ void CheckSameFlux(const double a[4], const double b[4], const char* what)
 int main()
 {
   const int W = 96, H = 80;
-  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(W, H);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkMRGISceneBuilder> builder;
-  builder->SetScene("cornell-spot");
-  MRGI_TEST_CHECK(builder->Build(renderer));
-  vtkNew<vtkRenderStepsPass> steps;
-  vtkNew<vtkMRGIPass> pass;
-  pass->SetDelegatePass(steps);
+  mrgitest::PassScene scene(W, H, "cornell-spot");
+  vtkRenderWindow* window = scene.Window;
+  vtkMRGIPass* pass = scene.Pass;
   pass->SetIndirectMode(vtkMRGIPass::IndirectFull);
   pass->SetNumberOfVPLs(256);
   pass->SetRSMResolution(128);
-  renderer->SetPass(pass);
 
   // The grid (GPU) first.
   pass->SetVPLSelectionMode(vtkMRGIVPLSelection::Grid);
   window->Render();
   MRGI_TEST_CHECK(pass->GetIndirectComputed());
-  const std::vector<mrgi_vpl> grid = ReadVPLs(pass, window);
+  const std::vector<mrgi_vpl> grid = mrgitest::ReadVPLs(pass, window);
   MRGI_TEST_CHECK(grid.size() == 256);
   double gridFlux[4];
   TotalFlux(grid, gridFlux);
@@ -159,7 +143,7 @@ int main()
   pass->SetClusterDepthThreshold(inf);
   pass->SetClusterNormalThreshold(inf);
   window->Render();
-  const std::vector<mrgi_vpl> roots = ReadVPLs(pass, window);
+  const std::vector<mrgi_vpl> roots = mrgitest::ReadVPLs(pass, window);
   MRGI_TEST_CHECK(roots.size() == grid.size());
   for (size_t i = 0; i < roots.size(); ++i)
   {
@@ -183,7 +167,7 @@ int main()
     pass->SetClusterNormalThreshold(t[1]);
     window->Render();
     MRGI_TEST_CHECK(pass->GetIndirectComputed());
-    const std::vector<mrgi_vpl> clusters = ReadVPLs(pass, window);
+    const std::vector<mrgi_vpl> clusters = mrgitest::ReadVPLs(pass, window);
     std::printf("thresholds %g / %g: %zu cluster VPLs (%d refinements capped)\n", t[0], t[1],
       clusters.size(), pass->GetVPLSelection()->GetClusterRefinementsCapped());
     MRGI_TEST_CHECK(clusters.size() > previous); // lower thresholds split more

@@ -3,6 +3,7 @@
 // have the window's size and hold no NaN or Inf, indirect light was added,
 // and on a subsample of rows the GPU gather equals the C twin
 // (mrgi_gather_full) within 1e-4 relative RMS. Label "extremes": long.
+#include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"
 
 #include "vtkFloatArray.h"
@@ -55,17 +56,11 @@ double CheckImage(vtkImageData* image, int size, int components, const char* wha
 int main()
 {
   const int size = 4096;
-  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(size, size);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkMRGISceneBuilder> builder;
-  builder->SetScene("cornell");
-  MRGI_TEST_CHECK(builder->Build(renderer));
-  vtkNew<vtkRenderStepsPass> steps;
-  vtkNew<vtkMRGIPass> pass;
-  pass->SetDelegatePass(steps);
+  mrgitest::PassScene scene(size, size, "cornell");
+  vtkRenderWindow* window = scene.Window;
+  vtkRenderer* renderer = scene.Renderer;
+  vtkMRGIPass* pass = scene.Pass;
   pass->SetIndirectMode(vtkMRGIPass::IndirectFull);
-  renderer->SetPass(pass);
   window->Render();
   MRGI_TEST_CHECK(pass->GetBufferSize()[0] == size && pass->GetBufferSize()[1] == size);
   MRGI_TEST_CHECK(pass->GetIndirectComputed());

@@ -5,6 +5,7 @@
 // its stages are timed; the image is finite.
 #include "vtk_glew.h"
 
+#include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"
 
 #include "vtkDataArray.h"
@@ -52,17 +53,11 @@ double RelativeRMS(vtkImageData* a, vtkImageData* b)
 int main()
 {
   const int W = 160, H = 120;
-  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(W, H);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkMRGISceneBuilder> builder;
-  builder->SetScene("cornell-spot");
-  MRGI_TEST_CHECK(builder->Build(renderer));
-  vtkNew<vtkRenderStepsPass> steps;
-  vtkNew<vtkMRGIPass> pass;
-  pass->SetDelegatePass(steps);
+  mrgitest::PassScene scene(W, H, "cornell-spot");
+  vtkRenderWindow* window = scene.Window;
+  vtkRenderer* renderer = scene.Renderer;
+  vtkMRGIPass* pass = scene.Pass;
   pass->SetStageTimingEnabled(true);
-  renderer->SetPass(pass);
   window->GetRenderTimer()->SetLoggingEnabled(true);
   MRGI_TEST_CHECK(pass->GetIndirectMode() == vtkMRGIPass::IndirectMultires); // the default
   MRGI_TEST_CHECK(pass->GetMultiresolution()->GetDepthThreshold() ==

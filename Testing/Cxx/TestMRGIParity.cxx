@@ -304,16 +304,6 @@ double RelativeError(double gpu, double c)
   return std::fabs(gpu - c) / std::fabs(c);
 }
 
-std::vector<mrgi_vpl> ReadVPLs(vtkMRGIPass* pass, vtkRenderWindow* window)
-{
-  vtkNew<vtkFloatArray> array;
-  MRGI_TEST_CHECK(pass->GetVPLs(window, array));
-  MRGI_TEST_CHECK(array->GetNumberOfComponents() == MRGI_VPL_FLOATS);
-  std::vector<mrgi_vpl> vpls(static_cast<size_t>(array->GetNumberOfTuples()));
-  std::memcpy(vpls.data(), array->GetPointer(0), sizeof(mrgi_vpl) * vpls.size());
-  return vpls;
-}
-
 // 1. Grid selection: GPU texture vs mrgi_vpl_select_grid() per light.
 void CheckGrid(vtkMRGIPass* pass, vtkRenderWindow* window, const std::vector<mrgi_vpl>& gpu, Worst& worst)
 {
@@ -600,7 +590,7 @@ void RunScene(int index, uint64_t seed, const SceneSetup& setup, Worst& worst)
   MRGI_TEST_CHECK(pass->GetIndirectComputed());
   std::printf("  %d RSM views, viewport %d x %d\n", pass->GetReflectiveShadowMapPass()->GetNumberOfViews(),
     pass->GetBufferSize()[0], pass->GetBufferSize()[1]);
-  const std::vector<mrgi_vpl> grid = ReadVPLs(pass, window);
+  const std::vector<mrgi_vpl> grid = mrgitest::ReadVPLs(pass, window);
   CheckGrid(pass, window, grid, worst);
   vtkNew<vtkImageData> indirect, color;
   CheckGather(pass, window, grid, "grid VPLs", worst, indirect);
@@ -639,7 +629,7 @@ void RunScene(int index, uint64_t seed, const SceneSetup& setup, Worst& worst)
   window->Render();
   MRGI_TEST_CHECK(pass->GetIndirectComputed());
   MRGI_TEST_CHECK(pass->GetReflectiveShadowMapPass()->GetNumberOfRenders() == rsmRenders);
-  const std::vector<mrgi_vpl> importance = ReadVPLs(pass, window);
+  const std::vector<mrgi_vpl> importance = mrgitest::ReadVPLs(pass, window);
   CheckImportance(pass, window, importance);
   CheckGather(pass, window, importance, "importance VPLs", worst, nullptr);
 

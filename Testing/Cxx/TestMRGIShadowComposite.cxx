@@ -11,6 +11,7 @@
 //   the unshadowed one bit for bit.
 // - Parity: the frame's colour equals the C twin applied to the frame's
 //   read-back unshadowed colour, terms and factors (1e-4 relative).
+#include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"
 
 #include "vtkActor.h"
@@ -267,17 +268,10 @@ void Capture()
 // The frame's colour is the twin applied to the frame's own inputs.
 void Parity()
 {
-  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(160, 160);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkMRGISceneBuilder> builder;
-  builder->SetScene("cornell-spot");
-  MRGI_TEST_CHECK(builder->Build(renderer));
-  vtkNew<vtkRenderStepsPass> steps;
-  vtkNew<vtkMRGIPass> pass;
-  pass->SetDelegatePass(steps);
+  mrgitest::PassScene scene(160, 160, "cornell-spot");
+  vtkRenderWindow* window = scene.Window;
+  vtkMRGIPass* pass = scene.Pass;
   pass->SetIndirectMode(vtkMRGIPass::IndirectOff);
-  renderer->SetPass(pass);
   for (int mode : { vtkMRGIPass::DirectShadowsHard, vtkMRGIPass::DirectShadowsSoft })
   {
     pass->SetDirectShadows(mode);

@@ -3,6 +3,7 @@
 // and the warnings of vtkMRGIPass (one per actor drawn as pixels) and of the
 // ground truth, which a cloud drawn as surfels does not get. (The image
 // comparison of a cloud with its mesh is python.PointCloudMeshVsCloud.)
+#include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"
 
 #include "mrgi_scene.h"
@@ -408,18 +409,13 @@ void TestReferenceWarnsOnPixelCloud()
 // shadows what is under it, as the plate itself would.
 void TestAreaLightShadowFromSurfels()
 {
-  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(64, 64);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkMRGISceneBuilder> builder;
-  builder->SetScene("cornell-area");
-  MRGI_TEST_CHECK(builder->Build(renderer) && builder->GetNumberOfAreaLights() == 1);
-  vtkNew<vtkRenderStepsPass> steps;
-  vtkNew<vtkMRGIPass> pass;
-  pass->SetDelegatePass(steps);
+  mrgitest::PassScene scene(64, 64, "cornell-area");
+  vtkRenderWindow* window = scene.Window;
+  vtkRenderer* renderer = scene.Renderer;
+  vtkMRGIPass* pass = scene.Pass;
+  MRGI_TEST_CHECK(scene.Builder->GetNumberOfAreaLights() == 1);
   pass->SetIndirectMode(vtkMRGIPass::IndirectOff);
-  pass->AddAreaLight(builder->GetAreaLight(0));
-  renderer->SetPass(pass);
+  pass->AddAreaLight(scene.Builder->GetAreaLight(0));
   auto mean = [&]() {
     window->Render();
     vtkSmartPointer<vtkImageData> area = mrgitest::AreaBuffer(pass, window);

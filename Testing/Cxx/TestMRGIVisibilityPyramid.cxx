@@ -19,7 +19,9 @@
 // with a wrong refinement threshold must exceed it. Also checked: the
 // GPU's ray and texel counts against the C twin's statistics, and that the
 // incremental default marches far fewer rays than the naive query.
+#include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"
+#include "mrgiVoxelTestUtilities.h"
 
 #include "vtkCamera.h"
 #include "vtkFloatArray.h"
@@ -185,18 +187,12 @@ size_t failureChecks = 0;
 void RunScene(const char* scene, int W, int H, const std::vector<int>& sampleCounts,
   const std::vector<Mode>& modes, bool proveFailure)
 {
-  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(W, H);
+  mrgitest::PassScene built(W, H, scene);
+  vtkRenderWindow* window = built.Window;
   vtkOpenGLRenderWindow* gl = vtkOpenGLRenderWindow::SafeDownCast(window);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkMRGISceneBuilder> builder;
-  builder->SetScene(scene);
-  MRGI_TEST_CHECK(builder->Build(renderer));
-  vtkNew<vtkRenderStepsPass> steps;
-  vtkNew<vtkMRGIPass> pass;
-  pass->SetDelegatePass(steps);
+  vtkRenderer* renderer = built.Renderer;
+  vtkMRGIPass* pass = built.Pass;
   pass->SetNumberOfVPLs(16);
-  renderer->SetPass(pass);
   window->Render();
   vtkCamera* camera = renderer->GetActiveCamera();
   const int* vp = pass->GetViewport();
@@ -229,15 +225,8 @@ void RunScene(const char* scene, int W, int H, const std::vector<int>& sampleCou
   camera->GetClippingRange(range);
   MRGI_TEST_CHECK(voxels->Voxelize(renderer, range[0], range[1]));
   vtkNew<vtkTypeUInt32Array> voxelWords;
-  MRGI_TEST_CHECK(voxels->ReadVoxels(window, voxelWords));
-  mrgi_voxel_view view;
-  MRGI_TEST_CHECK(voxels->GetGrid(&view.grid, &view.projection));
-  voxels->GetMarchParams(&view.params);
-  view.voxels = voxelWords->GetPointer(0);
-  view.voxel_words = static_cast<size_t>(voxelWords->GetNumberOfValues());
-  MRGI_TEST_CHECK(mrgi_voxel_view_check(&view, &err) == MRGI_OK);
   double w2v[16];
-  MRGI_TEST_CHECK(voxels->GetLastWorldToView(w2v));
+  const mrgi_voxel_view view = mrgitest::ReadVoxelView(voxels, window, voxelWords, w2v);
   float M[16];
   for (int k = 0; k < 16; ++k)
   {
@@ -246,9 +235,9 @@ void RunScene(const char* scene, int W, int H, const std::vector<int>& sampleCou
 
   // The light: the scene's area emitter, else one under the ceiling facing down.
   mrgi_area_light light{};
-  if (builder->GetNumberOfAreaLights() > 0)
+  if (built.Builder->GetNumberOfAreaLights() > 0)
   {
-    MRGI_TEST_CHECK(builder->GetAreaLight(0)->GetCoreLight(&light));
+    MRGI_TEST_CHECK(built.Builder->GetAreaLight(0)->GetCoreLight(&light));
   }
   else
   {

@@ -28,6 +28,7 @@
 // exactly: no disagreement at all; a skip box test off by one in the GLSL
 // gives 0.16-0.7% disagreements, most of them unexplained.) A twin with a
 // deliberately wrong normal offset or skip radius must fail the same bound.
+#include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"
 #include "mrgiVoxelTestUtilities.h"
 
@@ -719,12 +720,9 @@ const int WindowW = 150, WindowH = 110;
 
 void CornellBox(bool parallel)
 {
-  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(WindowW, WindowH);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkMRGISceneBuilder> builder;
-  builder->SetScene("cornell");
-  MRGI_TEST_CHECK(builder->Build(renderer));
+  mrgitest::SceneWindow scene(WindowW, WindowH, "cornell");
+  vtkRenderWindow* window = scene.Window;
+  vtkRenderer* renderer = scene.Renderer;
   if (parallel)
   {
     renderer->GetActiveCamera()->ParallelProjectionOn();

@@ -23,6 +23,7 @@
 // bounded: an edge-on face whose line passes through pixel centres (the
 // parallel Cornell box at 300x7: the floor) lights a whole row or not. A
 // deliberately wrong near depth given to the twin must fail this comparison.
+#include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"
 #include "mrgiVoxelTestUtilities.h"
 
@@ -362,12 +363,9 @@ const Size Sizes[] = { { 128, 128 }, { WindowW, WindowH }, { 97, 61 }, { 300, 7 
 
 void CornellBox(bool parallel)
 {
-  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(WindowW, WindowH);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  vtkNew<vtkMRGISceneBuilder> builder;
-  builder->SetScene("cornell");
-  MRGI_TEST_CHECK(builder->Build(renderer));
+  mrgitest::SceneWindow scene(WindowW, WindowH, "cornell");
+  vtkRenderWindow* window = scene.Window;
+  vtkRenderer* renderer = scene.Renderer;
   if (parallel)
   {
     renderer->GetActiveCamera()->ParallelProjectionOn();

@@ -21,6 +21,7 @@
 #define mrgiTestUtilities_h
 
 #include "vtkCommand.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMRGIImageIO.h"
@@ -34,10 +35,12 @@
 
 #include "mrgi_image.h"
 #include "mrgi_metrics.h"
+#include "mrgi_vpl.h"
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <functional>
 #include <string>
@@ -244,6 +247,17 @@ inline vtkSmartPointer<vtkImageData> AreaBuffer(vtkMRGIPass* pass, vtkRenderWind
   vtkNew<vtkImageData> image;
   MRGI_TEST_CHECK(pass->GetAreaLightBuffer(window, image));
   return vtkSmartPointer<vtkImageData>(image.GetPointer());
+}
+
+/** The VPLs of the last frame (vtkMRGIPass::GetVPLs()) as records; fails the test when there are none. */
+inline std::vector<mrgi_vpl> ReadVPLs(vtkMRGIPass* pass, vtkRenderWindow* window)
+{
+  vtkNew<vtkFloatArray> array;
+  MRGI_TEST_CHECK(pass->GetVPLs(window, array));
+  MRGI_TEST_CHECK(array->GetNumberOfComponents() == MRGI_VPL_FLOATS);
+  std::vector<mrgi_vpl> vpls(static_cast<size_t>(array->GetNumberOfTuples()));
+  std::memcpy(vpls.data(), array->GetPointer(0), sizeof(mrgi_vpl) * vpls.size());
+  return vpls;
 }
 
 /** A headless window of the given size; without one, Fail() with the reason. */

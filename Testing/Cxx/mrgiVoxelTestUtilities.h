@@ -23,6 +23,10 @@
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkTriangleFilter.h"
+#include "vtkTypeUInt32Array.h"
+#include "vtkMRGIVoxelization.h"
+
+#include "mrgi_voxel_march.h"
 
 #include <algorithm>
 #include <array>
@@ -159,6 +163,27 @@ inline vtkSmartPointer<vtkActor> MakeActor(vtkAlgorithm* source)
   return actor;
 }
 
+
+/**
+ * The voxels of `vox`'s last Voxelize() read back into `words` and described
+ * for the C twins (grid, projection, march parameters), checked with
+ * mrgi_voxel_view_check(); `worldToView` gets the voxelized frame's world ->
+ * view matrix. Fails the test when a read-back or the check fails.
+ */
+inline mrgi_voxel_view ReadVoxelView(vtkMRGIVoxelization* vox, vtkRenderWindow* window,
+  vtkTypeUInt32Array* words, double worldToView[16])
+{
+  mrgi_voxel_view view{};
+  MRGI_TEST_CHECK(vox->ReadVoxels(window, words));
+  MRGI_TEST_CHECK(vox->GetGrid(&view.grid, &view.projection));
+  vox->GetMarchParams(&view.params);
+  view.voxels = words->GetPointer(0);
+  view.voxel_words = static_cast<size_t>(words->GetNumberOfValues());
+  mrgi_error err;
+  MRGI_TEST_CHECK(mrgi_voxel_view_check(&view, &err) == MRGI_OK);
+  MRGI_TEST_CHECK(vox->GetLastWorldToView(worldToView));
+  return view;
+}
 }
 
 #endif

@@ -30,13 +30,13 @@
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
 
-#include "vtkMRGIAreaLight.h"
+#include "vtkMRGIAreaLightRSMViews.h"
 #include "vtkMRGIRSMCapture.h"
 #include "vtkMRGIRSMCompositor.h"
 #include "vtkMRGIRSMDecl.h"
+#include "vtkMRGIRSMView.h"
 #include "vtkMRGIShaderUtilities.h"
 
-#include "mrgi_area_light_rsm.h"
 #include "mrgi_buffers.h"
 #include "mrgi_rsm_composite.h"
 
@@ -53,26 +53,7 @@ vtkCxxSetObjectMacro(vtkMRGIReflectiveShadowMapPass, Compositor, vtkMRGIRSMCompo
 
 namespace
 {
-// One rendered view of one light.
-struct View
-{
-  int Light = -1;
-  bool Perspective = true;
-  double TexelSize = 0;       // perspective: 2 tan(fov/2) / S; orthographic: width / S
-  double LightColor[3] = { 0, 0, 0 };
-  double Attenuation[3] = { 1, 0, 0 };
-  double SpotAxisVC[3] = { 0, 0, -1 };
-  double SpotCosCutoff = -2.0; // no cone
-  double SpotExponent = 1.0;
-  // Area-light views: the light samples that light the texels
-  // (mrgi_area_light_rsm.h; 0 for a vtkLight's view).
-  int AreaSampleCount = 0;
-  bool AreaTwoSided = false;
-  float AreaSamples[MRGI_AREA_LIGHT_RSM_SAMPLES][MRGI_AREA_LIGHT_SAMPLE_FLOATS] = {};
-  vtkSmartPointer<vtkCamera> Camera;
-  vtkNew<vtkMatrix4x4> VCToWC;
-  vtkTextureObject* Textures[MRGI_RSM_ATTACHMENTS] = { nullptr, nullptr, nullptr };
-};
+using View = vtkMRGIRSMView;
 
 void Normalize(double v[3])
 {
@@ -83,16 +64,6 @@ void Normalize(double v[3])
     v[1] /= n;
     v[2] /= n;
   }
-}
-
-// An up vector not parallel to `dir`.
-void PickUp(const double dir[3], double up[3])
-{
-  const double candidates[2][3] = { { 0, 1, 0 }, { 1, 0, 0 } };
-  const double* c = std::fabs(vtkMath::Dot(dir, candidates[0])) < 0.9 ? candidates[0] : candidates[1];
-  up[0] = c[0];
-  up[1] = c[1];
-  up[2] = c[2];
 }
 
 // Whether the box `bounds` can intersect the frustum of `worldToClip` (all
@@ -114,33 +85,6 @@ bool BoxMayIntersect(vtkMatrix4x4* worldToClip, const double bounds[6])
   }
   return std::none_of(std::begin(outside), std::end(outside), [](int n) { return n == 8; });
 }
-
-// A square perspective view from `eye` along `dir` covering the sphere
-// (center, radius) of the visible props in depth.
-void SetPerspectiveView(View& view, const double eye[3], const double dir[3], double fovDeg,
-  const double center[3], double radius, double S)
-{
-  double up[3];
-  PickUp(dir, up);
-  view.Camera->SetPosition(const_cast<double*>(eye));
-  view.Camera->SetFocalPoint(eye[0] + dir[0], eye[1] + dir[1], eye[2] + dir[2]);
-  view.Camera->SetViewUp(up);
-  const double distance = vtkMath::Distance2BetweenPoints(eye, center);
-  const double farPlane = std::sqrt(distance) + radius;
-  const double nearPlane = std::max(farPlane * 1e-3, std::sqrt(distance) - radius);
-  const double f = 1.0 / std::tan(vtkMath::RadiansFromDegrees(0.5 * fovDeg));
-  vtkNew<vtkMatrix4x4> proj;
-  proj->Zero();
-  proj->SetElement(0, 0, f);
-  proj->SetElement(1, 1, f);
-  proj->SetElement(2, 2, (farPlane + nearPlane) / (nearPlane - farPlane));
-  proj->SetElement(2, 3, 2.0 * farPlane * nearPlane / (nearPlane - farPlane));
-  proj->SetElement(3, 2, -1.0);
-  view.Camera->SetExplicitProjectionTransformMatrix(proj);
-  view.Camera->SetUseExplicitProjectionTransformMatrix(true);
-  view.Perspective = true;
-  view.TexelSize = 2.0 / (f * S);
-}
 }
 
 struct vtkMRGIReflectiveShadowMapPass::Internals
@@ -152,6 +96,7 @@ struct vtkMRGIReflectiveShadowMapPass::Internals
   std::string Signature;
   vtkTimeStamp ContentTime;
   View* Current = nullptr;
+  vtkNew<vtkMRGIAreaLightRSMViews> AreaViews;
 
   void ReleaseView(View& view, vtkWindow* w)
   {
@@ -390,53 +335,8 @@ void vtkMRGIReflectiveShadowMapPass::RenderWithAreaLights(
     ++index;
   }
   // Area lights (mrgi_area_light_rsm.h): views from each emitter's centre.
-  struct AreaInfo
-  {
-    int Index;
-    mrgi_area_light Core;
-    mrgi_area_light_sample Samples[MRGI_AREA_LIGHT_RSM_SAMPLES];
-    int SampleCount;
-  };
-  std::vector<AreaInfo> areas;
-  for (int k = 0; areaLights && k < areaLightCount; ++k)
-  {
-    vtkMRGIAreaLight* area = areaLights[k];
-    AreaInfo info;
-    info.Index = k;
-    const mrgi_area_light_texture_pyramid* pyramid = nullptr;
-    // GetCoreLight() and GetCorePyramid() report a bad light themselves.
-    if (!area || area->GetIntensity() <= 0 || !area->GetCoreLight(&info.Core) ||
-      !area->GetCorePyramid(&pyramid))
-    {
-      continue;
-    }
-    const double* c = area->GetColor();
-    if (!(std::max({ c[0], c[1], c[2] }) > 0))
-    {
-      continue;
-    }
-    mrgi_error err;
-    int32_t count = 0;
-    if (mrgi_area_light_make_samples(&info.Core, pyramid, MRGI_AREA_LIGHT_RSM_SAMPLES, 0, 0,
-          info.Samples, MRGI_AREA_LIGHT_RSM_SAMPLES, &count, &err) != MRGI_OK)
-    {
-      vtkErrorMacro("area light " << k << " gets no indirect light: " << err.message);
-      continue;
-    }
-    info.SampleCount = count;
-    areas.push_back(info);
-    // Values, not the object's address or MTime: every rank must agree.
-    lightSignature << 'A' << k;
-    for (int i = 0; i < count; ++i)
-    {
-      const float* f = &info.Samples[i].position[0];
-      for (int j = 0; j < MRGI_AREA_LIGHT_SAMPLE_FLOATS; ++j)
-      {
-        lightSignature << ',' << f[j];
-      }
-    }
-    lightSignature << ',' << info.Core.two_sided << ';';
-  }
+  std::vector<vtkMRGIAreaLightRSMViews::Emitter> areas;
+  this->Internal->AreaViews->SampleEmitters(areaLights, areaLightCount, areas, lightSignature);
   signature << lightSignature.str();
   // Maps rendered alone are not composited ones (and the reverse): a new
   // compositor or a new number of processes renders them again.
@@ -528,7 +428,7 @@ void vtkMRGIReflectiveShadowMapPass::RenderWithAreaLights(
 
     // Explicit square projections: the window's aspect must not distort them.
     auto setPerspective = [&](View& view, const double dir[3], double fovDeg) {
-      SetPerspectiveView(view, position, dir, fovDeg, center, radius, S);
+      view.SetPerspective(position, dir, fovDeg, center, radius, S);
     };
 
     if (!light->GetPositional())
@@ -539,7 +439,7 @@ void vtkMRGIReflectiveShadowMapPass::RenderWithAreaLights(
       double eye[3] = { center[0] - axis[0] * 2 * radius, center[1] - axis[1] * 2 * radius,
         center[2] - axis[2] * 2 * radius };
       double up[3];
-      PickUp(axis, up);
+      View::PickUp(axis, up);
       view->Camera->SetPosition(eye);
       view->Camera->SetFocalPoint(center);
       view->Camera->SetViewUp(up);
@@ -602,31 +502,7 @@ void vtkMRGIReflectiveShadowMapPass::RenderWithAreaLights(
     }
   }
 
-  for (const AreaInfo& info : areas)
-  {
-    double directions[MRGI_AREA_LIGHT_RSM_MAX_VIEWS][3];
-    int32_t faces = 0;
-    mrgi_error err;
-    if (mrgi_area_light_rsm_views(&info.Core, directions, &faces, &err) != MRGI_OK)
-    {
-      vtkErrorMacro("area light " << info.Index << " gets no indirect light: " << err.message);
-      continue;
-    }
-    for (int f = 0; f < faces; ++f)
-    {
-      auto view = std::make_unique<View>();
-      view->Light = -2 - info.Index;
-      view->Camera = vtkSmartPointer<vtkCamera>::New();
-      view->AreaSampleCount = info.SampleCount;
-      view->AreaTwoSided = info.Core.two_sided != 0;
-      for (int i = 0; i < info.SampleCount; ++i)
-      {
-        std::copy_n(&info.Samples[i].position[0], MRGI_AREA_LIGHT_SAMPLE_FLOATS, view->AreaSamples[i]);
-      }
-      SetPerspectiveView(*view, info.Core.center, directions[f], 90.0, center, radius, S);
-      views.push_back(std::move(view));
-    }
-  }
+  this->Internal->AreaViews->AddViews(areas, center, radius, S, views);
 
   // Keep only views that reach the visible props; finish their matrices.
   std::vector<int> reaches(views.size(), 0);
@@ -935,16 +811,7 @@ bool vtkMRGIReflectiveShadowMapPass::SetShaderParameters(
   program->SetUniform3f("mrgiSpotAxisVC", axis);
   program->SetUniformf("mrgiSpotCosCutoff", static_cast<float>(view->SpotCosCutoff));
   program->SetUniformf("mrgiSpotExponent", static_cast<float>(view->SpotExponent));
-  program->SetUniformi("mrgiAreaSampleCount", view->AreaSampleCount);
-  program->SetUniformi("mrgiAreaTwoSided", view->AreaTwoSided ? 1 : 0);
-  if (view->AreaSampleCount > 0)
-  {
-    // One record = MRGI_AREA_LIGHT_SAMPLE_TEXELS vec4s (mrgi_area_light_sample).
-    static_assert(MRGI_AREA_LIGHT_SAMPLE_FLOATS == 4 * MRGI_AREA_LIGHT_SAMPLE_TEXELS,
-      "an area-light sample is whole vec4s");
-    program->SetUniform4fv("mrgiAreaSamples", MRGI_AREA_LIGHT_RSM_SAMPLES * MRGI_AREA_LIGHT_SAMPLE_TEXELS,
-      &view->AreaSamples[0][0]);
-  }
+  vtkMRGIAreaLightRSMViews::SetShaderParameters(program, *view);
   return true;
 }
 
@@ -1007,4 +874,6 @@ void vtkMRGIReflectiveShadowMapPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Compositor: " << this->Compositor << "\n";
   os << indent << "CompositeBytes: " << this->CompositeBytes << "\n";
   os << indent << "NumberOfComposites: " << this->NumberOfComposites << "\n";
+  os << indent << "AreaViews:\n";
+  this->Internal->AreaViews->PrintSelf(os, indent.GetNextIndent());
 }

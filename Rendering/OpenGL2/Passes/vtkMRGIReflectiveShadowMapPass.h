@@ -10,7 +10,8 @@
  *
  * Area lights (vtkMRGIAreaLight, RenderWithAreaLights()) get the hemicube
  * of their emitting side(s) from the emitter's centre (mrgi_area_light_rsm.h,
- * Documentation/IndirectLight.md "Area lights bounce").
+ * Documentation/IndirectLight.md "Area lights bounce"); the internal
+ * vtkMRGIAreaLightRSMViews samples the emitters and builds those views.
  *
  * Views per light (the light's transformed position and focal point, so
  * headlights and camera lights, e.g. ParaView's light kit, work):
