@@ -17,7 +17,8 @@ same path; the flicker
 comes from the C core (mrgi_flicker.h through the mrgi-flicker tool), per
 pixel and on 4x4 boxes; the per-frame relative RMS error against R from
 mrgi-compare; the frame time is the median wall time of window.Render() along
-the path (the light path reselects the VPLs every frame).
+the path (the light path reselects the VPLs every frame; tree rows run with
+the gather's statistics on, which their VPLs-per-pixel count needs).
 
 The reference is the dense one of issue 12 part 4, the VPL tree at tau = 0
 (`--reference tree:0`, vtkMRGIPass::SetTreeThreshold); on a build whose pass
@@ -88,6 +89,9 @@ def parse_spec(spec):
 def apply(gi, kind, number, seed_rule, frame):
     """Put the pass into a row's selection for frame `frame`."""
     gi.SetVPLSelectionMode(kind)
+    if hasattr(gi.GetGather(), "SetCollectStatistics"):
+        # The tree's VPLs per pixel is counted only with the gather's statistics on.
+        gi.GetGather().SetCollectStatistics(kind == TREE)
     if kind == TREE:
         gi.SetTreeThreshold(number)
         gi.SetNumberOfVPLs(256)
@@ -101,8 +105,11 @@ def apply(gi, kind, number, seed_rule, frame):
 
 
 def vpls_per_pixel(gi, kind):
-    if kind == TREE and hasattr(gi.GetGather(), "GetMeanVPLsPerPixel"):
-        return float(gi.GetGather().GetMeanVPLsPerPixel())
+    if kind == TREE:
+        value = gi.GetGather().GetMeanVPLsPerPixel() if hasattr(gi.GetGather(), "GetMeanVPLsPerPixel") else -1
+        if value < 0:
+            raise SystemExit("the tree gather did not count its VPLs per pixel (GetMeanVPLsPerPixel %s)" % value)
+        return float(value)
     return float(gi.GetVPLSelection().GetVPLCount())  # full gather: every pixel, every VPL
 
 
