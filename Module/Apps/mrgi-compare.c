@@ -16,6 +16,7 @@
 #include "mrgi_error.h"
 #include "mrgi_exr.h"
 #include "mrgi_image.h"
+#include "mrgi_image_file.h"
 #include "mrgi_metrics.h"
 #include "mrgi_parse.h"
 #include "mrgi_png.h"
@@ -24,26 +25,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
-
-static int ends_with(const char* s, const char* ext)
-{
-  const size_t n = strlen(s), e = strlen(ext);
-  return n > e && strcasecmp(s + n - e, ext) == 0;
-}
-
-static mrgi_status read_image(const char* path, mrgi_image* out, mrgi_error* err)
-{
-  if (ends_with(path, ".exr"))
-  {
-    return mrgi_exr_read(path, out, err);
-  }
-  if (ends_with(path, ".png"))
-  {
-    return mrgi_png_read(path, out, err);
-  }
-  return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "'%s': the file name must end in .exr or .png", path);
-}
 
 static const char* const usage =
   "usage: mrgi-compare IMAGE REFERENCE [--all] [--peak P] [--diff OUT.exr|OUT.png]\n"
@@ -128,7 +109,7 @@ int main(int argc, char** argv)
       if (!has_value)
         return usage_error("--diff needs a file name", NULL);
       diff_path = argv[++i];
-      if (!ends_with(diff_path, ".exr") && !ends_with(diff_path, ".png"))
+      if (!mrgi_image_file_has_extension(diff_path, ".exr") && !mrgi_image_file_has_extension(diff_path, ".png"))
         return usage_error("--diff: the file name must end in .exr or .png, not", diff_path);
     }
     else if (argv[i][0] == '-' && argv[i][1] != '\0')
@@ -145,7 +126,7 @@ int main(int argc, char** argv)
   mrgi_image image = { 0 }, reference = { 0 }, diff = { 0 };
   int code = 0;
   uint8_t* mask = NULL;
-  if (read_image(paths[0], &image, &err) != MRGI_OK || read_image(paths[1], &reference, &err) != MRGI_OK)
+  if (mrgi_image_file_read(paths[0], &image, &err) != MRGI_OK || mrgi_image_file_read(paths[1], &reference, &err) != MRGI_OK)
   {
     code = fail(err.message);
     goto done;
@@ -218,7 +199,7 @@ int main(int argc, char** argv)
     {
       diff.pixels[i] *= (float)diff_scale;
     }
-    const mrgi_status status = ends_with(diff_path, ".exr")
+    const mrgi_status status = mrgi_image_file_has_extension(diff_path, ".exr")
       ? mrgi_exr_write(diff_path, &diff, NULL, MRGI_EXR_FLOAT, &err)
       : mrgi_png_write_image(diff_path, &diff, 0, 1.0f, &err);
     if (status != MRGI_OK)

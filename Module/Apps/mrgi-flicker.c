@@ -15,36 +15,15 @@
  * printed), 0 after --help.
  */
 #include "mrgi_error.h"
-#include "mrgi_exr.h"
 #include "mrgi_flicker.h"
 #include "mrgi_image.h"
+#include "mrgi_image_file.h"
 #include "mrgi_parse.h"
-#include "mrgi_png.h"
 
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
-
-static int ends_with(const char* s, const char* ext)
-{
-  const size_t n = strlen(s), e = strlen(ext);
-  return n > e && strcasecmp(s + n - e, ext) == 0;
-}
-
-static mrgi_status read_image(const char* path, mrgi_image* out, mrgi_error* err)
-{
-  if (ends_with(path, ".exr"))
-  {
-    return mrgi_exr_read(path, out, err);
-  }
-  if (ends_with(path, ".png"))
-  {
-    return mrgi_png_read(path, out, err);
-  }
-  return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "'%s': the file name must end in .exr or .png", path);
-}
 
 static const char* const usage =
   "usage: mrgi-flicker [--box N] [--pairs] IMAGE... --reference REFERENCE...\n"
@@ -93,7 +72,7 @@ static int read_frames(char** paths, int count, mrgi_image** out, mrgi_error* er
   }
   for (int k = 0; k < count; ++k)
   {
-    if (read_image(paths[k], &(*out)[k], err) != MRGI_OK)
+    if (mrgi_image_file_read(paths[k], &(*out)[k], err) != MRGI_OK)
     {
       return 0;
     }
