@@ -73,10 +73,6 @@ MULTIRES_SETTINGS = [
 QUICK_TAUS = (1.0, 0.05)
 
 
-def has_tree(gi):
-    return hasattr(gi, "SetTreeThreshold")
-
-
 def configure(gi, mode, vpls, knobs):
     gi.SetVPLSelectionMode(mode)
     gi.SetNumberOfVPLs(vpls)
@@ -147,9 +143,6 @@ def measure(window, gi, settings, indirect_mode, references, args, compare_tool,
     rows = []
     gi.SetIndirectMode(indirect_mode)
     for label, mode, vpls, knobs in settings:
-        if mode == TREE and not has_tree(gi):
-            print("skipping %s: this build has no VPL tree" % label)
-            continue
         configure(gi, mode, vpls, knobs)
         window.Render()
         image = indirect(window, gi, label)
@@ -222,32 +215,30 @@ def run_scene(scene, args, compare_tool, scratch, images):
     mb.write_display(truth, os.path.join(images, "lighthierarchy-%s-truth.png" % scene),
                      1.0 / max(1e-12, float(truth.max())))
 
-    dense_row = None
-    if has_tree(gi):
-        label, mode, vpls, tau = DENSE
-        configure(gi, mode, vpls, tau)
-        # One frame gives the image, the gather time and the VPL counts: at
-        # 256^2 it takes minutes on llvmpipe.
-        gi.GetGather().SetCollectStatistics(True)
-        start = time.perf_counter()
-        window.Render()
-        wall_ms = (time.perf_counter() - start) * 1e3
-        stage_ms = [gi.GetStageTimeMilliseconds(i) for i in range(gi.FetchStageTimings(window, True))
-                    if gi.GetStageName(i) == "gather"]
-        dense_vpls = gi.GetGather().GetMeanVPLsPerPixel()
-        gi.GetGather().SetCollectStatistics(False)
-        dense = indirect(window, gi, label)
-        dense_path = os.path.join(scratch, "lh-%s-dense.exr" % scene)
-        mb.write(dense, dense_path)
-        dense_row = {"label": label, "mode": TREE}
-        dense_row.update(errors(compare_tool, scratch, images, dense, references, "%s-dense" % scene))
-        dense_row["gather_ms"] = stage_ms[0] if stage_ms and math.isfinite(stage_ms[0]) else wall_ms
-        dense_row["vpls_per_pixel"] = dense_vpls
-        dense_row["dense_pixel"] = dense_row["dense_box"] = 0.0
-        references["dense"] = (dense, dense_path)
-        print("dense reference: truth %.4f / %.4f, %.1f VPL/px, gather %.1f ms"
-              % (dense_row["truth_pixel"], dense_row["truth_box"], dense_row["vpls_per_pixel"],
-                 dense_row["gather_ms"]))
+    label, mode, vpls, tau = DENSE
+    configure(gi, mode, vpls, tau)
+    # One frame gives the image, the gather time and the VPL counts: at
+    # 256^2 it takes minutes on llvmpipe.
+    gi.GetGather().SetCollectStatistics(True)
+    start = time.perf_counter()
+    window.Render()
+    wall_ms = (time.perf_counter() - start) * 1e3
+    stage_ms = [gi.GetStageTimeMilliseconds(i) for i in range(gi.FetchStageTimings(window, True))
+                if gi.GetStageName(i) == "gather"]
+    dense_vpls = gi.GetGather().GetMeanVPLsPerPixel()
+    gi.GetGather().SetCollectStatistics(False)
+    dense = indirect(window, gi, label)
+    dense_path = os.path.join(scratch, "lh-%s-dense.exr" % scene)
+    mb.write(dense, dense_path)
+    dense_row = {"label": label, "mode": TREE}
+    dense_row.update(errors(compare_tool, scratch, images, dense, references, "%s-dense" % scene))
+    dense_row["gather_ms"] = stage_ms[0] if stage_ms and math.isfinite(stage_ms[0]) else wall_ms
+    dense_row["vpls_per_pixel"] = dense_vpls
+    dense_row["dense_pixel"] = dense_row["dense_box"] = 0.0
+    references["dense"] = (dense, dense_path)
+    print("dense reference: truth %.4f / %.4f, %.1f VPL/px, gather %.1f ms"
+          % (dense_row["truth_pixel"], dense_row["truth_box"], dense_row["vpls_per_pixel"],
+             dense_row["gather_ms"]))
 
     full_settings = FULL_SETTINGS
     multires_settings = MULTIRES_SETTINGS
@@ -275,8 +266,26 @@ def run_scene(scene, args, compare_tool, scratch, images):
     lines += table(multires, base_ms, has_dense)
     for line in lines:
         print(line)
+    if args.check:
+        check(full)
     window.Finalize()
     return lines
+
+
+def check(full):
+    """--check: the tree's invariants as the page shows them. tau = 1 gathers
+    the 16 x 16 roots, i.e. grid 256 (same error against both references);
+    tau = 0.05 is closer to the dense reference than grid 256."""
+    rows = {r["label"].split(" (")[0]: r for r in full}
+    grid, roots, tree = rows["grid 256"], rows["tree 1"], rows["tree 0.05"]
+    for key in ("dense_box", "truth_box"):
+        assert abs(roots[key] - grid[key]) <= 1e-3 * max(grid[key], 1e-6), \
+            "tree 1 %s %.5f differs from grid 256's %.5f" % (key, roots[key], grid[key])
+    assert tree["dense_box"] < 0.5 * grid["dense_box"], \
+        "tree 0.05 is not closer to the dense reference: %.4f against grid 256's %.4f" % (
+            tree["dense_box"], grid["dense_box"])
+    print("check passed: tree 1 = grid 256 (%.4f), tree 0.05 %.4f < grid %.4f against dense"
+          % (grid["dense_box"], tree["dense_box"], grid["dense_box"]))
 
 
 def main():
@@ -290,6 +299,7 @@ def main():
     parser.add_argument("--passes", type=int, default=64, help="ground-truth passes")
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--quick", action="store_true", help="64 x 64, 4 passes, a short sweep (smoke test)")
+    parser.add_argument("--check", action="store_true", help="assert the tree's invariants (exit non-zero)")
     args = parser.parse_args()
     if args.quick:
         args.size, args.rsm_size, args.passes, args.repeats = 64, 64, 4, 1

@@ -69,26 +69,7 @@ double CheckFinite(vtkImageData* image)
 // 5. A fresh C selection on the read-back RSM (the Cornell box has one spot light: view 0).
 void CheckAgainstCore(vtkMRGIPass* pass, vtkRenderWindow* window, const std::vector<mrgi_vpl>& gpu)
 {
-  vtkMRGIReflectiveShadowMapPass* rsm = pass->GetReflectiveShadowMapPass();
-  MRGI_TEST_CHECK(rsm->GetNumberOfViews() == 1);
-  vtkNew<vtkImageData> p, n, f;
-  MRGI_TEST_CHECK(rsm->ReadView(window, 0, p, n, f));
-  auto floats = [](vtkImageData* image) {
-    return vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars())->GetPointer(0);
-  };
-  const mrgi_rsm map = { rsm->GetResolution(), 1, floats(p), floats(n), floats(f) };
-  double worldToView[16], projection[16];
-  MRGI_TEST_CHECK(rsm->GetViewWorldToView(0, worldToView));
-  MRGI_TEST_CHECK(rsm->GetViewProjection(0, projection));
-  MRGI_TEST_CHECK(rsm->GetViewPerspective(0));
-  mrgi_rsm_view_camera camera;
-  for (int i = 0; i < 16; ++i)
-  {
-    camera.world_to_view[i] = static_cast<float>(worldToView[(i % 4) * 4 + i / 4]); // transpose
-  }
-  camera.projection.parallel = 0;
-  camera.projection.view_angle_deg = 2.0 * std::atan(1.0 / projection[5]) * 180.0 / vtkMath::Pi();
-  camera.projection.parallel_scale = 1.0;
+  const mrgitest::SpotRSMView view(pass, window);
   mrgi_vpl_cluster_params params;
   mrgi_vpl_cluster_params_default(&params);
   params.depth_threshold = pass->GetClusterDepthThreshold();
@@ -96,7 +77,7 @@ void CheckAgainstCore(vtkMRGIPass* pass, vtkRenderWindow* window, const std::vec
   std::vector<mrgi_vpl> c(MRGI_VPL_CLUSTER_MAX);
   mrgi_vpl_cluster_info info;
   mrgi_error err;
-  MRGI_TEST_CHECK(mrgi_vpl_select_clusters(&map, &camera, &params, c.data(), MRGI_VPL_CLUSTER_MAX,
+  MRGI_TEST_CHECK(mrgi_vpl_select_clusters(&view.Map, &view.Camera, &params, c.data(), MRGI_VPL_CLUSTER_MAX,
                     &info, &err) == MRGI_OK);
   MRGI_TEST_CHECK(static_cast<size_t>(info.vpl_count) == gpu.size());
   MRGI_TEST_CHECK(std::memcmp(c.data(), gpu.data(), sizeof(mrgi_vpl) * gpu.size()) == 0);

@@ -19,6 +19,7 @@
 //    within 1e-4 relative RMS (float order only); tau = 0.02 changes it;
 //    the multiresolution gather runs with the tree, every value finite and
 //    >= 0, and the VPLs-per-pixel statistic is > 1.
+#include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"
 
 #include "vtkCamera.h"
@@ -94,29 +95,10 @@ void CheckTexture(vtkMRGIVPLSelection* selection, vtkRenderWindow* window)
 // 1. A fresh C tree on the read-back RSM (the Cornell box has one spot light: view 0).
 void CheckAgainstCore(vtkMRGIPass* pass, vtkRenderWindow* window)
 {
-  vtkMRGIReflectiveShadowMapPass* rsm = pass->GetReflectiveShadowMapPass();
-  MRGI_TEST_CHECK(rsm->GetNumberOfViews() == 1);
-  vtkNew<vtkImageData> p, n, f;
-  MRGI_TEST_CHECK(rsm->ReadView(window, 0, p, n, f));
-  auto floats = [](vtkImageData* image) {
-    return vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars())->GetPointer(0);
-  };
-  const mrgi_rsm map = { rsm->GetResolution(), 1, floats(p), floats(n), floats(f) };
-  double worldToView[16], projection[16];
-  MRGI_TEST_CHECK(rsm->GetViewWorldToView(0, worldToView));
-  MRGI_TEST_CHECK(rsm->GetViewProjection(0, projection));
-  MRGI_TEST_CHECK(rsm->GetViewPerspective(0));
-  mrgi_rsm_view_camera camera;
-  for (int i = 0; i < 16; ++i)
-  {
-    camera.world_to_view[i] = static_cast<float>(worldToView[(i % 4) * 4 + i / 4]); // transpose
-  }
-  camera.projection.parallel = 0;
-  camera.projection.view_angle_deg = 2.0 * std::atan(1.0 / projection[5]) * 180.0 / vtkMath::Pi();
-  camera.projection.parallel_scale = 1.0;
+  const mrgitest::SpotRSMView view(pass, window);
   mrgi_vpl_tree c = {};
   mrgi_error err;
-  MRGI_TEST_CHECK(mrgi_vpl_tree_build(&map, &camera, &c, &err) == MRGI_OK);
+  MRGI_TEST_CHECK(mrgi_vpl_tree_build(&view.Map, &view.Camera, &c, &err) == MRGI_OK);
   const mrgi_vpl_tree* gpu = pass->GetVPLSelection()->GetTree();
   MRGI_TEST_CHECK(gpu && gpu->node_count == c.node_count);
   MRGI_TEST_CHECK(std::memcmp(gpu->nodes, c.nodes, sizeof(mrgi_vpl) * static_cast<size_t>(c.node_count)) == 0);

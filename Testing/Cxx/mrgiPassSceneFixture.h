@@ -20,13 +20,22 @@
 
 #include "mrgiTestUtilities.h"
 
+#include "mrgi_vpl_tree.h"
+
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
 #include "vtkMRGIPass.h"
+#include "vtkMRGIReflectiveShadowMapPass.h"
+#include "vtkMath.h"
 #include "vtkMRGISceneBuilder.h"
 #include "vtkNew.h"
 #include "vtkRenderStepsPass.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkPointData.h"
 #include "vtkSmartPointer.h"
+
+#include <cmath>
 
 namespace mrgitest
 {
@@ -61,6 +70,43 @@ struct PassScene : SceneWindow
   {
     this->Pass->SetDelegatePass(this->Steps);
     this->Renderer->SetPass(this->Pass);
+  }
+};
+
+/**
+ * The RSM of a pass whose scene has one spot light (one perspective view),
+ * read back after a render, as the C core's mrgi_rsm and view camera: what a
+ * test hands to the core to check a GPU selection bit for bit. The arrays
+ * live as long as this object.
+ */
+struct SpotRSMView
+{
+  vtkNew<vtkImageData> Position, Normal, Flux;
+  mrgi_rsm Map = {};
+  mrgi_rsm_view_camera Camera = {};
+
+  SpotRSMView(vtkMRGIPass* pass, vtkRenderWindow* window)
+  {
+    vtkMRGIReflectiveShadowMapPass* rsm = pass->GetReflectiveShadowMapPass();
+    MRGI_TEST_CHECK(rsm->GetNumberOfViews() == 1);
+    MRGI_TEST_CHECK(rsm->ReadView(window, 0, this->Position, this->Normal, this->Flux));
+    auto floats = [](vtkImageData* image) {
+      return vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars())->GetPointer(0);
+    };
+    this->Map = { rsm->GetResolution(), 1, floats(this->Position), floats(this->Normal),
+      floats(this->Flux) };
+    double worldToView[16], projection[16];
+    MRGI_TEST_CHECK(rsm->GetViewWorldToView(0, worldToView));
+    MRGI_TEST_CHECK(rsm->GetViewProjection(0, projection));
+    MRGI_TEST_CHECK(rsm->GetViewPerspective(0));
+    for (int i = 0; i < 16; ++i)
+    {
+      this->Camera.world_to_view[i] = static_cast<float>(worldToView[(i % 4) * 4 + i / 4]); // transpose
+    }
+    this->Camera.projection.parallel = 0;
+    this->Camera.projection.view_angle_deg =
+      2.0 * std::atan(1.0 / projection[5]) * 180.0 / vtkMath::Pi();
+    this->Camera.projection.parallel_scale = 1.0;
   }
 };
 }
