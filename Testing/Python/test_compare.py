@@ -78,6 +78,10 @@ def main():
         check(code == 2, "exit 2 for %s (got %d)" % (args, code))
         check(len(errors) == 1 and expected in errors[0], "error for %s names %r: %s" % (args, expected, err))
         check("usage: mrgi-compare" in err and out == "", "usage printed for %s" % args)
+    # An input that is neither EXR nor PNG: refused by name (exit 1), nothing read.
+    code, _, err = run(COMPARE, gpu, "frame.jpg")
+    check(code != 0 and "'frame.jpg': the file name must end in .exr or .png" in err,
+          "a .jpg input is refused by name: " + err)
     # Different sizes: exit 1, both sizes named.
     code, _, err = run(COMPARE, gpu, small)
     check(code == 1 and "24 x 16" in err and "16 x 16" in err, "size mismatch named: " + err)
