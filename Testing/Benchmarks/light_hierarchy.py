@@ -24,13 +24,16 @@ the "combined" light-side + eye-side error of NSW09 figure 9.
 
 With --docs the tables go between the <!-- lh:SCENE --> markers of
 Documentation/LightHierarchy.md and the difference images into
-Documentation/images/lighthierarchy-*.png; --quick runs a short sweep at
+Documentation/images/lighthierarchy-*.png, and temporal_flicker.py then
+regenerates the flicker page, Documentation/Temporal.md (--no-flicker skips
+it; about 15 minutes in all on the 2-core llvmpipe machine of 2026-12-03); --quick runs a short sweep at
 64 x 64 (a smoke test of the script, not a measurement).
 """
 import argparse
 import math
 import os
 import statistics
+import subprocess
 import sys
 import time
 
@@ -299,6 +302,8 @@ def main():
     parser.add_argument("--passes", type=int, default=64, help="ground-truth passes")
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--quick", action="store_true", help="64 x 64, 4 passes, a short sweep (smoke test)")
+    parser.add_argument("--no-flicker", action="store_true",
+                        help="with --docs, do not also run temporal_flicker.py (Temporal.md)")
     parser.add_argument("--check", action="store_true", help="assert the tree's invariants (exit non-zero)")
     args = parser.parse_args()
     if args.quick:
@@ -311,6 +316,11 @@ def main():
             page = os.path.join(args.docs, "LightHierarchy.md")
             replace_between_markers(page, "lh:%s" % scene, lines)
             print("wrote the %s tables into %s" % (scene, page))
+    if args.docs and not args.no_flicker:
+        # The same command regenerates the flicker page (Temporal.md).
+        subprocess.run([sys.executable, os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                                     "temporal_flicker.py"),
+                        "--build", args.build, "--docs", args.docs], check=True)
 
 
 if __name__ == "__main__":
