@@ -94,7 +94,8 @@ static void test_cos_sphere(void)
   for (int k = 0; k < 16; ++k)
     werr = fabs(psa[k] - area[k]) > werr ? fabs(psa[k] - area[k]) : werr;
   printf("equal area: worst |projected solid angle - disk area| over 16 cells %.4f"
-         " (cells up to %.3f)\n", werr, area[5]);
+         " (cells up to %.3f)\n",
+    werr, area[5]);
   MRGI_CHECK(werr < 0.02);
 }
 
@@ -157,8 +158,8 @@ static void test_push_pull(void)
   memcpy(before, atlas, sizeof(atlas));
   mrgi_error err;
   MRGI_CHECK(mrgi_ism_push_pull(&L, atlas, scratch, 10, &err) == MRGI_ERR_INVALID_ARGUMENT);
-  MRGI_CHECK(mrgi_ism_push_pull(&L, atlas, scratch, sizeof(scratch) / sizeof(float), &err) ==
-             MRGI_OK);
+  MRGI_CHECK(
+    mrgi_ism_push_pull(&L, atlas, scratch, sizeof(scratch) / sizeof(float), &err) == MRGI_OK);
   for (int Y = 0; Y < L.height; ++Y)
     for (int X = 0; X < L.width; ++X)
     {

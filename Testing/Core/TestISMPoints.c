@@ -76,8 +76,8 @@ static void test_uniform_density(void)
   double worst = 0.0;
   for (uint32_t seed = 1; seed <= 3; ++seed)
   {
-    MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, tris, nt, MRGI_ISM_UNIFORM, NULL, 0, weights,
-                                         NULL) == MRGI_OK);
+    MRGI_CHECK(mrgi_ism_triangle_weights(
+                 verts, nv, tris, nt, MRGI_ISM_UNIFORM, NULL, 0, 1u, weights, NULL) == MRGI_OK);
     sample_all(nt, P, seed);
     MRGI_CHECK(mrgi_ism_points_evaluate(verts, nv, tris, nt, pts, P, pos, NULL, NULL) == MRGI_OK);
     int32_t bins[8] = { 0 };
@@ -115,9 +115,9 @@ static void test_adaptive_density(void)
   const int32_t P = 8000;
   for (int m = 0; m < 2; ++m)
   {
-    MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, tris, nt,
-                                         m ? MRGI_ISM_ADAPTIVE_8 : MRGI_ISM_ADAPTIVE_1,
-                                         m ? eight : views, m ? 8 : 1, weights, NULL) == MRGI_OK);
+    MRGI_CHECK(
+      mrgi_ism_triangle_weights(verts, nv, tris, nt, m ? MRGI_ISM_ADAPTIVE_8 : MRGI_ISM_ADAPTIVE_1,
+        m ? eight : views, m ? 8 : 1, 1u, weights, NULL) == MRGI_OK);
     double sum = 0.0;
     for (int32_t t = 0; t < nt; ++t)
     {
@@ -134,8 +134,8 @@ static void test_adaptive_density(void)
       far += pos[3 * i] > 9.0f;
     }
     const double ratio = (double)near / (far > 0 ? far : 1);
-    printf("adaptive (%d view samples): near %d far %d points, near/far density %.1f\n",
-           m ? 8 : 1, near, far, ratio);
+    printf("adaptive (%d view samples): near %d far %d points, near/far density %.1f\n", m ? 8 : 1,
+      near, far, ratio);
     MRGI_CHECK(far > 0); /* the uniform share keeps p > 0 far away */
     MRGI_CHECK(ratio > 5.0);
   }
@@ -147,8 +147,8 @@ static void test_lazy_update(void)
   int32_t nv;
   const int32_t nt = uneven_strip(&nv);
   const int32_t P = 1001;
-  MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, tris, nt, MRGI_ISM_UNIFORM, NULL, 0, weights,
-                                       NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_ism_triangle_weights(
+               verts, nv, tris, nt, MRGI_ISM_UNIFORM, NULL, 0, 1u, weights, NULL) == MRGI_OK);
   sample_all(nt, P, 3u);
   int32_t covered = 0;
   for (int64_t k = 0; k < 16; ++k)
@@ -159,8 +159,8 @@ static void test_lazy_update(void)
     if (k < 8)
       covered += e - b;
     memcpy(pts2, pts, sizeof(mrgi_ism_point) * P);
-    MRGI_CHECK(mrgi_ism_sample(cdf, nt, 3u, mrgi_ism_lazy_generation(k), P, b, e, pts, NULL) ==
-               MRGI_OK);
+    MRGI_CHECK(
+      mrgi_ism_sample(cdf, nt, 3u, mrgi_ism_lazy_generation(k), P, b, e, pts, NULL) == MRGI_OK);
     int32_t changed = 0, changed_outside = 0;
     for (int32_t i = 0; i < P; ++i)
     {
@@ -183,8 +183,8 @@ static void test_points_follow_deformation(void)
   int32_t nv;
   const int32_t nt = uneven_strip(&nv);
   const int32_t P = 4000;
-  MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, tris, nt, MRGI_ISM_UNIFORM, NULL, 0, weights,
-                                       NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_ism_triangle_weights(
+               verts, nv, tris, nt, MRGI_ISM_UNIFORM, NULL, 0, 1u, weights, NULL) == MRGI_OK);
   sample_all(nt, P, 11u);
   for (int32_t v = 0; v < nv; ++v)
   {
@@ -214,8 +214,8 @@ static void test_deterministic_and_clouds(void)
 {
   int32_t nv;
   const int32_t nt = uneven_strip(&nv);
-  MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, tris, nt, MRGI_ISM_UNIFORM, NULL, 0, weights,
-                                       NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_ism_triangle_weights(
+               verts, nv, tris, nt, MRGI_ISM_UNIFORM, NULL, 0, 1u, weights, NULL) == MRGI_OK);
   sample_all(nt, 500, 5u);
   memcpy(pts2, pts, sizeof(mrgi_ism_point) * 500);
   sample_all(nt, 500, 5u);
@@ -230,8 +230,8 @@ static void test_deterministic_and_clouds(void)
     pos[3 * p + 2] = 0.0f;
   }
   const double view[3] = { 0.0, 0.0, 0.5 };
-  MRGI_CHECK(mrgi_ism_cloud_weights(pos, 400, MRGI_ISM_ADAPTIVE_1, view, 1, weights, NULL) ==
-             MRGI_OK);
+  MRGI_CHECK(
+    mrgi_ism_cloud_weights(pos, 400, MRGI_ISM_ADAPTIVE_1, view, 1, weights, NULL) == MRGI_OK);
   MRGI_CHECK(mrgi_ism_cdf_build(weights, 400, cdf, NULL) == MRGI_OK);
   MRGI_CHECK(mrgi_ism_sample(cdf, 400, 1u, 0, 2000, 0, 2000, pts, NULL) == MRGI_OK);
   int32_t near = 0, far = 0;
@@ -251,48 +251,48 @@ static void test_bad_input(void)
   int32_t nt = uneven_strip(&nv);
   mrgi_error err;
   const double view[3] = { 0, 0, 1 };
-  MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, tris, 0, MRGI_ISM_UNIFORM, NULL, 0, weights,
-                                       &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, tris, 0, MRGI_ISM_UNIFORM, NULL, 0, 1u, weights,
+               &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "empty mesh") != NULL);
-  MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, tris, nt, MRGI_ISM_ADAPTIVE_1, view, 2,
-                                       weights, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, tris, nt, MRGI_ISM_ADAPTIVE_1, view, 0, 1u,
+               weights, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "view samples") != NULL);
-  MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, tris, nt, (mrgi_ism_mode)7, view, 1, weights,
-                                       &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, tris, nt, (mrgi_ism_mode)7, view, 1, 1u, weights,
+               &err) == MRGI_ERR_INVALID_ARGUMENT);
   verts[4] = NAN;
-  MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, tris, nt, MRGI_ISM_UNIFORM, NULL, 0, weights,
-                                       &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, tris, nt, MRGI_ISM_UNIFORM, NULL, 0, 1u, weights,
+               &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "non-finite") != NULL);
   nt = uneven_strip(&nv);
   tris[5] = nv;
-  MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, tris, nt, MRGI_ISM_UNIFORM, NULL, 0, weights,
-                                       &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, tris, nt, MRGI_ISM_UNIFORM, NULL, 0, 1u, weights,
+               &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "outside") != NULL);
   /* Only zero-area triangles: an error; one among good ones: weight 0, never drawn. */
   nt = uneven_strip(&nv);
   const int32_t flat[3] = { 0, 0, 1 };
-  MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, flat, 1, MRGI_ISM_UNIFORM, NULL, 0, weights,
-                                       &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, flat, 1, MRGI_ISM_UNIFORM, NULL, 0, 1u, weights,
+               &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "total area") != NULL);
   memcpy(tris + 3 * nt, flat, sizeof(flat));
-  MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, tris, nt + 1, MRGI_ISM_ADAPTIVE_1, view, 1,
-                                       weights, &err) == MRGI_OK);
+  MRGI_CHECK(mrgi_ism_triangle_weights(verts, nv, tris, nt + 1, MRGI_ISM_ADAPTIVE_1, view, 1, 1u,
+               weights, &err) == MRGI_OK);
   MRGI_CHECK(weights[nt] == 0.0);
   sample_all(nt + 1, 3000, 2u);
   for (int32_t i = 0; i < 3000; ++i)
     MRGI_CHECK(pts[i].index != nt);
   MRGI_CHECK(mrgi_ism_sample(cdf, nt, 1u, 0, 0, 0, 0, pts, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "P = 0") != NULL);
-  MRGI_CHECK(mrgi_ism_sample(cdf, nt, 1u, 0, 1 << 30, 0, 1, pts, &err) ==
-             MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(
+    mrgi_ism_sample(cdf, nt, 1u, 0, 1 << 30, 0, 1, pts, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(mrgi_ism_sample(cdf, nt, 1u, 0, 10, 5, 11, pts, &err) == MRGI_ERR_INVALID_ARGUMENT);
   weights[0] = -1.0;
   MRGI_CHECK(mrgi_ism_cdf_build(weights, nt, cdf, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(mrgi_ism_cloud_weights(pos, 0, MRGI_ISM_UNIFORM, NULL, 0, weights, &err) ==
-             MRGI_ERR_INVALID_ARGUMENT);
+    MRGI_ERR_INVALID_ARGUMENT);
   pts[0].index = nt + 5;
   MRGI_CHECK(mrgi_ism_points_evaluate(verts, nv, tris, nt, pts, 1, pos, NULL, &err) ==
-             MRGI_ERR_INVALID_ARGUMENT);
+    MRGI_ERR_INVALID_ARGUMENT);
   int32_t b = -1, e = -1;
   mrgi_ism_lazy_range(0, 3, &b, &e);
   MRGI_CHECK(b == 0 && e == 0);

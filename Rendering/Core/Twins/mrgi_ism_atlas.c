@@ -3,27 +3,24 @@
 
 #include <math.h>
 
-mrgi_status mrgi_ism_atlas_layout_make(int32_t vpl_count, int32_t tile_size,
-                                       mrgi_ism_atlas_layout* layout, mrgi_error* err)
+mrgi_status mrgi_ism_atlas_layout_make(
+  int32_t vpl_count, int32_t tile_size, mrgi_ism_atlas_layout* layout, mrgi_error* err)
 {
   if (!layout)
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "ISM atlas: NULL layout");
   if (tile_size < 4 || tile_size > MRGI_ISM_MAX_TILE || (tile_size & (tile_size - 1)))
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "ISM atlas: tile size %d is not a power of two in 4..%d", tile_size,
-                          MRGI_ISM_MAX_TILE);
+      "ISM atlas: tile size %d is not a power of two in 4..%d", tile_size, MRGI_ISM_MAX_TILE);
   if (vpl_count <= 0)
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "ISM atlas: VPL count %d < 1",
-                          vpl_count);
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "ISM atlas: VPL count %d < 1", vpl_count);
   int32_t c = (int32_t)ceil(sqrt((double)vpl_count));
   while ((int64_t)c * c < vpl_count)
     ++c;
   const int32_t r = (vpl_count + c - 1) / c;
   if ((int64_t)c * tile_size > MRGI_ISM_MAX_ATLAS || (int64_t)r * tile_size > MRGI_ISM_MAX_ATLAS)
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "ISM atlas: %d VPLs of %d x %d tiles need a %lld x %lld atlas (max %d)",
-                          vpl_count, tile_size, tile_size, (long long)c * tile_size,
-                          (long long)r * tile_size, MRGI_ISM_MAX_ATLAS);
+      "ISM atlas: %d VPLs of %d x %d tiles need a %lld x %lld atlas (max %d)", vpl_count, tile_size,
+      tile_size, (long long)c * tile_size, (long long)r * tile_size, MRGI_ISM_MAX_ATLAS);
   layout->vpl_count = vpl_count;
   layout->tile_size = tile_size;
   layout->tiles_per_row = c;
@@ -81,11 +78,11 @@ void mrgi_ism_cos_sphere_inverse(const double n[3], const double st[2], double d
 }
 
 int mrgi_ism_point_texel(const mrgi_ism_atlas_layout* layout, int32_t vpl_index,
-                         const double vpl_pos[3], const double vpl_normal[3],
-                         const double point[3], int64_t* texel, float* depth)
+  const double vpl_pos[3], const double vpl_normal[3], const double point[3], int64_t* texel,
+  float* depth)
 {
   if (!layout || !vpl_pos || !vpl_normal || !point || vpl_index < 0 ||
-      vpl_index >= layout->vpl_count)
+    vpl_index >= layout->vpl_count)
     return 0;
   const double v[3] = { point[0] - vpl_pos[0], point[1] - vpl_pos[1], point[2] - vpl_pos[2] };
   const double dist = sqrt(dot3(v, v));
@@ -117,15 +114,15 @@ size_t mrgi_ism_push_pull_scratch_size(const mrgi_ism_atlas_layout* layout)
   return (t * t * 4) / 3 + 1; /* levels T .. 1 */
 }
 
-mrgi_status mrgi_ism_push_pull(const mrgi_ism_atlas_layout* layout, float* depth,
-                               float* scratch, size_t scratch_count, mrgi_error* err)
+mrgi_status mrgi_ism_push_pull(const mrgi_ism_atlas_layout* layout, float* depth, float* scratch,
+  size_t scratch_count, mrgi_error* err)
 {
   if (!layout || !depth || !scratch)
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "ISM atlas: NULL push-pull arrays");
   if (scratch_count < mrgi_ism_push_pull_scratch_size(layout))
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-                          "ISM atlas: push-pull scratch holds %zu floats, needs %zu",
-                          scratch_count, mrgi_ism_push_pull_scratch_size(layout));
+      "ISM atlas: push-pull scratch holds %zu floats, needs %zu", scratch_count,
+      mrgi_ism_push_pull_scratch_size(layout));
   const int32_t T = layout->tile_size;
   const float E = MRGI_ISM_EMPTY_DEPTH;
   for (int32_t l = 0; l < layout->vpl_count; ++l)
@@ -157,7 +154,7 @@ mrgi_status mrgi_ism_push_pull(const mrgi_ism_atlas_layout* layout, float* depth
           const int32_t w = 2 * s;
           float m = E;
           const float q[4] = { c[2 * y * w + 2 * x], c[2 * y * w + 2 * x + 1],
-                               c[(2 * y + 1) * w + 2 * x], c[(2 * y + 1) * w + 2 * x + 1] };
+            c[(2 * y + 1) * w + 2 * x], c[(2 * y + 1) * w + 2 * x + 1] };
           for (int i = 0; i < 4; ++i)
             m = q[i] < m ? q[i] : m;
           lev[k][y * s + x] = m;

@@ -78,8 +78,8 @@ typedef struct mrgi_ism_atlas_layout
 } mrgi_ism_atlas_layout;
 
 /** @brief Layout for V VPLs and tile side T; errors name bad or absurd sizes. */
-mrgi_status mrgi_ism_atlas_layout_make(int32_t vpl_count, int32_t tile_size,
-                                       mrgi_ism_atlas_layout* layout, mrgi_error* err);
+mrgi_status mrgi_ism_atlas_layout_make(
+  int32_t vpl_count, int32_t tile_size, mrgi_ism_atlas_layout* layout, mrgi_error* err);
 
 /** @brief VPL of point record i (section 2): i mod V; -1 for bad arguments. */
 int32_t mrgi_ism_point_vpl(int64_t point_index, int32_t vpl_count);
@@ -98,16 +98,16 @@ void mrgi_ism_cos_sphere_inverse(const double n[3], const double st[2], double d
  * @return 1 and *texel (atlas index), *depth when the point lands; 0 otherwise.
  */
 int mrgi_ism_point_texel(const mrgi_ism_atlas_layout* layout, int32_t vpl_index,
-                         const double vpl_pos[3], const double vpl_normal[3],
-                         const double point[3], int64_t* texel, float* depth);
+  const double vpl_pos[3], const double vpl_normal[3], const double point[3], int64_t* texel,
+  float* depth);
 
 /**
  * @brief Push-pull every tile in place (section 4).
  * @param depth    width * height depths; empty = MRGI_ISM_EMPTY_DEPTH.
  * @param scratch  At least mrgi_ism_push_pull_scratch_size(layout) floats (no hidden allocation).
  */
-mrgi_status mrgi_ism_push_pull(const mrgi_ism_atlas_layout* layout, float* depth,
-                               float* scratch, size_t scratch_count, mrgi_error* err);
+mrgi_status mrgi_ism_push_pull(const mrgi_ism_atlas_layout* layout, float* depth, float* scratch,
+  size_t scratch_count, mrgi_error* err);
 
 /** @brief Floats of scratch mrgi_ism_push_pull needs: the mip chain of one tile. */
 size_t mrgi_ism_push_pull_scratch_size(const mrgi_ism_atlas_layout* layout);

@@ -15,11 +15,16 @@
  * weight 0 (they can hold no point); non-finite positions, bad indices,
  * no triangles or a mesh whose total area is 0 are errors.
  * - MRGI_ISM_UNIFORM:    w_t = A_t / sum A (pdf proportional to area, RGK08).
- * - MRGI_ISM_ADAPTIVE_1: one view sample per triangle (view_count = 1),
- * - MRGI_ISM_ADAPTIVE_8: view_count (1..MRGI_ISM_MAX_VIEW_SAMPLES, 8 in
- *   RIHKS11 5.2) view samples: s_t = mean over samples c of the solid angle
- *   A_t |cos| / |x_t - c|^2 (far-field form; distance clamped below at
- *   MRGI_ISM_MIN_VIEW_DISTANCE), then
+ * View samples come as a pool of view_count world positions (e.g. the
+ * framebuffer's points; 1..MRGI_ISM_MAX_VIEW_POOL). Each triangle draws its
+ * own K samples from the pool, index hash(seed, t, k) mod view_count
+ * (RIHKS11 5.2: "a different randomly chosen set of view samples for each
+ * triangle"); a pool of one is RIHKS11 5.1's single view sample.
+ * - MRGI_ISM_ADAPTIVE_1: K = 1 view sample per triangle,
+ * - MRGI_ISM_ADAPTIVE_8: K = MRGI_ISM_VIEW_SAMPLES_PER_TRIANGLE (8, RIHKS11 5.2):
+ *   s_t = mean over its K samples c of the exact solid angle of the
+ *   triangle seen from c (Van Oosterom-Strackee; vertex distances clamped
+ *   below at MRGI_ISM_MIN_VIEW_DISTANCE), then
  *       w_t = (1 - MRGI_ISM_UNIFORM_SHARE) s_t / sum s + MRGI_ISM_UNIFORM_SHARE A_t / sum A.
  *   Why the uniform share: a triangle the view does not see (behind the
  *   samples, edge-on, far away) still casts shadows for VPLs that see it;
@@ -70,8 +75,10 @@ extern "C" {
 
 /** Share of the uniform (area) pdf mixed into the adaptive pdf (section 1). */
 #define MRGI_ISM_UNIFORM_SHARE 0.1
-/** Most view samples per adaptive weighting. */
-#define MRGI_ISM_MAX_VIEW_SAMPLES 8
+/** View samples per triangle of MRGI_ISM_ADAPTIVE_8 (RIHKS11 5.2). */
+#define MRGI_ISM_VIEW_SAMPLES_PER_TRIANGLE 8
+/** Most view samples in a pool. */
+#define MRGI_ISM_MAX_VIEW_POOL (1 << 24)
 /** Lower clamp on the view distance in the solid-angle weight (scene units). */
 #define MRGI_ISM_MIN_VIEW_DISTANCE 1e-3
 /** Most records in one point set. */
@@ -84,7 +91,7 @@ typedef enum mrgi_ism_mode
 {
   MRGI_ISM_UNIFORM = 0,    /**< pdf proportional to area (RGK08). */
   MRGI_ISM_ADAPTIVE_1 = 1, /**< Solid angle from 1 view sample (RIHKS11 5.2). */
-  MRGI_ISM_ADAPTIVE_8 = 2  /**< Mean solid angle from up to 8 view samples. */
+  MRGI_ISM_ADAPTIVE_8 = 2  /**< Mean solid angle from 8 view samples per triangle. */
 } mrgi_ism_mode;
 
 /** One point record: triangle (or cloud point) index and barycentrics. */
@@ -97,34 +104,31 @@ typedef struct mrgi_ism_point
 
 /**
  * @brief Triangle weights (section 1). `weights` receives triangle_count doubles.
- * @param view_samples  xyz of view_count samples; NULL/0 for MRGI_ISM_UNIFORM.
+ * @param view_samples  xyz of a pool of view_count samples; NULL/0 for MRGI_ISM_UNIFORM.
+ * @param seed          Picks each triangle's view samples (deterministic).
  * @return ::MRGI_ERR_INVALID_ARGUMENT naming the problem (NULL, empty mesh,
  *         bad index, non-finite vertex, total area 0, bad mode or view count).
  */
 mrgi_status mrgi_ism_triangle_weights(const float* positions, int32_t vertex_count,
-                                      const int32_t* triangles, int32_t triangle_count,
-                                      mrgi_ism_mode mode, const double* view_samples,
-                                      int32_t view_count, double* weights, mrgi_error* err);
+  const int32_t* triangles, int32_t triangle_count, mrgi_ism_mode mode, const double* view_samples,
+  int32_t view_count, uint32_t seed, double* weights, mrgi_error* err);
 
 /** @brief Point-cloud weights (section 4); `weights` receives point_count doubles. */
-mrgi_status mrgi_ism_cloud_weights(const float* positions, int32_t point_count,
-                                   mrgi_ism_mode mode, const double* view_samples,
-                                   int32_t view_count, double* weights, mrgi_error* err);
+mrgi_status mrgi_ism_cloud_weights(const float* positions, int32_t point_count, mrgi_ism_mode mode,
+  const double* view_samples, int32_t view_count, double* weights, mrgi_error* err);
 
 /**
  * @brief CDF of weights (section 2); `cdf` receives count + 1 doubles.
  * @return ::MRGI_ERR_INVALID_ARGUMENT for negative/non-finite weights or sum 0.
  */
-mrgi_status mrgi_ism_cdf_build(const double* weights, int32_t count, double* cdf,
-                               mrgi_error* err);
+mrgi_status mrgi_ism_cdf_build(const double* weights, int32_t count, double* cdf, mrgi_error* err);
 
 /**
  * @brief Draw records [begin, end) of a set of `total` records (section 2).
  * No allocation. `points` holds `total` records; others are untouched.
  */
-mrgi_status mrgi_ism_sample(const double* cdf, int32_t count, uint32_t seed,
-                            uint32_t generation, int32_t total, int32_t begin, int32_t end,
-                            mrgi_ism_point* points, mrgi_error* err);
+mrgi_status mrgi_ism_sample(const double* cdf, int32_t count, uint32_t seed, uint32_t generation,
+  int32_t total, int32_t begin, int32_t end, mrgi_ism_point* points, mrgi_error* err);
 
 /** @brief Records frame `frame` resamples (section 3); *begin = *end = 0 if total <= 0. */
 void mrgi_ism_lazy_range(int32_t total, int64_t frame, int32_t* begin, int32_t* end);
@@ -138,9 +142,8 @@ uint32_t mrgi_ism_lazy_generation(int64_t frame);
  *         indices or records outside the mesh / barycentric range.
  */
 mrgi_status mrgi_ism_points_evaluate(const float* positions, int32_t vertex_count,
-                                     const int32_t* triangles, int32_t triangle_count,
-                                     const mrgi_ism_point* points, int32_t point_count,
-                                     float* out_positions, float* out_normals, mrgi_error* err);
+  const int32_t* triangles, int32_t triangle_count, const mrgi_ism_point* points,
+  int32_t point_count, float* out_positions, float* out_normals, mrgi_error* err);
 
 #ifdef __cplusplus
 }
