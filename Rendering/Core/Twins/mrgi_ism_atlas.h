@@ -1,0 +1,119 @@
+/**
+ * @file mrgi_ism_atlas.h
+ * @brief Imperfect-shadow-map atlas: one square tile per VPL, the point ->
+ *        VPL assignment, the cos-sphere projection, the exact texel a point
+ *        lands in, and push-pull hole filling inside each tile.
+ *
+ * Papers: Ritschel et al. 2008 (RGK08) section 3.3 (one ISM per VPL in one
+ * texture, each VPL sees a different point subset, pull-push), Ritschel et
+ * al. 2011 (RIHKS11) 6.1 (cos-sphere parameterization). Spec:
+ * shared/plans/paper-specs.md, Packages 2 and 3.
+ *
+ * ## 1. Layout (mrgi_ism_atlas_layout_make)
+ * V tiles of T x T texels (T a power of two, 4..MRGI_ISM_MAX_TILE), C tiles
+ * per row (C = ceil(sqrt V)), R = ceil(V / C) rows; atlas C T x R T texels,
+ * at most MRGI_ISM_MAX_ATLAS per side. Tile of VPL l at column l mod C,
+ * row l / C; texel (x, y) of the tile is atlas texel (col T + x, row T + y),
+ * row-major, atlas index = Y * width + X.
+ *
+ * ## 2. Point subsets (mrgi_ism_point_vpl)
+ * Point i goes to VPL i mod V. The point records come in stratified CDF order
+ * (mrgi_ism_points.h), so consecutive records cover consecutive strata;
+ * i mod V hands every VPL one record of each run of V strata: each subset is
+ * itself a stratified sample of the whole scene with P / V points, and the
+ * subsets are disjoint (RGK08 3.3: "each VPL uses a different subset").
+ *
+ * ## 3. Cos-sphere projection (RIHKS11 6.1)
+ * In the VPL frame (unit normal n, tangents t, b from mrgi_ism_vpl_frame),
+ * a unit direction d with d.n >= 0 maps to the disk point
+ *     (s, t) = (d.t, d.b),   inverse  d = s t + t b + sqrt(1 - s^2 - t^2) n.
+ * Equal area in projected solid angle: with d = (sin th cos ph, sin th sin ph,
+ * cos th), (s, t) = sin th (cos ph, sin ph), so the Jacobian of polar
+ * coordinates gives ds dt = r dr dph = sin th cos th dth dph = cos th dw.
+ * The disk area of any set of directions is its projected solid angle; the
+ * whole hemisphere (projected solid angle pi) fills the unit disk (area pi).
+ * Texel coordinates: X = floor((s + 1) / 2 * T), Y = floor((t + 1) / 2 * T),
+ * clamped to 0..T-1. Directions with d.n < 0 and points closer than
+ * MRGI_ISM_MIN_DEPTH to the VPL land nowhere.
+ * Depth is the Euclidean distance |x - vpl| (scene units); empty texels hold
+ * MRGI_ISM_EMPTY_DEPTH (+inf is avoided so that GPU textures can hold it).
+ *
+ * ## 4. Push-pull (mrgi_ism_push_pull)
+ * Per tile, on tile-local mip levels T, T/2, .., 1: pull - a coarse texel is
+ * the minimum depth of its valid children (empty if none); push - from the
+ * coarsest level down, every empty texel takes its parent's depth. Only the
+ * tile's own texels are read, so tiles never mix. Afterwards every texel of
+ * a tile with at least one valid texel is valid; all-empty tiles stay empty.
+ */
+#ifndef MRGI_ISM_ATLAS_H
+#define MRGI_ISM_ATLAS_H
+
+#include "mrgi_error.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Largest tile side. */
+#define MRGI_ISM_MAX_TILE 1024
+/** Largest atlas side (GL 3.2 guarantees 1024; common GPUs 16384). */
+#define MRGI_ISM_MAX_ATLAS 16384
+/** Depth of an empty texel (scene units). */
+#define MRGI_ISM_EMPTY_DEPTH 1e30f
+/** Points nearer than this to the VPL are not drawn (scene units). */
+#define MRGI_ISM_MIN_DEPTH 1e-6
+
+/** Atlas layout (section 1). */
+typedef struct mrgi_ism_atlas_layout
+{
+  int32_t vpl_count;     /**< V. */
+  int32_t tile_size;     /**< T. */
+  int32_t tiles_per_row; /**< C. */
+  int32_t tile_rows;     /**< R. */
+  int32_t width;         /**< C T. */
+  int32_t height;        /**< R T. */
+} mrgi_ism_atlas_layout;
+
+/** @brief Layout for V VPLs and tile side T; errors name bad or absurd sizes. */
+mrgi_status mrgi_ism_atlas_layout_make(
+  int32_t vpl_count, int32_t tile_size, mrgi_ism_atlas_layout* layout, mrgi_error* err);
+
+/** @brief VPL of point record i (section 2): i mod V; -1 for bad arguments. */
+int32_t mrgi_ism_point_vpl(int64_t point_index, int32_t vpl_count);
+
+/** @brief Orthonormal tangents t, b of a unit normal n (deterministic, branch-safe). */
+void mrgi_ism_vpl_frame(const double n[3], double t[3], double b[3]);
+
+/** @brief Forward cos-sphere map of a unit direction; returns 0 if d.n < 0. */
+int mrgi_ism_cos_sphere_forward(const double n[3], const double d[3], double st[2]);
+
+/** @brief Inverse map of a disk point (s^2 + t^2 <= 1) to a unit direction. */
+void mrgi_ism_cos_sphere_inverse(const double n[3], const double st[2], double d[3]);
+
+/**
+ * @brief Atlas texel and depth of a point seen from VPL `vpl_index` (section 3).
+ * @return 1 and *texel (atlas index), *depth when the point lands; 0 otherwise.
+ */
+int mrgi_ism_point_texel(const mrgi_ism_atlas_layout* layout, int32_t vpl_index,
+  const double vpl_pos[3], const double vpl_normal[3], const double point[3], int64_t* texel,
+  float* depth);
+
+/**
+ * @brief Push-pull every tile in place (section 4).
+ * @param depth    width * height depths; empty = MRGI_ISM_EMPTY_DEPTH.
+ * @param scratch  At least mrgi_ism_push_pull_scratch_size(layout) floats (no hidden allocation).
+ */
+mrgi_status mrgi_ism_push_pull(const mrgi_ism_atlas_layout* layout, float* depth, float* scratch,
+  size_t scratch_count, mrgi_error* err);
+
+/** @brief Floats of scratch mrgi_ism_push_pull needs: the mip chain of one tile. */
+size_t mrgi_ism_push_pull_scratch_size(const mrgi_ism_atlas_layout* layout);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
