@@ -21,8 +21,6 @@ EXTENSIONS = (".c", ".h", ".cxx", ".hxx", ".cpp", ".hpp")
 EXCEPTIONS = {
     "Rendering/OpenGL2/Passes/vtkMRGIPass.cxx":
         "the pass; its split into Private/ helpers is under way",
-    "Module/Apps/mrgi-render.cxx":
-        "mrgi-render's main; scene set-up split under way",
     "Rendering/Core/Validation/mrgi_reference.c":
         "CPU reference renderer; split (area light, stopping statistics) pending",
     "Rendering/Core/Twins/mrgi_area_light.c":
