@@ -1,5 +1,5 @@
 // mrgiRenderOptions: mrgi-render's command line. One table (OptionTable in
-// the .cxx) gives every option's names, value form, help text and handler;
+// mrgiRenderOptionTable.cxx) gives every option's names, value form, help text and handler;
 // both the parser and `--help` are built from it.
 //
 // The command line is a contract users script against: options are only ever
