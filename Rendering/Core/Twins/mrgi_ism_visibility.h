@@ -1,0 +1,99 @@
+/**
+ * @file mrgi_ism_visibility.h
+ * @brief Visibility of a receiver from a VPL through that VPL's imperfect
+ *        shadow map: the shadow test of the gather (C twin of
+ *        vtkMRGIISMLookup.glsl).
+ *
+ * Papers: Ritschel et al. 2008 (RGK08) section 3.3 and Ritschel et al. 2011
+ * (RIHKS11) 6.1: each VPL's ISM tile (mrgi_ism_atlas.h) holds the distance to
+ * the nearest scene point in each cos-sphere texel; a receiver farther than
+ * that (minus a bias) is in shadow. Spec: shared/plans/paper-specs.md,
+ * Package 2.
+ *
+ * ## The test, step by step (world space; the GLSL writes the same, in float)
+ *
+ *  1. w = x - v (receiver minus VPL position), dist = |w|.
+ *     dist < MRGI_ISM_MIN_DEPTH or not finite: VISIBLE (1); nothing can lie
+ *     between two coincident points, and the gather term is 0 there anyway.
+ *  2. d = w / dist. c = d . n (n = the VPL's unit normal). c <= 0: VISIBLE
+ *     (the receiver is behind the VPL: the gather term is 0 there; the tile
+ *     does not cover that hemisphere).
+ *  3. Cos-sphere coordinates (mrgi_ism_atlas.h section 3): (s, t) = (d . t_n,
+ *     d . b_n) with (t_n, b_n) = mrgi_ism_vpl_frame(n); continuous tile
+ *     coordinates (u, v) = ((s + 1) / 2 T, (t + 1) / 2 T).
+ *  4. Bias (RGK08 3.3; NPW10 4.3 discusses the same trade for voxels): the
+ *     ISM is point-sampled, so the receiver's own surface appears in its
+ *     texel at a depth up to about one texel's footprint nearer than dist.
+ *     A texel spans 2 / T in s, i.e. an angle of about 2 / (T c) at the
+ *     receiver's direction (ds = cos(theta) d theta), a length of
+ *     dist 2 / (T c) there. The bias is
+ *         bias = dist (relative_bias + texel_bias 2 / (T max(c, MRGI_ISM_BIAS_MIN_COS)))
+ *     proportional to the distance and to the texel footprint.
+ *  5. Compare: a texel with depth z says VISIBLE when dist - bias <= z.
+ *     Without PCF the texel is (floor(u), floor(v)) clamped to 0..T-1, the
+ *     same texel mrgi_ism_point_texel() would draw x into.
+ *     With 2x2 PCF: the four texels around (u - 1/2, v - 1/2), i.e.
+ *     i0 = floor(u - 1/2), j0 = floor(v - 1/2), i0 + 1, j0 + 1, each
+ *     clamped to 0..T-1 (never into a neighbour tile), weighted
+ *     bilinearly by fu = (u - 1/2) - i0, fv = (v - 1/2) - j0:
+ *         V = (1-fu)(1-fv) V00 + fu (1-fv) V10 + (1-fu) fv V01 + fu fv V11.
+ *  6. Empty texels hold MRGI_ISM_EMPTY_DEPTH: visible from any distance
+ *     below 1e30.
+ * Result: V in [0, 1] (0 or 1 without PCF). The gather multiplies the VPL's
+ * term by V.
+ *
+ * ## Precision
+ * The twin computes in float in the order above (as the GLSL), so GPU and
+ * C agree except where float rounding moves (u, v) across a texel edge or
+ * dist - bias across z; parity tests count those cases.
+ */
+#ifndef MRGI_ISM_VISIBILITY_H
+#define MRGI_ISM_VISIBILITY_H
+
+#include "mrgi_error.h"
+#include "mrgi_ism_atlas.h"
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Smallest cosine the texel footprint of the bias uses (grazing directions). */
+#define MRGI_ISM_BIAS_MIN_COS 0.1f
+/** Default relative bias (fraction of the distance). */
+#define MRGI_ISM_DEFAULT_RELATIVE_BIAS 0.02f
+/** Default texel bias (texel footprints). */
+#define MRGI_ISM_DEFAULT_TEXEL_BIAS 1.0f
+/** Largest accepted relative bias / texel bias. */
+#define MRGI_ISM_MAX_BIAS 16.0f
+
+/** Lookup parameters (section 4 and 5). */
+typedef struct mrgi_ism_lookup_params
+{
+  float relative_bias; /**< >= 0, <= MRGI_ISM_MAX_BIAS. */
+  float texel_bias;    /**< >= 0, <= MRGI_ISM_MAX_BIAS. */
+  int32_t pcf;         /**< 0: one texel; 1: 2x2 bilinear PCF. */
+} mrgi_ism_lookup_params;
+
+/** @brief The defaults above, PCF on. */
+void mrgi_ism_lookup_params_default(mrgi_ism_lookup_params* params);
+
+/** @brief ::MRGI_ERR_INVALID_ARGUMENT naming a negative, NaN or absurd bias or a bad pcf flag. */
+mrgi_status mrgi_ism_lookup_params_validate(const mrgi_ism_lookup_params* params, mrgi_error* err);
+
+/**
+ * @brief V of receiver x from VPL `vpl_index` (section "The test").
+ * @param depth  The push-pulled atlas (layout->width * layout->height floats).
+ * @param vpl_normal Unit normal of the VPL.
+ * @return V in [0, 1]; 1 for out-of-range vpl_index (never used by valid callers).
+ */
+float mrgi_ism_visibility(const mrgi_ism_atlas_layout* layout, const float* depth,
+  int32_t vpl_index, const float vpl_position[3], const float vpl_normal[3],
+  const float receiver[3], const mrgi_ism_lookup_params* params);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
