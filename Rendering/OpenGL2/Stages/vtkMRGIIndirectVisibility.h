@@ -7,15 +7,15 @@
  *
  * vtkMRGIPass fills one per frame and passes it to the VPL gathers of
  * vtkMRGIGather (cache, full, stenciled and tree); a default-constructed
- * one (Mode None) gathers without visibility, as before. A plain struct:
+ * one (NoVisibility) gathers without visibility, as before. A plain struct:
  * nothing is owned, the stages never keep it.
  *
- * - ISM: `ISMAtlas` is the push-pulled depth atlas of
+ * - ISMVisibility: `ISMAtlas` is the push-pulled depth atlas of
  *   vtkMRGIImperfectShadowMaps::Update() for THIS frame's VPL cache: tile l
  *   belongs to VPL l of the cache (for the tree gather: to root l, and every
  *   node of root l's subtree is tested with root l's tile, from root l's
  *   position; see vtkMRGIGather). Lookup: mrgi_ism_visibility.h.
- * - Voxels: `Voxels` was voxelized this frame from the G-buffer; every VPL
+ * - VoxelVisibility: `Voxels` was voxelized this frame from the G-buffer; every VPL
  *   term is weighted by the voxel march from the receiver to the VPL
  *   (mrgi_voxel_march.h), occluders the camera does not see are missed.
  */
@@ -32,11 +32,11 @@ struct vtkMRGIIndirectVisibility
 {
   enum Modes
   {
-    None = 0,
-    ISM = 1,
-    Voxels = 2
+    NoVisibility = 0,
+    ISMVisibility = 1,
+    VoxelVisibility = 2
   };
-  int Mode = None;
+  int Mode = NoVisibility;
 
   ///@{
   /** ISM: the R32F atlas texture (mrgi_ism_atlas.h layout), its layout, the lookup parameters. */
