@@ -20,6 +20,7 @@
 #include "vtkMRGIGather.h"
 #include "vtkMRGIImageIO.h"
 #include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIIndirectLight.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGIReferenceRenderer.h"
 #include "vtkMRGIRenderWindowFactory.h"
@@ -526,6 +527,19 @@ int main(int argc, char* argv[])
       std::to_string(o.RSMSize));
   }
   mrgi->SetRSMResolution(static_cast<int>(o.RSMSize));
+  if ((o.ISMTileSize & (o.ISMTileSize - 1)) != 0)
+  {
+    return Fail("--ism-tile takes a power of two (the maps' push-pull halves it), not " +
+      std::to_string(o.ISMTileSize));
+  }
+  mrgi->SetIndirectVisibility(o.IndirectVisibility);
+  mrgi->SetISMPointsPerVPL(static_cast<int>(o.ISMPointsPerVPL));
+  mrgi->SetISMTileSize(static_cast<int>(o.ISMTileSize));
+  mrgi->SetISMPointMode(o.ISMPointMode);
+  mrgi->SetISMLazyFrames(static_cast<int>(o.ISMLazyFrames));
+  if (!std::isnan(o.ISMBias))
+    mrgi->GetIndirectLightStage()->SetISMRelativeBias(o.ISMBias);
+  mrgi->GetIndirectLightStage()->SetISMFiltering(o.ISMFiltering);
   mrgi->SetIndirectStrength(o.IndirectStrength);
   mrgi->SetToneMapping(o.ToneMapping);
   mrgi->SetAutoExposure(o.AutoExposure);

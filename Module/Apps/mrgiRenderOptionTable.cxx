@@ -4,6 +4,7 @@
 #include "mrgiRenderOptionTable.h"
 
 #include "mrgi_direct_shadow.h"
+#include "mrgi_ism_visibility.h"
 
 #include "vtkCamera.h"
 #include "vtkImageData.h"
@@ -17,6 +18,8 @@
 #include "vtkMRGIAreaLight.h"
 #include "vtkMRGIAreaLightStage.h"
 #include "vtkMRGIGather.h"
+#include "vtkMRGIImperfectShadowMaps.h"
+#include "vtkMRGIIndirectLight.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIUpsample.h"
 #include "vtkMRGIVisibilityPyramid.h"
@@ -561,6 +564,35 @@ const std::vector<OptionSection>& OptionTable()
           ClusterThreshold(&Options::TreeThreshold) },
         { { "--rsm-size" }, "N", "reflective shadow map texels per side, 16..2048 (default 256)",
           Integer(&Options::RSMSize, 16, 2048) },
+        { { "--indirect-visibility" }, "off|ism|voxel",
+          "visibility of the VPLs, i.e. indirect shadows (default off: light bounces\n"
+          "through occluders); ism: imperfect shadow maps (ritschel-et-al-2011);\n"
+          "voxel: the screen-space voxels, blind to what the camera does not see",
+          Choice<int>(&Options::IndirectVisibility,
+            { { "off", vtkMRGIIndirectLight::VisibilityOff },
+              { "ism", vtkMRGIIndirectLight::VisibilityISM },
+              { "voxel", vtkMRGIIndirectLight::VisibilityVoxels } }) },
+        { { "--ism-points" }, "N", "ism: points drawn into each VPL's map, 1..65536 (default 256)",
+          Integer(&Options::ISMPointsPerVPL, 1, 65536) },
+        { { "--ism-tile" }, "N", "ism: map side per VPL, a power of two 4..1024 (default 32)",
+          Integer(&Options::ISMTileSize, 4, MRGI_ISM_MAX_TILE) },
+        { { "--ism-point-mode" }, "uniform|adaptive1|adaptive8",
+          "ism: point density by area, or view-adaptive from 1 or 8 view samples\n"
+          "per triangle (ritschel-et-al-2011 5.2; default adaptive8)",
+          Choice<int>(&Options::ISMPointMode,
+            { { "uniform", vtkMRGIImperfectShadowMaps::Uniform },
+              { "adaptive1", vtkMRGIImperfectShadowMaps::Adaptive1 },
+              { "adaptive8", vtkMRGIImperfectShadowMaps::Adaptive8 } }) },
+        { { "--ism-lazy-frames" }, "N",
+          "ism: resample 1/N of the points per frame, 1..64 (default 8; 1: all)",
+          Integer(&Options::ISMLazyFrames, 1, 64) },
+        { { "--ism-bias" }, "B",
+          "ism: depth bias as a fraction of the distance, 0..16 (default 0.02)",
+          Number(
+            &Options::ISMBias, [](double b) { return b >= 0 && b <= MRGI_ISM_MAX_BIAS; },
+            "expected a number in [0, 16]") },
+        { { "--ism-pcf" }, "on|off", "ism: 2x2 percentage-closer filtering (default on)",
+          OnOff(&Options::ISMFiltering) },
         { { "--indirect-strength" }, "S", "factor on the indirect light (default 1)",
           Number(
             &Options::IndirectStrength, [](double s) { return s >= 0 && s <= 1e6; },

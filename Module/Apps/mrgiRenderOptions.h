@@ -101,6 +101,13 @@ struct Options
   double ClusterNormalThreshold = std::nan("");
   double TreeThreshold = std::nan(""); // not given: MRGI_VPL_TREE_DEFAULT_THRESHOLD
   long long RSMSize = 256;
+  int IndirectVisibility = 0;   // vtkMRGIIndirectLight::VisibilityModes (off, ism, voxel)
+  long long ISMPointsPerVPL = 256;
+  long long ISMTileSize = 32;
+  int ISMPointMode = 2;         // vtkMRGIImperfectShadowMaps::PointModes (adaptive8)
+  long long ISMLazyFrames = 8;
+  double ISMBias = std::nan(""); // not given: MRGI_ISM_DEFAULT_RELATIVE_BIAS
+  bool ISMFiltering = true;
   double IndirectStrength = 1.0;
   bool IndirectOnly = false;
   bool ToneMapping = false;

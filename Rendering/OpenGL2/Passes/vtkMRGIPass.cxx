@@ -16,6 +16,8 @@
 #include "vtkMRGIFullScreenStep.h"
 #include "vtkMRGIGBuffer.h"
 #include "vtkMRGIGather.h"
+#include "vtkMRGIImperfectShadowMaps.h"
+#include "vtkMRGIIndirectLight.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIOutput.h"
 #include "vtkMRGIProgramCache.h"
@@ -111,10 +113,8 @@ vtkMRGIPass::vtkMRGIPass()
   , Internal(new Internals)
 {
   this->RSMPass = vtkMRGIReflectiveShadowMapPass::New();
-  this->VPLSelection = vtkMRGIVPLSelection::New();
   this->Multiresolution = vtkMRGIMultiresolution::New();
-  this->Gather = vtkMRGIGather::New();
-  this->Upsample = vtkMRGIUpsample::New();
+  this->IndirectLight = vtkMRGIIndirectLight::New();
   this->SSAOStage = vtkMRGISSAO::New();
   this->SSGIStage = vtkMRGISSGI::New();
   this->AreaLightStage = vtkMRGIAreaLightStage::New();
@@ -141,10 +141,8 @@ vtkMRGIPass::~vtkMRGIPass()
   }
   this->ReleaseResources(nullptr);
   this->RSMPass->Delete();
-  this->VPLSelection->Delete();
   this->Multiresolution->Delete();
-  this->Gather->Delete();
-  this->Upsample->Delete();
+  this->IndirectLight->Delete();
   this->SSAOStage->Delete();
   this->SSGIStage->Delete();
   this->AreaLightStage->Delete();
@@ -157,10 +155,8 @@ void vtkMRGIPass::ReleaseGraphicsResources(vtkWindow* w)
 {
   this->Superclass::ReleaseGraphicsResources(w);
   this->RSMPass->ReleaseGraphicsResources(w);
-  this->VPLSelection->ReleaseGraphicsResources(w);
   this->Multiresolution->ReleaseGraphicsResources(w);
-  this->Gather->ReleaseGraphicsResources(w);
-  this->Upsample->ReleaseGraphicsResources(w);
+  this->IndirectLight->ReleaseGraphicsResources(w);
   this->SSAOStage->ReleaseGraphicsResources(w);
   this->SSGIStage->ReleaseGraphicsResources(w);
   this->AreaLightStage->ReleaseGraphicsResources(w);
@@ -330,50 +326,105 @@ vtkTextureObject* vtkMRGIPass::GetIrradianceTexture()
 }
 
 //------------------------------------------------------------------------------
+// The indirect light's settings live in its stage and the stages it owns.
+vtkMRGIVPLSelection* vtkMRGIPass::GetVPLSelection()
+{
+  return this->IndirectLight->GetVPLSelection();
+}
+vtkMRGIGather* vtkMRGIPass::GetGather()
+{
+  return this->IndirectLight->GetGather();
+}
+vtkMRGIUpsample* vtkMRGIPass::GetUpsample()
+{
+  return this->IndirectLight->GetUpsample();
+}
+void vtkMRGIPass::SetIndirectVisibility(int mode)
+{
+  this->IndirectLight->SetVisibility(mode);
+}
+int vtkMRGIPass::GetIndirectVisibility()
+{
+  return this->IndirectLight->GetVisibility();
+}
+void vtkMRGIPass::SetISMPointsPerVPL(int points)
+{
+  this->IndirectLight->GetImperfectShadowMaps()->SetPointsPerVPL(points);
+}
+int vtkMRGIPass::GetISMPointsPerVPL()
+{
+  return this->IndirectLight->GetImperfectShadowMaps()->GetPointsPerVPL();
+}
+void vtkMRGIPass::SetISMTileSize(int side)
+{
+  this->IndirectLight->GetImperfectShadowMaps()->SetTileSize(side);
+}
+int vtkMRGIPass::GetISMTileSize()
+{
+  return this->IndirectLight->GetImperfectShadowMaps()->GetTileSize();
+}
+void vtkMRGIPass::SetISMPointMode(int mode)
+{
+  this->IndirectLight->GetImperfectShadowMaps()->SetPointMode(mode);
+}
+int vtkMRGIPass::GetISMPointMode()
+{
+  return this->IndirectLight->GetImperfectShadowMaps()->GetPointMode();
+}
+void vtkMRGIPass::SetISMLazyFrames(int frames)
+{
+  this->IndirectLight->GetImperfectShadowMaps()->SetLazyFrames(frames);
+}
+int vtkMRGIPass::GetISMLazyFrames()
+{
+  return this->IndirectLight->GetImperfectShadowMaps()->GetLazyFrames();
+}
+
+//------------------------------------------------------------------------------
 void vtkMRGIPass::SetNumberOfVPLs(int count)
 {
-  this->VPLSelection->SetNumberOfVPLs(count);
+  this->GetVPLSelection()->SetNumberOfVPLs(count);
   this->Modified();
 }
 int vtkMRGIPass::GetNumberOfVPLs()
 {
-  return this->VPLSelection->GetNumberOfVPLs();
+  return this->GetVPLSelection()->GetNumberOfVPLs();
 }
 void vtkMRGIPass::SetVPLSelectionMode(int mode)
 {
-  this->VPLSelection->SetMode(mode);
+  this->GetVPLSelection()->SetMode(mode);
   this->Modified();
 }
 int vtkMRGIPass::GetVPLSelectionMode()
 {
-  return this->VPLSelection->GetMode();
+  return this->GetVPLSelection()->GetMode();
 }
 void vtkMRGIPass::SetClusterDepthThreshold(double threshold)
 {
-  this->VPLSelection->SetClusterDepthThreshold(threshold);
+  this->GetVPLSelection()->SetClusterDepthThreshold(threshold);
   this->Modified();
 }
 double vtkMRGIPass::GetClusterDepthThreshold()
 {
-  return this->VPLSelection->GetClusterDepthThreshold();
+  return this->GetVPLSelection()->GetClusterDepthThreshold();
 }
 void vtkMRGIPass::SetClusterNormalThreshold(double threshold)
 {
-  this->VPLSelection->SetClusterNormalThreshold(threshold);
+  this->GetVPLSelection()->SetClusterNormalThreshold(threshold);
   this->Modified();
 }
 double vtkMRGIPass::GetClusterNormalThreshold()
 {
-  return this->VPLSelection->GetClusterNormalThreshold();
+  return this->GetVPLSelection()->GetClusterNormalThreshold();
 }
 void vtkMRGIPass::SetTreeThreshold(double threshold)
 {
-  this->VPLSelection->SetTreeThreshold(threshold);
+  this->GetVPLSelection()->SetTreeThreshold(threshold);
   this->Modified();
 }
 double vtkMRGIPass::GetTreeThreshold()
 {
-  return this->VPLSelection->GetTreeThreshold();
+  return this->GetVPLSelection()->GetTreeThreshold();
 }
 void vtkMRGIPass::SetRSMResolution(int resolution)
 {
@@ -542,38 +593,6 @@ bool vtkMRGIPass::MakeFrame(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer
   frame.PixelSize[0] = ab[0];
   frame.PixelSize[1] = ab[1];
   return true;
-}
-
-//------------------------------------------------------------------------------
-bool vtkMRGIPass::RenderMultiresolution(const vtkMRGIFrameContext& frame, int vplCount)
-{
-  vtkMRGIMultiresolution* mr = this->Multiresolution;
-  vtkRenderTimerLog* timer = frame.Timer;
-  {
-    ScopedStage stage(timer, "select");
-    if (!mr->Update(frame.Window, frame.Position, frame.Normal, frame.Viewport[0], frame.Viewport[1],
-          frame.Viewport[2], frame.Viewport[3], frame.PixelSize[0], frame.PixelSize[1], timer))
-    {
-      return false;
-    }
-  }
-  {
-    ScopedStage stage(timer, "gather");
-    if (!mr->BuildReceivers(
-          frame.Window, frame.Position, frame.Normal, frame.Viewport[0], frame.Viewport[1], timer) ||
-      !(this->VPLSelection->GetMode() == vtkMRGIVPLSelection::Tree
-          ? this->Gather->GatherVPLTree(frame, mr, this->VPLSelection->GetTreeTerm())
-          : this->Gather->GatherVPLs(frame, mr, this->VPLSelection->GetVPLTexture(), vplCount)))
-    {
-      return false;
-    }
-  }
-  Internals& in = *this->Internal;
-  ScopedStage stage(timer, "upsample");
-  return this->Upsample->Upsample(frame, mr, this->Gather->GetIrradianceTexture(),
-           mr->GetSelectionTexture(), this->GetUpsampleMode(), this->GetUpsampleMaskWeight()) &&
-    this->Upsample->Resolve(frame, mr, frame.Albedo, in.GBuffer.Irradiance, in.GBuffer.Indirect,
-      this->IndirectStrength, this->SurfaceDetail);
 }
 
 //------------------------------------------------------------------------------
@@ -782,42 +801,31 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
   }
   if (indirect)
   {
-    int vplCount = 0;
+    vtkMRGIIndirectLight::Settings settings;
+    settings.Multiresolution = this->IndirectMode == IndirectMultires;
+    settings.Strength = this->IndirectStrength;
+    settings.SurfaceDetail = this->SurfaceDetail;
+    settings.UpsampleMode = this->GetUpsampleMode();
+    settings.UpsampleMaskWeight = this->GetUpsampleMaskWeight();
+    // The multiresolution gather needs the frame's pixel size (`framed`).
+    const vtkMRGIIndirectLight::Outcome outcome = settings.Multiresolution && !framed
+      ? vtkMRGIIndirectLight::Failed
+      : this->IndirectLight->Render(frame, this->RSMPass, this->Multiresolution, settings,
+          in.GBuffer.Irradiance, in.GBuffer.Indirect);
+    selected = settings.Multiresolution && outcome == vtkMRGIIndirectLight::Gathered;
+    if (outcome == vtkMRGIIndirectLight::Gathered)
     {
-      ScopedStage stage(timer, "vpl");
-      vplCount = this->VPLSelection->Update(renWin, this->RSMPass);
+      ScopedStage stage(timer, "add");
+      this->RenderAdd(frame, in.GBuffer.Indirect, in.GBuffer.Color);
+      this->IndirectComputed = true;
+      in.IndirectFailureReported = false;
     }
-    if (vplCount > 0)
+    else if (outcome == vtkMRGIIndirectLight::Failed && !in.IndirectFailureReported)
     {
-      bool gathered = true;
-      if (this->IndirectMode == IndirectMultires)
-      {
-        gathered = framed && this->RenderMultiresolution(frame, vplCount);
-        selected = gathered;
-      }
-      else
-      {
-        ScopedStage stage(timer, "gather");
-        gathered = this->VPLSelection->GetMode() == vtkMRGIVPLSelection::Tree
-          ? this->Gather->GatherFullTree(frame, this->VPLSelection->GetTreeTerm(),
-              this->IndirectStrength, in.GBuffer.Irradiance, in.GBuffer.Indirect)
-          : this->Gather->GatherFull(frame, this->VPLSelection->GetVPLTexture(), vplCount,
-              this->IndirectStrength, in.GBuffer.Irradiance, in.GBuffer.Indirect);
-      }
-      if (gathered)
-      {
-        ScopedStage stage(timer, "add");
-        this->RenderAdd(frame, in.GBuffer.Indirect, in.GBuffer.Color);
-        this->IndirectComputed = true;
-        in.IndirectFailureReported = false;
-      }
-      else if (!in.IndirectFailureReported)
-      {
-        // Never a silent fallback: the image has no indirect light.
-        in.IndirectFailureReported = true;
-        vtkErrorMacro("the indirect light could not be computed at "
-          << w << " x " << h << " pixels: this frame has direct light only");
-      }
+      // Never a silent fallback: the image has no indirect light.
+      in.IndirectFailureReported = true;
+      vtkErrorMacro("the indirect light could not be computed at "
+        << w << " x " << h << " pixels: this frame has direct light only");
     }
   }
   if (areaLights && framed)
@@ -1080,7 +1088,7 @@ bool vtkMRGIPass::GetSpecularGBuffer(vtkRenderWindow* window, vtkImageData* spec
 
 bool vtkMRGIPass::GetVPLs(vtkRenderWindow* window, vtkFloatArray* vpls)
 {
-  return this->VPLSelection->ReadVPLs(vtkOpenGLRenderWindow::SafeDownCast(window), vpls);
+  return this->GetVPLSelection()->ReadVPLs(vtkOpenGLRenderWindow::SafeDownCast(window), vpls);
 }
 
 //------------------------------------------------------------------------------
@@ -1205,10 +1213,8 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StageTimingEnabled: " << (this->StageTimingEnabled ? "On" : "Off") << "\n";
   os << indent << "Multiresolution:\n";
   this->Multiresolution->PrintSelf(os, indent.GetNextIndent());
-  os << indent << "VPLSelection:\n"; // NumberOfVPLs, Mode and its thresholds
-  this->VPLSelection->PrintSelf(os, indent.GetNextIndent());
-  os << indent << "Gather:\n";
-  this->Gather->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "IndirectLight:\n"; // VPL selection, visibility, gather, upsampling
+  this->IndirectLight->PrintSelf(os, indent.GetNextIndent());
   os << indent << "AreaLightStage:\n";
   this->AreaLightStage->PrintSelf(os, indent.GetNextIndent());
   os << indent << "BufferSize: " << this->BufferSize[0] << " x " << this->BufferSize[1] << "\n";

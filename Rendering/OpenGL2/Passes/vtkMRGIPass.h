@@ -73,6 +73,7 @@ struct vtkMRGIFrameContext;
 class vtkMRGIAreaLight;
 class vtkMRGIAreaLightStage;
 class vtkMRGIGather;
+class vtkMRGIIndirectLight;
 class vtkMRGIMultiresolution;
 class vtkMRGIUpsample;
 class vtkMRGISSAO;
@@ -205,8 +206,43 @@ public:
    * the flattened irradiance) and its upsampling (read-back of the
    * upsampled E). The area lights have their own: GetAreaLightStage().
    */
-  vtkMRGIGather* GetGather() { return this->Gather; }
-  vtkMRGIUpsample* GetUpsample() { return this->Upsample; }
+  vtkMRGIGather* GetGather();
+  vtkMRGIUpsample* GetUpsample();
+
+  ///@{
+  /**
+   * Visibility of the VPLs: indirect shadows (issue 13,
+   * Documentation/IndirectLight.md "Indirect visibility").
+   * vtkMRGIIndirectLight::VisibilityOff (default: light bounces through
+   * occluders, as with any reflective-shadow-map method), VisibilityISM
+   * (imperfect shadow maps, ritschel-et-al-2011) or VisibilityVoxels (the
+   * screen-space voxels of the area lights, marched to each VPL).
+   * Forwarded to the indirect-light stage.
+   */
+  void SetIndirectVisibility(int mode);
+  int GetIndirectVisibility();
+  ///@}
+
+  ///@{
+  /**
+   * The imperfect shadow maps of VisibilityISM (vtkMRGIImperfectShadowMaps):
+   * points drawn per VPL (default 256), tile side (power of two, default
+   * 32), point density (0 uniform, 1 adaptive from one view sample, 2
+   * adaptive from 8, default 2) and lazy update (1 / frames of the points
+   * resampled per frame, default 8; 1 resamples every frame). Forwarded.
+   */
+  void SetISMPointsPerVPL(int points);
+  int GetISMPointsPerVPL();
+  void SetISMTileSize(int side);
+  int GetISMTileSize();
+  void SetISMPointMode(int mode);
+  int GetISMPointMode();
+  void SetISMLazyFrames(int frames);
+  int GetISMLazyFrames();
+  ///@}
+
+  /** The indirect-light stage (VPL selection, visibility, gather, upsampling). */
+  vtkMRGIIndirectLight* GetIndirectLightStage() { return this->IndirectLight; }
 
   ///@{
   /**
@@ -586,7 +622,7 @@ public:
 
   /** The sub-stages, for inspection (statistics, read-backs). */
   vtkMRGIReflectiveShadowMapPass* GetReflectiveShadowMapPass() { return this->RSMPass; }
-  vtkMRGIVPLSelection* GetVPLSelection() { return this->VPLSelection; }
+  vtkMRGIVPLSelection* GetVPLSelection();
 
   ///@{
   /**
@@ -704,8 +740,6 @@ protected:
   // error) an undefined pixel size.
   bool MakeFrame(vtkOpenGLRenderWindow* renWin, vtkRenderer* renderer, vtkRenderTimerLog* timer,
     bool capture, vtkMRGIFrameContext& frame);
-  // Selection, gather, upsampling and resolve of the multiresolution gather.
-  bool RenderMultiresolution(const vtkMRGIFrameContext& frame, int vplCount);
   // SSAO, then SSGI (each at its resolution) on `colour`, the frame's
   // direct light after the shadows; a failure is reported once per run of
   // failures and leaves the frame without that effect.
@@ -762,10 +796,8 @@ protected:
   double LastViewToWorld[16];
 
   vtkMRGIReflectiveShadowMapPass* RSMPass = nullptr;
-  vtkMRGIVPLSelection* VPLSelection = nullptr;
   vtkMRGIMultiresolution* Multiresolution = nullptr;
-  vtkMRGIGather* Gather = nullptr;
-  vtkMRGIUpsample* Upsample = nullptr;
+  vtkMRGIIndirectLight* IndirectLight = nullptr;
   vtkMRGISSAO* SSAOStage = nullptr;
   vtkMRGISSGI* SSGIStage = nullptr;
   vtkMRGIAreaLightStage* AreaLightStage = nullptr;

@@ -1,0 +1,189 @@
+#include "vtkMRGIIndirectLight.h"
+
+#include "vtkCamera.h"
+#include "vtkMRGIFrameContext.h"
+#include "vtkMRGIGather.h"
+#include "vtkMRGIImperfectShadowMaps.h"
+#include "vtkMRGIIndirectVisibility.h"
+#include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIShaderUtilities.h"
+#include "vtkMRGIUpsample.h"
+#include "vtkMRGIVPLSelection.h"
+#include "vtkMRGIVoxelization.h"
+#include "vtkObjectFactory.h"
+#include "vtkRenderer.h"
+
+#include "mrgi_ism_visibility.h"
+
+vtkStandardNewMacro(vtkMRGIIndirectLight);
+
+//------------------------------------------------------------------------------
+vtkMRGIIndirectLight::vtkMRGIIndirectLight()
+  : ISMRelativeBias(MRGI_ISM_DEFAULT_RELATIVE_BIAS)
+  , ISMTexelBias(MRGI_ISM_DEFAULT_TEXEL_BIAS)
+{
+  this->VPLSelection = vtkMRGIVPLSelection::New();
+  this->Gather = vtkMRGIGather::New();
+  this->Upsample = vtkMRGIUpsample::New();
+  this->ImperfectShadowMaps = vtkMRGIImperfectShadowMaps::New();
+  this->Voxelization = vtkMRGIVoxelization::New();
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIIndirectLight::~vtkMRGIIndirectLight()
+{
+  this->VPLSelection->Delete();
+  this->Gather->Delete();
+  this->Upsample->Delete();
+  this->ImperfectShadowMaps->Delete();
+  this->Voxelization->Delete();
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIIndirectLight::ReleaseGraphicsResources(vtkWindow* w)
+{
+  this->VPLSelection->ReleaseGraphicsResources(w);
+  this->Gather->ReleaseGraphicsResources(w);
+  this->Upsample->ReleaseGraphicsResources(w);
+  this->ImperfectShadowMaps->ReleaseGraphicsResources(w);
+  this->Voxelization->ReleaseGraphicsResources(w);
+}
+
+//------------------------------------------------------------------------------
+vtkMRGIIndirectLight::Outcome vtkMRGIIndirectLight::Render(const vtkMRGIFrameContext& frame,
+  vtkMRGIReflectiveShadowMapPass* rsm, vtkMRGIMultiresolution* buffer, const Settings& settings,
+  vtkTextureObject* irradiance, vtkTextureObject* indirect)
+{
+  this->LastVPLCount = 0;
+  if (!frame.Window || !rsm || !irradiance || !indirect || (settings.Multiresolution && !buffer))
+  {
+    vtkErrorMacro("indirect light: missing window, reflective shadow maps, buffer or targets");
+    return Failed;
+  }
+  {
+    vtkMRGIShaderUtilities::ScopedStage stage(frame.Timer, "vpl");
+    this->LastVPLCount = this->VPLSelection->Update(frame.Window, rsm);
+  }
+  if (this->LastVPLCount <= 0)
+  {
+    return NoVPLs;
+  }
+  vtkMRGIIndirectVisibility visibility;
+  if (!this->BuildVisibility(frame, this->LastVPLCount, visibility))
+  {
+    return Failed;
+  }
+  return this->RunGather(frame, buffer, settings, visibility, this->LastVPLCount, irradiance,
+           indirect)
+    ? Gathered
+    : Failed;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIIndirectLight::BuildVisibility(
+  const vtkMRGIFrameContext& frame, int vplCount, vtkMRGIIndirectVisibility& visibility)
+{
+  visibility = vtkMRGIIndirectVisibility();
+  if (this->Visibility == VisibilityISM)
+  {
+    vtkMRGIShaderUtilities::ScopedStage stage(frame.Timer, "ism");
+    if (!this->ImperfectShadowMaps->Update(frame, this->VPLSelection->GetVPLTexture(), vplCount))
+    {
+      vtkErrorMacro("indirect light: the imperfect shadow maps could not be built (see the "
+                    "error above); no indirect light this frame");
+      return false;
+    }
+    visibility.Mode = vtkMRGIIndirectVisibility::ISMVisibility;
+    visibility.ISMAtlas = this->ImperfectShadowMaps->GetAtlasTexture();
+    visibility.ISMLayout = this->ImperfectShadowMaps->GetLayout();
+    visibility.ISMLookup.relative_bias = static_cast<float>(this->ISMRelativeBias);
+    visibility.ISMLookup.texel_bias = static_cast<float>(this->ISMTexelBias);
+    visibility.ISMLookup.pcf = this->ISMFiltering ? 1 : 0;
+  }
+  else if (this->Visibility == VisibilityVoxels)
+  {
+    // One voxelization over the camera's clipping range (VTK fits it to the
+    // visible props' bounds), as the area lights' (mrgi_voxel.h section 2).
+    vtkMRGIShaderUtilities::ScopedStage stage(frame.Timer, "voxels");
+    double range[2] = { 0.0, 1.0 };
+    if (frame.Renderer && frame.Renderer->GetActiveCamera())
+    {
+      frame.Renderer->GetActiveCamera()->GetClippingRange(range);
+    }
+    if (!frame.Renderer || !this->Voxelization->Voxelize(frame.Renderer, range[0], range[1], frame.Timer))
+    {
+      vtkErrorMacro("indirect light: could not voxelize the scene for the VPLs' visibility; no "
+                    "indirect light this frame");
+      return false;
+    }
+    visibility.Mode = vtkMRGIIndirectVisibility::VoxelVisibility;
+    visibility.Voxels = this->Voxelization;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIIndirectLight::RunGather(const vtkMRGIFrameContext& frame,
+  vtkMRGIMultiresolution* buffer, const Settings& settings,
+  const vtkMRGIIndirectVisibility& visibility, int vplCount, vtkTextureObject* irradiance,
+  vtkTextureObject* indirect)
+{
+  const bool tree = this->VPLSelection->GetMode() == vtkMRGIVPLSelection::Tree;
+  if (!settings.Multiresolution)
+  {
+    vtkMRGIShaderUtilities::ScopedStage stage(frame.Timer, "gather");
+    return tree ? this->Gather->GatherFullTree(frame, this->VPLSelection->GetTreeTerm(),
+                    settings.Strength, irradiance, indirect, visibility)
+                : this->Gather->GatherFull(frame, this->VPLSelection->GetVPLTexture(), vplCount,
+                    settings.Strength, irradiance, indirect, visibility);
+  }
+  vtkRenderTimerLog* timer = frame.Timer;
+  {
+    vtkMRGIShaderUtilities::ScopedStage stage(timer, "select");
+    if (!buffer->Update(frame.Window, frame.Position, frame.Normal, frame.Viewport[0],
+          frame.Viewport[1], frame.Viewport[2], frame.Viewport[3], frame.PixelSize[0],
+          frame.PixelSize[1], timer))
+    {
+      return false;
+    }
+  }
+  {
+    vtkMRGIShaderUtilities::ScopedStage stage(timer, "gather");
+    if (!buffer->BuildReceivers(
+          frame.Window, frame.Position, frame.Normal, frame.Viewport[0], frame.Viewport[1], timer) ||
+      !(tree ? this->Gather->GatherVPLTree(
+                 frame, buffer, this->VPLSelection->GetTreeTerm(), visibility)
+             : this->Gather->GatherVPLs(
+                 frame, buffer, this->VPLSelection->GetVPLTexture(), vplCount, visibility)))
+    {
+      return false;
+    }
+  }
+  vtkMRGIShaderUtilities::ScopedStage stage(timer, "upsample");
+  return this->Upsample->Upsample(frame, buffer, this->Gather->GetIrradianceTexture(),
+           buffer->GetSelectionTexture(), settings.UpsampleMode, settings.UpsampleMaskWeight) &&
+    this->Upsample->Resolve(frame, buffer, frame.Albedo, irradiance, indirect, settings.Strength,
+      settings.SurfaceDetail);
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIIndirectLight::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  static const char* const names[] = { "Off", "ISM", "Voxels" };
+  os << indent << "Visibility: " << names[this->Visibility] << "\n";
+  os << indent << "ISMRelativeBias: " << this->ISMRelativeBias << "\n";
+  os << indent << "ISMTexelBias: " << this->ISMTexelBias << "\n";
+  os << indent << "ISMFiltering: " << (this->ISMFiltering ? "On" : "Off") << "\n";
+  os << indent << "LastVPLCount: " << this->LastVPLCount << "\n";
+  os << indent << "VPLSelection:\n";
+  this->VPLSelection->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "Gather:\n";
+  this->Gather->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "Upsample:\n";
+  this->Upsample->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "ImperfectShadowMaps:\n";
+  this->ImperfectShadowMaps->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "Voxelization:\n";
+  this->Voxelization->PrintSelf(os, indent.GetNextIndent());
+}
