@@ -222,12 +222,14 @@ public:
   void Execute(vtkObject*, unsigned long, void* data) override
   {
     this->Last = data ? static_cast<const char*>(data) : "";
+    this->All += this->Last;
+    this->All += '\n';
     ++this->Count;
   }
   /** Whether an error containing `fragment` came since the last call; resets. */
   bool Caught(const char* fragment)
   {
-    const bool ok = this->Count > 0 && this->Last.find(fragment) != std::string::npos;
+    const bool ok = this->Count > 0 && this->All.find(fragment) != std::string::npos;
     if (!ok)
     {
       std::fprintf(stderr, "expected an error containing '%s', got %d errors, last '%s'\n", fragment,
@@ -235,9 +237,11 @@ public:
     }
     this->Count = 0;
     this->Last.clear();
+    this->All.clear();
     return ok;
   }
   std::string Last;
+  std::string All; // every message since the last Caught()
   int Count = 0;
 };
 

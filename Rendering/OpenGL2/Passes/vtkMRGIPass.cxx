@@ -419,7 +419,11 @@ double vtkMRGIPass::GetClusterNormalThreshold()
 }
 void vtkMRGIPass::SetTreeThreshold(double threshold)
 {
-  this->GetVPLSelection()->SetTreeThreshold(threshold);
+  if (!(threshold == this->GetVPLSelection()->GetTreeThreshold()))
+  {
+    this->GetVPLSelection()->SetTreeThreshold(threshold);
+    this->Modified(); // the image changes; the selection's tree does not
+  }
   this->Modified();
 }
 double vtkMRGIPass::GetTreeThreshold()

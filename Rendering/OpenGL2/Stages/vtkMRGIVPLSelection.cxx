@@ -301,16 +301,18 @@ bool vtkMRGIVPLSelection::ReadLight(vtkOpenGLRenderWindow* window,
 }
 
 //------------------------------------------------------------------------------
+void vtkMRGIVPLSelection::SetTreeThreshold(double threshold)
+{
+  // No Modified(): the tree does not depend on tau (see the header).
+  this->TreeThreshold = threshold < 0.0 ? 0.0 : threshold;
+}
+
+//------------------------------------------------------------------------------
 int vtkMRGIVPLSelection::SelectTree(
   vtkOpenGLRenderWindow* window, vtkMRGIReflectiveShadowMapPass* rsm, std::vector<mrgi_vpl>& roots)
 {
   roots.clear();
   mrgi_vpl_tree_destroy(&this->Internal->Tree); // the texture stays for the next upload
-  if (std::isnan(this->TreeThreshold))
-  {
-    vtkErrorMacro("VPL tree: TreeThreshold is NaN; expected a number >= 0 or +inf");
-    return 0;
-  }
   const int size = rsm->GetResolution();
   if (size > MRGI_VPL_TREE_GATHER_MAX_RSM_SIZE)
   {

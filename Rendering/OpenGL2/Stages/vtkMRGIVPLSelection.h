@@ -132,11 +132,14 @@ public:
    * Tree mode: the refinement threshold tau on the form-factor bound
    * (mrgi_vpl_tree_gather.h section 1), 0..+inf, default
    * MRGI_VPL_TREE_DEFAULT_THRESHOLD. tau >= 1 gathers the 16 x 16 roots,
-   * tau = 0 every RSM texel. Negative values clamp to 0; NaN is reported by
-   * Update() (no tree, no VPLs). The tree itself does not depend on tau; the
-   * gather reads it (GetTreeThreshold()).
+   * tau = 0 every RSM texel. Negative values clamp to 0; NaN is kept and
+   * refused by the gather (vtkMRGIGather::GatherVPLTree: no indirect light,
+   * an error naming tau). The tree itself does not depend on tau, only the
+   * gather's traversal does (GetTreeTerm()): setting it does not mark the
+   * selection modified, so the tree is not read back and rebuilt for a new
+   * tau.
    */
-  vtkSetClampMacro(TreeThreshold, double, 0.0, std::numeric_limits<double>::infinity());
+  void SetTreeThreshold(double threshold);
   vtkGetMacro(TreeThreshold, double);
   ///@}
 
