@@ -34,6 +34,11 @@
 #include "vtkMinimalStandardRandomSequence.h"
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkPlaneSource.h"
+#include "vtkPoints.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkCellArray.h"
 #include "vtkRenderer.h"
 #include "vtkTextureObject.h"
 
@@ -326,6 +331,31 @@ void UpdateScene()
       before.assign(now, now + P);
     }
   }
+  // Adaptive8 (the default) read view samples from the G-buffer; the same
+  // seed in Uniform mode draws other records (the pdf differs).
+  MRGI_TEST_CHECK(ism->GetPointMode() == vtkMRGIImperfectShadowMaps::Adaptive8);
+  MRGI_TEST_CHECK(ism->GetNumberOfViewSamples() > 100);
+  MRGI_TEST_CHECK(ism->GetNumberOfViewSamples() <= 4096);
+  {
+    vtkNew<vtkMRGIImperfectShadowMaps> uniform;
+    uniform->SetPointsPerVPL(100);
+    uniform->SetTileSize(16);
+    uniform->SetPointMode(vtkMRGIImperfectShadowMaps::Uniform);
+    ism->ReleaseGraphicsResources(scene.Window);
+    MRGI_TEST_CHECK(ism->Update(frame, tex, V));
+    MRGI_TEST_CHECK(uniform->Update(frame, tex, V));
+    MRGI_TEST_CHECK(uniform->GetNumberOfViewSamples() == 0);
+    int differ = 0;
+    for (int i = 0; i < P; ++i)
+    {
+      differ += ism->GetPointRecords()[i].index != uniform->GetPointRecords()[i].index ? 1 : 0;
+    }
+    std::printf("Adaptive8 vs Uniform: %d of %d records on other triangles, %lld view samples\n",
+      differ, P, static_cast<long long>(ism->GetNumberOfViewSamples()));
+    MRGI_TEST_CHECK(differ > 0);
+    uniform->ReleaseGraphicsResources(scene.Window);
+  }
+
   // The atlas holds depths.
   vtkNew<vtkFloatArray> depth;
   MRGI_TEST_CHECK(ism->ReadAtlas(scene.Window, depth));
@@ -400,10 +430,82 @@ void UpdateScene()
   tex->ReleaseGraphicsResources(scene.Window);
   ism->ReleaseGraphicsResources(scene.Window);
 }
+
+// A point cloud (verts with normals) is its own point set (mrgi_ism_points.h
+// section 4): no triangles, every point is a cloud point moved by the
+// actor's matrix; a translucent mesh beside it is skipped, an opaque mesh
+// takes over from the cloud.
+void PointCloud()
+{
+  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(32, 32);
+  vtkNew<vtkRenderer> ren;
+  window->AddRenderer(ren);
+  vtkNew<vtkPolyData> cloud;
+  vtkNew<vtkPoints> pts;
+  vtkNew<vtkFloatArray> normals;
+  normals->SetNumberOfComponents(3);
+  vtkNew<vtkCellArray> verts;
+  for (int i = 0; i < 50; ++i)
+  {
+    pts->InsertNextPoint(0.1 * i, 0.0, 0.0);
+    normals->InsertNextTuple3(0.0, 0.0, 1.0);
+    const vtkIdType id = i;
+    verts->InsertNextCell(1, &id);
+  }
+  cloud->SetPoints(pts);
+  cloud->SetVerts(verts);
+  cloud->GetPointData()->SetNormals(normals);
+  vtkNew<vtkPolyDataMapper> cloudMapper;
+  cloudMapper->SetInputData(cloud);
+  vtkNew<vtkActor> cloudActor;
+  cloudActor->SetMapper(cloudMapper);
+  cloudActor->SetPosition(0.0, 2.0, 0.0);
+  ren->AddActor(cloudActor);
+  vtkNew<vtkPlaneSource> plane;
+  vtkNew<vtkPolyDataMapper> planeMapper;
+  planeMapper->SetInputConnection(plane->GetOutputPort());
+  vtkNew<vtkActor> planeActor;
+  planeActor->SetMapper(planeMapper);
+  planeActor->GetProperty()->SetOpacity(0.5);
+  ren->AddActor(planeActor);
+  window->Render();
+
+  auto* gl = vtkOpenGLRenderWindow::SafeDownCast(window);
+  std::vector<mrgi_vpl> vpls(2);
+  for (mrgi_vpl& v : vpls)
+  {
+    v.normal[1] = 1.0f;
+    v.flux[0] = 1.0f;
+  }
+  auto tex = VPLTexture(gl, vpls);
+  vtkMRGIFrameContext frame;
+  frame.Window = gl;
+  frame.Renderer = ren;
+  vtkNew<vtkMRGIImperfectShadowMaps> ism;
+  ism->SetPointsPerVPL(40);
+  MRGI_TEST_CHECK(ism->Update(frame, tex, 2));
+  MRGI_TEST_CHECK(ism->GetNumberOfTriangles() == 0);
+  MRGI_TEST_CHECK(ism->GetNumberOfPoints() == 80);
+  const float* p = ism->GetPointPositions();
+  const mrgi_ism_point* r = ism->GetPointRecords();
+  for (int i = 0; i < 80; ++i)
+  {
+    MRGI_TEST_CHECK(r[i].index >= 0 && r[i].index < 50);
+    MRGI_TEST_CHECK(std::fabs(p[3 * i] - 0.1f * r[i].index) < 1e-5f);
+    MRGI_TEST_CHECK(p[3 * i + 1] == 2.0f && p[3 * i + 2] == 0.0f);
+  }
+  // The opaque plane: a mesh, two triangles; the cloud is then not used.
+  planeActor->GetProperty()->SetOpacity(1.0);
+  window->Render();
+  MRGI_TEST_CHECK(ism->Update(frame, tex, 2));
+  MRGI_TEST_CHECK(ism->GetNumberOfTriangles() == 2);
+  tex->ReleaseGraphicsResources(window);
+  ism->ReleaseGraphicsResources(window);
+}
 }
 
 int main(int argc, char* argv[])
 {
   return mrgitest::RunCases(
-    argc, argv, { MRGI_TEST_CASE(RenderParity), MRGI_TEST_CASE(UpdateScene) });
+    argc, argv, { MRGI_TEST_CASE(RenderParity), MRGI_TEST_CASE(UpdateScene), MRGI_TEST_CASE(PointCloud) });
 }

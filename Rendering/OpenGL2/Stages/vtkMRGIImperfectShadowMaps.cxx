@@ -241,6 +241,11 @@ vtkIdType vtkMRGIImperfectShadowMaps::GetNumberOfResampledPoints() const
   return this->Internal->Resampled;
 }
 
+vtkIdType vtkMRGIImperfectShadowMaps::GetNumberOfViewSamples() const
+{
+  return static_cast<vtkIdType>(this->Internal->ViewSamples.size() / 3);
+}
+
 //------------------------------------------------------------------------------
 bool vtkMRGIImperfectShadowMaps::Render(vtkOpenGLRenderWindow* window, const float* points,
   int pointCount, vtkTextureObject* vpls, int vplCount)

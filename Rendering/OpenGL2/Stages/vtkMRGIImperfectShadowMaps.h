@@ -123,8 +123,9 @@ public:
    * The point set of the last Update() (for tests and statistics): record
    * count P = PointsPerVPL x V, the records (mrgi_ism_points.h; triangle or
    * cloud point index and barycentrics), their world positions (3 P floats),
-   * the number of triangles (0 for a point cloud) and the records the last
-   * Update() redrew. Null / 0 before the first successful Update().
+   * the number of triangles (0 for a point cloud), the records the last
+   * Update() redrew and the view samples it read (0 in Uniform mode or
+   * without a G-buffer; adaptive modes then fall back to uniform weights). Null / 0 before the first successful Update().
    */
   vtkIdType GetNumberOfPoints() const;
 #ifndef __VTK_WRAP__
@@ -133,6 +134,7 @@ public:
   const float* GetPointPositions() const;
   vtkIdType GetNumberOfTriangles() const;
   vtkIdType GetNumberOfResampledPoints() const;
+  vtkIdType GetNumberOfViewSamples() const;
   ///@}
 
   /** Free every GL resource (and the point set). */
