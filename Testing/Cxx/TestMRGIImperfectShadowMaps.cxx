@@ -49,6 +49,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <vector>
 
 namespace
@@ -136,6 +137,9 @@ void RenderParity()
     {
       p = static_cast<float>(rnd.Next(-2.0, 2.0));
     }
+    // Non-finite points land nowhere (never a NaN texel).
+    points[0] = std::nanf("");
+    points[4] = std::numeric_limits<float>::infinity();
     ism->SetTileSize(T);
     auto tex = VPLTexture(gl, vpls);
     MRGI_TEST_CHECK(ism->Render(gl, points.data(), N, tex, V));
@@ -167,6 +171,7 @@ void RenderParity()
       const float g = gpu->GetValue(static_cast<vtkIdType>(k));
       const float t = twin[k];
       const bool ge = !(g < MRGI_ISM_EMPTY_DEPTH), te = !(t < MRGI_ISM_EMPTY_DEPTH);
+      MRGI_TEST_CHECK(std::isfinite(g) && g > 0.0f);
       if (ge != te || (!ge && std::fabs(g - t) > 1e-5 * std::max(1.0f, t)))
       {
         ++differ;
@@ -185,6 +190,10 @@ void RenderParity()
       const int l = i % V;
       const mrgi_vpl& v = vpls[static_cast<size_t>(l)];
       const float* x = &points[3 * static_cast<size_t>(i)];
+      if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+      {
+        continue;
+      }
       if (v.normal[0] == 0.0f && v.normal[1] == 0.0f && v.normal[2] == 0.0f)
       {
         continue;
@@ -434,7 +443,7 @@ void UpdateScene()
 // A point cloud (verts with normals) is its own point set (mrgi_ism_points.h
 // section 4): no triangles, every point is a cloud point moved by the
 // actor's matrix; a translucent mesh beside it is skipped, an opaque mesh
-// takes over from the cloud.
+// takes over from the cloud; a triangle strip is split into triangles.
 void PointCloud()
 {
   vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(32, 32);
@@ -499,6 +508,31 @@ void PointCloud()
   window->Render();
   MRGI_TEST_CHECK(ism->Update(frame, tex, 2));
   MRGI_TEST_CHECK(ism->GetNumberOfTriangles() == 2);
+  // A strip of 5 points adds 3 triangles, every point on the strip's plane z = 1.
+  vtkNew<vtkPolyData> strip;
+  vtkNew<vtkPoints> stripPoints;
+  vtkNew<vtkCellArray> strips;
+  const vtkIdType ids[5] = { 0, 1, 2, 3, 4 };
+  for (int i = 0; i < 5; ++i)
+  {
+    stripPoints->InsertNextPoint(0.5 * (i / 2), 0.5 * (i % 2), 1.0);
+  }
+  strips->InsertNextCell(5, ids);
+  strip->SetPoints(stripPoints);
+  strip->SetStrips(strips);
+  vtkNew<vtkPolyDataMapper> stripMapper;
+  stripMapper->SetInputData(strip);
+  vtkNew<vtkActor> stripActor;
+  stripActor->SetMapper(stripMapper);
+  ren->AddActor(stripActor);
+  planeActor->VisibilityOff();
+  window->Render();
+  MRGI_TEST_CHECK(ism->Update(frame, tex, 2));
+  MRGI_TEST_CHECK(ism->GetNumberOfTriangles() == 3);
+  for (int i = 0; i < 80; ++i)
+  {
+    MRGI_TEST_CHECK(ism->GetPointPositions()[3 * i + 2] == 1.0f);
+  }
   tex->ReleaseGraphicsResources(window);
   ism->ReleaseGraphicsResources(window);
 }
