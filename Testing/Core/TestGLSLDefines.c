@@ -2,6 +2,7 @@
  * holds every constant GLSL needs exactly once, values read back as the C
  * values, and the buffer contract holds. */
 #include "mrgi_glsl_defines.h"
+#include "mrgi_ism_atlas.h"
 
 #include "mrgi_area_light.h"
 #include "mrgi_area_light_rsm.h"
@@ -176,6 +177,9 @@ static expected_constant expected[] = {
   EXPECT(MRGI_BMR_SSGI_WEIGHT_2, EXPECT_FLOAT),
   EXPECT(MRGI_BMR_SSGI_WEIGHT_3, EXPECT_FLOAT),
   EXPECT(MRGI_BMR_SSGI_WEIGHT_4, EXPECT_FLOAT),
+  EXPECT(MRGI_ISM_EMPTY_DEPTH, EXPECT_FLOAT),
+  EXPECT(MRGI_ISM_MIN_DEPTH, EXPECT_FLOAT),
+  EXPECT(MRGI_ISM_MAX_TILE, EXPECT_INT),
 };
 enum { EXPECTED_COUNT = sizeof(expected) / sizeof(expected[0]) };
 

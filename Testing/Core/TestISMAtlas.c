@@ -4,6 +4,7 @@
  * tile, push-pull fills every hole of a non-empty tile from that tile only,
  * and absurd sizes give clear errors. */
 #include "mrgi_ism_atlas.h"
+#include "mrgi_vpl.h"
 #include "mrgi_test.h"
 
 #include <math.h>
@@ -188,6 +189,61 @@ static void test_bad_sizes(void)
   MRGI_CHECK(mrgi_ism_push_pull(NULL, atlas, scratch, 1, &err) == MRGI_ERR_INVALID_ARGUMENT);
 }
 
+/* mrgi_ism_atlas_render (section 5): point i goes to VPL i mod V, the
+ * nearest distance wins, points behind a VPL or at it land nowhere, an
+ * empty VPL's tile stays empty through push-pull while its neighbours fill. */
+static void test_render(void)
+{
+  mrgi_ism_atlas_layout L;
+  MRGI_CHECK(mrgi_ism_atlas_layout_make(3, 8, &L, NULL) == MRGI_OK);
+  mrgi_vpl v[3];
+  memset(v, 0, sizeof(v));
+  for (int l = 0; l < 2; ++l)
+  {
+    v[l].position[0] = (float)l;
+    v[l].normal[2] = 1.0f;
+  }
+  /* v[2] is an empty VPL (zero normal). Points 0, 3 -> VPL 0; 1, 4 -> VPL 1; 2, 5 -> VPL 2. */
+  const float pts[] = {
+    0.0f, 0.0f, 2.0f, /* VPL 0, straight up, distance 2 */
+    1.0f, 0.0f, -1.0f, /* VPL 1, behind: nowhere */
+    0.0f, 0.0f, 1.0f,  /* VPL 2 (empty): nowhere */
+    0.0f, 0.0f, 1.5f,  /* VPL 0, same texel, nearer: wins */
+    1.0f, 0.0f, 0.0f,  /* VPL 1, at the VPL: nowhere */
+    0.0f, 0.0f, 3.0f,  /* VPL 2 (empty): nowhere */
+  };
+  float depth[24 * 16];
+  float pp_scratch[128];
+  MRGI_CHECK(mrgi_ism_atlas_render(&L, pts, 6, v, 0, depth, NULL, 0, NULL) == MRGI_OK);
+  int64_t texel;
+  const double p0[3] = { 0, 0, 0 }, n0[3] = { 0, 0, 1 }, x0[3] = { 0, 0, 2 };
+  MRGI_CHECK(mrgi_ism_point_texel(&L, 0, p0, n0, x0, &texel, NULL));
+  int valid = 0;
+  for (int k = 0; k < L.width * L.height; ++k)
+    valid += depth[k] < MRGI_ISM_EMPTY_DEPTH;
+  MRGI_CHECK(valid == 1);
+  MRGI_CHECK(depth[texel] == 1.5f);
+  /* Push-pull: tile 0 fills with 1.5, tiles 1 and 2 stay empty. */
+  MRGI_CHECK(
+    mrgi_ism_atlas_render(&L, pts, 6, v, 1, depth, pp_scratch, 128, NULL) == MRGI_OK);
+  for (int y = 0; y < L.height; ++y)
+    for (int x = 0; x < L.width; ++x)
+    {
+      const int tile = (y / 8) * L.tiles_per_row + x / 8;
+      const float d = depth[y * L.width + x];
+      if (tile == 0)
+        MRGI_CHECK(d == 1.5f);
+      else
+        MRGI_CHECK(d == MRGI_ISM_EMPTY_DEPTH);
+    }
+  /* Errors: too little scratch, negative count, NULL arrays. */
+  mrgi_error err;
+  MRGI_CHECK(mrgi_ism_atlas_render(&L, pts, 6, v, 1, depth, pp_scratch, 4, &err) != MRGI_OK);
+  MRGI_CHECK(strstr(err.message, "scratch") != NULL);
+  MRGI_CHECK(mrgi_ism_atlas_render(&L, pts, -1, v, 0, depth, NULL, 0, &err) != MRGI_OK);
+  MRGI_CHECK(mrgi_ism_atlas_render(&L, NULL, 6, v, 0, depth, NULL, 0, &err) != MRGI_OK);
+}
+
 int main(int argc, char** argv)
 {
   static const mrgi_test_case cases[] = {
@@ -195,6 +251,7 @@ int main(int argc, char** argv)
     MRGI_TEST_CASE(test_cos_sphere),
     MRGI_TEST_CASE(test_texels),
     MRGI_TEST_CASE(test_push_pull),
+    MRGI_TEST_CASE(test_render),
     MRGI_TEST_CASE(test_bad_sizes),
   };
   return MRGI_TEST_MAIN(argc, argv, cases);

@@ -177,6 +177,62 @@ static void test_lazy_update(void)
   MRGI_CHECK(e == P);
 }
 
+/* The general lazy cycle (lazy_frames N): frame k resamples exactly
+ * [floor(jP/N), floor((j+1)P/N)), each range floor/ceil(P/N) records, N
+ * frames cover every record once; N = 1 resamples all every frame; N = 8
+ * is mrgi_ism_lazy_range. */
+static void test_lazy_update_general(void)
+{
+  int32_t nv;
+  const int32_t nt = uneven_strip(&nv);
+  const int32_t P = 1001;
+  MRGI_CHECK(mrgi_ism_triangle_weights(
+               verts, nv, tris, nt, MRGI_ISM_UNIFORM, NULL, 0, 1u, weights, NULL) == MRGI_OK);
+  const int32_t cycles[] = { 1, 3, 7, 8, 13 };
+  for (int c = 0; c < 5; ++c)
+  {
+    const int32_t N = cycles[c];
+    sample_all(nt, P, 3u);
+    int32_t covered = 0;
+    for (int64_t k = 0; k < 2 * N; ++k)
+    {
+      int32_t b, e;
+      mrgi_ism_lazy_range_n(P, k, N, &b, &e);
+      MRGI_CHECK(e - b == P / N || e - b == P / N + 1);
+      if (k < N)
+        covered += e - b;
+      if (N == 8)
+      {
+        int32_t b8, e8;
+        mrgi_ism_lazy_range(P, k, &b8, &e8);
+        MRGI_CHECK(b8 == b && e8 == e);
+        MRGI_CHECK(mrgi_ism_lazy_generation(k) == mrgi_ism_lazy_generation_n(k, 8));
+      }
+      memcpy(pts2, pts, sizeof(mrgi_ism_point) * P);
+      MRGI_CHECK(mrgi_ism_sample(cdf, nt, 3u, mrgi_ism_lazy_generation_n(k, N), P, b, e, pts,
+                   NULL) == MRGI_OK);
+      int32_t changed = 0, changed_outside = 0;
+      for (int32_t i = 0; i < P; ++i)
+      {
+        const int diff = memcmp(&pts[i], &pts2[i], sizeof(mrgi_ism_point)) != 0;
+        changed += diff;
+        changed_outside += diff && (i < b || i >= e);
+      }
+      /* A record may redraw to the same value by chance; with 1001 records
+       * over 7 triangles barycentrics make that practically impossible. */
+      MRGI_CHECK(changed == e - b);
+      MRGI_CHECK(changed_outside == 0);
+    }
+    MRGI_CHECK(covered == P);
+  }
+  int32_t b, e;
+  mrgi_ism_lazy_range_n(P, 5, 1, &b, &e);
+  MRGI_CHECK(b == 0 && e == P);
+  MRGI_CHECK(mrgi_ism_lazy_generation_n(5, 1) == 6u);
+  mrgi_ism_lazy_range_n(P, 5, 0, &b, &e); /* N < 1 acts as 1 */
+  MRGI_CHECK(b == 0 && e == P);
+}
+
 /* Move the vertices; every evaluated point satisfies its triangle's plane. */
 static void test_points_follow_deformation(void)
 {
@@ -304,6 +360,7 @@ int main(int argc, char** argv)
     MRGI_TEST_CASE(test_uniform_density),
     MRGI_TEST_CASE(test_adaptive_density),
     MRGI_TEST_CASE(test_lazy_update),
+    MRGI_TEST_CASE(test_lazy_update_general),
     MRGI_TEST_CASE(test_points_follow_deformation),
     MRGI_TEST_CASE(test_deterministic_and_clouds),
     MRGI_TEST_CASE(test_bad_input),

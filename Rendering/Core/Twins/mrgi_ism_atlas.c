@@ -1,6 +1,8 @@
 /* ISM atlas: see mrgi_ism_atlas.h (RGK08 3.3, RIHKS11 6.1). */
 #include "mrgi_ism_atlas.h"
 
+#include "mrgi_vpl.h"
+
 #include <math.h>
 
 mrgi_status mrgi_ism_atlas_layout_make(
@@ -173,4 +175,42 @@ mrgi_status mrgi_ism_push_pull(const mrgi_ism_atlas_layout* layout, float* depth
         depth[(y0 + y) * layout->width + x0 + x] = lev[0][y * T + x];
   }
   return MRGI_OK;
+}
+
+mrgi_status mrgi_ism_atlas_render(const mrgi_ism_atlas_layout* layout, const float* points,
+  int64_t point_count, const struct mrgi_vpl* vpls, int push_pull, float* depth, float* scratch,
+  size_t scratch_count, mrgi_error* err)
+{
+  if (!layout || !depth || !vpls || (point_count > 0 && !points))
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "ISM atlas: NULL render arrays");
+  if (point_count < 0)
+    return mrgi_error_set(
+      err, MRGI_ERR_INVALID_ARGUMENT, "ISM atlas: point count %lld < 0", (long long)point_count);
+  if (layout->vpl_count < 1 || layout->width != layout->tiles_per_row * layout->tile_size ||
+    layout->height != layout->tile_rows * layout->tile_size)
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "ISM atlas: malformed layout");
+  if (push_pull && scratch_count < mrgi_ism_push_pull_scratch_size(layout))
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+      "ISM atlas: push-pull scratch holds %zu floats, needs %zu", scratch_count,
+      mrgi_ism_push_pull_scratch_size(layout));
+  const size_t n = (size_t)layout->width * (size_t)layout->height;
+  for (size_t k = 0; k < n; ++k)
+    depth[k] = MRGI_ISM_EMPTY_DEPTH;
+  const int32_t V = layout->vpl_count;
+  for (int64_t i = 0; i < point_count; ++i)
+  {
+    const int32_t l = mrgi_ism_point_vpl(i, V); /* section 2: VPL i mod V */
+    const mrgi_vpl* L = &vpls[l];
+    const double nrm[3] = { L->normal[0], L->normal[1], L->normal[2] };
+    const double n2 = dot3(nrm, nrm);
+    if (!(n2 > 0.0) || !isfinite(n2)) /* empty VPL: draws nothing */
+      continue;
+    const double pos[3] = { L->position[0], L->position[1], L->position[2] };
+    const double x[3] = { points[3 * i], points[3 * i + 1], points[3 * i + 2] };
+    int64_t texel;
+    float d;
+    if (mrgi_ism_point_texel(layout, l, pos, nrm, x, &texel, &d) && d < depth[texel])
+      depth[texel] = d; /* GL_MIN blending */
+  }
+  return push_pull ? mrgi_ism_push_pull(layout, depth, scratch, scratch_count, err) : MRGI_OK;
 }

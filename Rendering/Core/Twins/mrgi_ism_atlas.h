@@ -44,6 +44,17 @@
  * coarsest level down, every empty texel takes its parent's depth. Only the
  * tile's own texels are read, so tiles never mix. Afterwards every texel of
  * a tile with at least one valid texel is valid; all-empty tiles stay empty.
+ *
+ * ## 5. Rendering an atlas (mrgi_ism_atlas_render; C twin of the GPU draw)
+ * Inputs: `point_count` world-space points (xyz floats) and the layout's V
+ * VPL records (mrgi_vpl.h, world space). Every texel starts empty
+ * (MRGI_ISM_EMPTY_DEPTH); point i goes to VPL i mod V (section 2), its texel
+ * and distance come from mrgi_ism_point_texel() (section 3) and the texel
+ * keeps the minimum distance (the GPU's GL_MIN blending). VPLs with a zero
+ * or non-finite normal (empty VPLs, mrgi_vpl.h) and non-finite points draw
+ * nothing. Then, if `push_pull` is non-zero, mrgi_ism_push_pull().
+ * Errors: NULL arrays, point_count < 0, a layout whose vpl_count does not
+ * match, too little scratch.
  */
 #ifndef MRGI_ISM_ATLAS_H
 #define MRGI_ISM_ATLAS_H
@@ -111,6 +122,18 @@ mrgi_status mrgi_ism_push_pull(const mrgi_ism_atlas_layout* layout, float* depth
 
 /** @brief Floats of scratch mrgi_ism_push_pull needs: the mip chain of one tile. */
 size_t mrgi_ism_push_pull_scratch_size(const mrgi_ism_atlas_layout* layout);
+
+struct mrgi_vpl;
+
+/**
+ * @brief Render the atlas of world-space points for the layout's VPLs (section 5).
+ * @param depth    Receives width * height depths (overwritten).
+ * @param scratch  mrgi_ism_push_pull_scratch_size() floats (unused, may be
+ *                 NULL, when push_pull is 0).
+ */
+mrgi_status mrgi_ism_atlas_render(const mrgi_ism_atlas_layout* layout, const float* points,
+  int64_t point_count, const struct mrgi_vpl* vpls, int push_pull, float* depth, float* scratch,
+  size_t scratch_count, mrgi_error* err);
 
 #ifdef __cplusplus
 }

@@ -266,21 +266,34 @@ mrgi_status mrgi_ism_sample(const double* cdf, int32_t count, uint32_t seed, uin
   return MRGI_OK;
 }
 
-void mrgi_ism_lazy_range(int32_t total, int64_t frame, int32_t* begin, int32_t* end)
+void mrgi_ism_lazy_range_n(
+  int32_t total, int64_t frame, int32_t lazy_frames, int32_t* begin, int32_t* end)
 {
-  int64_t j = frame % MRGI_ISM_LAZY_FRAMES;
+  const int64_t n = lazy_frames >= 1 ? lazy_frames : 1;
+  int64_t j = frame % n;
   if (j < 0)
-    j += MRGI_ISM_LAZY_FRAMES;
+    j += n;
   const int64_t p = total > 0 ? total : 0;
   if (begin)
-    *begin = (int32_t)(j * p / MRGI_ISM_LAZY_FRAMES);
+    *begin = (int32_t)(j * p / n);
   if (end)
-    *end = (int32_t)((j + 1) * p / MRGI_ISM_LAZY_FRAMES);
+    *end = (int32_t)((j + 1) * p / n);
+}
+
+uint32_t mrgi_ism_lazy_generation_n(int64_t frame, int32_t lazy_frames)
+{
+  const int64_t n = lazy_frames >= 1 ? lazy_frames : 1;
+  return (uint32_t)(frame / n + 1);
+}
+
+void mrgi_ism_lazy_range(int32_t total, int64_t frame, int32_t* begin, int32_t* end)
+{
+  mrgi_ism_lazy_range_n(total, frame, MRGI_ISM_LAZY_FRAMES, begin, end);
 }
 
 uint32_t mrgi_ism_lazy_generation(int64_t frame)
 {
-  return (uint32_t)(frame / MRGI_ISM_LAZY_FRAMES + 1);
+  return mrgi_ism_lazy_generation_n(frame, MRGI_ISM_LAZY_FRAMES);
 }
 
 mrgi_status mrgi_ism_points_evaluate(const float* positions, int32_t vertex_count,

@@ -45,11 +45,13 @@
  * For point clouds (section 4) the same routine picks point indices; u, v
  * are then 0.
  *
- * ## 3. Lazy update (mrgi_ism_lazy_range, RIHKS11 5.3)
- * Frame k resamples exactly the records [floor(j P / 8), floor((j+1) P / 8))
- * with j = k mod 8, using generation k / 8 + 1. For any P (multiple of 8 or
- * not) the 8 ranges are disjoint, cover 0..P-1 and each holds floor(P/8) or
- * ceil(P/8) records.
+ * ## 3. Lazy update (mrgi_ism_lazy_range_n, RIHKS11 5.3)
+ * With N = lazy_frames (>= 1; the paper's N = MRGI_ISM_LAZY_FRAMES = 8 is
+ * mrgi_ism_lazy_range), frame k resamples exactly the records
+ * [floor(j P / N), floor((j+1) P / N)) with j = k mod N, using generation
+ * k / N + 1. For any P (multiple of N or not) the N ranges are disjoint,
+ * cover 0..P-1 and each holds floor(P/N) or ceil(P/N) records; N = 1
+ * resamples every record every frame (a fresh generation each frame).
  *
  * ## 4. Point clouds (mrgi_ism_cloud_weights)
  * A point cloud is its own point set: weights per point, w_p = 1/N for
@@ -130,7 +132,17 @@ mrgi_status mrgi_ism_cdf_build(const double* weights, int32_t count, double* cdf
 mrgi_status mrgi_ism_sample(const double* cdf, int32_t count, uint32_t seed, uint32_t generation,
   int32_t total, int32_t begin, int32_t end, mrgi_ism_point* points, mrgi_error* err);
 
-/** @brief Records frame `frame` resamples (section 3); *begin = *end = 0 if total <= 0. */
+/**
+ * @brief Records frame `frame` resamples with a cycle of `lazy_frames` frames
+ * (section 3); *begin = *end = 0 if total <= 0; lazy_frames < 1 acts as 1.
+ */
+void mrgi_ism_lazy_range_n(
+  int32_t total, int64_t frame, int32_t lazy_frames, int32_t* begin, int32_t* end);
+
+/** @brief Generation of frame `frame` with a cycle of `lazy_frames`: frame / N + 1. */
+uint32_t mrgi_ism_lazy_generation_n(int64_t frame, int32_t lazy_frames);
+
+/** @brief mrgi_ism_lazy_range_n with N = MRGI_ISM_LAZY_FRAMES (section 3). */
 void mrgi_ism_lazy_range(int32_t total, int64_t frame, int32_t* begin, int32_t* end);
 
 /** @brief Generation used by frame `frame`: frame / 8 + 1 (generation 0 = initial draw). */

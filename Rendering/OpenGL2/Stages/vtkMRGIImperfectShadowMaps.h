@@ -29,7 +29,8 @@
 #include "MRGIRenderingModule.h" // For export macro
 #include "vtkObject.h"
 
-#include "mrgi_ism_atlas.h" // For mrgi_ism_atlas_layout
+#include "mrgi_ism_atlas.h"  // For mrgi_ism_atlas_layout
+#include "mrgi_ism_points.h" // For mrgi_ism_point
 
 #include <memory> // For std::unique_ptr
 
@@ -37,6 +38,7 @@ struct vtkMRGIFrameContext;
 class vtkFloatArray;
 class vtkOpenGLRenderWindow;
 class vtkRenderWindow;
+class vtkRenderer;
 class vtkTextureObject;
 class vtkWindow;
 
@@ -116,6 +118,25 @@ public:
   /** Read the atlas back (width x height floats, row 0 = atlas row 0). */
   bool ReadAtlas(vtkRenderWindow* window, vtkFloatArray* depth);
 
+  ///@{
+  /**
+   * The point set of the last Update() (for tests and statistics): record
+   * count P = PointsPerVPL x V, the records (mrgi_ism_points.h; triangle or
+   * cloud point index and barycentrics), their world positions (3 P floats),
+   * the number of triangles (0 for a point cloud), the records the last
+   * Update() redrew and the view samples it read (0 in Uniform mode or
+   * without a G-buffer; adaptive modes then fall back to uniform weights). Null / 0 before the first successful Update().
+   */
+  vtkIdType GetNumberOfPoints() const;
+#ifndef __VTK_WRAP__
+  const mrgi_ism_point* GetPointRecords() const;
+#endif
+  const float* GetPointPositions() const;
+  vtkIdType GetNumberOfTriangles() const;
+  vtkIdType GetNumberOfResampledPoints() const;
+  vtkIdType GetNumberOfViewSamples() const;
+  ///@}
+
   /** Free every GL resource (and the point set). */
   void ReleaseGraphicsResources(vtkWindow* w);
 
@@ -131,6 +152,11 @@ protected:
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
+
+private:
+  bool CollectScene(vtkRenderer* ren);
+  void ReadViewSamples(const vtkMRGIFrameContext& frame);
+
 
 private:
   vtkMRGIImperfectShadowMaps(const vtkMRGIImperfectShadowMaps&) = delete;
