@@ -34,6 +34,7 @@
 #include "vtkMinimalStandardRandomSequence.h"
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
 #include "vtkPlaneSource.h"
 #include "vtkPoints.h"
 #include "vtkPolyDataMapper.h"
@@ -50,6 +51,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <sstream>
 #include <vector>
 
 namespace
@@ -142,6 +144,8 @@ void RenderParity()
     points[4] = std::numeric_limits<float>::infinity();
     ism->SetTileSize(T);
     auto tex = VPLTexture(gl, vpls);
+    // A large point size left by someone else must not matter.
+    gl->GetState()->vtkglPointSize(c[0] == 5 ? 7.0f : 1.0f);
     MRGI_TEST_CHECK(ism->Render(gl, points.data(), N, tex, V));
     vtkNew<vtkFloatArray> gpu;
     MRGI_TEST_CHECK(ism->ReadAtlas(window, gpu));
@@ -259,6 +263,9 @@ void RenderParity()
   {
     MRGI_TEST_CHECK(gpu->GetValue(k) == MRGI_ISM_EMPTY_DEPTH);
   }
+  std::ostringstream printed;
+  ism->Print(printed);
+  MRGI_TEST_CHECK(printed.str().find("TileSize: 8") != std::string::npos);
   tex->ReleaseGraphicsResources(window);
   ism->ReleaseGraphicsResources(window);
   MRGI_TEST_CHECK(ism->GetAtlasTexture() == nullptr);

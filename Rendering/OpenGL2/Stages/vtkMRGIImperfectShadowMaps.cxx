@@ -348,6 +348,8 @@ bool vtkMRGIImperfectShadowMaps::Render(vtkOpenGLRenderWindow* window, const flo
     vtkOpenGLState* ostate = steps.GetState();
     vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
     vtkOpenGLState::ScopedglEnableDisable cull(ostate, GL_CULL_FACE);
+    vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+    ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     steps.Target(in.Pulled[0], nullptr, 0, 0, layout.width, layout.height);
     // glClearBufferfv: float targets take the value unclamped.
     const GLfloat empty[4] = { MRGI_ISM_EMPTY_DEPTH, 0.0f, 0.0f, 1.0f };
@@ -376,7 +378,16 @@ bool vtkMRGIImperfectShadowMaps::Render(vtkOpenGLRenderWindow* window, const flo
         ostate->vtkglEnable(GL_BLEND);
         ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
         ostate->vtkglBlendEquationSeparate(GL_MIN, GL_MIN);
+        // One-texel points whatever glPointSize a VTK mapper left behind:
+        // the vertex shader writes gl_PointSize = 1 (vtkOpenGLState does not
+        // track GL_PROGRAM_POINT_SIZE; restored by hand).
+        const bool programPointSize = glIsEnabled(GL_PROGRAM_POINT_SIZE) == GL_TRUE;
+        glEnable(GL_PROGRAM_POINT_SIZE);
         glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(pointCount));
+        if (!programPointSize)
+        {
+          glDisable(GL_PROGRAM_POINT_SIZE);
+        }
         ostate->vtkglBlendEquationSeparate(GL_FUNC_ADD, GL_FUNC_ADD);
         ostate->vtkglDisable(GL_BLEND);
       }
