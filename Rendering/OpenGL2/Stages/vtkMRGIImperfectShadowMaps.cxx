@@ -343,7 +343,6 @@ bool vtkMRGIImperfectShadowMaps::Render(vtkOpenGLRenderWindow* window, const flo
   bool ok = true;
   {
     // ---- step 3: all points in one GL_POINTS draw, nearest kept (GL_MIN) ----
-    vtkMRGIShaderUtilities::ScopedStage draw(in.Timer, "ism.draw");
     vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
     vtkOpenGLState* ostate = steps.GetState();
     vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
@@ -356,6 +355,7 @@ bool vtkMRGIImperfectShadowMaps::Render(vtkOpenGLRenderWindow* window, const flo
     glClearBufferfv(GL_COLOR, 0, empty);
     if (pointCount > 0)
     {
+      vtkMRGIShaderUtilities::ScopedStage draw(in.Timer, "ism.draw");
       program->SetUniformi("mrgiVPLCount", vplCount);
       program->SetUniformi("mrgiTileSize", layout.tile_size);
       program->SetUniformi("mrgiTilesPerRow", layout.tiles_per_row);
