@@ -25,6 +25,10 @@
 
 #include "vtkActor.h"
 #include "vtkActorCollection.h"
+#include "vtkAssembly.h"
+#include "vtkCompositeDataDisplayAttributes.h"
+#include "vtkCompositePolyDataMapper2.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
 #include "vtkFloatArray.h"
@@ -34,6 +38,7 @@
 #include "vtkMinimalStandardRandomSequence.h"
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
 #include "vtkPlaneSource.h"
 #include "vtkPoints.h"
 #include "vtkPolyDataMapper.h"
@@ -50,6 +55,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <sstream>
 #include <vector>
 
 namespace
@@ -142,6 +148,8 @@ void RenderParity()
     points[4] = std::numeric_limits<float>::infinity();
     ism->SetTileSize(T);
     auto tex = VPLTexture(gl, vpls);
+    // A large point size left by someone else must not matter.
+    gl->GetState()->vtkglPointSize(c[0] == 5 ? 7.0f : 1.0f);
     MRGI_TEST_CHECK(ism->Render(gl, points.data(), N, tex, V));
     vtkNew<vtkFloatArray> gpu;
     MRGI_TEST_CHECK(ism->ReadAtlas(window, gpu));
@@ -259,6 +267,9 @@ void RenderParity()
   {
     MRGI_TEST_CHECK(gpu->GetValue(k) == MRGI_ISM_EMPTY_DEPTH);
   }
+  std::ostringstream printed;
+  ism->Print(printed);
+  MRGI_TEST_CHECK(printed.str().find("TileSize: 8") != std::string::npos);
   tex->ReleaseGraphicsResources(window);
   ism->ReleaseGraphicsResources(window);
   MRGI_TEST_CHECK(ism->GetAtlasTexture() == nullptr);
@@ -536,10 +547,74 @@ void PointCloud()
   tex->ReleaseGraphicsResources(window);
   ism->ReleaseGraphicsResources(window);
 }
+
+// What ParaView and assemblies deliver: the opaque, visible blocks of a
+// composite data set drawn by vtkCompositePolyDataMapper2, and the parts of
+// a vtkAssembly with the assembly's matrix.
+void CompositeAndAssembly()
+{
+  vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(32, 32);
+  vtkNew<vtkRenderer> ren;
+  window->AddRenderer(ren);
+  vtkNew<vtkPlaneSource> planeA, planeB; // 2 triangles each
+  planeA->Update();
+  planeB->SetResolution(2, 1);           // 4 triangles
+  planeB->Update();
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(2);
+  blocks->SetBlock(0, planeA->GetOutput());
+  blocks->SetBlock(1, planeB->GetOutput());
+  vtkNew<vtkCompositePolyDataMapper2> compositeMapper;
+  compositeMapper->SetInputDataObject(blocks);
+  vtkNew<vtkCompositeDataDisplayAttributes> attributes;
+  compositeMapper->SetCompositeDataDisplayAttributes(attributes);
+  vtkNew<vtkActor> compositeActor;
+  compositeActor->SetMapper(compositeMapper);
+  ren->AddActor(compositeActor);
+  window->Render();
+  auto* gl = vtkOpenGLRenderWindow::SafeDownCast(window);
+  std::vector<mrgi_vpl> vpls(1);
+  vpls[0].normal[2] = 1.0f;
+  vpls[0].flux[0] = 1.0f;
+  auto tex = VPLTexture(gl, vpls);
+  vtkMRGIFrameContext frame;
+  frame.Window = gl;
+  frame.Renderer = ren;
+  vtkNew<vtkMRGIImperfectShadowMaps> ism;
+  ism->SetPointsPerVPL(64);
+  MRGI_TEST_CHECK(ism->Update(frame, tex, 1));
+  MRGI_TEST_CHECK(ism->GetNumberOfTriangles() == 6);
+  attributes->SetBlockVisibility(planeB->GetOutput(), false);
+  compositeMapper->Modified();
+  window->Render();
+  MRGI_TEST_CHECK(ism->Update(frame, tex, 1));
+  MRGI_TEST_CHECK(ism->GetNumberOfTriangles() == 2);
+
+  // An assembly moved by 3 in z: its part's points lie at z = 3.
+  ren->RemoveActor(compositeActor);
+  vtkNew<vtkPolyDataMapper> partMapper;
+  partMapper->SetInputConnection(planeA->GetOutputPort());
+  vtkNew<vtkActor> part;
+  part->SetMapper(partMapper);
+  vtkNew<vtkAssembly> assembly;
+  assembly->AddPart(part);
+  assembly->SetPosition(0.0, 0.0, 3.0);
+  ren->AddViewProp(assembly);
+  window->Render();
+  MRGI_TEST_CHECK(ism->Update(frame, tex, 1));
+  MRGI_TEST_CHECK(ism->GetNumberOfTriangles() == 2);
+  for (int i = 0; i < 64; ++i)
+  {
+    MRGI_TEST_CHECK(std::fabs(ism->GetPointPositions()[3 * i + 2] - 3.0f) < 1e-6f);
+  }
+  tex->ReleaseGraphicsResources(window);
+  ism->ReleaseGraphicsResources(window);
+}
 }
 
 int main(int argc, char* argv[])
 {
   return mrgitest::RunCases(
-    argc, argv, { MRGI_TEST_CASE(RenderParity), MRGI_TEST_CASE(UpdateScene), MRGI_TEST_CASE(PointCloud) });
+    argc, argv, { MRGI_TEST_CASE(RenderParity), MRGI_TEST_CASE(UpdateScene), MRGI_TEST_CASE(PointCloud),
+                    MRGI_TEST_CASE(CompositeAndAssembly) });
 }

@@ -3,8 +3,13 @@
 #include "vtkMRGIImperfectShadowMaps.h"
 
 #include "vtkActor.h"
-#include "vtkActorCollection.h"
+#include "vtkAssemblyNode.h"
+#include "vtkAssemblyPath.h"
 #include "vtkCellArray.h"
+#include "vtkCompositeDataDisplayAttributes.h"
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkCompositePolyDataMapper2.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkMRGIFrameContext.h"
@@ -23,10 +28,12 @@
 #include "vtkOpenGLVertexBufferObject.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkPropCollection.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
+#include "vtkSmartPointer.h"
 #include "vtkWeakPointer.h"
 
 #include "vtkMRGIISMPointsFS.h"
@@ -55,6 +62,48 @@ void ClearGLErrors()
 // Most G-buffer positions used as view samples (RIHKS11 5.2 needs a sparse
 // subsample of the frame's points, not all of them).
 constexpr int MaxViewSamples = 4096;
+
+// One polydata the scene draws opaque, with its object -> world matrix.
+struct Piece
+{
+  vtkMatrix4x4* Matrix;
+  vtkPolyData* Data;
+};
+
+// The polydata `mapper` draws: its vtkPolyData input, or the vtkPolyData
+// leaves of a composite input (ParaView's representations) that a
+// vtkCompositePolyDataMapper2's display attributes leave visible and
+// opaque; as vtkMRGIVoxelGeometry collects them.
+void PolyDataLeaves(vtkMapper* mapper, std::vector<vtkPolyData*>& leaves)
+{
+  leaves.clear();
+  vtkDataObject* input = mapper->GetInputDataObject(0, 0);
+  if (auto* data = vtkPolyData::SafeDownCast(input))
+  {
+    leaves.push_back(data);
+    return;
+  }
+  auto* composite = vtkCompositeDataSet::SafeDownCast(input);
+  auto* compositeMapper = vtkCompositePolyDataMapper2::SafeDownCast(mapper);
+  if (!composite || !compositeMapper)
+  {
+    return;
+  }
+  vtkCompositeDataDisplayAttributes* attributes =
+    compositeMapper->GetCompositeDataDisplayAttributes();
+  vtkSmartPointer<vtkCompositeDataIterator> it;
+  it.TakeReference(composite->NewIterator());
+  for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+  {
+    auto* data = vtkPolyData::SafeDownCast(it->GetCurrentDataObject());
+    if (data &&
+      !(attributes && attributes->HasBlockVisibility(data) && !attributes->GetBlockVisibility(data)) &&
+      !(attributes && attributes->HasBlockOpacity(data) && attributes->GetBlockOpacity(data) < 1.0))
+    {
+      leaves.push_back(data);
+    }
+  }
+}
 
 vtkTextureObject* NewDepthTexture(vtkOpenGLRenderWindow* window, int w, int h)
 {
@@ -343,17 +392,19 @@ bool vtkMRGIImperfectShadowMaps::Render(vtkOpenGLRenderWindow* window, const flo
   bool ok = true;
   {
     // ---- step 3: all points in one GL_POINTS draw, nearest kept (GL_MIN) ----
-    vtkMRGIShaderUtilities::ScopedStage draw(in.Timer, "ism.draw");
     vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
     vtkOpenGLState* ostate = steps.GetState();
     vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
     vtkOpenGLState::ScopedglEnableDisable cull(ostate, GL_CULL_FACE);
+    vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+    ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     steps.Target(in.Pulled[0], nullptr, 0, 0, layout.width, layout.height);
     // glClearBufferfv: float targets take the value unclamped.
     const GLfloat empty[4] = { MRGI_ISM_EMPTY_DEPTH, 0.0f, 0.0f, 1.0f };
     glClearBufferfv(GL_COLOR, 0, empty);
     if (pointCount > 0)
     {
+      vtkMRGIShaderUtilities::ScopedStage draw(in.Timer, "ism.draw");
       program->SetUniformi("mrgiVPLCount", vplCount);
       program->SetUniformi("mrgiTileSize", layout.tile_size);
       program->SetUniformi("mrgiTilesPerRow", layout.tiles_per_row);
@@ -376,7 +427,16 @@ bool vtkMRGIImperfectShadowMaps::Render(vtkOpenGLRenderWindow* window, const flo
         ostate->vtkglEnable(GL_BLEND);
         ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
         ostate->vtkglBlendEquationSeparate(GL_MIN, GL_MIN);
+        // One-texel points whatever glPointSize a VTK mapper left behind:
+        // the vertex shader writes gl_PointSize = 1 (vtkOpenGLState does not
+        // track GL_PROGRAM_POINT_SIZE; restored by hand).
+        const bool programPointSize = glIsEnabled(GL_PROGRAM_POINT_SIZE) == GL_TRUE;
+        glEnable(GL_PROGRAM_POINT_SIZE);
         glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(pointCount));
+        if (!programPointSize)
+        {
+          glDisable(GL_PROGRAM_POINT_SIZE);
+        }
         ostate->vtkglBlendEquationSeparate(GL_FUNC_ADD, GL_FUNC_ADD);
         ostate->vtkglDisable(GL_BLEND);
       }
@@ -440,36 +500,52 @@ bool vtkMRGIImperfectShadowMaps::Render(vtkOpenGLRenderWindow* window, const flo
 bool vtkMRGIImperfectShadowMaps::CollectScene(vtkRenderer* ren)
 {
   Internals& in = *this->Internal;
-  std::vector<vtkActor*> meshes, clouds;
+  std::vector<Piece> meshes, clouds;
   std::string topology;
   vtkMTimeType vertexTime = 0;
-  vtkActorCollection* actors = ren->GetActors();
-  vtkCollectionSimpleIterator it;
-  actors->InitTraversal(it);
-  while (vtkActor* actor = actors->GetNextActor(it))
+  std::vector<vtkPolyData*> leaves;
+  vtkPropCollection* props = ren->GetViewProps();
+  vtkCollectionSimpleIterator pit;
+  props->InitTraversal(pit);
+  while (vtkProp* prop = props->GetNextProp(pit))
   {
-    vtkMapper* mapper = actor->GetMapper();
-    vtkPolyData* data = mapper ? vtkPolyData::SafeDownCast(mapper->GetInputAsDataSet()) : nullptr;
-    if (!actor->GetVisibility() || !actor->HasOpaqueGeometry() || !data || data->GetNumberOfPoints() == 0)
+    if (!prop->GetVisibility())
     {
       continue;
     }
-    const bool surface = data->GetNumberOfPolys() + data->GetNumberOfStrips() > 0;
-    const bool cloud = !surface && data->GetNumberOfVerts() > 0 && data->GetPointData()->GetNormals();
-    if (!surface && !cloud)
+    prop->InitPathTraversal();
+    while (vtkAssemblyPath* path = prop->GetNextPath()) // assemblies: one path per part
     {
-      continue;
+      vtkActor* actor = vtkActor::SafeDownCast(path->GetLastNode()->GetViewProp());
+      vtkMapper* mapper = actor ? actor->GetMapper() : nullptr;
+      if (!mapper || !actor->GetVisibility() || !actor->HasOpaqueGeometry())
+      {
+        continue; // translucent, invisible, volumes, 2D props
+      }
+      vtkMatrix4x4* matrix = (path->GetNumberOfItems() > 1 && path->GetLastNode()->GetMatrix())
+        ? path->GetLastNode()->GetMatrix()
+        : actor->GetMatrix();
+      PolyDataLeaves(mapper, leaves);
+      for (vtkPolyData* data : leaves)
+      {
+        const bool surface = data->GetNumberOfPolys() + data->GetNumberOfStrips() > 0;
+        const bool cloud =
+          !surface && data->GetNumberOfVerts() > 0 && data->GetPointData()->GetNormals();
+        if (data->GetNumberOfPoints() == 0 || (!surface && !cloud))
+        {
+          continue;
+        }
+        (surface ? meshes : clouds).push_back(Piece{ matrix, data });
+        topology += std::to_string(reinterpret_cast<uintptr_t>(data)) + ":" +
+          std::to_string(data->GetNumberOfPoints()) + ":" +
+          std::to_string(surface ? data->GetPolys()->GetMTime() : data->GetVerts()->GetMTime()) +
+          ":" + std::to_string(data->GetStrips()->GetMTime()) + ";";
+        vertexTime = std::max(
+          { vertexTime, actor->GetMTime(), matrix->GetMTime(), data->GetPoints()->GetMTime() });
+      }
     }
-    (surface ? meshes : clouds).push_back(actor);
-    topology += std::to_string(reinterpret_cast<uintptr_t>(actor)) + ":" +
-      std::to_string(reinterpret_cast<uintptr_t>(data)) + ":" +
-      std::to_string(data->GetNumberOfPoints()) + ":" +
-      std::to_string(surface ? data->GetPolys()->GetMTime() : data->GetVerts()->GetMTime()) + ":" +
-      std::to_string(data->GetStrips()->GetMTime()) + ";";
-    vertexTime = std::max({ vertexTime, actor->GetMTime(), actor->GetMatrix()->GetMTime(),
-      data->GetPoints()->GetMTime() });
   }
-  const std::vector<vtkActor*>& used = meshes.empty() ? clouds : meshes;
+  const std::vector<Piece>& used = meshes.empty() ? clouds : meshes;
   if (used.empty())
   {
     return false;
@@ -484,10 +560,10 @@ bool vtkMRGIImperfectShadowMaps::CollectScene(vtkRenderer* ren)
   {
     in.Triangles.clear();
   }
-  for (vtkActor* actor : used)
+  for (const Piece& piece : used)
   {
-    vtkPolyData* data = vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputAsDataSet());
-    vtkMatrix4x4* m = actor->GetMatrix();
+    vtkPolyData* data = piece.Data;
+    vtkMatrix4x4* m = piece.Matrix;
     const int32_t base = static_cast<int32_t>(in.Vertices.size() / 3);
     for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
     {
