@@ -129,13 +129,18 @@ bool vtkMRGIIndirectLight::RunGather(const vtkMRGIFrameContext& frame,
   vtkTextureObject* indirect)
 {
   const bool tree = this->VPLSelection->GetMode() == vtkMRGIVPLSelection::Tree;
+  if (visibility.Mode != vtkMRGIIndirectVisibility::NoVisibility)
+  {
+    vtkErrorMacro("TEMPORARY: the gathers take no visibility yet");
+    return false;
+  }
   if (!settings.Multiresolution)
   {
     vtkMRGIShaderUtilities::ScopedStage stage(frame.Timer, "gather");
     return tree ? this->Gather->GatherFullTree(frame, this->VPLSelection->GetTreeTerm(),
-                    settings.Strength, irradiance, indirect, visibility)
+                    settings.Strength, irradiance, indirect)
                 : this->Gather->GatherFull(frame, this->VPLSelection->GetVPLTexture(), vplCount,
-                    settings.Strength, irradiance, indirect, visibility);
+                    settings.Strength, irradiance, indirect);
   }
   vtkRenderTimerLog* timer = frame.Timer;
   {
@@ -152,9 +157,9 @@ bool vtkMRGIIndirectLight::RunGather(const vtkMRGIFrameContext& frame,
     if (!buffer->BuildReceivers(
           frame.Window, frame.Position, frame.Normal, frame.Viewport[0], frame.Viewport[1], timer) ||
       !(tree ? this->Gather->GatherVPLTree(
-                 frame, buffer, this->VPLSelection->GetTreeTerm(), visibility)
+                 frame, buffer, this->VPLSelection->GetTreeTerm())
              : this->Gather->GatherVPLs(
-                 frame, buffer, this->VPLSelection->GetVPLTexture(), vplCount, visibility)))
+                 frame, buffer, this->VPLSelection->GetVPLTexture(), vplCount)))
     {
       return false;
     }
