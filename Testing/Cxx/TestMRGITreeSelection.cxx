@@ -171,6 +171,8 @@ int main()
   vtkMRGIVPLSelection* selection = pass->GetVPLSelection();
   vtkNew<mrgitest::ErrorCatcher> errors;
   selection->AddObserver(vtkCommand::ErrorEvent, errors);
+  pass->AddObserver(vtkCommand::ErrorEvent, errors);
+  pass->GetGather()->AddObserver(vtkCommand::ErrorEvent, errors);
 
   // The grid (GPU) first, for 2.
   pass->SetVPLSelectionMode(vtkMRGIVPLSelection::Grid);
