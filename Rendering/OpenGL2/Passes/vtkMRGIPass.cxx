@@ -785,6 +785,10 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
     int vplCount = 0;
     {
       ScopedStage stage(timer, "vpl");
+      if (framed && this->VPLSelection->GetMode() == vtkMRGIVPLSelection::BRSM)
+      {
+        this->VPLSelection->SetViewSamplesFromFrame(frame); // BRSM's view samples
+      }
       vplCount = this->VPLSelection->Update(renWin, this->RSMPass);
     }
     if (vplCount > 0)
