@@ -540,16 +540,19 @@ const std::vector<OptionSection>& OptionTable()
             "expected a number in [0, 1]") },
         { { "--vpls" }, "N", "virtual point lights, 0..4096 (default 256 = 16x16)",
           Integer(&Options::VPLs, 0, 4096) },
-        { { "--vpl-selection" }, "grid|importance|clusters|tree",
+        { { "--vpl-selection" }, "grid|importance|clusters|tree|brsm",
           "regular grid over the light's view (default), flux importance sampling,\n"
           "multiresolution clusters (nichols-shopf-wyman-2009 3.4; a variable\n"
-          "count up to 4096, --vpls does not apply) or the VPL tree (3.5; each\n"
-          "pixel walks the RSM's pyramid, --tree-threshold; --vpls does not apply)",
+          "count up to 4096, --vpls does not apply), the VPL tree (3.5; each\n"
+          "pixel walks the RSM's pyramid, --tree-threshold; --vpls does not apply)\n"
+          "or bidirectional RSM importance (ritschel-et-al-2011 4, 6.5: texels\n"
+          "weighted by their light on view samples of the frame)",
           Choice<int>(&Options::VPLSelection,
             { { "grid", vtkMRGIVPLSelection::Grid },
               { "importance", vtkMRGIVPLSelection::FluxImportance },
               { "clusters", vtkMRGIVPLSelection::Clusters },
-              { "tree", vtkMRGIVPLSelection::Tree } }) },
+              { "tree", vtkMRGIVPLSelection::Tree },
+              { "brsm", vtkMRGIVPLSelection::BRSM } }) },
         { { "--cluster-depth-threshold" }, "D",
           "clusters: light-space depth change per texel width that splits a patch,\n"
           "0..1e30 (inf: never; default 4)",

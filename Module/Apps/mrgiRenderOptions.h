@@ -96,7 +96,7 @@ struct Options
   double ShadowLightRadius = 0.0; // 0: automatic
   bool ShadowMultires = false;    // --shadow-resolution multires
   long long VPLs = 256;
-  int VPLSelection = 0; // vtkMRGIVPLSelection::SelectionMode (grid, importance, clusters, tree)
+  int VPLSelection = 0; // vtkMRGIVPLSelection::SelectionMode (grid, importance, clusters, tree, brsm)
   double ClusterDepthThreshold = std::nan(""); // not given: the selection's default
   double ClusterNormalThreshold = std::nan("");
   double TreeThreshold = std::nan(""); // not given: MRGI_VPL_TREE_DEFAULT_THRESHOLD

@@ -129,6 +129,17 @@ def main():
     check(code == 0, "tree render, threshold inf: " + err)
     check(open(tree_exr, "rb").read() != open(roots_exr, "rb").read(),
           "the tree threshold changes the indirect light")
+    # Bidirectional RSM importance (RIHKS11 4): the view changes which VPLs
+    # are drawn, so its indirect light differs from flux importance's.
+    brsm_exr, flux_exr = fresh("cli_brsm.exr"), fresh("cli_flux.exr")
+    code, _, err = run("cornell-spot", "-o", brsm_exr, "--size", "48x48", "-q", "--rsm-size",
+                       "64", "--vpls", "64", "--indirect-only", "--vpl-selection", "brsm")
+    check(code == 0, "brsm render: " + err)
+    code, _, err = run("cornell-spot", "-o", flux_exr, "--size", "48x48", "-q", "--rsm-size",
+                       "64", "--vpls", "64", "--indirect-only", "--vpl-selection", "importance")
+    check(code == 0, "importance render: " + err)
+    check(open(brsm_exr, "rb").read() != open(flux_exr, "rb").read(),
+          "brsm and flux importance select different VPLs")
     check(os.path.getsize(on_png) != os.path.getsize(off_png) or
           open(on_png, "rb").read() != open(off_png, "rb").read(), "--gi off changes the image")
     # --ssao darkens the direct light (corners and contacts), with the
@@ -406,6 +417,7 @@ def bad_input():
         (["cornell", "-o", target, "--vpls", "-1"], "--vpls"),
         (["cornell", "-o", target, "--rsm-size", "8"], "--rsm-size"),
         (["cornell", "-o", target, "--vpl-selection", "random"], "--vpl-selection"),
+        (["cornell", "-o", target, "--vpl-selection", "BRSM4"], "--vpl-selection"),
         (["cornell", "-o", target, "--cluster-depth-threshold", "-1"], "--cluster-depth-threshold"),
         (["cornell", "-o", target, "--cluster-normal-threshold", "nan"],
          "--cluster-normal-threshold"),

@@ -136,7 +136,9 @@ public:
   /**
    * VPL selection (vtkMRGIVPLSelection::SelectionMode): 0 grid (default),
    * 1 flux importance, 2 multiresolution clusters, 3 the VPL tree
-   * (nichols-shopf-wyman-2009 section 3.5; the gather walks it per pixel).
+   * (nichols-shopf-wyman-2009 section 3.5; the gather walks it per pixel),
+   * 4 bidirectional RSM importance (ritschel-et-al-2011 sections 4 and 6.5:
+   * texels weighted by their contribution to view samples of the frame).
    */
   void SetVPLSelectionMode(int mode);
   int GetVPLSelectionMode();

@@ -62,7 +62,7 @@ vtkMRGIIndirectLight::Outcome vtkMRGIIndirectLight::Render(const vtkMRGIFrameCon
   }
   {
     vtkMRGIShaderUtilities::ScopedStage stage(frame.Timer, "vpl");
-    this->LastVPLCount = this->VPLSelection->Update(frame.Window, rsm);
+    this->LastVPLCount = this->VPLSelection->Update(frame.Window, rsm, frame);
   }
   if (this->LastVPLCount <= 0)
   {

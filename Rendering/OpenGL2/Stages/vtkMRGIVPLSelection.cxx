@@ -15,10 +15,12 @@
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 
+#include "vtkMRGIBRSM.h"
 #include "vtkMRGIVPLTreeTexture.h"
 
 #include "vtkMRGIVPLGridFS.h"
 
+#include "mrgi_brsm_importance.h"
 #include "mrgi_vpl.h"
 #include "mrgi_vpl_clusters.h"
 #include "mrgi_vpl_tree.h"
@@ -30,6 +32,7 @@
 #include <cstring>
 
 #include <map>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkMRGIVPLSelection);
@@ -47,6 +50,9 @@ struct vtkMRGIVPLSelection::Internals
   int Count = 0;
   vtkMTimeType SourceTime = 0;
   vtkMTimeType SettingsTime = 0;
+  vtkMRGIBRSM::ViewSamples View; // BRSM mode: this frame's view samples
+  vtkIdType ViewStamp = 0;        // bumped by SetViewSamplesFromFrame()
+  vtkIdType SourceViewStamp = 0;  // ViewStamp of the cache
 };
 
 //------------------------------------------------------------------------------
@@ -424,7 +430,8 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
     return 0;
   }
   if (this->Internal->Texture && rsm->GetContentTime() == this->Internal->SourceTime &&
-    this->GetMTime() == this->Internal->SettingsTime)
+    this->GetMTime() == this->Internal->SettingsTime &&
+    (this->Mode != BRSM || this->Internal->ViewStamp == this->Internal->SourceViewStamp))
   {
     return this->Internal->Count; // RSMs and settings unchanged
   }
@@ -521,7 +528,7 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
       mrgi_vpl_texture_data(clusters.data()));
     texture->Deactivate();
   }
-  else if (this->Mode == FluxImportance)
+  else if (this->Mode == FluxImportance || this->Mode == BRSM)
   {
     // Read the maps back and let the C core sample them; upload the records.
     std::vector<mrgi_vpl> vpls(static_cast<size_t>(rows));
@@ -535,8 +542,25 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
       }
       const mrgi_rsm map = { size, static_cast<int32_t>(v.size()), position.data(), normal.data(),
         flux.data() };
+      const vtkTypeUInt64 seed = this->Seed + static_cast<vtkTypeUInt64>(block.Light);
+      if (this->Mode == BRSM)
+      {
+        vtkMRGIBRSM::Settings settings;
+        settings.FluxShare = this->BRSMFluxShare;
+        settings.Blur = this->BRSMBlur;
+        settings.InterTexel = this->BRSMInterTexel;
+        std::string error;
+        if (!vtkMRGIBRSM::Select(map, this->Internal->View, settings, block.Rows,
+              seed + static_cast<vtkTypeUInt64>(this->Internal->ViewStamp),
+              vpls.data() + block.FirstRow, error))
+        {
+          vtkErrorMacro(<< error);
+          return this->Internal->Count = 0;
+        }
+        continue;
+      }
       mrgi_error err;
-      if (mrgi_vpl_select_importance(&map, block.Rows, this->Seed + static_cast<vtkTypeUInt64>(block.Light),
+      if (mrgi_vpl_select_importance(&map, block.Rows, seed,
             nullptr, 0, vpls.data() + block.FirstRow, block.Rows, nullptr, &err) != MRGI_OK)
       {
         vtkErrorMacro(<< "VPL importance sampling: " << err.message);
@@ -667,6 +691,7 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
   this->Internal->Count = rows;
   this->Internal->SourceTime = rsm->GetContentTime();
   this->Internal->SettingsTime = this->GetMTime();
+  this->Internal->SourceViewStamp = this->Internal->ViewStamp;
   ++this->NumberOfSelections;
   return rows;
 }
@@ -675,16 +700,52 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
 void vtkMRGIVPLSelection::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  static const char* const modes[] = { "Grid", "FluxImportance", "Clusters", "Tree" };
+  static const char* const modes[] = { "Grid", "FluxImportance", "Clusters", "Tree", "BRSM" };
   os << indent << "Mode: " << modes[this->Mode] << "\n";
   os << indent << "ClusterDepthThreshold: " << this->ClusterDepthThreshold << "\n";
   os << indent << "ClusterNormalThreshold: " << this->ClusterNormalThreshold << "\n";
   os << indent << "ClusterFinestLevel: " << this->ClusterFinestLevel << "\n";
   os << indent << "ClusterRefinementsCapped: " << this->ClusterRefinementsCapped << "\n";
   os << indent << "TreeThreshold: " << this->TreeThreshold << "\n";
+  os << indent << "BRSMFluxShare: " << this->BRSMFluxShare << "\n";
+  os << indent << "BRSMBlur: " << this->BRSMBlur << "\n";
+  os << indent << "BRSMInterTexel: " << this->BRSMInterTexel << "\n";
+  os << indent << "NumberOfViewSamples: " << this->GetNumberOfViewSamples() << "\n";
   os << indent << "NumberOfTreeNodes: " << this->GetNumberOfTreeNodes() << "\n";
   os << indent << "NumberOfVPLs: " << this->NumberOfVPLs << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "VPLCount: " << this->Internal->Count << "\n";
   os << indent << "NumberOfSelections: " << this->NumberOfSelections << "\n";
+}
+
+//------------------------------------------------------------------------------
+int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window,
+  vtkMRGIReflectiveShadowMapPass* rsm, const vtkMRGIFrameContext& frame)
+{
+  if (this->Mode == BRSM && frame.Position)
+  {
+    this->SetViewSamplesFromFrame(frame); // an error is reported; BRSM then falls back
+  }
+  return this->Update(window, rsm);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIVPLSelection::SetViewSamplesFromFrame(const vtkMRGIFrameContext& frame)
+{
+  ++this->Internal->ViewStamp; // a new frame: the cache is stale in BRSM mode
+  std::string error;
+  const vtkTypeUInt64 seed = this->Seed ^ (0x5851F42D4C957F2Dull *
+    static_cast<vtkTypeUInt64>(this->Internal->ViewStamp));
+  if (!vtkMRGIBRSM::TakeViewSamples(frame, 32, seed, this->Internal->View, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+int vtkMRGIVPLSelection::GetNumberOfViewSamples() const
+{
+  return static_cast<int>(this->Internal->View.Samples.size() / MRGI_BRSM_VIEW_SAMPLE_FLOATS);
 }

@@ -39,6 +39,18 @@
  *   directional lights) and RSMs of at most MRGI_VPL_TREE_GATHER_MAX_RSM_SIZE
  *   texels per side; beyond that Update() reports an error and builds no tree.
  *
+ * - BRSM: bidirectional RSM importance (ritschel-et-al-2011 sections 4,
+ *   4.1, 4.2, 6.5). The importance of each RSM texel is its contribution,
+ *   as a VPL, to a few view samples of the frame (SetViewSamplesFromFrame():
+ *   a jittered 32 x 32 subsample of the G-buffer), chosen per texel with the
+ *   clamped 1/x^2 guide around its projection; blurred geometry-aware
+ *   (BRSMBlur), mixed with a share BRSMFluxShare of flux importance (so that
+ *   every texel with flux keeps p > 0 and the 1 / (N p) estimate stays
+ *   unbiased), sampled through a 2-D CDF, with inter-texel VPLs
+ *   (BRSMInterTexel). The RSMs are read back and the C core
+ *   (mrgi_brsm_*.h, Private/vtkMRGIBRSM) selects; recomputed every frame
+ *   the view samples change. Without view samples it equals FluxImportance.
+ *
  * With several lights, the VPL budget is split evenly among the lights that
  * have views. Nothing is recomputed while the RSMs and the settings are unchanged.
  */
@@ -55,6 +67,7 @@
 struct mrgi_vpl;
 struct mrgi_vpl_tree;
 struct mrgi_rsm_view_camera;
+struct vtkMRGIFrameContext;
 struct vtkMRGIVPLTreeTerm;
 
 class vtkFloatArray;
@@ -75,17 +88,46 @@ public:
     Grid = 0,
     FluxImportance = 1,
     Clusters = 2,
-    Tree = 3
+    Tree = 3,
+    BRSM = 4
   };
 
   ///@{
-  /** Grid (default), FluxImportance, Clusters or Tree. */
-  vtkSetClampMacro(Mode, int, Grid, Tree);
+  /** Grid (default), FluxImportance, Clusters, Tree or BRSM. */
+  vtkSetClampMacro(Mode, int, Grid, BRSM);
   vtkGetMacro(Mode, int);
   void SetModeToGrid() { this->SetMode(Grid); }
   void SetModeToFluxImportance() { this->SetMode(FluxImportance); }
   void SetModeToClusters() { this->SetMode(Clusters); }
   void SetModeToTree() { this->SetMode(Tree); }
+  void SetModeToBRSM() { this->SetMode(BRSM); }
+
+  ///@{
+  /**
+   * BRSM mode: the share beta of flux importance in the pdf (default 0.1;
+   * 0 is the paper's pure BRSM, which never picks a texel its view samples
+   * missed), the geometry-aware blur and the inter-texel VPLs (both on).
+   */
+  vtkSetClampMacro(BRSMFluxShare, double, 0.0, 1.0);
+  vtkGetMacro(BRSMFluxShare, double);
+  vtkSetMacro(BRSMBlur, bool);
+  vtkGetMacro(BRSMBlur, bool);
+  vtkBooleanMacro(BRSMBlur, bool);
+  vtkSetMacro(BRSMInterTexel, bool);
+  vtkGetMacro(BRSMInterTexel, bool);
+  vtkBooleanMacro(BRSMInterTexel, bool);
+  ///@}
+
+  /**
+   * BRSM mode: take this frame's view samples (a jittered 32 x 32 grid over
+   * the viewport of `frame`'s G-buffer, world space, and the camera for the
+   * guide). Update(window, rsm, frame) calls it each frame in BRSM mode. False, with an
+   * error, when the G-buffer cannot be read; the old samples are dropped.
+   */
+  bool SetViewSamplesFromFrame(const vtkMRGIFrameContext& frame);
+
+  /** BRSM mode: view samples held (0 before SetViewSamplesFromFrame()). */
+  int GetNumberOfViewSamples() const;
   ///@}
 
   ///@{
@@ -174,6 +216,16 @@ public:
    */
   int Update(vtkOpenGLRenderWindow* window, vtkMRGIReflectiveShadowMapPass* rsm);
 
+#ifndef __VTK_WRAP__
+  /**
+   * The same, for the frame `frame` (its G-buffer captured): in BRSM mode
+   * the view samples are taken from it first (SetViewSamplesFromFrame()).
+   * What vtkMRGIIndirectLight calls; the other modes ignore `frame`.
+   */
+  int Update(vtkOpenGLRenderWindow* window, vtkMRGIReflectiveShadowMapPass* rsm,
+    const vtkMRGIFrameContext& frame);
+#endif
+
   /** The VPL cache texture (MRGI_VPL_TEXELS x GetVPLCount()), or nullptr. */
   vtkTextureObject* GetVPLTexture() const;
 
@@ -204,6 +256,9 @@ protected:
   int ClusterFinestLevel;
   int ClusterRefinementsCapped = 0;
   double TreeThreshold;          // MRGI_VPL_TREE_DEFAULT_THRESHOLD
+  double BRSMFluxShare = 0.1;    // MRGI_BRSM_DEFAULT_FLUX_SHARE
+  bool BRSMBlur = true;
+  bool BRSMInterTexel = true;
   vtkIdType NumberOfSelections = 0;
 
   // Clusters mode: read back each light's views, select with the C core;

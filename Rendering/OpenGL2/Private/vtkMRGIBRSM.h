@@ -1,0 +1,63 @@
+/**
+ * @file vtkMRGIBRSM.h
+ * @brief Internal: bidirectional RSM (BRSM) VPL selection for
+ *        vtkMRGIVPLSelection's BRSM mode (RIHKS11 4, 4.1, 4.2, 6.5): the view
+ *        samples taken from the frame's G-buffer, and the C core's chain
+ *        (mrgi_brsm_importance -> mrgi_brsm_blur -> mrgi_brsm_mix ->
+ *        mrgi_brsm_cdf_build -> mrgi_brsm_sample_vpls) on read-back RSMs.
+ *        Not wrapped, not installed.
+ */
+#ifndef vtkMRGIBRSM_h
+#define vtkMRGIBRSM_h
+
+#include <cstdint> // For uint64_t
+#include <string>  // For std::string
+#include <vector>  // For std::vector
+
+struct mrgi_rsm;
+struct mrgi_vpl;
+struct vtkMRGIFrameContext;
+
+namespace vtkMRGIBRSM
+{
+/** The view samples of one frame (mrgi_brsm_importance.h layout) and the guide's camera. */
+struct ViewSamples
+{
+  std::vector<float> Samples;   // M * MRGI_BRSM_VIEW_SAMPLE_FLOATS, world space
+  float WorldToClip[16] = {};   // column-major
+  bool HasCamera = false;
+  int Width = 0;
+  int Height = 0;
+};
+
+/** Settings of one selection. */
+struct Settings
+{
+  double FluxShare = 0.1; // beta, MRGI_BRSM_DEFAULT_FLUX_SHARE
+  bool Blur = true;
+  bool InterTexel = true;
+  bool Guided = true;
+  int SamplesPerTexel = 16; // MRGI_BRSM_DEFAULT_SAMPLES_PER_TEXEL
+};
+
+/**
+ * Take side x side view samples on a regular grid over the frame's
+ * viewport, jittered inside their cells by `seed` (paper-specs 2.1), from
+ * the G-buffer (eye space, brought to world space with frame.ViewToWorld),
+ * and the camera's world -> clip matrix for the guide. Background pixels
+ * become invalid samples. False, with `error`, when the G-buffer is missing
+ * or cannot be read.
+ */
+bool TakeViewSamples(const vtkMRGIFrameContext& frame, int side, std::uint64_t seed,
+  ViewSamples& out, std::string& error);
+
+/**
+ * `count` VPLs from `rsm` (read back, world space) into `vpls`. Without
+ * view samples the importance is 0 and the mix gives flux importance.
+ * False, with `error` naming the failed stage.
+ */
+bool Select(const mrgi_rsm& rsm, const ViewSamples& view, const Settings& settings, int count,
+  std::uint64_t seed, mrgi_vpl* vpls, std::string& error);
+}
+
+#endif

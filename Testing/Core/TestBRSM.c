@@ -1,0 +1,377 @@
+/* Tests of the BRSM stages (RIHKS11 4, 4.1, 4.2, 6.5): importance (exact and
+ * guided estimates), flux mix, geometry-aware blur, 2-D CDF inversion on
+ * hand cases, an unbiasedness test of the VPL estimator that a sampler
+ * forgetting 1/p fails, and inter-texel VPLs that never cross a depth step. */
+#include "mrgi_brsm_blur.h"
+#include "mrgi_brsm_importance.h"
+#include "mrgi_brsm_sample.h"
+#include "mrgi_test.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define S_MAX 16
+static float g_position[4 * S_MAX * S_MAX], g_normal[4 * S_MAX * S_MAX], g_flux[4 * S_MAX * S_MAX];
+
+static uint32_t rng_state = 777u;
+static double rnd(void)
+{
+  rng_state = rng_state * 1664525u + 1013904223u;
+  return (rng_state >> 8) * (1.0 / 16777216.0);
+}
+
+/* S x S texels on the unit square facing +z; right half at z = step (a depth
+ * step when step != 0); random flux (some zero); area = texel area. */
+static mrgi_rsm make_rsm(int32_t S, double step)
+{
+  const double h = 1.0 / S;
+  for (int32_t y = 0; y < S; ++y)
+  {
+    for (int32_t x = 0; x < S; ++x)
+    {
+      const int32_t t = y * S + x;
+      g_position[4 * t] = (float)((x + 0.5) * h);
+      g_position[4 * t + 1] = (float)((y + 0.5) * h);
+      g_position[4 * t + 2] = (float)(x >= S / 2 ? step : 0.0);
+      g_position[4 * t + 3] = 1.0f;
+      g_normal[4 * t] = 0.0f;
+      g_normal[4 * t + 1] = 0.0f;
+      g_normal[4 * t + 2] = 1.0f;
+      g_normal[4 * t + 3] = 0.0f;
+      const double f = rnd() < 0.2 ? 0.0 : rnd();
+      g_flux[4 * t] = (float)f;
+      g_flux[4 * t + 1] = (float)(f * rnd()); /* colour varies per texel */
+      g_flux[4 * t + 2] = (float)(f * rnd());
+      g_flux[4 * t + 3] = (float)(h * h);
+    }
+  }
+  const mrgi_rsm rsm = { S, 1, g_position, g_normal, g_flux };
+  return rsm;
+}
+
+/* Column CDFs and the column-sum CDF, inverted on a 2 x 2 hand case. */
+static void test_cdf_hand(void)
+{
+  const mrgi_rsm rsm = make_rsm(2, 0.0);
+  const float w[4] = { 1.0f, 3.0f, 0.0f, 4.0f }; /* (0,0)=1 (1,0)=3 (0,1)=0 (1,1)=4 */
+  double cdf[6], total = 0.0;
+  MRGI_CHECK(mrgi_brsm_cdf_count(&rsm) == 6);
+  MRGI_CHECK(mrgi_brsm_cdf_build(&rsm, w, 4, cdf, 6, &total, NULL) == MRGI_OK);
+  MRGI_CHECK(total == 8.0);
+  MRGI_CHECK(cdf[0] == 1.0 && cdf[1] == 1.0 && cdf[2] == 3.0 && cdf[3] == 7.0);
+  MRGI_CHECK(cdf[4] == 1.0 && cdf[5] == 8.0);
+  mrgi_brsm_pick p;
+  MRGI_CHECK(mrgi_brsm_cdf_invert(&rsm, cdf, 0.0625, 0.5, &p));
+  MRGI_CHECK(p.view == 0 && p.x == 0 && p.y == 0 && p.fx == 0.5f && p.fy == 0.5f);
+  MRGI_CHECK(p.pdf == 0.125f);
+  MRGI_CHECK(mrgi_brsm_cdf_invert(&rsm, cdf, 0.5, 0.5, &p));
+  MRGI_CHECK(p.x == 1 && p.y == 1 && p.fx == (float)(3.0 / 7.0) && p.fy == 0.125f);
+  MRGI_CHECK(p.pdf == 0.5f);
+  MRGI_CHECK(mrgi_brsm_cdf_invert(&rsm, cdf, 0.125, 0.999, &p)); /* boundary: next column */
+  MRGI_CHECK(p.x == 1 && p.y == 1 && p.fx == 0.0f);
+  /* The zero-weight texel (0, 1) is never picked, whatever u. */
+  for (int i = 0; i < 1000; ++i)
+  {
+    MRGI_CHECK(mrgi_brsm_cdf_invert(&rsm, cdf, rnd(), rnd(), &p));
+    MRGI_CHECK(!(p.x == 0 && p.y == 1));
+  }
+  const float zero[4] = { 0, 0, 0, 0 };
+  MRGI_CHECK(mrgi_brsm_cdf_build(&rsm, zero, 4, cdf, 6, &total, NULL) == MRGI_OK);
+  MRGI_CHECK(!mrgi_brsm_cdf_invert(&rsm, cdf, 0.3, 0.3, &p));
+}
+
+/* Mean and standard error over seeds of sum_k Phi_k.r. `broken` 1 forgets
+ * 1/p (Phi_k = Phi_t / N); 2 divides by the wrong pdf (flux importance's
+ * lum(Phi_t) / sum lum(Phi) while sampling the mixed pdf). Bugs the test must catch. */
+static void estimate(const mrgi_rsm* rsm, const double* cdf, int32_t N, int inter_texel,
+                     int broken, int runs, double* mean, double* stderr_out)
+{
+  mrgi_vpl vpls[64];
+  mrgi_brsm_pick picks[64];
+  double sum = 0.0, sum2 = 0.0;
+  for (int s = 0; s < runs; ++s)
+  {
+    const mrgi_brsm_sampling sampling = { N, (uint64_t)s * 7919u + 1u, inter_texel, NULL };
+    MRGI_CHECK(mrgi_brsm_sample_vpls(rsm, cdf, mrgi_brsm_cdf_count(rsm), &sampling, picks, vpls,
+                                     64, NULL, NULL) == MRGI_OK);
+    double e = 0.0;
+    for (int32_t k = 0; k < N; ++k)
+    {
+      const int32_t t = picks[k].y * rsm->size + picks[k].x;
+      if (broken == 1)
+      {
+        e += rsm->flux[4 * t] / (double)N;
+      }
+      else if (broken == 2)
+      {
+        double total_lum = 0.0;
+        for (int32_t i = 0; i < rsm->size * rsm->size; ++i)
+        {
+          total_lum += 0.2126 * rsm->flux[4 * i] + 0.7152 * rsm->flux[4 * i + 1] +
+                       0.0722 * rsm->flux[4 * i + 2];
+        }
+        const double lum = 0.2126 * rsm->flux[4 * t] + 0.7152 * rsm->flux[4 * t + 1] +
+                           0.0722 * rsm->flux[4 * t + 2];
+        e += rsm->flux[4 * t] * total_lum / ((double)N * lum);
+      }
+      else
+      {
+        e += vpls[k].flux[0];
+      }
+    }
+    sum += e;
+    sum2 += e * e;
+  }
+  *mean = sum / runs;
+  const double var = sum2 / runs - *mean * *mean;
+  *stderr_out = sqrt((var > 0.0 ? var : 0.0) / runs);
+}
+
+static int close_to(double mean, double se, double truth)
+{
+  return fabs(mean - truth) <= 4.0 * se + 1e-6 * truth;
+}
+
+/* E[sum Phi_k] = sum Phi_t for texels with p > 0; a sampler without 1/p fails. */
+static void test_unbiased(void)
+{
+  const int32_t S = 8;
+  const mrgi_rsm rsm = make_rsm(S, 0.0);
+  float w[S_MAX * S_MAX];
+  double truth = 0.0;
+  for (int32_t t = 0; t < S * S; ++t)
+  {
+    w[t] = rnd() < 0.3 ? 0.0f : (float)rnd(); /* a view importance unrelated to flux */
+    truth += g_flux[4 * t];
+  }
+  MRGI_CHECK(mrgi_brsm_mix(&rsm, MRGI_BRSM_DEFAULT_FLUX_SHARE, w, (size_t)(S * S), NULL) == MRGI_OK);
+  for (int32_t t = 0; t < S * S; ++t)
+  {
+    MRGI_CHECK((w[t] > 0.0f) == (g_flux[4 * t] > 0.0f)); /* p > 0 exactly where flux > 0 */
+  }
+  double cdf[S_MAX * S_MAX + S_MAX];
+  MRGI_CHECK(mrgi_brsm_cdf_build(&rsm, w, (size_t)(S * S), cdf, sizeof cdf / sizeof cdf[0], NULL,
+                                 NULL) == MRGI_OK);
+  const int32_t counts[3] = { 1, 7, 16 };
+  for (int i = 0; i < 3; ++i)
+  {
+    double mean, se;
+    estimate(&rsm, cdf, counts[i], 0, 0, 4000, &mean, &se);
+    printf("N=%d: mean %.6f +- %.6f, truth %.6f\n", counts[i], mean, se, truth);
+    MRGI_CHECK(close_to(mean, se, truth));
+    estimate(&rsm, cdf, counts[i], 0, 1, 4000, &mean, &se);
+    printf("N=%d without 1/p: mean %.6f +- %.6f\n", counts[i], mean, se);
+    MRGI_CHECK(!close_to(mean, se, truth)); /* the test detects the broken sampler */
+    estimate(&rsm, cdf, counts[i], 0, 2, 4000, &mean, &se);
+    printf("N=%d with the flux pdf: mean %.6f +- %.6f\n", counts[i], mean, se);
+    MRGI_CHECK(!close_to(mean, se, truth));
+  }
+}
+
+/* A texel with flux but zero view importance is still picked after the mix. */
+static void test_zero_view_importance_picked(void)
+{
+  const int32_t S = 4;
+  const mrgi_rsm rsm = make_rsm(S, 0.0);
+  g_flux[4 * 5] = 1.0f;
+  float w[16], w0[16];
+  for (int t = 0; t < 16; ++t)
+  {
+    w[t] = t == 0 ? 1.0f : 0.0f; /* the view only "sees" texel 0 */
+    g_flux[4 * t] = g_flux[4 * t] > 0.0f ? g_flux[4 * t] : 0.5f;
+    w0[t] = w[t];
+  }
+  MRGI_CHECK(mrgi_brsm_mix(&rsm, 0.1, w, 16, NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_brsm_mix(&rsm, 0.0, w0, 16, NULL) == MRGI_OK);
+  MRGI_CHECK(w[5] > 0.0f && w0[5] == 0.0f);
+  double cdf[20], cdf0[20];
+  MRGI_CHECK(mrgi_brsm_cdf_build(&rsm, w, 16, cdf, 20, NULL, NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_brsm_cdf_build(&rsm, w0, 16, cdf0, 20, NULL, NULL) == MRGI_OK);
+  int hits = 0, hits0 = 0;
+  mrgi_vpl vpls[8];
+  mrgi_brsm_pick picks[8];
+  for (int s = 0; s < 400; ++s)
+  {
+    const mrgi_brsm_sampling sampling = { 8, (uint64_t)s, 0, NULL };
+    MRGI_CHECK(mrgi_brsm_sample_vpls(&rsm, cdf, 20, &sampling, picks, vpls, 8, NULL, NULL) == MRGI_OK);
+    for (int k = 0; k < 8; ++k)
+    {
+      hits += picks[k].y * S + picks[k].x == 5;
+    }
+    MRGI_CHECK(mrgi_brsm_sample_vpls(&rsm, cdf0, 20, &sampling, picks, vpls, 8, NULL, NULL) == MRGI_OK);
+    for (int k = 0; k < 8; ++k)
+    {
+      hits0 += picks[k].y * S + picks[k].x == 5;
+    }
+  }
+  printf("texel with flux, no view importance: picked %d times (beta 0.1), %d (beta 0)\n", hits,
+         hits0);
+  MRGI_CHECK(hits > 0 && hits0 == 0);
+}
+
+/* Blur keeps importance >= 0 and finite, never mixes across a depth step. */
+static void test_blur(void)
+{
+  const int32_t S = 16; /* radius 1 */
+  const mrgi_rsm rsm = make_rsm(S, 1.0);
+  float in[S_MAX * S_MAX], out[S_MAX * S_MAX];
+  for (int32_t t = 0; t < S * S; ++t)
+  {
+    in[t] = (t % S) < S / 2 ? (float)(rnd() < 0.1 ? 3e38 : rnd()) : 0.0f;
+  }
+  g_position[4 * 17 + 3] = 0.0f; /* an invalid texel */
+  MRGI_CHECK(mrgi_brsm_blur_radius(S) == 1 && mrgi_brsm_blur_radius(256) == 3);
+  MRGI_CHECK(mrgi_brsm_blur(&rsm, in, out, (size_t)(S * S), NULL) == MRGI_OK);
+  int smoothed = 0;
+  for (int32_t t = 0; t < S * S; ++t)
+  {
+    MRGI_CHECK(out[t] >= 0.0f && isfinite(out[t]));
+    if ((t % S) >= S / 2)
+    {
+      MRGI_CHECK(out[t] == 0.0f); /* the far plane got nothing from the near one */
+    }
+    smoothed += out[t] != in[t];
+  }
+  MRGI_CHECK(out[17] == 0.0f && smoothed > 0);
+  in[3] = -1.0f;
+  MRGI_CHECK(mrgi_brsm_blur(&rsm, in, out, (size_t)(S * S), NULL) == MRGI_ERR_INVALID_ARGUMENT);
+  in[3] = NAN;
+  MRGI_CHECK(mrgi_brsm_blur(&rsm, in, out, (size_t)(S * S), NULL) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_brsm_blur(&rsm, in, in, (size_t)(S * S), NULL) == MRGI_ERR_INVALID_ARGUMENT);
+}
+
+/* Importance: exact mean without guide; guided and random estimates are unbiased. */
+static void test_importance(void)
+{
+  const int32_t S = 4, M = 24;
+  const mrgi_rsm rsm = make_rsm(S, 0.0);
+  float samples[M * MRGI_BRSM_VIEW_SAMPLE_FLOATS];
+  for (int m = 0; m < M; ++m)
+  {
+    float* s = samples + m * MRGI_BRSM_VIEW_SAMPLE_FLOATS;
+    s[0] = (float)(2.0 * rnd() - 0.5); /* receivers above the plane, facing down */
+    s[1] = (float)(2.0 * rnd() - 0.5);
+    s[2] = (float)(0.2 + rnd());
+    s[3] = (float)(64.0 * rnd());
+    s[4] = 0.0f;
+    s[5] = 0.0f;
+    s[6] = -1.0f;
+    s[7] = (float)(64.0 * rnd());
+    s[8] = s[9] = s[10] = 0.8f;
+    s[11] = m == 3 ? 0.0f : 1.0f; /* one invalid sample */
+  }
+  /* Orthographic camera: world xy in [0, 1] -> NDC [-1, 1], viewport 64 x 64. */
+  const float world_to_clip[16] = { 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1, 0, -1, -1, 0, 1 };
+  float exact[16], estimate_sum[16] = { 0 }, one[16];
+  mrgi_brsm_view view = { samples, M, NULL, 0, 0, M, 0 };
+  MRGI_CHECK(mrgi_brsm_importance(&rsm, &view, 1u, exact, 16, NULL) == MRGI_OK);
+  for (int t = 0; t < 16; ++t)
+  {
+    MRGI_CHECK(exact[t] >= 0.0f && isfinite(exact[t]));
+    MRGI_CHECK((exact[t] > 0.0f) == (g_flux[4 * t] > 0.0f));
+  }
+  for (int guided = 0; guided < 2; ++guided)
+  {
+    mrgi_brsm_view v = { samples, M, world_to_clip, 64, 64, 4, guided };
+    const int runs = 4000;
+    double sum2[16] = { 0 };
+    memset(estimate_sum, 0, sizeof estimate_sum);
+    for (int s = 0; s < runs; ++s)
+    {
+      MRGI_CHECK(mrgi_brsm_importance(&rsm, &v, (uint64_t)s + 100u, one, 16, NULL) == MRGI_OK);
+      for (int t = 0; t < 16; ++t)
+      {
+        estimate_sum[t] += one[t] / runs;
+        sum2[t] += (double)one[t] * one[t] / runs;
+      }
+    }
+    /* Each texel's mean over seeds is within 4.5 standard errors of the exact mean. */
+    double worst = 0.0;
+    for (int t = 0; t < 16; ++t)
+    {
+      const double var = sum2[t] - (double)estimate_sum[t] * estimate_sum[t];
+      const double se = sqrt((var > 0.0 ? var : 0.0) / runs) + 1e-12;
+      const double z = fabs(estimate_sum[t] - exact[t]) / se;
+      worst = z > worst ? z : worst;
+    }
+    printf("importance K=4 of M=%d, guided=%d: worst |mean - exact| = %.2f standard errors\n", M,
+           guided, worst);
+    MRGI_CHECK(worst < 4.5);
+  }
+  view.sample_count = 0;
+  MRGI_CHECK(mrgi_brsm_importance(&rsm, &view, 1u, exact, 16, NULL) == MRGI_ERR_INVALID_ARGUMENT);
+  view.sample_count = M;
+  MRGI_CHECK(mrgi_brsm_importance(&rsm, &view, 1u, exact, 15, NULL) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_brsm_mix(&rsm, 1.5, exact, 16, NULL) == MRGI_ERR_INVALID_ARGUMENT);
+}
+
+/* Inter-texel VPLs stay on T_0's plane; a one-texel distribution gives that texel. */
+static void test_inter_texel(void)
+{
+  const int32_t S = 8;
+  const mrgi_rsm rsm = make_rsm(S, 1.0);
+  float w[S_MAX * S_MAX];
+  for (int32_t t = 0; t < S * S; ++t)
+  {
+    g_flux[4 * t] = g_flux[4 * t + 1] = g_flux[4 * t + 2] = 0.5f;
+    w[t] = 1.0f;
+  }
+  double cdf[S_MAX * S_MAX + S_MAX];
+  MRGI_CHECK(mrgi_brsm_cdf_build(&rsm, w, (size_t)(S * S), cdf, sizeof cdf / sizeof cdf[0], NULL,
+                                 NULL) == MRGI_OK);
+  mrgi_vpl vpls[64];
+  mrgi_brsm_pick picks[64];
+  int moved = 0;
+  for (int s = 0; s < 50; ++s)
+  {
+    const mrgi_brsm_sampling sampling = { 64, (uint64_t)s, 1, NULL };
+    MRGI_CHECK(mrgi_brsm_sample_vpls(&rsm, cdf, sizeof cdf / sizeof cdf[0], &sampling, picks, vpls,
+                                     64, NULL, NULL) == MRGI_OK);
+    for (int k = 0; k < 64; ++k)
+    {
+      const float plane = picks[k].x >= S / 2 ? 1.0f : 0.0f;
+      MRGI_CHECK(vpls[k].position[2] == plane); /* never between the planes */
+      const int32_t t = picks[k].y * S + picks[k].x;
+      moved += vpls[k].position[0] != g_position[4 * t] || vpls[k].position[1] != g_position[4 * t + 1];
+      /* Uniform flux and pdf: Phi_k = Phi_t / (N p) exactly as a texel VPL. */
+      MRGI_CHECK(fabsf(vpls[k].flux[0] - 0.5f * (S * S) / 64.0f) < 1e-5f);
+    }
+  }
+  MRGI_CHECK(moved > 0); /* VPLs do slide between texels on one plane */
+  for (int32_t t = 0; t < S * S; ++t)
+  {
+    w[t] = t == 27 ? 1.0f : 0.0f;
+  }
+  MRGI_CHECK(mrgi_brsm_cdf_build(&rsm, w, (size_t)(S * S), cdf, sizeof cdf / sizeof cdf[0], NULL,
+                                 NULL) == MRGI_OK);
+  const mrgi_brsm_sampling sampling = { 5, 3u, 1, NULL };
+  MRGI_CHECK(mrgi_brsm_sample_vpls(&rsm, cdf, sizeof cdf / sizeof cdf[0], &sampling, picks, vpls,
+                                   64, NULL, NULL) == MRGI_OK);
+  for (int k = 0; k < 5; ++k)
+  {
+    MRGI_CHECK(picks[k].y * S + picks[k].x == 27);
+    for (int c = 0; c < 3; ++c)
+    {
+      MRGI_CHECK(vpls[k].position[c] == g_position[4 * 27 + c]);
+      MRGI_CHECK(vpls[k].normal[c] == g_normal[4 * 27 + c]);
+    }
+    MRGI_CHECK(fabsf(vpls[k].flux[0] - 0.5f / 5.0f) < 1e-7f);
+    MRGI_CHECK(fabsf(vpls[k].area - g_flux[4 * 27 + 3] / 5.0f) < 1e-9f);
+  }
+  MRGI_CHECK(mrgi_brsm_sample_vpls(&rsm, cdf, 3, &sampling, picks, vpls, 64, NULL, NULL) ==
+             MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_brsm_sample_vpls(&rsm, cdf, sizeof cdf / sizeof cdf[0], &sampling, picks, vpls,
+                                   4, NULL, NULL) == MRGI_ERR_INVALID_ARGUMENT);
+}
+
+int main(int argc, char** argv)
+{
+  static const mrgi_test_case cases[] = { MRGI_TEST_CASE(test_cdf_hand),
+                                          MRGI_TEST_CASE(test_unbiased),
+                                          MRGI_TEST_CASE(test_zero_view_importance_picked),
+                                          MRGI_TEST_CASE(test_blur),
+                                          MRGI_TEST_CASE(test_importance),
+                                          MRGI_TEST_CASE(test_inter_texel) };
+  return MRGI_TEST_MAIN(argc, argv, cases);
+}
