@@ -1,4 +1,5 @@
 #include "vtkMRGIVPLSelection.h"
+#include "vtkMRGIFrameContext.h"
 
 #include "vtkFloatArray.h"
 #include "vtkMRGIGather.h"
