@@ -11,6 +11,8 @@
 #include "mrgi_bmr_mask.h"
 #include "mrgi_exposure.h"
 #include "mrgi_gather.h"
+#include "mrgi_ism_atlas.h"
+#include "mrgi_ism_visibility.h"
 #include "mrgi_multires.h"
 #include "mrgi_specular_stencil.h"
 #include "mrgi_ssao.h"
@@ -106,6 +108,10 @@ static expected_constant expected[] = {
   EXPECT(MRGI_VOXEL_CHANNEL_BITS, EXPECT_INT),
   EXPECT(MRGI_VOXEL_MAX_SIZE, EXPECT_INT),
   EXPECT(MRGI_VOXEL_MAX_STEPS, EXPECT_INT),
+  EXPECT(MRGI_ISM_EMPTY_DEPTH, EXPECT_FLOAT),
+  EXPECT(MRGI_ISM_MIN_DEPTH, EXPECT_FLOAT),
+  EXPECT(MRGI_ISM_MAX_TILE, EXPECT_INT),
+  EXPECT(MRGI_ISM_BIAS_MIN_COS, EXPECT_FLOAT),
   EXPECT(MRGI_VOXEL_MAX_SAMPLES, EXPECT_INT),
   EXPECT(MRGI_VOXEL_MAX_MASK_WORDS, EXPECT_INT),
   EXPECT(MRGI_VOXEL_INTERLEAVE_PHASES, EXPECT_INT),

@@ -69,18 +69,39 @@ static int mrgi_gather_prepare_vpl(const mrgi_vpl* in, const float* m, mrgi_gath
   }
 }
 
-/* E_i of one receiver (file comment of the header), accumulated in double. */
+/* E_i of one receiver (file comment of the header), accumulated in double;
+ * each term > 0 weighted by the visibility (header, "Visibility"). `source`
+ * maps prepared VPL k to its index in the caller's array (its ISM tile). */
 static void mrgi_gather_receiver(const double receiver_position[3],
-                                 const double receiver_normal[3], const mrgi_gather_vpl* vpls,
-                                 int32_t vpl_count, double irradiance[3])
+                                 const double receiver_normal[3],
+                                 const float receiver_gbuffer_normal[3],
+                                 const mrgi_gather_vpl* vpls, const int32_t* source,
+                                 int32_t vpl_count, const mrgi_vpl* world_vpls,
+                                 const float* world_to_receiver,
+                                 const mrgi_gather_visibility* visibility, double irradiance[3])
 {
   double sum[3] = { 0.0, 0.0, 0.0 };
+  float receiver_world[3] = { 0.0f, 0.0f, 0.0f };
+  if (visibility->mode == MRGI_GATHER_VISIBILITY_ISM)
+  {
+    mrgi_gather_receiver_to_world(world_to_receiver, receiver_position, receiver_world);
+  }
   for (int32_t j = 0; j < vpl_count; ++j)
   {
     const mrgi_gather_vpl* vpl = vpls + j;
-    const double transfer = mrgi_gather_transfer(receiver_position, receiver_normal, vpl);
+    double transfer = mrgi_gather_transfer(receiver_position, receiver_normal, vpl);
     if (transfer > 0.0)
     {
+      if (visibility->mode == MRGI_GATHER_VISIBILITY_ISM)
+      {
+        transfer *= mrgi_gather_ism_weight(visibility, source[j], world_vpls + source[j],
+                                           receiver_world);
+      }
+      else if (visibility->mode == MRGI_GATHER_VISIBILITY_VOXELS)
+      {
+        transfer *= mrgi_gather_voxel_weight(visibility->voxels, receiver_position,
+                                             receiver_gbuffer_normal, vpl);
+      }
       sum[0] += vpl->flux[0] * transfer;
       sum[1] += vpl->flux[1] * transfer;
       sum[2] += vpl->flux[2] * transfer;
@@ -91,11 +112,80 @@ static void mrgi_gather_receiver(const double receiver_position[3],
   irradiance[2] = sum[2];
 }
 
+mrgi_status mrgi_gather_visibility_check(const mrgi_gather_visibility* visibility,
+                                         int32_t tile_count, mrgi_error* err)
+{
+  if (!visibility || visibility->mode == MRGI_GATHER_VISIBILITY_NONE)
+  {
+    return MRGI_OK;
+  }
+  if (visibility->mode == MRGI_GATHER_VISIBILITY_ISM)
+  {
+    if (!visibility->ism_layout || !visibility->ism_depth)
+    {
+      return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                            "ISM visibility: the atlas %s is missing",
+                            !visibility->ism_layout ? "layout" : "depth array");
+    }
+    const mrgi_ism_atlas_layout* layout = visibility->ism_layout;
+    if (layout->vpl_count != tile_count)
+    {
+      return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                            "ISM visibility: the atlas has %d tiles but the gather has %d VPLs "
+                            "(tree: roots); rebuild the ISMs for this frame's VPLs",
+                            layout->vpl_count, tile_count);
+    }
+    mrgi_ism_atlas_layout expected;
+    if (mrgi_ism_atlas_layout_make(layout->vpl_count, layout->tile_size, &expected, err) !=
+          MRGI_OK ||
+        expected.width != layout->width || expected.height != layout->height ||
+        expected.tiles_per_row != layout->tiles_per_row)
+    {
+      return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                            "ISM visibility: the atlas layout (%d tiles of %d, %dx%d) is not what "
+                            "mrgi_ism_atlas_layout_make() makes",
+                            layout->vpl_count, layout->tile_size, layout->width, layout->height);
+    }
+    mrgi_status status = mrgi_ism_lookup_params_validate(&visibility->ism_lookup, err);
+    return status;
+  }
+  if (visibility->mode == MRGI_GATHER_VISIBILITY_VOXELS)
+  {
+    if (!visibility->voxels)
+    {
+      return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                            "voxel visibility: the voxel view is missing (not voxelized)");
+    }
+    mrgi_status status = mrgi_voxel_view_check(visibility->voxels, err);
+    if (status != MRGI_OK)
+    {
+      mrgi_error_prefix(err, "voxel visibility: ");
+    }
+    return status;
+  }
+  return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                        "gather visibility mode %d is not NONE (0), ISM (1) or VOXELS (2)",
+                        (int)visibility->mode);
+}
+
 mrgi_status mrgi_gather_full(const mrgi_gather_receivers* receivers, const mrgi_vpl* vpls,
                              int32_t vpl_count, const float* world_to_receiver,
                              mrgi_image* out_irradiance, mrgi_gather_info* out_info,
                              mrgi_error* err)
 {
+  return mrgi_gather_full_visibility(receivers, vpls, vpl_count, world_to_receiver, NULL,
+                                     out_irradiance, out_info, err);
+}
+
+mrgi_status mrgi_gather_full_visibility(const mrgi_gather_receivers* receivers,
+                                        const mrgi_vpl* vpls, int32_t vpl_count,
+                                        const float* world_to_receiver,
+                                        const mrgi_gather_visibility* visibility,
+                                        mrgi_image* out_irradiance, mrgi_gather_info* out_info,
+                                        mrgi_error* err)
+{
+  static const mrgi_gather_visibility none = { MRGI_GATHER_VISIBILITY_NONE, NULL, NULL,
+                                               { 0.0f, 0.0f, 0 }, NULL };
   if (!out_irradiance)
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "output irradiance image is NULL");
@@ -104,14 +194,10 @@ mrgi_status mrgi_gather_full(const mrgi_gather_receivers* receivers, const mrgi_
   out_irradiance->height = 0;
   out_irradiance->channels = 0;
   out_irradiance->pixels = NULL;
-  if (!receivers)
+  mrgi_status status = mrgi_gather_receivers_check(receivers, err);
+  if (status != MRGI_OK)
   {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "receivers pointer is NULL");
-  }
-  if (!receivers->position || !receivers->normal)
-  {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "receiver %s array is NULL",
-                          !receivers->position ? "position" : "normal");
+    return status;
   }
   if (!vpls)
   {
@@ -122,7 +208,15 @@ mrgi_status mrgi_gather_full(const mrgi_gather_receivers* receivers, const mrgi_
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "VPL count %d is outside %d..%d",
                           vpl_count, MRGI_VPL_MIN_COUNT, MRGI_VPL_MAX_COUNT);
   }
-  mrgi_status status = MRGI_OK;
+  status = mrgi_gather_visibility_check(visibility, vpl_count, err);
+  if (status != MRGI_OK)
+  {
+    return status;
+  }
+  if (!visibility)
+  {
+    visibility = &none;
+  }
   if (world_to_receiver)
   {
     status = mrgi_gather_check_transform(world_to_receiver, err);
@@ -138,8 +232,11 @@ mrgi_status mrgi_gather_full(const mrgi_gather_receivers* receivers, const mrgi_
     return status;
   }
   mrgi_gather_vpl* prepared = (mrgi_gather_vpl*)malloc(sizeof(mrgi_gather_vpl) * (size_t)vpl_count);
-  if (!prepared)
+  int32_t* source = (int32_t*)malloc(sizeof(int32_t) * (size_t)vpl_count);
+  if (!prepared || !source)
   {
+    free(prepared);
+    free(source);
     mrgi_image_destroy(out_irradiance);
     return mrgi_error_set(err, MRGI_ERR_OUT_OF_MEMORY, "cannot allocate %d prepared VPLs",
                           vpl_count);
@@ -149,6 +246,7 @@ mrgi_status mrgi_gather_full(const mrgi_gather_receivers* receivers, const mrgi_
   int32_t used = 0;
   for (int32_t j = 0; j < vpl_count; ++j)
   {
+    source[used] = j;
     used += mrgi_gather_prepare_vpl(vpls + j, world_to_receiver, prepared + used, &info);
   }
 
@@ -172,12 +270,14 @@ mrgi_status mrgi_gather_full(const mrgi_gather_receivers* receivers, const mrgi_
     }
     ++info.receivers_gathered;
     double irradiance[3];
-    mrgi_gather_receiver(receiver_position, receiver_normal, prepared, used, irradiance);
+    mrgi_gather_receiver(receiver_position, receiver_normal, receivers->normal + 4 * p, prepared,
+                         source, used, vpls, world_to_receiver, visibility, irradiance);
     out[0] = mrgi_gather_store(irradiance[0]);
     out[1] = mrgi_gather_store(irradiance[1]);
     out[2] = mrgi_gather_store(irradiance[2]);
   }
   free(prepared);
+  free(source);
   if (out_info)
   {
     *out_info = info;

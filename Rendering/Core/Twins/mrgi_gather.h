@@ -68,12 +68,34 @@
  * non-finite value, negative flux or area, or a zero normal are skipped and
  * counted (::mrgi_gather_info::vpls_malformed): one bad VPL never poisons an
  * image. (Selection never emits such VPLs; the GPU need not test for them.)
+ *
+ * ## Visibility (indirect shadows; mrgi_gather_full_visibility())
+ *
+ * The same sum with each VPL's term multiplied by a visibility V_ij in
+ * [0, 1], computed only where the term is > 0 (the GPU does the same):
+ *
+ * - ::MRGI_GATHER_VISIBILITY_NONE: V = 1; the sum is mrgi_gather_full()'s,
+ *   term for term (mrgi_gather_full() is this with no visibility).
+ * - ::MRGI_GATHER_VISIBILITY_ISM: imperfect shadow maps (Ritschel et al. 2008
+ *   3.3, 2011 6.1): V = mrgi_ism_visibility() of tile j (the VPL's index in
+ *   `vpls`), from the VPL's WORLD-space record (position, normal as given)
+ *   to the receiver brought back to world space in double and rounded to
+ *   float (x_w = R^T (x - t) for M = [R t]). The atlas must have one tile
+ *   per VPL (layout vpl_count == vpl_count).
+ * - ::MRGI_GATHER_VISIBILITY_VOXELS: screen-space voxels (Nichols, Penmatsa
+ *   and Wyman 2010 3.3.1, the naive query): V = mrgi_voxel_march() from the
+ *   receiver (its position and G-buffer normal, as float) to the VPL brought
+ *   into receiver space (rounded to float), V in {0, 1}. The receivers must
+ *   be in the EYE space of the camera the voxels were built with (M the view
+ *   matrix); occluders the camera does not see are missed.
  */
 #ifndef MRGI_GATHER_H
 #define MRGI_GATHER_H
 
 #include "mrgi_error.h"
 #include "mrgi_image.h"
+#include "mrgi_ism_atlas.h"
+#include "mrgi_ism_visibility.h"
 #include "mrgi_vpl.h"
 
 #include <stdint.h>
@@ -136,6 +158,50 @@ mrgi_status mrgi_gather_full(const mrgi_gather_receivers* receivers, const mrgi_
                              int32_t vpl_count, const float* world_to_receiver,
                              mrgi_image* out_irradiance, mrgi_gather_info* out_info,
                              mrgi_error* err);
+
+struct mrgi_voxel_view; /* mrgi_voxel_march.h (which includes this header through mrgi_multires.h) */
+
+/** Kinds of visibility a gather can weight its VPL terms with (file comment). */
+typedef enum mrgi_gather_visibility_mode
+{
+  MRGI_GATHER_VISIBILITY_NONE = 0,  /**< V = 1 (the gathers without visibility). */
+  MRGI_GATHER_VISIBILITY_ISM = 1,   /**< Imperfect shadow maps, one tile per VPL (or tree root). */
+  MRGI_GATHER_VISIBILITY_VOXELS = 2 /**< Screen-space voxel march per receiver and VPL. */
+} mrgi_gather_visibility_mode;
+
+/** The visibility term of a gather (borrowed pointers; see the file comment). */
+typedef struct mrgi_gather_visibility
+{
+  int32_t mode;                           /**< ::mrgi_gather_visibility_mode. */
+  const mrgi_ism_atlas_layout* ism_layout; /**< ISM: the atlas layout. */
+  const float* ism_depth;                 /**< ISM: push-pulled atlas, width * height floats. */
+  mrgi_ism_lookup_params ism_lookup;      /**< ISM: bias and PCF. */
+  const struct mrgi_voxel_view* voxels;   /**< VOXELS: the voxel buffer and march parameters. */
+} mrgi_gather_visibility;
+
+/**
+ * @brief Check a visibility term for a gather with `tile_count` VPLs (or
+ *        tree roots): a known mode; ISM: layout and depth not NULL, layout
+ *        vpl_count == tile_count, lookup parameters valid
+ *        (mrgi_ism_lookup_params_validate()); VOXELS: a view that passes
+ *        mrgi_voxel_view_check(). NULL means NONE.
+ * @return ::MRGI_ERR_INVALID_ARGUMENT naming the problem.
+ */
+mrgi_status mrgi_gather_visibility_check(const mrgi_gather_visibility* visibility,
+                                         int32_t tile_count, mrgi_error* err);
+
+/**
+ * @brief mrgi_gather_full() with a visibility term (file comment,
+ *        "Visibility"); `visibility` NULL or NONE gives mrgi_gather_full()'s
+ *        image bit for bit. Errors: mrgi_gather_full()'s and
+ *        mrgi_gather_visibility_check()'s (tile_count = vpl_count).
+ */
+mrgi_status mrgi_gather_full_visibility(const mrgi_gather_receivers* receivers,
+                                        const mrgi_vpl* vpls, int32_t vpl_count,
+                                        const float* world_to_receiver,
+                                        const mrgi_gather_visibility* visibility,
+                                        mrgi_image* out_irradiance, mrgi_gather_info* out_info,
+                                        mrgi_error* err);
 
 #ifdef __cplusplus
 }

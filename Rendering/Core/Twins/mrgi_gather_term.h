@@ -13,6 +13,7 @@
 #define MRGI_GATHER_TERM_H
 
 #include "mrgi_gather.h"
+#include "mrgi_voxel_march.h"
 #include "mrgi_vpl.h"
 
 #include <float.h>
@@ -149,6 +150,67 @@ static inline double mrgi_gather_transfer(const double receiver_position[3],
   /* eq. 1 times Phi_j / A_j: Phi_j cos_i cos_j / (pi r^2 + A_j); the
    * denominator is > 0 since r2 > 0 and A_j >= 0. */
   return (cos_i_r * cos_j_r / r2) / (MRGI_PI * r2 + vpl->area);
+}
+
+/* The receiver argument checks every gather shares (sizes are checked by
+ * mrgi_image_create() on the output). */
+static inline mrgi_status mrgi_gather_receivers_check(const mrgi_gather_receivers* receivers,
+                                                      mrgi_error* err)
+{
+  if (!receivers)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "receivers pointer is NULL");
+  }
+  if (!receivers->position || !receivers->normal)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "receiver %s array is NULL",
+                          !receivers->position ? "position" : "normal");
+  }
+  return MRGI_OK;
+}
+
+/* Receiver x (receiver space) back in world space, rounded to float:
+ * x_w = R^T (x - t) for the rigid column-major M = [R t] (NULL: identity).
+ * R^T's row i is R's column i, m[4 i .. 4 i + 2]. */
+static inline void mrgi_gather_receiver_to_world(const float* m, const double x[3], float out[3])
+{
+  if (!m)
+  {
+    out[0] = (float)x[0];
+    out[1] = (float)x[1];
+    out[2] = (float)x[2];
+    return;
+  }
+  const double d[3] = { x[0] - m[12], x[1] - m[13], x[2] - m[14] };
+  for (int i = 0; i < 3; ++i)
+  {
+    out[i] = (float)((double)m[4 * i] * d[0] + (double)m[4 * i + 1] * d[1] +
+                     (double)m[4 * i + 2] * d[2]);
+  }
+}
+
+/* ISM visibility (mrgi_gather.h "Visibility") of tile `tile`, looked up from
+ * the WORLD-space record `world` (as stored: the GPU reads the same floats)
+ * towards the world-space receiver. */
+static inline double mrgi_gather_ism_weight(const mrgi_gather_visibility* visibility, int32_t tile,
+                                            const mrgi_vpl* world, const float receiver_world[3])
+{
+  return (double)mrgi_ism_visibility(visibility->ism_layout, visibility->ism_depth, tile,
+                                     world->position, world->normal, receiver_world,
+                                     &visibility->ism_lookup);
+}
+
+/* Voxel visibility (NPW10 3.3.1): one march from the receiver (eye space,
+ * its G-buffer normal as stored) to the VPL in eye space; 0 or 1. */
+static inline double mrgi_gather_voxel_weight(const mrgi_voxel_view* view, const double x[3],
+                                              const float receiver_normal[3],
+                                              const mrgi_gather_vpl* vpl)
+{
+  const float receiver[3] = { (float)x[0], (float)x[1], (float)x[2] };
+  const float position[3] = { (float)vpl->position[0], (float)vpl->position[1],
+                              (float)vpl->position[2] };
+  const float normal[3] = { (float)vpl->normal[0], (float)vpl->normal[1], (float)vpl->normal[2] };
+  return mrgi_voxel_march(view, receiver, receiver_normal, position, normal) ? 1.0 : 0.0;
 }
 
 /* A double sum stored as the output float: clamped to [0, FLT_MAX], NaN -> 0. */

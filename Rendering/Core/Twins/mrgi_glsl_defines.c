@@ -7,6 +7,7 @@
 #include "mrgi_exposure.h"
 #include "mrgi_gather.h"
 #include "mrgi_ism_atlas.h"
+#include "mrgi_ism_visibility.h"
 #include "mrgi_multires.h"
 #include "mrgi_shadow_composite.h"
 #include "mrgi_specular_stencil.h"
@@ -59,6 +60,7 @@ static const mrgi_glsl_constant mrgi_glsl_constants[] = {
   MRGI_GLSL_CONSTANT(MRGI_ISM_EMPTY_DEPTH, MRGI_GLSL_FLOAT),
   MRGI_GLSL_CONSTANT(MRGI_ISM_MIN_DEPTH, MRGI_GLSL_FLOAT),
   MRGI_GLSL_CONSTANT(MRGI_ISM_MAX_TILE, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_ISM_BIAS_MIN_COS, MRGI_GLSL_FLOAT),
   MRGI_GLSL_CONSTANT(MRGI_VPL_TREE_ROOT_SIDE, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_VPL_TREE_RECORDS_PER_ROW, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_VPL_TREE_MAX_LOOP_ITERATIONS, MRGI_GLSL_INT),

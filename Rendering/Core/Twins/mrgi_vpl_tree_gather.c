@@ -132,10 +132,17 @@ typedef struct mrgi_vpl_tree_receiver_result
  * MRGI_VPL_TREE_STACK_SIZE entries: no allocation per receiver. */
 static void mrgi_vpl_tree_gather_receiver(const mrgi_vpl_tree* tree, double threshold,
                                           const float* world_to_receiver, const double x[3],
-                                          const double n[3], mrgi_vpl_tree_stack_entry* stack,
+                                          const double n[3], const float gbuffer_normal[3],
+                                          const mrgi_gather_visibility* visibility,
+                                          mrgi_vpl_tree_stack_entry* stack,
                                           mrgi_vpl_tree_receiver_result* result)
 {
   memset(result, 0, sizeof(*result));
+  float receiver_world[3] = { 0.0f, 0.0f, 0.0f };
+  if (visibility->mode == MRGI_GATHER_VISIBILITY_ISM)
+  {
+    mrgi_gather_receiver_to_world(world_to_receiver, x, receiver_world);
+  }
   const int32_t root_level = tree->layout.level_count - 1;
   const int32_t w_root = tree->layout.level_width[root_level];
   for (int32_t view = 0; view < tree->view_count; ++view)
@@ -144,6 +151,10 @@ static void mrgi_vpl_tree_gather_receiver(const mrgi_vpl_tree* tree, double thre
     {
       for (int32_t rx = 0; rx < w_root; ++rx)
       {
+        /* Section 4: root r's ISM tile and record serve its whole subtree;
+         * V is computed at the first contributing node (-1: not yet). */
+        const int64_t root = mrgi_vpl_tree_index(tree, root_level, view, rx, ry);
+        double root_visibility = -1.0;
         int32_t depth = 0;
         stack[depth++] = (mrgi_vpl_tree_stack_entry){ root_level, rx, ry };
         result->max_depth = depth > result->max_depth ? depth : result->max_depth;
@@ -184,9 +195,22 @@ static void mrgi_vpl_tree_gather_receiver(const mrgi_vpl_tree* tree, double thre
             continue;
           }
           /* 4. the node as one VPL: mrgi_gather_full()'s term. */
-          const double transfer = mrgi_gather_transfer(x, n, &vpl);
+          double transfer = mrgi_gather_transfer(x, n, &vpl);
           if (transfer > 0.0)
           {
+            if (visibility->mode == MRGI_GATHER_VISIBILITY_ISM)
+            {
+              if (root_visibility < 0.0)
+              {
+                root_visibility = mrgi_gather_ism_weight(visibility, (int32_t)root,
+                                                         tree->nodes + root, receiver_world);
+              }
+              transfer *= root_visibility;
+            }
+            else if (visibility->mode == MRGI_GATHER_VISIBILITY_VOXELS)
+            {
+              transfer *= mrgi_gather_voxel_weight(visibility->voxels, x, gbuffer_normal, &vpl);
+            }
             result->irradiance[0] += vpl.flux[0] * transfer;
             result->irradiance[1] += vpl.flux[1] * transfer;
             result->irradiance[2] += vpl.flux[2] * transfer;
@@ -211,14 +235,10 @@ static mrgi_status mrgi_vpl_tree_gather_check(const mrgi_gather_receivers* recei
                                               const mrgi_vpl_tree* tree, double threshold,
                                               const float* world_to_receiver, mrgi_error* err)
 {
-  if (!receivers)
+  mrgi_status status = mrgi_gather_receivers_check(receivers, err);
+  if (status != MRGI_OK)
   {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "receivers pointer is NULL");
-  }
-  if (!receivers->position || !receivers->normal)
-  {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "receiver %s array is NULL",
-                          !receivers->position ? "position" : "normal");
+    return status;
   }
   if (!tree)
   {
@@ -284,6 +304,20 @@ mrgi_status mrgi_vpl_tree_gather(const mrgi_gather_receivers* receivers, const m
                                  mrgi_image* out_irradiance, mrgi_image* out_vpls_per_pixel,
                                  mrgi_vpl_tree_gather_info* out_info, mrgi_error* err)
 {
+  return mrgi_vpl_tree_gather_visibility(receivers, tree, threshold, world_to_receiver, NULL,
+                                         out_irradiance, out_vpls_per_pixel, out_info, err);
+}
+
+mrgi_status mrgi_vpl_tree_gather_visibility(const mrgi_gather_receivers* receivers,
+                                            const mrgi_vpl_tree* tree, double threshold,
+                                            const float* world_to_receiver,
+                                            const mrgi_gather_visibility* visibility,
+                                            mrgi_image* out_irradiance,
+                                            mrgi_image* out_vpls_per_pixel,
+                                            mrgi_vpl_tree_gather_info* out_info, mrgi_error* err)
+{
+  static const mrgi_gather_visibility none = { MRGI_GATHER_VISIBILITY_NONE, NULL, NULL,
+                                               { 0.0f, 0.0f, 0 }, NULL };
   mrgi_vpl_tree_gather_clear(out_irradiance);
   mrgi_vpl_tree_gather_clear(out_vpls_per_pixel);
   if (out_info)
@@ -299,6 +333,15 @@ mrgi_status mrgi_vpl_tree_gather(const mrgi_gather_receivers* receivers, const m
   if (status != MRGI_OK)
   {
     return status;
+  }
+  status = mrgi_gather_visibility_check(visibility, mrgi_vpl_tree_root_count(tree), err);
+  if (status != MRGI_OK)
+  {
+    return status;
+  }
+  if (!visibility)
+  {
+    visibility = &none;
   }
   status = mrgi_image_create(out_irradiance, receivers->width, receivers->height, 3, err);
   if (status != MRGI_OK)
@@ -338,7 +381,8 @@ mrgi_status mrgi_vpl_tree_gather(const mrgi_gather_receivers* receivers, const m
     }
     ++info.receivers_gathered;
     mrgi_vpl_tree_receiver_result result;
-    mrgi_vpl_tree_gather_receiver(tree, threshold, world_to_receiver, x, n, stack, &result);
+    mrgi_vpl_tree_gather_receiver(tree, threshold, world_to_receiver, x, n,
+                                  receivers->normal + 4 * p, visibility, stack, &result);
     float* out = out_irradiance->pixels + 3 * p; /* same (bottom-up) order as the input */
     out[0] = mrgi_gather_store(result.irradiance[0]);
     out[1] = mrgi_gather_store(result.irradiance[1]);

@@ -97,6 +97,30 @@
  * The stack holds at most 3 L + 1 entries; MRGI_VPL_TREE_STACK_SIZE bounds
  * it for every tree this gather accepts (S <= MRGI_VPL_TREE_GATHER_MAX_RSM_SIZE).
  *
+ * ## 4. Visibility (indirect shadows; mrgi_vpl_tree_gather_visibility())
+ *
+ * Step 4's term is multiplied by a visibility V in [0, 1] where it is > 0
+ * (mrgi_gather.h, "Visibility"); the traversal (cull, bound, refinement)
+ * does not change, nor do the counts.
+ *
+ * - ISM: imperfect shadow maps exist only per ROOT: the ISM pass renders one
+ *   tile per VPL of the flat VPL cache, which in Tree mode holds the roots
+ *   in global root order r (vtkMRGIVPLSelection). Every node of root r's
+ *   subtree is therefore tested with tile r, looked up from root r's record
+ *   (world-space position c_r and normal n_r, as stored in the tree) towards
+ *   the receiver: the node's occlusion is approximated by that of its root
+ *   patch's representative point (Ritschel et al. 2008 3.3 render one ISM per
+ *   VPL; a node is a part of the root's patch, seen from the same side and
+ *   within R_r of c_r). V is thus constant over a root's subtree for one
+ *   receiver; both C and GLSL compute it once per (receiver, root), at the
+ *   first node of the subtree whose term is > 0. Shadows of occluders
+ *   closer to a node than to c_r are approximate, more so for coarse trees.
+ *   The atlas must have V * w_L^2 tiles (mrgi_vpl_tree_root_count()).
+ * - VOXELS: one march per (receiver, node used as a VPL), to the node's
+ *   position and normal in receiver (eye) space, as the flat gather.
+ *   (vtkMRGIGather's GPU tree gather refuses voxels: a march per node
+ *   does not fit llvmpipe's loop budget, mrgi_voxel_march.h.)
+ *
  * ## Errors
  *
  * ::MRGI_ERR_INVALID_ARGUMENT for NULL arguments, a tree that was not
@@ -190,6 +214,20 @@ mrgi_status mrgi_vpl_tree_gather(const mrgi_gather_receivers* receivers, const m
                                  double threshold, const float* world_to_receiver,
                                  mrgi_image* out_irradiance, mrgi_image* out_vpls_per_pixel,
                                  mrgi_vpl_tree_gather_info* out_info, mrgi_error* err);
+
+/**
+ * @brief mrgi_vpl_tree_gather() with a visibility term (section 4);
+ *        `visibility` NULL or NONE gives mrgi_vpl_tree_gather()'s images
+ *        bit for bit. Errors: mrgi_vpl_tree_gather()'s and
+ *        mrgi_gather_visibility_check()'s with tile_count = the root count.
+ */
+mrgi_status mrgi_vpl_tree_gather_visibility(const mrgi_gather_receivers* receivers,
+                                            const mrgi_vpl_tree* tree, double threshold,
+                                            const float* world_to_receiver,
+                                            const mrgi_gather_visibility* visibility,
+                                            mrgi_image* out_irradiance,
+                                            mrgi_image* out_vpls_per_pixel,
+                                            mrgi_vpl_tree_gather_info* out_info, mrgi_error* err);
 
 #ifdef __cplusplus
 }

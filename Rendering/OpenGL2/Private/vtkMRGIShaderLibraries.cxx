@@ -4,6 +4,8 @@
 #include "vtkMRGIAreaLightSpecular.h"
 #include "vtkMRGIAreaSpecularFS.h"
 #include "vtkMRGIGatherFS.h"
+#include "vtkMRGIISMLookup.h"
+#include "vtkMRGIISMProjection.h"
 #include "vtkMRGIIncrementalStencilFS.h"
 #include "vtkMRGIMultiresSplatVS.h"
 #include "vtkMRGISpecularStencilFS.h"
@@ -38,6 +40,8 @@ const Library Libraries[] = {
   { "vtkMRGIVoxelBits", vtkMRGIVoxelBits, { nullptr } },
   { "vtkMRGIVoxelMarch", vtkMRGIVoxelMarch, { "vtkMRGIVoxelBits", nullptr } },
   { "vtkMRGIVisibilityBits", vtkMRGIVisibilityBits, { nullptr } },
+  { "vtkMRGIISMProjection", vtkMRGIISMProjection, { nullptr } },
+  { "vtkMRGIISMLookup", vtkMRGIISMLookup, { "vtkMRGIISMProjection", nullptr } },
   { "vtkMRGIVPLIrradiance", vtkMRGIVPLIrradiance, { nullptr } },
   { "vtkMRGIVPLTree", vtkMRGIVPLTree, { "vtkMRGIVPLIrradiance", nullptr } },
   // Ends with MRGI_AREA_LIGHT_DIFFUSE_DECLARED: the specular library then

@@ -5,6 +5,8 @@
 #include "vtkFloatArray.h"
 #include "vtkMRGIFrameContext.h"
 #include "vtkMRGIFullScreenStep.h"
+#include "vtkMRGIGatherInternals.h"
+#include "vtkMRGIGatherVisibility.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIProgramCache.h"
 #include "vtkMRGIStageResources.h"
@@ -36,99 +38,7 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkMRGIGather);
-
-struct vtkMRGIGather::Internals
-{
-  // The flattened irradiance (the gathers' output), sized to the buffer's layout.
-  vtkTextureObject* FlatIrradiance = nullptr;
-  vtkMRGIStageResources GL; // framebuffer and programs
-  // Statistics of the last gather (occlusion queries, one per level).
-  std::vector<unsigned int> Queries;
-  std::vector<long long> GatheredTexels;
-  long long ValidPixels = -1;
-  // The tree gathers' VPLs per gathered texel (-1: not counted) and their
-  // count target (RGBA32F: nodes used, 0, 0, 1 where gathered).
-  double MeanVPLs = -1.0;
-  double MaxVPLs = -1.0;
-  vtkTextureObject* TreeCounts = nullptr;
-  int TreeCountsSize[2] = { 0, 0 };
-  // Multiresolution splatting: the subsplat list (the selected texels,
-  // sorted by level; host copy kept so that its capacity is reused from
-  // frame to frame) in a vertex buffer with its vertex array.
-  std::vector<int> SplatTexels;
-  std::vector<long long> SplatFirst;
-  std::vector<long long> SplatCount;
-  unsigned int SplatArray = 0;
-  unsigned int SplatBuffer = 0;
-
-  // The output texture and framebuffer for `layout`; false when they cannot be allocated.
-  bool Prepare(vtkOpenGLRenderWindow* window, const mrgi_multires_layout& layout)
-  {
-    if (this->FlatIrradiance &&
-      (this->FlatIrradiance->GetWidth() != static_cast<unsigned int>(layout.total_width) ||
-        this->FlatIrradiance->GetHeight() != static_cast<unsigned int>(layout.total_height)))
-    {
-      vtkMRGIShaderUtilities::ReleaseTexture(this->FlatIrradiance, window);
-    }
-    if (!this->FlatIrradiance)
-    {
-      this->FlatIrradiance =
-        vtkMRGIShaderUtilities::NewTexture(window, GL_RGBA32F, layout.total_width, layout.total_height);
-    }
-    this->GL.Prepare(window);
-    return this->FlatIrradiance != nullptr;
-  }
-
-  // One occlusion query per level (texels gathered).
-  void AllocateQueries(vtkWindow* w, int levels)
-  {
-    if (this->Queries.size() != static_cast<size_t>(levels))
-    {
-      this->ReleaseQueries(w);
-      this->Queries.resize(static_cast<size_t>(levels));
-      glGenQueries(levels, this->Queries.data());
-    }
-  }
-
-  // The queries' counts into GatheredTexels (0 below `finest`). Blocking
-  // reads, which is why statistics are opt-in.
-  void ReadQueries(int finest, int levels)
-  {
-    for (int i = 0; i < levels; ++i)
-    {
-      GLuint passed = 0;
-      if (i >= finest)
-      {
-        glGetQueryObjectuiv(this->Queries[static_cast<size_t>(i)], GL_QUERY_RESULT, &passed);
-      }
-      this->GatheredTexels[static_cast<size_t>(i)] = static_cast<long long>(passed);
-    }
-  }
-
-  // Occlusion queries need the context: only with a window.
-  void ReleaseQueries(vtkWindow* w)
-  {
-    if (w && !this->Queries.empty())
-    {
-      glDeleteQueries(static_cast<GLsizei>(this->Queries.size()), this->Queries.data());
-    }
-    this->Queries.clear();
-  }
-
-  // Vertex array and buffer need the context: only with a window.
-  void ReleaseSplats(vtkWindow* w)
-  {
-    if (w && this->SplatArray)
-    {
-      glDeleteVertexArrays(1, &this->SplatArray);
-    }
-    if (w && this->SplatBuffer)
-    {
-      glDeleteBuffers(1, &this->SplatBuffer);
-    }
-    this->SplatArray = this->SplatBuffer = 0;
-  }
-};
+using Internals = vtkMRGIGatherInternals;
 
 //------------------------------------------------------------------------------
 vtkMRGIGather::vtkMRGIGather()
@@ -182,27 +92,35 @@ vtkTextureObject* vtkMRGIGather::GetIrradianceTexture() const
 
 //------------------------------------------------------------------------------
 bool vtkMRGIGather::GatherVPLs(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
-  vtkTextureObject* vpls, int vplCount)
+  vtkTextureObject* vpls, int vplCount, const vtkMRGIIndirectVisibility& visibility)
 {
   if (!vpls || vplCount < 1)
   {
     vtkErrorMacro("GatherVPLs needs at least one VPL");
     return false;
   }
-  return this->Run(frame, buffer, vpls, vplCount, nullptr, buffer ? buffer->GetStencilTexture() : nullptr);
+  if (this->GatherMode == GatherSplatting && vtkMRGIGatherVisibility::Enabled(visibility))
+  {
+    vtkErrorMacro("GatherVPLs: multiresolution splatting has no visibility term; use the "
+                  "stenciled gather (SetGatherModeToStenciled) with indirect visibility");
+    return false;
+  }
+  return this->UseVisibility(visibility, vplCount) &&
+    this->Run(frame, buffer, vpls, vplCount, nullptr, buffer ? buffer->GetStencilTexture() : nullptr);
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIGather::GatherVPLTree(
-  const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer, const vtkMRGIVPLTreeTerm& tree)
+bool vtkMRGIGather::GatherVPLTree(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
+  const vtkMRGIVPLTreeTerm& tree, const vtkMRGIIndirectVisibility& visibility)
 {
-  return this->Run(frame, buffer, nullptr, 0, nullptr, buffer ? buffer->GetStencilTexture() : nullptr,
+  return this->UseVisibility(visibility, mrgi_vpl_tree_root_count(tree.Tree)) && this->Run(frame, buffer, nullptr, 0, nullptr, buffer ? buffer->GetStencilTexture() : nullptr,
     &tree);
 }
 
 //------------------------------------------------------------------------------
 bool vtkMRGIGather::GatherFull(const vtkMRGIFrameContext& frame, vtkTextureObject* vpls,
-  int vplCount, double strength, vtkTextureObject* irradiance, vtkTextureObject* indirect)
+  int vplCount, double strength, vtkTextureObject* irradiance, vtkTextureObject* indirect,
+  const vtkMRGIIndirectVisibility& visibility)
 {
   if (!vpls || vplCount < 1)
   {
@@ -210,14 +128,30 @@ bool vtkMRGIGather::GatherFull(const vtkMRGIFrameContext& frame, vtkTextureObjec
     vtkErrorMacro("the full-resolution gather needs at least one VPL");
     return false;
   }
-  return this->RunFull(frame, vpls, vplCount, nullptr, strength, irradiance, indirect);
+  return this->UseVisibility(visibility, vplCount) &&
+    this->RunFull(frame, vpls, vplCount, nullptr, strength, irradiance, indirect);
 }
 
 //------------------------------------------------------------------------------
 bool vtkMRGIGather::GatherFullTree(const vtkMRGIFrameContext& frame, const vtkMRGIVPLTreeTerm& tree,
-  double strength, vtkTextureObject* irradiance, vtkTextureObject* indirect)
+  double strength, vtkTextureObject* irradiance, vtkTextureObject* indirect,
+  const vtkMRGIIndirectVisibility& visibility)
 {
-  return this->RunFull(frame, nullptr, 0, &tree, strength, irradiance, indirect);
+  return this->UseVisibility(visibility, mrgi_vpl_tree_root_count(tree.Tree)) && this->RunFull(frame, nullptr, 0, &tree, strength, irradiance, indirect);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIGather::UseVisibility(const vtkMRGIIndirectVisibility& visibility, int tiles)
+{
+  std::string error;
+  this->Internal->Visibility = nullptr;
+  if (!vtkMRGIGatherVisibility::Check(visibility, tiles, error))
+  {
+    vtkErrorMacro("indirect visibility: " << error);
+    return false;
+  }
+  this->Internal->Visibility = vtkMRGIGatherVisibility::Enabled(visibility) ? &visibility : nullptr;
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -241,11 +175,16 @@ bool vtkMRGIGather::RunFull(const vtkMRGIFrameContext& frame, vtkTextureObject* 
   }
   in.GL.Prepare(window);
   const bool count = tree && this->CollectStatistics;
+  const vtkMRGIIndirectVisibility* vis = in.Visibility;
   const std::string defines = std::string(tree ? "#define MRGI_GATHER_TREE 1\n" : "") +
-    (count ? "#define MRGI_GATHER_COUNT_TARGET 2\n" : "");
-  vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(window, "gather.full", defines, [tree] {
-    return tree ? vtkMRGIShaderLibraries::Compose({ "vtkMRGIVPLTree", "vtkMRGIGatherFS" })
-                : vtkMRGIShaderLibraries::Compose({ "vtkMRGIGatherFS" });
+    (count ? "#define MRGI_GATHER_COUNT_TARGET 2\n" : "") +
+    (vis ? vtkMRGIGatherVisibility::Defines(*vis) : "");
+  vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(window, "gather.full", defines, [tree, vis] {
+    return tree ? vis ? vtkMRGIShaderLibraries::Compose(
+                          { "vtkMRGIISMLookup", "vtkMRGIVPLTree", "vtkMRGIGatherFS" })
+                      : vtkMRGIShaderLibraries::Compose({ "vtkMRGIVPLTree", "vtkMRGIGatherFS" })
+      : vis ? vtkMRGIShaderLibraries::Compose({ "vtkMRGIISMLookup", "vtkMRGIGatherFS" })
+            : vtkMRGIShaderLibraries::Compose({ "vtkMRGIGatherFS" });
   });
   if (!quad ||
     (count &&
@@ -275,6 +214,10 @@ bool vtkMRGIGather::RunFull(const vtkMRGIFrameContext& frame, vtkTextureObject* 
     program->SetUniformi("mrgiAlbedo", frame.Albedo->GetTextureUnit());
     program->SetUniformf("mrgiStrength", static_cast<float>(strength));
     program->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
+    if (vis)
+    {
+      vtkMRGIGatherVisibility::Bind(program, *vis);
+    }
     if (tree)
     {
       vtkMRGIVPLTreeTexture::DrawBatches(program, tree->Tree, tree->Nodes, tree->Threshold, roots,
@@ -285,6 +228,10 @@ bool vtkMRGIGather::RunFull(const vtkMRGIFrameContext& frame, vtkTextureObject* 
       program->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
       program->SetUniformi("mrgiVPLCount", vplCount);
       quad->Render();
+    }
+    if (vis)
+    {
+      vtkMRGIGatherVisibility::Unbind(*vis);
     }
     light->Deactivate();
     frame.Albedo->Deactivate();
@@ -402,15 +349,18 @@ bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultir
   const bool area = term != nullptr;
   const bool masked = area && term->Masks != nullptr;
   const bool visibility = area && !masked && term->Voxels != nullptr;
+  const vtkMRGIIndirectVisibility* vis = area ? nullptr : in.Visibility; // the VPLs' visibility
   ScopedStage gatherStep(frame.Timer, area ? "gather.samples" : "gather.vpls");
   const std::string defines = std::string("#define MRGI_GATHER_IRRADIANCE_ONLY 1\n") +
     (masked ? "#define MRGI_AREA_VISIBILITY_MASKS 1\n" : "") +
     (visibility ? "#define MRGI_AREA_VISIBILITY 1\n" : "") +
-    (area ? "#define MRGI_GATHER_AREA_LIGHT 1\n" : "");
+    (area ? "#define MRGI_GATHER_AREA_LIGHT 1\n" : "") +
+    (vis ? vtkMRGIGatherVisibility::Defines(*vis) : "");
   vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(window, "gather", defines, [&] {
     return visibility ? vtkMRGIShaderLibraries::Compose(
                           { "vtkMRGIVoxelMarch", "vtkMRGIAreaLightDiffuse", "vtkMRGIGatherFS" })
       : area ? vtkMRGIShaderLibraries::Compose({ "vtkMRGIAreaLightDiffuse", "vtkMRGIGatherFS" })
+      : vis  ? vtkMRGIShaderLibraries::Compose({ "vtkMRGIISMLookup", "vtkMRGIGatherFS" })
              : vtkMRGIShaderLibraries::Compose({ "vtkMRGIGatherFS" });
   });
   vtkShaderProgram* gather = quad ? quad->Program : nullptr;
@@ -453,6 +403,10 @@ bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultir
   {
     gather->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
     gather->SetUniformi("mrgiVPLCount", vplCount);
+    if (vis)
+    {
+      vtkMRGIGatherVisibility::Bind(gather, *vis);
+    }
   }
   gather->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
   // Marching every sample in one fragment can run past the total loop
@@ -531,6 +485,10 @@ bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultir
     receivers[0]->Deactivate();
   }
   vpls->Deactivate();
+  if (vis)
+  {
+    vtkMRGIGatherVisibility::Unbind(*vis);
+  }
   if (vplCount > batch)
   {
     ostate->vtkglBlendEquationSeparate(GL_FUNC_ADD, GL_FUNC_ADD);
@@ -595,11 +553,16 @@ bool vtkMRGIGather::RunStenciledTree(const vtkMRGIFrameContext& frame, vtkMRGIMu
   const int levels = layout.level_count;
   const int finest = buffer->GetFinestGatherLevel();
   vtkMRGIShaderUtilities::ScopedStage gatherStep(frame.Timer, "gather.tree");
+  const vtkMRGIIndirectVisibility* vis = in.Visibility;
   const std::string defines = std::string("#define MRGI_GATHER_IRRADIANCE_ONLY 1\n"
                                           "#define MRGI_GATHER_TREE 1\n") +
-    (count ? "#define MRGI_GATHER_COUNT_TARGET 1\n" : "");
-  vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(window, "gather.tree", defines,
-    [] { return vtkMRGIShaderLibraries::Compose({ "vtkMRGIVPLTree", "vtkMRGIGatherFS" }); });
+    (count ? "#define MRGI_GATHER_COUNT_TARGET 1\n" : "") +
+    (vis ? vtkMRGIGatherVisibility::Defines(*vis) : "");
+  vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(window, "gather.tree", defines, [vis] {
+    return vis ? vtkMRGIShaderLibraries::Compose(
+                   { "vtkMRGIISMLookup", "vtkMRGIVPLTree", "vtkMRGIGatherFS" })
+               : vtkMRGIShaderLibraries::Compose({ "vtkMRGIVPLTree", "vtkMRGIGatherFS" });
+  });
   vtkShaderProgram* gather = quad ? quad->Program : nullptr;
   if (!gather ||
     (count &&
@@ -620,6 +583,10 @@ bool vtkMRGIGather::RunStenciledTree(const vtkMRGIFrameContext& frame, vtkMRGIMu
     steps.BeginStencilRead(stencil);
     tree.Nodes->Activate();
     gather->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
+    if (vis)
+    {
+      vtkMRGIGatherVisibility::Bind(gather, *vis);
+    }
     for (int i = finest; i < levels; ++i)
     {
       const std::array<vtkTextureObject*, 2> receivers = buffer->BindReceivers(gather, i);
@@ -641,6 +608,10 @@ bool vtkMRGIGather::RunStenciledTree(const vtkMRGIFrameContext& frame, vtkMRGIMu
         gather, tree.Tree, tree.Nodes, tree.Threshold, roots, rootsPerBatch, ostate, draw);
       receivers[1]->Deactivate();
       receivers[0]->Deactivate();
+    }
+    if (vis)
+    {
+      vtkMRGIGatherVisibility::Unbind(*vis);
     }
     tree.Nodes->Deactivate();
     steps.EndStencilRead();

@@ -30,6 +30,19 @@
  * 3 fixes the texture layout and the batches of roots); shader
  * vtkMRGIGatherFS.glsl with MRGI_GATHER_TREE and vtkMRGIVPLTree.glsl.
  *
+ * Indirect shadows: the four VPL gathers take a vtkMRGIIndirectVisibility
+ * (default: none, the gathers exactly as without it). ISMVisibility
+ * weights each VPL's term by its imperfect shadow map (tile j for VPL j of
+ * the cache; in the tree gathers every node of root r by root r's tile,
+ * looked up from root r: mrgi_vpl_tree_gather.h section 4), GLSL
+ * vtkMRGIISMLookup.glsl behind MRGI_INDIRECT_ISM, C twins
+ * mrgi_gather_full_visibility() and mrgi_vpl_tree_gather_visibility().
+ * Errors name the problem: atlas missing, a layout whose tile count is not
+ * the VPL (root) count, an atlas texture of another size. Refused by name:
+ * VoxelVisibility (a march per VPL and receiver does not fit llvmpipe's
+ * loop budget; the C twins support it) and visibility with the splatting
+ * GatherMode (each VPL splats without knowing its receivers' occluders).
+ *
  * With CollectStatistics on, an occlusion query per level counts the
  * texels gathered (nichols-shopf-wyman-2009 table 1), and the tree gathers
  * count the VPLs (tree nodes) each gathered texel used.
@@ -41,6 +54,7 @@
 #include "vtkObject.h"
 
 #include "mrgi_vpl_tree_gather.h" // For MRGI_VPL_TREE_DEFAULT_THRESHOLD
+#include "vtkMRGIIndirectVisibility.h" // For vtkMRGIIndirectVisibility (default arguments)
 
 #include <functional> // For std::function
 #include <memory>     // For std::unique_ptr
@@ -48,6 +62,7 @@
 struct mrgi_area_light_uniforms;
 struct mrgi_multires_layout;
 struct vtkMRGIFrameContext;
+struct vtkMRGIGatherInternals;
 class vtkFloatArray;
 class vtkMRGIMultiresolution;
 class vtkMRGISpecularStencil;
@@ -149,7 +164,8 @@ public:
    * False on error.
    */
   bool GatherVPLs(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
-    vtkTextureObject* vpls, int vplCount);
+    vtkTextureObject* vpls, int vplCount,
+    const vtkMRGIIndirectVisibility& visibility = vtkMRGIIndirectVisibility());
 
   /**
    * The full-resolution gather (vtkMRGIPass::IndirectFull, the reference
@@ -161,7 +177,8 @@ public:
    * error) on missing input or a program that does not build.
    */
   bool GatherFull(const vtkMRGIFrameContext& frame, vtkTextureObject* vpls, int vplCount,
-    double strength, vtkTextureObject* irradiance, vtkTextureObject* indirect);
+    double strength, vtkTextureObject* irradiance, vtkTextureObject* indirect,
+    const vtkMRGIIndirectVisibility& visibility = vtkMRGIIndirectVisibility());
 
   /**
    * The stenciled multiresolution gather with the VPL tree as the light
@@ -179,7 +196,8 @@ public:
    * GL_MAX_TEXTURE_SIZE.
    */
   bool GatherVPLTree(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
-    const vtkMRGIVPLTreeTerm& tree);
+    const vtkMRGIVPLTreeTerm& tree,
+    const vtkMRGIIndirectVisibility& visibility = vtkMRGIIndirectVisibility());
 
   /**
    * The full-resolution gather (as GatherFull()) with the VPL tree as the
@@ -188,7 +206,8 @@ public:
    * errors as GatherVPLTree(); no timer step of its own.
    */
   bool GatherFullTree(const vtkMRGIFrameContext& frame, const vtkMRGIVPLTreeTerm& tree,
-    double strength, vtkTextureObject* irradiance, vtkTextureObject* indirect);
+    double strength, vtkTextureObject* irradiance, vtkTextureObject* indirect,
+    const vtkMRGIIndirectVisibility& visibility = vtkMRGIIndirectVisibility());
 
   /**
    * Upload `tree`'s node records into `nodes` in the layout of
@@ -291,10 +310,12 @@ protected:
   // and roots per batch. False, with an error, when it cannot be gathered.
   bool CheckTree(vtkOpenGLRenderWindow* window, const vtkMRGIVPLTreeTerm& tree, int& roots,
     int& rootsPerBatch);
+  // Check a VPL gather's visibility for `tiles` VPLs (tree: roots) and keep
+  // it for this call; false, with an error naming the problem.
+  bool UseVisibility(const vtkMRGIIndirectVisibility& visibility, int tiles);
 #endif
 
-  struct Internals;
-  std::unique_ptr<Internals> Internal;
+  std::unique_ptr<vtkMRGIGatherInternals> Internal; // Private/vtkMRGIGatherInternals.h
 
 private:
   vtkMRGIGather(const vtkMRGIGather&) = delete;

@@ -129,18 +129,13 @@ bool vtkMRGIIndirectLight::RunGather(const vtkMRGIFrameContext& frame,
   vtkTextureObject* indirect)
 {
   const bool tree = this->VPLSelection->GetMode() == vtkMRGIVPLSelection::Tree;
-  if (visibility.Mode != vtkMRGIIndirectVisibility::NoVisibility)
-  {
-    vtkErrorMacro("TEMPORARY: the gathers take no visibility yet");
-    return false;
-  }
   if (!settings.Multiresolution)
   {
     vtkMRGIShaderUtilities::ScopedStage stage(frame.Timer, "gather");
     return tree ? this->Gather->GatherFullTree(frame, this->VPLSelection->GetTreeTerm(),
-                    settings.Strength, irradiance, indirect)
+                    settings.Strength, irradiance, indirect, visibility)
                 : this->Gather->GatherFull(frame, this->VPLSelection->GetVPLTexture(), vplCount,
-                    settings.Strength, irradiance, indirect);
+                    settings.Strength, irradiance, indirect, visibility);
   }
   vtkRenderTimerLog* timer = frame.Timer;
   {
@@ -157,9 +152,9 @@ bool vtkMRGIIndirectLight::RunGather(const vtkMRGIFrameContext& frame,
     if (!buffer->BuildReceivers(
           frame.Window, frame.Position, frame.Normal, frame.Viewport[0], frame.Viewport[1], timer) ||
       !(tree ? this->Gather->GatherVPLTree(
-                 frame, buffer, this->VPLSelection->GetTreeTerm())
+                 frame, buffer, this->VPLSelection->GetTreeTerm(), visibility)
              : this->Gather->GatherVPLs(
-                 frame, buffer, this->VPLSelection->GetVPLTexture(), vplCount)))
+                 frame, buffer, this->VPLSelection->GetVPLTexture(), vplCount, visibility)))
     {
       return false;
     }

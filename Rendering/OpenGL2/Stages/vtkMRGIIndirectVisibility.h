@@ -18,6 +18,10 @@
  * - VoxelVisibility: `Voxels` was voxelized this frame from the G-buffer; every VPL
  *   term is weighted by the voxel march from the receiver to the VPL
  *   (mrgi_voxel_march.h), occluders the camera does not see are missed.
+ *   Supported by the C twins (mrgi_gather_full_visibility()); the GPU
+ *   gathers refuse it by name for now (a march per receiver and VPL exceeds
+ *   llvmpipe's loop budget without VPL batching). Documentation:
+ *   IndirectLight.md, "Indirect visibility".
  */
 #ifndef vtkMRGIIndirectVisibility_h
 #define vtkMRGIIndirectVisibility_h

@@ -49,10 +49,21 @@ vec3 mrgiVPLRecordIrradiance(vec4 position, vec3 normal, vec3 flux, vec3 P, vec3
 
 // E_ij: VPL j of the cache (MRGI_VPL_TEXELS texels per VPL) at receiver
 // (P, N), world space. The flux is read first: zero-flux VPLs fetch nothing more.
+// With MRGI_INDIRECT_ISM (vtkMRGIISMLookup.glsl prepended) a term > 0 is
+// weighted by VPL j's imperfect shadow map (tile j), as
+// mrgi_gather_full_visibility() does (C twin).
 vec3 mrgiVPLIrradiance(sampler2D vpls, int j, vec3 P, vec3 N)
 {
   vec4 flux = texelFetch(vpls, ivec2(MRGI_VPL_TEXEL_FLUX, j), 0);
   if (flux.r == 0.0 && flux.g == 0.0 && flux.b == 0.0) { return vec3(0.0); }
+#ifdef MRGI_INDIRECT_ISM
+  vec4 position = texelFetch(vpls, ivec2(MRGI_VPL_TEXEL_POSITION, j), 0);
+  vec3 normal = texelFetch(vpls, ivec2(MRGI_VPL_TEXEL_NORMAL, j), 0).xyz;
+  vec3 E = mrgiVPLRecordIrradiance(position, normal, flux.rgb, P, N);
+  if (E != vec3(0.0)) { E *= mrgiISMVisibility(j, position.xyz, normal, P); }
+  return E;
+#else
   return mrgiVPLRecordIrradiance(texelFetch(vpls, ivec2(MRGI_VPL_TEXEL_POSITION, j), 0),
     texelFetch(vpls, ivec2(MRGI_VPL_TEXEL_NORMAL, j), 0).xyz, flux.rgb, P, N);
+#endif
 }

@@ -44,6 +44,9 @@ vec3 mrgiVPLTreeIrradiance(vec3 P, vec3 N, out int used)
   int y = (root / rootSide) % rootSide;
   vec3 E = vec3(0.0);
   used = 0;
+#ifdef MRGI_INDIRECT_ISM
+  float rootVisibility = -1.0; // V of the current root at P; -1: not yet
+#endif
   while (root < rootEnd)
   {
     int w = mrgiTreeSide >> level;
@@ -69,7 +72,25 @@ vec3 mrgiVPLTreeIrradiance(vec3 P, vec3 N, out int used)
         if (!refine)
         {
           // 4. P as one VPL: the cache gather's term on its record.
+#ifdef MRGI_INDIRECT_ISM
+          // Weighted by root r's ISM (tile r), looked up from root r's
+          // record: ISMs exist per root only (mrgi_vpl_tree_gather.h
+          // section 4); computed once per root, at its first term > 0.
+          vec3 term = mrgiVPLRecordIrradiance(position, normal.xyz, flux.rgb, P, N);
+          if (term != vec3(0.0))
+          {
+            if (rootVisibility < 0.0)
+            {
+              int rk = mrgiTreeLevelFirst[rootLevel] + root;
+              rootVisibility = mrgiISMVisibility(root, mrgiTreeTexel(rk, MRGI_VPL_TEXEL_POSITION).xyz,
+                mrgiTreeTexel(rk, MRGI_VPL_TEXEL_NORMAL).xyz, P);
+            }
+            term *= rootVisibility;
+          }
+          E += term;
+#else
           E += mrgiVPLRecordIrradiance(position, normal.xyz, flux.rgb, P, N);
+#endif
           ++used;
         }
       }
@@ -90,6 +111,9 @@ vec3 mrgiVPLTreeIrradiance(vec3 P, vec3 N, out int used)
     {
       // This root's subtree is done: the next root.
       ++root;
+#ifdef MRGI_INDIRECT_ISM
+      rootVisibility = -1.0;
+#endif
       level = rootLevel;
       view = root / (rootSide * rootSide);
       x = root % rootSide;
