@@ -1929,11 +1929,59 @@ static void test_samples_per_batch(void)
   MRGI_CHECK(mrgi_voxel_samples_per_batch(1) > mrgi_voxel_samples_per_batch(2));
 }
 
+/* The slicing range fitted to a box: the corners' eye-depth range plus the
+ * margin, inside the clipping range; the clipping range for an empty box,
+ * a box behind or outside it, and errors for bad arguments. */
+static void test_fit_depth_range(void)
+{
+  /* Camera at the origin looking down -z, rotated 90 degrees about y in a
+   * second case (eye z = world x). Row-major world -> eye. */
+  const double identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+  const double turned[16] = { 0, 0, -1, 0, 0, 1, 0, 0, 1, 0, 0, 0, 0, 0, 0, 1 };
+  const double fit_box[6] = { -1, 1, -1, 1, -30, -10 };
+  const double clip[2] = { 1.0, 100.0 };
+  double range[2];
+  mrgi_error err;
+  MRGI_CHECK(mrgi_voxel_fit_depth_range(identity, fit_box, clip, range, &err) == MRGI_OK);
+  MRGI_CHECK(fabs(range[0] - (10.0 - 0.2)) < 1e-12 && fabs(range[1] - (30.0 + 0.2)) < 1e-12);
+  /* eye z = world x: box x in [-30, -10] gives depths 10..30 as well */
+  const double box_x[6] = { -30, -10, -1, 1, -1, 1 };
+  MRGI_CHECK(mrgi_voxel_fit_depth_range(turned, box_x, clip, range, &err) == MRGI_OK);
+  MRGI_CHECK(fabs(range[0] - 9.8) < 1e-12 && fabs(range[1] - 30.2) < 1e-12);
+  /* clipped to the clipping range */
+  const double tight[2] = { 12.0, 20.0 };
+  MRGI_CHECK(mrgi_voxel_fit_depth_range(identity, fit_box, tight, range, &err) == MRGI_OK);
+  MRGI_CHECK(range[0] == 12.0 && range[1] == 20.0);
+  /* VTK's uninitialised bounds, a non-finite box, a box behind the camera, a flat box */
+  const double empty[6] = { 1, -1, 1, -1, 1, -1 };
+  const double nan_box[6] = { 0, 1, 0, 1, NAN, 1 };
+  const double behind[6] = { -1, 1, -1, 1, 10, 20 };
+  const double flat[6] = { -1, 1, -1, 1, -10, -10 };
+  const double* fallbacks[4] = { empty, nan_box, behind, flat };
+  for (int k = 0; k < 4; ++k)
+  {
+    MRGI_CHECK(mrgi_voxel_fit_depth_range(identity, fallbacks[k], clip, range, &err) == MRGI_OK);
+    MRGI_CHECK(range[0] == clip[0] && range[1] == clip[1]);
+  }
+  /* errors */
+  const double reversed[2] = { 5.0, 1.0 };
+  const double bad_matrix[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, NAN, 0, 0, 0, 0, 1 };
+  MRGI_CHECK(mrgi_voxel_fit_depth_range(identity, fit_box, reversed, range, &err) ==
+             MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(strstr(err.message, "clipping range") != NULL);
+  MRGI_CHECK(mrgi_voxel_fit_depth_range(bad_matrix, fit_box, clip, range, &err) ==
+             MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(strstr(err.message, "not finite") != NULL);
+  MRGI_CHECK(mrgi_voxel_fit_depth_range(NULL, fit_box, clip, range, &err) ==
+             MRGI_ERR_INVALID_ARGUMENT);
+}
+
 int main(int argc, char** argv)
 {
   static const mrgi_test_case cases[] = {
     MRGI_TEST_CASE(test_samples_per_batch),
     MRGI_TEST_CASE(test_layout),
+    MRGI_TEST_CASE(test_fit_depth_range),
     MRGI_TEST_CASE(test_grid_errors),
     MRGI_TEST_CASE(test_voxelize),
     MRGI_TEST_CASE(test_march_walls),

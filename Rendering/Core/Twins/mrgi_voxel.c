@@ -74,6 +74,66 @@ mrgi_status mrgi_voxel_grid_check(const mrgi_voxel_grid* grid, mrgi_error* err)
   return MRGI_OK;
 }
 
+mrgi_status mrgi_voxel_fit_depth_range(const double world_to_eye[16], const double bounds[6],
+                                       const double clip[2], double range[2], mrgi_error* err)
+{
+  if (!world_to_eye || !bounds || !clip || !range)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "voxel depth fit: a NULL %s",
+                          !world_to_eye ? "matrix" : !bounds ? "box" : !clip ? "clipping range"
+                                                                            : "output");
+  }
+  for (int k = 8; k < 12; ++k)
+  {
+    if (!isfinite(world_to_eye[k]))
+    {
+      return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                            "voxel depth fit: matrix element (2, %d) is not finite", k - 8);
+    }
+  }
+  if (!isfinite(clip[0]) || !isfinite(clip[1]) || !(clip[0] < clip[1]))
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "voxel depth fit: clipping range [%g, %g] is not finite and increasing",
+                          clip[0], clip[1]);
+  }
+  range[0] = clip[0];
+  range[1] = clip[1];
+  for (int k = 0; k < 6; ++k)
+  {
+    if (!isfinite(bounds[k]))
+    {
+      return MRGI_OK; /* no usable box: the clipping range */
+    }
+  }
+  if (bounds[0] > bounds[1] || bounds[2] > bounds[3] || bounds[4] > bounds[5])
+  {
+    return MRGI_OK;
+  }
+  double dmin = INFINITY;
+  double dmax = -INFINITY;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const double x = bounds[corner & 1];
+    const double y = bounds[2 + ((corner >> 1) & 1)];
+    const double z = bounds[4 + ((corner >> 2) & 1)];
+    const double d = -(world_to_eye[8] * x + world_to_eye[9] * y + world_to_eye[10] * z +
+                       world_to_eye[11]);
+    dmin = d < dmin ? d : dmin;
+    dmax = d > dmax ? d : dmax;
+  }
+  const double margin = MRGI_VOXEL_FIT_MARGIN * (dmax - dmin);
+  const double lo = fmax(dmin - margin, clip[0]);
+  const double hi = fmin(dmax + margin, clip[1]);
+  if (isfinite(lo) && isfinite(hi) && hi - lo > 1e-6 * (clip[1] - clip[0]))
+  {
+    range[0] = lo;
+    range[1] = hi;
+  }
+  return MRGI_OK;
+}
+
 size_t mrgi_voxel_buffer_words(const mrgi_voxel_grid* grid)
 {
   if (!grid || grid->width < 1 || grid->height < 1)
