@@ -1976,12 +1976,47 @@ static void test_fit_depth_range(void)
              MRGI_ERR_INVALID_ARGUMENT);
 }
 
+/* The per-pixel clamp of the voxelization (mrgi_voxel.h section 5): the
+ * depths of the triangle clipped to the pixel square, for parallel (depth
+ * linear in screen space) and perspective (1 / depth linear) triangles; a
+ * pixel cut by an edge keeps only the triangle's side; outside: none. */
+static void test_triangle_pixel_range(void)
+{
+  const float u[3] = { 0.0f, 10.0f, 0.0f };
+  const float v[3] = { 0.0f, 0.0f, 10.0f };
+  const float ones[3] = { 1.0f, 1.0f, 1.0f };
+  const float linear[3] = { 100.0f, 110.0f, 100.0f }; /* parallel: d = 100 + u */
+  float r[2];
+  MRGI_CHECK(mrgi_voxel_triangle_pixel_range(u, v, linear, ones, 2, 3, r) == 1);
+  MRGI_CHECK(fabsf(r[0] - 102.0f) < 1e-4f && fabsf(r[1] - 103.0f) < 1e-4f);
+  /* the hypotenuse u + v = 10 cuts pixel (9, 0): only u in [9, 10] inside */
+  MRGI_CHECK(mrgi_voxel_triangle_pixel_range(u, v, linear, ones, 9, 0, r) == 1);
+  MRGI_CHECK(fabsf(r[0] - 109.0f) < 1e-4f && fabsf(r[1] - 110.0f) < 1e-4f);
+  /* pixel (9, 5) lies beyond the hypotenuse */
+  r[0] = r[1] = -1.0f;
+  MRGI_CHECK(mrgi_voxel_triangle_pixel_range(u, v, linear, ones, 9, 5, r) == 0);
+  MRGI_CHECK(r[0] == -1.0f && r[1] == -1.0f);
+  MRGI_CHECK(mrgi_voxel_triangle_pixel_range(u, v, linear, ones, 20, 20, r) == 0);
+  /* perspective: w = d, 1/d linear in screen space: 1/d(u) = 1/100 - u / 2000 */
+  const float d[3] = { 100.0f, 200.0f, 100.0f };
+  MRGI_CHECK(mrgi_voxel_triangle_pixel_range(u, v, d, d, 4, 0, r) == 1);
+  MRGI_CHECK(fabsf(r[0] - 125.0f) < 1e-3f && fabsf(r[1] - 400.0f / 3.0f) < 1e-3f);
+  /* an edge-on face's skirt: the whole triangle spans [100, 200], a pixel
+   * at its near end only [100, 1 / (1/100 - 1/2000)] */
+  MRGI_CHECK(mrgi_voxel_triangle_pixel_range(u, v, d, d, 0, 9, r) == 1);
+  MRGI_CHECK(fabsf(r[0] - 100.0f) < 1e-3f && fabsf(r[1] - 2000.0f / 19.0f) < 1e-3f);
+  /* a vertex at or behind the eye: no answer (the caller's fallback) */
+  const float behind[3] = { 100.0f, -5.0f, 100.0f };
+  MRGI_CHECK(mrgi_voxel_triangle_pixel_range(u, v, d, behind, 4, 0, r) == 0);
+}
+
 int main(int argc, char** argv)
 {
   static const mrgi_test_case cases[] = {
     MRGI_TEST_CASE(test_samples_per_batch),
     MRGI_TEST_CASE(test_layout),
     MRGI_TEST_CASE(test_fit_depth_range),
+    MRGI_TEST_CASE(test_triangle_pixel_range),
     MRGI_TEST_CASE(test_grid_errors),
     MRGI_TEST_CASE(test_voxelize),
     MRGI_TEST_CASE(test_march_walls),

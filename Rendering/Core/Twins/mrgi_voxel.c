@@ -327,6 +327,76 @@ void mrgi_voxel_fragment_mask(const mrgi_voxel_grid* grid, float depth, float ha
   mrgi_voxel_range_mask(mrgi_voxel_slice(grid, lo), mrgi_voxel_slice(grid, hi), mask);
 }
 
+/* One Sutherland-Hodgman pass: keep the side where sign * (coord - edge) >= 0.
+ * p: n vertices (u, v, a = d / w, b = 1 / w); writes at most n + 1 into q. */
+static int mrgi_voxel_clip_pass(const float p[][4], int n, int axis, float edge, float sign,
+                                float q[][4])
+{
+  int m = 0;
+  for (int i = 0; i < n; ++i)
+  {
+    const float* s0 = p[i];
+    const float* s1 = p[i + 1 < n ? i + 1 : 0];
+    const float f0 = sign * (s0[axis] - edge);
+    const float f1 = sign * (s1[axis] - edge);
+    if (f0 >= 0.0f)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        q[m][c] = s0[c];
+      }
+      ++m;
+    }
+    if ((f0 >= 0.0f) != (f1 >= 0.0f))
+    {
+      const float t = f0 / (f0 - f1);
+      for (int c = 0; c < 4; ++c)
+      {
+        q[m][c] = s0[c] + t * (s1[c] - s0[c]);
+      }
+      ++m;
+    }
+  }
+  return m;
+}
+
+int mrgi_voxel_triangle_pixel_range(const float u[3], const float v[3], const float depth[3],
+                                    const float w[3], int32_t x, int32_t y, float range[2])
+{
+  if (!(w[0] > 0.0f && w[1] > 0.0f && w[2] > 0.0f))
+  {
+    return 0; /* a vertex at or behind the eye: its (u, v) mean nothing */
+  }
+  float a[8][4], b[8][4];
+  for (int i = 0; i < 3; ++i)
+  {
+    a[i][0] = u[i];
+    a[i][1] = v[i];
+    a[i][2] = depth[i] / w[i];
+    a[i][3] = 1.0f / w[i];
+  }
+  int n = 3;
+  n = mrgi_voxel_clip_pass((const float(*)[4])a, n, 0, (float)x, 1.0f, b);
+  n = mrgi_voxel_clip_pass((const float(*)[4])b, n, 0, (float)(x + 1), -1.0f, a);
+  n = mrgi_voxel_clip_pass((const float(*)[4])a, n, 1, (float)y, 1.0f, b);
+  n = mrgi_voxel_clip_pass((const float(*)[4])b, n, 1, (float)(y + 1), -1.0f, a);
+  if (n < 1)
+  {
+    return 0;
+  }
+  float lo = a[0][2] / a[0][3];
+  float hi = lo;
+  for (int i = 1; i < n; ++i)
+  {
+    const float d = a[i][2] / a[i][3];
+    lo = fminf(lo, d);
+    hi = fmaxf(hi, d);
+  }
+  range[0] = lo;
+  range[1] = hi;
+  return 1;
+}
+
 /* Shared argument checks of the functions that write a voxel buffer. */
 static mrgi_status mrgi_voxel_check_buffer(const mrgi_voxel_grid* grid, const uint32_t* voxels,
                                            size_t voxel_words, mrgi_error* err)

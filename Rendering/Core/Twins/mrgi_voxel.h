@@ -113,6 +113,17 @@
  *   would grow a "skirt" in front of and behind the object. TestVoxel's
  *   random box scenes: false occlusions at 128^2 fall from 9.7% to 2.5% of
  *   the rays with the clamp.
+ * - [dmin, dmax] is the depth range of the triangle CLIPPED TO THE PIXEL
+ *   SQUARE (mrgi_voxel_triangle_pixel_range(); the fragment stage gets the
+ *   three vertices from the geometry shader), not the whole triangle's:
+ *   a large face seen edge-on (the tall Cornell block's top, seen from
+ *   below) covers one or two voxel rows, and with the whole triangle's
+ *   range every pixel of those rows held the depths of the face's nearest
+ *   corner, a slab in front of the face's edge there that shadowed rays
+ *   leaving the block's front face (cornell-area, 128^2 voxels: the dark
+ *   smear on the tall block's front). When the clipped polygon is empty
+ *   (float rounding at an edge) or a vertex is at or behind the eye, the
+ *   whole triangle's range is used.
  *
  * A fragment at d in [near, far] writes
  *
@@ -345,6 +356,31 @@ typedef struct mrgi_voxel_info
 void mrgi_voxel_fragment_mask(const mrgi_voxel_grid* grid, float depth, float half_span,
                               float depth_min, float depth_max,
                               uint32_t mask[MRGI_VOXEL_CHANNELS]);
+
+/**
+ * @brief Depth range of a triangle clipped to voxel pixel (x, y)'s square
+ *        [x, x + 1] x [y, y + 1] (section 5; the fragment stage's clamp).
+ *
+ * Vertices in voxel pixel coordinates (u, v) with their linear depth d and
+ * clip w (w = d for perspective, 1 for parallel). Sutherland-Hodgman
+ * clipping against u >= x, u <= x + 1, v >= y, v <= y + 1 in that order,
+ * interpolating a = d / w and b = 1 / w linearly in screen space (exact for
+ * both projections: the perspective-correct pair), then d = a / b at every
+ * vertex of the clipped polygon (at most 7); the range is their min and max
+ * (a planar polygon's depth is monotone along lines in screen space, so its
+ * extremes are at the polygon's vertices). Float, in this order; the GLSL
+ * (vtkMRGIVoxelizeFS.glsl) translates it statement by statement.
+ *
+ * @param u,v,depth,w Three vertices.
+ * @param range Receives [dmin, dmax] when the clipped polygon is not empty.
+ * @return 1 when the clipped polygon has at least one vertex, else 0
+ *         (`range` untouched; the caller clamps to the whole triangle's
+ *         range): also when a vertex has w <= 0 or NaN (at or behind the
+ *         eye: GL clips such a triangle, but its vertices' (u, v) mean
+ *         nothing).
+ */
+int mrgi_voxel_triangle_pixel_range(const float u[3], const float v[3], const float depth[3],
+                                    const float w[3], int32_t x, int32_t y, float range[2]);
 
 /**
  * @brief Zero the voxel buffer (the pass's glClear to 0).
