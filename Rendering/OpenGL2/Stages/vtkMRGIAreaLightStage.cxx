@@ -307,6 +307,16 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
       range[0] = clip[0];
       range[1] = clip[1];
     }
+    if (distributed)
+    {
+      // One grid on every process (their voxels are OR-ed below): the
+      // union of the processes' ranges (each sees its own props' bounds),
+      // or the shared clipping range when the reduction fails.
+      double extent[2] = { -range[0], range[1] };
+      const bool reduced = this->Compositor->AllReduceMax(extent, 2);
+      range[0] = reduced ? -extent[0] : clip[0];
+      range[1] = reduced ? extent[1] : clip[1];
+    }
     if (this->Voxelization->Voxelize(renderer, range[0], range[1], timer))
     {
       voxels = this->Voxelization;
