@@ -1929,11 +1929,94 @@ static void test_samples_per_batch(void)
   MRGI_CHECK(mrgi_voxel_samples_per_batch(1) > mrgi_voxel_samples_per_batch(2));
 }
 
+/* The slicing range fitted to a box: the corners' eye-depth range plus the
+ * margin, inside the clipping range; the clipping range for an empty box,
+ * a box behind or outside it, and errors for bad arguments. */
+static void test_fit_depth_range(void)
+{
+  /* Camera at the origin looking down -z, rotated 90 degrees about y in a
+   * second case (eye z = world x). Row-major world -> eye. */
+  const double identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+  const double turned[16] = { 0, 0, -1, 0, 0, 1, 0, 0, 1, 0, 0, 0, 0, 0, 0, 1 };
+  const double fit_box[6] = { -1, 1, -1, 1, -30, -10 };
+  const double clip[2] = { 1.0, 100.0 };
+  double range[2];
+  mrgi_error err;
+  MRGI_CHECK(mrgi_voxel_fit_depth_range(identity, fit_box, clip, range, &err) == MRGI_OK);
+  MRGI_CHECK(fabs(range[0] - (10.0 - 0.2)) < 1e-12 && fabs(range[1] - (30.0 + 0.2)) < 1e-12);
+  /* eye z = world x: box x in [-30, -10] gives depths 10..30 as well */
+  const double box_x[6] = { -30, -10, -1, 1, -1, 1 };
+  MRGI_CHECK(mrgi_voxel_fit_depth_range(turned, box_x, clip, range, &err) == MRGI_OK);
+  MRGI_CHECK(fabs(range[0] - 9.8) < 1e-12 && fabs(range[1] - 30.2) < 1e-12);
+  /* clipped to the clipping range */
+  const double tight[2] = { 12.0, 20.0 };
+  MRGI_CHECK(mrgi_voxel_fit_depth_range(identity, fit_box, tight, range, &err) == MRGI_OK);
+  MRGI_CHECK(range[0] == 12.0 && range[1] == 20.0);
+  /* VTK's uninitialised bounds, a non-finite box, a box behind the camera, a flat box */
+  const double empty[6] = { 1, -1, 1, -1, 1, -1 };
+  const double nan_box[6] = { 0, 1, 0, 1, NAN, 1 };
+  const double behind[6] = { -1, 1, -1, 1, 10, 20 };
+  const double flat[6] = { -1, 1, -1, 1, -10, -10 };
+  const double* fallbacks[4] = { empty, nan_box, behind, flat };
+  for (int k = 0; k < 4; ++k)
+  {
+    MRGI_CHECK(mrgi_voxel_fit_depth_range(identity, fallbacks[k], clip, range, &err) == MRGI_OK);
+    MRGI_CHECK(range[0] == clip[0] && range[1] == clip[1]);
+  }
+  /* errors */
+  const double reversed[2] = { 5.0, 1.0 };
+  const double bad_matrix[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, NAN, 0, 0, 0, 0, 1 };
+  MRGI_CHECK(mrgi_voxel_fit_depth_range(identity, fit_box, reversed, range, &err) ==
+             MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(strstr(err.message, "clipping range") != NULL);
+  MRGI_CHECK(mrgi_voxel_fit_depth_range(bad_matrix, fit_box, clip, range, &err) ==
+             MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(strstr(err.message, "not finite") != NULL);
+  MRGI_CHECK(mrgi_voxel_fit_depth_range(NULL, fit_box, clip, range, &err) ==
+             MRGI_ERR_INVALID_ARGUMENT);
+}
+
+/* The per-pixel clamp of the voxelization (mrgi_voxel.h section 5): the
+ * depths of the triangle clipped to the pixel square, for parallel (depth
+ * linear in screen space) and perspective (1 / depth linear) triangles; a
+ * pixel cut by an edge keeps only the triangle's side; outside: none. */
+static void test_triangle_pixel_range(void)
+{
+  const float u[3] = { 0.0f, 10.0f, 0.0f };
+  const float v[3] = { 0.0f, 0.0f, 10.0f };
+  const float ones[3] = { 1.0f, 1.0f, 1.0f };
+  const float linear[3] = { 100.0f, 110.0f, 100.0f }; /* parallel: d = 100 + u */
+  float r[2];
+  MRGI_CHECK(mrgi_voxel_triangle_pixel_range(u, v, linear, ones, 2, 3, r) == 1);
+  MRGI_CHECK(fabsf(r[0] - 102.0f) < 1e-4f && fabsf(r[1] - 103.0f) < 1e-4f);
+  /* the hypotenuse u + v = 10 cuts pixel (9, 0): only u in [9, 10] inside */
+  MRGI_CHECK(mrgi_voxel_triangle_pixel_range(u, v, linear, ones, 9, 0, r) == 1);
+  MRGI_CHECK(fabsf(r[0] - 109.0f) < 1e-4f && fabsf(r[1] - 110.0f) < 1e-4f);
+  /* pixel (9, 5) lies beyond the hypotenuse */
+  r[0] = r[1] = -1.0f;
+  MRGI_CHECK(mrgi_voxel_triangle_pixel_range(u, v, linear, ones, 9, 5, r) == 0);
+  MRGI_CHECK(r[0] == -1.0f && r[1] == -1.0f);
+  MRGI_CHECK(mrgi_voxel_triangle_pixel_range(u, v, linear, ones, 20, 20, r) == 0);
+  /* perspective: w = d, 1/d linear in screen space: 1/d(u) = 1/100 - u / 2000 */
+  const float d[3] = { 100.0f, 200.0f, 100.0f };
+  MRGI_CHECK(mrgi_voxel_triangle_pixel_range(u, v, d, d, 4, 0, r) == 1);
+  MRGI_CHECK(fabsf(r[0] - 125.0f) < 1e-3f && fabsf(r[1] - 400.0f / 3.0f) < 1e-3f);
+  /* an edge-on face's skirt: the whole triangle spans [100, 200], a pixel
+   * at its near end only [100, 1 / (1/100 - 1/2000)] */
+  MRGI_CHECK(mrgi_voxel_triangle_pixel_range(u, v, d, d, 0, 9, r) == 1);
+  MRGI_CHECK(fabsf(r[0] - 100.0f) < 1e-3f && fabsf(r[1] - 2000.0f / 19.0f) < 1e-3f);
+  /* a vertex at or behind the eye: no answer (the caller's fallback) */
+  const float behind[3] = { 100.0f, -5.0f, 100.0f };
+  MRGI_CHECK(mrgi_voxel_triangle_pixel_range(u, v, d, behind, 4, 0, r) == 0);
+}
+
 int main(int argc, char** argv)
 {
   static const mrgi_test_case cases[] = {
     MRGI_TEST_CASE(test_samples_per_batch),
     MRGI_TEST_CASE(test_layout),
+    MRGI_TEST_CASE(test_fit_depth_range),
+    MRGI_TEST_CASE(test_triangle_pixel_range),
     MRGI_TEST_CASE(test_grid_errors),
     MRGI_TEST_CASE(test_voxelize),
     MRGI_TEST_CASE(test_march_walls),

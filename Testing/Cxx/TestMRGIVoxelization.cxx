@@ -12,6 +12,9 @@
 // voxel pixel centres (homogeneous edge functions in double), with the
 // fragment's depth and half span from the triangle's plane as the GPU's 2x2
 // quads see it (fine derivatives, helper pixels extrapolating the plane).
+// The clamp is the triangle clipped to the voxel pixel's square
+// (mrgi_voxel_triangle_pixel_range(), in float from the vertices' voxel
+// coordinates, as the geometry shader passes them).
 //
 // What may differ (mrgi_voxel.h section 5): a slice boundary within float
 // rounding of lo or hi (the differing bit is next to a set bit of the other
@@ -128,6 +131,14 @@ void RunTwin(const std::vector<Triangle>& tris, const mrgi_voxel_grid& grid,
     {
       len[i] = std::hypot(e[i][0], e[i][1]);
     }
+    float tu[3], tv[3], td[3], tw[3];
+    for (int i = 0; i < 3; ++i)
+    {
+      tu[i] = static_cast<float>(h[i][0] / h[i][2]);
+      tv[i] = static_cast<float>(h[i][1] / h[i][2]);
+      td[i] = static_cast<float>(d[i]);
+      tw[i] = static_cast<float>(h[i][2]);
+    }
     const float dmin = static_cast<float>(std::min({ d[0], d[1], d[2] }));
     const float dmax = static_cast<float>(std::max({ d[0], d[1], d[2] }));
     double umin = 1e300, umax = -1e300, vmin = 1e300, vmax = -1e300;
@@ -194,8 +205,11 @@ void RunTwin(const std::vector<Triangle>& tris, const mrgi_voxel_grid& grid,
         const double ddx = planeDepth(qx + 1.5, py) - planeDepth(qx + 0.5, py);
         const double ddy = planeDepth(px, qy + 1.5) - planeDepth(px, qy + 0.5);
         const double half = 0.5 * (std::fabs(ddx) + std::fabs(ddy));
-        mrgi_voxel_fragment f = { x, y, static_cast<float>(depth), static_cast<float>(half), dmin,
-          dmax };
+        // The clamp: the triangle's depths inside this pixel (mrgi_voxel.h section 5).
+        float range[2] = { dmin, dmax };
+        mrgi_voxel_triangle_pixel_range(tu, tv, td, tw, x, y, range);
+        mrgi_voxel_fragment f = { x, y, static_cast<float>(depth), static_cast<float>(half),
+          range[0], range[1] };
         if (inside)
         {
           fragments.push_back(f);
@@ -208,7 +222,7 @@ void RunTwin(const std::vector<Triangle>& tris, const mrgi_voxel_grid& grid,
           // Either way is right: its mask (depth brought into the range) is tolerated.
           uint32_t mask[MRGI_VOXEL_CHANNELS];
           const float clamped = std::min(std::max(f.depth, grid.near_depth), grid.far_depth);
-          mrgi_voxel_fragment_mask(&grid, clamped, f.half_span, dmin, dmax, mask);
+          mrgi_voxel_fragment_mask(&grid, clamped, f.half_span, range[0], range[1], mask);
           uint32_t* texel = twin.Tolerance.data() + mrgi_voxel_index(&grid, x, y);
           for (int c = 0; c < MRGI_VOXEL_CHANNELS; ++c)
           {

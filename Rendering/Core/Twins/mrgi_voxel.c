@@ -74,6 +74,66 @@ mrgi_status mrgi_voxel_grid_check(const mrgi_voxel_grid* grid, mrgi_error* err)
   return MRGI_OK;
 }
 
+mrgi_status mrgi_voxel_fit_depth_range(const double world_to_eye[16], const double bounds[6],
+                                       const double clip[2], double range[2], mrgi_error* err)
+{
+  if (!world_to_eye || !bounds || !clip || !range)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "voxel depth fit: a NULL %s",
+                          !world_to_eye ? "matrix" : !bounds ? "box" : !clip ? "clipping range"
+                                                                            : "output");
+  }
+  for (int k = 8; k < 12; ++k)
+  {
+    if (!isfinite(world_to_eye[k]))
+    {
+      return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                            "voxel depth fit: matrix element (2, %d) is not finite", k - 8);
+    }
+  }
+  if (!isfinite(clip[0]) || !isfinite(clip[1]) || !(clip[0] < clip[1]))
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "voxel depth fit: clipping range [%g, %g] is not finite and increasing",
+                          clip[0], clip[1]);
+  }
+  range[0] = clip[0];
+  range[1] = clip[1];
+  for (int k = 0; k < 6; ++k)
+  {
+    if (!isfinite(bounds[k]))
+    {
+      return MRGI_OK; /* no usable box: the clipping range */
+    }
+  }
+  if (bounds[0] > bounds[1] || bounds[2] > bounds[3] || bounds[4] > bounds[5])
+  {
+    return MRGI_OK;
+  }
+  double dmin = INFINITY;
+  double dmax = -INFINITY;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const double x = bounds[corner & 1];
+    const double y = bounds[2 + ((corner >> 1) & 1)];
+    const double z = bounds[4 + ((corner >> 2) & 1)];
+    const double d = -(world_to_eye[8] * x + world_to_eye[9] * y + world_to_eye[10] * z +
+                       world_to_eye[11]);
+    dmin = d < dmin ? d : dmin;
+    dmax = d > dmax ? d : dmax;
+  }
+  const double margin = MRGI_VOXEL_FIT_MARGIN * (dmax - dmin);
+  const double lo = fmax(dmin - margin, clip[0]);
+  const double hi = fmin(dmax + margin, clip[1]);
+  if (isfinite(lo) && isfinite(hi) && hi - lo > 1e-6 * (clip[1] - clip[0]))
+  {
+    range[0] = lo;
+    range[1] = hi;
+  }
+  return MRGI_OK;
+}
+
 size_t mrgi_voxel_buffer_words(const mrgi_voxel_grid* grid)
 {
   if (!grid || grid->width < 1 || grid->height < 1)
@@ -265,6 +325,76 @@ void mrgi_voxel_fragment_mask(const mrgi_voxel_grid* grid, float depth, float ha
   const float lo = fminf(fmaxf(depth - h, depth_min), depth);
   const float hi = fmaxf(fminf(depth + h, depth_max), depth);
   mrgi_voxel_range_mask(mrgi_voxel_slice(grid, lo), mrgi_voxel_slice(grid, hi), mask);
+}
+
+/* One Sutherland-Hodgman pass: keep the side where sign * (coord - edge) >= 0.
+ * p: n vertices (u, v, a = d / w, b = 1 / w); writes at most n + 1 into q. */
+static int mrgi_voxel_clip_pass(const float p[][4], int n, int axis, float edge, float sign,
+                                float q[][4])
+{
+  int m = 0;
+  for (int i = 0; i < n; ++i)
+  {
+    const float* s0 = p[i];
+    const float* s1 = p[i + 1 < n ? i + 1 : 0];
+    const float f0 = sign * (s0[axis] - edge);
+    const float f1 = sign * (s1[axis] - edge);
+    if (f0 >= 0.0f)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        q[m][c] = s0[c];
+      }
+      ++m;
+    }
+    if ((f0 >= 0.0f) != (f1 >= 0.0f))
+    {
+      const float t = f0 / (f0 - f1);
+      for (int c = 0; c < 4; ++c)
+      {
+        q[m][c] = s0[c] + t * (s1[c] - s0[c]);
+      }
+      ++m;
+    }
+  }
+  return m;
+}
+
+int mrgi_voxel_triangle_pixel_range(const float u[3], const float v[3], const float depth[3],
+                                    const float w[3], int32_t x, int32_t y, float range[2])
+{
+  if (!(w[0] > 0.0f && w[1] > 0.0f && w[2] > 0.0f))
+  {
+    return 0; /* a vertex at or behind the eye: its (u, v) mean nothing */
+  }
+  float a[8][4], b[8][4];
+  for (int i = 0; i < 3; ++i)
+  {
+    a[i][0] = u[i];
+    a[i][1] = v[i];
+    a[i][2] = depth[i] / w[i];
+    a[i][3] = 1.0f / w[i];
+  }
+  int n = 3;
+  n = mrgi_voxel_clip_pass((const float(*)[4])a, n, 0, (float)x, 1.0f, b);
+  n = mrgi_voxel_clip_pass((const float(*)[4])b, n, 0, (float)(x + 1), -1.0f, a);
+  n = mrgi_voxel_clip_pass((const float(*)[4])a, n, 1, (float)y, 1.0f, b);
+  n = mrgi_voxel_clip_pass((const float(*)[4])b, n, 1, (float)(y + 1), -1.0f, a);
+  if (n < 1)
+  {
+    return 0;
+  }
+  float lo = a[0][2] / a[0][3];
+  float hi = lo;
+  for (int i = 1; i < n; ++i)
+  {
+    const float d = a[i][2] / a[i][3];
+    lo = fminf(lo, d);
+    hi = fmaxf(hi, d);
+  }
+  range[0] = lo;
+  range[1] = hi;
+  return 1;
 }
 
 /* Shared argument checks of the functions that write a voxel buffer. */

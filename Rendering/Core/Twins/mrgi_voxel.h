@@ -113,6 +113,17 @@
  *   would grow a "skirt" in front of and behind the object. TestVoxel's
  *   random box scenes: false occlusions at 128^2 fall from 9.7% to 2.5% of
  *   the rays with the clamp.
+ * - [dmin, dmax] is the depth range of the triangle CLIPPED TO THE PIXEL
+ *   SQUARE (mrgi_voxel_triangle_pixel_range(); the fragment stage gets the
+ *   three vertices from the geometry shader), not the whole triangle's:
+ *   a large face seen edge-on (the tall Cornell block's top, seen from
+ *   below) covers one or two voxel rows, and with the whole triangle's
+ *   range every pixel of those rows held the depths of the face's nearest
+ *   corner, a slab in front of the face's edge there that shadowed rays
+ *   leaving the block's front face (cornell-area, 128^2 voxels: the dark
+ *   smear on the tall block's front). When the clipped polygon is empty
+ *   (float rounding at an edge) or a vertex is at or behind the eye, the
+ *   whole triangle's range is used.
  *
  * A fragment at d in [near, far] writes
  *
@@ -164,6 +175,8 @@ extern "C" {
 #define MRGI_VOXEL_CHANNEL_BITS 32
 /** Largest voxel buffer side (keeps (2x+1) VW within 32-bit ints; GL's usual texture limit). */
 #define MRGI_VOXEL_MAX_SIZE 16384
+/** Margin of mrgi_voxel_fit_depth_range(), as a fraction of the box's depth range per side. */
+#define MRGI_VOXEL_FIT_MARGIN 0.01
 /** Default voxel buffer side (NPW10 4.2). */
 #define MRGI_VOXEL_DEFAULT_SIZE 128
 
@@ -199,6 +212,38 @@ mrgi_status mrgi_voxel_grid_init(mrgi_voxel_grid* grid, int32_t width, int32_t h
  * @return ::MRGI_ERR_INVALID_ARGUMENT for NULL or a modified grid.
  */
 mrgi_status mrgi_voxel_grid_check(const mrgi_voxel_grid* grid, mrgi_error* err);
+
+/**
+ * @brief Fit the slicing range to the scene: the eye-depth range of the
+ *        eight corners of a world-space box (the visible props' bounds),
+ *        widened by MRGI_VOXEL_FIT_MARGIN of its length on each side and
+ *        intersected with the camera's clipping range [clip[0], clip[1]].
+ *
+ * Why (section 2: "[near, far] fitted to the scene, not the clipping
+ * planes"): VTK's automatic clipping range pads the scene's depth range
+ * (cornell-area at 256^2: [512, 1796] mm for a box seen over about
+ * [800, 1360] mm), so more than half the 128 slices held nothing and each
+ * slice was 10 mm where 4.5 mm do. A slice is the voxel's depth, and the
+ * march's bias and its thickened rays (mrgi_voxel_march.h) scale with it:
+ * thick slices darken every ray that passes near an occluder.
+ *
+ * Every surface the voxelization draws lies inside the box, so no voxel
+ * is lost; depths outside the box hold no voxels either way.
+ *
+ * @param world_to_eye Row-major 4x4 (vtkMatrix4x4's element order); only
+ *               row 2 (eye z) is read; depth d = -z_eye.
+ * @param bounds (xmin, xmax, ymin, ymax, zmin, zmax); an uninitialised box
+ *               (xmin > xmax, VTK's (1, -1, ...)) or a non-finite value
+ *               returns the clipping range unchanged.
+ * @param clip   The clipping range, finite, clip[0] < clip[1].
+ * @param range  Receives [near, far]: within clip, near < far; the clipping
+ *               range when the box lies outside it or its depth range is
+ *               too thin to slice (far - near <= 1e-6 (clip[1] - clip[0])).
+ * @return ::MRGI_ERR_INVALID_ARGUMENT for NULL pointers, a non-finite matrix
+ *         row or an invalid clipping range.
+ */
+mrgi_status mrgi_voxel_fit_depth_range(const double world_to_eye[16], const double bounds[6],
+                                       const double clip[2], double range[2], mrgi_error* err);
 
 /** @brief Words of the voxel buffer: 4 VW VH; 0 for NULL. */
 size_t mrgi_voxel_buffer_words(const mrgi_voxel_grid* grid);
@@ -311,6 +356,31 @@ typedef struct mrgi_voxel_info
 void mrgi_voxel_fragment_mask(const mrgi_voxel_grid* grid, float depth, float half_span,
                               float depth_min, float depth_max,
                               uint32_t mask[MRGI_VOXEL_CHANNELS]);
+
+/**
+ * @brief Depth range of a triangle clipped to voxel pixel (x, y)'s square
+ *        [x, x + 1] x [y, y + 1] (section 5; the fragment stage's clamp).
+ *
+ * Vertices in voxel pixel coordinates (u, v) with their linear depth d and
+ * clip w (w = d for perspective, 1 for parallel). Sutherland-Hodgman
+ * clipping against u >= x, u <= x + 1, v >= y, v <= y + 1 in that order,
+ * interpolating a = d / w and b = 1 / w linearly in screen space (exact for
+ * both projections: the perspective-correct pair), then d = a / b at every
+ * vertex of the clipped polygon (at most 7); the range is their min and max
+ * (a planar polygon's depth is monotone along lines in screen space, so its
+ * extremes are at the polygon's vertices). Float, in this order; the GLSL
+ * (vtkMRGIVoxelizeFS.glsl) translates it statement by statement.
+ *
+ * @param u,v,depth,w Three vertices.
+ * @param range Receives [dmin, dmax] when the clipped polygon is not empty.
+ * @return 1 when the clipped polygon has at least one vertex, else 0
+ *         (`range` untouched; the caller clamps to the whole triangle's
+ *         range): also when a vertex has w <= 0 or NaN (at or behind the
+ *         eye: GL clips such a triangle, but its vertices' (u, v) mean
+ *         nothing).
+ */
+int mrgi_voxel_triangle_pixel_range(const float u[3], const float v[3], const float depth[3],
+                                    const float w[3], int32_t x, int32_t y, float range[2]);
 
 /**
  * @brief Zero the voxel buffer (the pass's glClear to 0).

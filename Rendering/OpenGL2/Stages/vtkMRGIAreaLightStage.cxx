@@ -292,13 +292,31 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
     fbo->RestorePreviousBindingsAndBuffers();
   }
   // Visibility: one voxelization per frame for every light, over the
-  // camera's clipping range (VTK fits it to the visible props' bounds: the
-  // visible scene's depth range, mrgi_voxel.h section 2).
+  // visible props' depth range within the camera's clipping range (VTK pads
+  // the clipping range; mrgi_voxel_fit_depth_range() says why it matters).
   vtkMRGIVoxelization* voxels = nullptr;
   if (this->Visibility != VisibilityOff)
   {
-    double range[2];
-    renderer->GetActiveCamera()->GetClippingRange(range);
+    double clip[2], bounds[6], range[2];
+    vtkCamera* camera = renderer->GetActiveCamera();
+    camera->GetClippingRange(clip);
+    renderer->ComputeVisiblePropBounds(bounds);
+    if (mrgi_voxel_fit_depth_range(
+          camera->GetModelViewTransformMatrix()->GetData(), bounds, clip, range, nullptr) != MRGI_OK)
+    {
+      range[0] = clip[0];
+      range[1] = clip[1];
+    }
+    if (distributed)
+    {
+      // One grid on every process (their voxels are OR-ed below): the
+      // union of the processes' ranges (each sees its own props' bounds),
+      // or the shared clipping range when the reduction fails.
+      double extent[2] = { -range[0], range[1] };
+      const bool reduced = this->Compositor->AllReduceMax(extent, 2);
+      range[0] = reduced ? -extent[0] : clip[0];
+      range[1] = reduced ? extent[1] : clip[1];
+    }
     if (this->Voxelization->Voxelize(renderer, range[0], range[1], timer))
     {
       voxels = this->Voxelization;

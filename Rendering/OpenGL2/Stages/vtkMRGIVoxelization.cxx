@@ -630,6 +630,9 @@ bool vtkMRGIVoxelization::Voxelize(
       program->SetUniformf("mrgiVoxelNear", grid.near_depth);
       program->SetUniformf("mrgiVoxelFar", grid.far_depth);
       program->SetUniformf("mrgiVoxelSliceScale", grid.slice_scale);
+      const float voxelViewport[2] = { static_cast<float>(grid.width),
+        static_cast<float>(grid.height) };
+      program->SetUniform2f("mrgiVoxelViewport", voxelViewport);
 
       in.Triangles = in.Geometry.Draw(program, worldToView);
     }

@@ -10,10 +10,18 @@ layout(triangle_strip, max_vertices = 3) out;
 // Eye -> clip; near and far are the voxel range's, so clipping drops what
 // lies outside [near, far] (the fragment stage tests it again exactly).
 uniform mat4 mrgiProjection;
+// VW, VH: clip -> voxel pixel coordinates (the viewport transform).
+uniform vec2 mrgiVoxelViewport;
 
 out float mrgiDepthGS;
 flat out float mrgiDepthMinGS;
 flat out float mrgiDepthMaxGS;
+// The triangle for the per-pixel clamp (mrgi_voxel_triangle_pixel_range()):
+// per vertex voxel pixel u, v, linear depth d and clip w.
+flat out vec3 mrgiTriUGS;
+flat out vec3 mrgiTriVGS;
+flat out vec3 mrgiTriDGS;
+flat out vec3 mrgiTriWGS;
 
 void main()
 {
@@ -23,9 +31,22 @@ void main()
   float d2 = -gl_in[2].gl_Position.z;
   float dmin = min(d0, min(d1, d2));
   float dmax = max(d0, max(d1, d2));
+  vec4 c[3];
+  vec3 tu, tv, tw;
   for (int i = 0; i < 3; ++i)
   {
-    gl_Position = mrgiProjection * gl_in[i].gl_Position;
+    c[i] = mrgiProjection * gl_in[i].gl_Position;
+    tw[i] = c[i].w;
+    tu[i] = (c[i].x / c[i].w + 1.0) * 0.5 * mrgiVoxelViewport.x;
+    tv[i] = (c[i].y / c[i].w + 1.0) * 0.5 * mrgiVoxelViewport.y;
+  }
+  for (int i = 0; i < 3; ++i)
+  {
+    gl_Position = c[i];
+    mrgiTriUGS = tu;
+    mrgiTriVGS = tv;
+    mrgiTriDGS = vec3(d0, d1, d2);
+    mrgiTriWGS = tw;
     mrgiDepthGS = -gl_in[i].gl_Position.z;
     // Flat values come from the provoking vertex: every vertex carries them.
     mrgiDepthMinGS = dmin;
