@@ -7,8 +7,8 @@
  *
  * Units are METRES; y is up. One spot light each (::MRGI_LIGHT_SPOT,
  * vtkLight semantics: no distance attenuation, falloff pow(cos, exponent)),
- * white, exponent 1, intensities below. Every surface is diffuse; walls face into the space the
- * camera stands in (their counter-clockwise side, as in the Cornell box),
+ * white, exponent 1, intensities below. Every surface is diffuse; walls
+ * face into the space the camera stands in (their counter-clockwise side, as in the Cornell box),
  * the statue's faces point out of it.
  *
  * Large faces are cut into square-ish tiles of at most
@@ -28,9 +28,9 @@
  *   ball of radius 0.3 (a 24 x 12 UV sphere with smooth normals).
  *   The spot hangs high by the right wall, at (-0.8, 2.3, 1.2), between
  *   camera and statue, and is pointed across at the left wall, (1, 1, 1),
- *   cone half-angle MRGI_INDIRECT_CORRIDOR_CONE_DEG: it lights a patch of
- *   the left wall (z ~ 0..2.3) beside the camera and the floor below it. Every vertex of
- *   the statue is more than 10 deg outside the cone and the ground truth
+ *   cone half-angle MRGI_INDIRECT_CORRIDOR_CONE_DEG:  it lights a patch of
+ *   the left wall (z ~ 0..2.3) beside the camera and the floor below it.
+ *   Every vertex of the statue is more than 10 deg outside the cone and the ground truth
  *   finds no direct light on it: the statue is lit only by the bounce off
  *   that patch, on the side the camera sees, and casts its indirect shadow
  *   back and to the right, onto the floor and the right wall behind it,
@@ -71,8 +71,9 @@
  *
  * Albedos: walls, ceilings and the statue the Cornell box's white (0.725,
  * 0.71, 0.68); floors grey (0.5, 0.5, 0.5); the corner's side wall a warm
- * (0.75, 0.5, 0.3) and the corridor's lit near wall (0.8, 0.7, 0.55), so
- * that its bounce light is told apart by its colour.
+ * (0.75, 0.5, 0.3), so that its bounce is told apart by its colour, and the
+ * corridor's near wall (0.8, 0.7, 0.55) (behind the camera; a leftover of
+ * an earlier layout that lit it, harmless: it only adds a faint tint).
  */
 #ifndef MRGI_SCENE_INDIRECT_H
 #define MRGI_SCENE_INDIRECT_H
