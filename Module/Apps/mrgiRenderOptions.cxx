@@ -305,7 +305,8 @@ const char* const UsageHead = R"(usage: mrgi-render SCENE -o OUT.png|OUT.exr [op
 
 Renders SCENE headless (no X server, no GPU needed) and writes the image.
 
-SCENE   a built-in scene: cornell, cornell-spot, cornell-area, living-room, scaling
+SCENE   a built-in scene: cornell, cornell-spot, cornell-area, living-room, scaling,
+        corridor, corridor-large, corner, u-shape
         or a data file: .vtp .vtu .vti .vts .vtr .vtm .vtk .ply .obj .stl .gltf .glb,
         point clouds .las (uncompressed LAS 1.0-1.4) .pcd (with MRGI's PCL module)
 )";

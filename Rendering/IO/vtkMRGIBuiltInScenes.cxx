@@ -20,6 +20,7 @@
 
 #include "mrgi_scene.h"
 #include "mrgi_scene_cornell.h"
+#include "mrgi_scene_indirect.h"
 #include "mrgi_scene_living_room.h"
 #include "mrgi_scene_scaling.h"
 
@@ -31,7 +32,7 @@
 namespace
 {
 const char* const Names[] = { "cornell", "cornell-spot", "cornell-area", "living-room",
-  "scaling" };
+  "scaling", "corridor", "corridor-large", "corner", "u-shape" };
 
 // Whether every vertex of `mesh` lies in the rectangle of `light` (up to a
 // small fraction of its size).
@@ -104,7 +105,8 @@ bool vtkMRGIBuiltInScenes::IsName(const char* name)
 //------------------------------------------------------------------------------
 const char* vtkMRGIBuiltInScenes::NameList()
 {
-  return "cornell cornell-spot cornell-area living-room scaling";
+  return "cornell cornell-spot cornell-area living-room scaling corridor corridor-large corner "
+         "u-shape";
 }
 
 //------------------------------------------------------------------------------
@@ -112,6 +114,7 @@ bool vtkMRGIBuiltInScenes::Make(const std::string& name, int objectCount, vtkIdT
   vtkTypeUInt64 seed, mrgi_scene* scene, mrgi_error* err)
 {
   mrgi_status status = MRGI_OK;
+  mrgi_indirect_scene which = MRGI_INDIRECT_CORRIDOR;
   if (name == "scaling")
   {
     status = mrgi_scene_scaling(objectCount, triangleCount, seed, scene, err);
@@ -119,6 +122,10 @@ bool vtkMRGIBuiltInScenes::Make(const std::string& name, int objectCount, vtkIdT
   else if (name == "living-room")
   {
     status = mrgi_scene_living_room(scene, err);
+  }
+  else if (mrgi_indirect_scene_parse(name.c_str(), &which, nullptr) == MRGI_OK)
+  {
+    status = mrgi_scene_indirect(which, scene, err);
   }
   else
   {

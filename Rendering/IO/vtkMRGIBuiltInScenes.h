@@ -5,8 +5,9 @@
  *          actors, lights, area lights and a camera.
  *
  * The scenes and their lighting are documented on vtkMRGISceneBuilder
- * (cornell, cornell-spot, cornell-area, living-room, scaling; the core's
- * mrgi_scene_cornell.h, mrgi_scene_living_room.h, mrgi_scene_scaling.h).
+ * (cornell, cornell-spot, cornell-area, living-room, scaling, corridor,
+ * corridor-large, corner, u-shape; the core's mrgi_scene_cornell.h,
+ * mrgi_scene_living_room.h, mrgi_scene_scaling.h, mrgi_scene_indirect.h).
  * Not wrapped, not installed.
  */
 #ifndef vtkMRGIBuiltInScenes_h

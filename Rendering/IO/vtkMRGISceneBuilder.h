@@ -16,7 +16,13 @@
  *   picture through vtkMRGIAreaLight::ShareGeometryActor()),
  *   nichols-penmatsa-wyman-2010's living room (mrgi_scene_living_room.h);
  * - "scaling": ObjectCount objects with TriangleCount triangles in total,
- *   laid out so that screen coverage does not depend on the triangle count.
+ *   laid out so that screen coverage does not depend on the triangle count;
+ * - "corridor", "corridor-large", "corner", "u-shape" (metres): scenes lit
+ *   by one spot where indirect light and indirect shadows dominate, after
+ *   RIHKS11 figures 7, 10 and 5 (mrgi_scene_indirect.h): a 12 m (120 m)
+ *   closed corridor whose statue is lit only by the bounce off the end wall
+ *   behind the camera, an open corner with a spot into it, and a closed
+ *   U-shaped corridor whose camera sees no directly lit surface.
  *
  * Files are read with VTK's readers, chosen by extension: .vtp .vtu .vti
  * .vts .vtr .vtm (XML), .vtk (legacy), .ply, .obj, .stl, .gltf/.glb

@@ -182,6 +182,32 @@ void TestBuiltInScenes()
   MRGI_TEST_CHECK(BuildInto("scaling", &triangles) >= 10);
   std::printf("scaling: %lld triangles for 20000 asked\n", static_cast<long long>(triangles));
   MRGI_TEST_CHECK(triangles >= 18000 && triangles <= 22000);
+  // The indirect-light scenes (mrgi_scene_indirect.h): their meshes, one
+  // spot each, listed among the names; a near miss is refused by name.
+  const struct
+  {
+    const char* Name;
+    int Actors;
+  } indirect[] = { { "corridor", 7 }, { "corridor-large", 7 }, { "corner", 3 }, { "u-shape", 4 } };
+  for (const auto& scene : indirect)
+  {
+    MRGI_TEST_CHECK(vtkMRGISceneBuilder::IsBuiltInScene(scene.Name));
+    MRGI_TEST_CHECK(std::strstr(vtkMRGISceneBuilder::GetBuiltInSceneNames(), scene.Name));
+    MRGI_TEST_CHECK(BuildInto(scene.Name, &triangles) == scene.Actors);
+    std::printf("%s: %lld triangles\n", scene.Name, static_cast<long long>(triangles));
+    vtkNew<vtkRenderer> renderer;
+    vtkNew<vtkMRGISceneBuilder> builder;
+    builder->SetScene(scene.Name);
+    MRGI_TEST_CHECK(builder->Build(renderer));
+    MRGI_TEST_CHECK(renderer->GetLights()->GetNumberOfItems() == 1);
+    auto* spot = vtkLight::SafeDownCast(renderer->GetLights()->GetItemAsObject(0));
+    MRGI_TEST_CHECK(spot && spot->GetPositional() && spot->GetConeAngle() < 90.0);
+  }
+  std::string error;
+  MRGI_TEST_CHECK(!vtkMRGISceneBuilder::IsBuiltInScene("corridor-xl"));
+  MRGI_TEST_CHECK(BuildInto("corridor-xl", nullptr, &error) == -1);
+  std::printf("corridor-xl: %s\n", error.c_str());
+  MRGI_TEST_CHECK(error.find("corridor-xl") != std::string::npos);
   {
     vtkNew<vtkRenderer> renderer;
     vtkNew<vtkMRGISceneBuilder> builder;
