@@ -90,6 +90,35 @@ static void test_float_round_trip_is_exact(void)
   mrgi_image_destroy(&img);
 }
 
+/* A 16-line block of a real image (a 4x4 box average of the corridor's
+ * ground truth) that OpenEXR 3.1.5 (Debian 12) wrote as a corrupt ZIP chunk:
+ * read back with non-finite and negative values (also by OpenEXR's own C++
+ * reader). The writer uses ZIPS (one line per chunk), which writes it right. */
+static void test_real_block_round_trip_is_exact(void)
+{
+  char data[1024];
+  snprintf(data, sizeof(data), "%s/EXR/zip-fallback-16x64x3.f32", MRGI_TEST_DATA_DIR);
+  FILE* f = fopen(data, "rb");
+  MRGI_CHECK(f != NULL);
+  if (!f)
+  {
+    return;
+  }
+  mrgi_image img = make_pattern(64, 16, 3, 0.0f);
+  const size_t count = mrgi_image_value_count(&img);
+  MRGI_CHECK(fread(img.pixels, sizeof(float), count, f) == count);
+  fclose(f);
+  char path[1024];
+  mrgi_test_tmp_path("exr_real_block.exr", path, sizeof(path));
+  MRGI_CHECK(mrgi_exr_write(path, &img, NULL, MRGI_EXR_FLOAT, NULL) == MRGI_OK);
+  mrgi_image back;
+  MRGI_CHECK(mrgi_exr_read(path, &back, NULL) == MRGI_OK);
+  MRGI_CHECK(back.width == 64 && back.height == 16 && back.channels == 3);
+  MRGI_CHECK(memcmp(back.pixels, img.pixels, count * sizeof(float)) == 0);
+  mrgi_image_destroy(&back);
+  mrgi_image_destroy(&img);
+}
+
 /* Every channel count of a colour image, RGBA included: OpenEXR 3.1's fast
  * unpackers for four HALF channels once scrambled RGBA into file order. */
 static void test_half_round_trip_within_half_precision(void)
@@ -517,6 +546,7 @@ int main(int argc, char** argv)
 {
   static const mrgi_test_case cases[] = {
     MRGI_TEST_CASE(test_float_round_trip_is_exact),
+    MRGI_TEST_CASE(test_real_block_round_trip_is_exact),
     MRGI_TEST_CASE(test_half_round_trip_within_half_precision),
     MRGI_TEST_CASE(test_half_conversion_rounding_and_subnormals),
     MRGI_TEST_CASE(test_nonfinite_and_overflow_are_never_written),

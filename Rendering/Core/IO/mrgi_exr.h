@@ -4,7 +4,8 @@
  *
  * Images follow mrgi_image.h: interleaved floats, row 0 = top row, which is
  * also the first scanline of the EXR data window. Files are single-part
- * scanline images with ZIP compression (16 scanlines per chunk).
+ * scanline images with ZIPS compression (one scanline per chunk: OpenEXR
+ * 3.1.5, Debian 12, wrote some 16-line ZIP chunks corrupt; TestEXR keeps one).
  *
  * Writing never stores NaN or infinity: NaN becomes 0 and values are clamped
  * to the finite range of the stored type. Half floats hold at most

@@ -297,25 +297,23 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
   vtkMRGIVoxelization* voxels = nullptr;
   if (this->Visibility != VisibilityOff)
   {
-    double clip[2], bounds[6], range[2];
-    vtkCamera* camera = renderer->GetActiveCamera();
-    camera->GetClippingRange(clip);
-    renderer->ComputeVisiblePropBounds(bounds);
-    if (mrgi_voxel_fit_depth_range(
-          camera->GetModelViewTransformMatrix()->GetData(), bounds, clip, range, nullptr) != MRGI_OK)
-    {
-      range[0] = clip[0];
-      range[1] = clip[1];
-    }
+    double range[2] = { 0.0, 1.0 };
+    vtkMRGIVoxelization::ComputeDepthRange(renderer, range);
     if (distributed)
     {
       // One grid on every process (their voxels are OR-ed below): the
       // union of the processes' ranges (each sees its own props' bounds),
       // or the shared clipping range when the reduction fails.
       double extent[2] = { -range[0], range[1] };
-      const bool reduced = this->Compositor->AllReduceMax(extent, 2);
-      range[0] = reduced ? -extent[0] : clip[0];
-      range[1] = reduced ? extent[1] : clip[1];
+      if (this->Compositor->AllReduceMax(extent, 2))
+      {
+        range[0] = -extent[0];
+        range[1] = extent[1];
+      }
+      else
+      {
+        renderer->GetActiveCamera()->GetClippingRange(range);
+      }
     }
     if (this->Voxelization->Voxelize(renderer, range[0], range[1], timer))
     {

@@ -1,6 +1,5 @@
 #include "vtkMRGIIndirectLight.h"
 
-#include "vtkCamera.h"
 #include "vtkMRGIFrameContext.h"
 #include "vtkMRGIGather.h"
 #include "vtkMRGIImperfectShadowMaps.h"
@@ -102,15 +101,12 @@ bool vtkMRGIIndirectLight::BuildVisibility(
   }
   else if (this->Visibility == VisibilityVoxels)
   {
-    // One voxelization over the camera's clipping range (VTK fits it to the
-    // visible props' bounds), as the area lights' (mrgi_voxel.h section 2).
+    // One voxelization over the visible depth range, as the area lights'
+    // (mrgi_voxel.h section 2).
     vtkMRGIShaderUtilities::ScopedStage stage(frame.Timer, "voxels");
     double range[2] = { 0.0, 1.0 };
-    if (frame.Renderer && frame.Renderer->GetActiveCamera())
-    {
-      frame.Renderer->GetActiveCamera()->GetClippingRange(range);
-    }
-    if (!frame.Renderer || !this->Voxelization->Voxelize(frame.Renderer, range[0], range[1], frame.Timer))
+    if (!vtkMRGIVoxelization::ComputeDepthRange(frame.Renderer, range) ||
+      !this->Voxelization->Voxelize(frame.Renderer, range[0], range[1], frame.Timer))
     {
       vtkErrorMacro("indirect light: could not voxelize the scene for the VPLs' visibility; no "
                     "indirect light this frame");

@@ -394,6 +394,26 @@ bool vtkMRGIVoxelization::SetMarchUniforms(
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIVoxelization::ComputeDepthRange(vtkRenderer* ren, double range[2])
+{
+  vtkCamera* camera = ren ? ren->GetActiveCamera() : nullptr;
+  if (!camera)
+  {
+    return false;
+  }
+  double clip[2], bounds[6];
+  camera->GetClippingRange(clip);
+  ren->ComputeVisiblePropBounds(bounds);
+  if (mrgi_voxel_fit_depth_range(
+        camera->GetModelViewTransformMatrix()->GetData(), bounds, clip, range, nullptr) != MRGI_OK)
+  {
+    range[0] = clip[0];
+    range[1] = clip[1];
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 bool vtkMRGIVoxelization::Voxelize(
   vtkRenderer* ren, double nearDepth, double farDepth, vtkRenderTimerLog* timer)
 {

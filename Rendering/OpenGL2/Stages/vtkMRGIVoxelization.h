@@ -112,6 +112,15 @@ public:
   bool Voxelize(vtkRenderer* ren, double nearDepth, double farDepth, vtkRenderTimerLog* timer = nullptr);
 
   /**
+   * The depth range to voxelize for `ren`'s active camera: its visible
+   * props' depth range within the clipping range, with a small margin
+   * (mrgi_voxel_fit_depth_range(): VTK pads the clipping range, which would
+   * waste slices), or the clipping range when the bounds are unusable.
+   * False (range untouched) without a renderer or camera.
+   */
+  static bool ComputeDepthRange(vtkRenderer* ren, double range[2]);
+
+  /**
    * Read the last voxel buffer back: 4 unsigned 32-bit words per voxel pixel
    * (channels R, G, B, A = slices 0-31, 32-63, 64-95, 96-127), rows bottom
    * up, texel (x, y) at tuple y VW + x: the storage of mrgi_voxel.h. The
