@@ -176,7 +176,8 @@ struct Fixture
     this->View = mrgitest::ReadVoxelView(this->Voxelization, this->GL, this->Words, worldToView);
     for (int k = 0; k < 16; ++k)
     {
-      MRGI_TEST_CHECK(std::abs(worldToView[k] - this->WorldToView[k]) <= 1e-5 * (1.0 + std::abs(worldToView[k])));
+      MRGI_TEST_CHECK(
+        std::abs(worldToView[k] - this->WorldToView[k]) <= 1e-5 * (1.0 + std::abs(worldToView[k])));
     }
   }
 
@@ -203,8 +204,8 @@ struct Fixture
     const mrgi_gather_visibility cv = this->Twin(voxels);
     mrgi_error err;
     const mrgi_status status = tree
-      ? mrgi_vpl_tree_gather_visibility(
-          &receivers, &this->Tree, tree->Threshold, this->WorldToView, &cv, &out, nullptr, nullptr, &err)
+      ? mrgi_vpl_tree_gather_visibility(&receivers, &this->Tree, tree->Threshold,
+          this->WorldToView, &cv, &out, nullptr, nullptr, &err)
       : mrgi_gather_full_visibility(
           &receivers, this->Tree.nodes, VPLs, this->WorldToView, &cv, &out, nullptr, &err);
     if (status != MRGI_OK)

@@ -155,9 +155,10 @@ void Unbind(const vtkMRGIIndirectVisibility& visibility)
 
 int VPLsPerDraw(const vtkMRGIIndirectVisibility& visibility, int vplCount)
 {
+  const int all = std::max(vplCount, 1);
   return visibility.Mode == vtkMRGIIndirectVisibility::VoxelVisibility
-    ? std::min(std::max(vplCount, 1), mrgi_voxel_samples_per_batch(visibility.Voxels->GetMaxSteps()))
-    : std::max(vplCount, 1);
+    ? std::min(all, mrgi_voxel_samples_per_batch(visibility.Voxels->GetMaxSteps()))
+    : all;
 }
 
 void DrawVPLBatches(vtkShaderProgram* program, int vplCount, int perDraw, vtkOpenGLState* ostate,

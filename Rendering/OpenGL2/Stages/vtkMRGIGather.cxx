@@ -362,7 +362,8 @@ bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultir
     return visibility ? vtkMRGIShaderLibraries::Compose(
                           { "vtkMRGIVoxelMarch", "vtkMRGIAreaLightDiffuse", "vtkMRGIGatherFS" })
       : area ? vtkMRGIShaderLibraries::Compose({ "vtkMRGIAreaLightDiffuse", "vtkMRGIGatherFS" })
-      : vis  ? vtkMRGIShaderLibraries::Compose({ vtkMRGIGatherVisibility::Library(*vis), "vtkMRGIGatherFS" })
+      : vis
+      ? vtkMRGIShaderLibraries::Compose({ vtkMRGIGatherVisibility::Library(*vis), "vtkMRGIGatherFS" })
              : vtkMRGIShaderLibraries::Compose({ "vtkMRGIGatherFS" });
   });
   vtkShaderProgram* gather = quad ? quad->Program : nullptr;
@@ -565,7 +566,7 @@ bool vtkMRGIGather::RunStenciledTree(const vtkMRGIFrameContext& frame, vtkMRGIMu
     (vis ? vtkMRGIGatherVisibility::Defines(*vis) : "");
   vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(window, "gather.tree", defines, [vis] {
     return vtkMRGIShaderLibraries::Compose(
-      { vis ? vtkMRGIGatherVisibility::Library(*vis) : "vtkMRGIVPLTree", "vtkMRGIVPLTree",
+      { vis ? vtkMRGIGatherVisibility::Library(*vis) : "vtkMRGIVPLIrradiance", "vtkMRGIVPLTree",
         "vtkMRGIGatherFS" });
   });
   vtkShaderProgram* gather = quad ? quad->Program : nullptr;
