@@ -13,7 +13,7 @@
 // 2. visibility None gives the old gathers bit for bit, and ISM with an
 //    empty atlas too (every V is exactly 1); a real atlas darkens;
 // 3. errors name the problem: atlas missing, a layout of another VPL count,
-//    an atlas texture of another size, voxel visibility and splatting
+//    an atlas texture of another size, voxel visibility without voxels and splatting
 //    refused.
 #include "mrgiTestUtilities.h"
 
@@ -474,7 +474,7 @@ void CheckErrors(Scene& s, vtkMRGIGather* gather, vtkTextureObject* cache, const
   vtkMRGIIndirectVisibility voxels;
   voxels.Mode = vtkMRGIIndirectVisibility::VoxelVisibility;
   MRGI_TEST_CHECK(!gather->GatherFull(s.Frame, cache, 256, 1.0, irradiance, indirect, voxels));
-  MRGI_TEST_CHECK(errors->Caught("voxel visibility"));
+  MRGI_TEST_CHECK(errors->Caught("voxelization is missing")); // TestMRGIVoxelVPLVisibility: with voxels
   vtkNew<vtkMRGIMultiresolution> buffer;
   gather->SetGatherModeToSplatting();
   MRGI_TEST_CHECK(!gather->GatherVPLs(s.Frame, buffer, cache, 256, ISM(atlas, 1)));

@@ -118,8 +118,9 @@
  *   The atlas must have V * w_L^2 tiles (mrgi_vpl_tree_root_count()).
  * - VOXELS: one march per (receiver, node used as a VPL), to the node's
  *   position and normal in receiver (eye) space, as the flat gather.
- *   (vtkMRGIGather's GPU tree gather refuses voxels: a march per node
- *   does not fit llvmpipe's loop budget, mrgi_voxel_march.h.)
+ *   (vtkMRGIGather's GPU tree gathers draw fewer roots per batch so that
+ *   every node's march fits llvmpipe's loop budget, mrgi_voxel_march.h,
+ *   and refuse a tree whose one root's subtree alone does not.)
  *
  * ## Errors
  *

@@ -1,12 +1,19 @@
+#include "vtk_glew.h"
+
 #include "vtkMRGIGatherVisibility.h"
 
 #include "vtkMRGIIndirectVisibility.h"
 #include "vtkShaderProgram.h"
+#include "vtkMRGIVoxelization.h"
+#include "vtkOpenGLState.h"
 #include "vtkTextureObject.h"
 
 #include "mrgi_ism_atlas.h"
 #include "mrgi_ism_visibility.h"
+#include "mrgi_voxel_march.h"
+#include "mrgi_vpl_tree.h"
 
+#include <algorithm>
 #include <sstream>
 
 namespace vtkMRGIGatherVisibility
@@ -18,10 +25,18 @@ bool Check(const vtkMRGIIndirectVisibility& visibility, int tiles, std::string& 
     case vtkMRGIIndirectVisibility::NoVisibility:
       return true;
     case vtkMRGIIndirectVisibility::VoxelVisibility:
-      error = "voxel visibility is not supported by the GPU VPL gathers (a march per VPL and "
-              "receiver exceeds llvmpipe's loop budget); the C twins "
-              "(mrgi_gather_full_visibility) support it";
-      return false;
+    {
+      double worldToView[16];
+      if (!visibility.Voxels || !visibility.Voxels->GetVoxelTexture() ||
+        !visibility.Voxels->GetLastWorldToView(worldToView))
+      {
+        error = visibility.Voxels
+          ? "voxel visibility: the voxelization has no voxels (Voxelize() first, this frame)"
+          : "voxel visibility: the voxelization is missing (vtkMRGIIndirectVisibility::Voxels)";
+        return false;
+      }
+      return true;
+    }
     case vtkMRGIIndirectVisibility::ISMVisibility:
       break;
     default:
@@ -78,16 +93,42 @@ bool Enabled(const vtkMRGIIndirectVisibility& visibility)
 
 std::string Defines(const vtkMRGIIndirectVisibility& visibility)
 {
-  return visibility.Mode == vtkMRGIIndirectVisibility::ISMVisibility
-    ? "#define MRGI_INDIRECT_ISM 1\n"
-    : "";
+  switch (visibility.Mode)
+  {
+    case vtkMRGIIndirectVisibility::ISMVisibility:
+      return "#define MRGI_INDIRECT_ISM 1\n";
+    case vtkMRGIIndirectVisibility::VoxelVisibility:
+      return "#define MRGI_INDIRECT_VOXELS 1\n";
+    default:
+      return "";
+  }
 }
 
-void Bind(vtkShaderProgram* program, const vtkMRGIIndirectVisibility& visibility)
+const char* Library(const vtkMRGIIndirectVisibility& visibility)
 {
+  return visibility.Mode == vtkMRGIIndirectVisibility::VoxelVisibility ? "vtkMRGIVoxelMarch"
+                                                                        : "vtkMRGIISMLookup";
+}
+
+bool Bind(vtkShaderProgram* program, const vtkMRGIIndirectVisibility& visibility)
+{
+  if (visibility.Mode == vtkMRGIIndirectVisibility::VoxelVisibility)
+  {
+    // The march runs in the voxelized camera's eye space (NPW10 3.3.1).
+    double worldToView[16];
+    if (!visibility.Voxels->GetLastWorldToView(worldToView) ||
+      !visibility.Voxels->SetMarchUniforms(program))
+    {
+      return false;
+    }
+    float m[16];
+    std::copy(worldToView, worldToView + 16, m);
+    program->SetUniformMatrix4x4("mrgiWCToVC", m);
+    return true;
+  }
   if (visibility.Mode != vtkMRGIIndirectVisibility::ISMVisibility)
   {
-    return;
+    return true;
   }
   visibility.ISMAtlas->Activate();
   program->SetUniformi("mrgiISMAtlas", visibility.ISMAtlas->GetTextureUnit());
@@ -96,6 +137,7 @@ void Bind(vtkShaderProgram* program, const vtkMRGIIndirectVisibility& visibility
   program->SetUniformf("mrgiISMRelativeBias", visibility.ISMLookup.relative_bias);
   program->SetUniformf("mrgiISMTexelBias", visibility.ISMLookup.texel_bias);
   program->SetUniformi("mrgiISMPCF", visibility.ISMLookup.pcf);
+  return true;
 }
 
 void Unbind(const vtkMRGIIndirectVisibility& visibility)
@@ -104,5 +146,65 @@ void Unbind(const vtkMRGIIndirectVisibility& visibility)
   {
     visibility.ISMAtlas->Deactivate();
   }
+  if (visibility.Mode == vtkMRGIIndirectVisibility::VoxelVisibility && visibility.Voxels &&
+    visibility.Voxels->GetVoxelTexture())
+  {
+    visibility.Voxels->GetVoxelTexture()->Deactivate();
+  }
+}
+
+int VPLsPerDraw(const vtkMRGIIndirectVisibility& visibility, int vplCount)
+{
+  const int all = std::max(vplCount, 1);
+  return visibility.Mode == vtkMRGIIndirectVisibility::VoxelVisibility
+    ? std::min(all, mrgi_voxel_samples_per_batch(visibility.Voxels->GetMaxSteps()))
+    : all;
+}
+
+void DrawVPLBatches(vtkShaderProgram* program, int vplCount, int perDraw, vtkOpenGLState* ostate,
+  const std::function<void()>& draw)
+{
+  perDraw = std::max(perDraw, 1);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  ostate->vtkglDisable(GL_BLEND);
+  for (int first = 0; first < vplCount; first += perDraw)
+  {
+    if (first == perDraw)
+    {
+      ostate->vtkglEnable(GL_BLEND);
+      ostate->vtkglBlendEquationSeparate(GL_FUNC_ADD, GL_FUNC_ADD);
+      ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
+    }
+    program->SetUniformi("mrgiVPLFirst", first);
+    program->SetUniformi("mrgiVPLCount", std::min(perDraw, vplCount - first));
+    draw();
+  }
+}
+
+int RootsPerDraw(const vtkMRGIIndirectVisibility& visibility, const mrgi_vpl_tree* tree,
+  double threshold, int rootsPerBatch, std::string& error)
+{
+  if (visibility.Mode != vtkMRGIIndirectVisibility::VoxelVisibility)
+  {
+    return rootsPerBatch;
+  }
+  // Nodes one root may use as VPLs, each one march (mrgi_vpl_tree_gather.h
+  // section 4): its subtree, or itself alone when tau >= 1 refines nothing.
+  const int levels = tree->layout.level_count;
+  const long long nodes = threshold >= 1.0 ? 1 : ((1LL << (2 * levels)) - 1) / 3;
+  const int marches = mrgi_voxel_samples_per_batch(visibility.Voxels->GetMaxSteps());
+  if (nodes > marches)
+  {
+    std::ostringstream os;
+    os << "voxel visibility: a root's subtree of " << nodes << " nodes (" << levels
+       << " tree levels) may need " << nodes << " marches, more than the " << marches
+       << " one draw allows at " << visibility.Voxels->GetMaxSteps()
+       << " march steps (llvmpipe's loop budget); use fewer tree levels, fewer steps or "
+          "tau >= 1";
+    error = os.str();
+    return 0;
+  }
+  return std::max(1, std::min(rootsPerBatch, static_cast<int>(marches / nodes)));
 }
 }

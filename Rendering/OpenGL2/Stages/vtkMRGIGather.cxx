@@ -180,11 +180,9 @@ bool vtkMRGIGather::RunFull(const vtkMRGIFrameContext& frame, vtkTextureObject* 
     (count ? "#define MRGI_GATHER_COUNT_TARGET 2\n" : "") +
     (vis ? vtkMRGIGatherVisibility::Defines(*vis) : "");
   vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(window, "gather.full", defines, [tree, vis] {
-    return tree ? vis ? vtkMRGIShaderLibraries::Compose(
-                          { "vtkMRGIISMLookup", "vtkMRGIVPLTree", "vtkMRGIGatherFS" })
-                      : vtkMRGIShaderLibraries::Compose({ "vtkMRGIVPLTree", "vtkMRGIGatherFS" })
-      : vis ? vtkMRGIShaderLibraries::Compose({ "vtkMRGIISMLookup", "vtkMRGIGatherFS" })
-            : vtkMRGIShaderLibraries::Compose({ "vtkMRGIGatherFS" });
+    const char* term = vis ? vtkMRGIGatherVisibility::Library(*vis) : "vtkMRGIVPLIrradiance";
+    return tree ? vtkMRGIShaderLibraries::Compose({ term, "vtkMRGIVPLTree", "vtkMRGIGatherFS" })
+                : vtkMRGIShaderLibraries::Compose({ term, "vtkMRGIGatherFS" });
   });
   if (!quad ||
     (count &&
@@ -195,6 +193,7 @@ bool vtkMRGIGather::RunFull(const vtkMRGIFrameContext& frame, vtkTextureObject* 
     return false;
   }
   vtkShaderProgram* program = quad->Program;
+  bool bound = true;
   {
     vtkMRGIFullScreenStep step(window, in.GL.FrameBuffer);
     step.Target(irradiance, indirect, frame.Viewport[0], frame.Viewport[1], frame.Viewport[2],
@@ -214,20 +213,19 @@ bool vtkMRGIGather::RunFull(const vtkMRGIFrameContext& frame, vtkTextureObject* 
     program->SetUniformi("mrgiAlbedo", frame.Albedo->GetTextureUnit());
     program->SetUniformf("mrgiStrength", static_cast<float>(strength));
     program->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
-    if (vis)
-    {
-      vtkMRGIGatherVisibility::Bind(program, *vis);
-    }
-    if (tree)
+    bound = !vis || vtkMRGIGatherVisibility::Bind(program, *vis);
+    if (bound && tree)
     {
       vtkMRGIVPLTreeTexture::DrawBatches(program, tree->Tree, tree->Nodes, tree->Threshold, roots,
         rootsPerBatch, step.GetState(), [&](int) { quad->Render(); });
     }
-    else
+    else if (bound)
     {
+      // Voxels: the VPLs in batches that fit the loop budget, added.
       program->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
-      program->SetUniformi("mrgiVPLCount", vplCount);
-      quad->Render();
+      vtkMRGIGatherVisibility::DrawVPLBatches(program, vplCount,
+        vis ? vtkMRGIGatherVisibility::VPLsPerDraw(*vis, vplCount) : vplCount, step.GetState(),
+        [&] { quad->Render(); });
     }
     if (vis)
     {
@@ -238,9 +236,13 @@ bool vtkMRGIGather::RunFull(const vtkMRGIFrameContext& frame, vtkTextureObject* 
     frame.Normal->Deactivate();
     frame.Position->Deactivate();
   }
-  if (count)
+  if (count && bound)
   {
     vtkMRGIVPLTreeTexture::ReadCounts(window, in.TreeCounts, frame.Viewport, in.MeanVPLs, in.MaxVPLs);
+  }
+  if (!bound)
+  {
+    return false;
   }
   const GLenum error = glGetError();
   if (error != GL_NO_ERROR)
@@ -360,7 +362,8 @@ bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultir
     return visibility ? vtkMRGIShaderLibraries::Compose(
                           { "vtkMRGIVoxelMarch", "vtkMRGIAreaLightDiffuse", "vtkMRGIGatherFS" })
       : area ? vtkMRGIShaderLibraries::Compose({ "vtkMRGIAreaLightDiffuse", "vtkMRGIGatherFS" })
-      : vis  ? vtkMRGIShaderLibraries::Compose({ "vtkMRGIISMLookup", "vtkMRGIGatherFS" })
+      : vis
+      ? vtkMRGIShaderLibraries::Compose({ vtkMRGIGatherVisibility::Library(*vis), "vtkMRGIGatherFS" })
              : vtkMRGIShaderLibraries::Compose({ "vtkMRGIGatherFS" });
   });
   vtkShaderProgram* gather = quad ? quad->Program : nullptr;
@@ -402,10 +405,10 @@ bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultir
   else
   {
     gather->SetUniformi("mrgiVPLs", vpls->GetTextureUnit());
-    gather->SetUniformi("mrgiVPLCount", vplCount);
-    if (vis)
+    if (vis && !vtkMRGIGatherVisibility::Bind(gather, *vis))
     {
-      vtkMRGIGatherVisibility::Bind(gather, *vis);
+      vpls->Deactivate();
+      return false;
     }
   }
   gather->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
@@ -416,15 +419,15 @@ bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultir
   // visibility, the samples are gathered in batches whose marches fit the
   // budget, each batch one draw added to the previous ones (RGB summed,
   // alpha kept at 1). The sums change order only by batch.
-  const int batch = visibility
-    ? mrgi_voxel_samples_per_batch(term->Voxels->GetMaxSteps())
-    : std::max(vplCount, 1);
+  // The VPLs with voxel visibility likewise (vtkMRGIGatherVisibility::VPLsPerDraw()).
+  const int batch = visibility ? mrgi_voxel_samples_per_batch(term->Voxels->GetMaxSteps())
+    : vis                      ? vtkMRGIGatherVisibility::VPLsPerDraw(*vis, vplCount)
+                               : std::max(vplCount, 1);
+  const char* firstName = area ? "mrgiAreaSampleFirst" : "mrgiVPLFirst";
+  const char* countName = area ? "mrgiAreaSampleCount" : "mrgiVPLCount";
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFunc(ostate);
-  if (area)
-  {
-    gather->SetUniformi("mrgiAreaSampleFirst", 0);
-    gather->SetUniformi("mrgiAreaSampleCount", std::min(batch, vplCount));
-  }
+  gather->SetUniformi(firstName, 0);
+  gather->SetUniformi(countName, std::min(batch, vplCount));
   if (vplCount > batch)
   {
     ostate->vtkglEnable(GL_BLEND);
@@ -468,14 +471,14 @@ bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultir
     }
     for (int first = batch; first < vplCount; first += batch)
     {
-      gather->SetUniformi("mrgiAreaSampleFirst", first);
-      gather->SetUniformi("mrgiAreaSampleCount", std::min(batch, vplCount - first));
+      gather->SetUniformi(firstName, first);
+      gather->SetUniformi(countName, std::min(batch, vplCount - first));
       quad->Render();
     }
-    if (area && vplCount > batch)
+    if (vplCount > batch)
     {
-      gather->SetUniformi("mrgiAreaSampleFirst", 0);
-      gather->SetUniformi("mrgiAreaSampleCount", batch);
+      gather->SetUniformi(firstName, 0);
+      gather->SetUniformi(countName, batch);
     }
     for (vtkTextureObject* t : maskTextures)
     {
@@ -528,7 +531,10 @@ bool vtkMRGIGather::CheckTree(
     error = "the tree gather needs a window";
   }
   if (!window ||
-    !vtkMRGIVPLTreeTexture::Check(tree.Tree, tree.Nodes, tree.Threshold, roots, rootsPerBatch, error))
+    !vtkMRGIVPLTreeTexture::Check(tree.Tree, tree.Nodes, tree.Threshold, roots, rootsPerBatch, error) ||
+    (this->Internal->Visibility &&
+      (rootsPerBatch = vtkMRGIGatherVisibility::RootsPerDraw(
+         *this->Internal->Visibility, tree.Tree, tree.Threshold, rootsPerBatch, error)) < 1))
   {
     vtkErrorMacro(<< error);
     return false;
@@ -559,9 +565,9 @@ bool vtkMRGIGather::RunStenciledTree(const vtkMRGIFrameContext& frame, vtkMRGIMu
     (count ? "#define MRGI_GATHER_COUNT_TARGET 1\n" : "") +
     (vis ? vtkMRGIGatherVisibility::Defines(*vis) : "");
   vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(window, "gather.tree", defines, [vis] {
-    return vis ? vtkMRGIShaderLibraries::Compose(
-                   { "vtkMRGIISMLookup", "vtkMRGIVPLTree", "vtkMRGIGatherFS" })
-               : vtkMRGIShaderLibraries::Compose({ "vtkMRGIVPLTree", "vtkMRGIGatherFS" });
+    return vtkMRGIShaderLibraries::Compose(
+      { vis ? vtkMRGIGatherVisibility::Library(*vis) : "vtkMRGIVPLIrradiance", "vtkMRGIVPLTree",
+        "vtkMRGIGatherFS" });
   });
   vtkShaderProgram* gather = quad ? quad->Program : nullptr;
   if (!gather ||
@@ -583,9 +589,11 @@ bool vtkMRGIGather::RunStenciledTree(const vtkMRGIFrameContext& frame, vtkMRGIMu
     steps.BeginStencilRead(stencil);
     tree.Nodes->Activate();
     gather->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
-    if (vis)
+    if (vis && !vtkMRGIGatherVisibility::Bind(gather, *vis))
     {
-      vtkMRGIGatherVisibility::Bind(gather, *vis);
+      tree.Nodes->Deactivate();
+      steps.EndStencilRead();
+      return false;
     }
     for (int i = finest; i < levels; ++i)
     {

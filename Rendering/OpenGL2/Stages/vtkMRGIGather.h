@@ -38,10 +38,15 @@
  * vtkMRGIISMLookup.glsl behind MRGI_INDIRECT_ISM, C twins
  * mrgi_gather_full_visibility() and mrgi_vpl_tree_gather_visibility().
  * Errors name the problem: atlas missing, a layout whose tile count is not
- * the VPL (root) count, an atlas texture of another size. Refused by name:
- * VoxelVisibility (a march per VPL and receiver does not fit llvmpipe's
- * loop budget; the C twins support it) and visibility with the splatting
- * GatherMode (each VPL splats without knowing its receivers' occluders).
+ * the VPL (root) count, an atlas texture of another size.
+ * VoxelVisibility marches the voxels from each receiver to each VPL (tree:
+ * each node used), vtkMRGIVoxelMarch.glsl behind MRGI_INDIRECT_VOXELS, in
+ * draws of mrgi_voxel_samples_per_batch() VPLs (tree: as many roots as
+ * their nodes' marches allow) added by blending, to fit llvmpipe's loop
+ * budget; errors: no voxelization, one never run, a tree root whose
+ * subtree alone exceeds the budget. Refused by name: visibility with the
+ * splatting GatherMode (each VPL splats without knowing its receivers'
+ * occluders).
  *
  * With CollectStatistics on, an occlusion query per level counts the
  * texels gathered (nichols-shopf-wyman-2009 table 1), and the tree gathers

@@ -18,10 +18,10 @@
  * - VoxelVisibility: `Voxels` was voxelized this frame from the G-buffer; every VPL
  *   term is weighted by the voxel march from the receiver to the VPL
  *   (mrgi_voxel_march.h), occluders the camera does not see are missed.
- *   Supported by the C twins (mrgi_gather_full_visibility()); the GPU
- *   gathers refuse it by name for now (a march per receiver and VPL exceeds
- *   llvmpipe's loop budget without VPL batching). Documentation:
- *   IndirectLight.md, "Indirect visibility".
+ *   C twins: mrgi_gather_full_visibility(), mrgi_vpl_tree_gather_visibility().
+ *   The GPU gathers draw the VPLs (tree: roots) in batches that fit
+ *   llvmpipe's loop budget (vtkMRGIGatherVisibility); splatting refuses it.
+ *   Documentation: IndirectLight.md, "Indirect visibility".
  */
 #ifndef vtkMRGIIndirectVisibility_h
 #define vtkMRGIIndirectVisibility_h

@@ -52,11 +52,37 @@ vec3 mrgiVPLRecordIrradiance(vec4 position, vec3 normal, vec3 flux, vec3 P, vec3
 // With MRGI_INDIRECT_ISM (vtkMRGIISMLookup.glsl prepended) a term > 0 is
 // weighted by VPL j's imperfect shadow map (tile j), as
 // mrgi_gather_full_visibility() does (C twin).
+#ifdef MRGI_INDIRECT_VOXELS
+// Voxel visibility (nichols-penmatsa-wyman-2010 3.3.1, the naive query;
+// vtkMRGIVoxelMarch.glsl prepended, its uniforms from
+// vtkMRGIVoxelization::SetMarchUniforms()): one march from the receiver in
+// eye space (the voxels' space: its G-buffer position and normal as stored,
+// set by the gather's main() before the sum) to the VPL brought into eye
+// space, as mrgi_gather_voxel_weight() (mrgi_gather_term.h) does.
+uniform mat4 mrgiWCToVC; // world -> eye, the voxelized camera's
+vec3 mrgiReceiverVC = vec3(0.0);
+vec3 mrgiReceiverNormalVC = vec3(0.0);
+
+// 1 if the world-space VPL (position, normal) is visible from the receiver, else 0.
+float mrgiVPLVoxelVisibility(vec3 position, vec3 normal)
+{
+  vec3 Lvc = (mrgiWCToVC * vec4(position, 1.0)).xyz;
+  vec3 NLvc = normalize(mat3(mrgiWCToVC) * normal);
+  return mrgiVoxelVisible(mrgiReceiverVC, mrgiReceiverNormalVC, Lvc, NLvc) ? 1.0 : 0.0;
+}
+#endif
+
 vec3 mrgiVPLIrradiance(sampler2D vpls, int j, vec3 P, vec3 N)
 {
   vec4 flux = texelFetch(vpls, ivec2(MRGI_VPL_TEXEL_FLUX, j), 0);
   if (flux.r == 0.0 && flux.g == 0.0 && flux.b == 0.0) { return vec3(0.0); }
-#ifdef MRGI_INDIRECT_ISM
+#ifdef MRGI_INDIRECT_VOXELS
+  vec4 position = texelFetch(vpls, ivec2(MRGI_VPL_TEXEL_POSITION, j), 0);
+  vec3 normal = texelFetch(vpls, ivec2(MRGI_VPL_TEXEL_NORMAL, j), 0).xyz;
+  vec3 E = mrgiVPLRecordIrradiance(position, normal, flux.rgb, P, N);
+  if (E != vec3(0.0)) { E *= mrgiVPLVoxelVisibility(position.xyz, normal); }
+  return E;
+#elif defined(MRGI_INDIRECT_ISM)
   vec4 position = texelFetch(vpls, ivec2(MRGI_VPL_TEXEL_POSITION, j), 0);
   vec3 normal = texelFetch(vpls, ivec2(MRGI_VPL_TEXEL_NORMAL, j), 0).xyz;
   vec3 E = mrgiVPLRecordIrradiance(position, normal, flux.rgb, P, N);

@@ -88,6 +88,12 @@ vec3 mrgiVPLTreeIrradiance(vec3 P, vec3 N, out int used)
             term *= rootVisibility;
           }
           E += term;
+#elif defined(MRGI_INDIRECT_VOXELS)
+          // One march per node used as a VPL, to the node's own position
+          // and normal (mrgi_vpl_tree_gather.h section 4).
+          vec3 term = mrgiVPLRecordIrradiance(position, normal.xyz, flux.rgb, P, N);
+          if (term != vec3(0.0)) { term *= mrgiVPLVoxelVisibility(position.xyz, normal.xyz); }
+          E += term;
 #else
           E += mrgiVPLRecordIrradiance(position, normal.xyz, flux.rgb, P, N);
 #endif

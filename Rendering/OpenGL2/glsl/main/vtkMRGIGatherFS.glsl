@@ -18,6 +18,7 @@ uniform sampler2D mrgiPosition;  // G-buffer, eye space
 uniform sampler2D mrgiNormal;
 uniform sampler2D mrgiAlbedo;
 uniform sampler2D mrgiVPLs;      // MRGI_VPL_TEXELS x count
+uniform int mrgiVPLFirst;        // this draw's VPLs: first .. first + count - 1 (batches)
 uniform int mrgiVPLCount;
 uniform mat4 mrgiVCToWC;         // eye -> world (rigid)
 uniform float mrgiStrength;      // IndirectStrength
@@ -56,6 +57,10 @@ void main()
     mrgiWriteCount(vec4(0.0)); // malformed: not a gathered receiver
     return;
   }
+#ifdef MRGI_INDIRECT_VOXELS
+  mrgiReceiverVC = positionVC.xyz; // the march's receiver: eye space, as stored
+  mrgiReceiverNormalVC = normalVC;
+#endif
 #ifdef MRGI_GATHER_AREA_LIGHT
   // Direct light of one area light (vtkMRGIAreaLightDiffuse.glsl, prepended).
   vec3 E = mrgiAreaLightDiffuse(P, N, positionVC.xyz, normalVC);
@@ -66,7 +71,7 @@ void main()
   mrgiWriteCount(vec4(float(used), 0.0, 0.0, 1.0));
 #else
   vec3 E = vec3(0.0);
-  for (int j = 0; j < mrgiVPLCount; ++j)
+  for (int j = mrgiVPLFirst; j < mrgiVPLFirst + mrgiVPLCount; ++j)
   {
     E += mrgiVPLIrradiance(mrgiVPLs, j, P, N);
   }
