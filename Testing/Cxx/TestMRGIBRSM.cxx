@@ -10,7 +10,8 @@
 //    random importance: the same checks; then BRSM mode in the pass with
 //    texel VPLs (BRSMInterTexel off, the GPU path): every VPL sits on a
 //    usable RSM texel (position and normal bit for bit), flux finite >= 0.
-// 3. Bad input: zero importance everywhere gives W = 0: the C twin picks
+// 3. Ties (integer weights, u W exactly on CDF values, u = 1): bit for bit.
+//    Bad input: zero importance everywhere gives W = 0: the C twin picks
 //    nothing and the GPU writes all-zero records (no NaN); a short CDF or
 //    a bad count is refused with an error naming it, nothing drawn.
 #include "mrgiPassSceneFixture.h"
@@ -81,7 +82,7 @@ struct Counts
 /** Run the GPU inversion on `views` for `weights` and compare with the C twin. */
 void Compare(vtkOpenGLRenderWindow* gl, const mrgi_rsm& rsm,
   const std::vector<vtkMRGIBRSMInversion::View>& views, const std::vector<float>& weights,
-  int count, uint64_t seed, Counts& counts)
+  int count, uint64_t seed, Counts& counts, const std::vector<float>* given = nullptr)
 {
   mrgi_error err;
   std::vector<double> cdf(mrgi_brsm_cdf_count(&rsm));
@@ -92,6 +93,10 @@ void Compare(vtkOpenGLRenderWindow* gl, const mrgi_rsm& rsm,
                     &err) == MRGI_OK);
   MRGI_TEST_CHECK(
     mrgi_brsm_sample_values(count, seed, samples.data(), samples.size(), &err) == MRGI_OK);
+  if (given)
+  {
+    samples = *given;
+  }
 
   const int first = 3; // not row 0: the row offset is exercised
   std::vector<float> zeros(4 * MRGI_VPL_TEXELS * static_cast<size_t>(count + first + 2), -7.0f);
@@ -282,6 +287,30 @@ void BadInput()
   const mrgi_rsm rsm = { S, 1, data.data(), data.data(), data.data() };
   Counts counts;
   Compare(gl, rsm, views, std::vector<float>(S * S, 0.0f), count, 5u, counts);
+  MRGI_TEST_CHECK(counts.PickMismatches == 0 && counts.RecordMismatches == 0);
+  // Ties: integer weights (zero columns and rows among them) and samples
+  // with u W exactly on CDF values: "first c > t" must not become ">=".
+  std::vector<float> weights(S * S, 1.0f), tied;
+  for (int t = 0; t < S * S; ++t)
+  {
+    // Column 2 and row 5 zero, row 0 and column 0 doubled: column totals 16
+    // and 8, W = 64, so u = j / 8 and i / 8 land exactly on CDF entries.
+    const int x = t % S, y = t / S;
+    weights[static_cast<size_t>(t)] =
+      (x == 2 || y == 5) ? 0.0f : (y == 0 ? 2.0f : 1.0f) * (x == 0 ? 2.0f : 1.0f);
+  }
+  for (int j = 0; j <= S; ++j)
+  {
+    for (int i = 0; i < S; ++i)
+    {
+      tied.push_back(static_cast<float>(j) / S);
+      tied.push_back(static_cast<float>(i) / S);
+    }
+  }
+  const int tiedCount = static_cast<int>(tied.size() / 2);
+  Compare(gl, rsm, views, weights, tiedCount, 1u, counts, &tied);
+  std::printf("ties: %zu picks, %zu pick mismatches, %zu record mismatches\n", counts.Picks,
+    counts.PickMismatches, counts.RecordMismatches);
   MRGI_TEST_CHECK(counts.PickMismatches == 0 && counts.RecordMismatches == 0);
   mrgi_brsm_pick pick;
   std::vector<float> zero(mrgi_brsm_cdf_float_count(&rsm), 0.0f);
