@@ -1,8 +1,10 @@
 /* Tests of the BRSM stages (RIHKS11 4, 4.1, 4.2, 6.5): importance (exact and
  * guided estimates), flux mix, geometry-aware blur, 2-D CDF inversion on
  * hand cases, an unbiasedness test of the VPL estimator that a sampler
- * forgetting 1/p fails, and inter-texel VPLs that never cross a depth step. */
+ * forgetting 1/p fails, inter-texel VPLs that never cross a depth step, and
+ * the float twin of the GPU inversion against the double one. */
 #include "mrgi_brsm_blur.h"
+#include "mrgi_brsm_cdf_float.h"
 #include "mrgi_brsm_importance.h"
 #include "mrgi_brsm_sample.h"
 #include "mrgi_test.h"
@@ -365,6 +367,67 @@ static void test_inter_texel(void)
                                    4, NULL, NULL) == MRGI_ERR_INVALID_ARGUMENT);
 }
 
+/* The float twin (mrgi_brsm_cdf_float.h, the GPU's): layout, and the same
+ * picks and texel records as the double sampler up to float rounding. */
+static void test_float_twin(void)
+{
+  const int32_t S = 16, N = 200;
+  const mrgi_rsm rsm = make_rsm(S, 0.0);
+  float w[S_MAX * S_MAX];
+  for (int32_t t = 0; t < S * S; ++t)
+  {
+    w[t] = rnd() < 0.3 ? 0.0f : (float)rnd();
+  }
+  double cdf[S_MAX * S_MAX + S_MAX];
+  float fcdf[S_MAX * (S_MAX + 1)], u[2 * N];
+  MRGI_CHECK(mrgi_brsm_cdf_float_count(&rsm) == (size_t)(S * (S + 1)));
+  MRGI_CHECK(mrgi_brsm_cdf_build(&rsm, w, (size_t)(S * S), cdf, (size_t)(S * S + S), NULL, NULL) ==
+             MRGI_OK);
+  MRGI_CHECK(mrgi_brsm_cdf_to_float(&rsm, cdf, (size_t)(S * S + S), fcdf, (size_t)(S * (S + 1)),
+                                    NULL) == MRGI_OK);
+  for (int32_t i = 0; i < S * S + S; ++i)
+  {
+    MRGI_CHECK(fcdf[i] == (float)cdf[i]); /* row S = the column sums */
+  }
+  MRGI_CHECK(mrgi_brsm_sample_values(N, 42u, u, 2 * N, NULL) == MRGI_OK);
+  mrgi_brsm_pick picks[N];
+  mrgi_vpl vpls[N];
+  const mrgi_brsm_sampling sampling = { N, 42u, 0, NULL };
+  MRGI_CHECK(mrgi_brsm_sample_vpls(&rsm, cdf, (size_t)(S * S + S), &sampling, picks, vpls, N, NULL,
+                                   NULL) == MRGI_OK);
+  int same = 0;
+  for (int32_t k = 0; k < N; ++k)
+  {
+    mrgi_brsm_pick p;
+    mrgi_vpl v;
+    MRGI_CHECK(mrgi_brsm_cdf_float_invert(&rsm, fcdf, u[2 * k], u[2 * k + 1], &p) == 1);
+    if (p.x != picks[k].x || p.y != picks[k].y)
+    {
+      continue; /* a float rounding moved a boundary: counted below */
+    }
+    ++same;
+    MRGI_CHECK(fabsf(p.fx - picks[k].fx) < 1e-4f && fabsf(p.fy - picks[k].fy) < 1e-4f);
+    mrgi_brsm_float_vpl(&rsm, &p, N, &v);
+    for (int c = 0; c < 3; ++c)
+    {
+      MRGI_CHECK(v.position[c] == vpls[k].position[c]);
+      MRGI_CHECK(fabsf(v.flux[c] - vpls[k].flux[c]) <= 1e-5f * vpls[k].flux[c] + 1e-30f);
+    }
+    MRGI_CHECK(fabsf(v.area - vpls[k].area) <= 1e-5f * vpls[k].area);
+  }
+  MRGI_CHECK(same >= N - 2);
+  /* W = 0: nothing picked; bad arguments named. */
+  float zero[S_MAX * (S_MAX + 1)] = { 0 };
+  mrgi_brsm_pick p;
+  MRGI_CHECK(mrgi_brsm_cdf_float_invert(&rsm, zero, 0.5f, 0.5f, &p) == 0);
+  mrgi_error err;
+  MRGI_CHECK(mrgi_brsm_cdf_to_float(&rsm, cdf, (size_t)(S * S + S), fcdf, 3, &err) ==
+             MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(strstr(err.message, "float CDF") != NULL);
+  MRGI_CHECK(mrgi_brsm_sample_values(N, 1u, u, 3, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_brsm_sample_values(0, 1u, u, 2 * N, &err) == MRGI_ERR_INVALID_ARGUMENT);
+}
+
 int main(int argc, char** argv)
 {
   static const mrgi_test_case cases[] = { MRGI_TEST_CASE(test_cdf_hand),
@@ -372,6 +435,7 @@ int main(int argc, char** argv)
                                           MRGI_TEST_CASE(test_zero_view_importance_picked),
                                           MRGI_TEST_CASE(test_blur),
                                           MRGI_TEST_CASE(test_importance),
-                                          MRGI_TEST_CASE(test_inter_texel) };
+                                          MRGI_TEST_CASE(test_inter_texel),
+                                          MRGI_TEST_CASE(test_float_twin) };
   return MRGI_TEST_MAIN(argc, argv, cases);
 }

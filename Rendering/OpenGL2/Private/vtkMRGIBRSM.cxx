@@ -8,6 +8,7 @@
 #include "vtkRenderer.h"
 
 #include "mrgi_brsm_blur.h"
+#include "mrgi_brsm_cdf_float.h"
 #include "mrgi_brsm_importance.h"
 #include "mrgi_brsm_sample.h"
 
@@ -85,9 +86,12 @@ bool vtkMRGIBRSM::TakeViewSamples(const vtkMRGIFrameContext& frame, int side, st
   return true;
 }
 
-//------------------------------------------------------------------------------
-bool vtkMRGIBRSM::Select(const mrgi_rsm& rsm, const ViewSamples& view, const Settings& settings,
-  int count, std::uint64_t seed, mrgi_vpl* vpls, std::string& error)
+namespace
+{
+// importance -> blur -> mix: the weights of the 2-D CDF, into a double CDF.
+bool BuildCDF(const mrgi_rsm& rsm, const vtkMRGIBRSM::ViewSamples& view,
+  const vtkMRGIBRSM::Settings& settings, std::uint64_t seed, std::vector<double>& cdf,
+  std::string& error)
 {
   const size_t texels = mrgi_vpl_importance_scratch_count(&rsm);
   std::vector<float> importance(texels, 0.0f), blurred;
@@ -120,19 +124,56 @@ bool vtkMRGIBRSM::Select(const mrgi_rsm& rsm, const ViewSamples& view, const Set
     error = std::string("BRSM mix: ") + err.message;
     return false;
   }
-  std::vector<double> cdf(mrgi_brsm_cdf_count(&rsm));
+  cdf.assign(mrgi_brsm_cdf_count(&rsm), 0.0);
   if (mrgi_brsm_cdf_build(&rsm, importance.data(), texels, cdf.data(), cdf.size(), nullptr, &err) !=
     MRGI_OK)
   {
     error = std::string("BRSM CDF: ") + err.message;
     return false;
   }
+  return true;
+}
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIBRSM::Select(const mrgi_rsm& rsm, const ViewSamples& view, const Settings& settings,
+  int count, std::uint64_t seed, mrgi_vpl* vpls, std::string& error)
+{
+  std::vector<double> cdf;
+  if (!BuildCDF(rsm, view, settings, seed, cdf, error))
+  {
+    return false;
+  }
+  mrgi_error err;
   const mrgi_brsm_sampling sampling = { count, seed, settings.InterTexel ? 1 : 0,
     view.HasCamera ? view.WorldToClip : nullptr };
   if (mrgi_brsm_sample_vpls(&rsm, cdf.data(), cdf.size(), &sampling, nullptr, vpls, count,
         nullptr, &err) != MRGI_OK)
   {
     error = std::string("BRSM sampling: ") + err.message;
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIBRSM::PrepareInversion(const mrgi_rsm& rsm, const ViewSamples& view,
+  const Settings& settings, int count, std::uint64_t seed, std::vector<float>& cdf,
+  std::vector<float>& samples, std::string& error)
+{
+  std::vector<double> exact;
+  if (!BuildCDF(rsm, view, settings, seed, exact, error))
+  {
+    return false;
+  }
+  mrgi_error err;
+  cdf.assign(mrgi_brsm_cdf_float_count(&rsm), 0.0f);
+  samples.assign(2 * static_cast<size_t>(std::max(count, 0)), 0.0f);
+  if (mrgi_brsm_cdf_to_float(&rsm, exact.data(), exact.size(), cdf.data(), cdf.size(), &err) !=
+      MRGI_OK ||
+    mrgi_brsm_sample_values(count, seed, samples.data(), samples.size(), &err) != MRGI_OK)
+  {
+    error = std::string("BRSM GPU inputs: ") + err.message;
     return false;
   }
   return true;

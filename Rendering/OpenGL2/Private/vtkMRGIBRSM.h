@@ -58,6 +58,16 @@ bool TakeViewSamples(const vtkMRGIFrameContext& frame, int side, std::uint64_t s
  */
 bool Select(const mrgi_rsm& rsm, const ViewSamples& view, const Settings& settings, int count,
   std::uint64_t seed, mrgi_vpl* vpls, std::string& error);
+
+/**
+ * The GPU inversion's inputs (vtkMRGIBRSMInversion, texel VPLs): the same
+ * weights as Select(), their 2-D CDF rounded to float
+ * (mrgi_brsm_cdf_to_float()) and the `count` sample values
+ * (mrgi_brsm_sample_values()) for `seed`. False, with `error`.
+ */
+bool PrepareInversion(const mrgi_rsm& rsm, const ViewSamples& view, const Settings& settings,
+  int count, std::uint64_t seed, std::vector<float>& cdf, std::vector<float>& samples,
+  std::string& error);
 }
 
 #endif

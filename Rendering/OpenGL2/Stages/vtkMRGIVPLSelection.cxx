@@ -2,6 +2,7 @@
 #include "vtkMRGIFrameContext.h"
 
 #include "vtkFloatArray.h"
+#include "vtkMRGIBRSMInversion.h"
 #include "vtkMRGIGather.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
 #include "vtkMRGIShaderUtilities.h"
@@ -54,6 +55,7 @@ struct vtkMRGIVPLSelection::Internals
   vtkMRGIBRSM::ViewSamples View; // BRSM mode: this frame's view samples
   vtkIdType ViewStamp = 0;        // bumped by SetViewSamplesFromFrame()
   vtkIdType SourceViewStamp = 0;  // ViewStamp of the cache
+  vtkMRGIBRSMInversion* Inversion = nullptr; // BRSM mode, texel VPLs: the GPU inversion
 };
 
 //------------------------------------------------------------------------------
@@ -73,7 +75,7 @@ vtkMRGIVPLSelection::~vtkMRGIVPLSelection()
 {
   if (this->Internal->Texture || this->Internal->FrameBuffer || this->Internal->GridQuad ||
     this->Internal->RowsQuad || this->Internal->RowSums || this->Internal->RowBest ||
-    this->Internal->TreeTexture)
+    this->Internal->TreeTexture || this->Internal->Inversion)
   {
     vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
   }
@@ -94,6 +96,11 @@ vtkMRGIVPLSelection::~vtkMRGIVPLSelection()
   }
   delete this->Internal->GridQuad;
   delete this->Internal->RowsQuad;
+  if (this->Internal->Inversion)
+  {
+    this->Internal->Inversion->ReleaseGraphicsResources(nullptr);
+    this->Internal->Inversion->Delete();
+  }
   this->ReleaseTree(nullptr);
 }
 
@@ -120,6 +127,12 @@ void vtkMRGIVPLSelection::ReleaseGraphicsResources(vtkWindow* w)
     this->Internal->GridQuad->ReleaseGraphicsResources(w);
     delete this->Internal->GridQuad;
     this->Internal->GridQuad = nullptr;
+  }
+  if (this->Internal->Inversion)
+  {
+    this->Internal->Inversion->ReleaseGraphicsResources(w);
+    this->Internal->Inversion->Delete();
+    this->Internal->Inversion = nullptr;
   }
   if (this->Internal->RowsQuad)
   {
@@ -532,6 +545,14 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
   else if (this->Mode == FluxImportance || this->Mode == BRSM)
   {
     // Read the maps back and let the C core sample them; upload the records.
+    // BRSM texel VPLs: the C core builds the float CDF, the GPU inverts it
+    // (vtkMRGIBRSMInversion) into the rows after the upload.
+    struct Inversion
+    {
+      const Block* Rows;
+      std::vector<float> CDF, Samples;
+    };
+    std::vector<Inversion> inversions;
     std::vector<mrgi_vpl> vpls(static_cast<size_t>(rows));
     for (const Block& block : blocks)
     {
@@ -551,6 +572,18 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
         settings.Blur = this->BRSMBlur;
         settings.InterTexel = this->BRSMInterTexel;
         std::string error;
+        if (!settings.InterTexel)
+        {
+          inversions.push_back({ &block, {}, {} });
+          if (!vtkMRGIBRSM::PrepareInversion(map, this->Internal->View, settings, block.Rows,
+                seed + static_cast<vtkTypeUInt64>(this->Internal->ViewStamp),
+                inversions.back().CDF, inversions.back().Samples, error))
+          {
+            vtkErrorMacro(<< error);
+            return this->Internal->Count = 0;
+          }
+          continue;
+        }
         if (!vtkMRGIBRSM::Select(map, this->Internal->View, settings, block.Rows,
               seed + static_cast<vtkTypeUInt64>(this->Internal->ViewStamp),
               vpls.data() + block.FirstRow, error))
@@ -572,6 +605,26 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, MRGI_VPL_TEXELS, rows, GL_RGBA, GL_FLOAT,
       mrgi_vpl_texture_data(vpls.data()));
     texture->Deactivate();
+    for (const Inversion& inversion : inversions)
+    {
+      if (!this->Internal->Inversion)
+      {
+        this->Internal->Inversion = vtkMRGIBRSMInversion::New();
+      }
+      std::vector<vtkMRGIBRSMInversion::View> viewTextures;
+      for (int v : lightViews[inversion.Rows->Light])
+      {
+        viewTextures.push_back(
+          { rsm->GetPositionTexture(v), rsm->GetNormalTexture(v), rsm->GetFluxTexture(v) });
+      }
+      std::string error;
+      if (!this->Internal->Inversion->Invert(window, size, viewTextures, inversion.CDF, inversion.Samples,
+            inversion.Rows->Rows, texture, inversion.Rows->FirstRow, error))
+      {
+        vtkErrorMacro(<< error);
+        return this->Internal->Count = 0;
+      }
+    }
   }
   else
   {

@@ -48,8 +48,12 @@
  *   every texel with flux keeps p > 0 and the 1 / (N p) estimate stays
  *   unbiased), sampled through a 2-D CDF, with inter-texel VPLs
  *   (BRSMInterTexel). The RSMs are read back and the C core
- *   (mrgi_brsm_*.h, Private/vtkMRGIBRSM) selects; recomputed every frame
- *   the view samples change. Without view samples it equals FluxImportance.
+ *   (mrgi_brsm_*.h, Private/vtkMRGIBRSM) builds the weights and the CDF;
+ *   with texel VPLs (BRSMInterTexel off) the CDF is rounded to float and
+ *   inverted on the GPU (vtkMRGIBRSMInversion, exact parity with
+ *   mrgi_brsm_cdf_float.h), with inter-texel VPLs the C core samples and the
+ *   records are uploaded. Recomputed every frame the view samples change.
+ *   Without view samples it equals FluxImportance.
  *
  * With several lights, the VPL budget is split evenly among the lights that
  * have views. Nothing is recomputed while the RSMs and the settings are unchanged.
