@@ -81,7 +81,7 @@ def parse_spec(spec):
         return "brsm %s" % parts[1], BRSM, int(parts[1]), None
     if kind == "ism" and len(parts) == 2:
         lazy = int(parts[1])
-        return ("grid 256 + ISM, lazy 1/%d" % lazy if lazy > 1 else "grid 256 + ISM, full resampling"), \
+        return ("grid 256 + ISM, lazy over %d frames" % lazy if lazy > 1 else "grid 256 + ISM, full resampling"), \
             ISM, lazy, None
     if kind == "tree" and len(parts) == 2:
         tau = parts[1]
@@ -305,7 +305,7 @@ def main():
                                  if r["path"] == path and r["kind"] == GRID), 256.0)
                 number = choose_tau(window, gi, paths, path, args.frames, grid_vpp)
                 label = "tree tau %g (auto)" % number
-            tag = label.split(" (")[0].replace(" ", "-")
+            tag = "".join(c if c.isalnum() or c in "-." else "-" for c in label.split(" (")[0])
             files, images, ms, vpp = render_sequence(window, gi, paths, path, args.frames, kind, number,
                                                      seed_rule, scratch, tag)
             f_pixel, pairs = flicker(tool, files, ref_files, 1)

@@ -93,7 +93,8 @@ static void test_float_round_trip_is_exact(void)
 /* A 16-line block of a real image (a 4x4 box average of the corridor's
  * ground truth) that OpenEXR 3.1.5 (Debian 12) wrote as a corrupt ZIP chunk:
  * read back with non-finite and negative values (also by OpenEXR's own C++
- * reader). The writer uses ZIPS (one line per chunk), which writes it right. */
+ * reader; ZIPS corrupted other images' lines). The writer stores pixels
+ * uncompressed, which writes every image right. */
 static void test_real_block_round_trip_is_exact(void)
 {
   char data[1024];

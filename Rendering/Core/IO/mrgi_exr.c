@@ -431,7 +431,7 @@ static mrgi_status mrgi_exr_write_header(mrgi_exr_writer* w, const mrgi_image* i
   if (rv == EXR_ERR_SUCCESS)
   {
     rv = exr_initialize_required_attr_simple(w->context, part, img->width, img->height,
-                                             EXR_COMPRESSION_ZIPS);
+                                             EXR_COMPRESSION_NONE);
   }
   const exr_pixel_type_t exr_type = type == MRGI_EXR_HALF ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT;
   for (int32_t c = 0; rv == EXR_ERR_SUCCESS && c < img->channels; ++c)

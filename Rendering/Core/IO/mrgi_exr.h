@@ -4,8 +4,10 @@
  *
  * Images follow mrgi_image.h: interleaved floats, row 0 = top row, which is
  * also the first scanline of the EXR data window. Files are single-part
- * scanline images with ZIPS compression (one scanline per chunk: OpenEXR
- * 3.1.5, Debian 12, wrote some 16-line ZIP chunks corrupt; TestEXR keeps one).
+ * scanline images without compression: OpenEXR 3.1.5's C encoder (Debian
+ * 12) wrote corrupt ZIP and ZIPS chunks for some real images (non-finite
+ * and negative values read back, by OpenEXR's C++ reader too; TestEXR keeps
+ * such a block). Files are larger (12 bytes per RGB pixel), never wrong.
  *
  * Writing never stores NaN or infinity: NaN becomes 0 and values are clamped
  * to the finite range of the stored type. Half floats hold at most
