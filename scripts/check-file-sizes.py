@@ -27,8 +27,6 @@ EXCEPTIONS = {
         (1230, "the pass; its split into Private/ helpers and stages is under way"),
     "Rendering/Core/Validation/mrgi_reference.c":
         (1558, "CPU reference renderer; split (area light, stopping statistics) pending"),
-    "Rendering/Core/IO/mrgi_exr.c":
-        (981, "OpenEXR reader and writer in one file; split pending"),
 }
 
 
