@@ -25,8 +25,6 @@ EXTENSIONS = (".c", ".h", ".cxx", ".hxx", ".cpp", ".hpp")
 EXCEPTIONS = {
     "Rendering/OpenGL2/Passes/vtkMRGIPass.cxx":
         (1230, "the pass; its split into Private/ helpers and stages is under way"),
-    "Rendering/Core/Validation/mrgi_reference.c":
-        (1558, "CPU reference renderer; split (area light, stopping statistics) pending"),
 }
 
 
