@@ -20,6 +20,7 @@
 #include "vtkMRGIGather.h"
 #include "vtkMRGIImageIO.h"
 #include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIImperfectShadowMaps.h"
 #include "vtkMRGIIndirectLight.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGIReferenceRenderer.h"
@@ -540,6 +541,9 @@ int main(int argc, char* argv[])
   if (!std::isnan(o.ISMBias))
     mrgi->GetIndirectLightStage()->SetISMRelativeBias(o.ISMBias);
   mrgi->GetIndirectLightStage()->SetISMFiltering(o.ISMFiltering);
+  if (!std::isnan(o.ISMTexelBias))
+    mrgi->GetIndirectLightStage()->SetISMTexelBias(o.ISMTexelBias);
+  mrgi->GetIndirectLightStage()->GetImperfectShadowMaps()->SetPushPull(o.ISMPushPull);
   mrgi->SetIndirectStrength(o.IndirectStrength);
   mrgi->SetToneMapping(o.ToneMapping);
   mrgi->SetAutoExposure(o.AutoExposure);

@@ -10,6 +10,10 @@ the default adaptive ones, against the CPU ground truth
 (vtkMRGIReferenceRenderer, secondary visibility on, relative error target
 0, --passes passes; its own noise is printed and written to the page).
 
+Where the ISM stage has SetPushPull, an extra row "ism, session-8 lookup"
+renders ISM with the lookup defaults before the corridor fix (push-pull on, texel
+bias 3) in the same run, for a before/after ratio on one machine load.
+
 Reports relative RMS per pixel and after 4x4 box averaging (mrgi-compare,
 the C core's metric) and the median wall time of a frame. On the corridors
 also the indirect shadow's region mean against the truth's (the issue's
@@ -31,6 +35,7 @@ closer to the truth than off on cornell-spot.
 """
 import argparse
 import os
+import re
 import sys
 import time
 
@@ -108,17 +113,27 @@ def run_scene(scene, args, compare_tool, scratch, images):
     modes = visibility_modes(gi)
     if scene.startswith("corridor") and len(modes) > 1:
         modes.insert(2, ("ism uniform points", modes[1][1], 0))
+    stage = gi.GetIndirectLightStage() if hasattr(gi, "GetIndirectLightStage") else None
+    ism_stage = stage.GetImperfectShadowMaps() if stage is not None else None
+    old_lookup = ism_stage is not None and hasattr(ism_stage, "SetPushPull")
+    if old_lookup and len(modes) > 1:
+        modes.insert(2, ("ism, session-8 lookup (push-pull, texel bias 3)", modes[1][1], None))
+    defaults = (ism_stage.GetPushPull(), stage.GetISMTexelBias()) if old_lookup else None
     for label, mode, point_mode in modes:
         if hasattr(gi, "SetIndirectVisibility"):
             gi.SetIndirectVisibility(mode)
             if hasattr(gi, "SetISMPointMode"):
                 gi.SetISMPointMode(2 if point_mode is None else point_mode)
+        if old_lookup:
+            old = "session-8" in label
+            ism_stage.SetPushPull(True if old else defaults[0])
+            stage.SetISMTexelBias(3.0 if old else defaults[1])
         window.Render()
         buffer = mb.vtkImageData()
         assert gi.GetIndirectBuffer(window, buffer)
         image = mb.to_numpy(buffer)[..., :3]
         assert np.isfinite(image).all(), "%s %s: non-finite pixels" % (scene, label)
-        tag = label.replace(" ", "-")
+        tag = re.sub(r"[^a-z0-9]+", "-", label).strip("-")
         path = os.path.join(scratch, "is-%s-%s.exr" % (scene, tag))
         mb.write(image, path)
         row = {"label": label,
@@ -128,7 +143,7 @@ def run_scene(scene, args, compare_tool, scratch, images):
         if region is not None and region.any():
             row["region"] = float(mb.boxes(image).mean(axis=2)[region].mean() /
                                   mb.boxes(ref).mean(axis=2)[region].mean())
-        if point_mode is None:
+        if point_mode is None and "session-8" not in label:
             mb.write_display(image, os.path.join(images, "indirectshadows-%s-%s.png" % (scene, tag)), scale)
         rows.append(row)
         print("%-8s %-20s per pixel %.4f  4x4 %.4f  frame %.1f ms%s" % (
@@ -149,7 +164,8 @@ def run_scene(scene, args, compare_tool, scratch, images):
         lines.append("| %s | %.3f | %.3f | %.1f |%s" % (
             r["label"], r["pixel"], r["box"], r["frame_ms"],
             (" %.2f |" % r["region"] if "region" in r else " - |") if region is not None else ""))
-    pictures = [r["label"] for r in rows if "uniform" not in r["label"]] + ["truth"]
+    pictures = [r["label"] for r in rows
+                if "uniform" not in r["label"] and "session-8" not in r["label"]] + ["truth"]
     lines += ["", " ".join("![%s %s](images/indirectshadows-%s-%s.png)" % (scene, p, scene, p)
                            for p in pictures)]
     window.Finalize()

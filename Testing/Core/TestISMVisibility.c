@@ -123,7 +123,9 @@ static void test_plane_occluder(void)
 }
 
 /* Receivers on the point-sampled surface that made the ISM (not the sample
- * points themselves): never self-shadowed at the default bias, PCF on or
+ * points themselves): on this DENSE, push-pulled tile (about 10 points per
+ * texel) never self-shadowed at texel bias 3 (what the header advises for
+ * dense tiles; the default is tuned to the stage's sparse tiles), PCF on or
  * off; without any bias a good part is. Plane z = 2 within 63 degrees of
  * the VPL normal (|x|, |y| <= 4), and a wall x = 1.5 seen at grazing angles. */
 static void test_bias_no_self_shadow(void)
@@ -148,6 +150,7 @@ static void test_bias_no_self_shadow(void)
     const float vpl[3] = { 0, 0, 0 }, n[3] = { 0, 0, 1 };
     mrgi_ism_lookup_params p;
     mrgi_ism_lookup_params_default(&p);
+    p.texel_bias = 3.0f;
     mrgi_ism_lookup_params none = { 0.0f, 0.0f, 0 };
     int shadowed = 0, shadowed_unbiased = 0, tested = 0;
     for (int i = 0; i < 4000; ++i)
@@ -163,12 +166,69 @@ static void test_bias_no_self_shadow(void)
       }
       shadowed_unbiased += mrgi_ism_visibility(&L, depth, 0, vpl, n, x, &none) < 1.0f;
     }
-    printf("%s: %d of %d receivers self-shadowed at the default bias, %d without bias\n",
+    printf("%s: %d of %d receivers self-shadowed at texel bias 3, %d without bias\n",
       wall ? "wall x = 1.5" : "plane z = 2", shadowed, 2 * tested, shadowed_unbiased);
     MRGI_CHECK(shadowed == 0);
     MRGI_CHECK(shadowed_unbiased > tested / 20);
     free(depth);
   }
+}
+
+/* The stage's defaults (32^2 tile, no push-pull, default bias; corridor
+ * issue 13): (1) an occluder close to its receiver shadows it: VPL at the
+ * origin facing +z, occluder square z = 1.7, |x|, |y| <= 0.3, receivers at
+ * z = 2, |x|, |y| <= 0.15 (0.3 behind it, 15% of the distance). At the old
+ * default texel bias 3 the bias, 2 (0.02 + 6 / 32) = 0.415, exceeded the gap
+ * and they stayed lit. (2) A sparse open scene gets no false shadows: 256
+ * points on the plane z = 2 and 16 on a small square z = 0.5 near x = 1.6;
+ * receivers on the plane away from the square's shadow (|x| <= 1) stay
+ * visible; push-pull (the old default) spreads the square's depth into the
+ * plane's holes and shadows many of them. */
+static void test_sparse_defaults(void)
+{
+  mrgi_ism_atlas_layout L;
+  MRGI_CHECK(mrgi_ism_atlas_layout_make(1, 32, &L, NULL) == MRGI_OK);
+  const double vpld[3] = { 0, 0, 0 }, nd[3] = { 0, 0, 1 };
+  const float vpl[3] = { 0, 0, 0 }, n[3] = { 0, 0, 1 };
+  mrgi_ism_lookup_params p;
+  mrgi_ism_lookup_params_default(&p);
+  uint32_t seed = 21u;
+  float* depth = atlas_new(&L, MRGI_ISM_EMPTY_DEPTH);
+  scatter_rect(&L, depth, vpld, nd, 1.7, -0.3, 0.3, -0.3, 0.3, 2000, &seed);
+  if (MRGI_ISM_DEFAULT_PUSH_PULL)
+    push_pull(&L, depth);
+  int lit = 0;
+  for (int i = 0; i < 200; ++i)
+  {
+    const float x[3] = { (float)(-0.15 + 0.3 * test_uniform(&seed)),
+      (float)(-0.15 + 0.3 * test_uniform(&seed)), 2.0f };
+    lit += mrgi_ism_visibility(&L, depth, 0, vpl, n, x, &p) > 0.0f;
+  }
+  printf("occluder 0.3 in front of its receivers: %d of 200 receivers lit\n", lit);
+  MRGI_CHECK(lit == 0);
+  free(depth);
+
+  int shadowed[2] = { 0, 0 };
+  for (int pp = 0; pp < 2; ++pp)
+  {
+    depth = atlas_new(&L, MRGI_ISM_EMPTY_DEPTH);
+    seed = 22u;
+    scatter_rect(&L, depth, vpld, nd, 2.0, -4.0, 4.0, -4.0, 4.0, 256, &seed);
+    scatter_rect(&L, depth, vpld, nd, 0.5, 1.5, 1.7, -0.1, 0.1, 16, &seed);
+    if (pp)
+      push_pull(&L, depth);
+    for (int i = 0; i < 1000; ++i)
+    {
+      const float x[3] = { (float)(-1.0 + 2.0 * test_uniform(&seed)),
+        (float)(-3.0 + 6.0 * test_uniform(&seed)), 2.0f };
+      shadowed[pp] += mrgi_ism_visibility(&L, depth, 0, vpl, n, x, &p) < 1.0f;
+    }
+    free(depth);
+  }
+  printf("sparse open scene: %d of 1000 unoccluded receivers shadowed without push-pull, %d with\n",
+    shadowed[0], shadowed[1]);
+  MRGI_CHECK(shadowed[MRGI_ISM_DEFAULT_PUSH_PULL != 0] <= 20);
+  MRGI_CHECK(shadowed[1] > 50); /* what the old default did (93 of 1000) */
 }
 
 /* PCF at the tile border clamps to the tile: tile 0 empty (visible), its
@@ -451,7 +511,8 @@ static void test_gathers(void)
 int main(int argc, char** argv)
 {
   static const mrgi_test_case cases[] = { MRGI_TEST_CASE(test_plane_occluder),
-    MRGI_TEST_CASE(test_bias_no_self_shadow), MRGI_TEST_CASE(test_pcf_stays_in_tile),
+    MRGI_TEST_CASE(test_bias_no_self_shadow), MRGI_TEST_CASE(test_sparse_defaults),
+    MRGI_TEST_CASE(test_pcf_stays_in_tile),
     MRGI_TEST_CASE(test_bad_params), MRGI_TEST_CASE(test_gathers) };
   return MRGI_TEST_MAIN(argc, argv, cases);
 }

@@ -68,15 +68,28 @@ extern "C" {
 /** Default relative bias (fraction of the distance). */
 #define MRGI_ISM_DEFAULT_RELATIVE_BIAS 0.02f
 /**
- * Default texel bias (texel footprints). One footprint is not enough: the
- * depth of a surface varies across a texel by dist tan(incidence) times the
- * texel's angle, and 2x2 PCF reads texels up to one texel away from the
- * receiver's. Measured (core.TestISMVisibility, 64^2 tile, 40k points on a
- * plane facing the VPL and on a tilted wall, receivers up to 60..65 degrees
- * off the VPL normal, PCF on): receivers self-shadowed at texel bias 1.0:
- * 23% / 16%, 2.0: 2.8%, 2.5: 0.1%, 3.0: none.
+ * Default texel bias (texel footprints). Two effects pull against each other:
+ * (a) a receiver's own surface appears in its texel (and the PCF neighbours)
+ * at up to several footprints nearer, and self-shadows it; (b) the bias is
+ * a length, dist 2 texel_bias / (T c): at T = 32 and 3 footprints it is 20%
+ * of the distance facing the VPL and larger than the distance itself near
+ * c = 0.2, so an occluder close to its receiver (the corridor's statue and
+ * the floor behind it) can never shadow it.
+ * (a) depends on how densely points cover the tile. On a dense, push-pulled
+ * tile (core.TestISMVisibility: 64^2 tile, 40k points on a plane facing the
+ * VPL and on a tilted wall, receivers up to 60..65 degrees off the VPL
+ * normal, PCF on) receivers self-shadowed at texel bias 1.0: 23% / 16%,
+ * 2.0: 2.8%, 2.5: 0.1%, 3.0: none. With the stage's defaults (256 points per
+ * 32^2 tile, no push-pull, MRGI_ISM_DEFAULT_PUSH_PULL) most texels are empty
+ * and (a) is rare: Testing/Benchmarks/ism_visibility_diagnostic.c (exact
+ * ray casts, 64 VPLs, adaptive points) gives, as unoccluded light wrongly
+ * removed / rel. RMS of the gathered light vs exact (no visibility: 0.028 and
+ * 0.44): corridor texel bias 1: 1.9% / 0.021, 1.5: 1.0% / 0.016,
+ * 3: 0.2% / 0.026; u-shape 1: 11% / 0.30, 1.5: 7.9% / 0.31, 3: 1.7% / 0.39;
+ * open corner (nothing occluded) 1: 1.9%, 1.5: 1.1%, 3: 0.2%. 1.5 is the
+ * default; raise it to 3 for dense tiles (PointsPerVPL >= T^2, push-pull on).
  */
-#define MRGI_ISM_DEFAULT_TEXEL_BIAS 3.0f
+#define MRGI_ISM_DEFAULT_TEXEL_BIAS 1.5f
 /** Largest accepted relative bias / texel bias. */
 #define MRGI_ISM_MAX_BIAS 16.0f
 

@@ -134,6 +134,7 @@ struct vtkMRGIImperfectShadowMaps::Internals
   vtkOpenGLVertexArrayObject* PointArray = nullptr;
   mrgi_ism_atlas_layout Layout{};
   bool HasAtlas = false;
+  bool AtlasPushPulled = false; // the atlas is Pushed[0] (else Pulled[0])
 
   // The scene's point set (Update()).
   std::vector<float> Vertices;    // world xyz (actor matrices applied)
@@ -257,7 +258,12 @@ void vtkMRGIImperfectShadowMaps::ReleaseGraphicsResources(vtkWindow* w)
 vtkTextureObject* vtkMRGIImperfectShadowMaps::GetAtlasTexture() const
 {
   const Internals& in = *this->Internal;
-  return in.HasAtlas && !in.Pushed.empty() ? in.Pushed[0] : nullptr;
+  if (!in.HasAtlas || in.Pulled.empty())
+  {
+    return nullptr;
+  }
+  // Without push-pull (or a 1 x 1 tile: one level) the drawn level 0 is the atlas.
+  return in.AtlasPushPulled && !in.Pushed.empty() ? in.Pushed[0] : in.Pulled[0];
 }
 
 const mrgi_ism_atlas_layout& vtkMRGIImperfectShadowMaps::GetLayout() const
@@ -446,7 +452,8 @@ bool vtkMRGIImperfectShadowMaps::Render(vtkOpenGLRenderWindow* window, const flo
 
     // ---- step 4: push-pull, one full-screen pass per level and direction ----
     vtkMRGIShaderUtilities::ScopedStage pushPull(in.Timer, "ism.pushpull");
-    for (int stage = 0; ok && stage < 2; ++stage)
+    in.AtlasPushPulled = this->PushPull;
+    for (int stage = 0; ok && this->PushPull && stage < 2; ++stage)
     {
       vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(window, stage == 0 ? "ism.pull" : "ism.push",
         "#define MRGI_ISM_PUSH_PULL_STAGE " + std::to_string(stage) + "\n",
@@ -820,6 +827,7 @@ void vtkMRGIImperfectShadowMaps::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PointsPerVPL: " << this->PointsPerVPL << "\n";
   os << indent << "TileSize: " << this->TileSize << "\n";
   os << indent << "LazyFrames: " << this->LazyFrames << "\n";
+  os << indent << "PushPull: " << (this->PushPull ? "On" : "Off") << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "Atlas: "
      << (in.HasAtlas ? std::to_string(in.Layout.width) + " x " + std::to_string(in.Layout.height) +

@@ -18,7 +18,8 @@
  *     them and draws them as GL points into the atlas in ONE draw: point i
  *     goes to VPL i mod V (mrgi_ism_atlas.h section 2), cos-sphere
  *     projection, nearest distance kept (MIN blending on R32F);
- *  4. push-pulls each tile (mrgi_ism_atlas.h section 4), one pass per level.
+ *  4. if PushPull (off by default), push-pulls each tile (mrgi_ism_atlas.h
+ *     section 4), one pass per level.
  * C twins: mrgi_ism_points.h (records, positions), mrgi_ism_atlas.h
  * (texel of each point, push-pull). Shaders: vtkMRGIISMPointsVS/FS.glsl,
  * vtkMRGIISMPushPullFS.glsl, with vtkMRGIISMProjection.glsl.
@@ -84,6 +85,18 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Push-pull hole filling (mrgi_ism_atlas.h section 4) after the point
+   * draw. Default MRGI_ISM_DEFAULT_PUSH_PULL (off: on sparse tiles the
+   * pulled minimum spreads near depths into holes and casts false shadows;
+   * see that constant for the measurement). Off, holes stay empty (visible).
+   */
+  vtkSetMacro(PushPull, bool);
+  vtkGetMacro(PushPull, bool);
+  vtkBooleanMacro(PushPull, bool);
+  ///@}
+
+  ///@{
   /** Seed of the point sampling (deterministic images). */
   vtkSetMacro(Seed, unsigned int);
   vtkGetMacro(Seed, unsigned int);
@@ -109,7 +122,7 @@ public:
     vtkTextureObject* vpls, int vplCount);
 #endif
 
-  /** The push-pulled R32F atlas of the last Update()/Render(); null before. */
+  /** The R32F atlas of the last Update()/Render() (push-pulled if PushPull); null before. */
   vtkTextureObject* GetAtlasTexture() const;
 
   /** The last atlas' layout (vpl_count 0 before). */
@@ -148,6 +161,7 @@ protected:
   int PointsPerVPL = 256;
   int TileSize = 32;
   int LazyFrames = 8;
+  bool PushPull = MRGI_ISM_DEFAULT_PUSH_PULL != 0;
   unsigned int Seed = 1;
 
   struct Internals;
