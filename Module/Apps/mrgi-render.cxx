@@ -23,6 +23,7 @@
 #include "vtkMRGIIndirectLight.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGIReferenceRenderer.h"
+#include "vtkMRGIResourceStatistics.h"
 #include "vtkMRGIRenderWindowFactory.h"
 #include "vtkMRGISceneBuilder.h"
 #include "vtkMRGIStaging.h"
@@ -56,6 +57,7 @@
 #include "mrgi_parse.h"
 #include "mrgi_vpl_tree_gather.h"
 
+#include "mrgiRenderColdStart.h"
 #include "mrgiRenderImageLimits.h"
 #include "mrgiRenderOptions.h"
 #include "mrgiRenderOutputWindow.h"
@@ -241,13 +243,14 @@ void Progress(const Options& o, const std::string& line)
 
 int main(int argc, char* argv[])
 {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point processStart = Clock::now(); // after the loader, before VTK
   Options o;
   const int parsed = ParseArguments(argc, argv, o);
   if (parsed >= 0)
   {
     return parsed;
   }
-  using Clock = std::chrono::steady_clock;
   auto seconds = [](Clock::time_point a) {
     return std::chrono::duration<double>(Clock::now() - a).count();
   };
@@ -276,6 +279,7 @@ int main(int argc, char* argv[])
   {
     return Fail("no render window: " + why);
   }
+  const double windowSeconds = seconds(processStart); // VTK's start-up and the GL context
   Progress(o, "render window: " + vtkMRGIRenderWindowFactory::DescribeRenderWindow(window));
   // Supersampling renders every pixel N x N times; the outputs are averaged back.
   const int ssaa = o.AntiAliasing == Options::AASSAA ? o.SSAAFactor : 1;
@@ -322,6 +326,7 @@ int main(int argc, char* argv[])
       static_cast<long long>(builder->GetBuiltTriangleCount()), seconds(buildStart));
   }
   Progress(o, line);
+  const double sceneSeconds = seconds(buildStart);
   const bool builtIn = vtkMRGISceneBuilder::IsBuiltInScene(o.Scene.c_str());
   if (!o.StagingOptions.empty() && (!o.Stage || builtIn))
   {
@@ -574,10 +579,17 @@ int main(int argc, char* argv[])
   std::map<std::string, std::vector<double>> stageTimes;
   std::vector<std::string> stageOrder;
   std::vector<double> frameTimes;
+  // Texture allocations per frame: the first frame's, and all later ones'.
+  std::vector<vtkTypeInt64> allocations, allocatedBytes;
+  const double setupSeconds = seconds(processStart);
   for (long long f = 0; f < o.Frames; ++f)
   {
     const Clock::time_point frameStart = Clock::now();
+    const vtkTypeInt64 allocationsBefore = vtkMRGIResourceStatistics::GetNumberOfTextureAllocations();
+    const vtkTypeInt64 bytesBefore = vtkMRGIResourceStatistics::GetTextureBytesAllocated();
     window->Render();
+    allocations.push_back(vtkMRGIResourceStatistics::GetNumberOfTextureAllocations() - allocationsBefore);
+    allocatedBytes.push_back(vtkMRGIResourceStatistics::GetTextureBytesAllocated() - bytesBefore);
     if (messages->GetNumberOfErrors() > 0)
     {
       return vtkFailed("rendering failed, nothing written");
@@ -757,6 +769,8 @@ int main(int argc, char* argv[])
     {
       std::printf("(this OpenGL offers no timer queries: GPU stage times unavailable)\n");
     }
+    PrintColdStart(stageOrder, stageTimes, frameTimes, allocations, allocatedBytes,
+      { windowSeconds, sceneSeconds, setupSeconds });
     std::fflush(stdout);
   }
 
