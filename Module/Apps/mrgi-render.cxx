@@ -408,9 +408,10 @@ int main(int argc, char* argv[])
       : o.Multires             ? vtkMRGIPass::IndirectMultires
                                : vtkMRGIPass::IndirectFull);
   // Shadows come with the indirect light unless asked otherwise: --gi off
-  // stays VTK's own direct light.
+  // stays VTK's own direct light, and --indirect-only writes no direct
+  // light (the shadows would cost a first frame its largest stage for nothing).
   mrgi->SetDirectShadows(o.DirectShadows >= 0 ? o.DirectShadows
-      : o.GI                                  ? vtkMRGIPass::DirectShadowsSoft
+      : o.GI && !o.IndirectOnly               ? vtkMRGIPass::DirectShadowsSoft
                                               : vtkMRGIPass::DirectShadowsOff);
   // The screen-space preset first, then every knob given explicitly (all
   // of them without a preset: their defaults are Balanced's values).
