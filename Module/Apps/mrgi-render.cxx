@@ -24,6 +24,7 @@
 #include "vtkMRGIIndirectLight.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGIReferenceRenderer.h"
+#include "vtkMRGIResourceStatistics.h"
 #include "vtkMRGIRenderWindowFactory.h"
 #include "vtkMRGISceneBuilder.h"
 #include "vtkMRGIStaging.h"
@@ -57,6 +58,7 @@
 #include "mrgi_parse.h"
 #include "mrgi_vpl_tree_gather.h"
 
+#include "mrgiRenderColdStart.h"
 #include "mrgiRenderImageLimits.h"
 #include "mrgiRenderOptions.h"
 #include "mrgiRenderOutputWindow.h"
@@ -242,13 +244,14 @@ void Progress(const Options& o, const std::string& line)
 
 int main(int argc, char* argv[])
 {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point processStart = Clock::now(); // after the loader, before VTK
   Options o;
   const int parsed = ParseArguments(argc, argv, o);
   if (parsed >= 0)
   {
     return parsed;
   }
-  using Clock = std::chrono::steady_clock;
   auto seconds = [](Clock::time_point a) {
     return std::chrono::duration<double>(Clock::now() - a).count();
   };
@@ -277,6 +280,7 @@ int main(int argc, char* argv[])
   {
     return Fail("no render window: " + why);
   }
+  const double windowSeconds = seconds(processStart); // VTK's start-up and the GL context
   Progress(o, "render window: " + vtkMRGIRenderWindowFactory::DescribeRenderWindow(window));
   // Supersampling renders every pixel N x N times; the outputs are averaged back.
   const int ssaa = o.AntiAliasing == Options::AASSAA ? o.SSAAFactor : 1;
@@ -323,6 +327,7 @@ int main(int argc, char* argv[])
       static_cast<long long>(builder->GetBuiltTriangleCount()), seconds(buildStart));
   }
   Progress(o, line);
+  const double sceneSeconds = seconds(buildStart);
   const bool builtIn = vtkMRGISceneBuilder::IsBuiltInScene(o.Scene.c_str());
   if (!o.StagingOptions.empty() && (!o.Stage || builtIn))
   {
@@ -404,9 +409,10 @@ int main(int argc, char* argv[])
       : o.Multires             ? vtkMRGIPass::IndirectMultires
                                : vtkMRGIPass::IndirectFull);
   // Shadows come with the indirect light unless asked otherwise: --gi off
-  // stays VTK's own direct light.
+  // stays VTK's own direct light, and --indirect-only writes no direct
+  // light (the shadows would cost a first frame its largest stage for nothing).
   mrgi->SetDirectShadows(o.DirectShadows >= 0 ? o.DirectShadows
-      : o.GI                                  ? vtkMRGIPass::DirectShadowsSoft
+      : o.GI && !o.IndirectOnly               ? vtkMRGIPass::DirectShadowsSoft
                                               : vtkMRGIPass::DirectShadowsOff);
   // The screen-space preset first, then every knob given explicitly (all
   // of them without a preset: their defaults are Balanced's values).
@@ -578,10 +584,17 @@ int main(int argc, char* argv[])
   std::map<std::string, std::vector<double>> stageTimes;
   std::vector<std::string> stageOrder;
   std::vector<double> frameTimes;
+  // Texture allocations per frame: the first frame's, and all later ones'.
+  std::vector<vtkTypeInt64> allocations, allocatedBytes;
+  const double setupSeconds = seconds(processStart);
   for (long long f = 0; f < o.Frames; ++f)
   {
     const Clock::time_point frameStart = Clock::now();
+    const vtkTypeInt64 allocationsBefore = vtkMRGIResourceStatistics::GetNumberOfTextureAllocations();
+    const vtkTypeInt64 bytesBefore = vtkMRGIResourceStatistics::GetTextureBytesAllocated();
     window->Render();
+    allocations.push_back(vtkMRGIResourceStatistics::GetNumberOfTextureAllocations() - allocationsBefore);
+    allocatedBytes.push_back(vtkMRGIResourceStatistics::GetTextureBytesAllocated() - bytesBefore);
     if (messages->GetNumberOfErrors() > 0)
     {
       return vtkFailed("rendering failed, nothing written");
@@ -761,6 +774,8 @@ int main(int argc, char* argv[])
     {
       std::printf("(this OpenGL offers no timer queries: GPU stage times unavailable)\n");
     }
+    PrintColdStart(stageOrder, stageTimes, frameTimes, allocations, allocatedBytes,
+      { windowSeconds, sceneSeconds, setupSeconds });
     std::fflush(stdout);
   }
 

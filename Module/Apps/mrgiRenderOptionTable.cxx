@@ -475,7 +475,7 @@ const std::vector<OptionSection>& OptionTable()
           "shadows in VTK's direct light, from the reflective shadow maps, for\n"
           "the first two lights: hard (percentage-closer filtering) or soft\n"
           "(PCSS); lit pixels keep VTK's colour exactly (default soft with\n"
-          "--gi on/full, off with --gi off)",
+          "--gi on/full, off with --gi off or --indirect-only)",
           Choice<int>(&Options::DirectShadows,
             { { "off", vtkMRGIPass::DirectShadowsOff }, { "hard", vtkMRGIPass::DirectShadowsHard },
               { "soft", vtkMRGIPass::DirectShadowsSoft } }) },

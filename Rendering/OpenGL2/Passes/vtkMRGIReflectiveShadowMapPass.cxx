@@ -35,6 +35,7 @@
 #include "vtkMRGIRSMCompositor.h"
 #include "vtkMRGIRSMDecl.h"
 #include "vtkMRGIRSMView.h"
+#include "vtkMRGIResourceStatistics.h"
 #include "vtkMRGIShaderUtilities.h"
 
 #include "mrgi_buffers.h"
@@ -564,8 +565,10 @@ void vtkMRGIReflectiveShadowMapPass::RenderWithAreaLights(
         t->SetMinificationFilter(vtkTextureObject::Nearest);
         t->SetMagnificationFilter(vtkTextureObject::Nearest);
         t->Allocate2D(this->Resolution, this->Resolution, 4, VTK_FLOAT);
+        vtkMRGIResourceStatistics::RecordTextureAllocation(this->Resolution, this->Resolution,
+          vtkMRGIShaderUtilities::BytesPerTexel(static_cast<int>(t->GetInternalFormat(VTK_FLOAT, 4, false))));
       }
-      t->Resize(this->Resolution, this->Resolution);
+      vtkMRGIShaderUtilities::ResizeTexture(t, this->Resolution, this->Resolution);
     }
   }
   for (size_t i = kept.size(); i < old.size(); ++i)

@@ -1,5 +1,7 @@
 #include "vtkMRGIAreaLightUtilities.h"
 
+#include "vtkMRGIResourceStatistics.h"
+
 #include "vtkAOSDataArrayTemplate.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -266,6 +268,7 @@ bool UploadPyramid(vtkTextureObject* texture, vtkOpenGLRenderWindow* window,
   texture->SetGenerateMipmap(false);
   // Level 0 through VTK (it creates and sizes the texture), the others as
   // GL mip levels of the same texture: the core's sizes are GL's chain.
+  vtkMRGIResourceStatistics::RecordTextureAllocation(pyramid->width[0], pyramid->height[0], 12);
   if (!texture->Create2DFromRaw(static_cast<unsigned int>(pyramid->width[0]),
         static_cast<unsigned int>(pyramid->height[0]), 3, VTK_FLOAT,
         pyramid->texels + pyramid->offset[0]))
@@ -297,6 +300,7 @@ bool UploadSamples(vtkTextureObject* texture, vtkOpenGLRenderWindow* window,
   texture->SetMagnificationFilter(vtkTextureObject::Nearest);
   texture->SetWrapS(vtkTextureObject::ClampToEdge);
   texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  vtkMRGIResourceStatistics::RecordTextureAllocation(MRGI_AREA_LIGHT_SAMPLE_TEXELS, count, 16);
   return texture->Create2DFromRaw(MRGI_AREA_LIGHT_SAMPLE_TEXELS, static_cast<unsigned int>(count),
     4, VTK_FLOAT, const_cast<float*>(mrgi_area_light_sample_texture_data(samples)));
 }

@@ -4,6 +4,7 @@
 
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkMRGIResourceStatistics.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -21,7 +22,7 @@ void vtkMRGIGBuffer::Prepare(vtkOpenGLRenderWindow* window, int w, int h, bool c
     }
     else
     {
-      t->Resize(static_cast<unsigned int>(w), static_cast<unsigned int>(h));
+      vtkMRGIShaderUtilities::ResizeTexture(t, w, h);
     }
   };
   ensure(this->Color, GL_RGBA32F);
@@ -45,8 +46,9 @@ void vtkMRGIGBuffer::Prepare(vtkOpenGLRenderWindow* window, int w, int h, bool c
       this->Depth->AllocateDepth(static_cast<unsigned int>(w), static_cast<unsigned int>(h),
         window->GetDepthBufferSize() == 32 ? vtkTextureObject::Fixed32 : vtkTextureObject::Fixed24);
     }
+    vtkMRGIResourceStatistics::RecordTextureAllocation(w, h, 4);
   }
-  this->Depth->Resize(static_cast<unsigned int>(w), static_cast<unsigned int>(h));
+  vtkMRGIShaderUtilities::ResizeTexture(this->Depth, w, h);
   if (capture)
   {
     ensure(this->Position, GL_RGBA32F);

@@ -106,15 +106,18 @@ bool vtkMRGIOutput::MeasureExposure(vtkOpenGLRenderWindow* window, const vtkMRGI
   const int viewport[4], double key, double& ev, std::string& problem)
 {
   ev = 0.0;
-  std::vector<float> rgba;
-  if (!vtkMRGIShaderUtilities::ReadTextureRGBA(window, g.Color, rgba))
+  const int x0 = viewport[0], y0 = viewport[1];
+  const int w = viewport[2], h = viewport[3];
+  // The viewport's pixels straight into one buffer: a whole-texture copy
+  // beside it cost a second 16 bytes per pixel, allocated and zero-filled
+  // every frame (Documentation/Multiresolution.md, "Cold start").
+  std::vector<float> colour(static_cast<size_t>(w) * h * 4);
+  if (w < 1 || h < 1 ||
+    !vtkMRGIShaderUtilities::ReadTextureRegion(window, g.Color, x0, y0, w, h, 4, colour.data()))
   {
     problem = "reading the colour back failed";
     return false;
   }
-  const int x0 = viewport[0], y0 = viewport[1];
-  const int w = viewport[2], h = viewport[3];
-  const size_t fullWidth = g.Color->GetWidth();
   std::vector<float> depth(static_cast<size_t>(w) * h);
   vtkOpenGLFramebufferObject* fbo = g.FrameBuffer;
   fbo->SaveCurrentBindingsAndBuffers();
@@ -124,14 +127,6 @@ bool vtkMRGIOutput::MeasureExposure(vtkOpenGLRenderWindow* window, const vtkMRGI
   glReadPixels(x0, y0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
   fbo->UnBind();
   fbo->RestorePreviousBindingsAndBuffers();
-  // The viewport's pixels, in the depth's order.
-  std::vector<float> colour(static_cast<size_t>(w) * h * 4);
-  for (int y = 0; y < h; ++y)
-  {
-    std::copy(rgba.begin() + static_cast<long>(4 * ((y + y0) * fullWidth + x0)),
-      rgba.begin() + static_cast<long>(4 * ((y + y0) * fullWidth + x0 + w)),
-      colour.begin() + static_cast<long>(4 * static_cast<size_t>(y) * w));
-  }
   double logAverage = 0.0, highlight = 0.0;
   mrgi_error err;
   const int64_t count = static_cast<int64_t>(w) * h;

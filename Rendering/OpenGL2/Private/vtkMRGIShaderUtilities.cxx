@@ -1,5 +1,7 @@
 #include "vtkMRGIShaderUtilities.h"
 
+#include "vtkMRGIResourceStatistics.h"
+
 #include "vtkCamera.h"
 #include "vtkMatrix4x4.h"
 
@@ -273,7 +275,44 @@ vtkTextureObject* NewTexture(vtkOpenGLRenderWindow* window, int internalFormat, 
     t->Delete();
     return nullptr;
   }
+  vtkMRGIResourceStatistics::RecordTextureAllocation(w, h, BytesPerTexel(internalFormat));
   return t;
+}
+
+int BytesPerTexel(int internalFormat)
+{
+  switch (internalFormat)
+  {
+    case GL_RGBA32F:
+    case GL_RGBA32UI:
+      return 16;
+    case GL_RGBA16F:
+    case GL_RG32F:
+      return 8;
+    case GL_R32F:
+    case GL_RGBA8:
+    case GL_DEPTH24_STENCIL8:
+    case GL_DEPTH_COMPONENT24:
+    case GL_DEPTH_COMPONENT32:
+    case GL_DEPTH_COMPONENT32F:
+      return 4;
+    case GL_R16F:
+      return 2;
+    case GL_R8:
+      return 1;
+    default:
+      return 16;
+  }
+}
+
+void ResizeTexture(vtkTextureObject* t, int w, int h)
+{
+  if (t && (t->GetWidth() != static_cast<unsigned int>(w) || t->GetHeight() != static_cast<unsigned int>(h)))
+  {
+    t->Resize(static_cast<unsigned int>(w), static_cast<unsigned int>(h));
+    vtkMRGIResourceStatistics::RecordTextureAllocation(
+      w, h, BytesPerTexel(static_cast<int>(t->GetInternalFormat(VTK_FLOAT, 4, false))));
+  }
 }
 
 bool EnsureTexture(
@@ -328,6 +367,7 @@ vtkTextureObject* NewDepthStencil(vtkOpenGLRenderWindow* window, int w, int h)
     t->Delete();
     return nullptr;
   }
+  vtkMRGIResourceStatistics::RecordTextureAllocation(w, h, BytesPerTexel(GL_DEPTH24_STENCIL8));
   return t;
 }
 

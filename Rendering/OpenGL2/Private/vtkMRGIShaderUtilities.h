@@ -141,6 +141,18 @@ vtkTextureObject* NewMaskTexture(vtkOpenGLRenderWindow* window, int w, int h);
  */
 vtkTextureObject* NewFlagsTexture(vtkOpenGLRenderWindow* window, int w, int h);
 
+/**
+ * Bytes per texel of `internalFormat` (the formats MRGI allocates; 16 for
+ * any other), for vtkMRGIResourceStatistics.
+ */
+int BytesPerTexel(int internalFormat);
+
+/**
+ * Give `t` storage of w x h when its size differs (vtkTextureObject::Resize),
+ * counting that allocation in vtkMRGIResourceStatistics; nothing otherwise.
+ */
+void ResizeTexture(vtkTextureObject* t, int w, int h);
+
 /** A new w x h depth-stencil texture, nearest filtering; null when the allocation fails. */
 vtkTextureObject* NewDepthStencil(vtkOpenGLRenderWindow* window, int w, int h);
 

@@ -2,6 +2,7 @@
 
 #include "vtkMRGIVPLTreeTexture.h"
 
+#include "vtkMRGIResourceStatistics.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
@@ -60,6 +61,7 @@ bool vtkMRGIVPLTreeTexture::Upload(vtkOpenGLRenderWindow* window, const mrgi_vpl
   std::vector<float> texels(static_cast<size_t>(width) * static_cast<size_t>(height) * 4, 0.0f);
   std::memcpy(texels.data(), tree->nodes, sizeof(mrgi_vpl) * static_cast<size_t>(tree->node_count));
   nodes->SetContext(window);
+  vtkMRGIResourceStatistics::RecordTextureAllocation(width, height, 16);
   if (!nodes->Create2DFromRaw(static_cast<unsigned int>(width), static_cast<unsigned int>(height),
         4, VTK_FLOAT, texels.data()))
   {

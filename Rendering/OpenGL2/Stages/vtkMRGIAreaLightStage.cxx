@@ -266,7 +266,7 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
     }
     else
     {
-      t->Resize(w, h);
+      vtkMRGIShaderUtilities::ResizeTexture(t, static_cast<int>(w), static_cast<int>(h));
     }
     return t != nullptr;
   };

@@ -1,5 +1,6 @@
 #include "vtkMRGIBRSMInversion.h"
 
+#include "vtkMRGIResourceStatistics.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFramebufferObject.h"
@@ -83,6 +84,7 @@ bool UploadFloat(vtkOpenGLRenderWindow* window, vtkTextureObject*& t, int w, int
   t->SetInternalFormat(components == 1 ? GL_R32F : GL_RG32F);
   t->SetFormat(components == 1 ? GL_RED : GL_RG);
   t->SetDataType(GL_FLOAT);
+  vtkMRGIResourceStatistics::RecordTextureAllocation(w, h, 4 * components);
   return t->Create2DFromRaw(static_cast<unsigned int>(w), static_cast<unsigned int>(h),
     components, VTK_FLOAT, const_cast<float*>(data));
 }

@@ -14,6 +14,7 @@
 #include "vtkFloatArray.h"
 #include "vtkMRGIFrameContext.h"
 #include "vtkMRGIFullScreenStep.h"
+#include "vtkMRGIResourceStatistics.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIStageResources.h"
 #include "vtkMapper.h"
@@ -118,6 +119,7 @@ vtkTextureObject* NewDepthTexture(vtkOpenGLRenderWindow* window, int w, int h)
     t->Delete();
     return nullptr;
   }
+  vtkMRGIResourceStatistics::RecordTextureAllocation(w, h, 4);
   return t;
 }
 }

@@ -5,6 +5,7 @@
 #include "vtkMRGIBRSMInversion.h"
 #include "vtkMRGIGather.h"
 #include "vtkMRGIReflectiveShadowMapPass.h"
+#include "vtkMRGIResourceStatistics.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
@@ -532,8 +533,9 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
     texture->SetMinificationFilter(vtkTextureObject::Nearest);
     texture->SetMagnificationFilter(vtkTextureObject::Nearest);
     texture->Allocate2D(MRGI_VPL_TEXELS, rows, 4, VTK_FLOAT);
+    vtkMRGIResourceStatistics::RecordTextureAllocation(MRGI_VPL_TEXELS, rows, 16);
   }
-  texture->Resize(MRGI_VPL_TEXELS, rows);
+  vtkMRGIShaderUtilities::ResizeTexture(texture, MRGI_VPL_TEXELS, rows);
 
   if (this->Mode == Clusters || this->Mode == Tree)
   {
@@ -667,8 +669,9 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
         (*t)->SetMinificationFilter(vtkTextureObject::Nearest);
         (*t)->SetMagnificationFilter(vtkTextureObject::Nearest);
         (*t)->Allocate2D(maxSide, size, 4, VTK_FLOAT);
+        vtkMRGIResourceStatistics::RecordTextureAllocation(maxSide, size, 16);
       }
-      (*t)->Resize(maxSide, size);
+      vtkMRGIShaderUtilities::ResizeTexture(*t, maxSide, size);
     }
     vtkTextureObject* rowSums = this->Internal->RowSums;
     vtkTextureObject* rowBest = this->Internal->RowBest;

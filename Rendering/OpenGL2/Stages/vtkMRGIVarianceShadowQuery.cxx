@@ -176,7 +176,7 @@ bool vtkMRGIVarianceShadowQuery::ComputeMoments(
     }
     else if (static_cast<int>(t->GetWidth()) != w || static_cast<int>(t->GetHeight()) != h)
     {
-      t->Resize(static_cast<unsigned int>(w), static_cast<unsigned int>(h));
+      vtkMRGIShaderUtilities::ResizeTexture(t, w, h);
     }
   }
   if (!in.FrameBuffer)

@@ -4,6 +4,7 @@
 
 #include "vtkCamera.h"
 #include "vtkMRGIShaderLibraries.h"
+#include "vtkMRGIResourceStatistics.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIVoxelGeometry.h"
 #include "vtkMatrix4x4.h"
@@ -557,6 +558,7 @@ bool vtkMRGIVoxelization::Voxelize(
       in.HasGrid = false;
       return false;
     }
+    vtkMRGIResourceStatistics::RecordTextureAllocation(grid.width, grid.height, 16);
     in.HasGrid = false;
   }
   if (!in.FrameBuffer)
