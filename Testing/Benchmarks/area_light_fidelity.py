@@ -146,17 +146,27 @@ def main():
         settings = []
         for visibility, value in visibility_modes(scene.gi):
             for preset, index in list(presets.items()) + [("full", None)]:
-                settings.append((visibility, value, preset, index, 128, True))
+                settings.append((visibility, value, preset, index, 128, True, None))
             if visibility == "naive":
                 for side in [int(v) for v in args.voxel_sizes.split(",") if v]:
                     if side != 128:
-                        settings.append((visibility, value, "balanced", presets["balanced"], side, True))
+                        settings.append((visibility, value, "balanced", presets["balanced"], side, True, None))
             if visibility == "incremental" and hasattr(scene.area, "SetIncrementalStencil"):
                 # NPW10 3.4 off: the gather keeps the geometric selection.
-                settings.append(("incremental-geometric", value, "balanced", presets["balanced"], 128, False))
-        for visibility, value, preset, index, side, stencil in settings:
+                settings.append(("incremental-geometric", value, "balanced", presets["balanced"], 128, False, None))
+                if hasattr(scene.area.GetIncrementalStencilStage(), "SetIrradianceTolerance"):
+                    # The stencil's visibility term alone (mrgi_irradiance_stencil.h off).
+                    settings.append(("incremental-visibility-stencil", value, "balanced", presets["balanced"], 128,
+                                     True, 0.0))
+        stencil_stage = scene.area.GetIncrementalStencilStage() if hasattr(scene.area, "GetIncrementalStencilStage") \
+            else None
+        default_tolerance = stencil_stage.GetIrradianceTolerance() \
+            if hasattr(stencil_stage, "GetIrradianceTolerance") else None
+        for visibility, value, preset, index, side, stencil, tolerance in settings:
             if hasattr(scene.area, "SetIncrementalStencil"):
                 scene.area.SetIncrementalStencil(stencil)
+            if default_tolerance is not None:
+                stencil_stage.SetIrradianceTolerance(default_tolerance if tolerance is None else tolerance)
             if value is not None:
                 scene.gi.SetAreaLightVisibility(value)
                 scene.gi.GetVoxelization().SetVoxelSide(side)
@@ -193,6 +203,8 @@ def main():
                 mb.write(image, path)
                 vs_truth = mb.compare(compare_tool, path, truth_path)
                 vs_unshadowed = mb.compare(compare_tool, path, unshadowed_path)
+                # The metric: relative RMS of the 4x4 box means.
+                vs_truth_boxes = mb.box_error(compare_tool, image, truth, scratch, "%s-boxes" % name)
                 tag = "%s-%s-%s" % (name, visibility, preset)
                 if preset in ("balanced", "full") and side == 128:
                     mb.write_display(image, os.path.join(images, "area-%s.png" % tag), scale)
@@ -207,13 +219,13 @@ def main():
                            level0=per_level[0] / valid,
                            levels="/".join("%.4f" % (n / valid) for n in per_level),
                            select_ms=t.get("select", 0.0), frame_ms=t["frame"], work=work,
-                           rel_rms_truth=vs_truth["relative_rms"],
+                           rel_rms_truth=vs_truth["relative_rms"], rel_rms_truth_boxes=vs_truth_boxes,
                            rel_rms_unshadowed=vs_unshadowed["relative_rms"])
                 rows.append(row)
                 print("%s, visibility %s (voxels %d), %s: area %.1f ms (select %.1f), work %.3f, rel. RMS vs truth "
-                      "%.4f, vs unshadowed truth %.4f" % (name, visibility, row["voxels"], preset, row["area_ms"],
-                                                         row["select_ms"], work, row["rel_rms_truth"],
-                                                         row["rel_rms_unshadowed"]))
+                      "%.4f (4x4 boxes %.4f), vs unshadowed truth %.4f"
+                      % (name, visibility, row["voxels"], preset, row["area_ms"], row["select_ms"], work,
+                         row["rel_rms_truth"], row["rel_rms_truth_boxes"], row["rel_rms_unshadowed"]))
         scene.renderer.SetPass(None)
         scene.gi.ReleaseGraphicsResources(scene.window)
 
@@ -271,10 +283,11 @@ def plot_tradeoff(rows, path):
     import matplotlib.pyplot as plt
     scenes = sorted({r["scene"] for r in rows})
     fig, axes = plt.subplots(1, len(scenes), figsize=(6.5 * len(scenes), 4.5), squeeze=False)
-    markers = {"off": "s", "naive": "o", "incremental": "^", "incremental-geometric": "v"}
+    markers = {"off": "s", "naive": "o", "incremental": "^", "incremental-geometric": "v",
+               "incremental-visibility-stencil": "<"}
     for ax, scene in zip(axes[0], scenes):
         mine = [r for r in rows if r["scene"] == scene]
-        for visibility in ("off", "naive", "incremental", "incremental-geometric"):
+        for visibility in ("off", "naive", "incremental", "incremental-geometric", "incremental-visibility-stencil"):
             sel = [r for r in mine if r["visibility"] == visibility]
             if sel:
                 ax.scatter([r["area_ms"] for r in sel], [100 * r["rel_rms_truth"] for r in sel],
@@ -369,8 +382,13 @@ def write_page(args, rows, notes, path, speed=()):
              "gather also renders a texel below the geometric selection where its parent's 3x3 visibility masks "
              "disagree on at least a quarter of the samples (`vtkMRGIIncrementalStencil::Fraction`), so penumbrae on flat "
              "surfaces are gathered at the resolution the shadow needs; the upsampling interpolates from the "
-             "finest rendered texel. `incremental-geometric` below is the same with the geometric selection "
-             "alone.",
+             "finest rendered texel. Also rendered below the cut (the irradiance term, `mrgi_irradiance_stencil.h`, "
+             "`vtkMRGIIncrementalStencil::IrradianceTolerance`, default 0.25; a departure from NPW10, which compares "
+             "gathered colours coarse to fine, one pass per level): texels whose parent's 3x3 see the light's "
+             "unshadowed irradiance, estimated on a 4x4 grid of cells, vary by more than a quarter of its maximum, so "
+             "that a flat wall near a large emitter is not interpolated from coarse texels (cornell-area's back-wall "
+             "bands). `incremental-geometric` below is the same with the geometric selection alone, "
+             "`incremental-visibility-stencil` with the visibility term alone.",
              "- **Phong highlights** (3.2.1): on surfaces with a vtkProperty Specular > 0, a separate pass adds "
              "k_s c_s S with the energy-normalised Phong lobe, discarding lobes that miss the light and sampling "
              "the light's texture on a 5x5 grid inside sharp lobes (`--specular KS:POWER` gives every surface a "
@@ -386,7 +404,8 @@ def write_page(args, rows, notes, path, speed=()):
              "measured error and pictures: [IndirectLight.md](IndirectLight.md#area-lights-bounce). The tables "
              "below measure the direct light alone (`IndirectMode` off).",
              "- Every GPU stage has a C twin in `Rendering/Core` and a parity test (diffuse 3e-7, march 0 of 1.1M "
-             "rays, visibility masks bit-equal, incremental stencil bit-equal, specular 2e-7 in the pass).",
+             "rays, visibility masks bit-equal, incremental stencil bit-equal (its irradiance term between the twin "
+             "at tau (1 +- 1e-4)), specular 2e-7 in the pass).",
              "- On Mesa's llvmpipe a shader invocation stops all its loops after 65535 iterations in total, "
              "silently; the marches are therefore batched (`mrgi_voxel_samples_per_batch`); levels smaller than "
              "128x128 march their batches as copies side by side in one draw (llvmpipe shades each 64x64 tile "
@@ -402,13 +421,14 @@ def write_page(args, rows, notes, path, speed=()):
               "visibility computes, up to its sampling and upsampling).", "",
               "| scene | visibility | voxels | preset | area-light GPU ms | of which visibility pyramid | "
               "gather | selection ms | work | level 0 | rays marched | rel. RMS vs truth | "
-              "rel. RMS vs unshadowed truth |",
-              "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+              "rel. RMS vs truth, 4x4 boxes | rel. RMS vs unshadowed truth |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        lines.append("| %s | %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.3f | %.3f | %s | %.4f | %.4f |" % (
+        lines.append("| %s | %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.3f | %.3f | %s | %.4f | %.4f | %.4f |" % (
             r["scene"], r["visibility"], "%d^2" % r["voxels"] if r["voxels"] else "-", r["preset"], r["area_ms"],
             r["visibility_ms"], r["gather_ms"], r["select_ms"], r["work"], r.get("level0", float("nan")),
-            "{:,}".format(int(r["rays"])) if r["rays"] else "-", r["rel_rms_truth"], r["rel_rms_unshadowed"]))
+            "{:,}".format(int(r["rays"])) if r["rays"] else "-", r["rel_rms_truth"],
+            r.get("rel_rms_truth_boxes", float("nan")), r["rel_rms_unshadowed"]))
     lines += ["", "![error against time](images/area-tradeoff.png)", "",
               "Every setting's error against its GPU time (the black line: no other setting is both faster and "
               "more accurate).", "", "![error against voxel resolution](images/area-voxel-sweep.png)", "",
@@ -444,6 +464,15 @@ def write_page(args, rows, notes, path, speed=()):
                          "%.0f ms against %.0f ms."
                          % (name, i["rel_rms_truth"], g["rel_rms_truth"], 100 * i.get("level0", 0.0),
                             100 * g.get("level0", 0.0), i["area_ms"], g["area_ms"]))
+        v = next((r for r in rows if r["scene"] == name and r["visibility"] == "incremental-visibility-stencil"), None)
+        if v and i:
+            lines.append("- `%s`, the stencil's irradiance term: relative RMS on 4x4 boxes %.4f against %.4f with "
+                         "the visibility term alone (per pixel %.4f against %.4f; target for cornell-area at "
+                         "defaults 0.05 on boxes), work %.1f%% against %.1f%%, level 0 %.1f%% against %.1f%%, "
+                         "%.0f ms against %.0f ms."
+                         % (name, i["rel_rms_truth_boxes"], v["rel_rms_truth_boxes"], i["rel_rms_truth"],
+                            v["rel_rms_truth"], 100 * i["work"], 100 * v["work"], 100 * i.get("level0", 0.0),
+                            100 * v.get("level0", 0.0), i["area_ms"], v["area_ms"]))
         o = pick["off"]
         if o and i:
             lines.append("- `%s`: the gather at the multiresolution texels does %.1f%% of the full-resolution "

@@ -11,6 +11,7 @@
 #include "mrgi_bmr_mask.h"
 #include "mrgi_exposure.h"
 #include "mrgi_gather.h"
+#include "mrgi_irradiance_stencil.h"
 #include "mrgi_ism_atlas.h"
 #include "mrgi_ism_visibility.h"
 #include "mrgi_multires.h"
@@ -117,6 +118,7 @@ static expected_constant expected[] = {
   EXPECT(MRGI_VOXEL_INTERLEAVE_PHASES, EXPECT_INT),
   EXPECT(MRGI_VOXEL_ALL_PHASES, EXPECT_INT),
   EXPECT(MRGI_VOXEL_NEIGHBOURS, EXPECT_INT),
+  EXPECT(MRGI_IRRADIANCE_STENCIL_GRID, EXPECT_INT),
   EXPECT(MRGI_VOXEL_METRIC_DISAGREE, EXPECT_INT),
   EXPECT(MRGI_VOXEL_METRIC_COUNT_SPREAD, EXPECT_INT),
   EXPECT(MRGI_VOXEL_VSM_QUERIES, EXPECT_INT),

@@ -24,6 +24,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include "mrgi_area_light.h"
+#include "mrgi_irradiance_stencil.h"
 #include "mrgi_voxel_march.h"
 #include "mrgi_incremental_stencil.h"
 #include "mrgi_multires.h"
@@ -335,17 +336,38 @@ int main()
                       static_cast<size_t>(position->GetNumberOfValues()), levelMasks->GetPointer(0), words,
                       static_cast<size_t>(levelMasks->GetNumberOfValues()), pyramid->GetMetric(), threshold,
                       rendered.data(), texels, &stats, &err) == MRGI_OK);
-    long long differ = 0, added = 0;
+    // The irradiance term (mrgi_irradiance_stencil.h) is float: the GPU
+    // must lie between the twin at tau (1 + 1e-4) (fewer texels) and at
+    // tau (1 - 1e-4) (more).
+    const float tau = static_cast<float>(area->GetIncrementalStencilStage()->GetIrradianceTolerance());
+    float viewToWorld[16];
+    std::copy(v2w, v2w + 16, viewToWorld);
+    std::vector<uint8_t> lo(rendered), hi(rendered);
+    int64_t byIrradiance[MRGI_MULTIRES_MAX_LEVELS];
+    const size_t floats = static_cast<size_t>(position->GetNumberOfValues());
+    MRGI_TEST_CHECK(tau > 0.0f &&
+      mrgi_irradiance_stencil_add(&layout, mr->GetFinestLevel(), flags->GetPointer(0), texels,
+        position->GetPointer(0), normal->GetPointer(0), floats, viewToWorld, &uniforms, tau * (1.0f + 1e-4f),
+        lo.data(), texels, byIrradiance, &err) == MRGI_OK &&
+      mrgi_irradiance_stencil_add(&layout, mr->GetFinestLevel(), flags->GetPointer(0), texels,
+        position->GetPointer(0), normal->GetPointer(0), floats, viewToWorld, &uniforms, tau * (1.0f - 1e-4f),
+        hi.data(), texels, nullptr, &err) == MRGI_OK);
+    long long differ = 0, added = 0, irradianceAdded = 0, ambiguous = 0;
     for (size_t t = 0; t < texels; ++t)
     {
-      differ += (gpuRendered->GetValue(static_cast<vtkIdType>(t)) != 0) != (rendered[t] != 0);
-      added += rendered[t] && !selection->GetValue(static_cast<vtkIdType>(t));
+      const bool onGPU = gpuRendered->GetValue(static_cast<vtkIdType>(t)) != 0;
+      differ += (onGPU && !hi[t]) || (!onGPU && lo[t]);
+      ambiguous += lo[t] != hi[t];
+      added += lo[t] && !selection->GetValue(static_cast<vtkIdType>(t));
+      irradianceAdded += lo[t] && !rendered[t];
     }
     std::printf("incremental stencil: %lld texels rendered, %lld added below the geometric cut "
-                "(level 0: %lld), %lld differ from the C twin\n",
-      static_cast<long long>(stats.rendered_total), added, static_cast<long long>(stats.added[0]), differ);
+                "(visibility, level 0: %lld; irradiance: %lld), %lld differ from the C twin "
+                "(%lld within 1e-4 of tau)\n",
+      static_cast<long long>(stats.rendered_total), added, static_cast<long long>(stats.added[0]),
+      irradianceAdded, differ, ambiguous);
     MRGI_TEST_CHECK(differ == 0);
-    MRGI_TEST_CHECK(added > 0 && stats.added[0] > 0);
+    MRGI_TEST_CHECK(added > 0 && stats.added[0] > 0 && irradianceAdded > 0);
   }
   area->IncrementalStencilOff();
   window->Render();

@@ -6,6 +6,7 @@
 #include "mrgi_bmr_mask.h"
 #include "mrgi_exposure.h"
 #include "mrgi_gather.h"
+#include "mrgi_irradiance_stencil.h"
 #include "mrgi_ism_atlas.h"
 #include "mrgi_ism_visibility.h"
 #include "mrgi_multires.h"
@@ -113,6 +114,7 @@ static const mrgi_glsl_constant mrgi_glsl_constants[] = {
   MRGI_GLSL_CONSTANT(MRGI_VOXEL_INTERLEAVE_PHASES, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_VOXEL_ALL_PHASES, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_VOXEL_NEIGHBOURS, MRGI_GLSL_INT),
+  MRGI_GLSL_CONSTANT(MRGI_IRRADIANCE_STENCIL_GRID, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_VOXEL_METRIC_DISAGREE, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_VOXEL_METRIC_COUNT_SPREAD, MRGI_GLSL_INT),
   MRGI_GLSL_CONSTANT(MRGI_VOXEL_VSM_QUERIES, MRGI_GLSL_INT),

@@ -411,7 +411,7 @@ bool vtkMRGIAreaLightStage::RenderDiffuse(
   vtkTextureObject* rendered = buffer->GetSelectionTexture();
   if (masks && this->IncrementalStencil)
   {
-    if (!this->IncrementalStencilStage->Build(frame, buffer, masks))
+    if (!this->IncrementalStencilStage->Build(frame, buffer, masks, term.Light))
     {
       return false;
     }

@@ -21,6 +21,8 @@
 #include "vtkUnsignedCharArray.h"
 
 
+#include "mrgi_area_light.h"
+#include "mrgi_irradiance_stencil.h"
 #include "mrgi_multires.h"
 #include "mrgi_visibility_pyramid.h"
 
@@ -76,7 +78,8 @@ struct vtkMRGIIncrementalStencil::Internals
 
 //------------------------------------------------------------------------------
 vtkMRGIIncrementalStencil::vtkMRGIIncrementalStencil()
-  : Internal(new Internals)
+  : IrradianceTolerance(MRGI_IRRADIANCE_STENCIL_DEFAULT_TOLERANCE)
+  , Internal(new Internals)
 {
 }
 
@@ -100,7 +103,7 @@ void vtkMRGIIncrementalStencil::ReleaseGraphicsResources(vtkWindow* w)
 
 //------------------------------------------------------------------------------
 bool vtkMRGIIncrementalStencil::Build(const vtkMRGIFrameContext& frame,
-  vtkMRGIMultiresolution* buffer, vtkMRGIVisibilityPyramid* masks)
+  vtkMRGIMultiresolution* buffer, vtkMRGIVisibilityPyramid* masks, const mrgi_area_light_uniforms* light)
 {
   // NPW10 3.4, one draw per level into its rectangle of the flattened
   // layout: a texel is rendered when selected, or when its parent's 3x3
@@ -155,6 +158,18 @@ bool vtkMRGIIncrementalStencil::Build(const vtkMRGIFrameContext& frame,
   steps.BeginMaskWrite(in.IncrementalDepthStencil);
   program->SetUniformi("mrgiThreshold", threshold);
   program->SetUniformi("mrgiMetric", masks->GetMetric());
+  // The irradiance term (mrgi_irradiance_stencil.h), off without a light.
+  program->SetUniformf(
+    "mrgiIrradianceTolerance", light ? static_cast<float>(this->IrradianceTolerance) : 0.0f);
+  program->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
+  if (light)
+  {
+    program->SetUniform3f("mrgiAreaCenter", light->center);
+    program->SetUniform3f("mrgiAreaNormal", light->normal);
+    program->SetUniform3fv("mrgiAreaCorners", 4, light->corners);
+    program->SetUniformf("mrgiAreaArea", light->area);
+    program->SetUniformi("mrgiAreaTwoSided", light->two_sided);
+  }
   bool ok = true;
   for (int i = finest; i < levels && ok; ++i)
   {
@@ -162,8 +177,9 @@ bool vtkMRGIIncrementalStencil::Build(const vtkMRGIFrameContext& frame,
     // in, unread.
     const int parent = std::min(i + 1, levels - 1);
     std::vector<vtkTextureObject*> inputs = { buffer->GetFlagsTexture(i), buffer->GetSelectionTexture(),
-      buffer->GetReceiverTexture(parent, 0) };
-    const char* names[7] = { "mrgiFlags", "mrgiSelection", "mrgiParentPosition", "mrgiParentMask0",
+      buffer->GetReceiverTexture(parent, 0), buffer->GetReceiverTexture(parent, 1) };
+    const char* names[8] = { "mrgiFlags", "mrgiSelection", "mrgiParentPosition", "mrgiParentNormal",
+      "mrgiParentMask0",
       "mrgiParentMask1", "mrgiParentMask2", "mrgiParentMask3" };
     for (int k = 0; k < targets; ++k)
     {
@@ -235,4 +251,5 @@ void vtkMRGIIncrementalStencil::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Fraction: " << this->Fraction << "\n";
+  os << indent << "IrradianceTolerance: " << this->IrradianceTolerance << "\n";
 }

@@ -9,7 +9,11 @@
  * visibility masks disagree on at least ceil(Fraction N) of the N samples
  * (the masks' refinement metric), so that penumbrae are gathered at the
  * resolution the shadow needs instead of the coarse texel the flat
- * geometry asks for. One draw per level into its rectangle of the
+ * geometry asks for. Also rendered below the cut (the irradiance term,
+ * mrgi_irradiance_stencil.h): texels whose parent's 3x3 see the light's
+ * unshadowed irradiance, estimated on a grid of cells, vary by more than
+ * IrradianceTolerance of its maximum, so that a flat wall near a large
+ * emitter is not interpolated from coarse texels. One draw per level into its rectangle of the
  * flattened layout; each reads the coarser level's masks and receivers
  * only, so the levels are independent.
  *
@@ -26,6 +30,7 @@
 
 #include <memory> // For std::unique_ptr
 
+struct mrgi_area_light_uniforms;
 struct vtkMRGIFrameContext;
 class vtkMRGIMultiresolution;
 class vtkMRGIVisibilityPyramid;
@@ -51,14 +56,26 @@ public:
   vtkGetMacro(Fraction, double);
   ///@}
 
+  ///@{
+  /**
+   * Relative spread of the light's unshadowed irradiance over the parent's
+   * 3x3 above which a texel below the geometric cut is rendered
+   * (mrgi_irradiance_stencil.h; default
+   * MRGI_IRRADIANCE_STENCIL_DEFAULT_TOLERANCE; 0 turns the term off).
+   */
+  vtkSetClampMacro(IrradianceTolerance, double, 0.0, 1.0);
+  vtkGetMacro(IrradianceTolerance, double);
+  ///@}
+
 #ifndef __VTK_WRAP__
   /**
    * Build the stencil from `buffer` (selection and receivers of this frame)
-   * and `masks` (updated on it this frame). Timer step
+   * and `masks` (updated on it this frame); `light` (world space) feeds the
+   * irradiance term, which is off without it. Timer step
    * "select.incremental". False on error.
    */
   bool Build(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
-    vtkMRGIVisibilityPyramid* masks);
+    vtkMRGIVisibilityPyramid* masks, const mrgi_area_light_uniforms* light = nullptr);
 #endif
 
   /** The rendered texels as colour (flattened layout; 1 = rendered) after Build(); null before. */
@@ -78,6 +95,7 @@ protected:
   ~vtkMRGIIncrementalStencil() override;
 
   double Fraction = 0.25;
+  double IrradianceTolerance; // MRGI_IRRADIANCE_STENCIL_DEFAULT_TOLERANCE (constructor)
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

@@ -12,6 +12,12 @@
 // level i, into level i's rectangle of the flattened layout: a rendered
 // texel writes 1 (and the stencil), any other is discarded (the target is
 // cleared to 0 first).
+//
+// The irradiance term (mrgi_irradiance_stencil.h, the contract; C twin
+// mrgi_irradiance_stencil_add()): a texel is also rendered where the
+// light's unshadowed irradiance, estimated on a
+// MRGI_IRRADIANCE_STENCIL_GRID^2 grid of cells, varies over the parent's 3x3
+// by more than mrgiIrradianceTolerance of its maximum (0 turns it off).
 in vec2 texCoord; // bound by vtkOpenGLQuadHelper; texels are addressed by gl_FragCoord
 //VTK::Output::Dec
 
@@ -28,6 +34,14 @@ uniform int mrgiFinest;        // 1 when i is the finest gathering level
 uniform int mrgiCoarsest;      // 1 when i is the coarsest level (no parent)
 uniform int mrgiThreshold;     // >= 0
 uniform int mrgiMetric;        // MRGI_VOXEL_METRIC_*
+uniform sampler2D mrgiParentNormal;   // level i+1 receiver normals (level-local, eye space)
+uniform mat4 mrgiVCToWC;              // eye -> world (column major, as the twin's matrix)
+uniform float mrgiIrradianceTolerance; // tau in [0, 1]; 0: off
+uniform vec3 mrgiAreaCenter;          // the light, world space (::mrgi_area_light_uniforms)
+uniform vec3 mrgiAreaNormal;
+uniform vec3 mrgiAreaCorners[4];
+uniform float mrgiAreaArea;
+uniform int mrgiAreaTwoSided;
 
 bool mrgiStencilReceiver(ivec2 s)
 {
@@ -97,6 +111,64 @@ bool mrgiStencilDiscontinuity(ivec2 c)
   return value >= mrgiThreshold;
 }
 
+// E(P, N): mrgi_irradiance_stencil_estimate(), statement by statement.
+float mrgiStencilEstimate(vec3 P, vec3 N)
+{
+  float side = dot(mrgiAreaNormal, P - mrgiAreaCenter);
+  if (mrgiAreaTwoSided != 0 ? side == 0.0 : !(side > 0.0))
+  {
+    return 0.0;
+  }
+  float g = float(MRGI_IRRADIANCE_STENCIL_GRID);
+  float cell = mrgiAreaArea / (g * g);
+  vec3 U = mrgiAreaCorners[1] - mrgiAreaCorners[0];
+  vec3 V = mrgiAreaCorners[3] - mrgiAreaCorners[0];
+  float E = 0.0;
+  for (int b = 0; b < MRGI_IRRADIANCE_STENCIL_GRID; ++b)
+  {
+    float sv = (float(b) + 0.5) / g;
+    for (int a = 0; a < MRGI_IRRADIANCE_STENCIL_GRID; ++a)
+    {
+      float su = (float(a) + 0.5) / g;
+      vec3 d = (mrgiAreaCorners[0] + su * U + sv * V) - P;
+      float r2 = dot(d, d);
+      if (!(r2 > 0.0)) { continue; }
+      float ci = dot(N, d);
+      float cj = -dot(mrgiAreaNormal, d);
+      if (mrgiAreaTwoSided != 0) { cj = abs(cj); }
+      if (!(ci > 0.0) || !(cj > 0.0)) { continue; }
+      E += cell * (ci * cj / r2) / (float(MRGI_PI) * r2 + cell);
+    }
+  }
+  return E;
+}
+
+// V_{i+1}(c) of mrgi_irradiance_stencil.h.
+bool mrgiStencilIrradianceVaries(ivec2 c)
+{
+  float lo = 0.0;
+  float hi = 0.0;
+  bool anyReceiver = false;
+  for (int k = 0; k < MRGI_VOXEL_NEIGHBOURS; ++k)
+  {
+    ivec2 s = clamp(c + ivec2(k % 3 - 1, k / 3 - 1), ivec2(0), mrgiParentSize - 1);
+    vec3 n = texelFetch(mrgiParentNormal, s, 0).xyz;
+    if (!mrgiStencilReceiver(s) || any(isnan(n)) || any(isinf(n)))
+    {
+      continue;
+    }
+    vec3 m = mat3(mrgiVCToWC) * n;
+    float len2 = dot(m, m);
+    if (!(len2 > 0.0)) { continue; }
+    vec3 P = (mrgiVCToWC * vec4(texelFetch(mrgiParentPosition, s, 0).xyz, 1.0)).xyz;
+    float E = mrgiStencilEstimate(P, m * (1.0 / sqrt(len2)));
+    lo = anyReceiver ? min(E, lo) : E;
+    hi = anyReceiver ? max(E, hi) : E;
+    anyReceiver = true;
+  }
+  return anyReceiver && hi > 0.0 && hi - lo > mrgiIrradianceTolerance * hi;
+}
+
 void main()
 {
   ivec2 f = ivec2(gl_FragCoord.xy);
@@ -111,7 +183,8 @@ void main()
     }
     else if (mrgiCoarsest == 0 && (mrgiFinest != 0 || (flags & MRGI_MULTIRES_FLAG_REFINE) == 0))
     {
-      rendered = mrgiStencilDiscontinuity(t / 2);
+      rendered = mrgiStencilDiscontinuity(t / 2) ||
+        (mrgiIrradianceTolerance > 0.0 && mrgiStencilIrradianceVaries(t / 2));
     }
   }
   if (!rendered)
