@@ -131,3 +131,126 @@ mrgi_status mrgi_incremental_stencil_build(
   }
   return MRGI_OK;
 }
+
+/* usable_j(t): rendered at level j and a receiver. */
+static int mrgi_stencil_usable(const float* position, const uint8_t* rendered, size_t t)
+{
+  return rendered[t] && mrgi_stencil_receiver(position, t);
+}
+
+/* F_level(x, y) of the illumination rule (header, last section). The float
+ * expressions are the shader's (vtkMRGIIncrementalStencilFS.glsl). */
+static int mrgi_stencil_light_discontinuity(const mrgi_multires_layout* layout, int32_t level,
+                                            int32_t x, int32_t y, const float* position,
+                                            const float* irradiance, const uint8_t* rendered,
+                                            float threshold)
+{
+  const size_t p = mrgi_multires_index(layout, level, x, y);
+  if (!mrgi_stencil_usable(position, rendered, p))
+  {
+    return 0;
+  }
+  if (threshold == 0.0f)
+  {
+    return 1;
+  }
+  const float* Ep = irradiance + 4 * p;
+  for (int32_t dy = -1; dy <= 1; ++dy)
+  {
+    for (int32_t dx = -1; dx <= 1; ++dx)
+    {
+      int32_t nx = x + dx;
+      int32_t ny = y + dy;
+      nx = nx < 0 ? 0 : (nx >= layout->level_width[level] ? layout->level_width[level] - 1 : nx);
+      ny = ny < 0 ? 0 : (ny >= layout->level_height[level] ? layout->level_height[level] - 1 : ny);
+      const size_t n = mrgi_multires_index(layout, level, nx, ny);
+      if (!mrgi_stencil_usable(position, rendered, n))
+      {
+        continue;
+      }
+      const float* En = irradiance + 4 * n;
+      for (int c = 0; c < 3; ++c)
+      {
+        const float larger = En[c] > Ep[c] ? En[c] : Ep[c];
+        if (fabsf(En[c] - Ep[c]) > threshold * larger)
+        {
+          return 1;
+        }
+      }
+    }
+  }
+  return 0;
+}
+
+mrgi_status mrgi_incremental_stencil_illumination_level(const mrgi_multires_layout* layout,
+  int32_t finest_level, int32_t level, const uint8_t* flags, const uint8_t* selection,
+  size_t texel_bytes, const float* receiver_position, size_t receiver_floats,
+  const float* irradiance, size_t irradiance_floats, float threshold, uint8_t* rendered,
+  size_t rendered_size, int64_t* added, mrgi_error* err)
+{
+  mrgi_status status = mrgi_multires_layout_check(layout, err);
+  if (status != MRGI_OK)
+  {
+    return status;
+  }
+  if ((status = mrgi_multires_check_array(layout, flags, texel_bytes, 1, "flags", err)) != MRGI_OK ||
+      (status = mrgi_multires_check_array(layout, selection, texel_bytes, 1, "selection", err)) !=
+        MRGI_OK ||
+      (status = mrgi_multires_check_array(layout, receiver_position, receiver_floats, 4,
+                                          "receiver positions", err)) != MRGI_OK ||
+      (status = mrgi_multires_check_array(layout, irradiance, irradiance_floats, 4, "irradiance",
+                                          err)) != MRGI_OK ||
+      (status = mrgi_multires_check_array(layout, rendered, rendered_size, 1, "rendered mask",
+                                          err)) != MRGI_OK)
+  {
+    return status;
+  }
+  if (!(threshold >= 0.0f) || isinf(threshold))
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "illumination threshold %g is not finite and >= 0", (double)threshold);
+  }
+  const int32_t coarsest = layout->level_count - 1;
+  if (finest_level < 0)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "finest level %d is negative",
+                          finest_level);
+  }
+  const int32_t finest = finest_level < coarsest ? finest_level : coarsest;
+  if (level < finest || level > coarsest)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "level %d is outside %d..%d", level,
+                          finest, coarsest);
+  }
+  int64_t count = 0;
+  const int32_t i = level;
+  for (int32_t y = 0; y < layout->level_height[i]; ++y)
+  {
+    for (int32_t x = 0; x < layout->level_width[i]; ++x)
+    {
+      const size_t t = mrgi_multires_index(layout, i, x, y);
+      uint8_t r = 0;
+      if (flags[t] & MRGI_MULTIRES_FLAG_NONEMPTY)
+      {
+        const int refined = i != finest && (flags[t] & MRGI_MULTIRES_FLAG_REFINE);
+        if (selection[t])
+        {
+          r = 1;
+        }
+        else if (i < coarsest && !refined &&
+                 mrgi_stencil_light_discontinuity(layout, i + 1, x / 2, y / 2, receiver_position,
+                                                  irradiance, rendered, threshold))
+        {
+          r = 1;
+          ++count;
+        }
+      }
+      rendered[t] = r;
+    }
+  }
+  if (added)
+  {
+    *added = count;
+  }
+  return MRGI_OK;
+}
