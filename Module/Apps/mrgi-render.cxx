@@ -533,6 +533,10 @@ int main(int argc, char* argv[])
       std::to_string(o.ISMTileSize));
   }
   mrgi->SetIndirectVisibility(o.IndirectVisibility);
+  if (o.Refinement >= 0)
+    mrgi->SetRefinement(o.Refinement);
+  if (!std::isnan(o.IlluminationThreshold))
+    mrgi->SetIlluminationThreshold(o.IlluminationThreshold);
   mrgi->SetISMPointsPerVPL(static_cast<int>(o.ISMPointsPerVPL));
   mrgi->SetISMTileSize(static_cast<int>(o.ISMTileSize));
   mrgi->SetISMPointMode(o.ISMPointMode);

@@ -12,22 +12,36 @@
 // level i, into level i's rectangle of the flattened layout: a rendered
 // texel writes 1 (and the stencil), any other is discarded (the target is
 // cleared to 0 first).
+//
+// With MRGI_STENCIL_ILLUMINATION (the indirect light's rule,
+// mrgi_incremental_stencil_illumination_level()) the parent's discontinuity
+// is read from the irradiance level i+1 gathered (the gather's flattened
+// target: alpha 1 where it drew a receiver), one draw per level between the
+// gathers of levels i+1 and i; no masks.
 in vec2 texCoord; // bound by vtkOpenGLQuadHelper; texels are addressed by gl_FragCoord
 //VTK::Output::Dec
 
 uniform sampler2D mrgiFlags;          // level i's flags (red, level-local)
 uniform sampler2D mrgiSelection;      // the flattened geometric selection (red > 0.5)
 uniform sampler2D mrgiParentPosition; // level i+1 receivers (level-local; w = validity)
+#ifdef MRGI_STENCIL_ILLUMINATION
+uniform sampler2D mrgiParentIrradiance; // the flattened irradiance (level i+1 gathered)
+uniform int mrgiParentOffset;           // o_{i+1}
+uniform float mrgiIlluminationThreshold; // T >= 0
+#else
 uniform usampler2D mrgiParentMask0;   // level i+1 masks: word w in texture w / 4, channel w % 4
 uniform usampler2D mrgiParentMask1;
 uniform usampler2D mrgiParentMask2;
 uniform usampler2D mrgiParentMask3;
+#endif
 uniform int mrgiLevelOffset;   // o_i
 uniform ivec2 mrgiParentSize;  // w_{i+1}, h_{i+1}
 uniform int mrgiFinest;        // 1 when i is the finest gathering level
 uniform int mrgiCoarsest;      // 1 when i is the coarsest level (no parent)
+#ifndef MRGI_STENCIL_ILLUMINATION
 uniform int mrgiThreshold;     // >= 0
 uniform int mrgiMetric;        // MRGI_VOXEL_METRIC_*
+#endif
 
 bool mrgiStencilReceiver(ivec2 s)
 {
@@ -35,6 +49,47 @@ bool mrgiStencilReceiver(ivec2 s)
   return p.w > MRGI_GBUFFER_VALID_THRESHOLD && !any(isnan(p.xyz)) && !any(isinf(p.xyz));
 }
 
+#ifdef MRGI_STENCIL_ILLUMINATION
+// usable_{i+1}(s): gathered (alpha) and a receiver.
+bool mrgiStencilUsable(ivec2 s, out vec3 E)
+{
+  vec4 e = texelFetch(mrgiParentIrradiance, ivec2(s.x + mrgiParentOffset, s.y), 0);
+  E = e.rgb;
+  return e.a > 0.5 && mrgiStencilReceiver(s);
+}
+
+// F_{i+1}(c) of the illumination rule: a usable neighbour in the 3x3
+// (clamped) differs by more than T times the larger value in a channel.
+bool mrgiStencilDiscontinuity(ivec2 c)
+{
+  vec3 Ep;
+  if (!mrgiStencilUsable(c, Ep))
+  {
+    return false;
+  }
+  if (mrgiIlluminationThreshold == 0.0)
+  {
+    return true;
+  }
+  for (int k = 0; k < 9; ++k)
+  {
+    ivec2 s = clamp(c + ivec2(k % 3 - 1, k / 3 - 1), ivec2(0), mrgiParentSize - 1);
+    vec3 En;
+    if (!mrgiStencilUsable(s, En))
+    {
+      continue;
+    }
+    for (int ch = 0; ch < 3; ++ch)
+    {
+      if (abs(En[ch] - Ep[ch]) > mrgiIlluminationThreshold * max(En[ch], Ep[ch]))
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+#else
 uvec4 mrgiStencilMask(int k, ivec2 s)
 {
 #if MRGI_STENCIL_TARGETS > 3
@@ -96,6 +151,7 @@ bool mrgiStencilDiscontinuity(ivec2 c)
     : (mrgiMetric == MRGI_VOXEL_METRIC_COUNT_SPREAD ? countMax - countMin : disagree);
   return value >= mrgiThreshold;
 }
+#endif
 
 void main()
 {
