@@ -20,6 +20,7 @@
 #include "vtkMRGIGather.h"
 #include "vtkMRGIImageIO.h"
 #include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIIncrementalStencil.h"
 #include "vtkMRGIIndirectLight.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGIReferenceRenderer.h"
@@ -537,6 +538,9 @@ int main(int argc, char* argv[])
     mrgi->SetRefinement(o.Refinement);
   if (!std::isnan(o.IlluminationThreshold))
     mrgi->SetIlluminationThreshold(o.IlluminationThreshold);
+  if (o.IlluminationMetric >= 0)
+    mrgi->GetIndirectLightStage()->GetIlluminationStencil()->SetIlluminationMetric(
+      o.IlluminationMetric);
   mrgi->SetISMPointsPerVPL(static_cast<int>(o.ISMPointsPerVPL));
   mrgi->SetISMTileSize(static_cast<int>(o.ISMTileSize));
   mrgi->SetISMPointMode(o.ISMPointMode);

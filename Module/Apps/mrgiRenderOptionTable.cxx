@@ -539,6 +539,11 @@ const std::vector<OptionSection>& OptionTable()
           Number(
             &Options::IlluminationThreshold, [](double t) { return t >= 0 && t <= 1e30; },
             "expected a number in [0, 1e30]") },
+        { { "--illumination-metric" }, "difference|curvature",
+          "multires, illumination: neighbours differ (NPW10's test), or the centre\n"
+          "leaves the line through opposite neighbours (linear changes do not refine)",
+          Choice<int>(&Options::IlluminationMetric,
+            { { "difference", 0 }, { "curvature", 1 } }) },
         { { "--upsample" }, "tent|mask",
           "multires: tent (default) or mask-weighted (Besenthal) upsampling",
           Choice<bool>(&Options::MaskUpsampling, { { "tent", false }, { "mask", true } }) },

@@ -104,6 +104,7 @@ struct Options
   int IndirectVisibility = 0;   // vtkMRGIIndirectLight::VisibilityModes (off, ism, voxel)
   int Refinement = -1;          // vtkMRGIIndirectLight::RefinementModes; -1: the pass's default
   double IlluminationThreshold = std::nan(""); // not given: the stage's default (0.1)
+  int IlluminationMetric = -1;  // MRGI_INCREMENTAL_ILLUMINATION_*; -1: the stage's default
   long long ISMPointsPerVPL = 256;
   long long ISMTileSize = 32;
   int ISMPointMode = 2;         // vtkMRGIImperfectShadowMaps::PointModes (adaptive8)

@@ -98,7 +98,10 @@ def configure(bench, mode, depth=4.0, normal=0.25, finest=0, vpls=256, balance=T
     bench.gi.SetIndirectMode(mode)
     bench.gi.SetRefinement(0 if illumination is None else 1)
     if illumination is not None:
-        bench.gi.SetIlluminationThreshold(illumination)
+        # "cT": the curvature metric at threshold T; "T": the difference metric
+        curvature = str(illumination).startswith("c")
+        bench.gi.GetIndirectLightStage().GetIlluminationStencil().SetIlluminationMetric(1 if curvature else 0)
+        bench.gi.SetIlluminationThreshold(float(str(illumination).lstrip("c")))
     bench.gi.SetNumberOfVPLs(vpls)
     bench.mr.SetDepthThreshold(-1.0 if math.isinf(depth) else depth)
     bench.mr.SetNormalThreshold(-1.0 if math.isinf(normal) else normal)
@@ -165,7 +168,8 @@ def main():
     parser.add_argument("--normal", default="0.25,0.5,1,inf")
     parser.add_argument("--finest", default="0,1")
     parser.add_argument("--illumination", default="none,0.05,0.1,0.2",
-                        help="refinement per setting: none (geometry) or illumination thresholds T")
+                        help="refinement per setting: none (geometry), illumination thresholds T "
+                             "(difference metric) or cT (curvature metric)")
     parser.add_argument("--vpls", default="64,256,1024")
     parser.add_argument("--grid-vpls", default="256",
                         help="VPL counts at which the whole threshold grid runs; at the other counts of --vpls, "
@@ -245,7 +249,7 @@ def main():
                              rel_max_truth=full_truth[1] if truth_path else "",
                              flicker_light=0.0, flicker_camera=0.0, gather_speedup=1.0, indirect_speedup=1.0))
             grid = vpls in parse_list(args.grid_vpls, int)
-            lights = [None if v == "none" else float(v) for v in args.illumination.split(",")]
+            lights = [None if v == "none" else v for v in args.illumination.split(",")]
             settings = [(d, n, f, True, il) for d in parse_list(args.depth) for n in parse_list(args.normal)
                         for f in parse_list(args.finest, int) for il in lights] if grid else []
             for name, p in presets.items():

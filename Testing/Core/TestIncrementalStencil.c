@@ -247,7 +247,8 @@ static void test_bad_input(void)
 /* The illumination rule, coarse to fine: "gather" E = light(x) at the
  * texels each level renders (E elsewhere is garbage the rule must not
  * read), then build the next level. Returns the texels rendered. */
-static int64_t illuminate(scene* s, int32_t finest, float threshold, float* E, double (*light)(double))
+static int64_t illuminate(scene* s, int32_t finest, float threshold, float* E, double (*light)(double),
+                          int32_t metric)
 {
   const int32_t coarsest = s->layout.level_count - 1;
   for (size_t t = 0; t < 4 * s->texels; ++t)
@@ -260,7 +261,7 @@ static int64_t illuminate(scene* s, int32_t finest, float threshold, float* E, d
   {
     MRGI_CHECK(mrgi_incremental_stencil_illumination_level(
                  &s->layout, finest, i, s->flags, s->selection, s->texels, s->position,
-                 4 * s->texels, E, 4 * s->texels, threshold, s->rendered, s->texels, NULL,
+                 4 * s->texels, E, 4 * s->texels, metric, threshold, s->rendered, s->texels, NULL,
                  NULL) == MRGI_OK);
     for (int32_t y = 0; y < s->layout.level_height[i]; ++y)
     {
@@ -281,7 +282,13 @@ static int64_t illuminate(scene* s, int32_t finest, float threshold, float* E, d
   return total;
 }
 
+enum
+{
+  DIFF = MRGI_INCREMENTAL_ILLUMINATION_DIFFERENCE,
+  CURV = MRGI_INCREMENTAL_ILLUMINATION_CURVATURE
+};
 static double light_step(double x) { return x < EDGE_X ? 4.0 : 1.0; }
+static double light_ramp(double x) { return 1.0 + 0.05 * x; }
 static double light_smooth(double x) { return 1.0 + 0.001 * x; }
 
 static void test_illumination(void)
@@ -291,7 +298,7 @@ static void test_illumination(void)
   float* E = malloc(4 * s.texels * sizeof(float));
   MRGI_CHECK(E != NULL);
   /* a light step: refined down to full resolution along the step only */
-  const int64_t step = illuminate(&s, 0, 0.1f, E, light_step);
+  const int64_t step = illuminate(&s, 0, 0.1f, E, light_step, DIFF);
   for (int32_t y = 0; y < SIDE; ++y)
   {
     MRGI_CHECK(rendered_at(&s, 0, 19, y) && rendered_at(&s, 0, 20, y));
@@ -299,34 +306,55 @@ static void test_illumination(void)
   }
   MRGI_CHECK(step > 64 + 3 * SIDE && step < 64 + 16 * SIDE);
   /* smooth light under the threshold: the geometric selection alone */
-  MRGI_CHECK(illuminate(&s, 0, 0.1f, E, light_smooth) == 64);
+  MRGI_CHECK(illuminate(&s, 0, 0.1f, E, light_smooth, DIFF) == 64);
   MRGI_CHECK(memcmp(s.rendered, s.selection, s.texels) == 0);
   /* the threshold matters: above the step's 75% nothing is added, at 0
    * every level is rendered in full */
-  MRGI_CHECK(illuminate(&s, 0, 0.8f, E, light_step) == 64);
-  MRGI_CHECK(illuminate(&s, 0, 0.0f, E, light_smooth) == 64 * 64 + 32 * 32 + 16 * 16 + 64);
+  MRGI_CHECK(illuminate(&s, 0, 0.8f, E, light_step, DIFF) == 64);
+  MRGI_CHECK(illuminate(&s, 0, 0.0f, E, light_smooth, DIFF) == 64 * 64 + 32 * 32 + 16 * 16 + 64);
   /* finest level 2: nothing below */
-  MRGI_CHECK(illuminate(&s, 2, 0.1f, E, light_step) < 64 + 16 * 16);
+  MRGI_CHECK(illuminate(&s, 2, 0.1f, E, light_step, DIFF) < 64 + 16 * 16);
   MRGI_CHECK(!rendered_at(&s, 1, 10, 0) && rendered_at(&s, 2, 5, 0));
   /* a non-receiver parent does not refine its children */
   for (int32_t y = 0; y < 8; ++y)
   {
     s.position[4 * mrgi_multires_index(&s.layout, 3, 2, y) + 3] = 0.0f;
   }
-  illuminate(&s, 0, 0.1f, E, light_step);
+  illuminate(&s, 0, 0.1f, E, light_step, DIFF);
   MRGI_CHECK(!rendered_at(&s, 2, 5, 3) && !rendered_at(&s, 0, 20, 30));
+  for (int32_t y = 0; y < 8; ++y)
+  {
+    s.position[4 * mrgi_multires_index(&s.layout, 3, 2, y) + 3] = 1.0f;
+  }
+  /* a steep linear ramp: the difference refines it, the curvature does not;
+   * both refine the step */
+  const int64_t ramp = illuminate(&s, 0, 0.1f, E, light_ramp, DIFF);
+  printf("ramp: difference renders %lld texels\n", (long long)ramp);
+  MRGI_CHECK(ramp > 64 + 16 * 16);
+  MRGI_CHECK(illuminate(&s, 0, 0.1f, E, light_ramp, CURV) == 64);
+  MRGI_CHECK(illuminate(&s, 0, 0.1f, E, light_step, CURV) > 64 + 3 * SIDE);
+  for (int32_t y = 0; y < SIDE; ++y)
+  {
+    MRGI_CHECK(rendered_at(&s, 0, 19, y) && rendered_at(&s, 0, 20, y));
+    MRGI_CHECK(!rendered_at(&s, 0, 2, y) && !rendered_at(&s, 0, 50, y));
+  }
+  MRGI_CHECK(illuminate(&s, 0, 0.0f, E, light_ramp, CURV) == 64 * 64 + 32 * 32 + 16 * 16 + 64);
   /* bad input */
   mrgi_error err;
   MRGI_CHECK(mrgi_incremental_stencil_illumination_level(&s.layout, 0, 1, s.flags, s.selection,
-               s.texels, s.position, 4 * s.texels, E, 4 * s.texels, NAN, s.rendered, s.texels,
+               s.texels, s.position, 4 * s.texels, E, 4 * s.texels, 7, 0.1f, s.rendered,
+               s.texels, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(message_has(&err, "metric 7"));
+  MRGI_CHECK(mrgi_incremental_stencil_illumination_level(&s.layout, 0, 1, s.flags, s.selection,
+               s.texels, s.position, 4 * s.texels, E, 4 * s.texels, DIFF, NAN, s.rendered, s.texels,
                NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(message_has(&err, "illumination threshold"));
   MRGI_CHECK(mrgi_incremental_stencil_illumination_level(&s.layout, 0, 4, s.flags, s.selection,
-               s.texels, s.position, 4 * s.texels, E, 4 * s.texels, 0.1f, s.rendered, s.texels,
+               s.texels, s.position, 4 * s.texels, E, 4 * s.texels, DIFF, 0.1f, s.rendered, s.texels,
                NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(message_has(&err, "level 4"));
   MRGI_CHECK(mrgi_incremental_stencil_illumination_level(&s.layout, 0, 1, s.flags, s.selection,
-               s.texels, s.position, 4 * s.texels, E, 4 * s.texels - 1, 0.1f, s.rendered,
+               s.texels, s.position, 4 * s.texels, E, 4 * s.texels - 1, DIFF, 0.1f, s.rendered,
                s.texels, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(message_has(&err, "irradiance"));
   free(E);

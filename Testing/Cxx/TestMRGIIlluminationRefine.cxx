@@ -84,7 +84,8 @@ Outcome Check(mrgitest::PassScene& scene)
                       flags->GetPointer(0), selection->GetPointer(0), texels,
                       position->GetPointer(0), static_cast<size_t>(position->GetNumberOfValues()),
                       irradiance->GetPointer(0),
-                      static_cast<size_t>(irradiance->GetNumberOfValues()), threshold,
+                      static_cast<size_t>(irradiance->GetNumberOfValues()),
+                      stage->GetIlluminationStencil()->GetIlluminationMetric(), threshold,
                       rendered.data(), texels, nullptr, &err) == MRGI_OK);
     out.Counted += gather->GetNumberOfGatheredTexels(i);
   }
@@ -141,21 +142,28 @@ void TestParity()
   struct Setting
   {
     double Threshold, Depth, Normal;
+    int Metric;
   };
-  const Setting settings[] = { { 0.1, -1.0, 1.0 }, { 0.02, -1.0, 1.0 }, { 0.3, 16.0, 0.5 },
-    { 0.1, MRGI_MULTIRES_DEFAULT_DEPTH_THRESHOLD, MRGI_MULTIRES_DEFAULT_NORMAL_THRESHOLD } };
+  const int curvature = MRGI_INCREMENTAL_ILLUMINATION_CURVATURE;
+  const Setting settings[] = { { 0.1, -1.0, 1.0, 0 }, { 0.02, -1.0, 1.0, 0 },
+    { 0.3, 16.0, 0.5, 0 },
+    { 0.1, MRGI_MULTIRES_DEFAULT_DEPTH_THRESHOLD, MRGI_MULTIRES_DEFAULT_NORMAL_THRESHOLD, 0 },
+    { 0.02, -1.0, 1.0, curvature }, { 0.005, -1.0, 1.0, curvature }, { 0.05, 16.0, 0.5, curvature } };
+  vtkMRGIIncrementalStencil* stencil = scene.Pass->GetIndirectLightStage()->GetIlluminationStencil();
   for (const Setting& s : settings)
   {
     Configure(scene.Pass, lit, s.Threshold, s.Depth, s.Normal);
+    stencil->SetIlluminationMetric(s.Metric);
     const Outcome o = Check(scene);
-    std::printf("T %.2f depth %g normal %g: %lld selected, %lld gathered (counted %lld), %lld "
-                "differ from the C twin\n",
-      s.Threshold, s.Depth, s.Normal, o.Selected, o.Rendered, o.Counted, o.Differ);
+    std::printf("metric %d T %.3f depth %g normal %g: %lld selected, %lld gathered (counted %lld), "
+                "%lld differ from the C twin\n",
+      s.Metric, s.Threshold, s.Depth, s.Normal, o.Selected, o.Rendered, o.Counted, o.Differ);
     MRGI_TEST_CHECK(o.Differ == 0);
     MRGI_TEST_CHECK(o.Counted == o.Rendered);
     MRGI_TEST_CHECK(o.Rendered > o.Selected); // the rule adds texels: the test can fail
   }
   // Threshold extremes: everything, or the geometric selection alone.
+  stencil->SetIlluminationMetric(MRGI_INCREMENTAL_ILLUMINATION_DIFFERENCE);
   Configure(scene.Pass, lit, 0.0, -1.0, 1.0);
   Outcome all = Check(scene);
   MRGI_TEST_CHECK(all.Differ == 0 && all.Rendered == all.Candidates);

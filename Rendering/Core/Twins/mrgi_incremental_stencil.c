@@ -138,12 +138,28 @@ static int mrgi_stencil_usable(const float* position, const uint8_t* rendered, s
   return rendered[t] && mrgi_stencil_receiver(position, t);
 }
 
+/* Clamped flattened index of level `level` texel (x, y). */
+static size_t mrgi_stencil_clamped(const mrgi_multires_layout* layout, int32_t level, int32_t x,
+                                   int32_t y)
+{
+  x = x < 0 ? 0 : (x >= layout->level_width[level] ? layout->level_width[level] - 1 : x);
+  y = y < 0 ? 0 : (y >= layout->level_height[level] ? layout->level_height[level] - 1 : y);
+  return mrgi_multires_index(layout, level, x, y);
+}
+
+/* The DIFFERENCE test of one channel (header, last section). */
+static int mrgi_stencil_differs(float En, float Ep, float threshold)
+{
+  const float larger = En > Ep ? En : Ep;
+  return fabsf(En - Ep) > threshold * larger;
+}
+
 /* F_level(x, y) of the illumination rule (header, last section). The float
  * expressions are the shader's (vtkMRGIIncrementalStencilFS.glsl). */
 static int mrgi_stencil_light_discontinuity(const mrgi_multires_layout* layout, int32_t level,
                                             int32_t x, int32_t y, const float* position,
                                             const float* irradiance, const uint8_t* rendered,
-                                            float threshold)
+                                            int32_t metric, float threshold)
 {
   const size_t p = mrgi_multires_index(layout, level, x, y);
   if (!mrgi_stencil_usable(position, rendered, p))
@@ -155,15 +171,49 @@ static int mrgi_stencil_light_discontinuity(const mrgi_multires_layout* layout, 
     return 1;
   }
   const float* Ep = irradiance + 4 * p;
+  if (metric == MRGI_INCREMENTAL_ILLUMINATION_CURVATURE)
+  {
+    static const int32_t axes[4][2] = { { 1, 0 }, { 0, 1 }, { 1, 1 }, { 1, -1 } };
+    for (int k = 0; k < 4; ++k)
+    {
+      const int32_t ax = x - axes[k][0], ay = y - axes[k][1];
+      const int32_t bx = x + axes[k][0], by = y + axes[k][1];
+      if (ax < 0 || ay < 0 || ay >= layout->level_height[level] ||
+          bx >= layout->level_width[level] || by < 0 || by >= layout->level_height[level])
+      {
+        continue; /* a line leaving the level: no prediction */
+      }
+      const size_t a = mrgi_multires_index(layout, level, ax, ay);
+      const size_t b = mrgi_multires_index(layout, level, bx, by);
+      const int ua = mrgi_stencil_usable(position, rendered, a);
+      const int ub = mrgi_stencil_usable(position, rendered, b);
+      const float* Ea = irradiance + 4 * a;
+      const float* Eb = irradiance + 4 * b;
+      for (int c = 0; c < 3; ++c)
+      {
+        if (ua && ub)
+        {
+          const float ab = Ea[c] > Eb[c] ? Ea[c] : Eb[c];
+          const float larger = ab > Ep[c] ? ab : Ep[c];
+          if (fabsf(0.5f * (Ea[c] + Eb[c]) - Ep[c]) > threshold * larger)
+          {
+            return 1;
+          }
+        }
+        else if ((ua && mrgi_stencil_differs(Ea[c], Ep[c], threshold)) ||
+                 (ub && mrgi_stencil_differs(Eb[c], Ep[c], threshold)))
+        {
+          return 1;
+        }
+      }
+    }
+    return 0;
+  }
   for (int32_t dy = -1; dy <= 1; ++dy)
   {
     for (int32_t dx = -1; dx <= 1; ++dx)
     {
-      int32_t nx = x + dx;
-      int32_t ny = y + dy;
-      nx = nx < 0 ? 0 : (nx >= layout->level_width[level] ? layout->level_width[level] - 1 : nx);
-      ny = ny < 0 ? 0 : (ny >= layout->level_height[level] ? layout->level_height[level] - 1 : ny);
-      const size_t n = mrgi_multires_index(layout, level, nx, ny);
+      const size_t n = mrgi_stencil_clamped(layout, level, x + dx, y + dy);
       if (!mrgi_stencil_usable(position, rendered, n))
       {
         continue;
@@ -171,8 +221,7 @@ static int mrgi_stencil_light_discontinuity(const mrgi_multires_layout* layout, 
       const float* En = irradiance + 4 * n;
       for (int c = 0; c < 3; ++c)
       {
-        const float larger = En[c] > Ep[c] ? En[c] : Ep[c];
-        if (fabsf(En[c] - Ep[c]) > threshold * larger)
+        if (mrgi_stencil_differs(En[c], Ep[c], threshold))
         {
           return 1;
         }
@@ -185,8 +234,8 @@ static int mrgi_stencil_light_discontinuity(const mrgi_multires_layout* layout, 
 mrgi_status mrgi_incremental_stencil_illumination_level(const mrgi_multires_layout* layout,
   int32_t finest_level, int32_t level, const uint8_t* flags, const uint8_t* selection,
   size_t texel_bytes, const float* receiver_position, size_t receiver_floats,
-  const float* irradiance, size_t irradiance_floats, float threshold, uint8_t* rendered,
-  size_t rendered_size, int64_t* added, mrgi_error* err)
+  const float* irradiance, size_t irradiance_floats, int32_t metric, float threshold,
+  uint8_t* rendered, size_t rendered_size, int64_t* added, mrgi_error* err)
 {
   mrgi_status status = mrgi_multires_layout_check(layout, err);
   if (status != MRGI_OK)
@@ -204,6 +253,12 @@ mrgi_status mrgi_incremental_stencil_illumination_level(const mrgi_multires_layo
                                           err)) != MRGI_OK)
   {
     return status;
+  }
+  if (metric != MRGI_INCREMENTAL_ILLUMINATION_DIFFERENCE &&
+      metric != MRGI_INCREMENTAL_ILLUMINATION_CURVATURE)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "illumination metric %d is unknown",
+                          metric);
   }
   if (!(threshold >= 0.0f) || isinf(threshold))
   {
@@ -239,7 +294,7 @@ mrgi_status mrgi_incremental_stencil_illumination_level(const mrgi_multires_layo
         }
         else if (i < coarsest && !refined &&
                  mrgi_stencil_light_discontinuity(layout, i + 1, x / 2, y / 2, receiver_position,
-                                                  irradiance, rendered, threshold))
+                                                  irradiance, rendered, metric, threshold))
         {
           r = 1;
           ++count;

@@ -69,8 +69,21 @@
  * L down to f). With RENDERED_{j} the texels level j rendered (E defined
  * there only) and "usable" = RENDERED and a receiver:
  *
- *     F_j(p) = usable_j(p) && ( T == 0 || exists usable n in p's 3x3
- *              (clamped) and channel c with |E_n,c - E_p,c| > T max(E_n,c, E_p,c) )
+ *     F_j(p) = usable_j(p) && ( T == 0 || exists channel c and, by metric,
+ *       DIFFERENCE: a usable n in p's 3x3 (clamped) with
+ *                   |E_n,c - E_p,c| > T max(E_n,c, E_p,c)
+ *       CURVATURE:  one of the 4 lines (a, p, b) through p (horizontal,
+ *                   vertical, both diagonals; a = p - k, b = p + k; a line
+ *                   with a or b outside the level is skipped)
+ *                   with a and b usable and
+ *                   |0.5 (E_a,c + E_b,c) - E_p,c| > T max(E_a,c, E_b,c, E_p,c),
+ *                   or with one of them usable, n, and the DIFFERENCE test on n )
+ *
+ * DIFFERENCE is NPW10's colour test on neighbours; it refines every smooth
+ * gradient steeper than T per coarse texel. CURVATURE compares p with the
+ * linear prediction of its neighbours, so that a light that changes
+ * linearly across a coarse texel (what the upsampling interpolates) does
+ * not refine; a step still does (a discontinuity deviates from any line).
  *
  * T is relative and dimensionless (0.1: neighbouring coarse results differ
  * by more than 10% of the larger). T = 0 renders every non-empty texel at
@@ -136,6 +149,9 @@ mrgi_status mrgi_incremental_stencil_build(
 
 /** Default relative threshold T of the illumination rule (file comment, last section). */
 #define MRGI_INCREMENTAL_ILLUMINATION_DEFAULT_THRESHOLD 0.1
+/** Metrics of the illumination rule (file comment, last section). */
+#define MRGI_INCREMENTAL_ILLUMINATION_DIFFERENCE 0
+#define MRGI_INCREMENTAL_ILLUMINATION_CURVATURE 1
 
 /**
  * @brief One level of the illumination rule (file comment, last section):
@@ -150,6 +166,7 @@ mrgi_status mrgi_incremental_stencil_build(
  * @param receiver_position 4 floats per flattened texel (receivers of every level).
  * @param irradiance   4 floats per flattened texel (RGB = E; alpha unread),
  *                     `irradiance_floats` of them; only level + 1 is read.
+ * @param metric       MRGI_INCREMENTAL_ILLUMINATION_DIFFERENCE or _CURVATURE.
  * @param threshold    T, finite and >= 0.
  * @param rendered     In: levels above `level` as earlier calls wrote them;
  *                     out: level `level` (1 rendered, 0 not).
@@ -160,8 +177,8 @@ mrgi_status mrgi_incremental_stencil_build(
 mrgi_status mrgi_incremental_stencil_illumination_level(const mrgi_multires_layout* layout,
   int32_t finest_level, int32_t level, const uint8_t* flags, const uint8_t* selection,
   size_t texel_bytes, const float* receiver_position, size_t receiver_floats,
-  const float* irradiance, size_t irradiance_floats, float threshold, uint8_t* rendered,
-  size_t rendered_size, int64_t* added, mrgi_error* err);
+  const float* irradiance, size_t irradiance_floats, int32_t metric, float threshold,
+  uint8_t* rendered, size_t rendered_size, int64_t* added, mrgi_error* err);
 
 #ifdef __cplusplus
 }

@@ -282,6 +282,7 @@ bool vtkMRGIIncrementalStencil::BuildIlluminationLevel(const vtkMRGIFrameContext
   program->SetUniformi("mrgiFinest", level == finest ? 1 : 0);
   program->SetUniformi("mrgiCoarsest", level == levels - 1 ? 1 : 0);
   program->SetUniformf("mrgiIlluminationThreshold", static_cast<float>(this->IlluminationThreshold));
+  program->SetUniformi("mrgiIlluminationMetric", this->IlluminationMetric);
   steps.GetState()->vtkglViewport(
     layout.level_offset[level], 0, layout.level_width[level], layout.level_height[level]);
   quad->Render();
@@ -331,4 +332,5 @@ void vtkMRGIIncrementalStencil::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Fraction: " << this->Fraction << "\n";
   os << indent << "IlluminationThreshold: " << this->IlluminationThreshold << "\n";
+  os << indent << "IlluminationMetric: " << this->IlluminationMetric << "\n";
 }

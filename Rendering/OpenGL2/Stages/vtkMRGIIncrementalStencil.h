@@ -73,6 +73,18 @@ public:
   vtkGetMacro(IlluminationThreshold, double);
   ///@}
 
+  ///@{
+  /**
+   * How the illumination rule compares the parent's 3x3
+   * (mrgi_incremental_stencil.h): MRGI_INCREMENTAL_ILLUMINATION_DIFFERENCE
+   * (0, NPW10's neighbour difference, default) or _CURVATURE (1, the
+   * deviation from the line through opposite neighbours: linear light
+   * changes do not refine).
+   */
+  vtkSetClampMacro(IlluminationMetric, int, 0, 1);
+  vtkGetMacro(IlluminationMetric, int);
+  ///@}
+
 #ifndef __VTK_WRAP__
   /**
    * Allocate the mask for `buffer` (selection and receivers of this frame)
@@ -116,6 +128,7 @@ protected:
 
   double Fraction = 0.25;
   double IlluminationThreshold = 0.1; // MRGI_INCREMENTAL_ILLUMINATION_DEFAULT_THRESHOLD
+  int IlluminationMetric = 0;         // MRGI_INCREMENTAL_ILLUMINATION_DIFFERENCE
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

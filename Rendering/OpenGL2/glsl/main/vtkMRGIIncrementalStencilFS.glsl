@@ -28,6 +28,7 @@ uniform sampler2D mrgiParentPosition; // level i+1 receivers (level-local; w = v
 uniform sampler2D mrgiParentIrradiance; // the flattened irradiance (level i+1 gathered)
 uniform int mrgiParentOffset;           // o_{i+1}
 uniform float mrgiIlluminationThreshold; // T >= 0
+uniform int mrgiIlluminationMetric;      // MRGI_INCREMENTAL_ILLUMINATION_*
 #else
 uniform usampler2D mrgiParentMask0;   // level i+1 masks: word w in texture w / 4, channel w % 4
 uniform usampler2D mrgiParentMask1;
@@ -58,8 +59,16 @@ bool mrgiStencilUsable(ivec2 s, out vec3 E)
   return e.a > 0.5 && mrgiStencilReceiver(s);
 }
 
-// F_{i+1}(c) of the illumination rule: a usable neighbour in the 3x3
-// (clamped) differs by more than T times the larger value in a channel.
+bool mrgiStencilDiffers(float En, float Ep)
+{
+  return abs(En - Ep) > mrgiIlluminationThreshold * max(En, Ep);
+}
+
+// F_{i+1}(c) of the illumination rule (DIFFERENCE: a usable neighbour in
+// the 3x3, clamped, differs by more than T times the larger value in a
+// channel; CURVATURE: c deviates from the line through two opposite
+// usable neighbours, lines leaving the level skipped, or differs from the
+// one usable neighbour of a line).
 bool mrgiStencilDiscontinuity(ivec2 c)
 {
   vec3 Ep;
@@ -71,6 +80,41 @@ bool mrgiStencilDiscontinuity(ivec2 c)
   {
     return true;
   }
+  if (mrgiIlluminationMetric == MRGI_INCREMENTAL_ILLUMINATION_CURVATURE)
+  {
+    ivec2 axes[4] = ivec2[4](ivec2(1, 0), ivec2(0, 1), ivec2(1, 1), ivec2(1, -1));
+    for (int k = 0; k < 4; ++k)
+    {
+      ivec2 a = c - axes[k];
+      ivec2 b = c + axes[k];
+      if (a.x < 0 || a.y < 0 || a.y >= mrgiParentSize.y || b.x >= mrgiParentSize.x || b.y < 0 ||
+        b.y >= mrgiParentSize.y)
+      {
+        continue;
+      }
+      vec3 Ea;
+      vec3 Eb;
+      bool ua = mrgiStencilUsable(a, Ea);
+      bool ub = mrgiStencilUsable(b, Eb);
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        if (ua && ub)
+        {
+          float larger = max(max(Ea[ch], Eb[ch]), Ep[ch]);
+          if (abs(0.5 * (Ea[ch] + Eb[ch]) - Ep[ch]) > mrgiIlluminationThreshold * larger)
+          {
+            return true;
+          }
+        }
+        else if ((ua && mrgiStencilDiffers(Ea[ch], Ep[ch])) ||
+          (ub && mrgiStencilDiffers(Eb[ch], Ep[ch])))
+        {
+          return true;
+        }
+      }
+    }
+    return false;
+  }
   for (int k = 0; k < 9; ++k)
   {
     ivec2 s = clamp(c + ivec2(k % 3 - 1, k / 3 - 1), ivec2(0), mrgiParentSize - 1);
@@ -81,7 +125,7 @@ bool mrgiStencilDiscontinuity(ivec2 c)
     }
     for (int ch = 0; ch < 3; ++ch)
     {
-      if (abs(En[ch] - Ep[ch]) > mrgiIlluminationThreshold * max(En[ch], Ep[ch]))
+      if (mrgiStencilDiffers(En[ch], Ep[ch]))
       {
         return true;
       }
