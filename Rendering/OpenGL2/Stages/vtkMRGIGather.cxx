@@ -115,9 +115,8 @@ bool vtkMRGIGather::GatherVPLsIncremental(const vtkMRGIFrameContext& frame,
   const vtkMRGIIndirectVisibility& visibility, vtkTextureObject* stencil,
   const std::function<bool(int level)>& beforeLevel)
 {
-  const int mode = this->GatherMode;
-  this->GatherMode = GatherStenciled;
-  this->Internal->BeforeLevel = &beforeLevel;
+  const int mode = this->GatherMode; // stenciled only
+  this->GatherMode = GatherStenciled, this->Internal->BeforeLevel = &beforeLevel;
   const bool ok = vpls && vplCount > 0 && this->UseVisibility(visibility, vplCount) &&
     this->Run(frame, buffer, vpls, vplCount, nullptr, stencil);
   this->Internal->BeforeLevel = nullptr;
@@ -455,15 +454,11 @@ bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultir
   {
     // Coarse to fine with a step between the levels (GatherVPLsIncremental()).
     const int i = in.BeforeLevel ? levels - 1 - (k - finest) : k;
-    if (in.BeforeLevel && !(stepped = (*in.BeforeLevel)(i)))
-    {
+    if (in.BeforeLevel && !(stepped = (*in.BeforeLevel)(i) &&
+                              window->GetShaderCache()->ReadyShaderProgram(gather) != nullptr))
       break;
-    }
     if (in.BeforeLevel)
-    {
-      window->GetShaderCache()->ReadyShaderProgram(gather);
       steps.BeginStencilRead(stencil, false);
-    }
     const std::array<vtkTextureObject*, 2> receivers = buffer->BindReceivers(gather, i);
     std::vector<vtkTextureObject*> maskTextures;
     if (masked)
