@@ -21,6 +21,7 @@
 #include "vtkMRGIImageIO.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIImperfectShadowMaps.h"
+#include "vtkMRGIIncrementalStencil.h"
 #include "vtkMRGIIndirectLight.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGIReferenceRenderer.h"
@@ -540,6 +541,13 @@ int main(int argc, char* argv[])
       std::to_string(o.ISMTileSize));
   }
   mrgi->SetIndirectVisibility(o.IndirectVisibility);
+  if (o.Refinement >= 0)
+    mrgi->SetRefinement(o.Refinement);
+  if (!std::isnan(o.IlluminationThreshold))
+    mrgi->SetIlluminationThreshold(o.IlluminationThreshold);
+  if (o.IlluminationMetric >= 0)
+    mrgi->GetIndirectLightStage()->GetIlluminationStencil()->SetIlluminationMetric(
+      o.IlluminationMetric);
   mrgi->SetISMPointsPerVPL(static_cast<int>(o.ISMPointsPerVPL));
   mrgi->SetISMTileSize(static_cast<int>(o.ISMTileSize));
   mrgi->SetISMPointMode(o.ISMPointMode);

@@ -526,6 +526,24 @@ const std::vector<OptionSection>& OptionTable()
         { { "--finest-level" }, "N",
           "multires: finest level that gathers, 0..23 (0 = full resolution)",
           Integer(&Options::FinestLevel, 0, MRGI_MULTIRES_MAX_LEVELS - 1) },
+        { { "--refinement" }, "geometry|illumination",
+          "multires: refine at depth/normal discontinuities only (geometry), or also\n"
+          "where neighbouring coarse results of the indirect light differ\n"
+          "(illumination, gathered coarse to fine; default: the pass's)",
+          Choice<int>(&Options::Refinement,
+            { { "geometry", vtkMRGIIndirectLight::RefinementGeometry },
+              { "illumination", vtkMRGIIndirectLight::RefinementIllumination } }) },
+        { { "--illumination-threshold" }, "T",
+          "multires, illumination: relative difference of neighbouring coarse\n"
+          "results that refines, 0..1e30 (0: all; default 0.1)",
+          Number(
+            &Options::IlluminationThreshold, [](double t) { return t >= 0 && t <= 1e30; },
+            "expected a number in [0, 1e30]") },
+        { { "--illumination-metric" }, "difference|curvature",
+          "multires, illumination: neighbours differ (NPW10's test), or the centre\n"
+          "leaves the line through opposite neighbours (linear changes do not refine)",
+          Choice<int>(&Options::IlluminationMetric,
+            { { "difference", 0 }, { "curvature", 1 } }) },
         { { "--upsample" }, "tent|mask",
           "multires: tent (default) or mask-weighted (Besenthal) upsampling",
           Choice<bool>(&Options::MaskUpsampling, { { "tent", false }, { "mask", true } }) },

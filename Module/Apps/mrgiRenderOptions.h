@@ -103,6 +103,9 @@ struct Options
   double TreeThreshold = std::nan(""); // not given: MRGI_VPL_TREE_DEFAULT_THRESHOLD
   long long RSMSize = 256;
   int IndirectVisibility = 0;   // vtkMRGIIndirectLight::VisibilityModes (off, ism, voxel)
+  int Refinement = -1;          // vtkMRGIIndirectLight::RefinementModes; -1: the pass's default
+  double IlluminationThreshold = std::nan(""); // not given: the stage's default (0.1)
+  int IlluminationMetric = -1;  // MRGI_INCREMENTAL_ILLUMINATION_*; -1: the stage's default
   long long ISMPointsPerVPL = 256;
   long long ISMTileSize = 32;
   int ISMPointMode = 2;         // vtkMRGIImperfectShadowMaps::PointModes (adaptive8)

@@ -93,8 +93,15 @@ class Bench:
         self.gi.ReleaseGraphicsResources(self.window)
 
 
-def configure(bench, mode, depth=4.0, normal=0.25, finest=0, vpls=256, balance=True):
+def configure(bench, mode, depth=4.0, normal=0.25, finest=0, vpls=256, balance=True, illumination=None):
+    """illumination: None for the geometric refinement, else the illumination threshold T."""
     bench.gi.SetIndirectMode(mode)
+    bench.gi.SetRefinement(0 if illumination is None else 1)
+    if illumination is not None:
+        # "cT": the curvature metric at threshold T; "T": the difference metric
+        curvature = str(illumination).startswith("c")
+        bench.gi.GetIndirectLightStage().GetIlluminationStencil().SetIlluminationMetric(1 if curvature else 0)
+        bench.gi.SetIlluminationThreshold(float(str(illumination).lstrip("c")))
     bench.gi.SetNumberOfVPLs(vpls)
     bench.mr.SetDepthThreshold(-1.0 if math.isinf(depth) else depth)
     bench.mr.SetNormalThreshold(-1.0 if math.isinf(normal) else normal)
@@ -160,6 +167,9 @@ def main():
     parser.add_argument("--depth", default="4,8,16,64,inf")
     parser.add_argument("--normal", default="0.25,0.5,1,inf")
     parser.add_argument("--finest", default="0,1")
+    parser.add_argument("--illumination", default="none,0.05,0.1,0.2",
+                        help="refinement per setting: none (geometry), illumination thresholds T "
+                             "(difference metric) or cT (curvature metric)")
     parser.add_argument("--vpls", default="64,256,1024")
     parser.add_argument("--grid-vpls", default="256",
                         help="VPL counts at which the whole threshold grid runs; at the other counts of --vpls, "
@@ -231,7 +241,7 @@ def main():
                 full_truth = metrics(compare_tool, full_path, truth_path, truth_peak)
             print("%s, %d VPLs: full gather %.1f ms GPU, frame %.1f ms (GI off: %.1f ms)"
                   % (scene, vpls, full_t.get("gather", 0.0), full_t["frame"], off_t["frame"]))
-            rows.append(dict(scene=scene, vpls=vpls, mode="full", depth="", normal="", finest="",
+            rows.append(dict(scene=scene, vpls=vpls, mode="full", depth="", normal="", finest="", illumination="",
                              balance="", select=0.0, gather=full_t.get("gather", 0.0), upsample=0.0,
                              indirect=full_t.get("gather", 0.0), frame=full_t["frame"], work=1.0,
                              rel_rms_full=0.0, rel_max_full=0.0,
@@ -239,17 +249,21 @@ def main():
                              rel_max_truth=full_truth[1] if truth_path else "",
                              flicker_light=0.0, flicker_camera=0.0, gather_speedup=1.0, indirect_speedup=1.0))
             grid = vpls in parse_list(args.grid_vpls, int)
-            settings = [(d, n, f, True) for d in parse_list(args.depth) for n in parse_list(args.normal)
-                        for f in parse_list(args.finest, int)] if grid else []
+            lights = [None if v == "none" else v for v in args.illumination.split(",")]
+            settings = [(d, n, f, True, il) for d in parse_list(args.depth) for n in parse_list(args.normal)
+                        for f in parse_list(args.finest, int) for il in lights] if grid else []
             for name, p in presets.items():
-                settings.append((p[0] if p[0] >= 0 else math.inf, p[1] if p[1] >= 0 else math.inf, int(p[2]), True))
-                settings.append((p[0] if p[0] >= 0 else math.inf, p[1] if p[1] >= 0 else math.inf, int(p[2]), False))
+                pd, pn = (p[0] if p[0] >= 0 else math.inf), (p[1] if p[1] >= 0 else math.inf)
+                pl = None if len(p) < 4 or p[3] < 0 else p[3]
+                settings.append((pd, pn, int(p[2]), True, pl))
+                settings.append((pd, pn, int(p[2]), False, pl))
             seen = set()
-            for depth, normal, finest, balance in settings:
-                if (depth, normal, finest, balance) in seen:
+            for depth, normal, finest, balance, illumination in settings:
+                if (depth, normal, finest, balance, illumination) in seen:
                     continue
-                seen.add((depth, normal, finest, balance))
-                configure(bench, mrgi.vtkMRGIPass.IndirectMultires, depth, normal, finest, vpls, balance)
+                seen.add((depth, normal, finest, balance, illumination))
+                configure(bench, mrgi.vtkMRGIPass.IndirectMultires, depth, normal, finest, vpls, balance,
+                          illumination)
                 t = bench.frames(args.repeats)
                 bench.gather.SetCollectStatistics(True)
                 bench.window.Render()
@@ -263,7 +277,7 @@ def main():
                 flick_camera = flicker(bench, image, full, full_camera, bench.move_camera)
                 indirect_ms = sum(t.get(s, 0.0) for s in INDIRECT_STAGES)
                 row = dict(scene=scene, vpls=vpls, mode="multires", depth=depth, normal=normal, finest=finest,
-                           balance=int(balance), select=t.get("select", 0.0), gather=t.get("gather", 0.0),
+                           balance=int(balance), illumination="" if illumination is None else illumination, select=t.get("select", 0.0), gather=t.get("gather", 0.0),
                            upsample=t.get("upsample", 0.0), indirect=indirect_ms, frame=t["frame"], work=work,
                            rel_rms_full=vs_full[0], rel_max_full=vs_full[1], rel_rms_truth=vs_truth[0],
                            rel_max_truth=vs_truth[1], flicker_light=flick_light, flicker_camera=flick_camera,
@@ -274,16 +288,19 @@ def main():
                              "upsample.resolve"):
                     row[step] = t.get(step, 0.0)
                 rows.append(row)
-                print("  depth %-5s normal %-5s finest %d balance %d: select %.1f gather %.1f upsample %.1f ms, "
+                print("  illumination %-5s depth %-5s normal %-5s finest %d balance %d: select %.1f gather %.1f upsample %.1f ms, "
                       "work %.3f, gather x%.1f, indirect x%.1f, rel. RMS %.4f (max %.3f), flicker %.4f / %.4f"
-                      % (depth, normal, finest, balance, row["select"], row["gather"], row["upsample"], work,
+                      % (row["illumination"] if illumination is not None else "-", depth, normal, finest, balance,
+                         row["select"], row["gather"], row["upsample"], work,
                          row["gather_speedup"], row["indirect_speedup"], vs_full[0], vs_full[1], flick_light,
                          flick_camera))
                 # Pictures for the page: levels and differences at each preset.
                 for pname, p in presets.items():
                     pd = p[0] if p[0] >= 0 else math.inf
                     pn = p[1] if p[1] >= 0 else math.inf
-                    if (pd, pn, int(p[2]), True) == (depth, normal, finest, balance) and scene == "cornell-spot":
+                    pl = None if len(p) < 4 or p[3] < 0 else p[3]
+                    if (pd, pn, int(p[2]), True, pl) == (depth, normal, finest, balance, illumination) \
+                            and scene == "cornell-spot":
                         mb.write(level_image(bench), os.path.join(images, "multires-levels-%s.png" % pname))
                         mb.compare(compare_tool, path, full_path,
                                    os.path.join(images, "multires-diff-%s.png" % pname), diff_scale=8.0)

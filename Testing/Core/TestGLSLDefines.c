@@ -12,6 +12,7 @@
 #include "mrgi_exposure.h"
 #include "mrgi_gather.h"
 #include "mrgi_irradiance_stencil.h"
+#include "mrgi_incremental_stencil.h"
 #include "mrgi_ism_atlas.h"
 #include "mrgi_ism_visibility.h"
 #include "mrgi_multires.h"
@@ -121,6 +122,8 @@ static expected_constant expected[] = {
   EXPECT(MRGI_IRRADIANCE_STENCIL_GRID, EXPECT_INT),
   EXPECT(MRGI_VOXEL_METRIC_DISAGREE, EXPECT_INT),
   EXPECT(MRGI_VOXEL_METRIC_COUNT_SPREAD, EXPECT_INT),
+  EXPECT(MRGI_INCREMENTAL_ILLUMINATION_DIFFERENCE, EXPECT_INT),
+  EXPECT(MRGI_INCREMENTAL_ILLUMINATION_CURVATURE, EXPECT_INT),
   EXPECT(MRGI_VOXEL_VSM_QUERIES, EXPECT_INT),
   EXPECT(MRGI_VOXEL_VSM_TARGETS, EXPECT_INT),
   EXPECT(MRGI_VOXEL_INTERLEAVE_MIN_COS, EXPECT_FLOAT),

@@ -244,12 +244,130 @@ static void test_bad_input(void)
   scene_free(&s);
 }
 
+/* The illumination rule, coarse to fine: "gather" E = light(x) at the
+ * texels each level renders (E elsewhere is garbage the rule must not
+ * read), then build the next level. Returns the texels rendered. */
+static int64_t illuminate(scene* s, int32_t finest, float threshold, float* E, double (*light)(double),
+                          int32_t metric)
+{
+  const int32_t coarsest = s->layout.level_count - 1;
+  for (size_t t = 0; t < 4 * s->texels; ++t)
+  {
+    E[t] = 1.0e30f;
+  }
+  memset(s->rendered, 0, s->texels);
+  int64_t total = 0;
+  for (int32_t i = coarsest; i >= (finest < coarsest ? finest : coarsest); --i)
+  {
+    MRGI_CHECK(mrgi_incremental_stencil_illumination_level(
+                 &s->layout, finest, i, s->flags, s->selection, s->texels, s->position,
+                 4 * s->texels, E, 4 * s->texels, metric, threshold, s->rendered, s->texels, NULL,
+                 NULL) == MRGI_OK);
+    for (int32_t y = 0; y < s->layout.level_height[i]; ++y)
+    {
+      for (int32_t x = 0; x < s->layout.level_width[i]; ++x)
+      {
+        const size_t t = mrgi_multires_index(&s->layout, i, x, y);
+        if (s->rendered[t])
+        {
+          const float e = (float)light(s->position[4 * t]);
+          E[4 * t] = e;
+          E[4 * t + 1] = 0.5f * e;
+          E[4 * t + 2] = 0.25f * e;
+          ++total;
+        }
+      }
+    }
+  }
+  return total;
+}
+
+enum
+{
+  DIFF = MRGI_INCREMENTAL_ILLUMINATION_DIFFERENCE,
+  CURV = MRGI_INCREMENTAL_ILLUMINATION_CURVATURE
+};
+static double light_step(double x) { return x < EDGE_X ? 4.0 : 1.0; }
+static double light_ramp(double x) { return 1.0 + 0.05 * x; }
+static double light_smooth(double x) { return 1.0 + 0.001 * x; }
+
+static void test_illumination(void)
+{
+  scene s;
+  scene_init(&s);
+  float* E = malloc(4 * s.texels * sizeof(float));
+  MRGI_CHECK(E != NULL);
+  /* a light step: refined down to full resolution along the step only */
+  const int64_t step = illuminate(&s, 0, 0.1f, E, light_step, DIFF);
+  for (int32_t y = 0; y < SIDE; ++y)
+  {
+    MRGI_CHECK(rendered_at(&s, 0, 19, y) && rendered_at(&s, 0, 20, y));
+    MRGI_CHECK(!rendered_at(&s, 0, 2, y) && !rendered_at(&s, 0, 50, y));
+  }
+  MRGI_CHECK(step > 64 + 3 * SIDE && step < 64 + 16 * SIDE);
+  /* smooth light under the threshold: the geometric selection alone */
+  MRGI_CHECK(illuminate(&s, 0, 0.1f, E, light_smooth, DIFF) == 64);
+  MRGI_CHECK(memcmp(s.rendered, s.selection, s.texels) == 0);
+  /* the threshold matters: above the step's 75% nothing is added, at 0
+   * every level is rendered in full */
+  MRGI_CHECK(illuminate(&s, 0, 0.8f, E, light_step, DIFF) == 64);
+  MRGI_CHECK(illuminate(&s, 0, 0.0f, E, light_smooth, DIFF) == 64 * 64 + 32 * 32 + 16 * 16 + 64);
+  /* finest level 2: nothing below */
+  MRGI_CHECK(illuminate(&s, 2, 0.1f, E, light_step, DIFF) < 64 + 16 * 16);
+  MRGI_CHECK(!rendered_at(&s, 1, 10, 0) && rendered_at(&s, 2, 5, 0));
+  /* a non-receiver parent does not refine its children */
+  for (int32_t y = 0; y < 8; ++y)
+  {
+    s.position[4 * mrgi_multires_index(&s.layout, 3, 2, y) + 3] = 0.0f;
+  }
+  illuminate(&s, 0, 0.1f, E, light_step, DIFF);
+  MRGI_CHECK(!rendered_at(&s, 2, 5, 3) && !rendered_at(&s, 0, 20, 30));
+  for (int32_t y = 0; y < 8; ++y)
+  {
+    s.position[4 * mrgi_multires_index(&s.layout, 3, 2, y) + 3] = 1.0f;
+  }
+  /* a steep linear ramp: the difference refines it, the curvature does not;
+   * both refine the step */
+  const int64_t ramp = illuminate(&s, 0, 0.1f, E, light_ramp, DIFF);
+  printf("ramp: difference renders %lld texels\n", (long long)ramp);
+  MRGI_CHECK(ramp > 64 + 16 * 16);
+  MRGI_CHECK(illuminate(&s, 0, 0.1f, E, light_ramp, CURV) == 64);
+  MRGI_CHECK(illuminate(&s, 0, 0.1f, E, light_step, CURV) > 64 + 3 * SIDE);
+  for (int32_t y = 0; y < SIDE; ++y)
+  {
+    MRGI_CHECK(rendered_at(&s, 0, 19, y) && rendered_at(&s, 0, 20, y));
+    MRGI_CHECK(!rendered_at(&s, 0, 2, y) && !rendered_at(&s, 0, 50, y));
+  }
+  MRGI_CHECK(illuminate(&s, 0, 0.0f, E, light_ramp, CURV) == 64 * 64 + 32 * 32 + 16 * 16 + 64);
+  /* bad input */
+  mrgi_error err;
+  MRGI_CHECK(mrgi_incremental_stencil_illumination_level(&s.layout, 0, 1, s.flags, s.selection,
+               s.texels, s.position, 4 * s.texels, E, 4 * s.texels, 7, 0.1f, s.rendered,
+               s.texels, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(message_has(&err, "metric 7"));
+  MRGI_CHECK(mrgi_incremental_stencil_illumination_level(&s.layout, 0, 1, s.flags, s.selection,
+               s.texels, s.position, 4 * s.texels, E, 4 * s.texels, DIFF, NAN, s.rendered, s.texels,
+               NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(message_has(&err, "illumination threshold"));
+  MRGI_CHECK(mrgi_incremental_stencil_illumination_level(&s.layout, 0, 4, s.flags, s.selection,
+               s.texels, s.position, 4 * s.texels, E, 4 * s.texels, DIFF, 0.1f, s.rendered, s.texels,
+               NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(message_has(&err, "level 4"));
+  MRGI_CHECK(mrgi_incremental_stencil_illumination_level(&s.layout, 0, 1, s.flags, s.selection,
+               s.texels, s.position, 4 * s.texels, E, 4 * s.texels - 1, DIFF, 0.1f, s.rendered,
+               s.texels, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(message_has(&err, "irradiance"));
+  free(E);
+  scene_free(&s);
+}
+
 int main(int argc, char** argv)
 {
   static const mrgi_test_case cases[] = {
     MRGI_TEST_CASE(test_shadow_edge),
     MRGI_TEST_CASE(test_non_receivers),
     MRGI_TEST_CASE(test_bad_input),
+    MRGI_TEST_CASE(test_illumination),
   };
   return MRGI_TEST_MAIN(argc, argv, cases);
 }

@@ -347,6 +347,22 @@ int vtkMRGIPass::GetIndirectVisibility()
 {
   return this->IndirectLight->GetVisibility();
 }
+void vtkMRGIPass::SetRefinement(int mode)
+{
+  this->IndirectLight->SetRefinement(mode);
+}
+int vtkMRGIPass::GetRefinement()
+{
+  return this->IndirectLight->GetRefinement();
+}
+void vtkMRGIPass::SetIlluminationThreshold(double threshold)
+{
+  this->IndirectLight->SetIlluminationThreshold(threshold);
+}
+double vtkMRGIPass::GetIlluminationThreshold()
+{
+  return this->IndirectLight->GetIlluminationThreshold();
+}
 void vtkMRGIPass::SetISMPointsPerVPL(int points)
 {
   this->IndirectLight->GetImperfectShadowMaps()->SetPointsPerVPL(points);

@@ -227,6 +227,20 @@ public:
 
   ///@{
   /**
+   * Which texels the multiresolution gather refines (issue 17 part 2):
+   * vtkMRGIIndirectLight::RefinementGeometry (default: depth and normal
+   * discontinuities) or RefinementIllumination (also where neighbouring
+   * coarse results differ by more than IlluminationThreshold, relative;
+   * default 0.1). Forwarded to the indirect-light stage.
+   */
+  void SetRefinement(int mode);
+  int GetRefinement();
+  void SetIlluminationThreshold(double threshold);
+  double GetIlluminationThreshold();
+  ///@}
+
+  ///@{
+  /**
    * The imperfect shadow maps of VisibilityISM (vtkMRGIImperfectShadowMaps):
    * points drawn per VPL (default 256), tile side (power of two, default
    * 32), point density (0 uniform, 1 adaptive from one view sample, 2

@@ -73,7 +73,7 @@ void vtkMRGIFullScreenStep::Targets(std::initializer_list<vtkTextureObject*> tar
 }
 
 //------------------------------------------------------------------------------
-void vtkMRGIFullScreenStep::BeginMaskWrite(vtkTextureObject* depthStencil)
+void vtkMRGIFullScreenStep::BeginMaskWrite(vtkTextureObject* depthStencil, bool clear)
 {
   vtkOpenGLState* ostate = this->State;
   glFramebufferTexture2D(
@@ -81,7 +81,10 @@ void vtkMRGIFullScreenStep::BeginMaskWrite(vtkTextureObject* depthStencil)
   ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
   ostate->vtkglStencilMask(0xFF);
   glClearStencil(0);
-  ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  if (clear)
+  {
+    ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  }
   ostate->vtkglEnable(GL_STENCIL_TEST);
   ostate->vtkglStencilFunc(GL_ALWAYS, 1, 0xFF);
   ostate->vtkglStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
@@ -96,13 +99,16 @@ void vtkMRGIFullScreenStep::EndMaskWrite()
 }
 
 //------------------------------------------------------------------------------
-void vtkMRGIFullScreenStep::BeginStencilRead(vtkTextureObject* depthStencil)
+void vtkMRGIFullScreenStep::BeginStencilRead(vtkTextureObject* depthStencil, bool clear)
 {
   vtkOpenGLState* ostate = this->State;
   glFramebufferTexture2D(
     GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_TEXTURE_2D, depthStencil->GetHandle(), 0);
   ostate->vtkglClearColor(0.0, 0.0, 0.0, 0.0);
-  ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
+  if (clear)
+  {
+    ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
+  }
   ostate->vtkglEnable(GL_STENCIL_TEST);
   ostate->vtkglStencilMask(0x00);
   ostate->vtkglStencilFunc(GL_EQUAL, 1, 0xFF);

@@ -47,17 +47,19 @@ public:
    * incremental and the specular stencils): the colour target already set
    * and `depthStencil` are cleared to 0, and every fragment that passes sets
    * its stencil to 1. EndMaskWrite() restores the stencil state and
-   * detaches the depth-stencil texture.
+   * detaches the depth-stencil texture. With `clear` false nothing is
+   * cleared (a mask written one level at a time).
    */
-  void BeginMaskWrite(vtkTextureObject* depthStencil);
+  void BeginMaskWrite(vtkTextureObject* depthStencil, bool clear = true);
   void EndMaskWrite();
 
   /**
    * Read only the texels whose stencil in `depthStencil` is 1 (a gather's
    * early stencil culling; the stencil itself is left unchanged).
-   * EndStencilRead() restores the stencil state and detaches it.
+   * EndStencilRead() restores the stencil state and detaches it. The
+   * colour target is cleared to 0 unless `clear` is false.
    */
-  void BeginStencilRead(vtkTextureObject* depthStencil);
+  void BeginStencilRead(vtkTextureObject* depthStencil, bool clear = true);
   void EndStencilRead();
 
   /**

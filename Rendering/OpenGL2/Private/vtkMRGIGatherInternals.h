@@ -9,7 +9,8 @@
 
 #include "vtkMRGIStageResources.h"
 
-#include <vector> // For std::vector
+#include <functional> // For std::function
+#include <vector>     // For std::vector
 
 struct mrgi_multires_layout;
 struct vtkMRGIIndirectVisibility;
@@ -24,6 +25,9 @@ struct vtkMRGIGatherInternals
   vtkMRGIStageResources GL; // framebuffer and programs
   // The VPL gathers' visibility term of the current call (never kept).
   const vtkMRGIIndirectVisibility* Visibility = nullptr;
+  // GatherVPLsIncremental()'s step before each level (levels then run
+  // coarse to fine); null otherwise (never kept).
+  const std::function<bool(int)>* BeforeLevel = nullptr;
   // Statistics of the last gather (occlusion queries, one per level).
   std::vector<unsigned int> Queries;
   std::vector<long long> GatheredTexels;

@@ -110,6 +110,21 @@ bool vtkMRGIGather::GatherVPLs(const vtkMRGIFrameContext& frame, vtkMRGIMultires
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIGather::GatherVPLsIncremental(const vtkMRGIFrameContext& frame,
+  vtkMRGIMultiresolution* buffer, vtkTextureObject* vpls, int vplCount,
+  const vtkMRGIIndirectVisibility& visibility, vtkTextureObject* stencil,
+  const std::function<bool(int level)>& beforeLevel)
+{
+  const int mode = this->GatherMode; // stenciled only
+  this->GatherMode = GatherStenciled, this->Internal->BeforeLevel = &beforeLevel;
+  const bool ok = vpls && vplCount > 0 && this->UseVisibility(visibility, vplCount) &&
+    this->Run(frame, buffer, vpls, vplCount, nullptr, stencil);
+  this->Internal->BeforeLevel = nullptr;
+  this->GatherMode = mode;
+  return ok;
+}
+
+//------------------------------------------------------------------------------
 bool vtkMRGIGather::GatherVPLTree(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
   const vtkMRGIVPLTreeTerm& tree, const vtkMRGIIndirectVisibility& visibility)
 {
@@ -434,8 +449,16 @@ bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultir
     ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
     ostate->vtkglBlendEquationSeparate(GL_FUNC_ADD, GL_MAX);
   }
-  for (int i = finest; i < levels; ++i)
+  bool stepped = true;
+  for (int k = finest; k < levels && stepped; ++k)
   {
+    // Coarse to fine with a step between the levels (GatherVPLsIncremental()).
+    const int i = in.BeforeLevel ? levels - 1 - (k - finest) : k;
+    if (in.BeforeLevel && !(stepped = (*in.BeforeLevel)(i) &&
+                              window->GetShaderCache()->ReadyShaderProgram(gather) != nullptr))
+      break;
+    if (in.BeforeLevel)
+      steps.BeginStencilRead(stencil, false);
     const std::array<vtkTextureObject*, 2> receivers = buffer->BindReceivers(gather, i);
     std::vector<vtkTextureObject*> maskTextures;
     if (masked)
@@ -501,11 +524,11 @@ bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultir
     term->Voxels->GetVoxelTexture()->Deactivate();
   }
   steps.EndStencilRead();
-  if (this->CollectStatistics)
+  if (this->CollectStatistics && stepped)
   {
     in.ReadQueries(finest, levels);
   }
-  return true;
+  return stepped;
 }
 
 //------------------------------------------------------------------------------

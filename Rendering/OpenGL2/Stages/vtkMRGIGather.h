@@ -173,6 +173,17 @@ public:
     const vtkMRGIIndirectVisibility& visibility = vtkMRGIIndirectVisibility());
 
   /**
+   * GatherVPLs() at the texels of `stencil`, one level at a time from the
+   * coarsest to the finest gathering level, calling `beforeLevel(level)`
+   * before each level's draw (it may draw elsewhere, e.g. build that
+   * level's part of `stencil` from the coarser levels' irradiance:
+   * vtkMRGIIncrementalStencil::BuildIlluminationLevel()); false from it
+   * stops the gather with false. Stenciled only (GatherMode ignored).
+   */
+  bool GatherVPLsIncremental(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
+    vtkTextureObject* vpls, int vplCount, const vtkMRGIIndirectVisibility& visibility,
+    vtkTextureObject* stencil, const std::function<bool(int level)>& beforeLevel);
+  /**
    * The full-resolution gather (vtkMRGIPass::IndirectFull, the reference
    * the multiresolution one approximates): every pixel of frame.Viewport
    * gathers all `vplCount` VPLs (nichols-shopf-wyman-2009 eq. 1 and 5)

@@ -221,6 +221,102 @@ bool vtkMRGIIncrementalStencil::Build(const vtkMRGIFrameContext& frame,
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIIncrementalStencil::BeginIllumination(
+  const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer)
+{
+  Internals& in = *this->Internal;
+  mrgi_multires_layout layout;
+  in.Built = false;
+  if (!frame.Window || !buffer || !buffer->HasReceivers() || !buffer->GetLayout(&layout))
+  {
+    vtkErrorMacro("the illumination stencil needs the buffer's selection and receivers of this frame");
+    return false;
+  }
+  if (!in.Prepare(frame.Window, layout))
+  {
+    vtkErrorMacro("could not allocate the illumination stencil (" << layout.total_width << " x "
+                                                                  << layout.total_height << ")");
+    return false;
+  }
+  {
+    vtkMRGIFullScreenStep steps(frame.Window, in.GL.FrameBuffer);
+    steps.Target(in.FlatIncremental, nullptr, 0, 0, layout.total_width, layout.total_height);
+    steps.BeginMaskWrite(in.IncrementalDepthStencil);
+    steps.EndMaskWrite();
+  }
+  in.Built = glGetError() == GL_NO_ERROR;
+  return in.Built;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIIncrementalStencil::BuildIlluminationLevel(const vtkMRGIFrameContext& frame,
+  vtkMRGIMultiresolution* buffer, vtkTextureObject* irradiance, int level)
+{
+  // mrgi_incremental_stencil_illumination_level(): level `level` only, read
+  // from the irradiance of level + 1 (its alpha says where it was gathered).
+  Internals& in = *this->Internal;
+  vtkOpenGLRenderWindow* window = frame.Window;
+  mrgi_multires_layout layout;
+  const int finest = buffer ? buffer->GetFinestGatherLevel() : 0;
+  if (!in.Built || !window || !buffer || !irradiance || !buffer->GetLayout(&layout) ||
+    layout.total_width != in.Layout.total_width || layout.total_height != in.Layout.total_height ||
+    level < std::min(finest, layout.level_count - 1) || level >= layout.level_count)
+  {
+    vtkErrorMacro("BuildIlluminationLevel: level " << level
+                                                   << " without BeginIllumination() on this buffer "
+                                                      "or outside its gathering levels");
+    return false;
+  }
+  vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(window, "illumination",
+    "#define MRGI_STENCIL_ILLUMINATION 1\n",
+    [] { return vtkMRGIShaderLibraries::Compose({ "vtkMRGIIncrementalStencilFS" }); });
+  vtkShaderProgram* program = quad ? quad->Program : nullptr;
+  if (!program)
+  {
+    vtkErrorMacro("could not build the illumination stencil shader");
+    return false;
+  }
+  vtkMRGIShaderUtilities::ScopedStage step(frame.Timer, "select.illumination");
+  const int levels = layout.level_count;
+  const int parent = std::min(level + 1, levels - 1);
+  vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
+  steps.Target(in.FlatIncremental, nullptr, 0, 0, layout.total_width, layout.total_height);
+  steps.BeginMaskWrite(in.IncrementalDepthStencil, false);
+  const std::vector<vtkTextureObject*> inputs = { buffer->GetFlagsTexture(level),
+    buffer->GetSelectionTexture(), buffer->GetReceiverTexture(parent, 0), irradiance };
+  const char* names[4] = { "mrgiFlags", "mrgiSelection", "mrgiParentPosition",
+    "mrgiParentIrradiance" };
+  for (size_t k = 0; k < inputs.size(); ++k)
+  {
+    inputs[k]->Activate();
+    program->SetUniformi(names[k], inputs[k]->GetTextureUnit());
+  }
+  const int parentSize[2] = { layout.level_width[parent], layout.level_height[parent] };
+  program->SetUniformi("mrgiLevelOffset", layout.level_offset[level]);
+  program->SetUniformi("mrgiParentOffset", layout.level_offset[parent]);
+  program->SetUniform2i("mrgiParentSize", parentSize);
+  program->SetUniformi("mrgiFinest", level == finest ? 1 : 0);
+  program->SetUniformi("mrgiCoarsest", level == levels - 1 ? 1 : 0);
+  program->SetUniformf("mrgiIlluminationThreshold", static_cast<float>(this->IlluminationThreshold));
+  program->SetUniformi("mrgiIlluminationMetric", this->IlluminationMetric);
+  steps.GetState()->vtkglViewport(
+    layout.level_offset[level], 0, layout.level_width[level], layout.level_height[level]);
+  quad->Render();
+  for (vtkTextureObject* t : inputs)
+  {
+    t->Deactivate();
+  }
+  steps.EndMaskWrite();
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro("OpenGL error 0x" << std::hex << error << " in the illumination stencil");
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 vtkTextureObject* vtkMRGIIncrementalStencil::GetSelectionTexture() const
 {
   return this->Internal->Built ? this->Internal->FlatIncremental : nullptr;
@@ -252,4 +348,6 @@ void vtkMRGIIncrementalStencil::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Fraction: " << this->Fraction << "\n";
   os << indent << "IrradianceTolerance: " << this->IrradianceTolerance << "\n";
+  os << indent << "IlluminationThreshold: " << this->IlluminationThreshold << "\n";
+  os << indent << "IlluminationMetric: " << this->IlluminationMetric << "\n";
 }

@@ -21,6 +21,15 @@
  * selection, receivers of this frame) and the vtkMRGIVisibilityPyramid
  * updated on it. C twin and contract: mrgi_incremental_stencil_build()
  * (mrgi_incremental_stencil.h); shader vtkMRGIIncrementalStencilFS.glsl.
+ *
+ * The same rule drives the indirect light's gather with the discontinuity
+ * read from the gathered irradiance instead of masks (issue 17 part 2):
+ * BeginIllumination() clears the mask, then, for each level from the
+ * coarsest to the finest, BuildIlluminationLevel() writes that level from
+ * the irradiance the coarser level gathered, and the gather draws it
+ * (vtkMRGIGather::GatherVPLsIncremental()). C twin
+ * mrgi_incremental_stencil_illumination_level(); the shader's
+ * MRGI_STENCIL_ILLUMINATION variant.
  */
 #ifndef vtkMRGIIncrementalStencil_h
 #define vtkMRGIIncrementalStencil_h
@@ -65,9 +74,45 @@ public:
    */
   vtkSetClampMacro(IrradianceTolerance, double, 0.0, 1.0);
   vtkGetMacro(IrradianceTolerance, double);
+   * Relative threshold T of the illumination rule: a texel below the
+   * geometric cut is gathered when its parent's 3x3 gathered irradiance
+   * differs by more than T times the larger value in a channel
+   * (mrgi_incremental_stencil.h; default
+   * MRGI_INCREMENTAL_ILLUMINATION_DEFAULT_THRESHOLD = 0.1; 0: every texel
+   * down to the finest level; >= 1: the geometric selection alone).
+   */
+  vtkSetClampMacro(IlluminationThreshold, double, 0.0, 1.0e30);
+  vtkGetMacro(IlluminationThreshold, double);
+  ///@}
+
+  ///@{
+  /**
+   * How the illumination rule compares the parent's 3x3
+   * (mrgi_incremental_stencil.h): MRGI_INCREMENTAL_ILLUMINATION_DIFFERENCE
+   * (0, NPW10's neighbour difference, default) or _CURVATURE (1, the
+   * deviation from the line through opposite neighbours: linear light
+   * changes do not refine).
+   */
+  vtkSetClampMacro(IlluminationMetric, int, 0, 1);
+  vtkGetMacro(IlluminationMetric, int);
   ///@}
 
 #ifndef __VTK_WRAP__
+  /**
+   * Allocate the mask for `buffer` (selection and receivers of this frame)
+   * and clear it, before the first BuildIlluminationLevel(). False on error.
+   */
+  bool BeginIllumination(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer);
+
+  /**
+   * Write level `level` (finest gathering level .. coarsest) of the mask
+   * from `irradiance`, the flattened irradiance the gather wrote for level
+   * level + 1 (alpha 1 where it drew a receiver), leaving the other levels
+   * as they are. Timer step "select.illumination". False on error.
+   */
+  bool BuildIlluminationLevel(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
+    vtkTextureObject* irradiance, int level);
+
   /**
    * Build the stencil from `buffer` (selection and receivers of this frame)
    * and `masks` (updated on it this frame); `light` (world space) feeds the
@@ -96,6 +141,8 @@ protected:
 
   double Fraction = 0.25;
   double IrradianceTolerance; // MRGI_IRRADIANCE_STENCIL_DEFAULT_TOLERANCE (constructor)
+  double IlluminationThreshold = 0.1; // MRGI_INCREMENTAL_ILLUMINATION_DEFAULT_THRESHOLD
+  int IlluminationMetric = 0;         // MRGI_INCREMENTAL_ILLUMINATION_DIFFERENCE
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

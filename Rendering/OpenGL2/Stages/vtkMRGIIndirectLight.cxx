@@ -3,6 +3,7 @@
 #include "vtkMRGIFrameContext.h"
 #include "vtkMRGIGather.h"
 #include "vtkMRGIImperfectShadowMaps.h"
+#include "vtkMRGIIncrementalStencil.h"
 #include "vtkMRGIIndirectVisibility.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIShaderUtilities.h"
@@ -26,6 +27,7 @@ vtkMRGIIndirectLight::vtkMRGIIndirectLight()
   this->Upsample = vtkMRGIUpsample::New();
   this->ImperfectShadowMaps = vtkMRGIImperfectShadowMaps::New();
   this->Voxelization = vtkMRGIVoxelization::New();
+  this->IlluminationStencil = vtkMRGIIncrementalStencil::New();
 }
 
 //------------------------------------------------------------------------------
@@ -36,6 +38,23 @@ vtkMRGIIndirectLight::~vtkMRGIIndirectLight()
   this->Upsample->Delete();
   this->ImperfectShadowMaps->Delete();
   this->Voxelization->Delete();
+  this->IlluminationStencil->Delete();
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIIndirectLight::SetIlluminationThreshold(double threshold)
+{
+  if (threshold != this->GetIlluminationThreshold())
+  {
+    this->IlluminationStencil->SetIlluminationThreshold(threshold);
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
+double vtkMRGIIndirectLight::GetIlluminationThreshold()
+{
+  return this->IlluminationStencil->GetIlluminationThreshold();
 }
 
 //------------------------------------------------------------------------------
@@ -46,6 +65,7 @@ void vtkMRGIIndirectLight::ReleaseGraphicsResources(vtkWindow* w)
   this->Upsample->ReleaseGraphicsResources(w);
   this->ImperfectShadowMaps->ReleaseGraphicsResources(w);
   this->Voxelization->ReleaseGraphicsResources(w);
+  this->IlluminationStencil->ReleaseGraphicsResources(w);
 }
 
 //------------------------------------------------------------------------------
@@ -143,21 +163,38 @@ bool vtkMRGIIndirectLight::RunGather(const vtkMRGIFrameContext& frame,
       return false;
     }
   }
+  // The illumination rule (class comment): each level's stencil is built
+  // from the irradiance the coarser level gathered, between the gathers.
+  const bool illumination = !tree && this->Refinement == RefinementIllumination;
+  this->LastRefinedByIllumination = illumination;
+  vtkMRGIIncrementalStencil* lit = this->IlluminationStencil;
   {
     vtkMRGIShaderUtilities::ScopedStage stage(timer, "gather");
     if (!buffer->BuildReceivers(
-          frame.Window, frame.Position, frame.Normal, frame.Viewport[0], frame.Viewport[1], timer) ||
-      !(tree ? this->Gather->GatherVPLTree(
-                 frame, buffer, this->VPLSelection->GetTreeTerm(), visibility)
-             : this->Gather->GatherVPLs(
-                 frame, buffer, this->VPLSelection->GetVPLTexture(), vplCount, visibility)))
+          frame.Window, frame.Position, frame.Normal, frame.Viewport[0], frame.Viewport[1], timer))
+    {
+      return false;
+    }
+    const bool gathered = tree
+      ? this->Gather->GatherVPLTree(frame, buffer, this->VPLSelection->GetTreeTerm(), visibility)
+      : !illumination
+      ? this->Gather->GatherVPLs(
+          frame, buffer, this->VPLSelection->GetVPLTexture(), vplCount, visibility)
+      : lit->BeginIllumination(frame, buffer) &&
+        this->Gather->GatherVPLsIncremental(frame, buffer, this->VPLSelection->GetVPLTexture(),
+          vplCount, visibility, lit->GetStencilTexture(), [&](int level) {
+            return lit->BuildIlluminationLevel(
+              frame, buffer, this->Gather->GetIrradianceTexture(), level);
+          });
+    if (!gathered)
     {
       return false;
     }
   }
   vtkMRGIShaderUtilities::ScopedStage stage(timer, "upsample");
   return this->Upsample->Upsample(frame, buffer, this->Gather->GetIrradianceTexture(),
-           buffer->GetSelectionTexture(), settings.UpsampleMode, settings.UpsampleMaskWeight) &&
+           illumination ? lit->GetSelectionTexture() : buffer->GetSelectionTexture(),
+           settings.UpsampleMode, settings.UpsampleMaskWeight) &&
     this->Upsample->Resolve(frame, buffer, frame.Albedo, irradiance, indirect, settings.Strength,
       settings.SurfaceDetail);
 }
@@ -172,6 +209,10 @@ void vtkMRGIIndirectLight::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ISMTexelBias: " << this->ISMTexelBias << "\n";
   os << indent << "ISMFiltering: " << (this->ISMFiltering ? "On" : "Off") << "\n";
   os << indent << "LastVPLCount: " << this->LastVPLCount << "\n";
+  os << indent << "Refinement: " << (this->Refinement ? "Illumination" : "Geometry") << "\n";
+  os << indent << "LastRefinedByIllumination: " << this->LastRefinedByIllumination << "\n";
+  os << indent << "IlluminationStencil:\n";
+  this->IlluminationStencil->PrintSelf(os, indent.GetNextIndent());
   os << indent << "VPLSelection:\n";
   this->VPLSelection->PrintSelf(os, indent.GetNextIndent());
   os << indent << "Gather:\n";

@@ -24,6 +24,17 @@
  *   (nichols-penmatsa-wyman-2010 3.3), marched from each receiver to each VPL.
  *   Exact at the voxel resolution for what the camera sees; blind to
  *   occluders off screen or hidden behind the visible surfaces.
+ *
+ * Refinement (issue 17 part 2), for the multiresolution gather of the VPL
+ * cache:
+ * - RefinementGeometry: the buffer's geometric selection (depth and normal
+ *   discontinuities, mrgi_multires.h) alone (default).
+ * - RefinementIllumination: the levels are gathered coarse to fine and a
+ *   texel below the geometric cut is gathered too where its parent's 3x3
+ *   gathered irradiance differs by more than IlluminationThreshold
+ *   (vtkMRGIIncrementalStencil's illumination rule, nichols-penmatsa-
+ *   wyman-2010 3.4 applied to the indirect light); the upsampling reads
+ *   the texels gathered. The VPL tree gathers keep the geometric selection.
  */
 #ifndef vtkMRGIIndirectLight_h
 #define vtkMRGIIndirectLight_h
@@ -34,6 +45,7 @@
 struct vtkMRGIFrameContext;
 struct vtkMRGIIndirectVisibility;
 class vtkMRGIGather;
+class vtkMRGIIncrementalStencil;
 class vtkMRGIImperfectShadowMaps;
 class vtkMRGIMultiresolution;
 class vtkMRGIReflectiveShadowMapPass;
@@ -56,6 +68,30 @@ public:
     VisibilityISM = 1,   ///< imperfect shadow maps (ritschel-et-al-2011)
     VisibilityVoxels = 2 ///< screen-space voxels (nichols-penmatsa-wyman-2010 3.3)
   };
+
+  enum RefinementModes
+  {
+    RefinementGeometry = 0,    ///< the geometric selection alone (default)
+    RefinementIllumination = 1 ///< plus refinement where the gathered light changes
+  };
+
+  ///@{
+  /** Which texels the multiresolution gather refines (see the class comment). */
+  vtkSetClampMacro(Refinement, int, RefinementGeometry, RefinementIllumination);
+  vtkGetMacro(Refinement, int);
+  ///@}
+
+  ///@{
+  /**
+   * RefinementIllumination's relative threshold (the illumination stencil's
+   * IlluminationThreshold; default 0.1, >= 0).
+   */
+  void SetIlluminationThreshold(double threshold);
+  double GetIlluminationThreshold();
+  ///@}
+
+  /** Whether the last multiresolution gather used the illumination stencil. */
+  vtkGetMacro(LastRefinedByIllumination, bool);
 
   ///@{
   /** How the VPLs' visibility is computed (see the class comment). Default VisibilityOff. */
@@ -83,6 +119,7 @@ public:
   vtkMRGIUpsample* GetUpsample() { return this->Upsample; }
   vtkMRGIImperfectShadowMaps* GetImperfectShadowMaps() { return this->ImperfectShadowMaps; }
   vtkMRGIVoxelization* GetVoxelization() { return this->Voxelization; }
+  vtkMRGIIncrementalStencil* GetIlluminationStencil() { return this->IlluminationStencil; }
 
 #ifndef __VTK_WRAP__
   /** What Render() is asked for: the pass's indirect settings, by value. */
@@ -141,6 +178,9 @@ protected:
   double ISMTexelBias;
   bool ISMFiltering = true;
   int LastVPLCount = 0;
+  int Refinement = RefinementGeometry;
+  bool LastRefinedByIllumination = false;
+  vtkMRGIIncrementalStencil* IlluminationStencil;
 
   vtkMRGIVPLSelection* VPLSelection;
   vtkMRGIGather* Gather;

@@ -18,20 +18,34 @@
 // light's unshadowed irradiance, estimated on a
 // MRGI_IRRADIANCE_STENCIL_GRID^2 grid of cells, varies over the parent's 3x3
 // by more than mrgiIrradianceTolerance of its maximum (0 turns it off).
+//
+// With MRGI_STENCIL_ILLUMINATION (the indirect light's rule,
+// mrgi_incremental_stencil_illumination_level()) the parent's discontinuity
+// is read from the irradiance level i+1 gathered (the gather's flattened
+// target: alpha 1 where it drew a receiver), one draw per level between the
+// gathers of levels i+1 and i; no masks and no irradiance term.
 in vec2 texCoord; // bound by vtkOpenGLQuadHelper; texels are addressed by gl_FragCoord
 //VTK::Output::Dec
 
 uniform sampler2D mrgiFlags;          // level i's flags (red, level-local)
 uniform sampler2D mrgiSelection;      // the flattened geometric selection (red > 0.5)
 uniform sampler2D mrgiParentPosition; // level i+1 receivers (level-local; w = validity)
+#ifdef MRGI_STENCIL_ILLUMINATION
+uniform sampler2D mrgiParentIrradiance; // the flattened irradiance (level i+1 gathered)
+uniform int mrgiParentOffset;           // o_{i+1}
+uniform float mrgiIlluminationThreshold; // T >= 0
+uniform int mrgiIlluminationMetric;      // MRGI_INCREMENTAL_ILLUMINATION_*
+#else
 uniform usampler2D mrgiParentMask0;   // level i+1 masks: word w in texture w / 4, channel w % 4
 uniform usampler2D mrgiParentMask1;
 uniform usampler2D mrgiParentMask2;
 uniform usampler2D mrgiParentMask3;
+#endif
 uniform int mrgiLevelOffset;   // o_i
 uniform ivec2 mrgiParentSize;  // w_{i+1}, h_{i+1}
 uniform int mrgiFinest;        // 1 when i is the finest gathering level
 uniform int mrgiCoarsest;      // 1 when i is the coarsest level (no parent)
+#ifndef MRGI_STENCIL_ILLUMINATION
 uniform int mrgiThreshold;     // >= 0
 uniform int mrgiMetric;        // MRGI_VOXEL_METRIC_*
 uniform sampler2D mrgiParentNormal;   // level i+1 receiver normals (level-local, eye space)
@@ -42,6 +56,7 @@ uniform vec3 mrgiAreaNormal;
 uniform vec3 mrgiAreaCorners[4];
 uniform float mrgiAreaArea;
 uniform int mrgiAreaTwoSided;
+#endif
 
 bool mrgiStencilReceiver(ivec2 s)
 {
@@ -49,6 +64,90 @@ bool mrgiStencilReceiver(ivec2 s)
   return p.w > MRGI_GBUFFER_VALID_THRESHOLD && !any(isnan(p.xyz)) && !any(isinf(p.xyz));
 }
 
+#ifdef MRGI_STENCIL_ILLUMINATION
+// usable_{i+1}(s): gathered (alpha) and a receiver.
+bool mrgiStencilUsable(ivec2 s, out vec3 E)
+{
+  vec4 e = texelFetch(mrgiParentIrradiance, ivec2(s.x + mrgiParentOffset, s.y), 0);
+  E = e.rgb;
+  return e.a > 0.5 && mrgiStencilReceiver(s);
+}
+
+bool mrgiStencilDiffers(float En, float Ep)
+{
+  return abs(En - Ep) > mrgiIlluminationThreshold * max(En, Ep);
+}
+
+// F_{i+1}(c) of the illumination rule (DIFFERENCE: a usable neighbour in
+// the 3x3, clamped, differs by more than T times the larger value in a
+// channel; CURVATURE: c deviates from the line through two opposite
+// usable neighbours, lines leaving the level skipped, or differs from the
+// one usable neighbour of a line).
+bool mrgiStencilDiscontinuity(ivec2 c)
+{
+  vec3 Ep;
+  if (!mrgiStencilUsable(c, Ep))
+  {
+    return false;
+  }
+  if (mrgiIlluminationThreshold == 0.0)
+  {
+    return true;
+  }
+  if (mrgiIlluminationMetric == MRGI_INCREMENTAL_ILLUMINATION_CURVATURE)
+  {
+    ivec2 axes[4] = ivec2[4](ivec2(1, 0), ivec2(0, 1), ivec2(1, 1), ivec2(1, -1));
+    for (int k = 0; k < 4; ++k)
+    {
+      ivec2 a = c - axes[k];
+      ivec2 b = c + axes[k];
+      if (a.x < 0 || a.y < 0 || a.y >= mrgiParentSize.y || b.x >= mrgiParentSize.x || b.y < 0 ||
+        b.y >= mrgiParentSize.y)
+      {
+        continue;
+      }
+      vec3 Ea;
+      vec3 Eb;
+      bool ua = mrgiStencilUsable(a, Ea);
+      bool ub = mrgiStencilUsable(b, Eb);
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        if (ua && ub)
+        {
+          float larger = max(max(Ea[ch], Eb[ch]), Ep[ch]);
+          if (abs(0.5 * (Ea[ch] + Eb[ch]) - Ep[ch]) > mrgiIlluminationThreshold * larger)
+          {
+            return true;
+          }
+        }
+        else if ((ua && mrgiStencilDiffers(Ea[ch], Ep[ch])) ||
+          (ub && mrgiStencilDiffers(Eb[ch], Ep[ch])))
+        {
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+  for (int k = 0; k < 9; ++k)
+  {
+    ivec2 s = clamp(c + ivec2(k % 3 - 1, k / 3 - 1), ivec2(0), mrgiParentSize - 1);
+    vec3 En;
+    if (!mrgiStencilUsable(s, En))
+    {
+      continue;
+    }
+    for (int ch = 0; ch < 3; ++ch)
+    {
+      if (mrgiStencilDiffers(En[ch], Ep[ch]))
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+#else
 uvec4 mrgiStencilMask(int k, ivec2 s)
 {
 #if MRGI_STENCIL_TARGETS > 3
@@ -168,6 +267,7 @@ bool mrgiStencilIrradianceVaries(ivec2 c)
   }
   return anyReceiver && hi > 0.0 && hi - lo > mrgiIrradianceTolerance * hi;
 }
+#endif
 
 void main()
 {
@@ -183,8 +283,12 @@ void main()
     }
     else if (mrgiCoarsest == 0 && (mrgiFinest != 0 || (flags & MRGI_MULTIRES_FLAG_REFINE) == 0))
     {
+#ifdef MRGI_STENCIL_ILLUMINATION
+      rendered = mrgiStencilDiscontinuity(t / 2);
+#else
       rendered = mrgiStencilDiscontinuity(t / 2) ||
         (mrgiIrradianceTolerance > 0.0 && mrgiStencilIrradianceVaries(t / 2));
+#endif
     }
   }
   if (!rendered)
