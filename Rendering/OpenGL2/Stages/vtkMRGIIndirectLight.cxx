@@ -8,6 +8,7 @@
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIUpsample.h"
 #include "vtkMRGIVPLSelection.h"
+#include "vtkMRGIViewSamples.h"
 #include "vtkMRGIVoxelization.h"
 #include "vtkObjectFactory.h"
 #include "vtkRenderer.h"
@@ -20,6 +21,7 @@ vtkStandardNewMacro(vtkMRGIIndirectLight);
 vtkMRGIIndirectLight::vtkMRGIIndirectLight()
   : ISMRelativeBias(MRGI_ISM_DEFAULT_RELATIVE_BIAS)
   , ISMTexelBias(MRGI_ISM_DEFAULT_TEXEL_BIAS)
+  , ViewSamples(new vtkMRGIViewSamples)
 {
   this->VPLSelection = vtkMRGIVPLSelection::New();
   this->Gather = vtkMRGIGather::New();
@@ -46,6 +48,13 @@ void vtkMRGIIndirectLight::ReleaseGraphicsResources(vtkWindow* w)
   this->Upsample->ReleaseGraphicsResources(w);
   this->ImperfectShadowMaps->ReleaseGraphicsResources(w);
   this->Voxelization->ReleaseGraphicsResources(w);
+  this->ViewSamples->Invalidate();
+}
+
+//------------------------------------------------------------------------------
+long long vtkMRGIIndirectLight::GetNumberOfViewSampleReadBacks() const
+{
+  return this->ViewSamples->GetNumberOfReadBacks();
 }
 
 //------------------------------------------------------------------------------
@@ -61,7 +70,8 @@ vtkMRGIIndirectLight::Outcome vtkMRGIIndirectLight::Render(const vtkMRGIFrameCon
   }
   {
     vtkMRGIShaderUtilities::ScopedStage stage(frame.Timer, "vpl");
-    this->LastVPLCount = this->VPLSelection->Update(frame.Window, rsm, frame);
+    this->LastVPLCount =
+      this->VPLSelection->Update(frame.Window, rsm, frame, this->ViewSamples.get());
   }
   if (this->LastVPLCount <= 0)
   {
@@ -86,7 +96,8 @@ bool vtkMRGIIndirectLight::BuildVisibility(
   if (this->Visibility == VisibilityISM)
   {
     vtkMRGIShaderUtilities::ScopedStage stage(frame.Timer, "ism");
-    if (!this->ImperfectShadowMaps->Update(frame, this->VPLSelection->GetVPLTexture(), vplCount))
+    if (!this->ImperfectShadowMaps->Update(
+          frame, this->VPLSelection->GetVPLTexture(), vplCount, this->ViewSamples.get()))
     {
       vtkErrorMacro("indirect light: the imperfect shadow maps could not be built (see the "
                     "error above); no indirect light this frame");
@@ -172,6 +183,7 @@ void vtkMRGIIndirectLight::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ISMTexelBias: " << this->ISMTexelBias << "\n";
   os << indent << "ISMFiltering: " << (this->ISMFiltering ? "On" : "Off") << "\n";
   os << indent << "LastVPLCount: " << this->LastVPLCount << "\n";
+  os << indent << "ViewSampleReadBacks: " << this->GetNumberOfViewSampleReadBacks() << "\n";
   os << indent << "VPLSelection:\n";
   this->VPLSelection->PrintSelf(os, indent.GetNextIndent());
   os << indent << "Gather:\n";
