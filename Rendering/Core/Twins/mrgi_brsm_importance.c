@@ -111,7 +111,7 @@ mrgi_status mrgi_brsm_importance(const mrgi_rsm* rsm, const mrgi_brsm_view* view
   const int32_t M = view->sample_count;
   const int32_t K = view->samples_per_texel;
   const int exact = !view->guided && K >= M;
-  double cdf[MRGI_BRSM_MAX_VIEW_SAMPLES]; /* inclusive prefix sums of c_m (guide) */
+  double cdf[MRGI_BRSM_MAX_VIEW_SAMPLES]; /* c_m, then the inclusive prefix sums of q_m */
   for (size_t t = 0; t < texel_count; ++t)
   {
     importance[t] = 0.0f;
@@ -160,9 +160,18 @@ mrgi_status mrgi_brsm_importance(const mrgi_rsm* rsm, const mrgi_brsm_view* view
           c = x2 > r2 && isfinite(x2) ? r2 / x2 : (isfinite(x2) ? 1.0 : 0.0);
           c = c > 1e-30 ? c : 1e-30; /* q_m > 0 for every sample (unbiasedness) */
         }
+        cdf[m] = c;
         total += c;
-        cdf[m] = total;
       }
+      /* Defensive mixture with the uniform choice: q_m = (1 - a) c_m / sum c + a / M. */
+      const double a = guide ? MRGI_BRSM_GUIDE_UNIFORM_SHARE : 1.0;
+      double running = 0.0;
+      for (int32_t m = 0; m < M; ++m)
+      {
+        running += (1.0 - a) * cdf[m] / total + a / (double)M;
+        cdf[m] = running;
+      }
+      total = running; /* 1 up to rounding */
       const double h = mrgi_brsm_hash01(seed, (uint64_t)t);
       for (int32_t k = 0; k < K; ++k)
       {

@@ -21,10 +21,18 @@
  * the frame (RIHKS11 4: "the impact of a pVPL on the final rendering"; no
  * visibility). Guided selection (RIHKS11 4.2): the texel draws K view
  * samples from the M with probability
- *     q_m = c_m / sum c,   c_m = min(1, R^2 / x_m^2)
+ *     q_m = (1 - a) c_m / sum c + a / M,   c_m = min(1, R^2 / x_m^2)
  * where x_m is the pixel distance from sample m to the texel's projection
  * through `world_to_clip` (the paper's 1/x^2 fall-off clamped to 1, with
- * the clamp radius R = MRGI_BRSM_GUIDE_RADIUS pixels). A texel behind the
+ * the clamp radius R = MRGI_BRSM_GUIDE_RADIUS pixels), mixed with a share
+ * a = MRGI_BRSM_GUIDE_UNIFORM_SHARE of the uniform choice. The mixture is
+ * beyond the paper: the guide assumes a texel lights the receivers near its
+ * own projection, which fails when the texel is hidden from the camera
+ * (u-shape: the lit arm projects onto the wall in front of it, whose
+ * receivers it cannot light); the pure guide then draws almost only zeros
+ * and, rarely, a hit divided by a tiny q, a heavy-tailed estimate whose
+ * outliers become VPLs of huge weight. The mixture bounds each draw's
+ * weight by E_m / a (defensive importance sampling). A texel behind the
  * camera (clip w <= 0), a NULL matrix, or guidance off use q_m = 1/M.
  * Draw k of texel t uses u = (k + h) / K, h = hash(seed, t) in [0, 1)
  * (stratified over the texel's CDF of q). The estimate
@@ -67,6 +75,11 @@ extern "C" {
 #define MRGI_BRSM_DEFAULT_SAMPLES_PER_TEXEL 16
 /** Radius R in pixels inside which the guide's 1/x^2 fall-off is clamped to 1 (RIHKS11 4.2). */
 #define MRGI_BRSM_GUIDE_RADIUS 8.0
+/**
+ * Share a of the uniform choice in the guided draw (defensive mixture,
+ * Hesterberg 1995; beyond RIHKS11 4.2): q_m = (1 - a) c_m / sum c + a / M.
+ */
+#define MRGI_BRSM_GUIDE_UNIFORM_SHARE 0.5
 /** Default share beta of flux importance in the mix (paper-specs 2.3). */
 #define MRGI_BRSM_DEFAULT_FLUX_SHARE 0.1
 

@@ -1,8 +1,8 @@
 /**
  * @file vtkMRGIBRSM.h
  * @brief Internal: bidirectional RSM (BRSM) VPL selection for
- *        vtkMRGIVPLSelection's BRSM mode (RIHKS11 4, 4.1, 4.2, 6.5): the view
- *        samples taken from the frame's G-buffer, and the C core's chain
+ *        vtkMRGIVPLSelection's BRSM mode (RIHKS11 4, 4.1, 4.2, 6.5): the C
+ *        core's chain
  *        (mrgi_brsm_importance -> mrgi_brsm_blur -> mrgi_brsm_mix ->
  *        mrgi_brsm_cdf_build -> mrgi_brsm_sample_vpls) on read-back RSMs.
  *        Not wrapped, not installed.
@@ -16,11 +16,13 @@
 
 struct mrgi_rsm;
 struct mrgi_vpl;
-struct vtkMRGIFrameContext;
 
 namespace vtkMRGIBRSM
 {
-/** The view samples of one frame (mrgi_brsm_importance.h layout) and the guide's camera. */
+/**
+ * The view samples of one frame (mrgi_brsm_importance.h layout) and the
+ * guide's camera; vtkMRGIViewSamples takes them from the G-buffer.
+ */
 struct ViewSamples
 {
   std::vector<float> Samples;   // M * MRGI_BRSM_VIEW_SAMPLE_FLOATS, world space
@@ -39,17 +41,6 @@ struct Settings
   bool Guided = true;
   int SamplesPerTexel = 16; // MRGI_BRSM_DEFAULT_SAMPLES_PER_TEXEL
 };
-
-/**
- * Take side x side view samples on a regular grid over the frame's
- * viewport, jittered inside their cells by `seed` (paper-specs 2.1), from
- * the G-buffer (eye space, brought to world space with frame.ViewToWorld),
- * and the camera's world -> clip matrix for the guide. Background pixels
- * become invalid samples. False, with `error`, when the G-buffer is missing
- * or cannot be read.
- */
-bool TakeViewSamples(const vtkMRGIFrameContext& frame, int side, std::uint64_t seed,
-  ViewSamples& out, std::string& error);
 
 /**
  * `count` VPLs from `rsm` (read back, world space) into `vpls`. Without

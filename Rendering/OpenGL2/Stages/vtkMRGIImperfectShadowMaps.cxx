@@ -17,6 +17,7 @@
 #include "vtkMRGIResourceStatistics.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIStageResources.h"
+#include "vtkMRGIViewSamples.h"
 #include "vtkMapper.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
@@ -59,10 +60,6 @@ void ClearGLErrors()
   {
   }
 }
-
-// Most G-buffer positions used as view samples (RIHKS11 5.2 needs a sparse
-// subsample of the frame's points, not all of them).
-constexpr int MaxViewSamples = 4096;
 
 // One polydata the scene draws opaque, with its object -> world matrix.
 struct Piece
@@ -148,7 +145,7 @@ struct vtkMRGIImperfectShadowMaps::Internals
   vtkMTimeType VertexTime = 0;
   long long Frame = 0;
   vtkIdType Resampled = 0;
-  std::vector<float> Readback;
+  vtkMRGIViewSamples OwnSamples; // view samples when Update() is given none
   vtkRenderTimerLog* Timer = nullptr; // Update()'s, for Render()'s steps
 
   bool HasResources() const
@@ -254,6 +251,7 @@ void vtkMRGIImperfectShadowMaps::ReleaseGraphicsResources(vtkWindow* w)
   in.Records.clear();
   in.Points.clear();
   in.Frame = 0;
+  in.OwnSamples.Invalidate(); // read from a G-buffer that may be gone
 }
 
 //------------------------------------------------------------------------------
@@ -621,51 +619,24 @@ bool vtkMRGIImperfectShadowMaps::CollectScene(vtkRenderer* ren)
 }
 
 //------------------------------------------------------------------------------
-// A sparse, regular subsample (at most MaxViewSamples) of the frame's valid
-// G-buffer positions, in world space: the view samples of RIHKS11 5.2.
-void vtkMRGIImperfectShadowMaps::ReadViewSamples(const vtkMRGIFrameContext& frame)
+// A sparse, regular subsample (at most vtkMRGIViewSamples::MaxPositions) of
+// the frame's valid G-buffer positions, in world space: the view samples of
+// RIHKS11 5.2, from `samples` (read back only when the frame changed).
+void vtkMRGIImperfectShadowMaps::ReadViewSamples(
+  const vtkMRGIFrameContext& frame, vtkMRGIViewSamples& samples)
 {
   Internals& in = *this->Internal;
   in.ViewSamples.clear();
-  const int w = frame.Viewport[2], h = frame.Viewport[3];
-  if (!frame.Position || w < 1 || h < 1)
+  std::string error;
+  if (frame.Position && samples.Update(frame, vtkMRGIViewSamples::Positions, 0, error))
   {
-    return;
-  }
-  in.Readback.resize(static_cast<size_t>(w) * h * 4);
-  vtkOpenGLState* ostate = frame.Window->GetState();
-  ostate->PushReadFramebufferBinding();
-  in.GL.FrameBuffer->Bind(GL_READ_FRAMEBUFFER);
-  in.GL.FrameBuffer->AddColorAttachment(0, frame.Position);
-  in.GL.FrameBuffer->ActivateReadBuffer(0);
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadPixels(frame.Viewport[0], frame.Viewport[1], w, h, GL_RGBA, GL_FLOAT, in.Readback.data());
-  in.GL.FrameBuffer->RemoveColorAttachments(1);
-  ostate->PopReadFramebufferBinding();
-  const int stride = std::max(
-    1, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(w) * h / MaxViewSamples))));
-  const double* M = frame.ViewToWorldDouble; // column-major
-  for (int y = stride / 2; y < h; y += stride)
-  {
-    for (int x = stride / 2; x < w; x += stride)
-    {
-      const float* p = &in.Readback[4 * (static_cast<size_t>(y) * w + x)];
-      if (!(p[3] > MRGI_VALID_THRESHOLD) || !std::isfinite(p[0]) || !std::isfinite(p[1]) ||
-        !std::isfinite(p[2]))
-      {
-        continue;
-      }
-      for (int r = 0; r < 3; ++r)
-      {
-        in.ViewSamples.push_back(M[r] * p[0] + M[4 + r] * p[1] + M[8 + r] * p[2] + M[12 + r]);
-      }
-    }
+    in.ViewSamples = samples.GetPositions();
   }
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIImperfectShadowMaps::Update(
-  const vtkMRGIFrameContext& frame, vtkTextureObject* vpls, int vplCount)
+bool vtkMRGIImperfectShadowMaps::Update(const vtkMRGIFrameContext& frame, vtkTextureObject* vpls,
+  int vplCount, vtkMRGIViewSamples* shared)
 {
   Internals& in = *this->Internal;
   in.HasAtlas = false;
@@ -713,7 +684,7 @@ bool vtkMRGIImperfectShadowMaps::Update(
     {
       in.UseWindow(frame.Window);
       in.GL.Prepare(frame.Window);
-      this->ReadViewSamples(frame);
+      this->ReadViewSamples(frame, shared ? *shared : in.OwnSamples);
     }
     const int32_t views = static_cast<int32_t>(in.ViewSamples.size() / 3);
     if (views == 0)

@@ -36,6 +36,7 @@
 #include <memory> // For std::unique_ptr
 
 struct vtkMRGIFrameContext;
+class vtkMRGIViewSamples;
 class vtkFloatArray;
 class vtkOpenGLRenderWindow;
 class vtkRenderWindow;
@@ -110,8 +111,13 @@ public:
    * "ism.points", "ism.draw", "ism.pushpull". False, with an error naming
    * the problem (no opaque geometry, a bad tile size, an atlas larger than
    * GL_MAX_TEXTURE_SIZE or MRGI_ISM_MAX_ATLAS), and no atlas, on failure.
+   * The adaptive modes' view samples come from `shared` (the frame's one
+   * G-buffer read-back, vtkMRGIIndirectLight's) or, when null, from this
+   * object's own; either reads back only when the camera or the props
+   * changed.
    */
-  bool Update(const vtkMRGIFrameContext& frame, vtkTextureObject* vpls, int vplCount);
+  bool Update(const vtkMRGIFrameContext& frame, vtkTextureObject* vpls, int vplCount,
+    vtkMRGIViewSamples* shared = nullptr);
 
   /**
    * Steps 3-4 alone, for given world-space point positions (xyz floats,
@@ -169,7 +175,7 @@ protected:
 
 private:
   bool CollectScene(vtkRenderer* ren);
-  void ReadViewSamples(const vtkMRGIFrameContext& frame);
+  void ReadViewSamples(const vtkMRGIFrameContext& frame, vtkMRGIViewSamples& samples);
 
 
 private:

@@ -9,6 +9,7 @@
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIUpsample.h"
 #include "vtkMRGIVPLSelection.h"
+#include "vtkMRGIViewSamples.h"
 #include "vtkMRGIVoxelization.h"
 #include "vtkObjectFactory.h"
 #include "vtkRenderer.h"
@@ -21,6 +22,7 @@ vtkStandardNewMacro(vtkMRGIIndirectLight);
 vtkMRGIIndirectLight::vtkMRGIIndirectLight()
   : ISMRelativeBias(MRGI_ISM_DEFAULT_RELATIVE_BIAS)
   , ISMTexelBias(MRGI_ISM_DEFAULT_TEXEL_BIAS)
+  , ViewSamples(new vtkMRGIViewSamples)
 {
   this->VPLSelection = vtkMRGIVPLSelection::New();
   this->Gather = vtkMRGIGather::New();
@@ -66,6 +68,13 @@ void vtkMRGIIndirectLight::ReleaseGraphicsResources(vtkWindow* w)
   this->ImperfectShadowMaps->ReleaseGraphicsResources(w);
   this->Voxelization->ReleaseGraphicsResources(w);
   this->IlluminationStencil->ReleaseGraphicsResources(w);
+  this->ViewSamples->Invalidate();
+}
+
+//------------------------------------------------------------------------------
+long long vtkMRGIIndirectLight::GetNumberOfViewSampleReadBacks() const
+{
+  return this->ViewSamples->GetNumberOfReadBacks();
 }
 
 //------------------------------------------------------------------------------
@@ -81,7 +90,8 @@ vtkMRGIIndirectLight::Outcome vtkMRGIIndirectLight::Render(const vtkMRGIFrameCon
   }
   {
     vtkMRGIShaderUtilities::ScopedStage stage(frame.Timer, "vpl");
-    this->LastVPLCount = this->VPLSelection->Update(frame.Window, rsm, frame);
+    this->LastVPLCount =
+      this->VPLSelection->Update(frame.Window, rsm, frame, this->ViewSamples.get());
   }
   if (this->LastVPLCount <= 0)
   {
@@ -106,7 +116,8 @@ bool vtkMRGIIndirectLight::BuildVisibility(
   if (this->Visibility == VisibilityISM)
   {
     vtkMRGIShaderUtilities::ScopedStage stage(frame.Timer, "ism");
-    if (!this->ImperfectShadowMaps->Update(frame, this->VPLSelection->GetVPLTexture(), vplCount))
+    if (!this->ImperfectShadowMaps->Update(
+          frame, this->VPLSelection->GetVPLTexture(), vplCount, this->ViewSamples.get()))
     {
       vtkErrorMacro("indirect light: the imperfect shadow maps could not be built (see the "
                     "error above); no indirect light this frame");
@@ -213,6 +224,7 @@ void vtkMRGIIndirectLight::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastRefinedByIllumination: " << this->LastRefinedByIllumination << "\n";
   os << indent << "IlluminationStencil:\n";
   this->IlluminationStencil->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "ViewSampleReadBacks: " << this->GetNumberOfViewSampleReadBacks() << "\n";
   os << indent << "VPLSelection:\n";
   this->VPLSelection->PrintSelf(os, indent.GetNextIndent());
   os << indent << "Gather:\n";

@@ -10,7 +10,10 @@
  * shadow maps and the multiresolution buffer (shared with the area lights)
  * as arguments and writes E and strength x albedo x E into the caller's
  * targets; nothing is remembered between frames but the owned stages'
- * caches (the VPL cache, the ISM point set, GL resources).
+ * caches (the VPL cache, the ISM point set, GL resources) and the view
+ * samples: the G-buffer is read back once per frame whose camera or props
+ * changed, and the samples are passed to the VPL selection (BRSM) and the
+ * imperfect shadow maps (adaptive points) as an argument.
  *
  * Indirect visibility (issue 13; Documentation/IndirectLight.md, "Indirect
  * visibility"):
@@ -42,6 +45,8 @@
 #include "MRGIRenderingModule.h" // For export macro
 #include "vtkObject.h"
 
+#include <memory> // For std::unique_ptr
+
 struct vtkMRGIFrameContext;
 struct vtkMRGIIndirectVisibility;
 class vtkMRGIGather;
@@ -52,6 +57,7 @@ class vtkMRGIReflectiveShadowMapPass;
 class vtkMRGIUpsample;
 class vtkMRGIVPLSelection;
 class vtkMRGIVoxelization;
+class vtkMRGIViewSamples;
 class vtkTextureObject;
 class vtkWindow;
 
@@ -156,6 +162,13 @@ public:
   /** VPLs of the last Render() (0 before, or when the RSMs held no flux). */
   vtkGetMacro(LastVPLCount, int);
 
+  /**
+   * G-buffer read-backs for view samples so far: one per frame whose
+   * camera or visible props changed, shared by BRSM and the adaptive ISM
+   * points; none while the view is static.
+   */
+  long long GetNumberOfViewSampleReadBacks() const;
+
   /** Free every GL resource of the owned stages. */
   void ReleaseGraphicsResources(vtkWindow* w);
 
@@ -187,6 +200,7 @@ protected:
   vtkMRGIUpsample* Upsample;
   vtkMRGIImperfectShadowMaps* ImperfectShadowMaps;
   vtkMRGIVoxelization* Voxelization;
+  std::unique_ptr<vtkMRGIViewSamples> ViewSamples; // the frame's one read-back, for both
 
 private:
   vtkMRGIIndirectLight(const vtkMRGIIndirectLight&) = delete;

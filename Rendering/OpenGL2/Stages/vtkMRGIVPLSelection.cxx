@@ -20,6 +20,7 @@
 
 #include "vtkMRGIBRSM.h"
 #include "vtkMRGIVPLTreeTexture.h"
+#include "vtkMRGIViewSamples.h"
 
 #include "vtkMRGIVPLGridFS.h"
 
@@ -53,8 +54,11 @@ struct vtkMRGIVPLSelection::Internals
   int Count = 0;
   vtkMTimeType SourceTime = 0;
   vtkMTimeType SettingsTime = 0;
-  vtkMRGIBRSM::ViewSamples View; // BRSM mode: this frame's view samples
-  vtkIdType ViewStamp = 0;        // bumped by SetViewSamplesFromFrame()
+  vtkMRGIBRSM::ViewSamples View; // BRSM mode: the view samples of the selection
+  vtkMRGIViewSamples OwnSamples;  // BRSM mode without a shared read-back
+  const vtkMRGIViewSamples* ViewSource = nullptr; // where View came from
+  long long ViewSourceStamp = -1;                 // its content stamp then
+  vtkIdType ViewStamp = 0;        // bumped whenever View changes
   vtkIdType SourceViewStamp = 0;  // ViewStamp of the cache
   vtkMRGIBRSMInversion* Inversion = nullptr; // BRSM mode, texel VPLs: the GPU inversion
 };
@@ -163,6 +167,7 @@ void vtkMRGIVPLSelection::ReleaseGraphicsResources(vtkWindow* w)
     this->Internal->Texture = nullptr;
   }
   this->ReleaseTree(w);
+  this->Internal->OwnSamples.Invalidate(); // the G-buffer it was read from is gone
   this->Internal->Count = 0;
   this->Internal->SourceTime = 0;
 }
@@ -578,7 +583,7 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
         {
           inversions.push_back({ &block, {}, {} });
           if (!vtkMRGIBRSM::PrepareInversion(map, this->Internal->View, settings, block.Rows,
-                seed + static_cast<vtkTypeUInt64>(this->Internal->ViewStamp),
+                seed, // fixed: the same VPLs for the same inputs
                 inversions.back().CDF, inversions.back().Samples, error))
           {
             vtkErrorMacro(<< error);
@@ -587,7 +592,7 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
           continue;
         }
         if (!vtkMRGIBRSM::Select(map, this->Internal->View, settings, block.Rows,
-              seed + static_cast<vtkTypeUInt64>(this->Internal->ViewStamp),
+              seed, // fixed: the same VPLs for the same inputs
               vpls.data() + block.FirstRow, error))
         {
           vtkErrorMacro(<< error);
@@ -777,28 +782,42 @@ void vtkMRGIVPLSelection::PrintSelf(ostream& os, vtkIndent indent)
 
 //------------------------------------------------------------------------------
 int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window,
-  vtkMRGIReflectiveShadowMapPass* rsm, const vtkMRGIFrameContext& frame)
+  vtkMRGIReflectiveShadowMapPass* rsm, const vtkMRGIFrameContext& frame,
+  vtkMRGIViewSamples* shared)
 {
   if (this->Mode == BRSM && frame.Position)
   {
-    this->SetViewSamplesFromFrame(frame); // an error is reported; BRSM then falls back
+    this->UpdateViewSamples(frame, shared ? *shared : this->Internal->OwnSamples);
   }
   return this->Update(window, rsm);
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIVPLSelection::SetViewSamplesFromFrame(const vtkMRGIFrameContext& frame)
+void vtkMRGIVPLSelection::UpdateViewSamples(
+  const vtkMRGIFrameContext& frame, vtkMRGIViewSamples& samples)
 {
-  ++this->Internal->ViewStamp; // a new frame: the cache is stale in BRSM mode
+  // A fixed jitter (from Seed, not the frame): the same G-buffer gives the
+  // same samples, hence the same VPLs (no temporal noise).
   std::string error;
-  const vtkTypeUInt64 seed = this->Seed ^ (0x5851F42D4C957F2Dull *
-    static_cast<vtkTypeUInt64>(this->Internal->ViewStamp));
-  if (!vtkMRGIBRSM::TakeViewSamples(frame, 32, seed, this->Internal->View, error))
+  Internals& in = *this->Internal;
+  if (!samples.Update(frame, vtkMRGIViewSamples::Surfaces, this->Seed ^ 0x5851F42D4C957F2Dull, error))
   {
-    vtkErrorMacro(<< error);
-    return false;
+    vtkErrorMacro(<< error << "; BRSM falls back to flux importance");
+    if (!in.View.Samples.empty() || in.ViewSource)
+    {
+      ++in.ViewStamp; // samples lost: flux importance from now on
+    }
+    in.View = vtkMRGIBRSM::ViewSamples();
+    in.ViewSource = nullptr;
+    return;
   }
-  return true;
+  if (in.ViewSource != &samples || in.ViewSourceStamp != samples.GetContentStamp())
+  {
+    in.View = samples.GetSurfaces();
+    in.ViewSource = &samples;
+    in.ViewSourceStamp = samples.GetContentStamp();
+    ++in.ViewStamp; // new samples: the cache is stale in BRSM mode
+  }
 }
 
 //------------------------------------------------------------------------------

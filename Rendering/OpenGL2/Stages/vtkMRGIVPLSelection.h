@@ -41,8 +41,8 @@
  *
  * - BRSM: bidirectional RSM importance (ritschel-et-al-2011 sections 4,
  *   4.1, 4.2, 6.5). The importance of each RSM texel is its contribution,
- *   as a VPL, to a few view samples of the frame (SetViewSamplesFromFrame():
- *   a jittered 32 x 32 subsample of the G-buffer), chosen per texel with the
+ *   as a VPL, to a few view samples of the frame (a 32 x 32 subsample of
+ *   the G-buffer on a fixed jittered grid, Private/vtkMRGIViewSamples), chosen per texel with the
  *   clamped 1/x^2 guide around its projection; blurred geometry-aware
  *   (BRSMBlur), mixed with a share BRSMFluxShare of flux importance (so that
  *   every texel with flux keeps p > 0 and the 1 / (N p) estimate stays
@@ -52,8 +52,13 @@
  *   with texel VPLs (BRSMInterTexel off) the CDF is rounded to float and
  *   inverted on the GPU (vtkMRGIBRSMInversion, exact parity with
  *   mrgi_brsm_cdf_float.h), with inter-texel VPLs the C core samples and the
- *   records are uploaded. Recomputed every frame the view samples change.
- *   Without view samples it equals FluxImportance.
+ *   records are uploaded. Every random number (the view samples' jitter, the
+ *   K guided draws per texel, the CDF strata) comes from Seed, never from
+ *   the frame: a static scene gives the same VPLs every frame and a moving
+ *   one changes them smoothly (no temporal noise from re-drawing). The
+ *   cache is recomputed only when the RSMs, the settings or the view
+ *   samples (the camera and the visible props) change. Without view samples
+ *   it equals FluxImportance.
  *
  * With several lights, the VPL budget is split evenly among the lights that
  * have views. Nothing is recomputed while the RSMs and the settings are unchanged.
@@ -73,6 +78,7 @@ struct mrgi_vpl_tree;
 struct mrgi_rsm_view_camera;
 struct vtkMRGIFrameContext;
 struct vtkMRGIVPLTreeTerm;
+class vtkMRGIViewSamples;
 
 class vtkFloatArray;
 class vtkMRGIReflectiveShadowMapPass;
@@ -122,15 +128,7 @@ public:
   vtkBooleanMacro(BRSMInterTexel, bool);
   ///@}
 
-  /**
-   * BRSM mode: take this frame's view samples (a jittered 32 x 32 grid over
-   * the viewport of `frame`'s G-buffer, world space, and the camera for the
-   * guide). Update(window, rsm, frame) calls it each frame in BRSM mode. False, with an
-   * error, when the G-buffer cannot be read; the old samples are dropped.
-   */
-  bool SetViewSamplesFromFrame(const vtkMRGIFrameContext& frame);
-
-  /** BRSM mode: view samples held (0 before SetViewSamplesFromFrame()). */
+  /** BRSM mode: view samples of the last BRSM selection (0 before one, or without a G-buffer). */
   int GetNumberOfViewSamples() const;
   ///@}
 
@@ -223,11 +221,12 @@ public:
 #ifndef __VTK_WRAP__
   /**
    * The same, for the frame `frame` (its G-buffer captured): in BRSM mode
-   * the view samples are taken from it first (SetViewSamplesFromFrame()).
-   * What vtkMRGIIndirectLight calls; the other modes ignore `frame`.
+   * the view samples are brought up to date from it first, in `shared`
+   * (the frame's one read-back, vtkMRGIIndirectLight's) or, when null, in
+   * this object's own. The other modes ignore `frame`.
    */
   int Update(vtkOpenGLRenderWindow* window, vtkMRGIReflectiveShadowMapPass* rsm,
-    const vtkMRGIFrameContext& frame);
+    const vtkMRGIFrameContext& frame, vtkMRGIViewSamples* shared = nullptr);
 #endif
 
   /** The VPL cache texture (MRGI_VPL_TEXELS x GetVPLCount()), or nullptr. */
@@ -284,6 +283,10 @@ protected:
 
   // Tree mode: free the tree (CPU) and its texture (GL, with `w`).
   void ReleaseTree(vtkWindow* w);
+
+  // BRSM mode: bring `samples` up to date for `frame` and take them when
+  // they changed (the cache is then stale). An error falls back to none.
+  void UpdateViewSamples(const vtkMRGIFrameContext& frame, vtkMRGIViewSamples& samples);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
