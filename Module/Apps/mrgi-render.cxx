@@ -56,6 +56,7 @@
 #include "mrgi_parse.h"
 #include "mrgi_vpl_tree_gather.h"
 
+#include "mrgiRenderFrameBudget.h"
 #include "mrgiRenderImageLimits.h"
 #include "mrgiRenderOptions.h"
 #include "mrgiRenderOutputWindow.h"
@@ -567,6 +568,15 @@ int main(int argc, char* argv[])
   {
     return Fail(why);
   }
+  std::string budgetNote;
+  if (!SetUpFrameBudget(o, window, mrgi, budgetNote, why))
+  {
+    return Fail(why);
+  }
+  if (!budgetNote.empty())
+  {
+    Progress(o, budgetNote.c_str());
+  }
   // VTK errors while the scene was built did not stop the builder (it fails
   // by itself when they matter) and were shown; from here on one fails the run.
   messages->ResetErrors();
@@ -753,6 +763,10 @@ int main(int argc, char* argv[])
         mrgi->GetGather()->GetMeanVPLsPerPixel(), mrgi->GetGather()->GetMaxVPLsPerPixel());
     }
     std::printf("%-24s %12.3f\n", "frame (wall)", Median(frameTimes));
+    if (mrgi->GetFrameBudgetTuner()->IsActive())
+    {
+      std::printf("%s\n", mrgi->GetFrameBudgetTuner()->GetSummary().c_str());
+    }
     if (stageOrder.empty())
     {
       std::printf("(this OpenGL offers no timer queries: GPU stage times unavailable)\n");
