@@ -388,8 +388,9 @@ bool vtkMRGIFrameBudget::Calibrate(vtkRenderWindow* window, vtkMRGIPass* pass)
   }
   const std::string temp = path + ".tmp";
   {
+    const bool made = vtksys::SystemTools::MakeDirectory(dir).IsSuccess();
     std::ofstream out(temp, std::ios::trunc);
-    if (!vtksys::SystemTools::MakeDirectory(dir) || !(out << text) || !(out.flush()))
+    if (!made || !(out << text) || !(out.flush()))
     {
       vtkErrorMacro("frame budget calibration: cannot write '" << temp << "' (is " << dir
                                                                << " writable?); the fit is used "
