@@ -60,6 +60,7 @@
 #include "mrgi_vpl_tree_gather.h"
 
 #include "mrgiRenderColdStart.h"
+#include "mrgiRenderFrameBudget.h"
 #include "mrgiRenderImageLimits.h"
 #include "mrgiRenderOptions.h"
 #include "mrgiRenderOutputWindow.h"
@@ -585,6 +586,15 @@ int main(int argc, char* argv[])
   {
     return Fail(why);
   }
+  std::string budgetNote;
+  if (!SetUpFrameBudget(o, window, mrgi, budgetNote, why))
+  {
+    return Fail(why);
+  }
+  if (!budgetNote.empty())
+  {
+    Progress(o, budgetNote.c_str());
+  }
   // VTK errors while the scene was built did not stop the builder (it fails
   // by itself when they matter) and were shown; from here on one fails the run.
   messages->ResetErrors();
@@ -778,6 +788,10 @@ int main(int argc, char* argv[])
         mrgi->GetGather()->GetMeanVPLsPerPixel(), mrgi->GetGather()->GetMaxVPLsPerPixel());
     }
     std::printf("%-24s %12.3f\n", "frame (wall)", Median(frameTimes));
+    if (mrgi->GetFrameBudgetTuner()->IsActive())
+    {
+      std::printf("%s\n", mrgi->GetFrameBudgetTuner()->GetSummary().c_str());
+    }
     if (stageOrder.empty())
     {
       std::printf("(this OpenGL offers no timer queries: GPU stage times unavailable)\n");

@@ -781,6 +781,23 @@ const std::vector<OptionSection>& OptionTable()
           Set(&Options::Timings) },
         { { "--frames" }, "N", "render N frames, 1..1000000; timings are medians (default 1)",
           Integer(&Options::Frames, 1, 1000000) },
+        { { "--frame-budget" }, "MS",
+          "choose preset, VPLs, RSM and voxel size each frame to meet MS ms\n"
+          "(0 < MS <= 1e6; least predicted error, hysteresis between frames;\n"
+          "calibrates once per GL renderer if no calibration is stored)",
+          Number(
+            &Options::FrameBudget, [](double ms) { return ms > 0 && ms <= 1e6; },
+            "expected a frame time in ms, 0 < MS <= 1e6") },
+        { { "--error-budget" }, "E",
+          "the cheapest settings predicted within relative RMS error E of the\n"
+          "dense reference, 0 < E <= 1 (--frame-budget wins when both are given)",
+          Number(
+            &Options::ErrorBudget, [](double e) { return e > 0 && e <= 1; },
+            "expected a relative RMS error, 0 < E <= 1") },
+        { { "--calibrate" }, nullptr,
+          "measure this machine's frame cost model again and store it\n"
+          "(XDG_CACHE_HOME/mrgi or ~/.cache/mrgi, keyed by the GL renderer)",
+          Set(&Options::Calibrate) },
       } },
     { "Other",
       {

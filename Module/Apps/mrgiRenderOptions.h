@@ -48,6 +48,10 @@ struct Options
   long long Seed = 1;
   bool Timings = false;
   long long Frames = 1;
+  // Frame-budget tuner (vtkMRGIFrameBudget): 0 = off.
+  double FrameBudget = 0.0;
+  double ErrorBudget = 0.0;
+  bool Calibrate = false;
   bool Interactive = false;
   std::string Backend; // empty: MRGI_BACKEND, else automatic
   bool Quiet = false;

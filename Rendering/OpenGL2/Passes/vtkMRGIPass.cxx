@@ -641,6 +641,8 @@ void vtkMRGIPass::Render(const vtkRenderState* s)
     vtkErrorMacro("vtkMRGIPass needs a renderer in an OpenGL render window");
     return;
   }
+  // The frame budget's settings for this frame, and its wall time (vtkMRGIFrameBudget.h).
+  const vtkMRGIFrameBudget::FrameScope budgetScope(this->FrameBudgetTuner, this, renderer);
   if (!this->DelegatePass)
   {
     vtkWarningMacro("vtkMRGIPass has no delegate pass: nothing to render "
@@ -1230,6 +1232,7 @@ void vtkMRGIPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AutoExposureKey: " << this->AutoExposureKey << "\n";
   os << indent << "LastExposure: " << this->LastExposure << " EV\n";
   os << indent << "ToneMapping: " << (this->ToneMapping ? "On" : "Off") << "\n";
+  this->FrameBudgetTuner->PrintSelf(os << indent << "FrameBudgetTuner:\n", indent.GetNextIndent());
   os << indent << "StageTimingEnabled: " << (this->StageTimingEnabled ? "On" : "Off") << "\n";
   os << indent << "Multiresolution:\n";
   this->Multiresolution->PrintSelf(os, indent.GetNextIndent());

@@ -59,6 +59,8 @@
 
 #include "MRGIRenderingModule.h" // For export macro
 #include "vtkImageProcessingPass.h"
+#include "vtkMRGIFrameBudget.h" // For the inline frame-budget setters
+#include "vtkNew.h"             // For vtkNew
 
 #include "mrgi_buffers.h"       // For MRGI_SHADOW_SLOTS
 #include "mrgi_direct_shadow.h" // For MRGI_DIRECT_SHADOW_MAX_SIDE
@@ -642,6 +644,25 @@ public:
 
   ///@{
   /**
+   * Frame-budget tuner (vtkMRGIFrameBudget, issue 17 part 4). SetFrameBudget(ms)
+   * > 0: each frame the preset, VPL count, RSM size and (with voxel
+   * visibility) voxel side are chosen to meet ms at the least predicted
+   * error, with hysteresis during interaction; SetErrorBudget(e) > 0: the
+   * cheapest setting predicted within relative RMS e of the dense reference.
+   * 0 (default): off, the pass's own settings hold. While on, the tuner
+   * overrides those settings every frame. Calibrate(window) measures this
+   * machine once and stores it (per-user cache, keyed by the GL renderer).
+   */
+  void SetFrameBudget(double ms) { this->FrameBudgetTuner->SetFrameBudget(ms); }
+  double GetFrameBudget() { return this->FrameBudgetTuner->GetFrameBudget(); }
+  void SetErrorBudget(double error) { this->FrameBudgetTuner->SetErrorBudget(error); }
+  double GetErrorBudget() { return this->FrameBudgetTuner->GetErrorBudget(); }
+  bool Calibrate(vtkRenderWindow* window) { return this->FrameBudgetTuner->Calibrate(window, this); }
+  vtkMRGIFrameBudget* GetFrameBudgetTuner() { return this->FrameBudgetTuner; }
+  ///@}
+
+  ///@{
+  /**
    * Bracket each stage with GPU timer queries (vtkRenderTimerLog). The
    * window's timer log must be logging when a frame starts: switch it on
    * before the first render (`window->GetRenderTimer()->SetLoggingEnabled(true)`),
@@ -818,6 +839,7 @@ protected:
   vtkMRGISSGI* SSGIStage = nullptr;
   vtkMRGIAreaLightStage* AreaLightStage = nullptr;
   vtkMRGIShadowedDirectLight* DirectLight = nullptr;
+  vtkNew<vtkMRGIFrameBudget> FrameBudgetTuner;
   vtkSequencePass* OpaqueSequence = nullptr;
   vtkOpenGLFXAAFilter* FXAAFilter = nullptr;
 

@@ -1,0 +1,242 @@
+/**
+ * @file mrgi_frame_budget.h
+ * @brief The frame-budget tuner (issue 17 part 4): a cost model fitted from
+ *        timed frames, an error model per setting, the choice of the setting
+ *        that meets a time (or error) budget, and a controller with
+ *        hysteresis for interaction. No VTK, no GL, no file I/O, no global
+ *        state, no allocation.
+ *
+ * **Settings.** A ::mrgi_frame_setting is what the tuner may change: the
+ * multiresolution preset (mrgi_multires.h: thresholds and finest level
+ * together, the measured frontier of Documentation/Multiresolution.md), the
+ * VPL count, the RSM side and the voxel side (0 when the frame uses no
+ * voxels; the tuner never turns visibility on or off).
+ *
+ * **Cost model** (milliseconds per frame, linear in five terms, each a
+ * product of the setting and the frame's pixel count P):
+ *
+ *   ms = c0 + c1 * P/1e6 + c2 * G/1e9 + c3 * R/1e6 + c4 * V/1e9
+ *
+ * with G = P * w(preset) * VPLs the texel-VPL pairs the gather evaluates
+ * (w: the share of pixels a preset gathers at some level, measured by
+ * multires_sweep.py: nichols-shopf-wyman-2009 table 1 shows that the
+ * selection's cost is fixed per pixel and the gather's follows the texels
+ * selected), R = rsm_size^2 the RSM texels (RSM rendering plus VPL selection),
+ * and V = G * voxel_side / 128 the voxel march steps of the visibility term
+ * (0 without voxels; a march crosses about voxel_side voxels). The
+ * coefficients are fitted by least squares (non-negative) from timed frames:
+ * mrgi_frame_budget_fit(). The defaults (mrgi_frame_budget_default()) were
+ * measured once on Mesa llvmpipe, 2 cores; they are a starting point, not a
+ * calibration.
+ *
+ * **Error model** (a documented analytic proxy, mrgi_frame_budget_error()):
+ * the predicted relative RMS error of the indirect light against the dense
+ * reference (a full-resolution gather with many VPLs and a large RSM),
+ * combined in quadrature from three independent sources:
+ *  - the multiresolution error of the preset against the full gather with the
+ *    same VPLs (Documentation/Multiresolution.md, cornell-spot, 256 VPLs:
+ *    fast 0.043, balanced 0.023, accurate 0.019);
+ *  - the VPL sampling error k_v / sqrt(VPLs) (the grid's stratified estimate);
+ *  - the RSM resolution error k_r * 256 / rsm_size and, with voxels, the
+ *    voxel error k_x * 128 / voxel_side.
+ * The constants are MRGI_FRAME_BUDGET_ERROR_*; Testing/Benchmarks/
+ * frame_budget.py measures the real error of every candidate against the
+ * dense reference, so the proxy is checked, not trusted.
+ *
+ * **Hysteresis** (mrgi_frame_budget_controller_update()): the controller
+ * keeps a load factor s = measured / predicted and an exponential average
+ * (weight MRGI_FRAME_BUDGET_AVERAGE_WEIGHT) of each frame's miss
+ * log(measured / (s x predicted)). Only when that average stays beyond the
+ * margin (default 15%) on the same side for `patience` frames in a row
+ * (default 5) does s move (to the geometric mean of those frames' misses,
+ * then the average restarts) and the setting is chosen again. Frame-to-frame
+ * noise is averaged away first (+-20% uniform noise moves the average by
+ * about 3% rms), so a noisy but constant load never switches; a real load
+ * change (x2) switches after about 3 + `patience` frames and then holds.
+ *
+ * **Calibration file** (mrgi_frame_budget_format(), _parse()): text, one key
+ * and value per line, in this order:
+ *   mrgi-frame-budget 1
+ *   renderer <the GL renderer string, to the end of the line>
+ *   frames <frames fitted>
+ *   fixed_ms <c0>   pixel_ms <c1>   gather_ms <c2>   rsm_ms <c3>   voxel_ms <c4>
+ *   end
+ * Anything else (a missing or unknown key, a negative, non-finite or
+ * unparsable number, no `end`) is refused with a message that names it.
+ */
+#ifndef MRGI_FRAME_BUDGET_H
+#define MRGI_FRAME_BUDGET_H
+
+#include "mrgi_error.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Number of terms of the cost model. */
+#define MRGI_FRAME_BUDGET_TERMS 5
+/** Size of ::mrgi_frame_budget_calibration::renderer, NUL included. */
+#define MRGI_FRAME_BUDGET_RENDERER_SIZE 128
+/** Most candidates mrgi_frame_budget_default_candidates() writes. */
+#define MRGI_FRAME_BUDGET_MAX_CANDIDATES 512
+/** Size a buffer for mrgi_frame_budget_format() needs at most. */
+#define MRGI_FRAME_BUDGET_TEXT_SIZE 512
+/** Default hysteresis margin (relative) and patience (frames). */
+#define MRGI_FRAME_BUDGET_DEFAULT_MARGIN 0.15
+#define MRGI_FRAME_BUDGET_DEFAULT_PATIENCE 5
+/** Weight of a new frame in the controller's average miss. */
+#define MRGI_FRAME_BUDGET_AVERAGE_WEIGHT 0.1
+
+/** Error proxy constants (see the file comment). */
+#define MRGI_FRAME_BUDGET_ERROR_VPL 1.6
+#define MRGI_FRAME_BUDGET_ERROR_RSM 0.01
+#define MRGI_FRAME_BUDGET_ERROR_VOXEL 0.02
+
+/** What the tuner may change. */
+typedef struct mrgi_frame_setting
+{
+  int32_t preset;     /**< mrgi_multires_preset, 0..MRGI_MULTIRES_PRESET_COUNT-1. */
+  int32_t vpls;       /**< VPL count, 1..4096. */
+  int32_t rsm_size;   /**< RSM texels per side, 16..2048. */
+  int32_t voxel_side; /**< Voxel buffer side, 0 (no voxels) or 1..4096. */
+} mrgi_frame_setting;
+
+/** Fitted cost model: ms per unit of each term (see the file comment). */
+typedef struct mrgi_frame_budget_calibration
+{
+  double coef[MRGI_FRAME_BUDGET_TERMS];           /**< c0..c4, >= 0, finite. */
+  int32_t frames;                                 /**< Frames fitted; 0 for the defaults. */
+  char renderer[MRGI_FRAME_BUDGET_RENDERER_SIZE]; /**< GL renderer the fit holds for. */
+} mrgi_frame_budget_calibration;
+
+/** @brief The llvmpipe defaults (frames = 0, renderer empty). NULL is a no-op. */
+void mrgi_frame_budget_default(mrgi_frame_budget_calibration* cal);
+
+/** @brief Share of pixels a preset gathers (multires_sweep.py); 0 for an unknown preset. */
+double mrgi_frame_budget_work_fraction(int32_t preset);
+
+/** @brief ::MRGI_ERR_INVALID_ARGUMENT naming the first out-of-range field. */
+mrgi_status mrgi_frame_budget_check_setting(const mrgi_frame_setting* s, mrgi_error* err);
+
+/**
+ * @brief The five terms of the cost model for `s` at `pixels` pixels.
+ * @return ::MRGI_ERR_INVALID_ARGUMENT for a bad setting, pixels < 1 or NULL.
+ */
+mrgi_status mrgi_frame_budget_terms(
+  const mrgi_frame_setting* s, int64_t pixels, double terms[MRGI_FRAME_BUDGET_TERMS], mrgi_error* err);
+
+/** @brief Predicted ms of `s` at `pixels`; a negative value for bad input. */
+double mrgi_frame_budget_predict(
+  const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* s, int64_t pixels);
+
+/** @brief Predicted relative RMS error of `s` (the proxy); negative for a bad setting. */
+double mrgi_frame_budget_error(const mrgi_frame_setting* s);
+
+/**
+ * @brief Least-squares fit of the coefficients from `count` timed frames:
+ *        `terms` holds count rows of MRGI_FRAME_BUDGET_TERMS values
+ *        (mrgi_frame_budget_terms()), `ms` the measured times.
+ *
+ * Non-negative: a coefficient the unconstrained fit makes negative is fixed
+ * at 0 and the others are fitted again. A term that is zero in every frame
+ * (e.g. no voxels) keeps the coefficient `cal` had on entry (the prior); so
+ * does a term other than the fixed one with the same value in every frame
+ * (all frames at one window size: the pixel term cannot be told from the
+ * fixed cost, which then absorbs the difference at that size).
+ * `cal->frames` becomes `count`; the renderer string is kept.
+ * @return ::MRGI_ERR_INVALID_ARGUMENT for NULL, count < 1, non-finite or
+ *         negative values, or fewer distinct frames than observed terms
+ *         (`cal` untouched on failure).
+ */
+mrgi_status mrgi_frame_budget_fit(const double* terms, const double* ms, int32_t count,
+  mrgi_frame_budget_calibration* cal, mrgi_error* err);
+
+/**
+ * @brief The default candidate grid: every preset x square VPL counts 16..1024
+ *        x RSM sides 128, 256, 512; x voxel sides 64, 128, 256 when `voxels`
+ *        (else voxel_side 0). Writes at most `capacity`.
+ * @return The number written (the full grid needs at most
+ *         MRGI_FRAME_BUDGET_MAX_CANDIDATES).
+ */
+int32_t mrgi_frame_budget_default_candidates(
+  int voxels, mrgi_frame_setting* out, int32_t capacity);
+
+/**
+ * @brief The setting of least predicted error whose predicted time,
+ *        multiplied by `load` (1 = as calibrated), is within `budget_ms`;
+ *        ties go to the cheaper. When none fits, the cheapest, and
+ *        `*within` = 0.
+ * @param within May be NULL.
+ * @return ::MRGI_ERR_INVALID_ARGUMENT for NULL, count < 1, pixels < 1,
+ *         budget or load not finite and > 0, or a bad candidate (named by index).
+ */
+mrgi_status mrgi_frame_budget_choose(const mrgi_frame_budget_calibration* cal,
+  const mrgi_frame_setting* candidates, int32_t count, int64_t pixels, double budget_ms,
+  double load, int32_t* index, int* within, mrgi_error* err);
+
+/**
+ * @brief The cheapest predicted setting whose predicted error is at most
+ *        `max_error`; when none is, the one of least error, and `*within` = 0.
+ * @return As mrgi_frame_budget_choose() (max_error finite and > 0).
+ */
+mrgi_status mrgi_frame_budget_choose_for_error(const mrgi_frame_budget_calibration* cal,
+  const mrgi_frame_setting* candidates, int32_t count, int64_t pixels, double max_error,
+  int32_t* index, int* within, mrgi_error* err);
+
+/** The interaction controller (hysteresis; see the file comment). Plain data. */
+typedef struct mrgi_frame_budget_controller
+{
+  double budget_ms;  /**< Target frame time. */
+  double margin;     /**< Relative miss that counts, > 0. */
+  int32_t patience;  /**< Consecutive misses that move the load factor, >= 1. */
+  double load;       /**< measured / predicted, 1 at start. */
+  int32_t current;   /**< Index of the chosen candidate. */
+  double average;    /**< Exponential average of log(measured / expected). */
+  int32_t streak;    /**< Frames the average was beyond the margin (signed: > 0 slower). */
+  double streak_log; /**< Sum of log(measured / expected) over the streak. */
+  int32_t switches;  /**< Times the choice changed since init. */
+} mrgi_frame_budget_controller;
+
+/**
+ * @brief Start a controller: load 1, the choice of mrgi_frame_budget_choose().
+ * @return As mrgi_frame_budget_choose(); margin must be finite and > 0,
+ *         patience >= 1.
+ */
+mrgi_status mrgi_frame_budget_controller_init(mrgi_frame_budget_controller* ctl,
+  const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* candidates, int32_t count,
+  int64_t pixels, double budget_ms, double margin, int32_t patience, mrgi_error* err);
+
+/**
+ * @brief Take one measured frame time of the current candidate; may choose
+ *        again. `*changed` (may be NULL) is 1 when ctl->current changed.
+ * @return ::MRGI_ERR_INVALID_ARGUMENT for NULL, a measured time not finite
+ *         and > 0, or the errors of mrgi_frame_budget_choose().
+ */
+mrgi_status mrgi_frame_budget_controller_update(mrgi_frame_budget_controller* ctl,
+  const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* candidates, int32_t count,
+  int64_t pixels, double measured_ms, int* changed, mrgi_error* err);
+
+/**
+ * @brief Write the calibration as text (format in the file comment).
+ * @return ::MRGI_ERR_INVALID_ARGUMENT for NULL, a bad coefficient or a
+ *         buffer under MRGI_FRAME_BUDGET_TEXT_SIZE.
+ */
+mrgi_status mrgi_frame_budget_format(
+  const mrgi_frame_budget_calibration* cal, char* text, size_t size, mrgi_error* err);
+
+/**
+ * @brief Read a calibration written by mrgi_frame_budget_format().
+ * @return ::MRGI_ERR_FORMAT naming the line and problem for anything else
+ *         (`cal` untouched); ::MRGI_ERR_INVALID_ARGUMENT for NULL.
+ */
+mrgi_status mrgi_frame_budget_parse(
+  const char* text, mrgi_frame_budget_calibration* cal, mrgi_error* err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

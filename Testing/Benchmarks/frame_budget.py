@@ -1,0 +1,266 @@
+"""The frame-budget tuner (issue 17 part 4) on a camera orbit.
+
+For each budget: calibrate (once, into a scratch cache), set
+vtkMRGIPass::SetFrameBudget, render a FRAMES-frame orbit of cornell-spot
+and record each frame's time as the tuner measures it (the pass's wall time
+up to a glFinish) and the setting it chose. Then, at the orbit's middle pose,
+measure the error (relative RMS of the indirect light over lit pixels)
+against the dense reference (full-resolution gather, 1024 VPLs, RSM 512)
+for the tuner's final setting and for a sweep of settings (every preset x
+VPLs 16..1024, RSM 256), each timed as the tuner times frames; "best swept
+of the same cost" is the least error among swept settings whose measured
+time is at most the tuner's setting's measured time x 1.1.
+
+Issue 17's targets: frame time within 10% of the budget on >= 90% of the
+frames; the tuner's error within 20% of the best swept setting of the same
+cost. Times are on a shared 2-core machine (the load is printed and written);
+only ratios within one run mean something.
+
+Usage: frame_budget.py --build BUILD [--size 256] [--frames 100]
+       [--budgets 0.5,1,2] [--docs Documentation]
+Budgets are multiples of the measured time of the default setting
+(balanced, 256 VPLs, RSM 256), or absolute ms with --absolute.
+
+KNOWN BUG (session 9, first run at 128x128): the error column is wrong
+(relative RMS 1.5-3.0 for every swept setting, i.e. the reference and the
+multires indirect buffers do not match in scale or content); the page was
+not committed. Check the reference read-back (IndirectFull after
+IndirectMultires, GetIndirectBuffer) before trusting the error numbers.
+The timing columns ran: budget 17.1 ms -> 1% of frames within 10%, 56%
+at most 1.1x; budget 34.3 ms -> 36% within 10%, 91% at most 1.1x.
+"""
+import argparse
+import csv
+import os
+import statistics
+import sys
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import mrgi_bench as mb  # noqa: E402
+
+import mrgi  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
+
+PRESETS = ("fast", "balanced", "accurate")
+SWEEP_VPLS = (16, 64, 144, 256, 576, 1024)
+ORBIT_STEP = 0.6  # degrees per frame: 100 frames turn 60 degrees
+
+
+def load():
+    return os.getloadavg()[0]
+
+
+def indirect(window, gi):
+    image = vtkImageData()
+    assert gi.GetIndirectBuffer(window, image)
+    return mb.to_numpy(image)[..., :3].astype(np.float64)
+
+
+def rel_rms(image, reference):
+    lit = reference.sum(axis=2) > 0
+    diff = (image - reference)[lit]
+    return float(np.sqrt((diff ** 2).sum() / max((reference[lit] ** 2).sum(), 1e-30)))
+
+
+def set_pose(renderer, start, k, frames):
+    camera = renderer.GetActiveCamera()
+    camera.SetPosition(*start[0])
+    camera.SetFocalPoint(*start[1])
+    camera.SetViewUp(*start[2])
+    camera.Azimuth(ORBIT_STEP * (k - (frames - 1) / 2.0))
+    renderer.ResetCameraClippingRange()
+
+
+def apply(gi, preset, vpls, rsm):
+    gi.GetMultiresolution().SetPreset(preset)
+    gi.SetNumberOfVPLs(vpls)
+    gi.SetRSMResolution(rsm)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--build", required=True)
+    parser.add_argument("--size", type=int, default=256)
+    parser.add_argument("--frames", type=int, default=100)
+    parser.add_argument("--budgets", default="0.5,1,2")
+    parser.add_argument("--absolute", action="store_true", help="budgets in ms")
+    parser.add_argument("--docs", default=None, help="write DOCS/FrameBudget.md and its CSV")
+    args = parser.parse_args()
+
+    scratch = os.path.join(args.build, "Testing", "Temporary", "frame-budget")
+    os.makedirs(scratch, exist_ok=True)
+    window, renderer = mb.make_window(args.size, args.size)
+    mb.build_scene(renderer, "cornell-spot")
+    gi = mb.install_pass(renderer)
+    tuner = gi.GetFrameBudgetTuner()
+    tuner.SetCacheDirectory(scratch)
+    camera = renderer.GetActiveCamera()
+    start = (camera.GetPosition(), camera.GetFocalPoint(), camera.GetViewUp())
+    load_start = load()
+
+    window.Render()
+    t0 = time.perf_counter()
+    assert gi.Calibrate(window), "calibration failed"
+    calibration_s = time.perf_counter() - t0
+    print("calibrated in %.1f s: %s" % (calibration_s, tuner.GetCalibrationFile(tuner.GetRenderer())))
+
+    # The dense reference at the middle pose, then the sweep (tuner off: timed
+    # as wall time up to a read-back, which waits for the GPU).
+    set_pose(renderer, start, args.frames // 2, args.frames)
+    gi.SetIndirectMode(mrgi.vtkMRGIPass.IndirectFull)
+    apply(gi, 1, 1024, 512)
+    window.Render()
+    reference = indirect(window, gi)
+    gi.SetIndirectMode(mrgi.vtkMRGIPass.IndirectMultires)
+
+    def wall(repeats=3):
+        window.Render()
+        times = []
+        for _ in range(repeats):
+            t = time.perf_counter()
+            window.Render()
+            gi.GetColorBuffer(window, vtkImageData())  # waits for the GPU
+            times.append((time.perf_counter() - t) * 1e3)
+        return statistics.median(times)
+
+    sweep = []
+    for p in range(3):
+        for v in SWEEP_VPLS:
+            apply(gi, p, v, 256)
+            ms = wall()
+            sweep.append({"preset": PRESETS[p], "vpls": v, "rsm": 256, "ms": ms,
+                          "error": rel_rms(indirect(window, gi), reference)})
+            print("sweep %-8s %4d VPLs: %7.1f ms, error %.4f" % (PRESETS[p], v, ms, sweep[-1]["error"]))
+    default_ms = next(s["ms"] for s in sweep if s["preset"] == "balanced" and s["vpls"] == 256)
+
+    budgets = [float(b) * (1.0 if args.absolute else default_ms) for b in args.budgets.split(",")]
+    runs, rows = [], []
+    for budget in budgets:
+        gi.SetFrameBudget(budget)
+        times, walls = [], []
+        for k in range(args.frames):
+            set_pose(renderer, start, k, args.frames)
+            t = time.perf_counter()
+            window.Render()
+            walls.append((time.perf_counter() - t) * 1e3)
+            times.append(tuner.GetLastFrameMilliseconds())
+            rows.append([budget, k, times[-1], walls[-1], PRESETS[tuner.GetPreset()],
+                         tuner.GetNumberOfVPLs(), tuner.GetRSMResolution(), tuner.GetLoadFactor()])
+        summary = tuner.GetSummary()
+        chosen = (tuner.GetPreset(), tuner.GetNumberOfVPLs(), tuner.GetRSMResolution())
+        switches = tuner.GetNumberOfSwitches()
+        predicted_error = tuner.GetPredictedError()
+        gi.SetFrameBudget(0)
+        # The final setting at the middle pose: its error and its time (as the sweep's).
+        set_pose(renderer, start, args.frames // 2, args.frames)
+        apply(gi, *chosen)
+        ms = wall()
+        error = rel_rms(indirect(window, gi), reference)
+        same_cost = [s for s in sweep if s["ms"] <= 1.1 * ms]
+        best = min(same_cost, key=lambda s: s["error"]) if same_cost else None
+        steady = times[5:]  # the first frames include shaders and buffers of new settings
+        within = sum(abs(t - budget) <= 0.1 * budget for t in steady) / len(steady)
+        under = sum(t <= 1.1 * budget for t in steady) / len(steady)
+        runs.append({"budget": budget, "median": statistics.median(steady), "within": within,
+                     "under": under, "switches": switches, "chosen": chosen, "ms": ms,
+                     "error": error, "predicted_error": predicted_error, "best": best,
+                     "summary": summary})
+        print(summary)
+        print("budget %.1f ms: median %.1f ms, within 10%%: %.0f%%, <= 1.1 budget: %.0f%%, "
+              "error %.4f, best swept of the same cost %s"
+              % (budget, runs[-1]["median"], 100 * within, 100 * under, error,
+                 "%.4f (%s %d)" % (best["error"], best["preset"], best["vpls"]) if best else "none"))
+    load_end = load()
+    print("load average: %.1f at start, %.1f at end (2 cores)" % (load_start, load_end))
+
+    if args.docs:
+        write_page(args, runs, sweep, rows, default_ms, load_start, load_end, calibration_s)
+
+
+def write_page(args, runs, sweep, rows, default_ms, load_start, load_end, calibration_s):
+    data = os.path.join(args.docs, "data")
+    images = os.path.join(args.docs, "images")
+    os.makedirs(data, exist_ok=True)
+    os.makedirs(images, exist_ok=True)
+    with open(os.path.join(data, "frame-budget.csv"), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["budget_ms", "frame", "tuner_ms", "wall_ms", "preset", "vpls", "rsm", "load"])
+        w.writerows(rows)
+    picture = False
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(7, 3.5))
+        for r, colour in zip(runs, ("C0", "C1", "C2", "C3")):
+            ts = [row[2] for row in rows if row[0] == r["budget"]]
+            ax.plot(ts, color=colour, lw=1, label="budget %.0f ms" % r["budget"])
+            ax.axhline(r["budget"], color=colour, ls="--", lw=0.8)
+        ax.set_xlabel("frame of the orbit")
+        ax.set_ylabel("frame ms (tuner's measure)")
+        ax.set_yscale("log")
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(os.path.join(images, "frame-budget.png"), dpi=100)
+        picture = True
+    except ImportError:
+        pass
+    lines = [
+        "# Frame-budget tuner",
+        "",
+        "Generated by `Testing/Benchmarks/frame_budget.py` (%dx%d, `cornell-spot`, a %d-frame camera "
+        "orbit of %.0f degrees; Mesa llvmpipe, 2 cores shared with other jobs: load average %.1f at "
+        "start, %.1f at end). Do not edit by hand: rerun the script."
+        % (args.size, args.size, args.frames, ORBIT_STEP * (args.frames - 1), load_start, load_end),
+        "",
+        "`vtkMRGIPass::SetFrameBudget(ms)` / `mrgi-render --frame-budget MS` choose the multiresolution "
+        "preset, VPL count, RSM size (and voxel side when the indirect light uses voxels) of each frame: "
+        "the setting of least predicted error whose predicted time fits, from a cost model this machine "
+        "measured once (`Calibrate()`, `--calibrate`; %.1f s here), with hysteresis during interaction. "
+        "`SetErrorBudget(e)` / `--error-budget E`: the cheapest setting predicted within E. Model, error "
+        "proxy and hysteresis: `Rendering/Core/Twins/mrgi_frame_budget.h`." % calibration_s,
+        "",
+        "Frame time: the tuner's own measure (the pass's wall time up to a glFinish). The first 5 frames "
+        "(new settings: shaders, buffers) are left out of the shares. Error: relative RMS of the "
+        "indirect light over lit pixels against the dense reference (full-resolution gather, 1024 VPLs, "
+        "RSM 512) at the orbit's middle pose. Budgets are multiples of the default setting's time "
+        "(balanced, 256 VPLs, RSM 256: %.1f ms in this run)." % default_ms,
+        "",
+        "| budget ms | median ms | within 10% | <= 1.1 budget | switches | final setting | its ms | "
+        "error | predicted error | best swept of the same cost | error / best |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for r in runs:
+        best = r["best"]
+        lines.append("| %.1f | %.1f | %.0f%% | %.0f%% | %d | %s, %d VPLs, RSM %d | %.1f | %.4f | %.4f | %s | %s |" % (
+            r["budget"], r["median"], 100 * r["within"], 100 * r["under"], r["switches"],
+            PRESETS[r["chosen"][0]], r["chosen"][1], r["chosen"][2], r["ms"], r["error"],
+            r["predicted_error"],
+            "%.4f (%s, %d VPLs, %.1f ms)" % (best["error"], best["preset"], best["vpls"], best["ms"])
+            if best else "none",
+            "%.2f" % (r["error"] / best["error"]) if best and best["error"] > 0 else "-"))
+    lines += [
+        "",
+        "Targets (issue 17): within 10% of the budget on >= 90% of frames; error within 20% of the "
+        "best swept setting of the same cost (error / best <= 1.2).",
+        "",
+    ]
+    if picture:
+        lines += ["![frame times along the orbit](images/frame-budget.png)", ""]
+    lines += ["## The sweep (middle pose)", "",
+              "| preset | VPLs | RSM | ms | error vs dense | predicted error |", "|---|---|---|---|---|---|"]
+    for s in sweep:
+        lines.append("| %s | %d | %d | %.1f | %.4f | %.4f |" % (
+            s["preset"], s["vpls"], s["rsm"], s["ms"], s["error"],
+            mrgi.vtkMRGIFrameBudget.PredictError(PRESETS.index(s["preset"]), s["vpls"], s["rsm"], 0)))
+    lines += ["", "CSV (every frame): [data/frame-budget.csv](data/frame-budget.csv).", ""]
+    with open(os.path.join(args.docs, "FrameBudget.md"), "w") as f:
+        f.write("\n".join(lines))
+    print("wrote", os.path.join(args.docs, "FrameBudget.md"))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,117 @@
+"""Frame-budget tuner (issue 17 part 4) through mrgi-render and the Python
+API: bad values are refused by name with no output written; --calibrate
+stores a calibration in the per-user cache (XDG_CACHE_HOME) named after the
+GL renderer; --timings prints the chosen settings; a budget below every
+setting's cost picks the cheapest and says the budget is not reachable; a
+corrupt calibration file is reported and the defaults are used; the pass's
+setters refuse bad values and forward good ones."""
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+import mrgi
+
+RENDER = os.environ["MRGI_RENDER"]
+TMP = os.environ.get("MRGI_TEST_TMP", "/tmp")
+CACHE = os.path.join(TMP, "frame_budget_cache")
+
+
+def check(condition, what):
+    if not condition:
+        print("check failed:", what, file=sys.stderr)
+        sys.exit(1)
+
+
+def run(*args):
+    env = dict(os.environ)
+    env.pop("DISPLAY", None)
+    env["XDG_CACHE_HOME"] = CACHE
+    p = subprocess.run([RENDER, *args], capture_output=True, text=True, env=env, timeout=600)
+    return p.returncode, p.stdout, p.stderr
+
+
+def bad_options():
+    target = os.path.join(TMP, "frame_budget_bad.png")
+    for args, name in ((["--frame-budget", "0"], "--frame-budget"),
+                       (["--frame-budget", "-5"], "--frame-budget"),
+                       (["--frame-budget", "nan"], "--frame-budget"),
+                       (["--frame-budget", "fast"], "--frame-budget"),
+                       (["--error-budget", "0"], "--error-budget"),
+                       (["--error-budget", "2"], "--error-budget"),
+                       (["--frame-budget", "50", "--gi", "full"], "--frame-budget"),
+                       (["--error-budget", "0.1", "--gi", "off"], "--error-budget")):
+        if os.path.exists(target):
+            os.remove(target)
+        code, _, err = run("cornell-spot", "-o", target, "--size", "8x8", "-q", *args)
+        check(code != 0 and name in err, "%s is refused by name: %s" % (" ".join(args), err))
+        check(not os.path.exists(target), "no output after a refused option")
+
+
+SUMMARY = re.compile(r"frame budget: (time|error) [0-9.e+-]+( ms)?: preset (fast|balanced|accurate), "
+                     r"vpls (\d+), rsm (\d+), voxels (\S+); predicted ([0-9.]+) ms, error ([0-9.]+)")
+
+
+def cli():
+    shutil.rmtree(CACHE, ignore_errors=True)
+    target = os.path.join(TMP, "frame_budget.png")
+    code, out, err = run("cornell-spot", "-o", target, "--size", "32x32", "--timings",
+                         "--frames", "3", "--frame-budget", "200", "--calibrate")
+    check(code == 0, "budgeted render: " + err)
+    m = SUMMARY.search(out)
+    check(m is not None, "--timings prints the chosen settings: " + out)
+    check(int(m.group(4)) > 0 and int(m.group(5)) >= 16, "a VPL count and RSM size: " + m.group(0))
+    files = os.listdir(os.path.join(CACHE, "mrgi"))
+    check(len(files) == 1 and files[0].startswith("frame-budget-"), "one calibration file: %s" % files)
+    path = os.path.join(CACHE, "mrgi", files[0])
+    text = open(path).read()
+    check(text.startswith("mrgi-frame-budget 1\nrenderer ") and "frames 8\n" in text,
+          "the file holds the fit of 8 frames: " + text)
+
+    # A budget no setting meets: the cheapest, and said so.
+    code, out, err = run("cornell-spot", "-o", target, "--size", "32x32", "--timings",
+                         "--frame-budget", "0.001")
+    check(code == 0 and "budget not reachable" in out, "unreachable budget reported: " + out + err)
+    check("calibrated" not in err, "the stored calibration is reused, not measured again: " + err)
+    # An error budget picks the cheapest setting within it.
+    code, out, err = run("cornell-spot", "-o", target, "--size", "32x32", "--timings",
+                         "--error-budget", "0.2")
+    m = SUMMARY.search(out)
+    check(code == 0 and m and m.group(1) == "error" and float(m.group(8)) <= 0.2,
+          "error budget: " + out + err)
+
+    # A corrupt calibration: a warning naming the file, then the defaults.
+    open(path, "w").write("mrgi-frame-budget 1\nrenderer x\nframes 8\nfixed_ms oops\n")
+    code, out, err = run("cornell-spot", "-o", target, "--size", "32x32", "--timings",
+                         "--frame-budget", "200")
+    check(code == 0 and "ignoring the frame-budget calibration" in err and "fixed_ms" in err,
+          "corrupt calibration reported: " + err)
+    check("calibration: built-in defaults" in out, "defaults used: " + out)
+
+
+def python_api():
+    p = mrgi.vtkMRGIPass()
+    check(p.GetFrameBudget() == 0 and p.GetErrorBudget() == 0, "off by default")
+    p.SetFrameBudget(33.0)
+    p.SetErrorBudget(0.05)
+    check(p.GetFrameBudget() == 33.0 and p.GetErrorBudget() == 0.05, "setters forward")
+    tuner = p.GetFrameBudgetTuner()
+    check(tuner.IsActive(), "active")
+    tuner.GlobalWarningDisplayOff()
+    p.SetFrameBudget(-1.0)
+    check(p.GetFrameBudget() == 33.0, "a negative budget is refused, the old one kept")
+    p.SetFrameBudget(0.0)
+    p.SetErrorBudget(0.0)
+    check(not tuner.IsActive(), "0 turns it off")
+    check("FrameBudgetTuner" in str(p), "PrintSelf shows the tuner")
+
+
+def main():
+    bad_options()
+    python_api()
+    cli()
+
+
+if __name__ == "__main__":
+    main()
