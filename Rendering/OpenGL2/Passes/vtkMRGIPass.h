@@ -59,7 +59,7 @@
 
 #include "MRGIRenderingModule.h" // For export macro
 #include "vtkImageProcessingPass.h"
-#include "vtkMRGIFrameBudget.h" // For the inline frame-budget setters
+#include "vtkMRGIFrameBudget.h" // For the inline frame-budget setters and Knobs
 #include "vtkNew.h"             // For vtkNew
 
 #include "mrgi_buffers.h"       // For MRGI_SHADOW_SLOTS
@@ -657,7 +657,7 @@ public:
   double GetFrameBudget() { return this->FrameBudgetTuner->GetFrameBudget(); }
   void SetErrorBudget(double error) { this->FrameBudgetTuner->SetErrorBudget(error); }
   double GetErrorBudget() { return this->FrameBudgetTuner->GetErrorBudget(); }
-  bool Calibrate(vtkRenderWindow* window) { return this->FrameBudgetTuner->Calibrate(window, this); }
+  bool Calibrate(vtkRenderWindow* window);
   vtkMRGIFrameBudget* GetFrameBudgetTuner() { return this->FrameBudgetTuner; }
   ///@}
 
@@ -840,6 +840,10 @@ protected:
   vtkMRGIAreaLightStage* AreaLightStage = nullptr;
   vtkMRGIShadowedDirectLight* DirectLight = nullptr;
   vtkNew<vtkMRGIFrameBudget> FrameBudgetTuner;
+#ifndef __VTK_WRAP__
+  /** The settings the tuner turns: preset, VPLs, RSM size, voxel side. */
+  vtkMRGIFrameBudget::Knobs FrameBudgetKnobs();
+#endif
   vtkSequencePass* OpaqueSequence = nullptr;
   vtkOpenGLFXAAFilter* FXAAFilter = nullptr;
 

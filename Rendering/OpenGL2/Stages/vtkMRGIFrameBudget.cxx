@@ -1,10 +1,6 @@
 #include "vtk_glew.h"
 #include "vtkMRGIFrameBudget.h"
 
-#include "vtkMRGIIndirectLight.h"
-#include "vtkMRGIMultiresolution.h"
-#include "vtkMRGIPass.h"
-#include "vtkMRGIVoxelization.h"
 #include "vtkObjectFactory.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -168,7 +164,7 @@ std::string vtkMRGIFrameBudget::GetCalibrationFile(const std::string& renderer) 
 }
 
 //------------------------------------------------------------------------------
-void vtkMRGIFrameBudget::BeginFrame(vtkMRGIPass* pass, vtkRenderer* renderer)
+void vtkMRGIFrameBudget::BeginFrame(vtkRenderer* renderer, const Knobs& knobs)
 {
   Internals& in = *this->Internal;
   if (in.Renderer.empty())
@@ -181,7 +177,7 @@ void vtkMRGIFrameBudget::BeginFrame(vtkMRGIPass* pass, vtkRenderer* renderer)
   {
     in.Start = Clock::now();
   }
-  if (in.Calibrating || !this->IsActive() || !pass || !renderer)
+  if (in.Calibrating || !this->IsActive() || !knobs.Apply || !renderer)
   {
     return;
   }
@@ -212,7 +208,7 @@ void vtkMRGIFrameBudget::BeginFrame(vtkMRGIPass* pass, vtkRenderer* renderer)
   }
   const int* size = renderer->GetSize();
   const long long pixels = static_cast<long long>(std::max(1, size[0])) * std::max(1, size[1]);
-  in.UseCandidates(pass->GetIndirectVisibility() == vtkMRGIIndirectLight::VisibilityVoxels);
+  in.UseCandidates(knobs.Voxels);
   if (pixels != in.Pixels)
   {
     in.Pixels = pixels;
@@ -252,15 +248,8 @@ void vtkMRGIFrameBudget::BeginFrame(vtkMRGIPass* pass, vtkRenderer* renderer)
     in.Chosen = index;
     in.Within = within != 0;
   }
-  const mrgi_frame_setting& s = in.Candidates[static_cast<size_t>(in.Chosen)];
-  // Setters that do not change a value do not invalidate anything.
-  pass->GetMultiresolution()->SetPreset(s.preset);
-  pass->SetNumberOfVPLs(s.vpls);
-  pass->SetRSMResolution(s.rsm_size);
-  if (s.voxel_side > 0)
-  {
-    pass->GetVoxelization()->SetVoxelSide(s.voxel_side);
-  }
+  // The owner's setters do not invalidate anything when a value is unchanged.
+  knobs.Apply(in.Candidates[static_cast<size_t>(in.Chosen)]);
 }
 
 //------------------------------------------------------------------------------
@@ -299,22 +288,15 @@ void vtkMRGIFrameBudget::EndFrame()
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIFrameBudget::Calibrate(vtkRenderWindow* window, vtkMRGIPass* pass)
+bool vtkMRGIFrameBudget::Calibrate(vtkRenderWindow* window, const Knobs& knobs)
 {
-  if (!window || !pass)
+  if (!window || !knobs.Apply)
   {
-    vtkErrorMacro("Calibrate needs a render window and the vtkMRGIPass it renders with");
+    vtkErrorMacro("Calibrate needs a render window and the settings it renders with");
     return false;
   }
   Internals& in = *this->Internal;
-  // The pass's own settings, restored afterwards.
-  vtkMRGIMultiresolution* mr = pass->GetMultiresolution();
-  const double depth = mr->GetDepthThreshold(), normal = mr->GetNormalThreshold();
-  const int finest = mr->GetFinestLevel(), vpls = pass->GetNumberOfVPLs();
-  const int rsm = pass->GetRSMResolution();
-  int voxelSize[2];
-  pass->GetVoxelization()->GetVoxelSize(voxelSize);
-  const bool voxels = pass->GetIndirectVisibility() == vtkMRGIIndirectLight::VisibilityVoxels;
+  const bool voxels = knobs.Voxels;
 
   in.Calibrating = true;
   std::vector<double> terms, ms;
@@ -324,13 +306,7 @@ bool vtkMRGIFrameBudget::Calibrate(vtkRenderWindow* window, vtkMRGIPass* pass)
   {
     mrgi_frame_setting s = c;
     s.voxel_side = voxels ? s.voxel_side : 0;
-    mr->SetPreset(s.preset);
-    pass->SetNumberOfVPLs(s.vpls);
-    pass->SetRSMResolution(s.rsm_size);
-    if (voxels)
-    {
-      pass->GetVoxelization()->SetVoxelSide(s.voxel_side);
-    }
+    knobs.Apply(s);
     double best = -1;
     for (int f = 0; f < 3; ++f)
     {
@@ -353,12 +329,6 @@ bool vtkMRGIFrameBudget::Calibrate(vtkRenderWindow* window, vtkMRGIPass* pass)
     ms.push_back(best);
   }
   in.Calibrating = false;
-  mr->SetDepthThreshold(depth);
-  mr->SetNormalThreshold(normal);
-  mr->SetFinestLevel(finest);
-  pass->SetNumberOfVPLs(vpls);
-  pass->SetRSMResolution(rsm);
-  pass->GetVoxelization()->SetVoxelSize(voxelSize);
   if (!ok)
   {
     vtkErrorMacro("frame budget calibration: a calibration frame was not rendered or not timed "

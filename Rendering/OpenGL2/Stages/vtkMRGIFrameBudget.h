@@ -6,9 +6,10 @@
  *          model this machine measured once.
  *
  * The model, the error proxy, the choice and the hysteresis are the C core's
- * (mrgi_frame_budget.h); this class holds the state, applies the choice to
- * the pass before it renders and times the frame after it (wall time up to a
- * glFinish, so that a GPU running behind is counted).
+ * (mrgi_frame_budget.h); this class holds the state, hands the choice to
+ * its owner's Knobs before the frame renders and times the frame after it
+ * (wall time up to a glFinish, so that a GPU running behind is counted). It
+ * knows no pass: vtkMRGIPass owns it and supplies the Knobs.
  *
  * - SetFrameBudget(ms) > 0: the setting of least predicted error whose
  *   predicted time fits; then, during interaction, a controller with
@@ -23,7 +24,7 @@
  *   SetRSMResolution, the multiresolution preset and (when the indirect
  *   light uses voxels) the voxel side every frame.
  *
- * Calibration: Calibrate(window, pass) renders 8 settings (one warm-up and
+ * Calibration: Calibrate(window, knobs) (vtkMRGIPass::Calibrate) renders 8 settings (one warm-up and
  * two timed frames each, the faster counts), fits the model (least squares,
  * non-negative) and stores it in CacheDirectory (default
  * $XDG_CACHE_HOME/mrgi, else ~/.cache/mrgi) under a file named after the GL
@@ -37,10 +38,12 @@
 #include "MRGIRenderingModule.h" // For export macro
 #include "vtkObject.h"
 
-#include <memory> // For std::unique_ptr
-#include <string> // For std::string
+#include "mrgi_frame_budget.h" // For mrgi_frame_setting
 
-class vtkMRGIPass;
+#include <functional> // For std::function
+#include <memory>     // For std::unique_ptr
+#include <string>     // For std::string
+
 class vtkRenderer;
 class vtkRenderWindow;
 
@@ -83,23 +86,35 @@ public:
   /** The calibration file for a GL renderer string (in GetCacheDirectory()). */
   std::string GetCalibrationFile(const std::string& renderer) const;
 
+#ifndef __VTK_WRAP__
+  /** What the tuner turns, supplied by its owner (vtkMRGIPass). */
+  struct Knobs
+  {
+    /** The indirect light uses voxel visibility, so the voxel side is a knob. */
+    bool Voxels = false;
+    /** Applies a setting: preset, VPL count, RSM size, and the voxel side when > 0. */
+    std::function<void(const mrgi_frame_setting&)> Apply;
+  };
+
   /**
-   * Measure this machine: renders `window` with 8 settings of `pass` (3
-   * frames each), fits the cost model and writes the calibration file. The
-   * pass's own settings are restored. False (with an error naming why) when
-   * a frame fails or the file cannot be written; the fit is still used.
+   * Measure this machine: renders `window` with 8 settings applied through
+   * `knobs` (3 frames each), fits the cost model and writes the calibration
+   * file. The caller restores its own settings (vtkMRGIPass::Calibrate does).
+   * False (with an error naming why) when a frame fails or the file cannot
+   * be written; the fit is still used.
    */
-  bool Calibrate(vtkRenderWindow* window, vtkMRGIPass* pass);
+  bool Calibrate(vtkRenderWindow* window, const Knobs& knobs);
 
   ///@{
   /**
-   * Called by vtkMRGIPass::Render around each frame: BeginFrame applies the
-   * chosen setting to `pass` (when a budget is set), EndFrame times the frame
-   * and feeds the controller.
+   * Called by the owner's render around each frame: BeginFrame applies the
+   * chosen setting through `knobs` (when a budget is set), EndFrame times the
+   * frame and feeds the controller.
    */
-  void BeginFrame(vtkMRGIPass* pass, vtkRenderer* renderer);
+  void BeginFrame(vtkRenderer* renderer, const Knobs& knobs);
   void EndFrame();
   ///@}
+#endif
 
   ///@{
   /** The last chosen setting (-1 / 0 before a budgeted frame). Voxel side 0: no voxels. */
@@ -136,10 +151,10 @@ public:
   class FrameScope
   {
   public:
-    FrameScope(vtkMRGIFrameBudget* tuner, vtkMRGIPass* pass, vtkRenderer* renderer)
+    FrameScope(vtkMRGIFrameBudget* tuner, vtkRenderer* renderer, const Knobs& knobs)
       : Tuner(tuner)
     {
-      this->Tuner->BeginFrame(pass, renderer);
+      this->Tuner->BeginFrame(renderer, knobs);
     }
     ~FrameScope() { this->Tuner->EndFrame(); }
     FrameScope(const FrameScope&) = delete;
