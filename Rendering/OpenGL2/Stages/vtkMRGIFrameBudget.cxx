@@ -1,6 +1,8 @@
 #include "vtk_glew.h"
 #include "vtkMRGIFrameBudget.h"
 
+#include "vtkMRGIMultiresolution.h" // For the preset names
+
 #include "vtkObjectFactory.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"

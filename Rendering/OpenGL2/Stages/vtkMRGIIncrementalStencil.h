@@ -74,6 +74,10 @@ public:
    */
   vtkSetClampMacro(IrradianceTolerance, double, 0.0, 1.0);
   vtkGetMacro(IrradianceTolerance, double);
+  ///@}
+
+  ///@{
+  /**
    * Relative threshold T of the illumination rule: a texel below the
    * geometric cut is gathered when its parent's 3x3 gathered irradiance
    * differs by more than T times the larger value in a channel
