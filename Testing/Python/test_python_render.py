@@ -110,8 +110,43 @@ def main():
     check(difference < 0.05, "OSMesa and EGL agree (max difference %g)" % difference)
     osmesa_renderer.SetPass(None)
     osmesa_gi.ReleaseGraphicsResources(osmesa)
+    check_rsm_resolution_change()
     print("ok")
 
+
+def check_rsm_resolution_change():
+    """The maps follow SetRSMResolution after the first frame: the indirect
+    light after growing 256 -> 1024 equals a fresh pass's at 1024 (their
+    depth buffer once kept its first size, so larger maps were drawn in a
+    corner only and the light dropped about fourfold)."""
+    def render(resolutions):
+        window = mrgi.vtkMRGIRenderWindowFactory.CreateHeadlessRenderWindow()
+        window.SetSize(64, 64)
+        window.SetMultiSamples(0)
+        renderer = vtkRenderer()
+        window.AddRenderer(renderer)
+        builder = mrgi.vtkMRGISceneBuilder()
+        builder.SetScene("cornell-spot")
+        check(builder.Build(renderer), "cornell-spot builds")
+        gi = mrgi.vtkMRGIPass()
+        gi.SetDelegatePass(vtkRenderStepsPass())
+        gi.SetIndirectMode(mrgi.vtkMRGIPass.IndirectFull)
+        renderer.SetPass(gi)
+        for r in resolutions:
+            gi.SetRSMResolution(r)
+            window.Render()
+        image = vtkImageData()
+        check(gi.GetIndirectBuffer(window, image), "indirect buffer read back")
+        mean = float(vtk_to_numpy(image.GetPointData().GetScalars()).mean())
+        renderer.SetPass(None)
+        gi.ReleaseGraphicsResources(window)
+        return mean
+
+    fresh = render([1024])
+    grown = render([256, 1024])
+    print("indirect mean, RSM 1024 fresh %.6g, after 256: %.6g" % (fresh, grown))
+    check(fresh > 0 and abs(grown - fresh) <= 1e-3 * fresh,
+          "RSM 256 -> 1024 gives the light of a fresh 1024 pass (%g vs %g)" % (grown, fresh))
 
 if __name__ == "__main__":
     main()

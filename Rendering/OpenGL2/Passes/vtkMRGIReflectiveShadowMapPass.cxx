@@ -25,6 +25,7 @@
 #include "vtkProp.h"
 #include "vtkPropCollection.h"
 #include "vtkRenderState.h"
+#include "vtkRenderbuffer.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
@@ -36,6 +37,7 @@
 #include "vtkMRGIRSMDecl.h"
 #include "vtkMRGIRSMView.h"
 #include "vtkMRGIResourceStatistics.h"
+#include "vtkMRGISceneChecks.h"
 #include "vtkMRGIShaderUtilities.h"
 
 #include "mrgi_buffers.h"
@@ -94,10 +96,21 @@ struct vtkMRGIReflectiveShadowMapPass::Internals
   std::map<vtkProp*, vtkMTimeType> CheckedInput;
   std::vector<std::unique_ptr<View>> Views;
   vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
+  // The maps' depth buffer, sized to Resolution (see Render()).
+  vtkSmartPointer<vtkRenderbuffer> Depth;
   std::string Signature;
   vtkTimeStamp ContentTime;
   View* Current = nullptr;
   vtkNew<vtkMRGIAreaLightRSMViews> AreaViews;
+
+  void ReleaseDepth(vtkWindow* w)
+  {
+    if (this->Depth)
+    {
+      this->Depth->ReleaseGraphicsResources(w);
+    }
+    this->Depth = nullptr;
+  }
 
   void ReleaseView(View& view, vtkWindow* w)
   {
@@ -154,6 +167,7 @@ void vtkMRGIReflectiveShadowMapPass::ReleaseGraphicsResources(vtkWindow* w)
     this->Internal->FrameBuffer->Delete();
     this->Internal->FrameBuffer = nullptr;
   }
+  this->Internal->ReleaseDepth(w);
   this->Internal->Signature.clear();
 }
 
@@ -583,6 +597,23 @@ void vtkMRGIReflectiveShadowMapPass::RenderWithAreaLights(
     this->Internal->FrameBuffer->SetContext(renWin);
   }
   vtkOpenGLFramebufferObject* fbo = this->Internal->FrameBuffer;
+  // A depth buffer of the maps' size, remade when Resolution changes (the
+  // FBO's own is made once: larger maps later were drawn in its corner only).
+  if (!this->Internal->Depth ||
+    this->Internal->Depth->GetWidth() != static_cast<unsigned int>(this->Resolution))
+  {
+    this->Internal->ReleaseDepth(renWin);
+    this->Internal->Depth = vtkSmartPointer<vtkRenderbuffer>::New();
+    this->Internal->Depth->SetContext(renWin);
+    if (!this->Internal->Depth->CreateDepthAttachment(this->Resolution, this->Resolution))
+    {
+      vtkErrorMacro("could not allocate the " << this->Resolution
+                                               << "^2 depth buffer of the reflective shadow maps");
+      this->ReleaseGraphicsResources(renWin); // no maps (no VPLs) rather than stale ones
+      return;
+    }
+    vtkMRGIResourceStatistics::RecordTextureAllocation(this->Resolution, this->Resolution, 4);
+  }
 
   vtkCamera* savedCamera = renderer->GetActiveCamera();
   savedCamera->Register(this);
@@ -607,7 +638,7 @@ void vtkMRGIReflectiveShadowMapPass::RenderWithAreaLights(
         fbo->AddColorAttachment(a, view->Textures[a]);
       }
       vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, MRGI_RSM_ATTACHMENTS);
-      fbo->AddDepthAttachment();
+      fbo->AddDepthAttachment(this->Internal->Depth);
       // Explicit viewport: StartNonOrtho leaves it alone, and VTK's camera
       // pass restores whatever it found (0 x 0 on a surfaceless context).
       ostate->vtkglViewport(0, 0, this->Resolution, this->Resolution);
@@ -838,27 +869,9 @@ void vtkMRGIReflectiveShadowMapPass::CheckInput(vtkProp* prop)
     return;
   }
   checked = poly->GetMTime();
-  auto countNonFinite = [](vtkDataArray* array) {
-    vtkIdType bad = 0;
-    if (array)
-    {
-      const int nc = array->GetNumberOfComponents();
-      for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
-      {
-        for (int c = 0; c < nc; ++c)
-        {
-          if (!std::isfinite(array->GetComponent(i, c)))
-          {
-            ++bad;
-            break;
-          }
-        }
-      }
-    }
-    return bad;
-  };
-  const vtkIdType badPoints = poly->GetPoints() ? countNonFinite(poly->GetPoints()->GetData()) : 0;
-  const vtkIdType badNormals = countNonFinite(poly->GetPointData()->GetNormals());
+  const vtkIdType badPoints =
+    poly->GetPoints() ? vtkMRGISceneChecks::CountNonFiniteTuples(poly->GetPoints()->GetData()) : 0;
+  const vtkIdType badNormals = vtkMRGISceneChecks::CountNonFiniteTuples(poly->GetPointData()->GetNormals());
   if (badPoints > 0 || badNormals > 0)
   {
     vtkWarningMacro("an actor's data has " << badPoints << " points with NaN/Inf coordinates and "

@@ -1,6 +1,7 @@
 #include "vtkMRGISceneChecks.h"
 
 #include "vtkActor.h"
+#include "vtkDataArray.h"
 #include "vtkObject.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
@@ -11,6 +12,7 @@
 #include "vtkRenderer.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace
 {
@@ -81,4 +83,23 @@ void vtkMRGISceneChecks::WarnPointClouds(
                   "vtkMRGISurfels (after vtkMRGIPointCloudNormals) before its mapper "
                   "(Documentation/PointClouds-Surfels.md)");
   }
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkMRGISceneChecks::CountNonFiniteTuples(vtkDataArray* array)
+{
+  vtkIdType bad = 0;
+  const int nc = array ? array->GetNumberOfComponents() : 0;
+  for (vtkIdType i = 0; array && i < array->GetNumberOfTuples(); ++i)
+  {
+    for (int c = 0; c < nc; ++c)
+    {
+      if (!std::isfinite(array->GetComponent(i, c)))
+      {
+        ++bad;
+        break;
+      }
+    }
+  }
+  return bad;
 }

@@ -3,16 +3,19 @@
  * @brief   Internal: what vtkMRGIPass asks of the renderer's props before
  *          and after the scene pass: whether any may reflect specularly
  *          (the specular G-buffer is captured only then), and which actors
- *          are point clouds drawn as pixels (warned about once each).
+ *          are point clouds drawn as pixels (warned about once each),
+ *          how many tuples of an array are not finite.
  *          Not wrapped, not installed.
  */
 #ifndef vtkMRGISceneChecks_h
 #define vtkMRGISceneChecks_h
 
+#include "vtkType.h"        // For vtkIdType
 #include "vtkWeakPointer.h" // For vtkWeakPointer
 
 #include <vector> // For std::vector
 
+class vtkDataArray;
 class vtkObject;
 class vtkProp;
 class vtkRenderer;
@@ -37,6 +40,9 @@ bool AnySpecularProp(vtkRenderer* renderer);
  */
 void WarnPointClouds(
   vtkObject* caller, vtkRenderer* renderer, std::vector<vtkWeakPointer<vtkProp>>& reported);
+
+/** The tuples of `array` with a NaN or infinite component; 0 for no array. */
+vtkIdType CountNonFiniteTuples(vtkDataArray* array);
 }
 
 #endif
