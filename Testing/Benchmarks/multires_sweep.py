@@ -605,6 +605,13 @@ def write_page(args, rows, scaling, splats, presets, notes, path):
                                                                    s["overhead_static"], s["overhead_moving"],
                                                                    s["rsm"]))
     lines += ["", "## Every setting", "", "CSV: [data/multires-sweep.csv](data/multires-sweep.csv).", ""]
+    # The cold-start section is cold_start.py's (between its markers): kept.
+    if os.path.exists(path):
+        with open(path) as f:
+            old = f.read()
+        begin, end = old.find("## Cold start"), old.find("<!-- /cold-start -->")
+        if 0 <= begin < end:
+            lines += [old[begin:end + len("<!-- /cold-start -->")], ""]
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
     print("wrote %s" % path)

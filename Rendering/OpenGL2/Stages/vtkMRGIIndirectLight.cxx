@@ -203,9 +203,10 @@ bool vtkMRGIIndirectLight::RunGather(const vtkMRGIFrameContext& frame,
     }
   }
   vtkMRGIShaderUtilities::ScopedStage stage(timer, "upsample");
+  // The irradiance target holds the per-level values until Resolve() writes it.
   return this->Upsample->Upsample(frame, buffer, this->Gather->GetIrradianceTexture(),
            illumination ? lit->GetSelectionTexture() : buffer->GetSelectionTexture(),
-           settings.UpsampleMode, settings.UpsampleMaskWeight) &&
+           settings.UpsampleMode, settings.UpsampleMaskWeight, irradiance) &&
     this->Upsample->Resolve(frame, buffer, frame.Albedo, irradiance, indirect, settings.Strength,
       settings.SurfaceDetail);
 }

@@ -38,6 +38,9 @@ struct vtkMRGIUpsample::Internals
   // is inside the coarser level as its sides are ceil(side / 2)), so the
   // stale texels of other levels around it are never read. Two textures
   // instead of two per level: 32 instead of about 43 bytes per pixel.
+  // Value is the caller's scratch texture when Upsample() was given one
+  // (Own holds no texture then), else Own.
+  vtkTextureObject* Own = nullptr;
   vtkTextureObject* Value = nullptr;
   vtkTextureObject* Filtered = nullptr;
   int Levels = 0;
@@ -52,28 +55,47 @@ struct vtkMRGIUpsample::Internals
 
   void ReleaseTextures(vtkWindow* w)
   {
-    vtkMRGIShaderUtilities::ReleaseTexture(this->Value, w);
+    vtkMRGIShaderUtilities::ReleaseTexture(this->Own, w);
     vtkMRGIShaderUtilities::ReleaseTexture(this->Filtered, w);
+    this->Value = nullptr;
     this->Levels = 0;
     this->Size[0] = this->Size[1] = 0;
   }
 
-  // The level textures and framebuffer for `layout`; false when they cannot be allocated.
-  bool Prepare(vtkOpenGLRenderWindow* window, const mrgi_multires_layout& layout)
+  // The level textures and framebuffer for `layout`, the value in
+  // `scratch` when it fits; false when they cannot be allocated.
+  bool Prepare(
+    vtkOpenGLRenderWindow* window, const mrgi_multires_layout& layout, vtkTextureObject* scratch)
   {
+    const bool useScratch = scratch && scratch->GetHandle() != 0 &&
+      scratch->GetWidth() >= static_cast<unsigned int>(layout.width) &&
+      scratch->GetHeight() >= static_cast<unsigned int>(layout.height) &&
+      scratch->GetInternalFormat(VTK_FLOAT, 4, false) == GL_RGBA32F;
     if (this->Size[0] != layout.width || this->Size[1] != layout.height)
     {
       this->ReleaseTextures(window);
-      this->Value = vtkMRGIShaderUtilities::NewTexture(window, GL_RGBA32F, layout.width, layout.height);
       this->Filtered = vtkMRGIShaderUtilities::NewTexture(window, GL_RGBA32F, layout.width, layout.height);
-      if (!this->Value || !this->Filtered)
+      if (!this->Filtered)
       {
-        this->ReleaseTextures(window);
         return false;
       }
       this->Size[0] = layout.width;
       this->Size[1] = layout.height;
     }
+    if (useScratch)
+    {
+      vtkMRGIShaderUtilities::ReleaseTexture(this->Own, window);
+    }
+    else if (!this->Own)
+    {
+      this->Own = vtkMRGIShaderUtilities::NewTexture(window, GL_RGBA32F, layout.width, layout.height);
+      if (!this->Own)
+      {
+        this->ReleaseTextures(window);
+        return false;
+      }
+    }
+    this->Value = useScratch ? scratch : this->Own;
     this->Levels = layout.level_count;
     this->GL.Prepare(window);
     return true;
@@ -89,7 +111,7 @@ vtkMRGIUpsample::vtkMRGIUpsample()
 //------------------------------------------------------------------------------
 vtkMRGIUpsample::~vtkMRGIUpsample()
 {
-  if (this->Internal->GL.FrameBuffer || this->Internal->Value)
+  if (this->Internal->GL.FrameBuffer || this->Internal->Own || this->Internal->Filtered)
   {
     vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
   }
@@ -106,7 +128,8 @@ void vtkMRGIUpsample::ReleaseGraphicsResources(vtkWindow* w)
 
 //------------------------------------------------------------------------------
 bool vtkMRGIUpsample::Upsample(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
-  vtkTextureObject* irradiance, vtkTextureObject* rendered, int mode, double maskWeight)
+  vtkTextureObject* irradiance, vtkTextureObject* rendered, int mode, double maskWeight,
+  vtkTextureObject* scratch)
 {
   Internals& in = *this->Internal;
   vtkOpenGLRenderWindow* window = frame.Window;
@@ -116,7 +139,7 @@ bool vtkMRGIUpsample::Upsample(const vtkMRGIFrameContext& frame, vtkMRGIMultires
     vtkErrorMacro("Upsample needs the buffer's selection, a gather's irradiance and the mask it rendered");
     return false;
   }
-  if (!in.Prepare(window, layout))
+  if (!in.Prepare(window, layout, scratch))
   {
     vtkErrorMacro("could not allocate the upsampling buffers (" << layout.width << " x " << layout.height << ")");
     return false;

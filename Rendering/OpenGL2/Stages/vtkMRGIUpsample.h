@@ -48,10 +48,16 @@ public:
    * of a gather on `buffer`) where `rendered` (a flattened mask, red > 0.5)
    * says texels were gathered. `mode`: UpsampleTent or
    * UpsampleMaskWeighted with `maskWeight`. Timer step "upsample.levels".
-   * False on error.
+   * `scratch`, when given (RGBA32F, at least level 0's size), is
+   * overwritten with the per-level values instead of a texture of the
+   * stage's own: Resolve()'s irradiance target can be it, as Resolve()
+   * reads only the filtered values (one level-0-sized float texture less
+   * to allocate; Documentation/Multiresolution.md, "Cold start"). False on
+   * error.
    */
   bool Upsample(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
-    vtkTextureObject* irradiance, vtkTextureObject* rendered, int mode, double maskWeight);
+    vtkTextureObject* irradiance, vtkTextureObject* rendered, int mode, double maskWeight,
+    vtkTextureObject* scratch = nullptr);
 
   /**
    * After Upsample(): write the full-resolution irradiance E and the
