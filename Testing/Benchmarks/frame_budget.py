@@ -21,13 +21,6 @@ Usage: frame_budget.py --build BUILD [--size 256] [--frames 100]
 Budgets are multiples of the measured time of the default setting
 (balanced, 256 VPLs, RSM 256), or absolute ms with --absolute.
 
-KNOWN BUG (session 9, first run at 128x128): the error column is wrong
-(relative RMS 1.5-3.0 for every swept setting, i.e. the reference and the
-multires indirect buffers do not match in scale or content); the page was
-not committed. Check the reference read-back (IndirectFull after
-IndirectMultires, GetIndirectBuffer) before trusting the error numbers.
-The timing columns ran: budget 17.1 ms -> 1% of frames within 10%, 56%
-at most 1.1x; budget 34.3 ms -> 36% within 10%, 91% at most 1.1x.
 """
 import argparse
 import csv
