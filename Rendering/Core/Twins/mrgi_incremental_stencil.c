@@ -27,11 +27,7 @@ static int mrgi_stencil_discontinuity(const mrgi_multires_layout* layout, int32_
   {
     for (int32_t dx = -1; dx <= 1; ++dx)
     {
-      int32_t nx = x + dx;
-      int32_t ny = y + dy;
-      nx = nx < 0 ? 0 : (nx >= layout->level_width[level] ? layout->level_width[level] - 1 : nx);
-      ny = ny < 0 ? 0 : (ny >= layout->level_height[level] ? layout->level_height[level] - 1 : ny);
-      const size_t t = mrgi_multires_index(layout, level, nx, ny);
+      const size_t t = mrgi_multires_clamped_index(layout, level, x, y, dx, dy);
       neighbours[k++] = mrgi_stencil_receiver(position, t) ? masks + t * (size_t)words : NULL;
     }
   }
@@ -138,15 +134,6 @@ static int mrgi_stencil_usable(const float* position, const uint8_t* rendered, s
   return rendered[t] && mrgi_stencil_receiver(position, t);
 }
 
-/* Clamped flattened index of level `level` texel (x, y). */
-static size_t mrgi_stencil_clamped(const mrgi_multires_layout* layout, int32_t level, int32_t x,
-                                   int32_t y)
-{
-  x = x < 0 ? 0 : (x >= layout->level_width[level] ? layout->level_width[level] - 1 : x);
-  y = y < 0 ? 0 : (y >= layout->level_height[level] ? layout->level_height[level] - 1 : y);
-  return mrgi_multires_index(layout, level, x, y);
-}
-
 /* The DIFFERENCE test of one channel (header, last section). */
 static int mrgi_stencil_differs(float En, float Ep, float threshold)
 {
@@ -213,7 +200,7 @@ static int mrgi_stencil_light_discontinuity(const mrgi_multires_layout* layout, 
   {
     for (int32_t dx = -1; dx <= 1; ++dx)
     {
-      const size_t n = mrgi_stencil_clamped(layout, level, x + dx, y + dy);
+      const size_t n = mrgi_multires_clamped_index(layout, level, x, y, dx, dy);
       if (!mrgi_stencil_usable(position, rendered, n))
       {
         continue;

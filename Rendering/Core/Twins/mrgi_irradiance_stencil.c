@@ -98,13 +98,10 @@ static int mrgi_irradiance_varies(const mrgi_multires_layout* layout, int32_t le
   {
     for (int32_t dx = -1; dx <= 1; ++dx)
     {
-      int32_t nx = x + dx;
-      int32_t ny = y + dy;
-      nx = nx < 0 ? 0 : (nx >= layout->level_width[level] ? layout->level_width[level] - 1 : nx);
-      ny = ny < 0 ? 0 : (ny >= layout->level_height[level] ? layout->level_height[level] - 1 : ny);
       float P[3], N[3];
-      if (!mrgi_irradiance_receiver(position, normal, mrgi_multires_index(layout, level, nx, ny), M,
-                                    P, N))
+      if (!mrgi_irradiance_receiver(position, normal,
+                                    mrgi_multires_clamped_index(layout, level, x, y, dx, dy), M, P,
+                                    N))
       {
         continue;
       }

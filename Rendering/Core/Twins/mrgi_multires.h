@@ -256,6 +256,21 @@ static inline size_t mrgi_multires_index(const mrgi_multires_layout* layout, int
 }
 
 /**
+ * @brief Flattened index of level `level` texel (x + dx, y + dy), clamped to
+ *        the level (the 3x3 neighbourhoods of the stencils: edges repeat).
+ *        No other checks: 0 <= level < level_count, (x, y) in the level.
+ */
+static inline size_t mrgi_multires_clamped_index(const mrgi_multires_layout* layout,
+                                                 int32_t level, int32_t x, int32_t y, int32_t dx,
+                                                 int32_t dy)
+{
+  const int32_t w = layout->level_width[level], h = layout->level_height[level];
+  const int32_t nx = x + dx < 0 ? 0 : (x + dx >= w ? w - 1 : x + dx);
+  const int32_t ny = y + dy < 0 ? 0 : (y + dy >= h ? h - 1 : y + dy);
+  return mrgi_multires_index(layout, level, nx, ny);
+}
+
+/**
  * @brief Which level texel a flattened texel is.
  * @param level,x,y Receive the level and the texel's coordinates in it; each may be NULL.
  * @return 1 when (flat_x, flat_y) belongs to a level, 0 otherwise (outside

@@ -270,11 +270,7 @@ static int mrgi_voxel_gather_neighbours(const mrgi_multires_layout* layout, int3
   {
     for (int32_t dx = -1; dx <= 1; ++dx)
     {
-      int32_t x = cx + dx;
-      int32_t y = cy + dy;
-      x = x < 0 ? 0 : (x >= layout->level_width[level] ? layout->level_width[level] - 1 : x);
-      y = y < 0 ? 0 : (y >= layout->level_height[level] ? layout->level_height[level] - 1 : y);
-      const size_t t = mrgi_multires_index(layout, level, x, y);
+      const size_t t = mrgi_multires_clamped_index(layout, level, cx, cy, dx, dy);
       const float* q;
       const float* m;
       const int receiver = mrgi_voxel_receiver(position, normal, t, &q, &m);
