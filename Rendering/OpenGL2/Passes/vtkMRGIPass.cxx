@@ -10,8 +10,6 @@
 #include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
 #include "vtkMRGIAreaLightStage.h"
-#include "vtkMRGIBMRMask.h"
-#include "vtkMRGIDirectShadows.h"
 #include "vtkMRGIFrameContext.h"
 #include "vtkMRGIFullScreenStep.h"
 #include "vtkMRGIGBuffer.h"
@@ -71,7 +69,6 @@ vtkStandardNewMacro(vtkMRGIPass);
 namespace
 {
 using vtkMRGIShaderUtilities::ScopedStage;
-using vtkMRGIShaderUtilities::StagePrefix;
 
 // A step's errors and warnings are the pass's: observers of the pass (an
 // application's, ParaView's) receive them; without one they are printed,
@@ -722,56 +719,6 @@ bool vtkMRGIPass::SetShaderParameters(
 }
 
 //------------------------------------------------------------------------------
-int vtkMRGIPass::FetchStageTimings(vtkRenderWindow* window, bool wait)
-{
-  vtkRenderTimerLog* timer = window ? window->GetRenderTimer() : nullptr;
-  if (!timer || !this->StageTimingEnabled || !timer->IsSupported())
-  {
-    return 0;
-  }
-  if (!timer->GetLoggingEnabled())
-  {
-    // Between frames is the safe moment to switch logging on; the next frame
-    // is the first one timed.
-    timer->SetLoggingEnabled(true);
-    return 0;
-  }
-  if (wait)
-  {
-    // Close the frame just rendered and drain the GPU so its queries are done.
-    window->MakeCurrent();
-    timer->MarkFrame();
-    if (vtkOpenGLRenderWindow::SafeDownCast(window))
-    {
-      glFinish();
-    }
-  }
-  return vtkMRGIShaderUtilities::CollectStageTimes(timer, this->StageNames, this->StageTimes)
-    ? this->GetNumberOfStages()
-    : 0;
-}
-
-//------------------------------------------------------------------------------
-const char* vtkMRGIPass::GetStageName(int stage) const
-{
-  if (stage < 0 || stage >= this->GetNumberOfStages())
-  {
-    return nullptr;
-  }
-  return this->StageNames[static_cast<size_t>(stage)].c_str();
-}
-
-//------------------------------------------------------------------------------
-double vtkMRGIPass::GetStageTimeMilliseconds(int stage) const
-{
-  if (stage < 0 || stage >= this->GetNumberOfStages())
-  {
-    return -1.0;
-  }
-  return this->StageTimes[static_cast<size_t>(stage)];
-}
-
-//------------------------------------------------------------------------------
 bool vtkMRGIPass::ReadViewport(vtkRenderWindow* window, vtkTextureObject* texture, int components,
   vtkImageData* image, const char* what)
 {
@@ -868,82 +815,6 @@ bool vtkMRGIPass::GetSpecularGBuffer(vtkRenderWindow* window, vtkImageData* spec
 bool vtkMRGIPass::GetVPLs(vtkRenderWindow* window, vtkFloatArray* vpls)
 {
   return this->GetVPLSelection()->ReadVPLs(vtkOpenGLRenderWindow::SafeDownCast(window), vpls);
-}
-
-//------------------------------------------------------------------------------
-void vtkMRGIPass::RenderScreenSpaceEffects(const vtkMRGIFrameContext& frame, vtkTextureObject* colour)
-{
-  // SSAO as vtkSSAOPass applies it, to the direct light only: the indirect
-  // and area light added below are not ambient terms and model their own
-  // visibility. (After the direct shadows, which subtract shadowed light
-  // terms from the unshadowed colour: AO multiplies their result.)
-  if (this->SSAO)
-  {
-    ScopedStage stage(frame.Timer, "ssao");
-    const bool multires = this->SSAOResolution == ResolutionMultiresolution;
-    if (multires
-        ? this->SSAOStage->RenderMultiresolution(frame, this->SSAOKernelSize, this->SSAORadius,
-            this->SSAOBias, this->SSAOBlur, colour)
-        : this->SSAOStage->Render(frame, this->SSAOKernelSize, this->SSAORadius, this->SSAOBias,
-            this->SSAOBlur, colour))
-    {
-      this->SSAOFailureReported = false;
-    }
-    else if (!this->SSAOFailureReported)
-    {
-      this->SSAOFailureReported = true;
-      vtkErrorMacro("SSAO could not be computed (kernel size "
-        << this->SSAOKernelSize << ", radius " << this->SSAORadius << ", bias " << this->SSAOBias
-        << "): this frame has no ambient occlusion");
-    }
-  }
-  // SSGI sends the direct light as it is now (shadowed, occluded).
-  if (this->SSGI)
-  {
-    ScopedStage stage(frame.Timer, "ssgi");
-    const bool multires = this->SSGIResolution == ResolutionMultiresolution;
-    if (multires ? this->SSGIStage->RenderMultiresolution(frame, this->SSGISamples,
-                     this->SSGIRadius, this->SSGIBias, colour)
-                 : this->SSGIStage->Render(frame, this->SSGISamples, this->SSGIRadius,
-                     this->SSGIBias, colour))
-    {
-      this->SSGIFailureReported = false;
-    }
-    else if (!this->SSGIFailureReported)
-    {
-      this->SSGIFailureReported = true;
-      vtkErrorMacro("SSGI could not be computed (samples "
-        << this->SSGISamples << ", radius " << this->SSGIRadius << ", bias " << this->SSGIBias
-        << "): this frame has no screen-space bounce");
-    }
-  }
-}
-
-//------------------------------------------------------------------------------
-bool vtkMRGIPass::SetScreenSpacePreset(int preset)
-{
-  mrgi_screen_space_preset_params p;
-  mrgi_error err;
-  if (mrgi_screen_space_preset_get(preset, &p, &err) != MRGI_OK)
-  {
-    vtkErrorMacro("SetScreenSpacePreset: " << err.message);
-    return false;
-  }
-  this->SetSSAOKernelSize(p.ssao_kernel_size);
-  this->SetSoftShadowKernelSize(p.shadow_kernel_side);
-  this->SetSSGISamples(p.ssgi_samples);
-  this->SetSSAOResolution(p.ssao_resolution);
-  this->SetShadowResolution(p.shadow_resolution);
-  this->SetSSGIResolution(p.ssgi_resolution);
-  for (vtkMRGIBMRMask* mask : { this->SSAOStage->GetBMRMask(), this->SSGIStage->GetBMRMask(),
-         this->GetDirectShadowStage()->GetBMRMask() })
-  {
-    mask->SetDepthThreshold(p.bmr_depth_threshold);
-    mask->SetNormalThreshold(p.bmr_normal_threshold);
-  }
-  this->ScreenSpacePreset = preset;
-  this->Modified();
-  return true;
 }
 
 //------------------------------------------------------------------------------
