@@ -119,6 +119,8 @@ int main()
   vtkTextureObject* selection = mr->GetSelectionTexture();
   MRGI_TEST_CHECK(flags0 && flags0->GetInternalFormat(VTK_FLOAT, 4, false) == GL_R16F);
   MRGI_TEST_CHECK(selection && selection->GetInternalFormat(VTK_FLOAT, 4, false) == GL_R8);
+  MRGI_TEST_CHECK(mr->GetMipmapTexture(0, MRGI_MULTIRES_TEX_DEPTH));
+  MRGI_TEST_CHECK(!mr->GetMipmapTexture(0, MRGI_MULTIRES_TEX_NORMAL_MIN));
   MRGI_TEST_CHECK(!mr->GetMipmapTexture(0, MRGI_MULTIRES_TEX_NORMAL_MAX));
   MRGI_TEST_CHECK(mr->GetNumberOfLevels() < 2 || mr->GetMipmapTexture(1, MRGI_MULTIRES_TEX_NORMAL_MAX));
 

@@ -248,7 +248,8 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
       auto& level = in.Levels[static_cast<size_t>(i)];
       for (int slot = 0; slot < MRGI_MULTIRES_TEX_COUNT; ++slot)
       {
-        level[static_cast<size_t>(slot)] = i == 0 && slot == MRGI_MULTIRES_TEX_NORMAL_MAX
+        // Level 0 has no normal textures: its passes read the G-buffer's.
+        level[static_cast<size_t>(slot)] = i == 0 && slot != MRGI_MULTIRES_TEX_DEPTH
           ? nullptr
           : MakeFloatTexture(window, layout.level_width[i], layout.level_height[i]);
       }
@@ -271,7 +272,8 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
       for (int slot = 0; slot <= MRGI_MULTIRES_TEX_COUNT; ++slot)
       {
         allocated = allocated &&
-          (level[static_cast<size_t>(slot)] || (i == 0 && slot == MRGI_MULTIRES_TEX_NORMAL_MAX));
+          (level[static_cast<size_t>(slot)] || (i == 0 && slot != MRGI_MULTIRES_TEX_DEPTH &&
+                                                  slot != MRGI_MULTIRES_TEX_COUNT));
       }
       const auto& receivers = in.Receivers[static_cast<size_t>(i)];
       allocated = allocated && (i == 0 || (receivers[0] && receivers[1]));
@@ -321,8 +323,8 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
   {
     ScopedStage step(timer, "select.mipmap0");
     auto& level = in.Levels[0];
-    // One normal texture at level 0 (min = max; NORMAL_MAX stays unused).
-    steps.Targets({ level[MRGI_MULTIRES_TEX_DEPTH], level[MRGI_MULTIRES_TEX_NORMAL_MIN] }, width, height);
+    // Depth only: level 0's normal range is the G-buffer normal (min = max).
+    steps.Targets({ level[MRGI_MULTIRES_TEX_DEPTH] }, width, height);
     vtkShaderProgram* p = programs[MipmapBase];
     bind(p, { position, normal });
     const int offset[2] = { x0, y0 };
@@ -344,17 +346,24 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
       layout.level_width[i], layout.level_height[i]);
     const int stage = i == 1 ? MipmapReduceLevel0 : MipmapReduce;
     vtkShaderProgram* p = programs[stage];
-    vtkTextureObject* normalMax = fine[i == 1 ? MRGI_MULTIRES_TEX_NORMAL_MIN : MRGI_MULTIRES_TEX_NORMAL_MAX];
-    bind(p, { fine[MRGI_MULTIRES_TEX_DEPTH], fine[MRGI_MULTIRES_TEX_NORMAL_MIN] });
+    // From level 0, the normals are the G-buffer's (one per pixel).
+    vtkTextureObject* normalMin = i == 1 ? normal : fine[MRGI_MULTIRES_TEX_NORMAL_MIN];
+    vtkTextureObject* normalMax = fine[MRGI_MULTIRES_TEX_NORMAL_MAX];
+    bind(p, { fine[MRGI_MULTIRES_TEX_DEPTH], normalMin });
     if (i != 1)
     {
       normalMax->Activate();
       p->SetUniformi("mrgiInput2", normalMax->GetTextureUnit());
     }
+    const int offset[2] = { x0, y0 };
     const int size[2] = { layout.level_width[i - 1], layout.level_height[i - 1] };
+    if (i == 1)
+    {
+      p->SetUniform2i("mrgiOffset", offset); // the G-buffer's viewport origin
+    }
     p->SetUniform2i("mrgiSize", size);
     quads[stage]->Render();
-    unbind({ fine[MRGI_MULTIRES_TEX_DEPTH], fine[MRGI_MULTIRES_TEX_NORMAL_MIN] });
+    unbind({ fine[MRGI_MULTIRES_TEX_DEPTH], normalMin });
     if (i != 1)
     {
       normalMax->Deactivate();
@@ -380,11 +389,17 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     {
       finer = in.Levels[std::min(1, levels - 1)][MRGI_MULTIRES_TEX_DEPTH];
     }
-    // Level 0: one normal texture (FlagsLevel0 reads mrgiInput1 only; the
+    // Level 0: the G-buffer normal (FlagsLevel0 reads mrgiInput1 only; the
     // selection, neither read nor a target here, stands in for the unread
-    // mrgiInput2 since level 0 has no NORMAL_MAX texture).
+    // mrgiInput2 since level 0 has no normal textures).
+    vtkTextureObject* normalMin = i == 0 ? normal : level[MRGI_MULTIRES_TEX_NORMAL_MIN];
     vtkTextureObject* normalMax = i == 0 ? in.FlatSelection : level[MRGI_MULTIRES_TEX_NORMAL_MAX];
-    bind(p, { level[MRGI_MULTIRES_TEX_DEPTH], level[MRGI_MULTIRES_TEX_NORMAL_MIN], normalMax, finer });
+    bind(p, { level[MRGI_MULTIRES_TEX_DEPTH], normalMin, normalMax, finer });
+    const int offset[2] = { x0, y0 };
+    if (i == 0)
+    {
+      p->SetUniform2i("mrgiOffset", offset); // the G-buffer's viewport origin
+    }
     const int size[2] = { layout.level_width[i], layout.level_height[i] };
     const int childSize[2] = { layout.level_width[i > 0 ? i - 1 : 0],
       layout.level_height[i > 0 ? i - 1 : 0] };
@@ -396,7 +411,7 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     p->SetUniformi("mrgiFinestLevel", finest);
     p->SetUniformi("mrgiBalance", this->Balance ? 1 : 0);
     quads[stage]->Render();
-    unbind({ level[MRGI_MULTIRES_TEX_DEPTH], level[MRGI_MULTIRES_TEX_NORMAL_MIN], normalMax, finer });
+    unbind({ level[MRGI_MULTIRES_TEX_DEPTH], normalMin, normalMax, finer });
   }
   // 4. Selection (nichols-shopf-wyman-2009 3.2.1): one draw per level from
   // the finest that gathers, into that level's rectangle of the flattened

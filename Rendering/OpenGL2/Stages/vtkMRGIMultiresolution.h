@@ -185,7 +185,8 @@ public:
   /**
    * Level `level`'s min-max mipmap texture `which` (MRGI_MULTIRES_TEX_*:
    * depth, normal min, normal max) after Update(); null otherwise, and for
-   * normal max at level 0 (level 0 stores one normal: min = max).
+   * both normals at level 0 (a pixel's normal range is its G-buffer normal,
+   * min = max, which the passes reading level 0 normalize where they read it).
    */
   vtkTextureObject* GetMipmapTexture(int level, int which) const;
 

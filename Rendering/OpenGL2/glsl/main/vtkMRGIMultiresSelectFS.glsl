@@ -2,11 +2,14 @@
 // mrgi_multires_mipmap_build, mrgi_multires_flags_compute,
 // mrgi_multires_select_one_pass). One shader, four stages chosen by
 // MRGI_MR_STAGE; every rule and its float order mirror the C code:
-// 0: level-0 mipmap from the G-buffer (validity, depth, unit normal, depth
-//    derivative g). A pixel's normal range is the normal itself, so level 0
-//    stores one normal texture (min = max), not two: one target less to
-//    write, and the flags of level 0 (stage 2 with MRGI_MR_LEVEL0) read one
-//    normal per neighbour instead of two;
+// 0: level-0 mipmap from the G-buffer (validity, depth, depth derivative g).
+//    A pixel's normal range is its unit normal itself (min = max), and the
+//    passes that read level 0's normals (stage 1 and stage 2 with
+//    MRGI_MR_LEVEL0) normalize the G-buffer's normal where they read it
+//    (mrgiUnitNormal) instead of reading a stored copy: level 0 has no
+//    normal texture, one window-sized RGBA32F texture less to allocate and
+//    to write (on llvmpipe, allocation zero-fills host memory: the first
+//    frame's largest cost, Documentation/Multiresolution.md "Cold start");
 // 1: level i mipmap, 2x2 min/max/OR of level i-1 (children clamped to the level);
 // 2: flags of level i (3x3 window, refinement from level i-1's flags, balance);
 // 3: the one-pass selection of nichols-shopf-wyman-2009 3.2.1, drawn once
@@ -18,7 +21,7 @@ uniform sampler2D mrgiInput0;
 uniform sampler2D mrgiInput1;
 uniform sampler2D mrgiInput2;
 uniform sampler2D mrgiInput3;
-uniform ivec2 mrgiOffset;      // stage 0: G-buffer texel of pixel (0, 0); stage 3: level offset in the flattened layout
+uniform ivec2 mrgiOffset;      // stages 0-2 at level 0: G-buffer texel of pixel (0, 0); stage 3: level offset in the flattened layout
 uniform ivec2 mrgiSize;        // size of the level read (stages 0-2: level i-1 or i, see below)
 uniform ivec2 mrgiChildSize;   // stage 2: size of level i-1
 uniform vec2 mrgiPixelSize;    // (a, b): s(d) = max(a |d| + b, MRGI_MULTIRES_MIN_PIXEL_SIZE)
@@ -29,6 +32,23 @@ uniform int mrgiFinestLevel;   // f
 uniform int mrgiBalance;
 uniform int mrgiCoarsest;      // stage 3: whether level i is the coarsest (no parent)
 //VTK::Output::Dec
+
+// The unit normal of mrgi_multires.h section 2, N * inversesqrt(max(N.N,
+// MRGI_MULTIRES_MIN_PIXEL_SIZE)), in the C twin's float order (a zero
+// normal stays zero).
+vec3 mrgiUnitNormal(vec3 N)
+{
+  float length2 = N.x * N.x + N.y * N.y + N.z * N.z;
+  if (!(length2 > MRGI_MULTIRES_MIN_PIXEL_SIZE)) { length2 = MRGI_MULTIRES_MIN_PIXEL_SIZE; }
+  return N * (1.0 / sqrt(length2));
+}
+#ifdef MRGI_MR_LEVEL0
+// Level 0's normal at pixel s (mrgiInput1 is the G-buffer normal there).
+vec3 mrgiLevel0Normal(ivec2 s)
+{
+  return mrgiUnitNormal(texelFetch(mrgiInput1, s + mrgiOffset, 0).xyz);
+}
+#endif
 
 #if MRGI_MR_STAGE == 0
 bool mrgiValid(ivec2 p, out float d, out vec3 n)
@@ -66,12 +86,8 @@ void main()
     // level 0 (stage 1 and stage 2 with MRGI_MR_LEVEL0) skip invalid
     // pixels, as the C twin's (+FLT_MAX, -FLT_MAX) range does.
     gl_FragData[0] = vec4(MRGI_MULTIRES_FLT_MAX, -MRGI_MULTIRES_FLT_MAX, 0.0, float(MRGI_MULTIRES_INVALID_BIT));
-    gl_FragData[1] = vec4(vec3(MRGI_MULTIRES_FLT_MAX), 0.0);
     return;
   }
-  float length2 = N.x * N.x + N.y * N.y + N.z * N.z;
-  if (!(length2 > MRGI_MULTIRES_MIN_PIXEL_SIZE)) { length2 = MRGI_MULTIRES_MIN_PIXEL_SIZE; }
-  vec3 n = N * (1.0 / sqrt(length2));
   float g = 0.0;
   for (int dy = -1; dy <= 1; ++dy)
   {
@@ -89,7 +105,6 @@ void main()
     }
   }
   gl_FragData[0] = vec4(dp, dp, g, float(MRGI_MULTIRES_VALID_BIT));
-  gl_FragData[1] = vec4(n, 0.0);
 #elif MRGI_MR_STAGE == 1
   vec4 a = vec4(MRGI_MULTIRES_FLT_MAX, -MRGI_MULTIRES_FLT_MAX, 0.0, 0.0);
   vec3 lo = vec3(MRGI_MULTIRES_FLT_MAX);
@@ -106,9 +121,10 @@ void main()
       a.z = max(a.z, depth.z);
       bits |= int(depth.w);
 #ifdef MRGI_MR_LEVEL0
-      // Level 0 holds one normal per pixel (min = max); invalid pixels widen nothing.
+      // Level 0: one normal per pixel (min = max), from the G-buffer;
+      // invalid pixels widen nothing.
       bool valid = (int(depth.w) & MRGI_MULTIRES_VALID_BIT) != 0;
-      vec3 n = texelFetch(mrgiInput1, s, 0).xyz;
+      vec3 n = mrgiLevel0Normal(s);
       lo = min(lo, valid ? n : vec3(MRGI_MULTIRES_FLT_MAX));
       hi = max(hi, valid ? n : vec3(-MRGI_MULTIRES_FLT_MAX));
 #else
@@ -138,9 +154,10 @@ void main()
         ivec2 s = clamp(t + ivec2(dx, dy), ivec2(0), mrgiSize - 1);
         g = max(g, texelFetch(mrgiInput0, s, 0).z);
 #ifdef MRGI_MR_LEVEL0
-        // One normal per pixel (min = max); invalid pixels widen nothing.
+        // One normal per pixel (min = max), from the G-buffer; invalid
+        // pixels widen nothing.
         bool valid = (int(texelFetch(mrgiInput0, s, 0).w) & MRGI_MULTIRES_VALID_BIT) != 0;
-        vec3 n = texelFetch(mrgiInput1, s, 0).xyz;
+        vec3 n = mrgiLevel0Normal(s);
         lo = min(lo, valid ? n : vec3(MRGI_MULTIRES_FLT_MAX));
         hi = max(hi, valid ? n : vec3(-MRGI_MULTIRES_FLT_MAX));
 #else
