@@ -615,7 +615,7 @@ const std::vector<OptionSection>& OptionTable()
         { { "--ism-pcf" }, "on|off", "ism: 2x2 percentage-closer filtering (default on)",
           OnOff(&Options::ISMFiltering) },
         { { "--ism-texel-bias" }, "T",
-          "ism: depth bias in texel footprints, 0..16 (default 1.5; 3 for dense maps)",
+          "ism: depth bias in texel footprints, 0..16 (default 1; 3 for dense maps)",
           Number(
             &Options::ISMTexelBias, [](double b) { return b >= 0 && b <= MRGI_ISM_MAX_BIAS; },
             "expected a number in [0, 16]") },
