@@ -558,7 +558,8 @@ int main(int argc, char* argv[])
   mrgi->GetIndirectLightStage()->SetISMFiltering(o.ISMFiltering);
   if (!std::isnan(o.ISMTexelBias))
     mrgi->GetIndirectLightStage()->SetISMTexelBias(o.ISMTexelBias);
-  mrgi->GetIndirectLightStage()->GetImperfectShadowMaps()->SetPushPull(o.ISMPushPull);
+  mrgi->GetIndirectLightStage()->GetImperfectShadowMaps()->SetPushPullLevels(
+    static_cast<int>(o.ISMPushPullLevels));
   mrgi->SetIndirectStrength(o.IndirectStrength);
   mrgi->SetToneMapping(o.ToneMapping);
   mrgi->SetAutoExposure(o.AutoExposure);

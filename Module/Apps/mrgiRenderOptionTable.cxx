@@ -615,13 +615,14 @@ const std::vector<OptionSection>& OptionTable()
         { { "--ism-pcf" }, "on|off", "ism: 2x2 percentage-closer filtering (default on)",
           OnOff(&Options::ISMFiltering) },
         { { "--ism-texel-bias" }, "T",
-          "ism: depth bias in texel footprints, 0..16 (default 1; 3 for dense maps)",
+          "ism: depth bias in texel footprints, 0..16 (default 1.5; 3 for dense maps)",
           Number(
             &Options::ISMTexelBias, [](double b) { return b >= 0 && b <= MRGI_ISM_MAX_BIAS; },
             "expected a number in [0, 16]") },
-        { { "--ism-push-pull" }, "on|off",
-          "ism: push-pull hole filling of the maps (default off: false shadows on sparse maps)",
-          OnOff(&Options::ISMPushPull) },
+        { { "--ism-push-pull" }, "LEVELS",
+          "ism: push-pull hole filling over LEVELS mip levels of each tile, 0..16 (default 1: "
+          "holes filled from their 2x2 block; 0: off)",
+          Integer(&Options::ISMPushPullLevels, 0, MRGI_ISM_MAX_PUSH_PULL_LEVELS) },
         { { "--indirect-strength" }, "S", "factor on the indirect light (default 1)",
           Number(
             &Options::IndirectStrength, [](double s) { return s >= 0 && s <= 1e6; },

@@ -11,7 +11,7 @@
 #include "vtkSmartPointer.h" // For vtkSmartPointer
 
 #include "mrgi_exposure.h" // For MRGI_EXPOSURE_KEY
-#include "mrgi_ism_atlas.h" // For MRGI_ISM_DEFAULT_PUSH_PULL
+#include "mrgi_ism_atlas.h" // For MRGI_ISM_DEFAULT_PUSH_PULL_LEVELS
 #include "mrgi_reference.h" // For the ground truth's defaults
 
 #include <cmath>
@@ -117,7 +117,7 @@ struct Options
   double ISMBias = std::nan(""); // not given: MRGI_ISM_DEFAULT_RELATIVE_BIAS
   bool ISMFiltering = true;
   double ISMTexelBias = std::nan(""); // not given: MRGI_ISM_DEFAULT_TEXEL_BIAS
-  bool ISMPushPull = MRGI_ISM_DEFAULT_PUSH_PULL != 0;
+  long long ISMPushPullLevels = MRGI_ISM_DEFAULT_PUSH_PULL_LEVELS;
   double IndirectStrength = 1.0;
   bool IndirectOnly = false;
   bool ToneMapping = false;

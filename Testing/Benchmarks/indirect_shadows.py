@@ -10,9 +10,9 @@ the default adaptive ones, against the CPU ground truth
 (vtkMRGIReferenceRenderer, secondary visibility on, relative error target
 0, --passes passes; its own noise is printed and written to the page).
 
-Where the ISM stage has SetPushPull, an extra row "ism, session-8 lookup"
-renders ISM with the lookup defaults before the corridor fix (push-pull on, texel
-bias 3) in the same run, for a before/after ratio on one machine load.
+Where the ISM stage has SetPushPullLevels, an extra row renders ISM without
+push-pull at texel bias 1 (the defaults before session 12's one-level mean
+push-pull) in the same run, for a before/after ratio on one machine load.
 
 Reports relative RMS per pixel and after 4x4 box averaging (mrgi-compare,
 the C core's metric) and the median wall time of a frame. On the corridors
@@ -48,6 +48,7 @@ from doc_markers import replace_between_markers  # noqa: E402
 import mrgi  # noqa: E402
 
 INDIRECT_FULL = 1
+NO_PUSH_PULL = "ism, no push-pull, texel bias 1"
 SCENES = "cornell-spot,bunny-cornell,corridor,corridor-large,corner,u-shape"
 DESCRIPTIONS = {
     "corridor": "closed 12 m corridor, statue lit only indirectly (RIHKS11 fig. 7)",
@@ -115,19 +116,19 @@ def run_scene(scene, args, compare_tool, scratch, images):
         modes.insert(2, ("ism uniform points", modes[1][1], 0))
     stage = gi.GetIndirectLightStage() if hasattr(gi, "GetIndirectLightStage") else None
     ism_stage = stage.GetImperfectShadowMaps() if stage is not None else None
-    old_lookup = ism_stage is not None and hasattr(ism_stage, "SetPushPull")
+    old_lookup = ism_stage is not None and hasattr(ism_stage, "SetPushPullLevels")
     if old_lookup and len(modes) > 1:
-        modes.insert(2, ("ism, session-8 lookup (push-pull, texel bias 3)", modes[1][1], None))
-    defaults = (ism_stage.GetPushPull(), stage.GetISMTexelBias()) if old_lookup else None
+        modes.insert(2, (NO_PUSH_PULL, modes[1][1], None))
+    defaults = (ism_stage.GetPushPullLevels(), stage.GetISMTexelBias()) if old_lookup else None
     for label, mode, point_mode in modes:
         if hasattr(gi, "SetIndirectVisibility"):
             gi.SetIndirectVisibility(mode)
             if hasattr(gi, "SetISMPointMode"):
                 gi.SetISMPointMode(2 if point_mode is None else point_mode)
         if old_lookup:
-            old = "session-8" in label
-            ism_stage.SetPushPull(True if old else defaults[0])
-            stage.SetISMTexelBias(3.0 if old else defaults[1])
+            old = label == NO_PUSH_PULL
+            ism_stage.SetPushPullLevels(0 if old else defaults[0])
+            stage.SetISMTexelBias(1.0 if old else defaults[1])
         window.Render()
         buffer = mb.vtkImageData()
         assert gi.GetIndirectBuffer(window, buffer)
@@ -143,7 +144,7 @@ def run_scene(scene, args, compare_tool, scratch, images):
         if region is not None and region.any():
             row["region"] = float(mb.boxes(image).mean(axis=2)[region].mean() /
                                   mb.boxes(ref).mean(axis=2)[region].mean())
-        if point_mode is None and "session-8" not in label:
+        if point_mode is None and label != NO_PUSH_PULL:
             mb.write_display(image, os.path.join(images, "indirectshadows-%s-%s.png" % (scene, tag)), scale)
         rows.append(row)
         print("%-8s %-20s per pixel %.4f  4x4 %.4f  frame %.1f ms%s" % (
@@ -165,7 +166,7 @@ def run_scene(scene, args, compare_tool, scratch, images):
             r["label"], r["pixel"], r["box"], r["frame_ms"],
             (" %.2f |" % r["region"] if "region" in r else " - |") if region is not None else ""))
     pictures = [r["label"] for r in rows
-                if "uniform" not in r["label"] and "session-8" not in r["label"]] + ["truth"]
+                if "uniform" not in r["label"] and r["label"] != NO_PUSH_PULL] + ["truth"]
     lines += ["", " ".join("![%s %s](images/indirectshadows-%s-%s.png)" % (scene, p, scene, p)
                            for p in pictures)]
     window.Finalize()

@@ -26,8 +26,8 @@
  *    calls visible (missed) and visible terms it calls occluded (false
  *    shadow), inside the region and everywhere, as % of sum E_exact.
  * Knobs (environment, for sweeps): ISM_TB / ISM_RB texel / relative bias
- * (default: the core's defaults); ISM_PP 0/1 the twin's push-pull (default
- * MRGI_ISM_DEFAULT_PUSH_PULL); ISM_PULL 0/1/2 an extra push-pull after the render with the pull
+ * (default: the core's defaults); ISM_PP the twin's push-pull levels, 0 off
+ * (default MRGI_ISM_DEFAULT_PUSH_PULL_LEVELS); ISM_PULL 0/1/2 an extra push-pull after the render with the pull
  * taking the min / mean / max of the valid children, over ISM_PPL levels
  * (default all); ISM_NO k: look up from x + k footprints along x's normal.
  * Build and run (after scripts/build.sh):
@@ -303,7 +303,7 @@ int main(int argc, char** argv)
   const size_t scratch_count = mrgi_ism_push_pull_scratch_size(&layout);
   float* depth = malloc(sizeof(float) * (size_t)layout.width * (size_t)layout.height);
   float* scratch = malloc(sizeof(float) * scratch_count);
-  if (mrgi_ism_atlas_render(&layout, points, total, vpls, getenv("ISM_PP") ? atoi(getenv("ISM_PP")) : MRGI_ISM_DEFAULT_PUSH_PULL, depth, scratch, scratch_count, &err) !=
+  if (mrgi_ism_atlas_render(&layout, points, total, vpls, getenv("ISM_PP") ? atoi(getenv("ISM_PP")) : MRGI_ISM_DEFAULT_PUSH_PULL_LEVELS, depth, scratch, scratch_count, &err) !=
     MRGI_OK)
   {
     fprintf(stderr, "%s\n", err.message);

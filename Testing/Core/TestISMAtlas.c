@@ -158,9 +158,46 @@ static void test_push_pull(void)
   static float before[96 * 64];
   memcpy(before, atlas, sizeof(atlas));
   mrgi_error err;
-  MRGI_CHECK(mrgi_ism_push_pull(&L, atlas, scratch, 10, &err) == MRGI_ERR_INVALID_ARGUMENT);
-  MRGI_CHECK(
-    mrgi_ism_push_pull(&L, atlas, scratch, sizeof(scratch) / sizeof(float), &err) == MRGI_OK);
+  const size_t room = sizeof(scratch) / sizeof(float);
+  MRGI_CHECK(mrgi_ism_push_pull(&L, atlas, 1, scratch, 10, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_ism_push_pull(&L, atlas, 0, scratch, room, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(strstr(err.message, "push-pull levels") != NULL);
+  MRGI_CHECK(mrgi_ism_push_pull(&L, atlas, MRGI_ISM_MAX_PUSH_PULL_LEVELS + 1, scratch, room, &err) ==
+    MRGI_ERR_INVALID_ARGUMENT);
+
+  /* One level: a hole is filled exactly when its 2x2 block holds a valid
+   * texel, with the mean of the block's valid depths (summed in the block's
+   * order, section 4); valid texels keep their depth. */
+  MRGI_CHECK(mrgi_ism_push_pull(&L, atlas, 1, scratch, room, &err) == MRGI_OK);
+  int filled = 0;
+  for (int Y = 0; Y < L.height; ++Y)
+    for (int X = 0; X < L.width; ++X)
+    {
+      const int bx = X & ~1, by = Y & ~1;
+      const float q[4] = { before[by * L.width + bx], before[by * L.width + bx + 1],
+        before[(by + 1) * L.width + bx], before[(by + 1) * L.width + bx + 1] };
+      float sum = 0.0f;
+      int count = 0;
+      for (int i = 0; i < 4; ++i)
+        if (q[i] < MRGI_ISM_EMPTY_DEPTH)
+        {
+          sum += q[i];
+          ++count;
+        }
+      const float own = before[Y * L.width + X];
+      const float expected = own < MRGI_ISM_EMPTY_DEPTH ? own
+        : count > 0                                    ? sum / (float)count
+                                                       : MRGI_ISM_EMPTY_DEPTH;
+      MRGI_CHECK(atlas[Y * L.width + X] == expected);
+      filled += !(own < MRGI_ISM_EMPTY_DEPTH) && count > 1;
+    }
+  MRGI_CHECK(filled > 0); /* some holes got a mean of two or more depths */
+
+  /* All levels: every texel of a tile with a valid texel is filled from
+   * its own tile; empty tiles stay empty. */
+  memcpy(atlas, before, sizeof(atlas));
+  MRGI_CHECK(mrgi_ism_push_pull(&L, atlas, MRGI_ISM_MAX_PUSH_PULL_LEVELS, scratch, room, &err) ==
+    MRGI_OK);
   for (int Y = 0; Y < L.height; ++Y)
     for (int X = 0; X < L.width; ++X)
     {
@@ -186,7 +223,7 @@ static void test_bad_sizes(void)
   MRGI_CHECK(mrgi_ism_atlas_layout_make(1 << 20, 1024, &L, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "atlas") != NULL);
   MRGI_CHECK(mrgi_ism_atlas_layout_make(16, 1 << 20, &L, &err) == MRGI_ERR_INVALID_ARGUMENT);
-  MRGI_CHECK(mrgi_ism_push_pull(NULL, atlas, scratch, 1, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_ism_push_pull(NULL, atlas, 1, scratch, 1, &err) == MRGI_ERR_INVALID_ARGUMENT);
 }
 
 /* mrgi_ism_atlas_render (section 5): point i goes to VPL i mod V, the
@@ -223,9 +260,9 @@ static void test_render(void)
     valid += depth[k] < MRGI_ISM_EMPTY_DEPTH;
   MRGI_CHECK(valid == 1);
   MRGI_CHECK(depth[texel] == 1.5f);
-  /* Push-pull: tile 0 fills with 1.5, tiles 1 and 2 stay empty. */
-  MRGI_CHECK(
-    mrgi_ism_atlas_render(&L, pts, 6, v, 1, depth, pp_scratch, 128, NULL) == MRGI_OK);
+  /* Push-pull over all levels: tile 0 fills with 1.5, tiles 1 and 2 stay empty. */
+  MRGI_CHECK(mrgi_ism_atlas_render(&L, pts, 6, v, MRGI_ISM_MAX_PUSH_PULL_LEVELS, depth, pp_scratch,
+               128, NULL) == MRGI_OK);
   for (int y = 0; y < L.height; ++y)
     for (int x = 0; x < L.width; ++x)
     {
@@ -236,8 +273,16 @@ static void test_render(void)
       else
         MRGI_CHECK(d == MRGI_ISM_EMPTY_DEPTH);
     }
-  /* Errors: too little scratch, negative count, NULL arrays. */
+  /* One level: only the 2x2 block around the point fills. */
+  MRGI_CHECK(mrgi_ism_atlas_render(&L, pts, 6, v, 1, depth, pp_scratch, 128, NULL) == MRGI_OK);
+  valid = 0;
+  for (int k = 0; k < L.width * L.height; ++k)
+    valid += depth[k] == 1.5f;
+  MRGI_CHECK(valid == 4);
+  /* Errors: too little scratch, negative count or levels, NULL arrays. */
   mrgi_error err;
+  MRGI_CHECK(mrgi_ism_atlas_render(&L, pts, 6, v, -1, depth, pp_scratch, 128, &err) != MRGI_OK);
+  MRGI_CHECK(strstr(err.message, "push-pull levels") != NULL);
   MRGI_CHECK(mrgi_ism_atlas_render(&L, pts, 6, v, 1, depth, pp_scratch, 4, &err) != MRGI_OK);
   MRGI_CHECK(strstr(err.message, "scratch") != NULL);
   MRGI_CHECK(mrgi_ism_atlas_render(&L, pts, -1, v, 0, depth, NULL, 0, &err) != MRGI_OK);

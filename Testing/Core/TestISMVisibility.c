@@ -49,13 +49,22 @@ static float* atlas_new(const mrgi_ism_atlas_layout* L, float value)
   return depth;
 }
 
-static void push_pull(const mrgi_ism_atlas_layout* L, float* depth)
+/* Push-pull over `levels` levels (0: none). */
+static void push_pull_levels(const mrgi_ism_atlas_layout* L, float* depth, int levels)
 {
+  if (levels == 0)
+    return;
   const size_t n = mrgi_ism_push_pull_scratch_size(L);
   float* scratch = (float*)malloc(sizeof(float) * n);
   MRGI_CHECK(scratch);
-  MRGI_CHECK(mrgi_ism_push_pull(L, depth, scratch, n, NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_ism_push_pull(L, depth, levels, scratch, n, NULL) == MRGI_OK);
   free(scratch);
+}
+
+/* Push-pull over the whole tile (dense tiles). */
+static void push_pull(const mrgi_ism_atlas_layout* L, float* depth)
+{
+  push_pull_levels(L, depth, MRGI_ISM_MAX_PUSH_PULL_LEVELS);
 }
 
 /* VPL at the origin facing +z; receiver plane z = 2 (|x|, |y| <= 4) and an
@@ -182,8 +191,8 @@ static void test_bias_no_self_shadow(void)
  * and they stayed lit. (2) A sparse open scene gets no false shadows: 256
  * points on the plane z = 2 and 16 on a small square z = 0.5 near x = 1.6;
  * receivers on the plane away from the square's shadow (|x| <= 1) stay
- * visible; push-pull (the old default) spreads the square's depth into the
- * plane's holes and shadows many of them. */
+ * visible with the default push-pull levels; push-pull over the whole tile
+ * spreads the square's depth into the plane's holes and shadows many of them. */
 static void test_sparse_defaults(void)
 {
   mrgi_ism_atlas_layout L;
@@ -195,8 +204,7 @@ static void test_sparse_defaults(void)
   uint32_t seed = 21u;
   float* depth = atlas_new(&L, MRGI_ISM_EMPTY_DEPTH);
   scatter_rect(&L, depth, vpld, nd, 1.7, -0.3, 0.3, -0.3, 0.3, 2000, &seed);
-  if (MRGI_ISM_DEFAULT_PUSH_PULL)
-    push_pull(&L, depth);
+  push_pull_levels(&L, depth, MRGI_ISM_DEFAULT_PUSH_PULL_LEVELS);
   int lit = 0;
   for (int i = 0; i < 200; ++i)
   {
@@ -208,27 +216,29 @@ static void test_sparse_defaults(void)
   MRGI_CHECK(lit == 0);
   free(depth);
 
-  int shadowed[2] = { 0, 0 };
-  for (int pp = 0; pp < 2; ++pp)
+  /* No push-pull, the default levels, the whole tile. */
+  const int variants[3] = { 0, MRGI_ISM_DEFAULT_PUSH_PULL_LEVELS, MRGI_ISM_MAX_PUSH_PULL_LEVELS };
+  int shadowed[3] = { 0, 0, 0 };
+  for (int v = 0; v < 3; ++v)
   {
     depth = atlas_new(&L, MRGI_ISM_EMPTY_DEPTH);
     seed = 22u;
     scatter_rect(&L, depth, vpld, nd, 2.0, -4.0, 4.0, -4.0, 4.0, 256, &seed);
     scatter_rect(&L, depth, vpld, nd, 0.5, 1.5, 1.7, -0.1, 0.1, 16, &seed);
-    if (pp)
-      push_pull(&L, depth);
+    push_pull_levels(&L, depth, variants[v]);
     for (int i = 0; i < 1000; ++i)
     {
       const float x[3] = { (float)(-1.0 + 2.0 * test_uniform(&seed)),
         (float)(-3.0 + 6.0 * test_uniform(&seed)), 2.0f };
-      shadowed[pp] += mrgi_ism_visibility(&L, depth, 0, vpl, n, x, &p) < 1.0f;
+      shadowed[v] += mrgi_ism_visibility(&L, depth, 0, vpl, n, x, &p) < 1.0f;
     }
     free(depth);
   }
-  printf("sparse open scene: %d of 1000 unoccluded receivers shadowed without push-pull, %d with\n",
-    shadowed[0], shadowed[1]);
-  MRGI_CHECK(shadowed[MRGI_ISM_DEFAULT_PUSH_PULL != 0] <= 20);
-  MRGI_CHECK(shadowed[1] > 50); /* what the old default did (93 of 1000) */
+  printf("sparse open scene: of 1000 unoccluded receivers %d shadowed without push-pull, %d with "
+         "the default %d level(s), %d over the whole tile\n",
+    shadowed[0], shadowed[1], MRGI_ISM_DEFAULT_PUSH_PULL_LEVELS, shadowed[2]);
+  MRGI_CHECK(shadowed[0] <= 20 && shadowed[1] <= 20);
+  MRGI_CHECK(shadowed[2] > shadowed[1]); /* why few levels: the square's depth spreads */
 }
 
 /* PCF at the tile border clamps to the tile: tile 0 empty (visible), its

@@ -124,9 +124,12 @@ void RenderParity()
   for (const auto& c : cases)
   {
     const int V = c[0], T = c[1], N = c[2];
-    // Push-pull (off by default) on in every other case: both atlases match their twins.
-    const bool pushPull = caseIndex++ % 2 == 0;
-    ism->SetPushPull(pushPull);
+    // Push-pull off, over the default levels, over 2 levels and over the
+    // whole tile in turn: every atlas matches its twin.
+    const int pushPullChoices[4] = { 0, MRGI_ISM_DEFAULT_PUSH_PULL_LEVELS, 2,
+      MRGI_ISM_MAX_PUSH_PULL_LEVELS };
+    const int pushPull = pushPullChoices[caseIndex++ % 4];
+    ism->SetPushPullLevels(pushPull);
     std::vector<mrgi_vpl> vpls(static_cast<size_t>(V));
     for (int l = 0; l < V; ++l)
     {
@@ -171,7 +174,7 @@ void RenderParity()
     std::vector<float> scratch(mrgi_ism_push_pull_scratch_size(&L));
     MRGI_TEST_CHECK(mrgi_ism_atlas_render(&L, points.data(), N, twinVPLs.data(), 0, raw.data(),
                       nullptr, 0, nullptr) == MRGI_OK);
-    MRGI_TEST_CHECK(mrgi_ism_atlas_render(&L, points.data(), N, twinVPLs.data(), pushPull ? 1 : 0, twin.data(),
+    MRGI_TEST_CHECK(mrgi_ism_atlas_render(&L, points.data(), N, twinVPLs.data(), pushPull, twin.data(),
                       scratch.data(), scratch.size(), nullptr) == MRGI_OK);
 
     // Texel by texel: a texel differs when one atlas is empty and the other
@@ -391,8 +394,15 @@ void UpdateScene()
   }
   std::printf("atlas %d x %d: %d of %lld texels valid\n", ism->GetLayout().width,
     ism->GetLayout().height, valid, static_cast<long long>(depth->GetNumberOfTuples()));
-  // Push-pull (off by default) fills every texel; without it the points' texels hold depths.
-  MRGI_TEST_CHECK(ism->GetPushPull() ? valid == depth->GetNumberOfTuples() : valid > 0);
+  // Push-pull over the whole tile fills every texel; over fewer levels (the
+  // default: one) or none, the points' texels and their blocks hold depths.
+  int wholeTile = 0;
+  for (int side = ism->GetTileSize(); side > 1; side >>= 1)
+  {
+    ++wholeTile;
+  }
+  MRGI_TEST_CHECK(
+    ism->GetPushPullLevels() >= wholeTile ? valid == depth->GetNumberOfTuples() : valid > 0);
 
   // Moving an actor moves its points by the translation (records kept).
   vtkActorCollection* actors = scene.Renderer->GetActors();

@@ -112,8 +112,8 @@ void BuildAtlas(Scene& s, const mrgi_vpl* vpls, int count, bool empty, Atlas& at
     }
   }
   std::vector<float> scratch(mrgi_ism_push_pull_scratch_size(&atlas.Layout));
-  MRGI_TEST_CHECK(mrgi_ism_push_pull(&atlas.Layout, atlas.Depth.data(), scratch.data(),
-                    scratch.size(), nullptr) == MRGI_OK);
+  MRGI_TEST_CHECK(mrgi_ism_push_pull(&atlas.Layout, atlas.Depth.data(),
+                    MRGI_ISM_MAX_PUSH_PULL_LEVELS, scratch.data(), scratch.size(), nullptr) == MRGI_OK);
   atlas.Texture->SetContext(s.GL);
   atlas.Texture->SetInternalFormat(GL_R32F);
   atlas.Texture->SetFormat(GL_RED);

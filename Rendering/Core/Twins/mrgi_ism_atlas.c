@@ -116,11 +116,14 @@ size_t mrgi_ism_push_pull_scratch_size(const mrgi_ism_atlas_layout* layout)
   return (t * t * 4) / 3 + 1; /* levels T .. 1 */
 }
 
-mrgi_status mrgi_ism_push_pull(const mrgi_ism_atlas_layout* layout, float* depth, float* scratch,
-  size_t scratch_count, mrgi_error* err)
+mrgi_status mrgi_ism_push_pull(const mrgi_ism_atlas_layout* layout, float* depth, int32_t levels,
+  float* scratch, size_t scratch_count, mrgi_error* err)
 {
   if (!layout || !depth || !scratch)
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "ISM atlas: NULL push-pull arrays");
+  if (levels < 1 || levels > MRGI_ISM_MAX_PUSH_PULL_LEVELS)
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+      "ISM atlas: %d push-pull levels, must be 1..%d", (int)levels, MRGI_ISM_MAX_PUSH_PULL_LEVELS);
   if (scratch_count < mrgi_ism_push_pull_scratch_size(layout))
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
       "ISM atlas: push-pull scratch holds %zu floats, needs %zu", scratch_count,
@@ -135,7 +138,7 @@ mrgi_status mrgi_ism_push_pull(const mrgi_ism_atlas_layout* layout, float* depth
     float* lev[16];
     int32_t nlev = 0;
     size_t off = 0;
-    for (int32_t s = T; s >= 1; s >>= 1)
+    for (int32_t s = T; s >= 1 && nlev <= levels; s >>= 1)
     {
       lev[nlev++] = scratch + off;
       off += (size_t)s * s;
@@ -146,7 +149,7 @@ mrgi_status mrgi_ism_push_pull(const mrgi_ism_atlas_layout* layout, float* depth
         const float d = depth[(y0 + y) * layout->width + x0 + x];
         lev[0][y * T + x] = (isfinite(d) && d < E) ? d : E;
       }
-    for (int32_t k = 1; k < nlev; ++k) /* pull: min of valid children */
+    for (int32_t k = 1; k < nlev; ++k) /* pull: mean of the valid children */
     {
       const int32_t s = T >> k;
       for (int32_t y = 0; y < s; ++y)
@@ -154,12 +157,17 @@ mrgi_status mrgi_ism_push_pull(const mrgi_ism_atlas_layout* layout, float* depth
         {
           const float* c = lev[k - 1];
           const int32_t w = 2 * s;
-          float m = E;
           const float q[4] = { c[2 * y * w + 2 * x], c[2 * y * w + 2 * x + 1],
             c[(2 * y + 1) * w + 2 * x], c[(2 * y + 1) * w + 2 * x + 1] };
+          float sum = 0.0f;
+          int count = 0;
           for (int i = 0; i < 4; ++i)
-            m = q[i] < m ? q[i] : m;
-          lev[k][y * s + x] = m;
+            if (q[i] < E)
+            {
+              sum += q[i];
+              ++count;
+            }
+          lev[k][y * s + x] = count > 0 ? sum / (float)count : E;
         }
     }
     for (int32_t k = nlev - 2; k >= 0; --k) /* push: holes take the parent's depth */
@@ -178,8 +186,8 @@ mrgi_status mrgi_ism_push_pull(const mrgi_ism_atlas_layout* layout, float* depth
 }
 
 mrgi_status mrgi_ism_atlas_render(const mrgi_ism_atlas_layout* layout, const float* points,
-  int64_t point_count, const struct mrgi_vpl* vpls, int push_pull, float* depth, float* scratch,
-  size_t scratch_count, mrgi_error* err)
+  int64_t point_count, const struct mrgi_vpl* vpls, int32_t push_pull_levels, float* depth,
+  float* scratch, size_t scratch_count, mrgi_error* err)
 {
   if (!layout || !depth || !vpls || (point_count > 0 && !points))
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "ISM atlas: NULL render arrays");
@@ -189,7 +197,11 @@ mrgi_status mrgi_ism_atlas_render(const mrgi_ism_atlas_layout* layout, const flo
   if (layout->vpl_count < 1 || layout->width != layout->tiles_per_row * layout->tile_size ||
     layout->height != layout->tile_rows * layout->tile_size)
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "ISM atlas: malformed layout");
-  if (push_pull && scratch_count < mrgi_ism_push_pull_scratch_size(layout))
+  if (push_pull_levels < 0 || push_pull_levels > MRGI_ISM_MAX_PUSH_PULL_LEVELS)
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+      "ISM atlas: %d push-pull levels, must be 0..%d", (int)push_pull_levels,
+      MRGI_ISM_MAX_PUSH_PULL_LEVELS);
+  if (push_pull_levels > 0 && scratch_count < mrgi_ism_push_pull_scratch_size(layout))
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
       "ISM atlas: push-pull scratch holds %zu floats, needs %zu", scratch_count,
       mrgi_ism_push_pull_scratch_size(layout));
@@ -212,5 +224,7 @@ mrgi_status mrgi_ism_atlas_render(const mrgi_ism_atlas_layout* layout, const flo
     if (mrgi_ism_point_texel(layout, l, pos, nrm, x, &texel, &d) && d < depth[texel])
       depth[texel] = d; /* GL_MIN blending */
   }
-  return push_pull ? mrgi_ism_push_pull(layout, depth, scratch, scratch_count, err) : MRGI_OK;
+  return push_pull_levels > 0
+    ? mrgi_ism_push_pull(layout, depth, push_pull_levels, scratch, scratch_count, err)
+    : MRGI_OK;
 }

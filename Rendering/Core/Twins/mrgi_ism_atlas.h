@@ -39,11 +39,21 @@
  * MRGI_ISM_EMPTY_DEPTH (+inf is avoided so that GPU textures can hold it).
  *
  * ## 4. Push-pull (mrgi_ism_push_pull)
- * Per tile, on tile-local mip levels T, T/2, .., 1: pull - a coarse texel is
- * the minimum depth of its valid children (empty if none); push - from the
- * coarsest level down, every empty texel takes its parent's depth. Only the
- * tile's own texels are read, so tiles never mix. Afterwards every texel of
- * a tile with at least one valid texel is valid; all-empty tiles stay empty.
+ * Per tile, on tile-local mip levels T, T/2, .., T >> K, where K = min(levels,
+ * log2 T) (ritschel-et-al-2008 3.3 "pull-push", limited to K levels):
+ * pull - a level-k texel (1 <= k <= K) is the mean of the depths of its
+ * valid children, summed in float in the order (0,0), (1,0), (0,1), (1,1)
+ * and divided by their count (empty if none); push - from level K-1 down to
+ * 0, every empty texel takes its parent's depth. Only the tile's own texels
+ * are read, so tiles never mix. A texel stays empty only when its whole
+ * 2^K x 2^K block is empty (with K = log2 T: when the tile is).
+ * Why the mean over few levels: the tiles are sparse (the default 256 points
+ * per 32^2 tile cover about a fifth of the texels), so the holes between the
+ * points of one surface let light leak through it; one level fills them with
+ * that surface's depth. Pulling the minimum, or over many levels, instead
+ * spreads the nearest depth of a small occluder over a whole empty region and
+ * shadows receivers that nothing occludes (Documentation/IndirectShadows.md,
+ * "Session 12").
  *
  * ## 5. Rendering an atlas (mrgi_ism_atlas_render; C twin of the GPU draw)
  * Inputs: `point_count` world-space points (xyz floats) and the layout's V
@@ -52,9 +62,10 @@
  * and distance come from mrgi_ism_point_texel() (section 3) and the texel
  * keeps the minimum distance (the GPU's GL_MIN blending). VPLs with a zero
  * or non-finite normal (empty VPLs, mrgi_vpl.h) and non-finite points draw
- * nothing. Then, if `push_pull` is non-zero, mrgi_ism_push_pull().
- * Errors: NULL arrays, point_count < 0, a layout whose vpl_count does not
- * match, too little scratch.
+ * nothing. Then, if `push_pull_levels` is positive, mrgi_ism_push_pull()
+ * over that many levels.
+ * Errors: NULL arrays, point_count < 0, push_pull_levels < 0, a layout
+ * whose vpl_count does not match, too little scratch.
  */
 #ifndef MRGI_ISM_ATLAS_H
 #define MRGI_ISM_ATLAS_H
@@ -77,18 +88,17 @@ extern "C" {
 /** Points nearer than this to the VPL are not drawn (scene units). */
 #define MRGI_ISM_MIN_DEPTH 1e-6
 /**
- * Whether the GPU stage push-pulls by default (section 4): 0, off. The pull
- * keeps the minimum of the valid children, so on sparse tiles (the default
- * 256 points per 32^2 tile cover about a fifth of the texels) every hole
- * takes the nearest depth of up to a whole tile and shadows receivers that
- * nothing occludes. Measured with Testing/Benchmarks/ism_visibility_diagnostic.c
- * (exact ray casts on the built-in scenes, 64 VPLs, 256 points per VPL,
- * T = 32, adaptive points): share of the unoccluded light wrongly removed,
- * push-pull on / off at texel bias 3: corridor 7.4% / 0.2%, open corner 13.1% / 0.2%.
- * With dense tiles (several points per texel) push-pull costs little; turn
- * it on there (vtkMRGIImperfectShadowMaps::SetPushPull).
+ * Push-pull levels of the GPU stage by default (section 4): 1, holes filled
+ * from their 2x2 block. Measured against the ground truth with secondary
+ * visibility (Documentation/IndirectShadows.md, "Session 12"), one level with
+ * the mean pull fills the holes of the closed Cornell boxes' walls without
+ * the false shadows that the old minimum pull over all levels cast in open
+ * scenes and behind the corridor's statue. 0 turns push-pull off; dense
+ * tiles (several points per texel) have few holes and need none.
  */
-#define MRGI_ISM_DEFAULT_PUSH_PULL 0
+#define MRGI_ISM_DEFAULT_PUSH_PULL_LEVELS 1
+/** Most push-pull levels (any more than log2 T act as log2 T). */
+#define MRGI_ISM_MAX_PUSH_PULL_LEVELS 16
 
 /** Atlas layout (section 1). */
 typedef struct mrgi_ism_atlas_layout
@@ -126,12 +136,13 @@ int mrgi_ism_point_texel(const mrgi_ism_atlas_layout* layout, int32_t vpl_index,
   float* depth);
 
 /**
- * @brief Push-pull every tile in place (section 4).
+ * @brief Push-pull every tile in place over `levels` levels (section 4).
  * @param depth    width * height depths; empty = MRGI_ISM_EMPTY_DEPTH.
+ * @param levels   1..MRGI_ISM_MAX_PUSH_PULL_LEVELS (more than log2 T act as log2 T).
  * @param scratch  At least mrgi_ism_push_pull_scratch_size(layout) floats (no hidden allocation).
  */
-mrgi_status mrgi_ism_push_pull(const mrgi_ism_atlas_layout* layout, float* depth, float* scratch,
-  size_t scratch_count, mrgi_error* err);
+mrgi_status mrgi_ism_push_pull(const mrgi_ism_atlas_layout* layout, float* depth, int32_t levels,
+  float* scratch, size_t scratch_count, mrgi_error* err);
 
 /** @brief Floats of scratch mrgi_ism_push_pull needs: the mip chain of one tile. */
 size_t mrgi_ism_push_pull_scratch_size(const mrgi_ism_atlas_layout* layout);
@@ -141,12 +152,13 @@ struct mrgi_vpl;
 /**
  * @brief Render the atlas of world-space points for the layout's VPLs (section 5).
  * @param depth    Receives width * height depths (overwritten).
+ * @param push_pull_levels  0 (no push-pull) .. MRGI_ISM_MAX_PUSH_PULL_LEVELS.
  * @param scratch  mrgi_ism_push_pull_scratch_size() floats (unused, may be
- *                 NULL, when push_pull is 0).
+ *                 NULL, when push_pull_levels is 0).
  */
 mrgi_status mrgi_ism_atlas_render(const mrgi_ism_atlas_layout* layout, const float* points,
-  int64_t point_count, const struct mrgi_vpl* vpls, int push_pull, float* depth, float* scratch,
-  size_t scratch_count, mrgi_error* err);
+  int64_t point_count, const struct mrgi_vpl* vpls, int32_t push_pull_levels, float* depth,
+  float* scratch, size_t scratch_count, mrgi_error* err);
 
 #ifdef __cplusplus
 }

@@ -88,12 +88,14 @@ extern "C" {
  * 3: 0.2% / 0.026; u-shape 1: 11% / 0.30, 1.5: 7.9% / 0.31, 3: 1.7% / 0.39;
  * open corner (nothing occluded) 1: 1.9%, 1.5: 1.1%, 3: 0.2%. Against the
  * ground truth with secondary visibility (Documentation/IndirectShadows.md,
- * "Session 12"), 1.0 beats 1.5 where occluders sit close to their receivers
- * (the corridor's statue, the U's wall) and costs little in the open corner,
- * so 1.0 is the default; raise it to 3 for dense tiles (PointsPerVPL >= T^2,
- * push-pull on).
+ * "Session 12"): with the default one-level mean push-pull
+ * (MRGI_ISM_DEFAULT_PUSH_PULL_LEVELS), 1.5 keeps the corridor's statue
+ * shadow within 14% of the truth, where 1.25 over-shadows the corridor
+ * (error above no visibility) and 2.0 leaves the shadow 50% too bright.
+ * Without push-pull 1.0 is the better choice. Raise it to 3 for dense tiles
+ * (PointsPerVPL >= T^2).
  */
-#define MRGI_ISM_DEFAULT_TEXEL_BIAS 1.0f
+#define MRGI_ISM_DEFAULT_TEXEL_BIAS 1.5f
 /** Largest accepted relative bias / texel bias. */
 #define MRGI_ISM_MAX_BIAS 16.0f
 

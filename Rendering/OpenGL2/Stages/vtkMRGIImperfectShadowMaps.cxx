@@ -452,8 +452,11 @@ bool vtkMRGIImperfectShadowMaps::Render(vtkOpenGLRenderWindow* window, const flo
 
     // ---- step 4: push-pull, one full-screen pass per level and direction ----
     vtkMRGIShaderUtilities::ScopedStage pushPull(in.Timer, "ism.pushpull");
-    in.AtlasPushPulled = this->PushPull;
-    for (int stage = 0; ok && this->PushPull && stage < 2; ++stage)
+    // Levels 0..used-1 take part: the pull fills levels 1..used-1, the push
+    // levels used-2..0 (mrgi_ism_push_pull's K = used - 1).
+    const int used = std::min(levels, this->PushPullLevels + 1);
+    in.AtlasPushPulled = used > 1;
+    for (int stage = 0; ok && used > 1 && stage < 2; ++stage)
     {
       vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(window, stage == 0 ? "ism.pull" : "ism.push",
         "#define MRGI_ISM_PUSH_PULL_STAGE " + std::to_string(stage) + "\n",
@@ -464,14 +467,14 @@ bool vtkMRGIImperfectShadowMaps::Render(vtkOpenGLRenderWindow* window, const flo
         ok = false;
         break;
       }
-      for (int step = 0; step < levels - 1; ++step)
+      for (int step = 0; step < used - 1; ++step)
       {
-        // Pull: levels 1..L from the finer one; push: levels L-1..0.
-        const int k = stage == 0 ? step + 1 : levels - 2 - step;
+        // Pull: levels 1..K from the finer one; push: levels K-1..0.
+        const int k = stage == 0 ? step + 1 : used - 2 - step;
         vtkTextureObject* target = stage == 0 ? in.Pulled[k] : in.Pushed[k];
         vtkTextureObject* a = stage == 0 ? in.Pulled[k - 1] : in.Pulled[k];
         vtkTextureObject* b =
-          stage == 0 ? in.Pulled[k] : (k + 1 == levels - 1 ? in.Pulled[k + 1] : in.Pushed[k + 1]);
+          stage == 0 ? in.Pulled[k] : (k + 1 == used - 1 ? in.Pulled[k + 1] : in.Pushed[k + 1]);
         steps.Target(target, nullptr, 0, 0, layout.width >> k, layout.height >> k);
         if (stage == 0)
         {
@@ -800,7 +803,7 @@ void vtkMRGIImperfectShadowMaps::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PointsPerVPL: " << this->PointsPerVPL << "\n";
   os << indent << "TileSize: " << this->TileSize << "\n";
   os << indent << "LazyFrames: " << this->LazyFrames << "\n";
-  os << indent << "PushPull: " << (this->PushPull ? "On" : "Off") << "\n";
+  os << indent << "PushPullLevels: " << this->PushPullLevels << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "Atlas: "
      << (in.HasAtlas ? std::to_string(in.Layout.width) + " x " + std::to_string(in.Layout.height) +

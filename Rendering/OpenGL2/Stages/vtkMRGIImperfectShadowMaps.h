@@ -18,8 +18,8 @@
  *     them and draws them as GL points into the atlas in ONE draw: point i
  *     goes to VPL i mod V (mrgi_ism_atlas.h section 2), cos-sphere
  *     projection, nearest distance kept (MIN blending on R32F);
- *  4. if PushPull (off by default), push-pulls each tile (mrgi_ism_atlas.h
- *     section 4), one pass per level.
+ *  4. push-pulls each tile over PushPullLevels levels (default 1; 0 off;
+ *     mrgi_ism_atlas.h section 4), one pass per level and direction.
  * C twins: mrgi_ism_points.h (records, positions), mrgi_ism_atlas.h
  * (texel of each point, push-pull). Shaders: vtkMRGIISMPointsVS/FS.glsl,
  * vtkMRGIISMPushPullFS.glsl, with vtkMRGIISMProjection.glsl.
@@ -88,13 +88,13 @@ public:
   ///@{
   /**
    * Push-pull hole filling (mrgi_ism_atlas.h section 4) after the point
-   * draw. Default MRGI_ISM_DEFAULT_PUSH_PULL (off: on sparse tiles the
-   * pulled minimum spreads near depths into holes and casts false shadows;
-   * see that constant for the measurement). Off, holes stay empty (visible).
+   * draw, over this many levels: 1 fills a hole from its 2x2 block, log2 of
+   * the tile size (or more) from the whole tile, 0 turns it off (holes stay
+   * empty, i.e. visible). Default MRGI_ISM_DEFAULT_PUSH_PULL_LEVELS (1; see
+   * that constant for why few levels).
    */
-  vtkSetMacro(PushPull, bool);
-  vtkGetMacro(PushPull, bool);
-  vtkBooleanMacro(PushPull, bool);
+  vtkSetClampMacro(PushPullLevels, int, 0, MRGI_ISM_MAX_PUSH_PULL_LEVELS);
+  vtkGetMacro(PushPullLevels, int);
   ///@}
 
   ///@{
@@ -128,7 +128,7 @@ public:
     vtkTextureObject* vpls, int vplCount);
 #endif
 
-  /** The R32F atlas of the last Update()/Render() (push-pulled if PushPull); null before. */
+  /** The R32F atlas of the last Update()/Render() (push-pulled unless PushPullLevels is 0); null before. */
   vtkTextureObject* GetAtlasTexture() const;
 
   /** The last atlas' layout (vpl_count 0 before). */
@@ -167,7 +167,7 @@ protected:
   int PointsPerVPL = 256;
   int TileSize = 32;
   int LazyFrames = 8;
-  bool PushPull = MRGI_ISM_DEFAULT_PUSH_PULL != 0;
+  int PushPullLevels = MRGI_ISM_DEFAULT_PUSH_PULL_LEVELS;
   unsigned int Seed = 1;
 
   struct Internals;

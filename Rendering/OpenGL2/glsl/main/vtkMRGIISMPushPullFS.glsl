@@ -4,7 +4,8 @@
 // power of two, the 2 x 2 children of a level-k texel and its parent all
 // lie in the same tile, so tiles never mix. Full-screen over level k:
 //   MRGI_ISM_PUSH_PULL_STAGE 0 (pull): mrgiInput0 = level k-1 (pulled);
-//     the minimum of its valid children (empty if none);
+//     the mean of its valid children, summed in the C twin's order (empty
+//     if none);
 //   MRGI_ISM_PUSH_PULL_STAGE 1 (push): mrgiInput0 = level k pulled,
 //     mrgiInput1 = level k+1 pushed; an empty texel takes its parent's.
 //VTK::Output::Dec
@@ -16,13 +17,16 @@ void main()
   ivec2 t = ivec2(gl_FragCoord.xy);
   float E = float(MRGI_ISM_EMPTY_DEPTH);
 #if MRGI_ISM_PUSH_PULL_STAGE == 0
-  float m = E;
+  float sum = 0.0;
+  int count = 0;
   for (int k = 0; k < 4; ++k)
   {
     float c = texelFetch(mrgiInput0, 2 * t + ivec2(k % 2, k / 2), 0).r;
-    m = (!isnan(c) && c < m) ? c : m;
+    bool valid = !isnan(c) && c < E;
+    sum += valid ? c : 0.0;
+    count += valid ? 1 : 0;
   }
-  gl_FragData[0] = vec4(m, 0.0, 0.0, 1.0);
+  gl_FragData[0] = vec4(count > 0 ? sum / float(count) : E, 0.0, 0.0, 1.0);
 #else
   float d = texelFetch(mrgiInput0, t, 0).r;
   if (!(d < E))
