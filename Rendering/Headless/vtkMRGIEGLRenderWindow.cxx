@@ -2,6 +2,8 @@
 
 #include "vtkMRGIEGLRenderWindow.h"
 
+#include "vtkMRGIHeadlessDepth.h"
+
 #include "vtkMRGIOSMesaRenderWindow.h"
 
 #include "vtkObjectFactory.h"
@@ -434,6 +436,12 @@ void* vtkMRGIEGLRenderWindow::GetGenericContext()
 void* vtkMRGIEGLRenderWindow::GetGenericDisplayId()
 {
   return this->EGL->Display;
+}
+
+//------------------------------------------------------------------------------
+int vtkMRGIEGLRenderWindow::GetDepthBufferSize()
+{
+  return vtkMRGIHeadlessDepth::RenderFramebufferDepthBits(this, this->Initialized);
 }
 
 //------------------------------------------------------------------------------

@@ -98,6 +98,11 @@ public:
   void* GetGenericContext() override;
   void* GetGenericDisplayId() override;
   int GetColorBufferSizes(int* rgba) override;
+  /**
+   * Depth bits of the framebuffer VTK renders into (vtkMRGIHeadlessDepth.h):
+   * vtkRenderer picks its near plane from them, as in a desktop window.
+   */
+  int GetDepthBufferSize() override;
   using Superclass::GetZbufferData;
   ///@}
 

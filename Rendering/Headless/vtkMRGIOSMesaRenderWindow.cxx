@@ -2,6 +2,8 @@
 
 #include "vtkMRGIOSMesaRenderWindow.h"
 
+#include "vtkMRGIHeadlessDepth.h"
+
 #include "vtkObjectFactory.h"
 
 #include <EGL/egl.h>
@@ -277,10 +279,9 @@ bool vtkMRGIOSMesaRenderWindow::InitializeHeadlessContext()
   for (const auto& v : versions)
   {
     // Framebuffer 0 gets no depth or stencil: nothing draws into it, and
-    // vtkRenderer asks its depth bits (GetDepthBufferSize) to pick the near
-    // plane tolerance (0.001 with more than 16 bits, else 0.01). With none,
-    // as on the surfaceless EGL context, both windows frame alike; with 24
-    // bits the living room differed from EGL by 0.565 (max) in HDR.
+    // GetDepthBufferSize() (which vtkRenderer asks to pick its near plane)
+    // reports VTK's render framebuffer instead (vtkMRGIHeadlessDepth.h), as
+    // the surfaceless EGL window does: both windows frame alike.
     const int attributes[] = { kOSMesaFormat, GL_RGBA, kOSMesaDepthBits, 0, kOSMesaStencilBits, 0,
       kOSMesaProfile, kOSMesaCoreProfile, kOSMesaContextMajorVersion, v[0],
       kOSMesaContextMinorVersion, v[1], 0 };
@@ -554,6 +555,12 @@ void* vtkMRGIOSMesaRenderWindow::GetGenericContext()
 void* vtkMRGIOSMesaRenderWindow::GetGenericDisplayId()
 {
   return nullptr;
+}
+
+//------------------------------------------------------------------------------
+int vtkMRGIOSMesaRenderWindow::GetDepthBufferSize()
+{
+  return vtkMRGIHeadlessDepth::RenderFramebufferDepthBits(this, this->Initialized);
 }
 
 //------------------------------------------------------------------------------
