@@ -2,7 +2,9 @@
 // against its C twins (mrgi_multires.h) on real G-buffers: the flags and the
 // stencil must select exactly the same texels, for several scenes, NPOT
 // windows, perspective and parallel cameras, thresholds 0 / default / off,
-// finest levels 0 and 1, with and without the balance rule.
+// finest levels 0 and 1, with and without the balance rule, and renderers
+// whose viewport does not start at the window's origin (ParaView's tiles and
+// split views: every stage reads the G-buffer at the viewport's offset).
 #include "mrgiTestUtilities.h"
 
 #include "vtkCamera.h"
@@ -39,6 +41,7 @@ struct Case
   double DepthThreshold, NormalThreshold;
   int Finest;
   bool Balance;
+  double ViewportX = 0.0, ViewportY = 0.0; ///< the renderer's viewport origin (normalized)
 };
 
 int RunCase(const Case& c)
@@ -46,6 +49,7 @@ int RunCase(const Case& c)
   vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(c.Width, c.Height);
   vtkNew<vtkRenderer> renderer;
   window->AddRenderer(renderer);
+  renderer->SetViewport(c.ViewportX, c.ViewportY, 1.0, 1.0);
   vtkNew<vtkMRGISceneBuilder> builder;
   builder->SetScene(c.Scene);
   builder->SetTriangleCount(20000);
@@ -69,6 +73,7 @@ int RunCase(const Case& c)
   MRGI_TEST_CHECK(pass->GetGBuffer(window, position, normal, albedo));
   const int* vp = pass->GetViewport();
   const int W = vp[2], H = vp[3];
+  MRGI_TEST_CHECK((c.ViewportX > 0.0) == (vp[0] > 0) && (c.ViewportY > 0.0) == (vp[1] > 0));
   mrgi_gather_receivers gbuffer = { W, H,
     static_cast<float*>(position->GetScalarPointer()), static_cast<float*>(normal->GetScalarPointer()) };
   mrgi_multires_projection projection = { c.Parallel ? 1 : 0, camera->GetViewAngle(),
@@ -116,9 +121,9 @@ int RunCase(const Case& c)
     stencilDiff += gpuStencil->GetValue(static_cast<vtkIdType>(t)) != mask[t];
     selected += mask[t];
   }
-  std::printf("%s %dx%d %s Td=%g Tn=%g f=%d balance=%d: %d levels, %zu selected texels; "
+  std::printf("%s %dx%d at (%d, %d) %s Td=%g Tn=%g f=%d balance=%d: %d levels, %zu selected texels; "
               "differences: flags %zu, mask %zu, stencil %zu\n",
-    c.Scene, c.Width, c.Height, c.Parallel ? "parallel" : "perspective", c.DepthThreshold,
+    c.Scene, W, H, vp[0], vp[1], c.Parallel ? "parallel" : "perspective", c.DepthThreshold,
     c.NormalThreshold, c.Finest, c.Balance ? 1 : 0, layout.level_count, selected, flagDiff,
     maskDiff, stencilDiff);
   MRGI_TEST_CHECK(selected > 0);
@@ -356,6 +361,10 @@ int main()
     { "cornell-spot", 64, 48, false, off, off, 0, true },  // nothing refines: coarsest level
     { "cornell-spot", 33, 17, true, 4.0, 0.25, 0, true },
     { "cornell-spot", 1, 1, false, 4.0, 0.25, 0, true },
+    // Viewports away from the window's origin (level 0 reads the G-buffer
+    // normal at the offset: mrgiLevel0Normal).
+    { "cornell-spot", 120, 90, false, 4.0, 0.25, 0, true, 0.3, 0.2 },
+    { "scaling", 97, 71, true, 2.0, 0.1, 1, false, 0.5, 0.0 },
   };
   for (const Case& c : cases)
   {
