@@ -127,6 +127,59 @@ bool ReadWindowRGB(vtkRenderWindow* window, int width, int height, vtkImageData*
   return true;
 }
 
+// Whether a result of this run is the display image (the colour exposed,
+// tone mapped and anti-aliased into the window): a PNG of the GPU image, the
+// interactive window, or a run without outputs (it times the frame a viewer
+// sees). EXR, --indirect-only and --reference outputs are HDR buffers that
+// exposure, tone mapping and FXAA never touch, so those steps are not run
+// for them (automatic exposure alone reads the whole HDR image back).
+bool ShowsDisplayImage(const Options& o)
+{
+  if (o.Interactive || o.Outputs.empty())
+  {
+    return true;
+  }
+  if (o.Reference || o.IndirectOnly)
+  {
+    return false;
+  }
+  return std::any_of(o.Outputs.begin(), o.Outputs.end(),
+    [](const std::string& path) { return !EndsWith(path, ".exr"); });
+}
+
+// Whether every pixel of `image` (3 or 4 components) is the background
+// colour: within one 8-bit step for the window's 8-bit image, exactly for
+// the HDR colour buffer (its background is the clear colour, untouched).
+bool OnlyBackground(vtkImageData* image, const double background[3])
+{
+  vtkDataArray* pixels = image ? image->GetPointData()->GetScalars() : nullptr;
+  if (!pixels || pixels->GetNumberOfComponents() < 3)
+  {
+    return false;
+  }
+  const bool eightBit = pixels->GetDataType() == VTK_UNSIGNED_CHAR;
+  const double tolerance = eightBit ? 1.0 : 0.0;
+  double expected[3];
+  for (int c = 0; c < 3; ++c)
+  {
+    expected[c] = eightBit ? std::round(255.0 * std::min(1.0, std::max(0.0, background[c])))
+                           : static_cast<double>(static_cast<float>(background[c]));
+  }
+  const vtkIdType n = pixels->GetNumberOfTuples();
+  for (vtkIdType p = 0; p < n; ++p)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      // NaN differs from every background.
+      if (!(std::abs(pixels->GetComponent(p, c) - expected[c]) <= tolerance))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
 // Detaches the passes and frees their GL resources (the outermost pass
 // releases its delegates' too): by Now(), or on any return from main, so
 // that a pass is never destroyed holding them (which VTK reports as an
@@ -292,7 +345,8 @@ int main(int argc, char* argv[])
 
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(o.Background);
-  renderer->SetUseFXAA(o.AntiAliasing == Options::AAFXAA);
+  const bool display = ShowsDisplayImage(o);
+  renderer->SetUseFXAA(display && o.AntiAliasing == Options::AAFXAA);
   window->AddRenderer(renderer);
 
   const Clock::time_point buildStart = Clock::now();
@@ -561,8 +615,8 @@ int main(int argc, char* argv[])
   mrgi->GetIndirectLightStage()->GetImperfectShadowMaps()->SetPushPullLevels(
     static_cast<int>(o.ISMPushPullLevels));
   mrgi->SetIndirectStrength(o.IndirectStrength);
-  mrgi->SetToneMapping(o.ToneMapping);
-  mrgi->SetAutoExposure(o.AutoExposure);
+  mrgi->SetToneMapping(display && o.ToneMapping);
+  mrgi->SetAutoExposure(display && o.AutoExposure);
   mrgi->SetAutoExposureKey(o.ExposureKey);
   mrgi->SetExposure(o.Exposure);
   if (o.IndirectOnly && !o.GI && !o.Reference)
@@ -642,36 +696,41 @@ int main(int argc, char* argv[])
   {
     return Fail("nothing was rendered (is the window size valid and an OpenGL context available?)");
   }
+  // The image the emptiness check reads, kept for the outputs that write
+  // it: the window's 8-bit colour when a display image is drawn, else the
+  // HDR colour buffer.
+  vtkSmartPointer<vtkImageData> checked;
   if (!o.AllowEmpty && !o.Reference)
   {
     // A picture of the background alone is a failure, not a result: say why.
-    vtkNew<vtkUnsignedCharArray> shown;
-    window->GetRGBACharPixelData(0, 0, o.Width * ssaa - 1, o.Height * ssaa - 1, 0, shown);
-    int background[3];
-    for (int c = 0; c < 3; ++c)
+    checked = vtkSmartPointer<vtkImageData>::New();
+    const bool read = display ? ReadWindowRGB(window, o.Width * ssaa, o.Height * ssaa, checked)
+                              : mrgi->GetColorBuffer(window, checked);
+    if (!read || messages->GetNumberOfErrors() > 0)
     {
-      background[c] = static_cast<int>(std::lround(255.0 * std::min(1.0, std::max(0.0, o.Background[c]))));
+      return Fail("reading the image back failed" +
+        (messages->GetNumberOfErrors() > 0 ? ": " + messages->GetFirstError() : std::string()));
     }
-    bool empty = true;
-    const vtkIdType n = shown->GetNumberOfValues() / 4;
-    for (vtkIdType p = 0; p < n && empty; ++p)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        empty = empty && std::abs(static_cast<int>(shown->GetValue(4 * p + c)) - background[c]) <= 1;
-      }
-    }
-    if (empty)
+    if (OnlyBackground(checked, o.Background))
     {
       return FailInput("'" + o.Scene + "' renders an empty image (background only): " +
         WhyEmpty(renderer, builder->GetBuiltTriangleCount()) + "; --allow-empty accepts it");
     }
   }
-  std::snprintf(line, sizeof(line), "exposure %+.2f EV (%s)%s%s", mrgi->GetLastExposure(),
-    o.AutoExposure ? "auto" : "fixed", o.ToneMapping ? ", tone mapped" : "",
-    o.AntiAliasing == Options::AAFXAA ? ", FXAA"
-      : ssaa > 1 ? (", SSAA " + std::to_string(ssaa) + "x" + std::to_string(ssaa)).c_str()
-                 : "");
+  if (display)
+  {
+    std::snprintf(line, sizeof(line), "exposure %+.2f EV (%s)%s%s", mrgi->GetLastExposure(),
+      o.AutoExposure ? "auto" : "fixed", o.ToneMapping ? ", tone mapped" : "",
+      o.AntiAliasing == Options::AAFXAA ? ", FXAA"
+        : ssaa > 1 ? (", SSAA " + std::to_string(ssaa) + "x" + std::to_string(ssaa)).c_str()
+                   : "");
+  }
+  else
+  {
+    std::snprintf(line, sizeof(line), "no display image: every output is HDR, so exposure, tone "
+                                      "mapping and FXAA did not run%s",
+      ssaa > 1 ? (", SSAA " + std::to_string(ssaa) + "x" + std::to_string(ssaa)).c_str() : "");
+  }
   Progress(o, line);
 
   // Ground truth: the CPU reference of the same scene (lights as placed by
@@ -822,6 +881,10 @@ int main(int argc, char* argv[])
       else if (o.IndirectOnly)
       {
         ok = mrgi->GetIndirectBuffer(window, shared);
+      }
+      else if (checked && exr != display)
+      {
+        shared = checked; // read for the emptiness check: the same pixels
       }
       else if (exr)
       {

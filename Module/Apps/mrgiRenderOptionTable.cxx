@@ -688,7 +688,8 @@ const std::vector<OptionSection>& OptionTable()
           Given(Choice<bool>(&Options::SSGIMultires, { { "full", false }, { "multires", true } }),
             &Options::HasSSGIResolution) },
       } },
-    { "Exposure and anti-aliasing (the PNG; EXR files keep the unscaled HDR radiance)",
+    { "Exposure and anti-aliasing (the PNG; EXR files keep the unscaled HDR radiance,\n"
+      "and a run writing only EXR files skips these steps)",
       {
         { { "--exposure" }, "EV|auto[:KEY]",
           "scale the image by 2^EV before tone mapping (-20..20), or pick EV per\n"

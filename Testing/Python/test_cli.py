@@ -273,11 +273,37 @@ def main():
     check(err == "", "--quiet prints nothing")
 
     parallel_framing()
+    display_steps()
     staging()
     bad_input()
     quiet_and_plain(corrupt_stl())
     signal_during_write()
     print("ok")
+
+
+def display_steps():
+    """Exposure, tone mapping and FXAA shape the display image only: with EXR
+    outputs alone they do not run, and the EXR is the same file as when a
+    PNG beside it needs them. The emptiness check holds either way."""
+    alone, both_exr, both_png = fresh("cli_hdr_alone.exr"), fresh("cli_hdr_both.exr"), fresh("cli_hdr_both.png")
+    code, _, err = run("cornell-spot", "-o", alone, "--size", "40x32", "--tone-mapping")
+    check(code == 0 and "no display image" in err and "(auto)" not in err, "EXR alone: " + err)
+    code, _, err = run("cornell-spot", "-o", both_exr, "-o", both_png, "--size", "40x32", "--tone-mapping")
+    check(code == 0 and "exposure" in err and "(auto), tone mapped, FXAA" in err, "EXR and PNG: " + err)
+    with open(alone, "rb") as a, open(both_exr, "rb") as b:
+        check(a.read() == b.read(), "the EXR does not depend on the display steps")
+    # A camera looking away: the background alone fails the run, whichever
+    # image the check reads (the window's for PNG, the HDR colour for EXR,
+    # also with --indirect-only), unless --allow-empty.
+    away = ("cornell-spot", "--size", "24x24", "--camera-position", "0,0,-5000",
+            "--camera-focal-point", "0,0,-10000", "--background", "0.2,0.3,0.4")
+    for outputs in (["x.png"], ["x.exr"], ["x.exr", "--indirect-only"]):
+        path = fresh("cli_away_" + outputs[0])
+        code, _, err = run(*away, "-o", path, *outputs[1:])
+        check(code == 1 and "renders an empty image (background only)" in err and not os.path.exists(path),
+              "%s of the background alone fails: %s" % (outputs, err))
+        code, _, err = run(*away, "-o", path, *outputs[1:], "--allow-empty")
+        check(code == 0 and os.path.exists(path), "%s with --allow-empty: %s" % (outputs, err))
 
 
 def parallel_framing():
