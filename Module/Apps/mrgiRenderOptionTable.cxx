@@ -372,7 +372,8 @@ const std::vector<OptionSection>& OptionTable()
           } },
         { { "--area-light-two-sided" }, nullptr, "emit on both sides (every area light)",
           Set(&Options::AreaLightTwoSided) },
-        { { "--area-light-samples" }, "N", "light samples per area light, 1..4096 (default 256)",
+        { { "--area-light-samples" }, "N", "light samples per area light, 1..4096 (default 256; above 512,\n"
+          "incremental visibility falls back to naive, with a warning)",
           Integer(
             &Options::AreaLightSamples, MRGI_AREA_LIGHT_MIN_SAMPLES, MRGI_AREA_LIGHT_MAX_SAMPLES) },
         { { "--area-lights" }, "on|off",

@@ -225,6 +225,14 @@ def main():
               % resolution)
     check(open(area["specular-full"], "rb").read() != open(area["specular-multires"], "rb").read(),
           "--area-light-specular-resolution changes the image")
+    # More samples than the incremental masks hold: naive visibility for
+    # that light, said once (not once per frame); none at the limit.
+    many = fresh("cli_area_many.exr")
+    for samples, warned in (("1024", True), ("512", False)):
+        code, _, err = run("cornell-area", "-o", many, "--size", "24x24", "--frames", "3",
+                           "--area-light-samples", samples, "--voxel-size", "32")
+        check(code == 0 and err.count("use naive visibility") == (1 if warned else 0),
+              "--area-light-samples %s: naive fallback said %s: %s" % (samples, "once" if warned else "never", err))
     dark = fresh("cli_area_dark.exr")
     code, _, err = run("cornell-area", "-o", dark, "--size", "48x48", "-q", "--area-lights", "off")
     check(code == 0, "--area-lights off: " + err)

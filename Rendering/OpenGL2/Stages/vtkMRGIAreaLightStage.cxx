@@ -44,6 +44,7 @@
 #include "mrgi_voxel_march.h"
 
 #include <algorithm>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -101,6 +102,10 @@ struct vtkMRGIAreaLightStage::Internals
   // The framebuffer and the programs: the highlight's (full resolution and
   // multiresolution; unshadowed, masked, marched) and the add.
   vtkMRGIStageResources GL;
+  // Sample counts already warned about: more than the incremental masks
+  // hold, so such a light falls back to naive visibility (one warning per
+  // count, not one per frame).
+  std::set<int> FallbackWarned;
 };
 
 //------------------------------------------------------------------------------
@@ -359,8 +364,16 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
     // Incremental visibility: the masks of every level first (they need
     // this selection's receivers), then the gather reads its texel's bits.
     vtkMRGIVisibilityPyramid* masks = nullptr;
-    if (voxels && this->Visibility == VisibilityIncremental &&
-      count <= vtkMRGIVisibilityPyramid::GetMaximumNumberOfSamples())
+    const int maxMaskSamples = vtkMRGIVisibilityPyramid::GetMaximumNumberOfSamples();
+    if (voxels && this->Visibility == VisibilityIncremental && count > maxMaskSamples &&
+      this->Internal->FallbackWarned.insert(count).second)
+    {
+      vtkWarningMacro("area light with " << count << " samples: incremental visibility keeps at most "
+                                         << maxMaskSamples << " bits per texel, so this light's "
+                                         << "shadows use naive visibility (slower); set at most "
+                                         << maxMaskSamples << " samples to keep it incremental");
+    }
+    if (voxels && this->Visibility == VisibilityIncremental && count <= maxMaskSamples)
     {
       double w2v[16];
       float worldToView[16];
