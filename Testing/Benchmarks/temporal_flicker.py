@@ -58,7 +58,7 @@ from vtkmodules.vtkCommonDataModel import vtkImageData  # noqa: E402
 GRID, IMPORTANCE, CLUSTERS, TREE, BRSM = 0, 1, 2, 3, 4
 ISM = 100  # not a selection: grid 256 with imperfect shadow maps (issue 13), `number` = lazy frames
 DEFAULT_ROWS = ["grid:256", "importance:256:fixed", "importance:256:per-frame", "clusters", "tree:auto",
-                "brsm:256", "ism:8", "ism:1"]
+                "brsm:256", "brsm:256:1", "ism:8", "ism:1"]
 TREE_TAUS = [1.0, 0.5, 0.2, 0.1, 0.05, 0.02, 0.01, 0.005, 0.002]
 LIGHT_STEP = 0.002  # of the bounding-box diagonal per frame
 ORBIT_STEP = 0.5  # degrees per frame
@@ -77,8 +77,13 @@ def parse_spec(spec):
         return "importance %s (%s seed)" % (parts[1], rule), IMPORTANCE, int(parts[1]), rule
     if kind == "clusters" and len(parts) == 1:
         return "clusters (default 4 / 0.25)", CLUSTERS, 256, None
-    if kind == "brsm" and len(parts) == 2:
-        return "brsm %s" % parts[1], BRSM, int(parts[1]), None
+    if kind == "brsm" and len(parts) in (2, 3):
+        # brsm:N[:W]: W, the weight of this frame's pdf in its moving average
+        # (BRSMTemporalWeight; 1 = re-estimated every frame, RIHKS11's rule).
+        weight = float(parts[2]) if len(parts) == 3 else None
+        label = "brsm %s" % parts[1] + ("" if weight is None else
+                                        (" (pdf per frame)" if weight == 1.0 else " (pdf weight %g)" % weight))
+        return label, BRSM, int(parts[1]), weight
     if kind == "ism" and len(parts) == 2:
         lazy = int(parts[1])
         return ("grid 256 + ISM, lazy over %d frames" % lazy if lazy > 1 else "grid 256 + ISM, full resampling"), \
@@ -87,7 +92,7 @@ def parse_spec(spec):
         tau = parts[1]
         return "tree tau %s" % tau, TREE, (None if tau == "auto" else float(tau)), None
     raise SystemExit("unknown selection %r (grid:N, importance:N[:fixed|per-frame], clusters, "
-                     "tree:T, tree:auto, brsm:N, ism:LAZY)" % spec)
+                     "tree:T, tree:auto, brsm:N[:W], ism:LAZY)" % spec)
 
 
 def supported(gi, kind):
@@ -124,6 +129,14 @@ def apply(gi, kind, number, seed_rule, frame):
         gi.SetClusterNormalThreshold(0.25)
     if kind == IMPORTANCE:
         gi.GetVPLSelection().SetSeed(1 + (frame if seed_rule == "per-frame" else 0))
+    if kind == BRSM and hasattr(gi.GetVPLSelection(), "SetBRSMTemporalWeight"):
+        selection = gi.GetVPLSelection()
+        # seed_rule carries brsm:N:W's weight (None: the default).
+        if not hasattr(apply, "default_weight"):
+            apply.default_weight = selection.GetBRSMTemporalWeight()  # the pass's default, read once
+        selection.SetBRSMTemporalWeight(seed_rule if seed_rule is not None else apply.default_weight)
+        if frame == 0:
+            selection.ResetBRSMHistory()  # every path starts without a history
 
 
 def vpls_per_pixel(gi, kind):

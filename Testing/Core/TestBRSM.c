@@ -2,11 +2,14 @@
  * guided estimates), flux mix, geometry-aware blur, 2-D CDF inversion on
  * hand cases, an unbiasedness test of the VPL estimator that a sampler
  * forgetting 1/p fails, inter-texel VPLs that never cross a depth step, and
- * the float twin of the GPU inversion against the double one. */
+ * the float twin of the GPU inversion against the double one, and the
+ * temporal blend of the pdf (exact rule, unbiased with a stale history that
+ * a blend keeping zero-weight lit texels fails). */
 #include "mrgi_brsm_blur.h"
 #include "mrgi_brsm_cdf_float.h"
 #include "mrgi_brsm_importance.h"
 #include "mrgi_brsm_sample.h"
+#include "mrgi_brsm_temporal.h"
 #include "mrgi_test.h"
 
 #include <math.h>
@@ -428,6 +431,90 @@ static void test_float_twin(void)
   MRGI_CHECK(mrgi_brsm_sample_values(0, 1u, u, 2 * N, &err) == MRGI_ERR_INVALID_ARGUMENT);
 }
 
+/* mrgi_brsm_temporal_blend: the rule on a hand case, the first frame, the
+ * errors; then an unbiasedness test with a history that has nothing to do
+ * with this frame's flux, which the estimator must survive, and a broken
+ * blend (pdf = history alone, a = 0) that leaves lit texels at p = 0 and
+ * must fail it. */
+static void test_temporal_blend(void)
+{
+  float pdf[4] = { 0.5f, 0.25f, 0.25f, 0.0f };
+  float history[4] = { 0.0f, 0.0f, 0.5f, 0.5f };
+  /* b = (0.25, 0.125, 0.375, 0) (texel 3 has p = 0), sum 0.75. */
+  MRGI_CHECK(mrgi_brsm_temporal_blend(0.5, pdf, history, 4, 1, NULL) == MRGI_OK);
+  const float want[4] = { 0.25f / 0.75f, 0.125f / 0.75f, 0.375f / 0.75f, 0.0f };
+  for (int t = 0; t < 4; ++t)
+  {
+    MRGI_CHECK(fabsf(pdf[t] - want[t]) <= 1e-7f && history[t] == pdf[t]);
+  }
+  /* First frame, and weight 1: the pdf unchanged, copied to the history. */
+  float first[3] = { 0.2f, 0.3f, 0.5f }, h[3] = { 7.0f, -1.0f, NAN };
+  MRGI_CHECK(mrgi_brsm_temporal_blend(0.1, first, h, 3, 0, NULL) == MRGI_OK);
+  MRGI_CHECK(first[0] == 0.2f && first[1] == 0.3f && first[2] == 0.5f && memcmp(first, h, sizeof h) == 0);
+  float same[3] = { 0.6f, 0.4f, 0.0f }, other[3] = { 0.0f, 0.0f, 1.0f };
+  MRGI_CHECK(mrgi_brsm_temporal_blend(1.0, same, other, 3, 1, NULL) == MRGI_OK);
+  MRGI_CHECK(same[0] == 0.6f && same[1] == 0.4f && other[2] == 0.0f);
+  /* Errors name the problem and write nothing. */
+  mrgi_error err;
+  float keep[2] = { 0.5f, 0.5f }, bad[2] = { 0.5f, -0.1f };
+  MRGI_CHECK(mrgi_brsm_temporal_blend(0.0, keep, history, 2, 1, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(strstr(err.message, "weight") != NULL);
+  MRGI_CHECK(mrgi_brsm_temporal_blend(NAN, keep, history, 2, 1, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_brsm_temporal_blend(1.5, keep, history, 2, 1, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_brsm_temporal_blend(0.5, keep, keep, 2, 1, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_brsm_temporal_blend(0.5, NULL, history, 2, 1, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_brsm_temporal_blend(0.5, keep, history, 0, 1, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  float copy[2] = { 0.25f, 0.75f };
+  MRGI_CHECK(mrgi_brsm_temporal_blend(0.5, keep, bad, 2, 1, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(strstr(err.message, "history of texel 1") != NULL);
+  MRGI_CHECK(mrgi_brsm_temporal_blend(0.5, bad, copy, 2, 1, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(strstr(err.message, "pdf of texel 1") != NULL);
+  MRGI_CHECK(keep[0] == 0.5f && keep[1] == 0.5f && copy[0] == 0.25f && copy[1] == 0.75f);
+
+  /* Unbiased with a stale history: the history piles its mass on the
+   * texels this frame's flux ignores (and on texels without flux now). */
+  const int32_t S = 8, T = S * S;
+  const mrgi_rsm rsm = make_rsm(S, 0.0);
+  float w[S_MAX * S_MAX], stale[S_MAX * S_MAX], frozen[S_MAX * S_MAX];
+  double truth = 0.0;
+  for (int32_t t = 0; t < T; ++t)
+  {
+    w[t] = (float)rnd();
+    stale[t] = t % 5 == 0 ? 1.0f / 13.0f : 0.0f; /* a pdf: 13 texels of 64 */
+    truth += g_flux[4 * t];
+  }
+  MRGI_CHECK(mrgi_brsm_mix(&rsm, MRGI_BRSM_DEFAULT_FLUX_SHARE, w, (size_t)T, NULL) == MRGI_OK);
+  memcpy(frozen, w, sizeof(float) * (size_t)T);
+  MRGI_CHECK(mrgi_brsm_temporal_blend(MRGI_BRSM_DEFAULT_TEMPORAL_WEIGHT, w, stale, (size_t)T, 1,
+                                      NULL) == MRGI_OK);
+  int lit_below_a = 0;
+  for (int32_t t = 0; t < T; ++t)
+  {
+    /* p_t >= a p_t(this frame) / sum b, and sum b <= 1. */
+    lit_below_a += frozen[t] > 0.0f && !(w[t] >= (float)MRGI_BRSM_DEFAULT_TEMPORAL_WEIGHT * frozen[t] * 0.999f);
+    MRGI_CHECK((w[t] > 0.0f) == (g_flux[4 * t] > 0.0f));
+  }
+  MRGI_CHECK(lit_below_a == 0);
+  double cdf[S_MAX * S_MAX + S_MAX];
+  MRGI_CHECK(mrgi_brsm_cdf_build(&rsm, w, (size_t)T, cdf, sizeof cdf / sizeof cdf[0], NULL, NULL) ==
+             MRGI_OK);
+  double mean, se;
+  estimate(&rsm, cdf, 16, 0, 0, 4000, &mean, &se);
+  printf("temporal blend, stale history: mean %.6f +- %.6f, truth %.6f\n", mean, se, truth);
+  MRGI_CHECK(close_to(mean, se, truth));
+  /* Broken: the history alone (weight 0 bypassed), zero on most lit texels. */
+  float history_only[S_MAX * S_MAX];
+  for (int32_t t = 0; t < T; ++t)
+  {
+    history_only[t] = g_flux[4 * t] > 0.0f && t % 5 == 0 ? 1.0f : 0.0f;
+  }
+  MRGI_CHECK(mrgi_brsm_cdf_build(&rsm, history_only, (size_t)T, cdf, sizeof cdf / sizeof cdf[0], NULL,
+                                 NULL) == MRGI_OK);
+  estimate(&rsm, cdf, 16, 0, 0, 4000, &mean, &se);
+  printf("history alone (broken): mean %.6f +- %.6f\n", mean, se);
+  MRGI_CHECK(!close_to(mean, se, truth));
+}
+
 int main(int argc, char** argv)
 {
   static const mrgi_test_case cases[] = { MRGI_TEST_CASE(test_cdf_hand),
@@ -436,6 +523,7 @@ int main(int argc, char** argv)
                                           MRGI_TEST_CASE(test_blur),
                                           MRGI_TEST_CASE(test_importance),
                                           MRGI_TEST_CASE(test_inter_texel),
-                                          MRGI_TEST_CASE(test_float_twin) };
+                                          MRGI_TEST_CASE(test_float_twin),
+                                          MRGI_TEST_CASE(test_temporal_blend) };
   return MRGI_TEST_MAIN(argc, argv, cases);
 }

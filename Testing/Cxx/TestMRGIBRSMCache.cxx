@@ -4,9 +4,11 @@
 // 2. The view samples are one read-back per frame shared by BRSM and the
 //    adaptive imperfect shadow map points: a camera move costs exactly one.
 // 3. Fixed patterns: moving the camera away and back (the same view, but
-//    every cache invalidated) recomputes the selection and gives the same
-//    VPLs bit for bit, with inter-texel VPLs (C path) and texel VPLs (GPU
-//    inversion). A frame-dependent jitter or seed (the old flicker) fails.
+//    every cache invalidated) recomputes the selection; the pdf's moving
+//    average remembers the detour, and after ResetBRSMHistory() the VPLs
+//    are the first frame's bit for bit, with inter-texel VPLs (C path) and
+//    texel VPLs (GPU inversion). A frame-dependent jitter or seed (the old
+//    flicker) fails.
 #include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"
 
@@ -88,22 +90,33 @@ void StaticAndShared()
   const std::vector<mrgi_vpl> moved = mrgitest::ReadVPLs(pass, scene.Window);
   MRGI_TEST_CHECK(!Same(moved, first)); // the view samples did change
 
-  // 3. Back to the same view: recomputed, and the very same VPLs.
+  // 3. Back to the same view: recomputed. The pdf's moving average over the
+  // selections (BRSMTemporalWeight, default 0.1) remembers the moved view,
+  // so the VPLs differ; without that history they are the very same.
   home.Restore(camera);
   scene.Window->Render();
   MRGI_TEST_CHECK(indirect->GetNumberOfViewSampleReadBacks() == reads + 2);
   MRGI_TEST_CHECK(selection->GetNumberOfSelections() == selections + 2);
+  const bool remembered = !Same(mrgitest::ReadVPLs(pass, scene.Window), first);
+  selection->ResetBRSMHistory();
+  camera->Modified(); // the same view, every cache stale
+  scene.Window->Render();
+  MRGI_TEST_CHECK(selection->GetNumberOfSelections() == selections + 3);
   const bool same = Same(mrgitest::ReadVPLs(pass, scene.Window), first);
-  std::printf("back home (inter-texel VPLs): %s\n", same ? "identical" : "DIFFERENT");
+  std::printf("back home (inter-texel VPLs): %s with the history, %s after ResetBRSMHistory()\n",
+    remembered ? "different" : "IDENTICAL", same ? "identical" : "DIFFERENT");
+  MRGI_TEST_CHECK(remembered);
   MRGI_TEST_CHECK(same);
 
-  // The same with texel VPLs (the GPU inversion).
+  // The same with texel VPLs (the GPU inversion) and the pdf of each frame
+  // alone (weight 1, RIHKS11's rule): a recomputation gives the same VPLs.
+  selection->SetBRSMTemporalWeight(1.0);
   selection->SetBRSMInterTexel(false);
   scene.Window->Render();
   const std::vector<mrgi_vpl> texel = mrgitest::ReadVPLs(pass, scene.Window);
   camera->Modified(); // the same view, every cache stale
   scene.Window->Render();
-  MRGI_TEST_CHECK(selection->GetNumberOfSelections() == selections + 4);
+  MRGI_TEST_CHECK(selection->GetNumberOfSelections() == selections + 5);
   const bool sameTexel = Same(mrgitest::ReadVPLs(pass, scene.Window), texel);
   std::printf("recomputed (texel VPLs): %s\n", sameTexel ? "identical" : "DIFFERENT");
   MRGI_TEST_CHECK(sameTexel);

@@ -4,16 +4,18 @@
 #include "mrgi_brsm_cdf_float.h"
 #include "mrgi_brsm_importance.h"
 #include "mrgi_brsm_sample.h"
+#include "mrgi_brsm_temporal.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace
 {
-// importance -> blur -> mix: the weights of the 2-D CDF, into a double CDF.
+// importance -> blur -> mix -> temporal blend: the weights of the 2-D CDF,
+// into a double CDF.
 bool BuildCDF(const mrgi_rsm& rsm, const vtkMRGIBRSM::ViewSamples& view,
-  const vtkMRGIBRSM::Settings& settings, std::uint64_t seed, std::vector<double>& cdf,
-  std::string& error)
+  const vtkMRGIBRSM::Settings& settings, std::uint64_t seed, std::vector<float>* history,
+  std::vector<double>& cdf, std::string& error)
 {
   const size_t texels = mrgi_vpl_importance_scratch_count(&rsm);
   std::vector<float> importance(texels, 0.0f), blurred;
@@ -46,6 +48,20 @@ bool BuildCDF(const mrgi_rsm& rsm, const vtkMRGIBRSM::ViewSamples& view,
     error = std::string("BRSM mix: ") + err.message;
     return false;
   }
+  if (history)
+  {
+    // A history of another size (first frame, a new RSM resolution or
+    // light) is not this RSM's: start over.
+    const bool has = history->size() == texels;
+    history->resize(texels);
+    if (mrgi_brsm_temporal_blend(settings.TemporalWeight, importance.data(), history->data(),
+          texels, has ? 1 : 0, &err) != MRGI_OK)
+    {
+      history->clear();
+      error = std::string("BRSM temporal blend: ") + err.message;
+      return false;
+    }
+  }
   cdf.assign(mrgi_brsm_cdf_count(&rsm), 0.0);
   if (mrgi_brsm_cdf_build(&rsm, importance.data(), texels, cdf.data(), cdf.size(), nullptr, &err) !=
     MRGI_OK)
@@ -59,10 +75,10 @@ bool BuildCDF(const mrgi_rsm& rsm, const vtkMRGIBRSM::ViewSamples& view,
 
 //------------------------------------------------------------------------------
 bool vtkMRGIBRSM::Select(const mrgi_rsm& rsm, const ViewSamples& view, const Settings& settings,
-  int count, std::uint64_t seed, mrgi_vpl* vpls, std::string& error)
+  int count, std::uint64_t seed, std::vector<float>* history, mrgi_vpl* vpls, std::string& error)
 {
   std::vector<double> cdf;
-  if (!BuildCDF(rsm, view, settings, seed, cdf, error))
+  if (!BuildCDF(rsm, view, settings, seed, history, cdf, error))
   {
     return false;
   }
@@ -80,11 +96,11 @@ bool vtkMRGIBRSM::Select(const mrgi_rsm& rsm, const ViewSamples& view, const Set
 
 //------------------------------------------------------------------------------
 bool vtkMRGIBRSM::PrepareInversion(const mrgi_rsm& rsm, const ViewSamples& view,
-  const Settings& settings, int count, std::uint64_t seed, std::vector<float>& cdf,
-  std::vector<float>& samples, std::string& error)
+  const Settings& settings, int count, std::uint64_t seed, std::vector<float>* history,
+  std::vector<float>& cdf, std::vector<float>& samples, std::string& error)
 {
   std::vector<double> exact;
-  if (!BuildCDF(rsm, view, settings, seed, exact, error))
+  if (!BuildCDF(rsm, view, settings, seed, history, exact, error))
   {
     return false;
   }

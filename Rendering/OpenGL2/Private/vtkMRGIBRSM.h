@@ -4,7 +4,8 @@
  *        vtkMRGIVPLSelection's BRSM mode (RIHKS11 4, 4.1, 4.2, 6.5): the C
  *        core's chain
  *        (mrgi_brsm_importance -> mrgi_brsm_blur -> mrgi_brsm_mix ->
- *        mrgi_brsm_cdf_build -> mrgi_brsm_sample_vpls) on read-back RSMs.
+ *        mrgi_brsm_temporal_blend -> mrgi_brsm_cdf_build ->
+ *        mrgi_brsm_sample_vpls) on read-back RSMs.
  *        Not wrapped, not installed.
  */
 #ifndef vtkMRGIBRSM_h
@@ -40,25 +41,29 @@ struct Settings
   bool InterTexel = true;
   bool Guided = true;
   int SamplesPerTexel = 16; // MRGI_BRSM_DEFAULT_SAMPLES_PER_TEXEL
+  double TemporalWeight = 1.0; // a of mrgi_brsm_temporal_blend; 1: no blend
 };
 
 /**
  * `count` VPLs from `rsm` (read back, world space) into `vpls`. Without
  * view samples the importance is 0 and the mix gives flux importance.
- * False, with `error` naming the failed stage.
+ * `history` (may be null: no blend) is the light's pdf of the previous
+ * selection, the passive buffer of mrgi_brsm_temporal_blend(): blended
+ * with this frame's by settings.TemporalWeight and replaced; one of
+ * another size starts over. False, with `error` naming the failed stage.
  */
 bool Select(const mrgi_rsm& rsm, const ViewSamples& view, const Settings& settings, int count,
-  std::uint64_t seed, mrgi_vpl* vpls, std::string& error);
+  std::uint64_t seed, std::vector<float>* history, mrgi_vpl* vpls, std::string& error);
 
 /**
  * The GPU inversion's inputs (vtkMRGIBRSMInversion, texel VPLs): the same
- * weights as Select(), their 2-D CDF rounded to float
+ * weights as Select() (the same `history` rule), their 2-D CDF rounded to float
  * (mrgi_brsm_cdf_to_float()) and the `count` sample values
  * (mrgi_brsm_sample_values()) for `seed`. False, with `error`.
  */
 bool PrepareInversion(const mrgi_rsm& rsm, const ViewSamples& view, const Settings& settings,
-  int count, std::uint64_t seed, std::vector<float>& cdf, std::vector<float>& samples,
-  std::string& error);
+  int count, std::uint64_t seed, std::vector<float>* history, std::vector<float>& cdf,
+  std::vector<float>& samples, std::string& error);
 }
 
 #endif

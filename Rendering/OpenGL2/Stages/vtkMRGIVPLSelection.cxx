@@ -25,6 +25,7 @@
 #include "vtkMRGIVPLGridFS.h"
 
 #include "mrgi_brsm_importance.h"
+#include "mrgi_brsm_temporal.h"
 #include "mrgi_vpl.h"
 #include "mrgi_vpl_clusters.h"
 #include "mrgi_vpl_tree.h"
@@ -40,6 +41,9 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkMRGIVPLSelection);
+
+// The header's clamp range is the core's.
+static_assert(MRGI_BRSM_MIN_TEMPORAL_WEIGHT == 0.001, "BRSMTemporalWeight clamp range");
 
 struct vtkMRGIVPLSelection::Internals
 {
@@ -61,7 +65,16 @@ struct vtkMRGIVPLSelection::Internals
   vtkIdType ViewStamp = 0;        // bumped whenever View changes
   vtkIdType SourceViewStamp = 0;  // ViewStamp of the cache
   vtkMRGIBRSMInversion* Inversion = nullptr; // BRSM mode, texel VPLs: the GPU inversion
+  // BRSM mode: each light's pdf of the previous selection (the temporal
+  // blend's history, mrgi_brsm_temporal.h), indexed by light.
+  std::vector<std::vector<float>> BRSMHistory;
 };
+
+//------------------------------------------------------------------------------
+void vtkMRGIVPLSelection::ResetBRSMHistory()
+{
+  this->Internal->BRSMHistory.clear();
+}
 
 //------------------------------------------------------------------------------
 vtkMRGIVPLSelection::vtkMRGIVPLSelection()
@@ -73,6 +86,7 @@ vtkMRGIVPLSelection::vtkMRGIVPLSelection()
   this->ClusterNormalThreshold = defaults.normal_threshold;
   this->ClusterFinestLevel = defaults.finest_level;
   this->TreeThreshold = MRGI_VPL_TREE_DEFAULT_THRESHOLD;
+  this->BRSMTemporalWeight = MRGI_BRSM_DEFAULT_TEMPORAL_WEIGHT;
 }
 
 //------------------------------------------------------------------------------
@@ -578,13 +592,17 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
         settings.FluxShare = this->BRSMFluxShare;
         settings.Blur = this->BRSMBlur;
         settings.InterTexel = this->BRSMInterTexel;
+        settings.TemporalWeight = this->BRSMTemporalWeight;
+        std::vector<std::vector<float>>& histories = this->Internal->BRSMHistory;
+        histories.resize(std::max(histories.size(), static_cast<size_t>(block.Light) + 1));
+        std::vector<float>* history = &histories[static_cast<size_t>(block.Light)];
         std::string error;
         if (!settings.InterTexel)
         {
           inversions.push_back({ &block, {}, {} });
           if (!vtkMRGIBRSM::PrepareInversion(map, this->Internal->View, settings, block.Rows,
                 seed, // fixed: the same VPLs for the same inputs
-                inversions.back().CDF, inversions.back().Samples, error))
+                history, inversions.back().CDF, inversions.back().Samples, error))
           {
             vtkErrorMacro(<< error);
             return this->Internal->Count = 0;
@@ -593,7 +611,7 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
         }
         if (!vtkMRGIBRSM::Select(map, this->Internal->View, settings, block.Rows,
               seed, // fixed: the same VPLs for the same inputs
-              vpls.data() + block.FirstRow, error))
+              history, vpls.data() + block.FirstRow, error))
         {
           vtkErrorMacro(<< error);
           return this->Internal->Count = 0;
@@ -772,6 +790,7 @@ void vtkMRGIVPLSelection::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BRSMFluxShare: " << this->BRSMFluxShare << "\n";
   os << indent << "BRSMBlur: " << this->BRSMBlur << "\n";
   os << indent << "BRSMInterTexel: " << this->BRSMInterTexel << "\n";
+  os << indent << "BRSMTemporalWeight: " << this->BRSMTemporalWeight << "\n";
   os << indent << "NumberOfViewSamples: " << this->GetNumberOfViewSamples() << "\n";
   os << indent << "NumberOfTreeNodes: " << this->GetNumberOfTreeNodes() << "\n";
   os << indent << "NumberOfVPLs: " << this->NumberOfVPLs << "\n";
