@@ -62,6 +62,7 @@
 #include "mrgiRenderColdStart.h"
 #include "mrgiRenderFrameBudget.h"
 #include "mrgiRenderImageLimits.h"
+#include "mrgiRenderImages.h"
 #include "mrgiRenderOptions.h"
 #include "mrgiRenderOutputWindow.h"
 #include "mrgiRenderOutputs.h"
@@ -98,88 +99,6 @@ double Median(std::vector<double> v)
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-// The window's 8-bit colour as an RGB image (what the window shows).
-bool ReadWindowRGB(vtkRenderWindow* window, int width, int height, vtkImageData* image)
-{
-  vtkNew<vtkUnsignedCharArray> pixels;
-  if (!window->GetRGBACharPixelData(0, 0, width - 1, height - 1, 0, pixels))
-  {
-    return false;
-  }
-  const vtkIdType count = static_cast<vtkIdType>(width) * height;
-  if (pixels->GetNumberOfValues() < 4 * count)
-  {
-    return false;
-  }
-  // RGBA -> RGB in place: each pixel moves to a lower or equal index.
-  unsigned char* p = pixels->GetPointer(0);
-  for (vtkIdType i = 0; i < count; ++i)
-  {
-    p[3 * i] = p[4 * i];
-    p[3 * i + 1] = p[4 * i + 1];
-    p[3 * i + 2] = p[4 * i + 2];
-  }
-  pixels->SetNumberOfComponents(3);
-  pixels->Resize(count);
-  pixels->SetNumberOfTuples(count);
-  image->SetDimensions(width, height, 1);
-  image->GetPointData()->SetScalars(pixels);
-  return true;
-}
-
-// Whether a result of this run is the display image (the colour exposed,
-// tone mapped and anti-aliased into the window): a PNG of the GPU image, the
-// interactive window, or a run without outputs (it times the frame a viewer
-// sees). EXR, --indirect-only and --reference outputs are HDR buffers that
-// exposure, tone mapping and FXAA never touch, so those steps are not run
-// for them (automatic exposure alone reads the whole HDR image back).
-bool ShowsDisplayImage(const Options& o)
-{
-  if (o.Interactive || o.Outputs.empty())
-  {
-    return true;
-  }
-  if (o.Reference || o.IndirectOnly)
-  {
-    return false;
-  }
-  return std::any_of(o.Outputs.begin(), o.Outputs.end(),
-    [](const std::string& path) { return !EndsWith(path, ".exr"); });
-}
-
-// Whether every pixel of `image` (3 or 4 components) is the background
-// colour: within one 8-bit step for the window's 8-bit image, exactly for
-// the HDR colour buffer (its background is the clear colour, untouched).
-bool OnlyBackground(vtkImageData* image, const double background[3])
-{
-  vtkDataArray* pixels = image ? image->GetPointData()->GetScalars() : nullptr;
-  if (!pixels || pixels->GetNumberOfComponents() < 3)
-  {
-    return false;
-  }
-  const bool eightBit = pixels->GetDataType() == VTK_UNSIGNED_CHAR;
-  const double tolerance = eightBit ? 1.0 : 0.0;
-  double expected[3];
-  for (int c = 0; c < 3; ++c)
-  {
-    expected[c] = eightBit ? std::round(255.0 * std::min(1.0, std::max(0.0, background[c])))
-                           : static_cast<double>(static_cast<float>(background[c]));
-  }
-  const vtkIdType n = pixels->GetNumberOfTuples();
-  for (vtkIdType p = 0; p < n; ++p)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      // NaN differs from every background.
-      if (!(std::abs(pixels->GetComponent(p, c) - expected[c]) <= tolerance))
-      {
-        return false;
-      }
-    }
-  }
-  return true;
-}
-
 // Detaches the passes and frees their GL resources (the outermost pass
 // releases its delegates' too): by Now(), or on any return from main, so
 // that a pass is never destroyed holding them (which VTK reports as an
@@ -207,85 +126,6 @@ int FailInput(const std::string& message)
 {
   Fail(message);
   return 1;
-}
-
-// Why a picture that shows only the background is empty, as far as the
-// renderer can tell.
-std::string WhyEmpty(vtkRenderer* renderer, vtkIdType triangles)
-{
-  if (renderer->VisibleActorCount() == 0)
-  {
-    return "the scene has nothing to draw";
-  }
-  double b[6];
-  renderer->ComputeVisiblePropBounds(b);
-  if (!vtkMath::AreBoundsInitialized(b))
-  {
-    return "the scene has no geometry with finite bounds";
-  }
-  bool lit = false;
-  vtkLightCollection* lights = renderer->GetLights();
-  lights->InitTraversal();
-  while (vtkLight* light = lights->GetNextItem())
-  {
-    lit = lit || (light->GetSwitch() && light->GetIntensity() > 0);
-  }
-  if (!lit && renderer->GetLights()->GetNumberOfItems() > 0)
-  {
-    return "no light is on";
-  }
-  return triangles == 0 ? "the data has no surfaces, and its points or lines are not in view"
-                        : "the geometry is outside the view, clipped, seen edge-on or unlit";
-}
-
-// --aa ssaa:N: the N x N blocks of `image` (any scalar type, rows in
-// either order) averaged into one pixel each (mrgi_box_downsample); 8-bit
-// images are rounded back to 8 bits. False with `why` on failure.
-bool Downsample(vtkImageData* image, int factor, std::string& why)
-{
-  if (factor <= 1)
-  {
-    return true;
-  }
-  int dims[3];
-  image->GetDimensions(dims);
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
-  const int channels = scalars->GetNumberOfComponents();
-  mrgi_image full, small;
-  mrgi_error err;
-  if (mrgi_image_create(&full, dims[0], dims[1], channels, &err) != MRGI_OK)
-  {
-    why = std::string("supersampling: ") + err.message;
-    return false;
-  }
-  const vtkIdType values = scalars->GetNumberOfValues();
-  for (vtkIdType i = 0; i < values; ++i)
-  {
-    full.pixels[i] = static_cast<float>(scalars->GetVariantValue(i).ToDouble());
-  }
-  const mrgi_status status = mrgi_box_downsample(&full, factor, &small, &err);
-  mrgi_image_destroy(&full);
-  if (status != MRGI_OK)
-  {
-    why = std::string("supersampling: ") + err.message;
-    return false;
-  }
-  vtkSmartPointer<vtkDataArray> out = vtkSmartPointer<vtkDataArray>::Take(scalars->NewInstance());
-  out->SetNumberOfComponents(channels);
-  out->SetNumberOfTuples(static_cast<vtkIdType>(small.width) * small.height);
-  out->SetName(scalars->GetName());
-  const bool bytes = scalars->GetDataType() == VTK_UNSIGNED_CHAR;
-  for (vtkIdType i = 0; i < out->GetNumberOfValues(); ++i)
-  {
-    const double v = small.pixels[i];
-    out->SetVariantValue(i,
-      bytes ? vtkVariant(static_cast<unsigned char>(std::lround(std::min(std::max(v, 0.0), 255.0))))
-            : vtkVariant(v));
-  }
-  image->SetDimensions(small.width, small.height, 1);
-  image->GetPointData()->SetScalars(out);
-  mrgi_image_destroy(&small);
-  return true;
 }
 
 void Progress(const Options& o, const std::string& line)
