@@ -23,6 +23,10 @@ EXPECTED = {
     "IndirectStrength": 1.5,
     "MRGIExposure": 0.5,
     "MultiresolutionPreset": 2,
+    # Both non-default: BRSM's selection and ISM shadows must come back and
+    # render the same first frame in the fresh process.
+    "VPLSelectionMode": 4,
+    "IndirectVisibility": 1,
 }
 
 if mode == "save":

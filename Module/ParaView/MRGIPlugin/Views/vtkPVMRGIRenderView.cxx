@@ -164,6 +164,12 @@ void vtkPVMRGIRenderView::SetVPLSelectionMode(int mode)
 }
 
 //------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetIndirectVisibility(int mode)
+{
+  this->MRGIPass->SetIndirectVisibility(mode);
+}
+
+//------------------------------------------------------------------------------
 void vtkPVMRGIRenderView::SetRSMResolution(int resolution)
 {
   this->MRGIPass->SetRSMResolution(resolution);

@@ -70,6 +70,7 @@ public:
   /** Forwarded to vtkMRGIPass (see there for ranges and defaults). */
   void SetNumberOfVPLs(int count);
   void SetVPLSelectionMode(int mode);
+  void SetIndirectVisibility(int mode);
   void SetRSMResolution(int resolution);
   void SetIndirectStrength(double strength);
   void SetSurfaceDetail(double alpha);
