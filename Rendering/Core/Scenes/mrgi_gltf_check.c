@@ -561,8 +561,9 @@ static mrgi_status check_document(gltf* g, int32_t root)
       const jvalue* x = &g->j.v[c];
       if (x->type != J_NUMBER || x->number < 0 || x->number >= g->nodes ||
         x->number != floor(x->number))
-        s = fail(g, "node %lld has a child that does not exist (%lld)", (long long)i,
-          (long long)(x->type == J_NUMBER ? (long long)x->number : -1));
+        s = fail(g, "node %lld has a child that does not exist (%g)", (long long)i,
+          /* %g: a JSON number may lie far outside long long (fuzzing: 1e36) */
+          x->type == J_NUMBER ? x->number : -1.0);
     }
   }
   for (int32_t start = 0; start < g->nodes && !s; ++start)
@@ -614,8 +615,9 @@ static mrgi_status check_document(gltf* g, int32_t root)
       const jvalue* x = &g->j.v[c];
       if (x->type != J_NUMBER || x->number < 0 || x->number >= g->nodes ||
         x->number != floor(x->number))
-        return fail(g, "scene %lld names a node that does not exist (%lld)", (long long)i,
-          (long long)(x->type == J_NUMBER ? (long long)x->number : -1));
+        return fail(g, "scene %lld names a node that does not exist (%g)", (long long)i,
+          /* %g: a JSON number may lie far outside long long (fuzzing: 1e36) */
+          x->type == J_NUMBER ? x->number : -1.0);
     }
   }
   i = 0;
@@ -661,8 +663,9 @@ static mrgi_status check_document(gltf* g, int32_t root)
       const jvalue* x = &g->j.v[c];
       if (x->type != J_NUMBER || x->number < 0 || x->number >= g->nodes ||
         x->number != floor(x->number))
-        return fail(g, "skin %lld names a joint that does not exist (%lld)", (long long)i,
-          (long long)(x->type == J_NUMBER ? (long long)x->number : -1));
+        return fail(g, "skin %lld names a joint that does not exist (%g)", (long long)i,
+          /* %g: a JSON number may lie far outside long long (fuzzing: 1e36) */
+          x->type == J_NUMBER ? x->number : -1.0);
     }
   }
   i = 0;
