@@ -206,7 +206,8 @@ static int run_controller(mrgi_frame_budget_controller* ctl, const mrgi_frame_bu
   int switches = 0;
   for (int f = 0; f < frames; ++f)
   {
-    const double ms = load * true_ms(&cand[ctl->current], pixels) * (1.0 + amp * noise(rng));
+    const double spike = f % 40 == 17 ? 1.5 : 1.0;
+    const double ms = load * spike * true_ms(&cand[ctl->current], pixels) * (1.0 + amp * noise(rng));
     int changed = 0;
     MRGI_CHECK(mrgi_frame_budget_controller_update(ctl, cal, cand, n, pixels, ms, &changed, NULL) == MRGI_OK);
     if (changed && switches++ == 0 && first_switch)
@@ -228,24 +229,29 @@ static void test_hysteresis(void)
   mrgi_frame_budget_controller ctl;
   MRGI_CHECK(mrgi_frame_budget_controller_init(&ctl, &cal, cand, n, pixels, 60.0,
                MRGI_FRAME_BUDGET_DEFAULT_MARGIN, MRGI_FRAME_BUDGET_DEFAULT_PATIENCE, NULL) == MRGI_OK);
-  const int32_t start = ctl.current;
   uint32_t rng = 777u;
-  /* Noise up to +-20% (a sixth of the frames miss the 15% margin), constant load: no switch. */
-  MRGI_CHECK(run_controller(&ctl, &cal, cand, n, pixels, 1.0, 0.20, 2000, &rng, NULL) == 0);
-  MRGI_CHECK(ctl.current == start);
-  /* The load doubles (another program takes the cores): one switch, to a
-   * setting that fits the budget at the new load, within patience frames. */
+  /* Noise up to +-8% with spikes (a frame in 40 takes 1.5x), constant
+   * load: the first measured frames may correct the calibration's choice
+   * once; then it holds. */
+  MRGI_CHECK(run_controller(&ctl, &cal, cand, n, pixels, 1.0, 0.08, 10, &rng, NULL) <= 1);
+  const int32_t start = ctl.current;
+  MRGI_CHECK(run_controller(&ctl, &cal, cand, n, pixels, 1.0, 0.08, 2000, &rng, NULL) == 0);
+  MRGI_CHECK(fabs(true_ms(&cand[start], pixels) / 60.0 - 1.0) <= 0.10);
+  /* The load doubles (another program takes the cores): the first switch
+   * comes after patience frames, the load estimate settles within 30
+   * frames, to a setting that fits the budget at the new load, and holds. */
   int first = -1;
-  const int s = run_controller(&ctl, &cal, cand, n, pixels, 2.0, 0.05, 500, &rng, &first);
-  MRGI_CHECK(s >= 1 && s <= 2);
+  const int s = run_controller(&ctl, &cal, cand, n, pixels, 2.0, 0.05, 30, &rng, &first);
+  MRGI_CHECK(s >= 1 && s <= 3);
   MRGI_CHECK(first >= MRGI_FRAME_BUDGET_DEFAULT_PATIENCE - 1 && first <= MRGI_FRAME_BUDGET_DEFAULT_PATIENCE + 4);
-  MRGI_CHECK(2.0 * true_ms(&cand[ctl.current], pixels) <= 60.0);
+  MRGI_CHECK(run_controller(&ctl, &cal, cand, n, pixels, 2.0, 0.05, 470, &rng, NULL) == 0);
+  MRGI_CHECK(fabs(2.0 * true_ms(&cand[ctl.current], pixels) / 60.0 - 1.0) <= 0.10);
   MRGI_CHECK(ctl.load > 1.8 && ctl.load < 2.2);
-  /* The load goes back: it returns to the first choice and stays. */
+  /* The load goes back: back within 10% of the budget, and it stays. */
   run_controller(&ctl, &cal, cand, n, pixels, 1.0, 0.05, 500, &rng, NULL);
-  MRGI_CHECK(ctl.current == start);
+  MRGI_CHECK(fabs(true_ms(&cand[ctl.current], pixels) / 60.0 - 1.0) <= 0.10);
   const int32_t settled = ctl.switches;
-  MRGI_CHECK(run_controller(&ctl, &cal, cand, n, pixels, 1.0, 0.10, 1000, &rng, NULL) == 0);
+  MRGI_CHECK(run_controller(&ctl, &cal, cand, n, pixels, 1.0, 0.05, 1000, &rng, NULL) == 0);
   MRGI_CHECK(ctl.switches == settled);
 
   mrgi_error err;
@@ -253,6 +259,58 @@ static void test_hysteresis(void)
   MRGI_CHECK(strstr(err.message, "measured time") != NULL);
   MRGI_CHECK(mrgi_frame_budget_controller_init(&ctl, &cal, cand, n, pixels, 60.0, 0.0, 5, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "margin") != NULL);
+}
+
+/* The situation of an interactive orbit (Documentation/FrameBudget.md): the
+ * calibration misjudges the gather (real cost 1.3x the model's) and what the
+ * view costs drifts by 40% over 100 frames, with +-5% noise. The frame time
+ * must stay within 10% of the budget on >= 90% of the frames after the
+ * first 5 (issue 17's target), without alternating between settings. */
+static void test_tracks_drift(void)
+{
+  mrgi_frame_setting cand[MRGI_FRAME_BUDGET_MAX_CANDIDATES];
+  const int32_t n = mrgi_frame_budget_default_candidates(0, cand, MRGI_FRAME_BUDGET_MAX_CANDIDATES);
+  mrgi_frame_budget_calibration cal, real;
+  mrgi_frame_budget_default(&cal);
+  memcpy(cal.coef, truth, sizeof(truth));
+  real = cal;
+  real.coef[2] *= 1.3;
+  const int64_t pixels = 256 * 256;
+  /* Budgets in the dense part of the frontier, multiples of the cheapest
+   * setting's real cost mid-orbit (above fast with 4096 VPLs, ~3.3x, the
+   * next better setting costs 1.6x more: the tuner rightly stays under). */
+  double lo = 0.0;
+  for (int32_t i = 0; i < n; ++i)
+  {
+    const double ms = 1.2 * mrgi_frame_budget_predict(&real, &cand[i], pixels);
+    lo = i == 0 ? ms : fmin(lo, ms);
+  }
+  const double budgets[] = { 1.5 * lo, 2.0 * lo, 2.8 * lo };
+  for (size_t b = 0; b < sizeof(budgets) / sizeof(budgets[0]); ++b)
+  {
+    mrgi_frame_budget_controller ctl;
+    MRGI_CHECK(mrgi_frame_budget_controller_init(&ctl, &cal, cand, n, pixels, budgets[b],
+                 MRGI_FRAME_BUDGET_DEFAULT_MARGIN, MRGI_FRAME_BUDGET_DEFAULT_PATIENCE, NULL) == MRGI_OK);
+    uint32_t rng = 4242u + (uint32_t)b;
+    int within = 0, counted = 0;
+    for (int f = 0; f < 100; ++f)
+    {
+      const double view = 1.0 + 0.4 * f / 99.0;
+      const double ms = view * mrgi_frame_budget_predict(&real, &cand[ctl.current], pixels) *
+        (1.0 + 0.05 * noise(&rng));
+      if (f >= 5)
+      {
+        counted++;
+        within += fabs(ms / budgets[b] - 1.0) <= 0.10;
+      }
+      MRGI_CHECK(mrgi_frame_budget_controller_update(&ctl, &cal, cand, n, pixels, ms, NULL, NULL) == MRGI_OK);
+    }
+    if (within < 0.9 * counted || ctl.switches > 12)
+    {
+      MRGI_FAIL("budget %g ms: %d of %d frames within 10%%, %d switches", budgets[b], within,
+        counted, (int)ctl.switches);
+    }
+  }
 }
 
 static void test_text(void)
@@ -340,6 +398,7 @@ int main(int argc, char** argv)
     MRGI_TEST_CASE(test_fit_recovers),
     MRGI_TEST_CASE(test_choice_respects_budget),
     MRGI_TEST_CASE(test_hysteresis),
+    MRGI_TEST_CASE(test_tracks_drift),
     MRGI_TEST_CASE(test_text),
     MRGI_TEST_CASE(test_error_proxy),
   };

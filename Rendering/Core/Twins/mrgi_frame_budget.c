@@ -311,7 +311,11 @@ mrgi_status mrgi_frame_budget_fit(const double* terms, const double* ms, int32_t
 
 int32_t mrgi_frame_budget_default_candidates(int voxels, mrgi_frame_setting* out, int32_t capacity)
 {
-  static const int32_t sides[] = { 4, 5, 6, 7, 8, 10, 12, 14, 16, 20, 24, 28, 32 };
+  /* Grid sides close enough that neighbouring VPL counts differ by at most
+   * ~30% (4..8) and ~28% down to 6.5% (8..64, step 2): the controller needs
+   * a setting near any budget, not only near the presets' own. */
+  static const int32_t sides[] = { 4, 5, 6, 7, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30, 32,
+    34, 36, 38, 40, 42, 44, 46, 48, 50, 52, 54, 56, 58, 60, 62, 64 };
   static const int32_t rsm[] = { 128, 256, 512 };
   static const int32_t vox[] = { 64, 128, 256 };
   const int nsides = (int)(sizeof(sides) / sizeof(sides[0]));
@@ -442,6 +446,14 @@ mrgi_status mrgi_frame_budget_choose_for_error(const mrgi_frame_budget_calibrati
   return MRGI_OK;
 }
 
+/* The controller aims at the lower half of its band: a setting chosen right
+ * at the budget would leave the load estimate's own noise no room before the
+ * band's upper edge, and alternate with its cheaper neighbour. */
+static double controller_target(double budget_ms, double margin)
+{
+  return budget_ms / (1.0 + 0.5 * margin);
+}
+
 mrgi_status mrgi_frame_budget_controller_init(mrgi_frame_budget_controller* ctl,
   const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* candidates, int32_t count,
   int64_t pixels, double budget_ms, double margin, int32_t patience, mrgi_error* err)
@@ -457,8 +469,8 @@ mrgi_status mrgi_frame_budget_controller_init(mrgi_frame_budget_controller* ctl,
       (int)patience);
   }
   int32_t index = 0;
-  const mrgi_status st =
-    mrgi_frame_budget_choose(cal, candidates, count, pixels, budget_ms, 1.0, &index, NULL, err);
+  const mrgi_status st = mrgi_frame_budget_choose(
+    cal, candidates, count, pixels, controller_target(budget_ms, margin), 1.0, &index, NULL, err);
   if (st != MRGI_OK)
   {
     return st;
@@ -468,6 +480,7 @@ mrgi_status mrgi_frame_budget_controller_init(mrgi_frame_budget_controller* ctl,
   ctl->margin = margin;
   ctl->patience = patience;
   ctl->load = 1.0;
+  ctl->skip = 1; /* the first frame compiles and allocates */
   ctl->current = index;
   return MRGI_OK;
 }
@@ -496,41 +509,63 @@ mrgi_status mrgi_frame_budget_controller_update(mrgi_frame_budget_controller* ct
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
       "frame budget controller: candidate %d has no positive predicted time", (int)ctl->current);
   }
-  const double miss = log(measured_ms / (ctl->load * predicted));
-  ctl->average += MRGI_FRAME_BUDGET_AVERAGE_WEIGHT * (miss - ctl->average);
-  const double bound = log1p(ctl->margin);
-  const int dir = ctl->average > bound ? 1 : ctl->average < -bound ? -1 : 0;
+  if (ctl->skip > 0)
+  {
+    /* The first frame of a new setting pays for its shaders and buffers. */
+    ctl->skip--;
+    return MRGI_OK;
+  }
+  /* The load estimate follows every frame, through the median of the last
+   * three frames' log(measured / predicted), so that a lone spike does not
+   * move it. */
+  ctl->recent[ctl->frames % 3] = log(measured_ms / predicted);
+  ctl->frames++;
+  double ratio = ctl->recent[0];
+  if (ctl->frames == 2)
+  {
+    ratio = 0.5 * (ctl->recent[0] + ctl->recent[1]);
+  }
+  else if (ctl->frames >= 3)
+  {
+    const double a = ctl->recent[0], b = ctl->recent[1], c = ctl->recent[2];
+    ratio = fmax(fmin(a, b), fmin(fmax(a, b), c));
+  }
+  /* The first measured frame replaces the calibration's load of 1. */
+  ctl->average += (ctl->frames == 1 ? 1.0 : MRGI_FRAME_BUDGET_AVERAGE_WEIGHT) * (ratio - ctl->average);
+  ctl->load = exp(ctl->average);
+  /* Hysteresis: only an expected time outside the band, frames in a row. */
+  const double deviation = log(ctl->load * predicted / ctl->budget_ms);
+  /* The band reaches twice as far down: the setting is chosen at most
+   * budget / (1 + margin / 2), and the grid's next dearer one may not fit. */
+  const int dir = deviation > log1p(ctl->margin) ? 1 : deviation < -log1p(2.0 * ctl->margin) ? -1 : 0;
   if (dir == 0 || (ctl->streak > 0) != (dir > 0))
   {
-    /* The average is within the margin, or turned: no streak. */
     ctl->streak = 0;
-    ctl->streak_log = 0.0;
   }
-  if (dir != 0)
-  {
-    ctl->streak += dir;
-    ctl->streak_log += miss;
-  }
-  if (abs(ctl->streak) < ctl->patience)
+  ctl->streak += dir;
+  /* Over budget means going cheaper (+1), under means going dearer (-1). */
+  const int reverses = ctl->last_direction != 0 && dir != 0 && dir != ctl->last_direction &&
+    ctl->frames - ctl->last_switch_frame < MRGI_FRAME_BUDGET_REVERSAL_WINDOW;
+  const int32_t wait = ctl->patience * (reverses ? MRGI_FRAME_BUDGET_REVERSAL_FACTOR : 1);
+  if (dir == 0 || abs(ctl->streak) < wait)
   {
     return MRGI_OK;
   }
-  /* A persistent miss: move the load factor to the geometric mean of the
-   * streak's frames (not the average's, which lags) and choose again. */
-  ctl->load *= exp(ctl->streak_log / abs(ctl->streak));
   ctl->streak = 0;
-  ctl->streak_log = 0.0;
-  ctl->average = 0.0;
   int32_t index = ctl->current;
-  const mrgi_status st = mrgi_frame_budget_choose(
-    cal, candidates, count, pixels, ctl->budget_ms, ctl->load, &index, NULL, err);
+  const mrgi_status st = mrgi_frame_budget_choose(cal, candidates, count, pixels,
+    controller_target(ctl->budget_ms, ctl->margin), ctl->load, &index, NULL, err);
   if (st != MRGI_OK)
   {
     return st;
   }
   if (index != ctl->current)
   {
+    const double next = mrgi_frame_budget_predict(cal, &candidates[index], pixels);
+    ctl->last_direction = next < predicted ? 1 : -1;
+    ctl->last_switch_frame = ctl->frames;
     ctl->current = index;
+    ctl->skip = 1;
     ctl->switches++;
     if (changed)
     {

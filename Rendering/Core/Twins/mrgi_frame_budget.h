@@ -43,16 +43,26 @@
  * frame_budget.py measures the real error of every candidate against the
  * dense reference, so the proxy is checked, not trusted.
  *
- * **Hysteresis** (mrgi_frame_budget_controller_update()): the controller
- * keeps a load factor s = measured / predicted and an exponential average
- * (weight MRGI_FRAME_BUDGET_AVERAGE_WEIGHT) of each frame's miss
- * log(measured / (s x predicted)). Only when that average stays beyond the
- * margin (default 15%) on the same side for `patience` frames in a row
- * (default 5) does s move (to the geometric mean of those frames' misses,
- * then the average restarts) and the setting is chosen again. Frame-to-frame
- * noise is averaged away first (+-20% uniform noise moves the average by
- * about 3% rms), so a noisy but constant load never switches; a real load
- * change (x2) switches after about 3 + `patience` frames and then holds.
+ * **Control during interaction** (mrgi_frame_budget_controller_update()):
+ * the controller estimates the load factor s = measured / predicted of the
+ * frames it sees: an exponential average (weight
+ * MRGI_FRAME_BUDGET_AVERAGE_WEIGHT) of the median of the last three frames'
+ * log(measured / predicted), so that a lone spike does not move it. s follows
+ * the view: what a frame costs depends on what it shows (Documentation/
+ * FrameBudget.md: the same setting costs 28 to 36 ms along one orbit), so
+ * the model's prediction is corrected every frame, not only on a switch.
+ * Hysteresis: the setting is chosen again only when the current one's
+ * expected time s x predicted stays outside [budget / (1 + 2 margin),
+ * budget x (1 + margin)] (default margin 5%: with +-5% frame noise, frames
+ * stay within 10%) for `patience` frames in a row (default 3). It then takes
+ * the setting of least predicted error whose expected time is within
+ * budget / (1 + margin / 2), the band's lower half, so that the load
+ * estimate's own noise does not carry it over the upper edge. A switch that
+ * reverses the previous one's direction (cheaper after dearer, or back)
+ * within MRGI_FRAME_BUDGET_REVERSAL_WINDOW frames of it waits
+ * MRGI_FRAME_BUDGET_REVERSAL_FACTOR x patience frames, so that two settings
+ * the model misjudges do not alternate. The first frame of a new setting
+ * (shaders, buffers) is not measured.
  *
  * **Calibration file** (mrgi_frame_budget_format(), _parse()): text, one key
  * and value per line, in this order:
@@ -81,14 +91,18 @@ extern "C" {
 /** Size of ::mrgi_frame_budget_calibration::renderer, NUL included. */
 #define MRGI_FRAME_BUDGET_RENDERER_SIZE 128
 /** Most candidates mrgi_frame_budget_default_candidates() writes. */
-#define MRGI_FRAME_BUDGET_MAX_CANDIDATES 512
+#define MRGI_FRAME_BUDGET_MAX_CANDIDATES 1024
 /** Size a buffer for mrgi_frame_budget_format() needs at most. */
 #define MRGI_FRAME_BUDGET_TEXT_SIZE 512
 /** Default hysteresis margin (relative) and patience (frames). */
-#define MRGI_FRAME_BUDGET_DEFAULT_MARGIN 0.15
-#define MRGI_FRAME_BUDGET_DEFAULT_PATIENCE 5
-/** Weight of a new frame in the controller's average miss. */
-#define MRGI_FRAME_BUDGET_AVERAGE_WEIGHT 0.1
+#define MRGI_FRAME_BUDGET_DEFAULT_MARGIN 0.05
+#define MRGI_FRAME_BUDGET_DEFAULT_PATIENCE 3
+/** Weight of a new frame in the controller's load estimate. */
+#define MRGI_FRAME_BUDGET_AVERAGE_WEIGHT 0.4
+/** A switch that reverses the previous one, made less than
+ *  MRGI_FRAME_BUDGET_REVERSAL_WINDOW measured frames ago, waits this times patience. */
+#define MRGI_FRAME_BUDGET_REVERSAL_FACTOR 3
+#define MRGI_FRAME_BUDGET_REVERSAL_WINDOW 30
 
 /** Error proxy constants (see the file comment). */
 #define MRGI_FRAME_BUDGET_ERROR_VPL 1.6
@@ -155,7 +169,7 @@ mrgi_status mrgi_frame_budget_fit(const double* terms, const double* ms, int32_t
   mrgi_frame_budget_calibration* cal, mrgi_error* err);
 
 /**
- * @brief The default candidate grid: every preset x square VPL counts 16..1024
+ * @brief The default candidate grid: every preset x square VPL counts 16..4096
  *        x RSM sides 128, 256, 512; x voxel sides 64, 128, 256 when `voxels`
  *        (else voxel_side 0). Writes at most `capacity`.
  * @return The number written (the full grid needs at most
@@ -192,16 +206,21 @@ typedef struct mrgi_frame_budget_controller
   double budget_ms;  /**< Target frame time. */
   double margin;     /**< Relative miss that counts, > 0. */
   int32_t patience;  /**< Consecutive misses that move the load factor, >= 1. */
-  double load;       /**< measured / predicted, 1 at start. */
+  double load;       /**< Estimated measured / predicted, exp(average); 1 at start. */
   int32_t current;   /**< Index of the chosen candidate. */
-  double average;    /**< Exponential average of log(measured / expected). */
-  int32_t streak;    /**< Frames the average was beyond the margin (signed: > 0 slower). */
-  double streak_log; /**< Sum of log(measured / expected) over the streak. */
+  double average;    /**< Exponential average of log(measured / predicted). */
+  int32_t streak;    /**< Frames the expected time was outside the band (signed: > 0 slower). */
+  int32_t last_direction; /**< Last switch: +1 to a cheaper setting, -1 dearer, 0 none. */
+  int32_t skip;      /**< Frames still to leave out (the first of a new setting). */
+  double recent[3];  /**< The last three frames' log(measured / predicted), a ring. */
+  int64_t frames;    /**< Frames measured since init (position in the ring). */
+  int64_t last_switch_frame; /**< ::frames at the last switch. */
   int32_t switches;  /**< Times the choice changed since init. */
 } mrgi_frame_budget_controller;
 
 /**
- * @brief Start a controller: load 1, the choice of mrgi_frame_budget_choose().
+ * @brief Start a controller: load 1, the choice of mrgi_frame_budget_choose()
+ *        for budget / (1 + margin / 2).
  * @return As mrgi_frame_budget_choose(); margin must be finite and > 0,
  *         patience >= 1.
  */

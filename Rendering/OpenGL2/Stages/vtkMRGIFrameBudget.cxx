@@ -228,12 +228,8 @@ void vtkMRGIFrameBudget::BeginFrame(vtkRenderer* renderer, const Knobs& knobs)
         static_cast<int32_t>(in.Candidates.size()), pixels, this->FrameBudget, this->Margin,
         this->Patience, &err);
       index = in.Controller.current;
-      if (st == MRGI_OK)
-      {
-        st = mrgi_frame_budget_choose(&in.Calibration, in.Candidates.data(),
-          static_cast<int32_t>(in.Candidates.size()), pixels, this->FrameBudget, 1.0, &index,
-          &within, &err);
-      }
+      within = mrgi_frame_budget_predict(&in.Calibration,
+                 &in.Candidates[static_cast<size_t>(index)], pixels) <= this->FrameBudget;
     }
     else
     {

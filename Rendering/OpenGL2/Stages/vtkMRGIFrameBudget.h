@@ -12,10 +12,11 @@
  * knows no pass: vtkMRGIPass owns it and supplies the Knobs.
  *
  * - SetFrameBudget(ms) > 0: the setting of least predicted error whose
- *   predicted time fits; then, during interaction, a controller with
- *   hysteresis follows the measured times (a miss of more than Margin for
- *   Patience frames in a row moves the load factor and chooses again; a noisy
- *   constant load never switches).
+ *   predicted time fits; then, during interaction, a controller follows
+ *   the measured times: it corrects the model by a load factor every frame
+ *   (what a frame costs changes with the view) and chooses again only when
+ *   the expected time stays outside the band around the budget (Margin) for
+ *   Patience frames in a row, so that a noisy constant load does not switch.
  * - SetErrorBudget(e) > 0 (and no frame budget): the cheapest setting whose
  *   predicted relative RMS error against the dense reference is at most e.
  *   With both set, the frame budget decides.
@@ -70,7 +71,7 @@ public:
   bool IsActive() const { return this->FrameBudget > 0 || this->ErrorBudget > 0; }
 
   ///@{
-  /** Hysteresis: relative miss that counts (default 0.15), misses in a row that switch (default 5). */
+  /** Hysteresis: relative miss that counts (default 0.05), misses in a row that switch (default 3). */
   vtkSetClampMacro(Margin, double, 0.01, 10.0);
   vtkGetMacro(Margin, double);
   vtkSetClampMacro(Patience, int, 1, 1000);
