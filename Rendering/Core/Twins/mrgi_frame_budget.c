@@ -403,11 +403,32 @@ mrgi_status mrgi_frame_budget_choose(const mrgi_frame_budget_calibration* cal,
       best_ms = ms;
     }
   }
-  *index = best >= 0 ? best : cheapest;
   if (within)
   {
     *within = best >= 0;
   }
+  if (best < 0)
+  {
+    /* Nothing fits: among the settings that cost about as little as the
+     * cheapest, the one of least error (16 VPLs are rarely worth saving
+     * the last percent). */
+    best = cheapest;
+    best_err = mrgi_frame_budget_error(&candidates[cheapest]);
+    best_ms = cheapest_ms;
+    for (int32_t i = 0; i < count; ++i)
+    {
+      const double ms = load * mrgi_frame_budget_predict(cal, &candidates[i], pixels);
+      const double e = mrgi_frame_budget_error(&candidates[i]);
+      if (ms <= MRGI_FRAME_BUDGET_NEAR_CHEAPEST * cheapest_ms &&
+        (e < best_err || (e == best_err && ms < best_ms)))
+      {
+        best = i;
+        best_err = e;
+        best_ms = ms;
+      }
+    }
+  }
+  *index = best;
   return MRGI_OK;
 }
 
@@ -446,6 +467,57 @@ mrgi_status mrgi_frame_budget_choose_for_error(const mrgi_frame_budget_calibrati
   return MRGI_OK;
 }
 
+/* The calibration as the controller sees it: the setting-dependent terms
+ * (gather, RSM, voxels) scaled by its measured shape factor. */
+static mrgi_frame_budget_calibration shaped(const mrgi_frame_budget_calibration* cal, double shape)
+{
+  mrgi_frame_budget_calibration c = *cal;
+  for (int i = 2; i < MRGI_FRAME_BUDGET_TERMS; ++i)
+  {
+    c.coef[i] *= shape;
+  }
+  return c;
+}
+
+/* The model's prediction split into the part every setting pays (c0, c1)
+ * and the part that depends on the setting (c2..c4). */
+static void predict_parts(const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* s,
+  int64_t pixels, double* fixed, double* variable)
+{
+  double t[MRGI_FRAME_BUDGET_TERMS] = { 0.0 };
+  mrgi_frame_budget_terms(s, pixels, t, NULL);
+  *fixed = cal->coef[0] * t[0] + cal->coef[1] * t[1];
+  *variable = cal->coef[2] * t[2] + cal->coef[3] * t[3] + cal->coef[4] * t[4];
+}
+
+/* After a switch from A (smoothed time y_a) to B (y_b), with the load the
+ * same on both sides: y_a / (f_a + k v_a) = y_b / (f_b + k v_b), solved for
+ * the shape k. Frame noise of a few percent moves k by that over the
+ * contrast of the two settings, so only a pair whose variable/fixed ratios
+ * differ by MRGI_FRAME_BUDGET_SHAPE_CONTRAST or more counts, and the shape
+ * moves only part of the way (MRGI_FRAME_BUDGET_SHAPE_RATE, in log) towards the solution,
+ * within [1/MRGI_FRAME_BUDGET_SHAPE_LIMIT, MRGI_FRAME_BUDGET_SHAPE_LIMIT]. */
+static void learn_shape(mrgi_frame_budget_controller* ctl, const mrgi_frame_budget_calibration* cal,
+  const mrgi_frame_setting* a, const mrgi_frame_setting* b, int64_t pixels, double y_a, double y_b)
+{
+  double fa, va, fb, vb;
+  predict_parts(cal, a, pixels, &fa, &va);
+  predict_parts(cal, b, pixels, &fb, &vb);
+  if (!(fa > 0.0 && fb > 0.0 && va > 0.0 && vb > 0.0) ||
+    fabs(log((vb / fb) / (va / fa))) < log(MRGI_FRAME_BUDGET_SHAPE_CONTRAST))
+  {
+    return;
+  }
+  const double k = (y_b * fa - y_a * fb) / (y_a * vb - y_b * va);
+  if (!(isfinite(k) && k > 0.0))
+  {
+    return;
+  }
+  const double limit = log(MRGI_FRAME_BUDGET_SHAPE_LIMIT);
+  const double target = fmin(fmax(log(k), -limit), limit);
+  ctl->shape = exp(log(ctl->shape) + MRGI_FRAME_BUDGET_SHAPE_RATE * (target - log(ctl->shape)));
+}
+
 /* The controller aims at the lower half of its band: a setting chosen right
  * at the budget would leave the load estimate's own noise no room before the
  * band's upper edge, and alternate with its cheaper neighbour. */
@@ -481,6 +553,8 @@ mrgi_status mrgi_frame_budget_controller_init(mrgi_frame_budget_controller* ctl,
   ctl->patience = patience;
   ctl->load = 1.0;
   ctl->skip = 1; /* the first frame compiles and allocates */
+  ctl->shape = 1.0;
+  ctl->previous = -1;
   ctl->current = index;
   return MRGI_OK;
 }
@@ -503,17 +577,36 @@ mrgi_status mrgi_frame_budget_controller_update(mrgi_frame_budget_controller* ct
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
       "frame budget controller: measured time %g ms must be finite and > 0", measured_ms);
   }
-  const double predicted = mrgi_frame_budget_predict(cal, &candidates[ctl->current], pixels);
-  if (!(predicted > 0.0))
-  {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-      "frame budget controller: candidate %d has no positive predicted time", (int)ctl->current);
-  }
   if (ctl->skip > 0)
   {
     /* The first frame of a new setting pays for its shaders and buffers. */
     ctl->skip--;
     return MRGI_OK;
+  }
+  if (ctl->previous >= 0 && ctl->previous < count)
+  {
+    /* The frames just after a switch tell the model's shape. */
+    ctl->after_log += log(measured_ms);
+    if (++ctl->after == MRGI_FRAME_BUDGET_SHAPE_FRAMES)
+    {
+      const double y_b = exp(ctl->after_log / ctl->after);
+      learn_shape(ctl, cal, &candidates[ctl->previous], &candidates[ctl->current], pixels,
+        ctl->previous_ms, y_b);
+      ctl->previous = -1;
+      /* The load restarts from this setting's frames, under the new shape. */
+      const mrgi_frame_budget_calibration m = shaped(cal, ctl->shape);
+      const double ratio = log(y_b / mrgi_frame_budget_predict(&m, &candidates[ctl->current], pixels));
+      ctl->average = ratio;
+      ctl->recent[0] = ctl->recent[1] = ctl->recent[2] = ratio;
+      ctl->streak = 0;
+    }
+  }
+  const mrgi_frame_budget_calibration model = shaped(cal, ctl->shape);
+  const double predicted = mrgi_frame_budget_predict(&model, &candidates[ctl->current], pixels);
+  if (!(predicted > 0.0))
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+      "frame budget controller: candidate %d has no positive predicted time", (int)ctl->current);
   }
   /* The load estimate follows every frame, through the median of the last
    * three frames' log(measured / predicted), so that a lone spike does not
@@ -535,16 +628,18 @@ mrgi_status mrgi_frame_budget_controller_update(mrgi_frame_budget_controller* ct
   ctl->load = exp(ctl->average);
   /* Hysteresis: only an expected time outside the band, frames in a row. */
   const double deviation = log(ctl->load * predicted / ctl->budget_ms);
-  /* The band reaches twice as far down: the setting is chosen at most
-   * budget / (1 + margin / 2), and the grid's next dearer one may not fit. */
-  const int dir = deviation > log1p(ctl->margin) ? 1 : deviation < -log1p(2.0 * ctl->margin) ? -1 : 0;
+  const double bound = log1p(ctl->margin);
+  const int dir = deviation > bound ? 1 : deviation < -bound ? -1 : 0;
   if (dir == 0 || (ctl->streak > 0) != (dir > 0))
   {
     ctl->streak = 0;
   }
   ctl->streak += dir;
-  /* Over budget means going cheaper (+1), under means going dearer (-1). */
-  const int reverses = ctl->last_direction != 0 && dir != 0 && dir != ctl->last_direction &&
+  /* Over budget means going cheaper (+1), under means going dearer (-1).
+   * One reversal corrects an overshoot; a second one in a row, soon after,
+   * would start an alternation, and waits longer. */
+  const int reverses = ctl->last_reversed && ctl->last_direction != 0 && dir != 0 &&
+    dir != ctl->last_direction &&
     ctl->frames - ctl->last_switch_frame < MRGI_FRAME_BUDGET_REVERSAL_WINDOW;
   const int32_t wait = ctl->patience * (reverses ? MRGI_FRAME_BUDGET_REVERSAL_FACTOR : 1);
   if (dir == 0 || abs(ctl->streak) < wait)
@@ -553,7 +648,7 @@ mrgi_status mrgi_frame_budget_controller_update(mrgi_frame_budget_controller* ct
   }
   ctl->streak = 0;
   int32_t index = ctl->current;
-  const mrgi_status st = mrgi_frame_budget_choose(cal, candidates, count, pixels,
+  const mrgi_status st = mrgi_frame_budget_choose(&model, candidates, count, pixels,
     controller_target(ctl->budget_ms, ctl->margin), ctl->load, &index, NULL, err);
   if (st != MRGI_OK)
   {
@@ -561,8 +656,20 @@ mrgi_status mrgi_frame_budget_controller_update(mrgi_frame_budget_controller* ct
   }
   if (index != ctl->current)
   {
-    const double next = mrgi_frame_budget_predict(cal, &candidates[index], pixels);
-    ctl->last_direction = next < predicted ? 1 : -1;
+    const double next = mrgi_frame_budget_predict(&model, &candidates[index], pixels);
+    const int32_t direction = next < predicted ? 1 : -1;
+    ctl->last_reversed = ctl->last_direction != 0 && direction != ctl->last_direction &&
+      ctl->frames - ctl->last_switch_frame < MRGI_FRAME_BUDGET_REVERSAL_WINDOW;
+    ctl->last_direction = direction;
+    /* The left setting's level: the median of its last three frames (not
+     * the average, which lags), and only when those agree (no load change
+     * under way, which would be taken for a shape). */
+    const double a = ctl->recent[0], b = ctl->recent[1], c = ctl->recent[2];
+    const double spread = fmax(a, fmax(b, c)) - fmin(a, fmin(b, c));
+    ctl->previous = ctl->frames >= 3 && spread < log(MRGI_FRAME_BUDGET_SHAPE_STEADY) ? ctl->current : -1;
+    ctl->previous_ms = predicted * exp(ratio);
+    ctl->after = 0;
+    ctl->after_log = 0.0;
     ctl->last_switch_frame = ctl->frames;
     ctl->current = index;
     ctl->skip = 1;
@@ -573,6 +680,19 @@ mrgi_status mrgi_frame_budget_controller_update(mrgi_frame_budget_controller* ct
     }
   }
   return MRGI_OK;
+}
+
+double mrgi_frame_budget_controller_expected(const mrgi_frame_budget_controller* ctl,
+  const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* candidates, int32_t count,
+  int64_t pixels)
+{
+  if (!ctl || !cal || !candidates || ctl->current < 0 || ctl->current >= count)
+  {
+    return -1.0;
+  }
+  const mrgi_frame_budget_calibration model = shaped(cal, ctl->shape);
+  const double ms = mrgi_frame_budget_predict(&model, &candidates[ctl->current], pixels);
+  return ms > 0.0 ? ctl->load * ms : -1.0;
 }
 
 mrgi_status mrgi_frame_budget_format(

@@ -52,17 +52,28 @@
  * FrameBudget.md: the same setting costs 28 to 36 ms along one orbit), so
  * the model's prediction is corrected every frame, not only on a switch.
  * Hysteresis: the setting is chosen again only when the current one's
- * expected time s x predicted stays outside [budget / (1 + 2 margin),
+ * expected time s x predicted stays outside [budget / (1 + margin),
  * budget x (1 + margin)] (default margin 5%: with +-5% frame noise, frames
  * stay within 10%) for `patience` frames in a row (default 3). It then takes
  * the setting of least predicted error whose expected time is within
  * budget / (1 + margin / 2), the band's lower half, so that the load
- * estimate's own noise does not carry it over the upper edge. A switch that
- * reverses the previous one's direction (cheaper after dearer, or back)
- * within MRGI_FRAME_BUDGET_REVERSAL_WINDOW frames of it waits
+ * estimate's own noise does not carry it over the upper edge (when the
+ * grid's next dearer setting does not fit, it may stay below the band: it
+ * chooses again, and holds). A reversal (cheaper after dearer, or back)
+ * corrects an overshoot; a second reversal in a row within
+ * MRGI_FRAME_BUDGET_REVERSAL_WINDOW frames of the last switch waits
  * MRGI_FRAME_BUDGET_REVERSAL_FACTOR x patience frames, so that two settings
  * the model misjudges do not alternate. The first frame of a new setting
  * (shaders, buffers) is not measured.
+ * A load factor cannot correct a model whose setting-dependent part is off
+ * (the work share of a preset changes with the window size and the view:
+ * a 1.3x misjudged gather makes the cheap settings look 10% slower than
+ * the dear ones). So the controller also learns a shape factor k that
+ * scales the gather, RSM and voxel terms (c2..c4): a switch compares the
+ * left setting's last three frames (their median, when they agree within
+ * MRGI_FRAME_BUDGET_SHAPE_STEADY) with the new one's first
+ * MRGI_FRAME_BUDGET_SHAPE_FRAMES measured frames, assumes the load did not
+ * change in between, and solves for k (mrgi_frame_budget.c, learn_shape).
  *
  * **Calibration file** (mrgi_frame_budget_format(), _parse()): text, one key
  * and value per line, in this order:
@@ -94,6 +105,8 @@ extern "C" {
 #define MRGI_FRAME_BUDGET_MAX_CANDIDATES 1024
 /** Size a buffer for mrgi_frame_budget_format() needs at most. */
 #define MRGI_FRAME_BUDGET_TEXT_SIZE 512
+/** When no setting fits, those within this factor of the cheapest's time are as cheap. */
+#define MRGI_FRAME_BUDGET_NEAR_CHEAPEST 1.05
 /** Default hysteresis margin (relative) and patience (frames). */
 #define MRGI_FRAME_BUDGET_DEFAULT_MARGIN 0.05
 #define MRGI_FRAME_BUDGET_DEFAULT_PATIENCE 3
@@ -103,6 +116,16 @@ extern "C" {
  *  MRGI_FRAME_BUDGET_REVERSAL_WINDOW measured frames ago, waits this times patience. */
 #define MRGI_FRAME_BUDGET_REVERSAL_FACTOR 3
 #define MRGI_FRAME_BUDGET_REVERSAL_WINDOW 30
+/** Frames of a new setting whose mean time teaches the shape factor. */
+#define MRGI_FRAME_BUDGET_SHAPE_FRAMES 3
+/** Least ratio of two settings' variable/fixed cost ratios that teaches the shape. */
+#define MRGI_FRAME_BUDGET_SHAPE_CONTRAST 1.5
+/** The left setting's last three frames must agree within this ratio to teach the shape. */
+#define MRGI_FRAME_BUDGET_SHAPE_STEADY 1.1
+/** Share of the way (in log) the shape moves towards one switch's solution. */
+#define MRGI_FRAME_BUDGET_SHAPE_RATE 0.3
+/** The shape factor stays within [1 / limit, limit]. */
+#define MRGI_FRAME_BUDGET_SHAPE_LIMIT 4.0
 
 /** Error proxy constants (see the file comment). */
 #define MRGI_FRAME_BUDGET_ERROR_VPL 1.6
@@ -181,8 +204,9 @@ int32_t mrgi_frame_budget_default_candidates(
 /**
  * @brief The setting of least predicted error whose predicted time,
  *        multiplied by `load` (1 = as calibrated), is within `budget_ms`;
- *        ties go to the cheaper. When none fits, the cheapest, and
- *        `*within` = 0.
+ *        ties go to the cheaper. When none fits, the least predicted error
+ *        among those within MRGI_FRAME_BUDGET_NEAR_CHEAPEST x the cheapest's
+ *        time, and `*within` = 0.
  * @param within May be NULL.
  * @return ::MRGI_ERR_INVALID_ARGUMENT for NULL, count < 1, pixels < 1,
  *         budget or load not finite and > 0, or a bad candidate (named by index).
@@ -211,10 +235,16 @@ typedef struct mrgi_frame_budget_controller
   double average;    /**< Exponential average of log(measured / predicted). */
   int32_t streak;    /**< Frames the expected time was outside the band (signed: > 0 slower). */
   int32_t last_direction; /**< Last switch: +1 to a cheaper setting, -1 dearer, 0 none. */
+  int32_t last_reversed;  /**< 1 when the last switch reversed the one before, soon after it. */
   int32_t skip;      /**< Frames still to leave out (the first of a new setting). */
   double recent[3];  /**< The last three frames' log(measured / predicted), a ring. */
   int64_t frames;    /**< Frames measured since init (position in the ring). */
   int64_t last_switch_frame; /**< ::frames at the last switch. */
+  double shape;       /**< Measured / modelled setting-dependent cost (c2..c4), 1 at start. */
+  int32_t previous;   /**< The setting before the last switch, until the shape is learnt; -1 none. */
+  double previous_ms; /**< Its expected time when it was left. */
+  int32_t after;      /**< Frames of the new setting measured since the switch. */
+  double after_log;   /**< Sum of their log(measured ms). */
   int32_t switches;  /**< Times the choice changed since init. */
 } mrgi_frame_budget_controller;
 
@@ -237,6 +267,14 @@ mrgi_status mrgi_frame_budget_controller_init(mrgi_frame_budget_controller* ctl,
 mrgi_status mrgi_frame_budget_controller_update(mrgi_frame_budget_controller* ctl,
   const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* candidates, int32_t count,
   int64_t pixels, double measured_ms, int* changed, mrgi_error* err);
+
+/**
+ * @brief The controller's expected time of its current setting: load x the
+ *        prediction under its shape factor; a negative value for bad input.
+ */
+double mrgi_frame_budget_controller_expected(const mrgi_frame_budget_controller* ctl,
+  const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* candidates, int32_t count,
+  int64_t pixels);
 
 /**
  * @brief Write the calibration as text (format in the file comment).

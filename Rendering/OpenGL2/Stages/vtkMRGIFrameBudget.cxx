@@ -278,9 +278,8 @@ void vtkMRGIFrameBudget::EndFrame()
   if (changed)
   {
     in.Chosen = in.Controller.current;
-    in.Within = mrgi_frame_budget_predict(&in.Calibration,
-                  &in.Candidates[static_cast<size_t>(in.Chosen)], in.Pixels) *
-        in.Controller.load <=
+    in.Within = mrgi_frame_budget_controller_expected(&in.Controller, &in.Calibration,
+                  in.Candidates.data(), static_cast<int32_t>(in.Candidates.size()), in.Pixels) <=
       this->FrameBudget;
   }
 }
@@ -406,9 +405,13 @@ double vtkMRGIFrameBudget::GetPredictedMilliseconds() const
   {
     return -1;
   }
-  return mrgi_frame_budget_predict(&in.Calibration, &in.Candidates[static_cast<size_t>(in.Chosen)],
-           in.Pixels) *
-    this->GetLoadFactor();
+  if (this->FrameBudget > 0 && in.ControllerValid)
+  {
+    return mrgi_frame_budget_controller_expected(&in.Controller, &in.Calibration,
+      in.Candidates.data(), static_cast<int32_t>(in.Candidates.size()), in.Pixels);
+  }
+  return mrgi_frame_budget_predict(
+    &in.Calibration, &in.Candidates[static_cast<size_t>(in.Chosen)], in.Pixels);
 }
 
 double vtkMRGIFrameBudget::GetPredictedError() const
@@ -427,6 +430,12 @@ double vtkMRGIFrameBudget::GetLoadFactor() const
 {
   const Internals& in = *this->Internal;
   return this->FrameBudget > 0 && in.ControllerValid ? in.Controller.load : 1.0;
+}
+
+double vtkMRGIFrameBudget::GetShapeFactor() const
+{
+  const Internals& in = *this->Internal;
+  return this->FrameBudget > 0 && in.ControllerValid ? in.Controller.shape : 1.0;
 }
 
 int vtkMRGIFrameBudget::GetNumberOfSwitches() const
@@ -467,13 +476,13 @@ std::string vtkMRGIFrameBudget::GetSummary() const
   }
   snprintf(line, sizeof(line),
     "frame budget: %s %g%s: preset %s, vpls %d, rsm %d, voxels %s; predicted %.1f ms, "
-    "error %.4f%s; load %.2f, switches %d; calibration: %s",
+    "error %.4f%s; load %.2f, shape %.2f, switches %d; calibration: %s",
     this->FrameBudget > 0 ? "time" : "error",
     this->FrameBudget > 0 ? this->FrameBudget : this->ErrorBudget,
     this->FrameBudget > 0 ? " ms" : "", vtkMRGIMultiresolution::GetPresetName(this->GetPreset()),
     this->GetNumberOfVPLs(), this->GetRSMResolution(), voxels, this->GetPredictedMilliseconds(),
     this->GetPredictedError(), this->GetWithinBudget() ? "" : " (budget not reachable)",
-    this->GetLoadFactor(), this->GetNumberOfSwitches(),
+    this->GetLoadFactor(), this->GetShapeFactor(), this->GetNumberOfSwitches(),
     this->GetCalibrationFrames() > 0 ? "measured" : "built-in defaults");
   return line;
 }

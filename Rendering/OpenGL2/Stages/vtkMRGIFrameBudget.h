@@ -126,7 +126,7 @@ public:
   ///@}
 
   ///@{
-  /** The model's predicted ms (times the load factor) and error of the chosen setting. */
+  /** The model's predicted ms (under the controller's load and shape factors) and error of the chosen setting. */
   double GetPredictedMilliseconds() const;
   double GetPredictedError() const;
   ///@}
@@ -134,6 +134,8 @@ public:
   bool GetWithinBudget() const;
   /** measured / predicted time, as the controller holds it (1 at start). */
   double GetLoadFactor() const;
+  /** Measured / modelled cost of the setting-dependent terms, as the controller learnt it (1 at start). */
+  double GetShapeFactor() const;
   /** Times the controller changed the setting since the budget was set. */
   int GetNumberOfSwitches() const;
   /** Wall time of the last frame (ms, glFinish included); -1 before one. */
