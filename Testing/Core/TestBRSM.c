@@ -439,14 +439,26 @@ static void test_float_twin(void)
 static void test_temporal_blend(void)
 {
   float pdf[4] = { 0.5f, 0.25f, 0.25f, 0.0f };
-  float history[4] = { 0.0f, 0.0f, 0.5f, 0.5f };
-  /* b = (0.25, 0.125, 0.375, 0) (texel 3 has p = 0), sum 0.75. */
+  float history[4] = { 0.25f, 0.0f, 0.5f, 0.25f };
+  /* Overlap min(.5,.25) + min(.25,0) + min(.25,.5) + 0 = 0.5: kept.
+   * b = (0.375, 0.125, 0.375, 0) (texel 3 has p = 0), sum 0.875. */
+  MRGI_CHECK(fabs(mrgi_brsm_temporal_overlap(pdf, history, 4) - 0.5) <= 1e-12);
   MRGI_CHECK(mrgi_brsm_temporal_blend(0.5, pdf, history, 4, 1, NULL) == MRGI_OK);
-  const float want[4] = { 0.25f / 0.75f, 0.125f / 0.75f, 0.375f / 0.75f, 0.0f };
+  const float want[4] = { 0.375f / 0.875f, 0.125f / 0.875f, 0.375f / 0.875f, 0.0f };
   for (int t = 0; t < 4; ++t)
   {
     MRGI_CHECK(fabsf(pdf[t] - want[t]) <= 1e-7f && history[t] == pdf[t]);
   }
+  /* A stale history (overlap under MRGI_BRSM_HISTORY_MIN_OVERLAP: a cut) is
+   * dropped: this frame's pdf as it is. Unnormalised inputs count by share. */
+  float cut[4] = { 2.0f, 2.0f, 0.0f, 0.0f }, old_view[4] = { 0.0f, 1.0f, 3.0f, 4.0f };
+  MRGI_CHECK(fabs(mrgi_brsm_temporal_overlap(cut, old_view, 4) - 0.125) <= 1e-12);
+  MRGI_CHECK(mrgi_brsm_temporal_blend(0.5, cut, old_view, 4, 1, NULL) == MRGI_OK);
+  MRGI_CHECK(cut[0] == 2.0f && cut[1] == 2.0f && memcmp(cut, old_view, sizeof cut) == 0);
+  MRGI_CHECK(mrgi_brsm_temporal_overlap(cut, NULL, 4) == 0.0);
+  const float zero[2] = { 0.0f, 0.0f }, one[2] = { 1.0f, 0.0f };
+  MRGI_CHECK(mrgi_brsm_temporal_overlap(zero, one, 2) == 0.0);
+  MRGI_CHECK(mrgi_brsm_temporal_overlap(one, one, 2) == 1.0);
   /* First frame, and weight 1: the pdf unchanged, copied to the history. */
   float first[3] = { 0.2f, 0.3f, 0.5f }, h[3] = { 7.0f, -1.0f, NAN };
   MRGI_CHECK(mrgi_brsm_temporal_blend(0.1, first, h, 3, 0, NULL) == MRGI_OK);
@@ -480,11 +492,21 @@ static void test_temporal_blend(void)
   for (int32_t t = 0; t < T; ++t)
   {
     w[t] = (float)rnd();
-    stale[t] = t % 5 == 0 ? 1.0f / 13.0f : 0.0f; /* a pdf: 13 texels of 64 */
     truth += g_flux[4 * t];
   }
   MRGI_CHECK(mrgi_brsm_mix(&rsm, MRGI_BRSM_DEFAULT_FLUX_SHARE, w, (size_t)T, NULL) == MRGI_OK);
   memcpy(frozen, w, sizeof(float) * (size_t)T);
+  /* Stale but kept: 60% this frame's shape, 40% piled on 13 texels of 64. */
+  double mass = 0.0;
+  for (int32_t t = 0; t < T; ++t)
+  {
+    mass += frozen[t];
+  }
+  for (int32_t t = 0; t < T; ++t)
+  {
+    stale[t] = (float)(0.6 * frozen[t] / mass + (t % 5 == 0 ? 0.4 / 13.0 : 0.0));
+  }
+  MRGI_CHECK(mrgi_brsm_temporal_overlap(frozen, stale, (size_t)T) >= MRGI_BRSM_HISTORY_MIN_OVERLAP);
   MRGI_CHECK(mrgi_brsm_temporal_blend(MRGI_BRSM_DEFAULT_TEMPORAL_WEIGHT, w, stale, (size_t)T, 1,
                                       NULL) == MRGI_OK);
   int lit_below_a = 0;

@@ -18,6 +18,32 @@ static mrgi_status mrgi_brsm_temporal_check(const float* values, size_t count, c
   return MRGI_OK;
 }
 
+double mrgi_brsm_temporal_overlap(const float* pdf, const float* history, size_t count)
+{
+  if (!pdf || !history)
+  {
+    return 0.0;
+  }
+  double sp = 0.0, sh = 0.0;
+  for (size_t t = 0; t < count; ++t)
+  {
+    sp += pdf[t] > 0.0f ? pdf[t] : 0.0f;
+    sh += history[t] > 0.0f ? history[t] : 0.0f;
+  }
+  if (!(sp > 0.0 && sh > 0.0) || !isfinite(sp) || !isfinite(sh))
+  {
+    return 0.0;
+  }
+  double overlap = 0.0;
+  for (size_t t = 0; t < count; ++t)
+  {
+    const double p = pdf[t] > 0.0f ? pdf[t] / sp : 0.0;
+    const double h = history[t] > 0.0f ? history[t] / sh : 0.0;
+    overlap += p < h ? p : h;
+  }
+  return overlap;
+}
+
 mrgi_status mrgi_brsm_temporal_blend(double weight, float* pdf, float* history, size_t count,
                                      int32_t has_history, mrgi_error* err)
 {
@@ -46,7 +72,8 @@ mrgi_status mrgi_brsm_temporal_blend(double weight, float* pdf, float* history, 
   {
     return status;
   }
-  if (has_history && weight < 1.0)
+  if (has_history && weight < 1.0 && mrgi_brsm_temporal_overlap(pdf, history, count) >=
+                                          MRGI_BRSM_HISTORY_MIN_OVERLAP)
   {
     double sum = 0.0;
     for (size_t t = 0; t < count; ++t)

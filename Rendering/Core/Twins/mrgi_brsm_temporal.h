@@ -19,6 +19,12 @@
  *     b_t = a p_t + (1 - a) h_t   where p_t > 0,   b_t = 0 where p_t = 0,
  *     p_t <- b_t / sum b,         h_t <- p_t.
  * Without a history (`has_history` 0) p is left as it is and copied to h.
+ * So is a stale one: when the two pdfs, each normalised, share less than
+ * MRGI_BRSM_HISTORY_MIN_OVERLAP of their mass (mrgi_brsm_temporal_overlap:
+ * sum of min(p_t, h_t)), the scene changed at once (a cut, a light switched
+ * or moved far) and the history would only cost variance for about 1/a
+ * frames. Consecutive frames of a moving light or camera share 0.94-0.99
+ * (cornell-spot, temporal_flicker.py's paths).
  *
  * ## Unbiasedness
  * The VPL estimator divides each VPL's flux by N times the pdf it was drawn
@@ -44,14 +50,16 @@
 extern "C" {
 #endif
 
+/** Below this overlap of this frame's pdf and the history, the history is dropped. */
+#define MRGI_BRSM_HISTORY_MIN_OVERLAP 0.5
 /** Smallest weight a of this frame (0 would freeze the pdf and could leave a lit texel at p = 0). */
 #define MRGI_BRSM_MIN_TEMPORAL_WEIGHT 0.001
 /**
  * Default weight a of this frame in the blend (vtkMRGIVPLSelection::
- * BRSMTemporalWeight): a time constant of about 10 frames. 1 turns the
- * blend off.
+ * BRSMTemporalWeight): a time constant of about 50 frames (the stale-history
+ * rule keeps a cut from lasting that long). 1 turns the blend off.
  */
-#define MRGI_BRSM_DEFAULT_TEMPORAL_WEIGHT 0.1
+#define MRGI_BRSM_DEFAULT_TEMPORAL_WEIGHT 0.02
 
 /**
  * @brief In place: blend this frame's pdf with the history and store the
@@ -68,6 +76,13 @@ extern "C" {
  *         arrays, a weight outside the range (or NaN), or a negative or
  *         non-finite pdf or history value.
  */
+/**
+ * @brief The mass two pdfs share once each is normalised, sum of
+ *        min(p_t / sum p, h_t / sum h), in [0, 1]; 0 when either has no
+ *        positive mass or for NULL. Negative values count as 0.
+ */
+double mrgi_brsm_temporal_overlap(const float* pdf, const float* history, size_t count);
+
 mrgi_status mrgi_brsm_temporal_blend(double weight, float* pdf, float* history, size_t count,
                                      int32_t has_history, mrgi_error* err);
 

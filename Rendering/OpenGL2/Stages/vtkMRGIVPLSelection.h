@@ -132,15 +132,16 @@ public:
   /**
    * BRSM mode: weight a of this frame's pdf in its moving average over the
    * selections (mrgi_brsm_temporal_blend(), beyond RIHKS11; default
-   * MRGI_BRSM_DEFAULT_TEMPORAL_WEIGHT = 0.1, a time constant of about ten
+   * MRGI_BRSM_DEFAULT_TEMPORAL_WEIGHT = 0.02, a time constant of about 50
    * frames; 1 re-estimates the pdf from scratch every frame, the paper's
    * rule). The pdf estimated from a few view samples per texel changes
    * from frame to frame, and VPLs drawn from it move where a grid's stay;
    * averaging keeps them still. The estimate stays unbiased (the VPL
    * weights divide by the blended pdf, which is positive wherever this
    * frame's is). One history per light, restarted when its RSM size
-   * changes or by ResetBRSMHistory() (e.g. after a cut in an animation:
-   * a stale history costs noise, not bias). Clamped to
+   * changes or by ResetBRSMHistory(), and dropped by itself when it shares
+   * less than half its mass with this frame's pdf (a cut, a light moved
+   * far: a stale history costs noise, not bias). Clamped to
    * MRGI_BRSM_MIN_TEMPORAL_WEIGHT..1.
    */
   vtkSetClampMacro(BRSMTemporalWeight, double, 0.001, 1.0);
