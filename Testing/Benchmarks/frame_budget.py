@@ -17,7 +17,7 @@ cost. Times are on a shared 2-core machine (the load is printed and written);
 only ratios within one run mean something.
 
 Usage: frame_budget.py --build BUILD [--size 256] [--frames 100]
-       [--budgets 0.5,1,2] [--docs Documentation]
+       [--budgets 0.5,0.75,1,2] [--sweep-vpls 16,64,...] [--docs Documentation]
 Budgets are multiples of the measured time of the default setting
 (balanced, 256 VPLs, RSM 256), or absolute ms with --absolute.
 
@@ -81,6 +81,10 @@ def main():
     parser.add_argument("--frames", type=int, default=100)
     parser.add_argument("--budgets", default="0.5,0.75,1,2")
     parser.add_argument("--absolute", action="store_true", help="budgets in ms")
+    parser.add_argument("--sweep-vpls", type=lambda t: [int(v) for v in t.split(",")],
+                        default=list(SWEEP_VPLS),
+                        help="VPL counts swept per preset (256 must be among them: the default "
+                             "setting's time sets the budgets)")
     parser.add_argument("--docs", default=None, help="write DOCS/FrameBudget.md and its CSV")
     args = parser.parse_args()
 
@@ -129,7 +133,7 @@ def main():
 
     sweep = []
     for p in range(3):
-        for v in SWEEP_VPLS:
+        for v in args.sweep_vpls:
             apply(gi, p, v, 256)
             ms = wall()
             sweep.append({"preset": PRESETS[p], "vpls": v, "rsm": 256, "ms": ms,
