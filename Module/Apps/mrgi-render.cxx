@@ -51,7 +51,6 @@
 #include "vtk_glew.h"
 #include "vtkMath.h"
 
-#include "mrgi_box_filter.h"
 #include "mrgi_error.h"
 #include "mrgi_area_light.h"
 #include "mrgi_voxel.h"
