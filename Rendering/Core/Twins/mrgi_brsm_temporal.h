@@ -23,8 +23,8 @@
  * MRGI_BRSM_HISTORY_MIN_OVERLAP of their mass (mrgi_brsm_temporal_overlap:
  * sum of min(p_t, h_t)), the scene changed at once (a cut, a light switched
  * or moved far) and the history would only cost variance for about 1/a
- * frames. Consecutive frames of a moving light or camera share 0.94-0.99
- * (cornell-spot, temporal_flicker.py's paths).
+ * frames. Consecutive frames of a light or camera moving smoothly share
+ * far more (Documentation/IndirectShadows.md, "Flicker").
  *
  * ## Unbiasedness
  * The VPL estimator divides each VPL's flux by N times the pdf it was drawn

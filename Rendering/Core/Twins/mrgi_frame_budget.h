@@ -49,8 +49,8 @@
  * MRGI_FRAME_BUDGET_AVERAGE_WEIGHT) of the median of the last three frames'
  * log(measured / predicted), so that a lone spike does not move it. s follows
  * the view: what a frame costs depends on what it shows (Documentation/
- * FrameBudget.md: the same setting costs 28 to 36 ms along one orbit), so
- * the model's prediction is corrected every frame, not only on a switch.
+ * FrameBudget.md measures one setting along an orbit), so the model's
+ * prediction is corrected every frame, not only on a switch.
  * Hysteresis: the setting is chosen again only when the current one's
  * expected time s x predicted stays outside [budget / (1 + margin),
  * budget x (1 + margin)] (default margin 5%: with +-5% frame noise, frames
@@ -66,9 +66,9 @@
  * the model misjudges do not alternate. The first frame of a new setting
  * (shaders, buffers) is not measured.
  * A load factor cannot correct a model whose setting-dependent part is off
- * (the work share of a preset changes with the window size and the view:
- * a 1.3x misjudged gather makes the cheap settings look 10% slower than
- * the dear ones). So the controller also learns a shape factor k that
+ * (the work share of a preset changes with the window size and the view;
+ * with the gather underestimated, a cheap setting runs faster than the
+ * load measured on a dear one predicts). So the controller also learns a shape factor k that
  * scales the gather, RSM and voxel terms (c2..c4): a switch compares the
  * left setting's last three frames (their median, when they agree within
  * MRGI_FRAME_BUDGET_SHAPE_STEADY) with the new one's first
