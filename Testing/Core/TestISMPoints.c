@@ -1,5 +1,6 @@
 /* Tests of mrgi_ism_points (RGK08 3, RIHKS11 5.1-5.3): uniform density is
- * constant per unit area (chi-square), adaptive density is higher near the
+ * constant per unit area (chi-square; a per-triangle sampler fails it),
+ * adaptive density is higher near the
  * view, every triangle keeps p > 0, the lazy update changes exactly the
  * frame's P/8 records, points stay on a deformed surface, sampling is
  * deterministic, point clouds subsample adaptively, bad input is refused. */
@@ -65,6 +66,21 @@ static void sample_all(int32_t nt, int32_t total, uint32_t seed)
   MRGI_CHECK(mrgi_ism_sample(cdf, nt, seed, 0, total, 0, total, pts, NULL) == MRGI_OK);
 }
 
+/* Chi-square of the points' x over 8 equal-width bins of [0, 1]. */
+static double chi2_x_bins(int32_t P)
+{
+  int32_t bins[8] = { 0 };
+  for (int32_t i = 0; i < P; ++i)
+  {
+    int32_t b = (int32_t)(pos[3 * i] * 8.0f);
+    bins[b < 0 ? 0 : (b > 7 ? 7 : b)]++;
+  }
+  double chi2 = 0.0;
+  for (int32_t b = 0; b < 8; ++b)
+    chi2 += (bins[b] - P / 8.0) * (bins[b] - P / 8.0) / (P / 8.0);
+  return chi2;
+}
+
 /* Chi-square over 8 equal-area bins in x; 7 dof, critical value 24.32 at
  * alpha = 1e-3 (false-failure rate <= 0.1% for independent samples; the
  * stratified draw has less variance, so the rate is lower still). */
@@ -80,19 +96,23 @@ static void test_uniform_density(void)
                  verts, nv, tris, nt, MRGI_ISM_UNIFORM, NULL, 0, 1u, weights, NULL) == MRGI_OK);
     sample_all(nt, P, seed);
     MRGI_CHECK(mrgi_ism_points_evaluate(verts, nv, tris, nt, pts, P, pos, NULL, NULL) == MRGI_OK);
-    int32_t bins[8] = { 0 };
-    for (int32_t i = 0; i < P; ++i)
-    {
-      int32_t b = (int32_t)(pos[3 * i] * 8.0f);
-      bins[b < 0 ? 0 : (b > 7 ? 7 : b)]++;
-    }
-    double chi2 = 0.0;
-    for (int32_t b = 0; b < 8; ++b)
-      chi2 += (bins[b] - P / 8.0) * (bins[b] - P / 8.0) / (P / 8.0);
+    const double chi2 = chi2_x_bins(P);
     worst = chi2 > worst ? chi2 : worst;
     MRGI_CHECK(chi2 < 24.32);
   }
   printf("uniform: worst chi2 over 3 seeds %.2f (7 dof, critical 24.32)\n", worst);
+
+  /* The statistic can fail: a broken sampler that picks every triangle
+   * equally often (per triangle, not per area) on the same uneven strip. */
+  for (int32_t t = 0; t < nt; ++t)
+  {
+    weights[t] = 1.0 / nt;
+  }
+  sample_all(nt, P, 1u);
+  MRGI_CHECK(mrgi_ism_points_evaluate(verts, nv, tris, nt, pts, P, pos, NULL, NULL) == MRGI_OK);
+  const double chi2 = chi2_x_bins(P);
+  printf("broken (per-triangle) sampler: chi2 %.2f\n", chi2);
+  MRGI_CHECK(chi2 > 24.32);
 }
 
 /* A 10 x 1 strip, view sample above x = 0: density per area near the view
