@@ -1,9 +1,9 @@
 /* Tests of mrgi_ism_points (RGK08 3, RIHKS11 5.1-5.3): uniform density is
  * constant per unit area (chi-square; a per-triangle sampler fails it),
- * adaptive density is higher near the
- * view, every triangle keeps p > 0, the lazy update changes exactly the
- * frame's P/8 records, points stay on a deformed surface, sampling is
- * deterministic, point clouds subsample adaptively, bad input is refused. */
+ * adaptive density is higher near the view, every triangle keeps p > 0, the
+ * lazy update changes exactly the frame's P/8 records, points stay on a
+ * deformed surface, sampling is deterministic, point clouds subsample
+ * adaptively, bad input is refused. */
 #include "mrgi_ism_points.h"
 #include "mrgi_test.h"
 
