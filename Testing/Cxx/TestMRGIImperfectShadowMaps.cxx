@@ -16,8 +16,9 @@
 //
 // Update(): a Cornell scene through vtkMRGIPass (for the G-buffer's view
 // samples): the atlas is not empty, the lazy update redraws exactly
-// floor/ceil(P / LazyFrames) records per frame, moving an actor moves the
-// points by its translation, and bad input (no geometry, tile 6, an atlas
+// floor/ceil(P / LazyFrames) records per frame (all of them after a change
+// of point mode or seed), moving an actor moves the points by its
+// translation, and bad input (no geometry, tile 6, an atlas
 // over MRGI_ISM_MAX_ATLAS) gives a clear error and no atlas.
 // Set MRGI_ISM_BREAK=1 to give the twin a shifted VPL: the parity must fail.
 #include "mrgiPassSceneFixture.h"
@@ -364,6 +365,30 @@ void UpdateScene()
       before.assign(now, now + P);
     }
   }
+  // Another point mode or seed is another distribution: the next frame
+  // redraws every record, not 1 / LazyFrames of them (the lazy update would
+  // mix the two distributions for LazyFrames frames).
+  for (int step = 0; step < 3; ++step)
+  {
+    if (step == 0)
+    {
+      ism->SetPointMode(vtkMRGIImperfectShadowMaps::Uniform);
+    }
+    else if (step == 1)
+    {
+      ism->SetSeed(ism->GetSeed() + 1);
+    }
+    else
+    {
+      ism->SetPointMode(vtkMRGIImperfectShadowMaps::Adaptive8);
+    }
+    MRGI_TEST_CHECK(ism->Update(frame, tex, V));
+    MRGI_TEST_CHECK(ism->GetNumberOfResampledPoints() == P);
+    MRGI_TEST_CHECK(ism->Update(frame, tex, V));
+    MRGI_TEST_CHECK(ism->GetNumberOfResampledPoints() < P);
+  }
+  ism->SetSeed(ism->GetSeed() - 1);
+
   // Adaptive8 (the default) read view samples from the G-buffer; the same
   // seed in Uniform mode draws other records (the pdf differs).
   MRGI_TEST_CHECK(ism->GetPointMode() == vtkMRGIImperfectShadowMaps::Adaptive8);

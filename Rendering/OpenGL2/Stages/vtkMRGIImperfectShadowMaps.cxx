@@ -144,6 +144,8 @@ struct vtkMRGIImperfectShadowMaps::Internals
   std::string Topology;      // what restarts the records when it changes
   vtkMTimeType VertexTime = 0;
   long long Frame = 0;
+  int RecordsMode = -1;        // the PointMode the records were drawn for
+  unsigned int RecordsSeed = 0; // and the Seed
   vtkIdType Resampled = 0;
   vtkMRGIViewSamples OwnSamples; // view samples when Update() is given none
   vtkRenderTimerLog* Timer = nullptr; // Update()'s, for Render()'s steps
@@ -709,10 +711,15 @@ bool vtkMRGIImperfectShadowMaps::Update(const vtkMRGIFrameContext& frame, vtkTex
     // the lazy update redraws 1 / LazyFrames of them (RIHKS11 5.3).
     int32_t begin = 0, end = P;
     uint32_t generation = 0;
-    if (static_cast<int>(in.Records.size()) != P)
+    // Another count, point mode or seed is another distribution: the lazy
+    // update would mix the two for LazyFrames frames, so all are redrawn.
+    if (static_cast<int>(in.Records.size()) != P || in.RecordsMode != this->PointMode ||
+      in.RecordsSeed != this->Seed)
     {
       in.Records.assign(static_cast<size_t>(P), mrgi_ism_point{});
       in.Frame = 0;
+      in.RecordsMode = this->PointMode;
+      in.RecordsSeed = this->Seed;
     }
     else
     {
