@@ -273,6 +273,21 @@ static void test_hysteresis(void)
   MRGI_CHECK(strstr(err.message, "margin") != NULL);
 }
 
+/* The default candidates, a calibration holding `truth` and the real cost:
+ * `truth` with the terms first..last multiplied by `scale`. */
+static int32_t misjudged_model(mrgi_frame_setting* cand, mrgi_frame_budget_calibration* cal,
+  mrgi_frame_budget_calibration* real, int first, int last, double scale)
+{
+  mrgi_frame_budget_default(cal);
+  memcpy(cal->coef, truth, sizeof(truth));
+  *real = *cal;
+  for (int i = first; i <= last; ++i)
+  {
+    real->coef[i] *= scale;
+  }
+  return mrgi_frame_budget_default_candidates(0, cand, MRGI_FRAME_BUDGET_MAX_CANDIDATES);
+}
+
 /* The situation of an interactive orbit (Documentation/FrameBudget.md): the
  * calibration misjudges the gather (real cost 1.3x the model's) and what the
  * view costs drifts by 40% over 100 frames, with +-5% noise. The frame time
@@ -281,12 +296,8 @@ static void test_hysteresis(void)
 static void test_tracks_drift(void)
 {
   mrgi_frame_setting cand[MRGI_FRAME_BUDGET_MAX_CANDIDATES];
-  const int32_t n = mrgi_frame_budget_default_candidates(0, cand, MRGI_FRAME_BUDGET_MAX_CANDIDATES);
   mrgi_frame_budget_calibration cal, real;
-  mrgi_frame_budget_default(&cal);
-  memcpy(cal.coef, truth, sizeof(truth));
-  real = cal;
-  real.coef[2] *= 1.3;
+  const int32_t n = misjudged_model(cand, &cal, &real, 2, 2, 1.3);
   const int64_t pixels = 256 * 256;
   /* Budgets in the dense part of the frontier, multiples of the cheapest
    * setting's real cost mid-orbit (above fast with 4096 VPLs, ~3.3x, the
@@ -332,15 +343,8 @@ static void test_tracks_drift(void)
 static void test_learns_shape(void)
 {
   mrgi_frame_setting cand[MRGI_FRAME_BUDGET_MAX_CANDIDATES];
-  const int32_t n = mrgi_frame_budget_default_candidates(0, cand, MRGI_FRAME_BUDGET_MAX_CANDIDATES);
   mrgi_frame_budget_calibration cal, real;
-  mrgi_frame_budget_default(&cal);
-  memcpy(cal.coef, truth, sizeof(truth));
-  real = cal;
-  for (int i = 2; i < MRGI_FRAME_BUDGET_TERMS; ++i)
-  {
-    real.coef[i] *= 1.5;
-  }
+  const int32_t n = misjudged_model(cand, &cal, &real, 2, MRGI_FRAME_BUDGET_TERMS - 1, 1.5);
   const int64_t pixels = 256 * 256;
   mrgi_frame_budget_controller ctl;
   MRGI_CHECK(mrgi_frame_budget_controller_init(&ctl, &cal, cand, n, pixels, 30.0,
