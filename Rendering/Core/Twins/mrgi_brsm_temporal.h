@@ -62,6 +62,13 @@ extern "C" {
 #define MRGI_BRSM_DEFAULT_TEMPORAL_WEIGHT 0.02
 
 /**
+ * @brief The mass two pdfs share once each is normalised, sum of
+ *        min(p_t / sum p, h_t / sum h), in [0, 1]; 0 when either has no
+ *        positive mass or for NULL. Negative values count as 0.
+ */
+double mrgi_brsm_temporal_overlap(const float* pdf, const float* history, size_t count);
+
+/**
  * @brief In place: blend this frame's pdf with the history and store the
  *        result as the next history (see the file comment).
  * @param weight      a, MRGI_BRSM_MIN_TEMPORAL_WEIGHT..1.
@@ -76,13 +83,6 @@ extern "C" {
  *         arrays, a weight outside the range (or NaN), or a negative or
  *         non-finite pdf or history value.
  */
-/**
- * @brief The mass two pdfs share once each is normalised, sum of
- *        min(p_t / sum p, h_t / sum h), in [0, 1]; 0 when either has no
- *        positive mass or for NULL. Negative values count as 0.
- */
-double mrgi_brsm_temporal_overlap(const float* pdf, const float* history, size_t count);
-
 mrgi_status mrgi_brsm_temporal_blend(double weight, float* pdf, float* history, size_t count,
                                      int32_t has_history, mrgi_error* err);
 

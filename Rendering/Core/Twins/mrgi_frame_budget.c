@@ -495,8 +495,9 @@ static void predict_parts(const mrgi_frame_budget_calibration* cal, const mrgi_f
  * the shape k. Frame noise of a few percent moves k by that over the
  * contrast of the two settings, so only a pair whose variable/fixed ratios
  * differ by MRGI_FRAME_BUDGET_SHAPE_CONTRAST or more counts, and the shape
- * moves only part of the way (MRGI_FRAME_BUDGET_SHAPE_RATE, in log) towards the solution,
- * within [1/MRGI_FRAME_BUDGET_SHAPE_LIMIT, MRGI_FRAME_BUDGET_SHAPE_LIMIT]. */
+ * moves only part of the way (MRGI_FRAME_BUDGET_SHAPE_RATE, in log) towards
+ * the solution, within [1/MRGI_FRAME_BUDGET_SHAPE_LIMIT,
+ * MRGI_FRAME_BUDGET_SHAPE_LIMIT]. */
 static void learn_shape(mrgi_frame_budget_controller* ctl, const mrgi_frame_budget_calibration* cal,
   const mrgi_frame_setting* a, const mrgi_frame_setting* b, int64_t pixels, double y_a, double y_b)
 {
@@ -595,9 +596,9 @@ mrgi_status mrgi_frame_budget_controller_update(mrgi_frame_budget_controller* ct
       ctl->previous = -1;
       /* The load restarts from this setting's frames, under the new shape. */
       const mrgi_frame_budget_calibration m = shaped(cal, ctl->shape);
-      const double ratio = log(y_b / mrgi_frame_budget_predict(&m, &candidates[ctl->current], pixels));
-      ctl->average = ratio;
-      ctl->recent[0] = ctl->recent[1] = ctl->recent[2] = ratio;
+      const double level = log(y_b / mrgi_frame_budget_predict(&m, &candidates[ctl->current], pixels));
+      ctl->average = level;
+      ctl->recent[0] = ctl->recent[1] = ctl->recent[2] = level;
       ctl->streak = 0;
     }
   }

@@ -68,8 +68,9 @@
  * A load factor cannot correct a model whose setting-dependent part is off
  * (the work share of a preset changes with the window size and the view;
  * with the gather underestimated, a cheap setting runs faster than the
- * load measured on a dear one predicts). So the controller also learns a shape factor k that
- * scales the gather, RSM and voxel terms (c2..c4): a switch compares the
+ * load measured on a dear one predicts). So the controller also learns a
+ * shape factor k that scales the gather, RSM and voxel terms (c2..c4): a
+ * switch compares the
  * left setting's last three frames (their median, when they agree within
  * MRGI_FRAME_BUDGET_SHAPE_STEADY) with the new one's first
  * MRGI_FRAME_BUDGET_SHAPE_FRAMES measured frames, assumes the load did not
@@ -229,7 +230,7 @@ typedef struct mrgi_frame_budget_controller
 {
   double budget_ms;  /**< Target frame time. */
   double margin;     /**< Relative miss that counts, > 0. */
-  int32_t patience;  /**< Consecutive misses that move the load factor, >= 1. */
+  int32_t patience;  /**< Frames in a row outside the band that choose again, >= 1. */
   double load;       /**< Estimated measured / predicted, exp(average); 1 at start. */
   int32_t current;   /**< Index of the chosen candidate. */
   double average;    /**< Exponential average of log(measured / predicted). */
@@ -242,7 +243,7 @@ typedef struct mrgi_frame_budget_controller
   int64_t last_switch_frame; /**< ::frames at the last switch. */
   double shape;       /**< Measured / modelled setting-dependent cost (c2..c4), 1 at start. */
   int32_t previous;   /**< The setting before the last switch, until the shape is learnt; -1 none. */
-  double previous_ms; /**< Its expected time when it was left. */
+  double previous_ms; /**< Its time when it was left (median of its last three frames). */
   int32_t after;      /**< Frames of the new setting measured since the switch. */
   double after_log;   /**< Sum of their log(measured ms). */
   int32_t switches;  /**< Times the choice changed since init. */

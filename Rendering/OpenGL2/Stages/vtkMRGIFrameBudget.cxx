@@ -228,8 +228,10 @@ void vtkMRGIFrameBudget::BeginFrame(vtkRenderer* renderer, const Knobs& knobs)
         static_cast<int32_t>(in.Candidates.size()), pixels, this->FrameBudget, this->Margin,
         this->Patience, &err);
       index = in.Controller.current;
-      within = mrgi_frame_budget_predict(&in.Calibration,
-                 &in.Candidates[static_cast<size_t>(index)], pixels) <= this->FrameBudget;
+      within = st == MRGI_OK &&
+        mrgi_frame_budget_controller_expected(&in.Controller, &in.Calibration,
+          in.Candidates.data(), static_cast<int32_t>(in.Candidates.size()), pixels) <=
+          this->FrameBudget;
     }
     else
     {
