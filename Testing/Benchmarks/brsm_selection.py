@@ -12,7 +12,9 @@ Per scene (full-resolution gather, the irradiance buffer E):
 - grid N, flux importance N and BRSM N, the random ones over S seeds: the
   relative RMS of E against the dense reference per seed, and its mean
   (BRSM twice: each seed a first frame, and the seeds as consecutive
-  frames whose pdfs the selection averages, BRSMTemporalWeight);
+  frames whose pdfs the selection averages, BRSMTemporalWeight; then once
+  more per --samples-per-texel K, the trade of the importance estimate's
+  noise against its CPU cost);
 - wasted VPLs: the VPLs (read back) whose summed irradiance at a 1-in-16
   subsample of the visible pixels (G-buffer read back, no visibility) is 0
   ("contribute nothing"), and those below 1% of the mean VPL's.
@@ -22,7 +24,7 @@ Per scene (full-resolution gather, the irradiance buffer E):
 
 writes the table into Documentation/IndirectShadows.md between its
 <!-- brsm:table --> markers (the page's other sections are
-indirect_shadows.py's). `--quick`: 64 x 64, 2 seeds, no page.
+indirect_shadows.py's). `--quick`: 64 x 64, 2 seeds, no page. Default 16 seeds.
 """
 import argparse
 import os
@@ -100,7 +102,10 @@ def main():
     parser.add_argument("--size", type=int, default=128)
     parser.add_argument("--rsm-size", type=int, default=128)
     parser.add_argument("--vpls", type=int, default=256)
-    parser.add_argument("--seeds", type=int, default=4)
+    parser.add_argument("--seeds", type=int, default=16)
+    parser.add_argument("--samples-per-texel", default="16,64",
+                        help="extra BRSM rows with these view samples per texel (BRSMSamplesPerTexel; "
+                             "the default row uses the class default)")
     parser.add_argument("--quick", action="store_true")
     args = parser.parse_args()
     if args.quick:
@@ -130,7 +135,15 @@ def main():
                 ("BRSM", BRSM, range(1, args.seeds + 1), True)]
         if temporal:
             rows.append(("BRSM, pdf averaged over the frames", BRSM, range(1, args.seeds + 1), False))
-        for label, mode, seeds, restart in rows:
+        default_k = selection.GetBRSMSamplesPerTexel() if hasattr(selection, "GetBRSMSamplesPerTexel") else None
+        if default_k is not None:
+            rows[2] = ("BRSM (K = %d view samples per texel)" % default_k,) + rows[2][1:]
+            for k in [int(k) for k in args.samples_per_texel.split(",") if k]:
+                rows.append(("BRSM, K = %d" % k, BRSM, range(1, args.seeds + 1), True, k))
+        for row in rows:
+            label, mode, seeds, restart = row[:4]
+            if default_k is not None:
+                selection.SetBRSMSamplesPerTexel(row[4] if len(row) > 4 else default_k)
             gi.SetVPLSelectionMode(mode)
             if gi.GetVPLSelectionMode() != mode:
                 print("  %s: not in this build" % label)
@@ -157,7 +170,8 @@ def main():
             lines.append("| %s | %s | %d | %.4f | %.4f .. %.4f | %.1f%% | %.1f%% | %.0f |"
                          % (scene, label, count, np.mean(errors), min(errors), max(errors), 100 * np.mean(waste),
                             100 * np.mean(waste1), float(np.median(times))))
-        for brsm in ("BRSM", "BRSM, pdf averaged over the frames"):
+        brsm_labels = [label for label in results if label.startswith("BRSM")]
+        for brsm in brsm_labels:
             if brsm in results and "flux importance" in results:
                 gain = 1.0 - results[brsm] / results["flux importance"]
                 verdicts.append("| %s (%s) | error %.4f vs flux %.4f: %.0f%% %s | %s |"

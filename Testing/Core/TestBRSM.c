@@ -10,6 +10,7 @@
 #include "mrgi_brsm_importance.h"
 #include "mrgi_brsm_sample.h"
 #include "mrgi_brsm_temporal.h"
+#include "mrgi_gather_term.h"
 #include "mrgi_test.h"
 
 #include <math.h>
@@ -246,7 +247,25 @@ static void test_blur(void)
   MRGI_CHECK(mrgi_brsm_blur(&rsm, in, in, (size_t)(S * S), NULL) == MRGI_ERR_INVALID_ARGUMENT);
 }
 
-/* Importance: exact mean without guide; guided and random estimates are unbiased. */
+/* Luminance of what texel vpl gives view sample s (mrgi_brsm_importance.h's E_tm). */
+static double test_contribution(const mrgi_gather_vpl* vpl, const float* s)
+{
+  if (!(s[11] > MRGI_VALID_THRESHOLD))
+  {
+    return 0.0;
+  }
+  const double position[3] = { s[0], s[1], s[2] }, normal[3] = { s[4], s[5], s[6] };
+  const double transfer = mrgi_gather_transfer(position, normal, vpl);
+  return (MRGI_LUMINANCE_R * s[8] * vpl->flux[0] + MRGI_LUMINANCE_G * s[9] * vpl->flux[1] +
+          MRGI_LUMINANCE_B * s[10] * vpl->flux[2]) *
+         transfer;
+}
+
+/*
+ * Importance: the exact RMS contribution without guide (checked against a
+ * direct sum of squares); guided and random estimates of its square are
+ * unbiased; the RMS, not the mean, ranks a concentrated texel higher.
+ */
 static void test_importance(void)
 {
   const int32_t S = 4, M = 24;
@@ -271,10 +290,32 @@ static void test_importance(void)
   float exact[16], estimate_sum[16] = { 0 }, one[16];
   mrgi_brsm_view view = { samples, M, NULL, 0, 0, M, 0 };
   MRGI_CHECK(mrgi_brsm_importance(&rsm, &view, 1u, exact, 16, NULL) == MRGI_OK);
+  mrgi_gather_vpl vpl;
   for (int t = 0; t < 16; ++t)
   {
     MRGI_CHECK(exact[t] >= 0.0f && isfinite(exact[t]));
     MRGI_CHECK((exact[t] > 0.0f) == (g_flux[4 * t] > 0.0f));
+    /* The RMS over the M samples, from the gather's own transfer. */
+    const mrgi_vpl record = { { rsm.position[4 * t], rsm.position[4 * t + 1], rsm.position[4 * t + 2] },
+                              rsm.flux[4 * t + 3],
+                              { rsm.normal[4 * t], rsm.normal[4 * t + 1], rsm.normal[4 * t + 2] },
+                              0.0f,
+                              { rsm.flux[4 * t], rsm.flux[4 * t + 1], rsm.flux[4 * t + 2] },
+                              0.0f };
+    if (mrgi_gather_vpl_prepare(&record, NULL, &vpl) != MRGI_GATHER_VPL_USABLE)
+    {
+      MRGI_CHECK(exact[t] == 0.0f);
+      continue;
+    }
+    double squares = 0.0, mean = 0.0;
+    for (int m = 0; m < M; ++m)
+    {
+      const double e = test_contribution(&vpl, samples + m * MRGI_BRSM_VIEW_SAMPLE_FLOATS);
+      squares += e * e / M;
+      mean += e / M;
+    }
+    MRGI_CHECK(fabs(exact[t] - sqrt(squares)) <= 1e-5 * sqrt(squares) + 1e-30);
+    MRGI_CHECK(exact[t] >= (float)mean * (1.0f - 1e-5f)); /* RMS >= mean */
   }
   for (int guided = 0; guided < 2; ++guided)
   {
@@ -287,17 +328,19 @@ static void test_importance(void)
       MRGI_CHECK(mrgi_brsm_importance(&rsm, &v, (uint64_t)s + 100u, one, 16, NULL) == MRGI_OK);
       for (int t = 0; t < 16; ++t)
       {
-        estimate_sum[t] += one[t] / runs;
-        sum2[t] += (double)one[t] * one[t] / runs;
+        /* The square is the unbiased part (the root only shapes the pdf). */
+        const double square = (double)one[t] * one[t];
+        estimate_sum[t] += (float)(square / runs);
+        sum2[t] += square * square / runs;
       }
     }
-    /* Each texel's mean over seeds is within 4.5 standard errors of the exact mean. */
+    /* Each texel's mean square over seeds is within 4.5 standard errors of the exact one. */
     double worst = 0.0;
     for (int t = 0; t < 16; ++t)
     {
       const double var = sum2[t] - (double)estimate_sum[t] * estimate_sum[t];
       const double se = sqrt((var > 0.0 ? var : 0.0) / runs) + 1e-12;
-      const double z = fabs(estimate_sum[t] - exact[t]) / se;
+      const double z = fabs(estimate_sum[t] - (double)exact[t] * exact[t]) / se;
       worst = z > worst ? z : worst;
     }
     printf("importance K=4 of M=%d, guided=%d: worst |mean - exact| = %.2f standard errors\n", M,

@@ -137,9 +137,11 @@ mrgi_status mrgi_brsm_importance(const mrgi_rsm* rsm, const mrgi_brsm_view* view
     {
       for (int32_t m = 0; m < M; ++m)
       {
-        sum += mrgi_brsm_contribution(&vpl, view->samples + (size_t)m * MRGI_BRSM_VIEW_SAMPLE_FLOATS);
+        const double e =
+          mrgi_brsm_contribution(&vpl, view->samples + (size_t)m * MRGI_BRSM_VIEW_SAMPLE_FLOATS);
+        sum += e * e; /* squares: the RMS, see the header */
       }
-      sum /= (double)M;
+      sum = sqrt(sum / (double)M);
     }
     else
     {
@@ -191,10 +193,11 @@ mrgi_status mrgi_brsm_importance(const mrgi_rsm* rsm, const mrgi_brsm_view* view
         }
         const double c = cdf[low] - (low > 0 ? cdf[low - 1] : 0.0);
         const double q = c / total;
-        sum += mrgi_brsm_contribution(&vpl, view->samples + (size_t)low * MRGI_BRSM_VIEW_SAMPLE_FLOATS) /
-               ((double)M * q);
+        const double e =
+          mrgi_brsm_contribution(&vpl, view->samples + (size_t)low * MRGI_BRSM_VIEW_SAMPLE_FLOATS);
+        sum += e * e / ((double)M * q); /* unbiased for the mean square over the M */
       }
-      sum /= (double)K;
+      sum = sqrt(sum / (double)K);
     }
     importance[t] = sum > 0.0 && sum < FLT_MAX ? (float)sum : (sum > 0.0 ? FLT_MAX : 0.0f);
   }

@@ -17,9 +17,21 @@
  * ## Importance of texel t (mrgi_brsm_importance)
  * With E_tm = lum(albedo_m * Phi_t * T(t, m)), T the gather's transfer of a
  * VPL at the texel (mrgi_gather.h, NSW09 eq. 1: cos cos / (r^2 (pi r^2 + A_t))),
- * the target is the mean I_t = (1/M) sum_m E_tm, the texel's contribution to
- * the frame (RIHKS11 4: "the impact of a pVPL on the final rendering"; no
- * visibility). Guided selection (RIHKS11 4.2): the texel draws K view
+ * the texel's importance is the ROOT MEAN SQUARE of its contributions,
+ *     I_t = sqrt((1/M) sum_m E_tm^2),
+ * not their mean (RIHKS11 4: "each pVPL's average contribution"). Why
+ * (beyond the paper): with N VPLs drawn from p, the variance of pixel m's
+ * estimate is (1/N) (sum_t E_tm^2 / p_t - E_m^2); summed over the pixels,
+ * sum_t S_t / p_t with S_t = sum_m E_tm^2, which is least for p_t
+ * proportional to sqrt(S_t) (Lagrange; the image's L2 error, the error this
+ * project measures). The mean weights a texel by its total light; the RMS
+ * also by how concentrated that light is, so texels near a receiver (the
+ * corners of RIHKS11 figure 5, whose 1/r^2 peaks light few pixels
+ * strongly) get more VPLs. Measured in Documentation/IndirectShadows.md
+ * (`corner`, `u-shape`). The pdf stays unbiased whatever I_t is: only
+ * p_t > 0 where the integrand is nonzero matters (the flux mix below).
+ *
+ * Guided selection (RIHKS11 4.2): the texel draws K view
  * samples from the M with probability
  *     q_m = (1 - a) c_m / sum c + a / M,   c_m = min(1, R^2 / x_m^2)
  * where x_m is the pixel distance from sample m to the texel's projection
@@ -32,15 +44,17 @@
  * receivers it cannot light); the pure guide then draws almost only zeros
  * and, rarely, a hit divided by a tiny q, a heavy-tailed estimate whose
  * outliers become VPLs of huge weight. The mixture bounds each draw's
- * weight by E_m / a (defensive importance sampling). A texel behind the
+ * weight by E_m^2 / a (defensive importance sampling). A texel behind the
  * camera (clip w <= 0), a NULL matrix, or guidance off use q_m = 1/M.
  * Draw k of texel t uses u = (k + h) / K, h = hash(seed, t) in [0, 1)
  * (stratified over the texel's CDF of q). The estimate
- *     I_t = (1/K) sum_k E_{t m_k} / (M q_{m_k})
- * is an unbiased estimate of the mean over the M samples (E[E_m/(M q_m)] =
- * (1/M) sum E_m), whatever the guide, as long as q_m > 0 for every m, which
- * min(1, R^2/x^2) > 0 guarantees. K >= M without guidance gives the exact
- * mean (every sample once). Non-usable texels (mrgi_vpl.h) get 0.
+ *     I_t = sqrt((1/K) sum_k E_{t m_k}^2 / (M q_{m_k}))
+ * squares an unbiased estimate of the mean square over the M samples
+ * (E[E_m^2/(M q_m)] = (1/M) sum E_m^2), whatever the guide, as long as
+ * q_m > 0 for every m, which min(1, R^2/x^2) > 0 guarantees (the root
+ * itself is biased low by Jensen, which only shapes the pdf). K >= M
+ * without guidance gives the exact RMS (every sample once). Non-usable
+ * texels (mrgi_vpl.h) get 0.
  *
  * ## Mixing with flux importance (mrgi_brsm_mix)
  * p_t = (1 - beta) I_t / sum I + beta w_t / sum w, w_t = lum(Phi_t) of the
@@ -71,8 +85,14 @@ extern "C" {
 #define MRGI_BRSM_VIEW_SAMPLE_FLOATS 12
 /** Most view samples one importance pass reads (a 32 x 32 subsample of the G-buffer). */
 #define MRGI_BRSM_MAX_VIEW_SAMPLES 1024
-/** Default view samples drawn per texel (RIHKS11 4: "4 x 4"). */
-#define MRGI_BRSM_DEFAULT_SAMPLES_PER_TEXEL 16
+/**
+ * Default view samples K drawn per texel. RIHKS11 4 evaluates "a few randomly
+ * chosen view samples (in practice, ~0.1%)" of the frame's, about 1000 at
+ * 1024^2; 32 keeps the CPU cost small while the estimate's noise no longer
+ * dominates the selection's error (16, 32 and 64 compared in
+ * Documentation/IndirectShadows.md).
+ */
+#define MRGI_BRSM_DEFAULT_SAMPLES_PER_TEXEL 32
 /** Radius R in pixels inside which the guide's 1/x^2 fall-off is clamped to 1 (RIHKS11 4.2). */
 #define MRGI_BRSM_GUIDE_RADIUS 8.0
 /**
@@ -96,7 +116,7 @@ typedef struct mrgi_brsm_view
 } mrgi_brsm_view;
 
 /**
- * @brief Per-texel BRSM importance I_t >= 0 (finite) of all V*S*S texels.
+ * @brief Per-texel BRSM importance I_t >= 0 (finite; the RMS contribution) of all V*S*S texels.
  * @param rsm        Valid RSM (mrgi_rsm_validate()).
  * @param view       View samples and guide; see mrgi_brsm_view.
  * @param seed       Any value; the same seed gives the same importance.

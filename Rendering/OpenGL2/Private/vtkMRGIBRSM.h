@@ -11,6 +11,8 @@
 #ifndef vtkMRGIBRSM_h
 #define vtkMRGIBRSM_h
 
+#include "mrgi_brsm_importance.h" // For MRGI_BRSM_DEFAULT_SAMPLES_PER_TEXEL
+
 #include <cstdint> // For uint64_t
 #include <string>  // For std::string
 #include <vector>  // For std::vector
@@ -40,7 +42,7 @@ struct Settings
   bool Blur = true;
   bool InterTexel = true;
   bool Guided = true;
-  int SamplesPerTexel = 16; // MRGI_BRSM_DEFAULT_SAMPLES_PER_TEXEL
+  int SamplesPerTexel = MRGI_BRSM_DEFAULT_SAMPLES_PER_TEXEL;
   double TemporalWeight = 1.0; // a of mrgi_brsm_temporal_blend; 1: no blend
 };
 

@@ -44,6 +44,7 @@ vtkStandardNewMacro(vtkMRGIVPLSelection);
 
 // The header's clamp range is the core's.
 static_assert(MRGI_BRSM_MIN_TEMPORAL_WEIGHT == 0.001, "BRSMTemporalWeight clamp range");
+static_assert(MRGI_BRSM_MAX_VIEW_SAMPLES == 1024, "BRSMSamplesPerTexel clamp range");
 
 struct vtkMRGIVPLSelection::Internals
 {
@@ -87,6 +88,8 @@ vtkMRGIVPLSelection::vtkMRGIVPLSelection()
   this->ClusterFinestLevel = defaults.finest_level;
   this->TreeThreshold = MRGI_VPL_TREE_DEFAULT_THRESHOLD;
   this->BRSMTemporalWeight = MRGI_BRSM_DEFAULT_TEMPORAL_WEIGHT;
+  this->BRSMFluxShare = MRGI_BRSM_DEFAULT_FLUX_SHARE;
+  this->BRSMSamplesPerTexel = MRGI_BRSM_DEFAULT_SAMPLES_PER_TEXEL;
 }
 
 //------------------------------------------------------------------------------
@@ -590,6 +593,7 @@ int vtkMRGIVPLSelection::Update(vtkOpenGLRenderWindow* window, vtkMRGIReflective
       {
         vtkMRGIBRSM::Settings settings;
         settings.FluxShare = this->BRSMFluxShare;
+        settings.SamplesPerTexel = this->BRSMSamplesPerTexel;
         settings.Blur = this->BRSMBlur;
         settings.InterTexel = this->BRSMInterTexel;
         settings.TemporalWeight = this->BRSMTemporalWeight;
@@ -788,6 +792,7 @@ void vtkMRGIVPLSelection::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ClusterRefinementsCapped: " << this->ClusterRefinementsCapped << "\n";
   os << indent << "TreeThreshold: " << this->TreeThreshold << "\n";
   os << indent << "BRSMFluxShare: " << this->BRSMFluxShare << "\n";
+  os << indent << "BRSMSamplesPerTexel: " << this->BRSMSamplesPerTexel << "\n";
   os << indent << "BRSMBlur: " << this->BRSMBlur << "\n";
   os << indent << "BRSMInterTexel: " << this->BRSMInterTexel << "\n";
   os << indent << "BRSMTemporalWeight: " << this->BRSMTemporalWeight << "\n";

@@ -130,6 +130,18 @@ public:
 
   ///@{
   /**
+   * BRSM mode: view samples K each RSM texel draws to estimate its
+   * importance (the RMS of its contributions, mrgi_brsm_importance.h);
+   * default MRGI_BRSM_DEFAULT_SAMPLES_PER_TEXEL = 32. More samples make the
+   * pdf less noisy at a CPU cost linear in K; at most the view samples read
+   * (1024). Clamped to 1..MRGI_BRSM_MAX_VIEW_SAMPLES.
+   */
+  vtkSetClampMacro(BRSMSamplesPerTexel, int, 1, 1024);
+  vtkGetMacro(BRSMSamplesPerTexel, int);
+  ///@}
+
+  ///@{
+  /**
    * BRSM mode: weight a of this frame's pdf in its moving average over the
    * selections (mrgi_brsm_temporal_blend(), beyond RIHKS11; default
    * MRGI_BRSM_DEFAULT_TEMPORAL_WEIGHT = 0.02, a time constant of about 50
@@ -280,7 +292,8 @@ protected:
   int ClusterFinestLevel;
   int ClusterRefinementsCapped = 0;
   double TreeThreshold;          // MRGI_VPL_TREE_DEFAULT_THRESHOLD
-  double BRSMFluxShare = 0.1;    // MRGI_BRSM_DEFAULT_FLUX_SHARE
+  double BRSMFluxShare;          // MRGI_BRSM_DEFAULT_FLUX_SHARE
+  int BRSMSamplesPerTexel;       // MRGI_BRSM_DEFAULT_SAMPLES_PER_TEXEL
   bool BRSMBlur = true;
   bool BRSMInterTexel = true;
   double BRSMTemporalWeight;     // MRGI_BRSM_DEFAULT_TEMPORAL_WEIGHT
