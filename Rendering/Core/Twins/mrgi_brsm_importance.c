@@ -111,7 +111,26 @@ mrgi_status mrgi_brsm_importance(const mrgi_rsm* rsm, const mrgi_brsm_view* view
   const int32_t M = view->sample_count;
   const int32_t K = view->samples_per_texel;
   const int exact = !view->guided && K >= M;
-  double cdf[MRGI_BRSM_MAX_VIEW_SAMPLES]; /* c_m, then the inclusive prefix sums of q_m */
+  /*
+   * The guide's inner loop runs over all M samples for every texel, so it
+   * reads the samples' pixel coordinates as two packed arrays (filled once
+   * per call), computes the weights c_m without branches (vectorizable), and
+   * draws the K stratified samples by one forward walk over block sums of q
+   * instead of a full prefix sum and K binary searches. A non-finite pixel
+   * coordinate becomes a far one, which gives c_m = 1e-30 as before.
+   */
+  float pixel_x[MRGI_BRSM_MAX_VIEW_SAMPLES], pixel_y[MRGI_BRSM_MAX_VIEW_SAMPLES];
+  float weight[MRGI_BRSM_MAX_VIEW_SAMPLES]; /* c_m of the current texel */
+  double block_start[MRGI_BRSM_MAX_VIEW_SAMPLES / MRGI_BRSM_GUIDE_BLOCK + 1];
+  for (int32_t m = 0; m < M; ++m)
+  {
+    const float* s = view->samples + (size_t)m * MRGI_BRSM_VIEW_SAMPLE_FLOATS;
+    const int finite = isfinite(s[3]) && isfinite(s[7]);
+    pixel_x[m] = finite ? s[3] : 1e30f;
+    pixel_y[m] = finite ? s[7] : 1e30f;
+  }
+  const int32_t blocks = (M + MRGI_BRSM_GUIDE_BLOCK - 1) / MRGI_BRSM_GUIDE_BLOCK;
+  const float r2 = (float)(MRGI_BRSM_GUIDE_RADIUS * MRGI_BRSM_GUIDE_RADIUS);
   for (size_t t = 0; t < texel_count; ++t)
   {
     importance[t] = 0.0f;
@@ -149,52 +168,71 @@ mrgi_status mrgi_brsm_importance(const mrgi_rsm* rsm, const mrgi_brsm_view* view
       const int guide = view->guided && view->world_to_clip &&
                         mrgi_brsm_project(view->world_to_clip, vpl.position, view->width,
                                           view->height, centre);
-      double total = 0.0;
-      for (int32_t m = 0; m < M; ++m)
-      {
-        double c = 1.0;
-        if (guide)
-        {
-          const float* s = view->samples + (size_t)m * MRGI_BRSM_VIEW_SAMPLE_FLOATS;
-          const double dx = s[3] - centre[0], dy = s[7] - centre[1];
-          const double x2 = dx * dx + dy * dy;
-          const double r2 = MRGI_BRSM_GUIDE_RADIUS * MRGI_BRSM_GUIDE_RADIUS;
-          c = x2 > r2 && isfinite(x2) ? r2 / x2 : (isfinite(x2) ? 1.0 : 0.0);
-          c = c > 1e-30 ? c : 1e-30; /* q_m > 0 for every sample (unbiasedness) */
-        }
-        cdf[m] = c;
-        total += c;
-      }
       /* Defensive mixture with the uniform choice: q_m = (1 - a) c_m / sum c + a / M. */
       const double a = guide ? MRGI_BRSM_GUIDE_UNIFORM_SHARE : 1.0;
-      double running = 0.0;
-      for (int32_t m = 0; m < M; ++m)
+      double scale = 0.0; /* (1 - a) / sum c */
+      if (guide)
       {
-        running += (1.0 - a) * cdf[m] / total + a / (double)M;
-        cdf[m] = running;
+        const float cx = (float)centre[0], cy = (float)centre[1];
+        for (int32_t m = 0; m < M; ++m)
+        {
+          const float dx = pixel_x[m] - cx, dy = pixel_y[m] - cy;
+          const float x2 = dx * dx + dy * dy; /* +inf for a far sample: c = 0 */
+          /* min(1, R^2 / x^2) without a branch, so that the loop vectorizes. */
+          const float c = r2 / (x2 > r2 ? x2 : r2);
+          weight[m] = c > 1e-30f ? c : 1e-30f; /* q_m > 0 for every sample (unbiasedness) */
+        }
+        double total = 0.0;
+        for (int32_t b = 0; b < blocks; ++b)
+        {
+          block_start[b] = total;
+          const int32_t end = b + 1 < blocks ? (b + 1) * MRGI_BRSM_GUIDE_BLOCK : M;
+          float partial = 0.0f;
+          for (int32_t m = b * MRGI_BRSM_GUIDE_BLOCK; m < end; ++m)
+          {
+            partial += weight[m];
+          }
+          total += partial;
+        }
+        scale = (1.0 - a) / total;
       }
-      total = running; /* 1 up to rounding */
+      const double uniform = a / (double)M;
       const double h = mrgi_brsm_hash01(seed, (uint64_t)t);
+      int32_t m = 0, b = 0;
+      double below = 0.0; /* Q(m - 1): the mass of the samples before m */
       for (int32_t k = 0; k < K; ++k)
       {
-        const double target = ((double)k + h) / (double)K * total;
-        int32_t low = 0, high = M - 1; /* first m with cdf[m] > target */
-        while (low < high)
+        const double target = ((double)k + h) / (double)K; /* the first m with Q(m) > target */
+        if (!guide)
         {
-          const int32_t middle = low + (high - low) / 2;
-          if (cdf[middle] > target)
+          m = (int32_t)(target * (double)M);
+          m = m < M ? m : M - 1;
+        }
+        else
+        {
+          /* Skip whole blocks whose end is not past the target, then walk. */
+          while (b + 1 < blocks)
           {
-            high = middle;
+            const int32_t next = (b + 1) * MRGI_BRSM_GUIDE_BLOCK;
+            const double at_next = scale * block_start[b + 1] + uniform * (double)next;
+            if (at_next > target || next <= m)
+            {
+              break;
+            }
+            ++b;
+            m = next;
+            below = at_next;
           }
-          else
+          while (m + 1 < M && below + scale * weight[m] + uniform <= target)
           {
-            low = middle + 1;
+            below += scale * weight[m] + uniform;
+            ++m;
+            b = m / MRGI_BRSM_GUIDE_BLOCK;
           }
         }
-        const double c = cdf[low] - (low > 0 ? cdf[low - 1] : 0.0);
-        const double q = c / total;
+        const double q = guide ? scale * weight[m] + uniform : uniform;
         const double e =
-          mrgi_brsm_contribution(&vpl, view->samples + (size_t)low * MRGI_BRSM_VIEW_SAMPLE_FLOATS);
+          mrgi_brsm_contribution(&vpl, view->samples + (size_t)m * MRGI_BRSM_VIEW_SAMPLE_FLOATS);
         sum += e * e / ((double)M * q); /* unbiased for the mean square over the M */
       }
       sum = sqrt(sum / (double)K);

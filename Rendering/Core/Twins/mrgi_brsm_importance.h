@@ -93,6 +93,8 @@ extern "C" {
  * Documentation/IndirectShadows.md).
  */
 #define MRGI_BRSM_DEFAULT_SAMPLES_PER_TEXEL 32
+/** View samples per block of the guided draw's walk (mrgi_brsm_importance.c; no effect on results). */
+#define MRGI_BRSM_GUIDE_BLOCK 32
 /** Radius R in pixels inside which the guide's 1/x^2 fall-off is clamped to 1 (RIHKS11 4.2). */
 #define MRGI_BRSM_GUIDE_RADIUS 8.0
 /**
