@@ -156,7 +156,10 @@ def main():
                          tuner.GetNumberOfVPLs(), tuner.GetRSMResolution(), tuner.GetLoadFactor()])
         summary = tuner.GetSummary()
         chosen = (tuner.GetPreset(), tuner.GetNumberOfVPLs(), tuner.GetRSMResolution())
-        switches = tuner.GetNumberOfSwitches()
+        # Changes of setting within this run (the tuner's own count runs on
+        # from the earlier budgets: it keeps what it learnt).
+        settings_seen = [tuple(r[4:7]) for r in rows[-args.frames:]]
+        switches = sum(a != b for a, b in zip(settings_seen, settings_seen[1:]))
         predicted_error = tuner.GetPredictedError()
         gi.SetFrameBudget(0)
         # The final setting at the middle pose: its error and its time (as the sweep's).
@@ -241,7 +244,11 @@ def write_page(args, runs, sweep, rows, default_ms, load_start, load_end, calibr
         "proxy and hysteresis: `Rendering/Core/Twins/mrgi_frame_budget.h`." % calibration_s,
         "",
         "Frame time: the tuner's own measure (the pass's wall time up to a glFinish). The first 5 frames "
-        "(new settings: shaders, buffers) are left out of the shares. Error: relative RMS of the "
+        "(new settings: shaders, buffers) are left out of the shares. The budgets run in the table's "
+        "order on one tuner: the first starts from the calibration (load factor 1), each later one from "
+        "the load and shape factors learnt before it (`SetFrameBudget` keeps them, also across the pause "
+        "while the final setting is timed with the tuner off), as when a user changes the budget. "
+        "Error: relative RMS of the "
         "indirect light over lit pixels against the dense reference (full-resolution gather, %d VPLs, "
         "RSM 512) at the orbit's middle pose. Budgets are multiples of the default setting's time "
         "(balanced, 256 VPLs, RSM 256: %.1f ms in this run). The cheapest setting took %.1f ms at the "

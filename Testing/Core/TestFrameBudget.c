@@ -365,6 +365,63 @@ static void test_learns_shape(void)
   MRGI_CHECK(mrgi_frame_budget_controller_expected(NULL, &cal, cand, n, pixels) < 0.0);
 }
 
+/* A new budget during interaction: every term costs 1.4x the calibration's.
+ * After 60 frames at one budget, retargeting to another must choose under the
+ * learnt load (real time within the budget and near it), where a fresh
+ * controller would overshoot; the next frames then need no switch. A bad
+ * budget is refused and leaves the controller as it was. */
+static void test_retarget(void)
+{
+  mrgi_frame_setting cand[MRGI_FRAME_BUDGET_MAX_CANDIDATES];
+  mrgi_frame_budget_calibration cal, real;
+  const int32_t n = misjudged_model(cand, &cal, &real, 0, MRGI_FRAME_BUDGET_TERMS - 1, 1.4);
+  const int64_t pixels = 256 * 256;
+  mrgi_frame_budget_controller ctl;
+  MRGI_CHECK(mrgi_frame_budget_controller_init(&ctl, &cal, cand, n, pixels, 40.0,
+               MRGI_FRAME_BUDGET_DEFAULT_MARGIN, MRGI_FRAME_BUDGET_DEFAULT_PATIENCE, NULL) == MRGI_OK);
+  for (int f = 0; f < 60; ++f)
+  {
+    const double ms = mrgi_frame_budget_predict(&real, &cand[ctl.current], pixels);
+    MRGI_CHECK(mrgi_frame_budget_controller_update(&ctl, &cal, cand, n, pixels, ms, NULL, NULL) == MRGI_OK);
+  }
+  MRGI_CHECK_NEAR(ctl.load, 1.4, 0.02);
+  /* The first budget above 50 ms where a fresh start (load 1) overshoots by
+   * more than 20%: there the learnt load must make the difference. */
+  double budget = 0.0, restarted = 0.0;
+  mrgi_frame_budget_controller fresh;
+  for (double b = 50.0; b < 400.0 && budget == 0.0; b += 5.0)
+  {
+    MRGI_CHECK(mrgi_frame_budget_controller_init(&fresh, &cal, cand, n, pixels, b,
+                 MRGI_FRAME_BUDGET_DEFAULT_MARGIN, MRGI_FRAME_BUDGET_DEFAULT_PATIENCE, NULL) == MRGI_OK);
+    restarted = mrgi_frame_budget_predict(&real, &cand[fresh.current], pixels);
+    budget = restarted > 1.2 * b ? b : 0.0;
+  }
+  MRGI_CHECK(budget > 0.0);
+  int changed = 0;
+  MRGI_CHECK(mrgi_frame_budget_controller_retarget(&ctl, &cal, cand, n, pixels, budget, &changed, NULL) == MRGI_OK);
+  MRGI_CHECK(changed == 1 && ctl.budget_ms == budget);
+  const double kept = mrgi_frame_budget_predict(&real, &cand[ctl.current], pixels);
+  printf("budget 40 -> %g ms at load 1.4: retarget %.1f ms, fresh start %.1f ms\n", budget, kept, restarted);
+  if (!(kept <= budget * (1.0 + MRGI_FRAME_BUDGET_DEFAULT_MARGIN) && kept >= 0.85 * budget))
+  {
+    MRGI_FAIL("retarget chose %.1f ms for %g ms (a fresh start %.1f ms)", kept, budget, restarted);
+  }
+  const int32_t switches = ctl.switches;
+  for (int f = 0; f < 40; ++f)
+  {
+    const double ms = mrgi_frame_budget_predict(&real, &cand[ctl.current], pixels);
+    MRGI_CHECK(mrgi_frame_budget_controller_update(&ctl, &cal, cand, n, pixels, ms, NULL, NULL) == MRGI_OK);
+  }
+  MRGI_CHECK(ctl.switches == switches);
+  mrgi_error err;
+  const mrgi_frame_budget_controller before = ctl;
+  MRGI_CHECK(mrgi_frame_budget_controller_retarget(&ctl, &cal, cand, n, pixels, -5.0, &changed, &err) ==
+             MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(changed == 0 && memcmp(&before, &ctl, sizeof(ctl)) == 0);
+  MRGI_CHECK(mrgi_frame_budget_controller_retarget(NULL, &cal, cand, n, pixels, 50.0, NULL, &err) ==
+             MRGI_ERR_INVALID_ARGUMENT);
+}
+
 static void test_text(void)
 {
   mrgi_frame_budget_calibration cal, back;
@@ -452,6 +509,7 @@ int main(int argc, char** argv)
     MRGI_TEST_CASE(test_hysteresis),
     MRGI_TEST_CASE(test_tracks_drift),
     MRGI_TEST_CASE(test_learns_shape),
+    MRGI_TEST_CASE(test_retarget),
     MRGI_TEST_CASE(test_text),
     MRGI_TEST_CASE(test_error_proxy),
   };

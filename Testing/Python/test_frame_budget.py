@@ -4,7 +4,8 @@ stores a calibration in the per-user cache (XDG_CACHE_HOME) named after the
 GL renderer; --timings prints the chosen settings; a budget below every
 setting's cost picks the cheapest and says the budget is not reachable; a
 corrupt calibration file is reported and the defaults are used; the pass's
-setters refuse bad values and forward good ones."""
+setters refuse bad values and forward good ones; a new budget, also after
+the tuner was off, starts from the load factor it learnt, not from 1."""
 import os
 import re
 import shutil
@@ -107,9 +108,45 @@ def python_api():
     check("FrameBudgetTuner" in str(p), "PrintSelf shows the tuner")
 
 
+def remembers_load():
+    from vtkmodules.vtkRenderingCore import vtkRenderer
+    from vtkmodules.vtkRenderingOpenGL2 import vtkRenderStepsPass
+    window = mrgi.vtkMRGIRenderWindowFactory.CreateHeadlessRenderWindow()
+    check(window is not None, "a headless window")
+    window.SetSize(32, 32)
+    renderer = vtkRenderer()
+    window.AddRenderer(renderer)
+    builder = mrgi.vtkMRGISceneBuilder()
+    builder.SetScene("cornell-spot")
+    check(builder.Build(renderer), "scene: " + builder.GetLastErrorMessage())
+    p = mrgi.vtkMRGIPass()
+    p.SetDelegatePass(vtkRenderStepsPass())
+    renderer.SetPass(p)
+    tuner = p.GetFrameBudgetTuner()
+    tuner.SetCacheDirectory(os.path.join(TMP, "frame_budget_remember"))
+    p.SetFrameBudget(1000.0)
+    for _ in range(6):
+        window.Render()
+    learnt = tuner.GetLoadFactor()
+    check(learnt != 1.0, "a load factor was learnt: %g" % learnt)
+    p.SetFrameBudget(0.0)
+    window.Render()
+    p.SetFrameBudget(500.0)
+    window.Render()
+    # A controller started over has load exactly 1 after this frame (its
+    # first frame is never measured); one that kept its load has the learnt
+    # one, moved by at most this frame's share of the average.
+    load = tuner.GetLoadFactor()
+    check(load != 1.0 and abs(load / learnt - 1.0) < 0.05,
+          "the new budget starts from the learnt load %g: %g" % (learnt, load))
+    p.ReleaseGraphicsResources(window)
+    window.Finalize()
+
+
 def main():
     bad_options()
     python_api()
+    remembers_load()
     cli()
 
 

@@ -527,6 +527,47 @@ static double controller_target(double budget_ms, double margin)
   return budget_ms / (1.0 + 0.5 * margin);
 }
 
+/* Median of the last three frames' log(measured / predicted) (fewer at the start). */
+static double recent_level(const mrgi_frame_budget_controller* ctl)
+{
+  if (ctl->frames <= 1)
+  {
+    return ctl->recent[0];
+  }
+  if (ctl->frames == 2)
+  {
+    return 0.5 * (ctl->recent[0] + ctl->recent[1]);
+  }
+  const double a = ctl->recent[0], b = ctl->recent[1], c = ctl->recent[2];
+  return fmax(fmin(a, b), fmin(fmax(a, b), c));
+}
+
+/* Move to candidate `index` (!= current): the reversal rule's bookkeeping and
+ * the left setting's level for learn_shape(). `predicted` is the current
+ * setting's modelled time, `level` its recent_level(). */
+static void controller_switch(mrgi_frame_budget_controller* ctl, const mrgi_frame_budget_calibration* model,
+  const mrgi_frame_setting* candidates, int64_t pixels, int32_t index, double predicted, double level)
+{
+  const double next = mrgi_frame_budget_predict(model, &candidates[index], pixels);
+  const int32_t direction = next < predicted ? 1 : -1;
+  ctl->last_reversed = ctl->last_direction != 0 && direction != ctl->last_direction &&
+    ctl->frames - ctl->last_switch_frame < MRGI_FRAME_BUDGET_REVERSAL_WINDOW;
+  ctl->last_direction = direction;
+  /* The left setting's level: the median of its last three frames (not
+   * the average, which lags), and only when those agree (no load change
+   * under way, which would be taken for a shape). */
+  const double a = ctl->recent[0], b = ctl->recent[1], c = ctl->recent[2];
+  const double spread = fmax(a, fmax(b, c)) - fmin(a, fmin(b, c));
+  ctl->previous = ctl->frames >= 3 && spread < log(MRGI_FRAME_BUDGET_SHAPE_STEADY) ? ctl->current : -1;
+  ctl->previous_ms = predicted * exp(level);
+  ctl->after = 0;
+  ctl->after_log = 0.0;
+  ctl->last_switch_frame = ctl->frames;
+  ctl->current = index;
+  ctl->skip = 1;
+  ctl->switches++;
+}
+
 mrgi_status mrgi_frame_budget_controller_init(mrgi_frame_budget_controller* ctl,
   const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* candidates, int32_t count,
   int64_t pixels, double budget_ms, double margin, int32_t patience, mrgi_error* err)
@@ -614,16 +655,7 @@ mrgi_status mrgi_frame_budget_controller_update(mrgi_frame_budget_controller* ct
    * move it. */
   ctl->recent[ctl->frames % 3] = log(measured_ms / predicted);
   ctl->frames++;
-  double ratio = ctl->recent[0];
-  if (ctl->frames == 2)
-  {
-    ratio = 0.5 * (ctl->recent[0] + ctl->recent[1]);
-  }
-  else if (ctl->frames >= 3)
-  {
-    const double a = ctl->recent[0], b = ctl->recent[1], c = ctl->recent[2];
-    ratio = fmax(fmin(a, b), fmin(fmax(a, b), c));
-  }
+  const double ratio = recent_level(ctl);
   /* The first measured frame replaces the calibration's load of 1. */
   ctl->average += (ctl->frames == 1 ? 1.0 : MRGI_FRAME_BUDGET_AVERAGE_WEIGHT) * (ratio - ctl->average);
   ctl->load = exp(ctl->average);
@@ -657,24 +689,48 @@ mrgi_status mrgi_frame_budget_controller_update(mrgi_frame_budget_controller* ct
   }
   if (index != ctl->current)
   {
-    const double next = mrgi_frame_budget_predict(&model, &candidates[index], pixels);
-    const int32_t direction = next < predicted ? 1 : -1;
-    ctl->last_reversed = ctl->last_direction != 0 && direction != ctl->last_direction &&
-      ctl->frames - ctl->last_switch_frame < MRGI_FRAME_BUDGET_REVERSAL_WINDOW;
-    ctl->last_direction = direction;
-    /* The left setting's level: the median of its last three frames (not
-     * the average, which lags), and only when those agree (no load change
-     * under way, which would be taken for a shape). */
-    const double a = ctl->recent[0], b = ctl->recent[1], c = ctl->recent[2];
-    const double spread = fmax(a, fmax(b, c)) - fmin(a, fmin(b, c));
-    ctl->previous = ctl->frames >= 3 && spread < log(MRGI_FRAME_BUDGET_SHAPE_STEADY) ? ctl->current : -1;
-    ctl->previous_ms = predicted * exp(ratio);
-    ctl->after = 0;
-    ctl->after_log = 0.0;
-    ctl->last_switch_frame = ctl->frames;
-    ctl->current = index;
-    ctl->skip = 1;
-    ctl->switches++;
+    controller_switch(ctl, &model, candidates, pixels, index, predicted, ratio);
+    if (changed)
+    {
+      *changed = 1;
+    }
+  }
+  return MRGI_OK;
+}
+
+mrgi_status mrgi_frame_budget_controller_retarget(mrgi_frame_budget_controller* ctl,
+  const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* candidates, int32_t count,
+  int64_t pixels, double budget_ms, int* changed, mrgi_error* err)
+{
+  if (changed)
+  {
+    *changed = 0;
+  }
+  if (!ctl || !cal || !candidates || ctl->current < 0 || ctl->current >= count)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+      "frame budget controller: NULL argument or current candidate outside the list");
+  }
+  const mrgi_frame_budget_calibration model = shaped(cal, ctl->shape);
+  int32_t index = ctl->current;
+  const mrgi_status st = mrgi_frame_budget_choose(&model, candidates, count, pixels,
+    controller_target(budget_ms, ctl->margin), ctl->load, &index, NULL, err);
+  if (st != MRGI_OK)
+  {
+    return st; /* names a bad budget; the controller is unchanged */
+  }
+  ctl->budget_ms = budget_ms;
+  /* The streak counted misses of the old target; a new target is not a
+   * reversal of the last switch. */
+  ctl->streak = 0;
+  ctl->last_direction = 0;
+  ctl->last_reversed = 0;
+  if (index != ctl->current)
+  {
+    const double predicted = mrgi_frame_budget_predict(&model, &candidates[ctl->current], pixels);
+    controller_switch(ctl, &model, candidates, pixels, index, predicted, recent_level(ctl));
+    ctl->last_direction = 0;
+    ctl->last_reversed = 0;
     if (changed)
     {
       *changed = 1;

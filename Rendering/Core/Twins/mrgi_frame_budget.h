@@ -270,6 +270,21 @@ mrgi_status mrgi_frame_budget_controller_update(mrgi_frame_budget_controller* ct
   int64_t pixels, double measured_ms, int* changed, mrgi_error* err);
 
 /**
+ * @brief A new budget for a running controller: choose again for
+ *        budget / (1 + margin / 2) under the load and shape factor it has
+ *        learnt, instead of starting over from the calibration's load of 1
+ *        (mrgi_frame_budget_controller_init()). The hysteresis streak and
+ *        the reversal rule restart; a switch is measured (shape) as one the
+ *        controller made itself. `*changed` (may be NULL) is 1 when
+ *        ctl->current changed.
+ * @return As mrgi_frame_budget_choose() (e.g. a budget not finite and > 0);
+ *         the controller is unchanged on failure.
+ */
+mrgi_status mrgi_frame_budget_controller_retarget(mrgi_frame_budget_controller* ctl,
+  const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* candidates, int32_t count,
+  int64_t pixels, double budget_ms, int* changed, mrgi_error* err);
+
+/**
  * @brief The controller's expected time of its current setting: load x the
  *        prediction under its shape factor; a negative value for bad input.
  */

@@ -64,6 +64,10 @@ struct vtkMRGIFrameBudget::Internals
   long long Pixels = 0;
   mrgi_frame_budget_controller Controller;
   bool ControllerValid = false;
+  // The controller holds load and shape factors learnt under this
+  // calibration, window size and candidate list: a new frame budget (also
+  // after the tuner was off) starts from them (retarget), not from load 1.
+  bool Learnt = false;
   int Chosen = -1;
   bool Within = false;
   // Timing of the frame in flight.
@@ -85,6 +89,7 @@ struct vtkMRGIFrameBudget::Internals
       voxels ? 1 : 0, this->Candidates.data(), MRGI_FRAME_BUDGET_MAX_CANDIDATES);
     this->Candidates.resize(static_cast<size_t>(n));
     this->ControllerValid = false;
+    this->Learnt = false;
   }
 };
 
@@ -207,6 +212,7 @@ void vtkMRGIFrameBudget::BeginFrame(vtkRenderer* renderer, const Knobs& knobs)
     }
     snprintf(in.Calibration.renderer, sizeof(in.Calibration.renderer), "%s", in.Renderer.c_str());
     in.ControllerValid = false;
+    in.Learnt = false;
   }
   const int* size = renderer->GetSize();
   const long long pixels = static_cast<long long>(std::max(1, size[0])) * std::max(1, size[1]);
@@ -215,6 +221,7 @@ void vtkMRGIFrameBudget::BeginFrame(vtkRenderer* renderer, const Knobs& knobs)
   {
     in.Pixels = pixels;
     in.ControllerValid = false;
+    in.Learnt = false;
   }
   if (!in.ControllerValid)
   {
@@ -224,9 +231,15 @@ void vtkMRGIFrameBudget::BeginFrame(vtkRenderer* renderer, const Knobs& knobs)
     mrgi_status st = MRGI_OK;
     if (this->FrameBudget > 0)
     {
-      st = mrgi_frame_budget_controller_init(&in.Controller, &in.Calibration, in.Candidates.data(),
-        static_cast<int32_t>(in.Candidates.size()), pixels, this->FrameBudget, this->Margin,
-        this->Patience, &err);
+      st = in.Learnt && in.Controller.margin == this->Margin &&
+          in.Controller.patience == this->Patience
+        ? mrgi_frame_budget_controller_retarget(&in.Controller, &in.Calibration,
+            in.Candidates.data(), static_cast<int32_t>(in.Candidates.size()), pixels,
+            this->FrameBudget, nullptr, &err)
+        : mrgi_frame_budget_controller_init(&in.Controller, &in.Calibration, in.Candidates.data(),
+            static_cast<int32_t>(in.Candidates.size()), pixels, this->FrameBudget, this->Margin,
+            this->Patience, &err);
+      in.Learnt = st == MRGI_OK;
       index = in.Controller.current;
       within = st == MRGI_OK &&
         mrgi_frame_budget_controller_expected(&in.Controller, &in.Calibration,
@@ -346,6 +359,7 @@ bool vtkMRGIFrameBudget::Calibrate(vtkRenderWindow* window, const Knobs& knobs)
   in.Calibration = cal;
   in.CalibrationLoaded = true;
   in.ControllerValid = false;
+  in.Learnt = false;
 
   const std::string dir = this->GetCacheDirectory();
   const std::string path = this->GetCalibrationFile(in.Renderer);

@@ -56,7 +56,13 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /** Target frame time in ms; 0 (default) = off. Negative or non-finite: refused (error). */
+  /**
+   * Target frame time in ms; 0 (default) = off. Negative or non-finite:
+   * refused (error). A new budget, also after the tuner was off, starts from
+   * the load and shape factors learnt so far
+   * (mrgi_frame_budget_controller_retarget()); a new calibration, window
+   * size, Margin or Patience starts over from the calibration.
+   */
   void SetFrameBudget(double ms);
   vtkGetMacro(FrameBudget, double);
   ///@}
