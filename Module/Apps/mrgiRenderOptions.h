@@ -13,6 +13,8 @@
 #include "mrgi_exposure.h" // For MRGI_EXPOSURE_KEY
 #include "mrgi_ism_atlas.h" // For MRGI_ISM_DEFAULT_PUSH_PULL_LEVELS
 #include "mrgi_reference.h" // For the ground truth's defaults
+#include "mrgi_ssao.h"      // For MRGI_SSAO_DEFAULT_KERNEL_SIZE
+#include "mrgi_ssgi.h"      // For MRGI_SSGI_DEFAULT_SAMPLES
 
 #include <cmath>
 #include <string>
@@ -61,14 +63,14 @@ struct Options
   long long Preset = 1;
   double SurfaceDetail = 0.0;
   bool SSAO = false;
-  long long SSAOSamples = 32; // MRGI_SSAO_DEFAULT_KERNEL_SIZE
+  long long SSAOSamples = MRGI_SSAO_DEFAULT_KERNEL_SIZE;
   double SSAORadius = 0.5;
   bool HasSSAORadius = false; // else 2% of the scene's diagonal
   double SSAOBias = 0.01;
   bool HasSSAOBias = false; // else radius / 50
   bool SSAOBlur = false;
   bool SSGI = false;
-  long long SSGISamples = 64; // MRGI_SSGI_DEFAULT_SAMPLES
+  long long SSGISamples = MRGI_SSGI_DEFAULT_SAMPLES;
   double SSGIRadius = 0.5;
   bool HasSSGIRadius = false; // else 10% of the scene's diagonal
   bool SSAOMultires = false; // --ssao-resolution multires

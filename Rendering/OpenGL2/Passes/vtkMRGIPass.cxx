@@ -56,6 +56,8 @@
 #include "mrgi_buffers.h"
 #include "mrgi_exposure.h"
 #include "mrgi_screen_space_preset.h"
+#include "mrgi_ssao.h"
+#include "mrgi_ssgi.h"
 #include "mrgi_multires.h"
 
 #include <algorithm>
@@ -106,7 +108,13 @@ struct vtkMRGIPass::Internals
 
 //------------------------------------------------------------------------------
 vtkMRGIPass::vtkMRGIPass()
-  : AutoExposureKey(MRGI_EXPOSURE_KEY)
+  : SSAOKernelSize(MRGI_SSAO_DEFAULT_KERNEL_SIZE)
+  , SSAORadius(MRGI_SSAO_DEFAULT_RADIUS)
+  , SSAOBias(MRGI_SSAO_DEFAULT_BIAS)
+  , SSGISamples(MRGI_SSGI_DEFAULT_SAMPLES)
+  , SSGIRadius(MRGI_SSGI_DEFAULT_RADIUS)
+  , SSGIBias(MRGI_SSGI_DEFAULT_BIAS)
+  , AutoExposureKey(MRGI_EXPOSURE_KEY)
   , Internal(new Internals)
 {
   this->RSMPass = vtkMRGIReflectiveShadowMapPass::New();

@@ -795,17 +795,17 @@ protected:
   bool AreaLightIndirect = true;
   double SurfaceDetail = 0.0;
   bool SSAO = false;
-  int SSAOKernelSize = 32; // MRGI_SSAO_DEFAULT_KERNEL_SIZE
-  double SSAORadius = 0.5; // MRGI_SSAO_DEFAULT_RADIUS
-  double SSAOBias = 0.01;  // MRGI_SSAO_DEFAULT_BIAS
+  int SSAOKernelSize;   // MRGI_SSAO_DEFAULT_KERNEL_SIZE (constructor)
+  double SSAORadius;   // MRGI_SSAO_DEFAULT_RADIUS (constructor)
+  double SSAOBias;     // MRGI_SSAO_DEFAULT_BIAS (constructor)
   bool SSAOBlur = false;
   int SSAOResolution = ResolutionFull;
   int ShadowResolution = ResolutionFull;
   bool SSAOFailureReported = false;
   bool SSGI = false;
-  int SSGISamples = 64;   // MRGI_SSGI_DEFAULT_SAMPLES
-  double SSGIRadius = 0.5; // MRGI_SSGI_DEFAULT_RADIUS
-  double SSGIBias = 0.01;  // MRGI_SSGI_DEFAULT_BIAS
+  int SSGISamples;     // MRGI_SSGI_DEFAULT_SAMPLES (constructor)
+  double SSGIRadius;   // MRGI_SSGI_DEFAULT_RADIUS (constructor)
+  double SSGIBias;     // MRGI_SSGI_DEFAULT_BIAS (constructor)
   int SSGIResolution = ResolutionFull;
   int ScreenSpacePreset = -1;
   bool SSGIFailureReported = false;

@@ -22,6 +22,7 @@
 
 
 #include "mrgi_area_light.h"
+#include "mrgi_incremental_stencil.h"
 #include "mrgi_irradiance_stencil.h"
 #include "mrgi_multires.h"
 #include "mrgi_visibility_pyramid.h"
@@ -79,6 +80,8 @@ struct vtkMRGIIncrementalStencil::Internals
 //------------------------------------------------------------------------------
 vtkMRGIIncrementalStencil::vtkMRGIIncrementalStencil()
   : IrradianceTolerance(MRGI_IRRADIANCE_STENCIL_DEFAULT_TOLERANCE)
+  , IlluminationThreshold(MRGI_INCREMENTAL_ILLUMINATION_DEFAULT_THRESHOLD)
+  , IlluminationMetric(MRGI_INCREMENTAL_ILLUMINATION_DIFFERENCE)
   , Internal(new Internals)
 {
 }

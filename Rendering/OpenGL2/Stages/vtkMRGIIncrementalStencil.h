@@ -145,8 +145,8 @@ protected:
 
   double Fraction = 0.25;
   double IrradianceTolerance; // MRGI_IRRADIANCE_STENCIL_DEFAULT_TOLERANCE (constructor)
-  double IlluminationThreshold = 0.1; // MRGI_INCREMENTAL_ILLUMINATION_DEFAULT_THRESHOLD
-  int IlluminationMetric = 0;         // MRGI_INCREMENTAL_ILLUMINATION_DIFFERENCE
+  double IlluminationThreshold; // MRGI_INCREMENTAL_ILLUMINATION_DEFAULT_THRESHOLD (constructor)
+  int IlluminationMetric;         // MRGI_INCREMENTAL_ILLUMINATION_DIFFERENCE (constructor)
 
   struct Internals;
   std::unique_ptr<Internals> Internal;
