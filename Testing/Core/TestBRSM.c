@@ -354,6 +354,131 @@ static void test_importance(void)
   MRGI_CHECK(mrgi_brsm_mix(&rsm, 1.5, exact, 16, NULL) == MRGI_ERR_INVALID_ARGUMENT);
 }
 
+/*
+ * The guided draw's forward walk over block sums (mrgi_brsm_importance.c)
+ * against the plain algorithm of the header: the weights c_m, the full
+ * prefix of q_m, and a binary search for each stratified target. Sample
+ * counts around the block size (1, 3, 31, 32, 33, 100, 1024), K above and
+ * below M, samples at the texel's projection and far away, and non-finite
+ * pixel coordinates; the estimates must agree to rounding.
+ */
+static double reference_guided(const mrgi_rsm* rsm, int32_t t, const float* samples, int32_t M,
+  int32_t K, const float* world_to_clip, int32_t width, int32_t height, uint64_t seed)
+{
+  const mrgi_vpl record = { { rsm->position[4 * t], rsm->position[4 * t + 1], rsm->position[4 * t + 2] },
+                            rsm->flux[4 * t + 3],
+                            { rsm->normal[4 * t], rsm->normal[4 * t + 1], rsm->normal[4 * t + 2] },
+                            0.0f,
+                            { rsm->flux[4 * t], rsm->flux[4 * t + 1], rsm->flux[4 * t + 2] },
+                            0.0f };
+  mrgi_gather_vpl vpl;
+  if (mrgi_gather_vpl_prepare(&record, NULL, &vpl) != MRGI_GATHER_VPL_USABLE)
+  {
+    return 0.0;
+  }
+  double clip[4];
+  for (int row = 0; row < 4; ++row)
+  {
+    clip[row] = (double)world_to_clip[row] * vpl.position[0] + (double)world_to_clip[4 + row] * vpl.position[1] +
+                (double)world_to_clip[8 + row] * vpl.position[2] + (double)world_to_clip[12 + row];
+  }
+  const float cx = (float)((clip[0] / clip[3] * 0.5 + 0.5) * width);
+  const float cy = (float)((clip[1] / clip[3] * 0.5 + 0.5) * height);
+  const float r2 = (float)(MRGI_BRSM_GUIDE_RADIUS * MRGI_BRSM_GUIDE_RADIUS);
+  static double weight[MRGI_BRSM_MAX_VIEW_SAMPLES], cdf[MRGI_BRSM_MAX_VIEW_SAMPLES];
+  double total = 0.0;
+  for (int32_t m = 0; m < M; ++m)
+  {
+    const float* s = samples + m * MRGI_BRSM_VIEW_SAMPLE_FLOATS;
+    const int finite = isfinite(s[3]) && isfinite(s[7]);
+    const float dx = (finite ? s[3] : 1e30f) - cx, dy = (finite ? s[7] : 1e30f) - cy;
+    const float x2 = dx * dx + dy * dy;
+    const float c = r2 / (x2 > r2 ? x2 : r2);
+    weight[m] = c > 1e-30f ? c : 1e-30f;
+    total += weight[m];
+  }
+  const double a = MRGI_BRSM_GUIDE_UNIFORM_SHARE;
+  double running = 0.0;
+  for (int32_t m = 0; m < M; ++m)
+  {
+    running += (1.0 - a) * weight[m] / total + a / M;
+    cdf[m] = running;
+  }
+  const double h = mrgi_brsm_hash01(seed, (uint64_t)t);
+  double sum = 0.0;
+  for (int32_t k = 0; k < K; ++k)
+  {
+    const double target = ((double)k + h) / (double)K;
+    int32_t low = 0, high = M - 1; /* the first m with cdf[m] > target */
+    while (low < high)
+    {
+      const int32_t middle = low + (high - low) / 2;
+      if (cdf[middle] > target)
+      {
+        high = middle;
+      }
+      else
+      {
+        low = middle + 1;
+      }
+    }
+    const double q = (1.0 - a) * weight[low] / total + a / M;
+    const double e = test_contribution(&vpl, samples + low * MRGI_BRSM_VIEW_SAMPLE_FLOATS);
+    sum += e * e / ((double)M * q);
+  }
+  return sqrt(sum / K);
+}
+
+static void test_guided_walk(void)
+{
+  enum { S = 8 };
+  const mrgi_rsm rsm = make_rsm(S, 0.0);
+  static float samples[MRGI_BRSM_MAX_VIEW_SAMPLES * MRGI_BRSM_VIEW_SAMPLE_FLOATS];
+  const float world_to_clip[16] = { 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1, 0, -1, -1, 0, 1 };
+  const int32_t counts[] = { 1, 3, 31, 32, 33, 100, 1024 };
+  int compared = 0;
+  double worst = 0.0;
+  for (size_t c = 0; c < sizeof(counts) / sizeof(counts[0]); ++c)
+  {
+    const int32_t M = counts[c];
+    for (int32_t m = 0; m < M; ++m)
+    {
+      float* s = samples + m * MRGI_BRSM_VIEW_SAMPLE_FLOATS;
+      s[0] = (float)rnd();
+      s[1] = (float)rnd();
+      s[2] = (float)(0.05 + rnd());
+      /* Pixel positions near the texels' projections (64 x 64 viewport) or
+       * far off; one in 17 not finite. */
+      s[3] = m % 17 == 5 ? NAN : (float)(m % 3 == 0 ? 64.0 * rnd() : 1e6 * rnd());
+      s[7] = (float)(64.0 * rnd());
+      s[4] = 0.0f;
+      s[5] = 0.0f;
+      s[6] = -1.0f;
+      s[8] = s[9] = s[10] = 0.5f;
+      s[11] = 1.0f;
+    }
+    const int32_t ks[] = { 1, 7, 32, 2 * M + 1 };
+    for (size_t k = 0; k < sizeof(ks) / sizeof(ks[0]); ++k)
+    {
+      const int32_t K = ks[k] < MRGI_BRSM_MAX_VIEW_SAMPLES ? ks[k] : MRGI_BRSM_MAX_VIEW_SAMPLES;
+      const mrgi_brsm_view view = { samples, M, world_to_clip, 64, 64, K, 1 };
+      float out[S * S];
+      MRGI_CHECK(mrgi_brsm_importance(&rsm, &view, 99u + (uint64_t)k, out, S * S, NULL) == MRGI_OK);
+      for (int32_t t = 0; t < S * S; ++t)
+      {
+        const double expected =
+          reference_guided(&rsm, t, samples, M, K, world_to_clip, 64, 64, 99u + (uint64_t)k);
+        const double d = fabs(out[t] - expected) / (expected > 0.0 ? expected : 1.0);
+        worst = d > worst ? d : worst;
+        compared++;
+      }
+    }
+  }
+  printf("guided walk against a binary search: %d texel estimates, worst relative difference %.2g\n",
+         compared, worst);
+  MRGI_CHECK(worst < 1e-5);
+}
+
 /* Inter-texel VPLs stay on T_0's plane; a one-texel distribution gives that texel. */
 static void test_inter_texel(void)
 {
@@ -587,6 +712,7 @@ int main(int argc, char** argv)
                                           MRGI_TEST_CASE(test_zero_view_importance_picked),
                                           MRGI_TEST_CASE(test_blur),
                                           MRGI_TEST_CASE(test_importance),
+    MRGI_TEST_CASE(test_guided_walk),
                                           MRGI_TEST_CASE(test_inter_texel),
                                           MRGI_TEST_CASE(test_float_twin),
                                           MRGI_TEST_CASE(test_temporal_blend) };
