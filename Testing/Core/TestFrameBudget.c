@@ -365,6 +365,18 @@ static void test_learns_shape(void)
   MRGI_CHECK(mrgi_frame_budget_controller_expected(NULL, &cal, cand, n, pixels) < 0.0);
 }
 
+/* `frames` frames that take exactly what `real` predicts for the current setting. */
+static void run_at_real_cost(mrgi_frame_budget_controller* ctl, const mrgi_frame_budget_calibration* cal,
+  const mrgi_frame_budget_calibration* real, const mrgi_frame_setting* cand, int32_t n, int64_t pixels,
+  int frames)
+{
+  for (int f = 0; f < frames; ++f)
+  {
+    const double ms = mrgi_frame_budget_predict(real, &cand[ctl->current], pixels);
+    MRGI_CHECK(mrgi_frame_budget_controller_update(ctl, cal, cand, n, pixels, ms, NULL, NULL) == MRGI_OK);
+  }
+}
+
 /* A new budget during interaction: every term costs 1.4x the calibration's.
  * After 60 frames at one budget, retargeting to another must choose under the
  * learnt load (real time within the budget and near it), where a fresh
@@ -379,11 +391,7 @@ static void test_retarget(void)
   mrgi_frame_budget_controller ctl;
   MRGI_CHECK(mrgi_frame_budget_controller_init(&ctl, &cal, cand, n, pixels, 40.0,
                MRGI_FRAME_BUDGET_DEFAULT_MARGIN, MRGI_FRAME_BUDGET_DEFAULT_PATIENCE, NULL) == MRGI_OK);
-  for (int f = 0; f < 60; ++f)
-  {
-    const double ms = mrgi_frame_budget_predict(&real, &cand[ctl.current], pixels);
-    MRGI_CHECK(mrgi_frame_budget_controller_update(&ctl, &cal, cand, n, pixels, ms, NULL, NULL) == MRGI_OK);
-  }
+  run_at_real_cost(&ctl, &cal, &real, cand, n, pixels, 60);
   MRGI_CHECK_NEAR(ctl.load, 1.4, 0.02);
   /* The first budget above 50 ms where a fresh start (load 1) overshoots by
    * more than 20%: there the learnt load must make the difference. */
@@ -407,11 +415,7 @@ static void test_retarget(void)
     MRGI_FAIL("retarget chose %.1f ms for %g ms (a fresh start %.1f ms)", kept, budget, restarted);
   }
   const int32_t switches = ctl.switches;
-  for (int f = 0; f < 40; ++f)
-  {
-    const double ms = mrgi_frame_budget_predict(&real, &cand[ctl.current], pixels);
-    MRGI_CHECK(mrgi_frame_budget_controller_update(&ctl, &cal, cand, n, pixels, ms, NULL, NULL) == MRGI_OK);
-  }
+  run_at_real_cost(&ctl, &cal, &real, cand, n, pixels, 40);
   MRGI_CHECK(ctl.switches == switches);
   mrgi_error err;
   const mrgi_frame_budget_controller before = ctl;

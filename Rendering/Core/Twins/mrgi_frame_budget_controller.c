@@ -109,6 +109,23 @@ static void controller_switch(mrgi_frame_budget_controller* ctl, const mrgi_fram
   ctl->switches++;
 }
 
+/* The arguments update and retarget share; clears `*changed` (may be NULL). */
+static mrgi_status check_running(const mrgi_frame_budget_controller* ctl,
+  const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* candidates, int32_t count,
+  int* changed, mrgi_error* err)
+{
+  if (changed)
+  {
+    *changed = 0;
+  }
+  if (!ctl || !cal || !candidates || ctl->current < 0 || ctl->current >= count)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+      "frame budget controller: NULL argument or current candidate outside the list");
+  }
+  return MRGI_OK;
+}
+
 mrgi_status mrgi_frame_budget_controller_init(mrgi_frame_budget_controller* ctl,
   const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* candidates, int32_t count,
   int64_t pixels, double budget_ms, double margin, int32_t patience, mrgi_error* err)
@@ -146,14 +163,10 @@ mrgi_status mrgi_frame_budget_controller_update(mrgi_frame_budget_controller* ct
   const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* candidates, int32_t count,
   int64_t pixels, double measured_ms, int* changed, mrgi_error* err)
 {
-  if (changed)
+  const mrgi_status checked = check_running(ctl, cal, candidates, count, changed, err);
+  if (checked != MRGI_OK)
   {
-    *changed = 0;
-  }
-  if (!ctl || !cal || !candidates || ctl->current < 0 || ctl->current >= count)
-  {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-      "frame budget controller: NULL argument or current candidate outside the list");
+    return checked;
   }
   if (!(isfinite(measured_ms) && measured_ms > 0.0))
   {
@@ -243,14 +256,10 @@ mrgi_status mrgi_frame_budget_controller_retarget(mrgi_frame_budget_controller* 
   const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* candidates, int32_t count,
   int64_t pixels, double budget_ms, int* changed, mrgi_error* err)
 {
-  if (changed)
+  const mrgi_status checked = check_running(ctl, cal, candidates, count, changed, err);
+  if (checked != MRGI_OK)
   {
-    *changed = 0;
-  }
-  if (!ctl || !cal || !candidates || ctl->current < 0 || ctl->current >= count)
-  {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
-      "frame budget controller: NULL argument or current candidate outside the list");
+    return checked;
   }
   const mrgi_frame_budget_calibration model = shaped(cal, ctl->shape);
   int32_t index = ctl->current;
@@ -261,22 +270,19 @@ mrgi_status mrgi_frame_budget_controller_retarget(mrgi_frame_budget_controller* 
     return st; /* names a bad budget; the controller is unchanged */
   }
   ctl->budget_ms = budget_ms;
-  /* The streak counted misses of the old target; a new target is not a
-   * reversal of the last switch. */
-  ctl->streak = 0;
-  ctl->last_direction = 0;
-  ctl->last_reversed = 0;
+  ctl->streak = 0; /* it counted misses of the old target */
   if (index != ctl->current)
   {
     const double predicted = mrgi_frame_budget_predict(&model, &candidates[ctl->current], pixels);
     controller_switch(ctl, &model, candidates, pixels, index, predicted, recent_level(ctl));
-    ctl->last_direction = 0;
-    ctl->last_reversed = 0;
     if (changed)
     {
       *changed = 1;
     }
   }
+  /* A new target is not a reversal of the last switch, nor this one of it. */
+  ctl->last_direction = 0;
+  ctl->last_reversed = 0;
   return MRGI_OK;
 }
 
