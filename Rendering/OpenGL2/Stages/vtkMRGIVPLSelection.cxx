@@ -74,7 +74,16 @@ struct vtkMRGIVPLSelection::Internals
 //------------------------------------------------------------------------------
 void vtkMRGIVPLSelection::ResetBRSMHistory()
 {
+  if (this->Internal->BRSMHistory.empty())
+  {
+    return;
+  }
   this->Internal->BRSMHistory.clear();
+  // The cached VPLs were drawn from the blended pdf: the next frame selects
+  // again, from its own pdf alone, even if nothing else changed. Without
+  // this, a reset before an unchanged frame took effect one frame late,
+  // where the view moved, and that frame jumped (temporal_flicker.py).
+  this->Modified();
 }
 
 //------------------------------------------------------------------------------

@@ -151,7 +151,8 @@ public:
    * averaging keeps them still. The estimate stays unbiased (the VPL
    * weights divide by the blended pdf, which is positive wherever this
    * frame's is). One history per light, restarted when its RSM size
-   * changes or by ResetBRSMHistory(), and dropped by itself when it shares
+   * changes or by ResetBRSMHistory() (which makes the next frame select
+   * again, from its own pdf), and dropped by itself when it shares
    * less than half its mass with this frame's pdf (a cut, a light moved
    * far: a stale history costs noise, not bias). Clamped to
    * MRGI_BRSM_MIN_TEMPORAL_WEIGHT..1.
