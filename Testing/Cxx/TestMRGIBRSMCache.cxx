@@ -91,7 +91,7 @@ void StaticAndShared()
   MRGI_TEST_CHECK(!Same(moved, first)); // the view samples did change
 
   // 3. Back to the same view: recomputed. The pdf's moving average over the
-  // selections (BRSMTemporalWeight, default 0.02) remembers the moved view,
+  // selections (BRSMTemporalWeight, default 0.005) remembers the moved view,
   // so the VPLs differ; without that history they are the very same.
   home.Restore(camera);
   scene.Window->Render();

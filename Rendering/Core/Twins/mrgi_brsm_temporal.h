@@ -56,10 +56,13 @@ extern "C" {
 #define MRGI_BRSM_MIN_TEMPORAL_WEIGHT 0.001
 /**
  * Default weight a of this frame in the blend (vtkMRGIVPLSelection::
- * BRSMTemporalWeight): a time constant of about 50 frames (the stale-history
- * rule keeps a cut from lasting that long). 1 turns the blend off.
+ * BRSMTemporalWeight): a time constant of about 200 frames (the
+ * stale-history rule keeps a cut from lasting that long). The VPLs move
+ * about in proportion to a, since each frame's estimate is noisy; a
+ * longer memory lags a moving light more (Documentation/IndirectShadows.md,
+ * "Flicker", measures both). 1 turns the blend off.
  */
-#define MRGI_BRSM_DEFAULT_TEMPORAL_WEIGHT 0.02
+#define MRGI_BRSM_DEFAULT_TEMPORAL_WEIGHT 0.005
 
 /**
  * @brief The mass two pdfs share once each is normalised, sum of

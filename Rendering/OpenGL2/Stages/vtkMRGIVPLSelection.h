@@ -144,7 +144,7 @@ public:
   /**
    * BRSM mode: weight a of this frame's pdf in its moving average over the
    * selections (mrgi_brsm_temporal_blend(), beyond RIHKS11; default
-   * MRGI_BRSM_DEFAULT_TEMPORAL_WEIGHT = 0.02, a time constant of about 50
+   * MRGI_BRSM_DEFAULT_TEMPORAL_WEIGHT = 0.005, a time constant of about 200
    * frames; 1 re-estimates the pdf from scratch every frame, the paper's
    * rule). The pdf estimated from a few view samples per texel changes
    * from frame to frame, and VPLs drawn from it move where a grid's stay;
