@@ -160,7 +160,7 @@ static void test_bias_no_self_shadow(void)
     mrgi_ism_lookup_params p;
     mrgi_ism_lookup_params_default(&p);
     p.texel_bias = 3.0f;
-    mrgi_ism_lookup_params none = { 0.0f, 0.0f, 0 };
+    mrgi_ism_lookup_params none = { 0.0f, 0.0f, 0, 0.0f };
     int shadowed = 0, shadowed_unbiased = 0, tested = 0;
     for (int i = 0; i < 4000; ++i)
     {
@@ -255,7 +255,7 @@ static void test_pcf_stays_in_tile(void)
   const float vpl[3] = { 1, 2, 3 };
   mrgi_ism_lookup_params p;
   mrgi_ism_lookup_params_default(&p);
-  const mrgi_ism_lookup_params unbiased = { 0.0f, 0.0f, 1 };
+  const mrgi_ism_lookup_params unbiased = { 0.0f, 0.0f, 1, 0.0f };
   uint32_t seed = 3u;
   for (int i = 0; i < 5000; ++i)
   {
@@ -281,6 +281,48 @@ static void test_pcf_stays_in_tile(void)
   free(depth);
 }
 
+/* Step 2b: over an all-occluded tile (every texel at depth 0) and without
+ * bias, a receiver is visible exactly where its direction's texel is wider
+ * than max_texel_angle (2 / (T c) > angle), and everywhere shadowed with the
+ * rule off. Directions in the x-z plane from the VPL normal (c = 1) to the
+ * horizon. */
+static void test_grazing_rule(void)
+{
+  mrgi_ism_atlas_layout L;
+  MRGI_CHECK(mrgi_ism_atlas_layout_make(1, 32, &L, NULL) == MRGI_OK);
+  float* depth = atlas_new(&L, 0.0f);
+  const float vpl[3] = { 0, 0, 0 }, n[3] = { 0, 0, 1 };
+  mrgi_ism_lookup_params p;
+  mrgi_ism_lookup_params_default(&p);
+  MRGI_CHECK(p.max_texel_angle == MRGI_ISM_DEFAULT_MAX_TEXEL_ANGLE);
+  p.relative_bias = 0.0f;
+  p.texel_bias = 0.0f;
+  const float T = (float)L.tile_size;
+  int visible = 0, shadowed = 0;
+  for (int i = 1; i < 200; ++i)
+  {
+    const float c = (float)i / 200.0f;
+    const float x[3] = { 3.0f * sqrtf(1.0f - c * c), 0.0f, 3.0f * c };
+    /* The twin's own c (float rounding of d . n) decides; skip the few
+     * receivers within rounding of the boundary. */
+    const float expected_c = x[2] / sqrtf(x[0] * x[0] + x[2] * x[2]);
+    const float width = 2.0f / (T * expected_c);
+    if (fabsf(width - p.max_texel_angle) < 1e-4f)
+      continue;
+    const float v = mrgi_ism_visibility(&L, depth, 0, vpl, n, x, &p);
+    MRGI_CHECK(v == (width > p.max_texel_angle ? 1.0f : 0.0f));
+    visible += v == 1.0f;
+    shadowed += v == 0.0f;
+    p.max_texel_angle = 0.0f; /* off: the tile decides everywhere */
+    MRGI_CHECK(mrgi_ism_visibility(&L, depth, 0, vpl, n, x, &p) == 0.0f);
+    p.max_texel_angle = MRGI_ISM_DEFAULT_MAX_TEXEL_ANGLE;
+  }
+  printf("grazing rule at T = 32: %d of %d directions skipped (c < %.3f)\n", visible,
+    visible + shadowed, 2.0 / (32.0 * MRGI_ISM_DEFAULT_MAX_TEXEL_ANGLE));
+  MRGI_CHECK(visible > 0 && shadowed > 0);
+  free(depth);
+}
+
 static void test_bad_params(void)
 {
   mrgi_error err;
@@ -301,6 +343,14 @@ static void test_bad_params(void)
   p.pcf = 2;
   MRGI_CHECK(mrgi_ism_lookup_params_validate(&p, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "pcf"));
+  const float angles[3] = { -0.1f, NAN, MRGI_ISM_MAX_TEXEL_ANGLE_LIMIT * 2.0f };
+  for (int i = 0; i < 3; ++i)
+  {
+    mrgi_ism_lookup_params_default(&p);
+    p.max_texel_angle = angles[i];
+    MRGI_CHECK(mrgi_ism_lookup_params_validate(&p, &err) == MRGI_ERR_INVALID_ARGUMENT);
+    MRGI_CHECK(strstr(err.message, "max texel angle"));
+  }
   /* NULL pointers: visible, no crash. */
   const float v[3] = { 0, 0, 0 }, x[3] = { 0, 0, 1 };
   mrgi_ism_lookup_params_default(&p);
@@ -410,6 +460,7 @@ static void test_gathers(void)
   vis.ism_depth = zero_atlas; /* without bias: grazing directions' bias exceeds the distance */
   vis.ism_lookup.relative_bias = 0.0f;
   vis.ism_lookup.texel_bias = 0.0f;
+  vis.ism_lookup.max_texel_angle = 0.0f; /* and every direction tested (step 2b off) */
   MRGI_CHECK(mrgi_gather_full_visibility(&rec.r, vpls, roots, NULL, &vis, &with, NULL, NULL) ==
     MRGI_OK);
   MRGI_CHECK(image_sum(&with) == 0.0);
@@ -522,7 +573,7 @@ int main(int argc, char** argv)
 {
   static const mrgi_test_case cases[] = { MRGI_TEST_CASE(test_plane_occluder),
     MRGI_TEST_CASE(test_bias_no_self_shadow), MRGI_TEST_CASE(test_sparse_defaults),
-    MRGI_TEST_CASE(test_pcf_stays_in_tile),
+    MRGI_TEST_CASE(test_pcf_stays_in_tile), MRGI_TEST_CASE(test_grazing_rule),
     MRGI_TEST_CASE(test_bad_params), MRGI_TEST_CASE(test_gathers) };
   return MRGI_TEST_MAIN(argc, argv, cases);
 }

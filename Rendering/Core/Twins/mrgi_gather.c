@@ -185,7 +185,7 @@ mrgi_status mrgi_gather_full_visibility(const mrgi_gather_receivers* receivers,
                                         mrgi_error* err)
 {
   static const mrgi_gather_visibility none = { MRGI_GATHER_VISIBILITY_NONE, NULL, NULL,
-                                               { 0.0f, 0.0f, 0 }, NULL };
+                                               { 0.0f, 0.0f, 0, 0.0f }, NULL };
   if (!out_irradiance)
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "output irradiance image is NULL");

@@ -11,6 +11,7 @@ void mrgi_ism_lookup_params_default(mrgi_ism_lookup_params* params)
   params->relative_bias = MRGI_ISM_DEFAULT_RELATIVE_BIAS;
   params->texel_bias = MRGI_ISM_DEFAULT_TEXEL_BIAS;
   params->pcf = 1;
+  params->max_texel_angle = MRGI_ISM_DEFAULT_MAX_TEXEL_ANGLE;
 }
 
 mrgi_status mrgi_ism_lookup_params_validate(const mrgi_ism_lookup_params* params, mrgi_error* err)
@@ -25,6 +26,10 @@ mrgi_status mrgi_ism_lookup_params_validate(const mrgi_ism_lookup_params* params
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
       "ISM lookup: texel bias %g is not in [0, %g]", (double)params->texel_bias,
       (double)MRGI_ISM_MAX_BIAS);
+  if (!(params->max_texel_angle >= 0.0f && params->max_texel_angle <= MRGI_ISM_MAX_TEXEL_ANGLE_LIMIT))
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+      "ISM lookup: max texel angle %g is not in [0, %g] radians", (double)params->max_texel_angle,
+      (double)MRGI_ISM_MAX_TEXEL_ANGLE_LIMIT);
   if (params->pcf != 0 && params->pcf != 1)
     return mrgi_error_set(
       err, MRGI_ERR_INVALID_ARGUMENT, "ISM lookup: pcf flag %d is not 0 or 1", (int)params->pcf);
@@ -74,6 +79,10 @@ float mrgi_ism_visibility(const mrgi_ism_atlas_layout* layout, const float* dept
   const float c = dot3f(d, n);
   if (!(c > 0.0f))
     return 1.0f;
+  const float tile = (float)layout->tile_size;
+  /* 2b. Grazing: the texel is wider than the test trusts. */
+  if (params->max_texel_angle > 0.0f && 2.0f / (tile * c) > params->max_texel_angle)
+    return 1.0f;
   /* 3. Cos-sphere tile coordinates (RIHKS11 6.1), the frame of
    * mrgi_ism_vpl_frame() / mrgiISMFrame() in float. */
   const float sign = n[2] >= 0.0f ? 1.0f : -1.0f;
@@ -81,7 +90,6 @@ float mrgi_ism_visibility(const mrgi_ism_atlas_layout* layout, const float* dept
   const float bxy = n[0] * n[1] * a;
   const float t[3] = { 1.0f + sign * n[0] * n[0] * a, sign * bxy, -sign * n[0] };
   const float b[3] = { bxy, sign + n[1] * n[1] * a, -n[1] };
-  const float tile = (float)layout->tile_size;
   const float u = (dot3f(d, t) + 1.0f) * 0.5f * tile;
   const float v = (dot3f(d, b) + 1.0f) * 0.5f * tile;
   /* 4. Bias (RGK08 3.3): relative part plus texel footprints at this angle. */

@@ -18,6 +18,17 @@
  *  2. d = w / dist. c = d . n (n = the VPL's unit normal). c <= 0: VISIBLE
  *     (the receiver is behind the VPL: the gather term is 0 there; the tile
  *     does not cover that hemisphere).
+ *  2b. Grazing directions (beyond the papers): with max_texel_angle > 0,
+ *     where a texel spans more than that angle, 2 / (T c) > max_texel_angle,
+ *     the tile is not consulted: VISIBLE. The cos-sphere map spends few
+ *     texels near the VPL's horizon (equal areas of projected solid angle),
+ *     and a sparse point tile puts the surfaces around the VPL into those
+ *     wide texels at depths far nearer than a receiver along the same
+ *     direction: receivers there are shadowed by what only shares their
+ *     texel. Measured against the ground truth with secondary visibility
+ *     (Documentation/IndirectShadows.md, "Session 16"), this false shadow
+ *     made ISM worse than no visibility in `corridor-large`. The directions
+ *     skipped carry a share c0^2 of the VPL's power (c0 = 2 / (T angle)).
  *  3. Cos-sphere coordinates (mrgi_ism_atlas.h section 3): (s, t) = (d . t_n,
  *     d . b_n) with (t_n, b_n) = mrgi_ism_vpl_frame(n); continuous tile
  *     coordinates (u, v) = ((s + 1) / 2 T, (t + 1) / 2 T).
@@ -98,6 +109,16 @@ extern "C" {
 #define MRGI_ISM_DEFAULT_TEXEL_BIAS 1.5f
 /** Largest accepted relative bias / texel bias. */
 #define MRGI_ISM_MAX_BIAS 16.0f
+/**
+ * Default widest texel (radians) the test trusts (step 2b): at the default
+ * 32^2 tiles, directions with c < 0.39 (15% of a VPL's power) are not
+ * shadowed. Measured (Documentation/IndirectShadows.md, "Session 16") on
+ * the corridors, where it removes false shadows, and on the closed Cornell
+ * boxes, where it costs least. 0 turns the rule off.
+ */
+#define MRGI_ISM_DEFAULT_MAX_TEXEL_ANGLE 0.16f
+/** Largest accepted max_texel_angle (radians). */
+#define MRGI_ISM_MAX_TEXEL_ANGLE_LIMIT 4.0f
 
 /** Lookup parameters (section 4 and 5). */
 typedef struct mrgi_ism_lookup_params
@@ -105,12 +126,13 @@ typedef struct mrgi_ism_lookup_params
   float relative_bias; /**< >= 0, <= MRGI_ISM_MAX_BIAS. */
   float texel_bias;    /**< >= 0, <= MRGI_ISM_MAX_BIAS. */
   int32_t pcf;         /**< 0: one texel; 1: 2x2 bilinear PCF. */
+  float max_texel_angle; /**< Step 2b, radians, 0..MRGI_ISM_MAX_TEXEL_ANGLE_LIMIT; 0: off. */
 } mrgi_ism_lookup_params;
 
 /** @brief The defaults above, PCF on. */
 void mrgi_ism_lookup_params_default(mrgi_ism_lookup_params* params);
 
-/** @brief ::MRGI_ERR_INVALID_ARGUMENT naming a negative, NaN or absurd bias or a bad pcf flag. */
+/** @brief ::MRGI_ERR_INVALID_ARGUMENT naming a negative, NaN or absurd bias or angle, or a bad pcf flag. */
 mrgi_status mrgi_ism_lookup_params_validate(const mrgi_ism_lookup_params* params, mrgi_error* err);
 
 /**

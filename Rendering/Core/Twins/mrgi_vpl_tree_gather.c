@@ -317,7 +317,7 @@ mrgi_status mrgi_vpl_tree_gather_visibility(const mrgi_gather_receivers* receive
                                             mrgi_vpl_tree_gather_info* out_info, mrgi_error* err)
 {
   static const mrgi_gather_visibility none = { MRGI_GATHER_VISIBILITY_NONE, NULL, NULL,
-                                               { 0.0f, 0.0f, 0 }, NULL };
+                                               { 0.0f, 0.0f, 0, 0.0f }, NULL };
   mrgi_vpl_tree_gather_clear(out_irradiance);
   mrgi_vpl_tree_gather_clear(out_vpls_per_pixel);
   if (out_info)

@@ -137,6 +137,7 @@ bool Bind(vtkShaderProgram* program, const vtkMRGIIndirectVisibility& visibility
   program->SetUniformf("mrgiISMRelativeBias", visibility.ISMLookup.relative_bias);
   program->SetUniformf("mrgiISMTexelBias", visibility.ISMLookup.texel_bias);
   program->SetUniformi("mrgiISMPCF", visibility.ISMLookup.pcf);
+  program->SetUniformf("mrgiISMMaxTexelAngle", visibility.ISMLookup.max_texel_angle);
   return true;
 }
 

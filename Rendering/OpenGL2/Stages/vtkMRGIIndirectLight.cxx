@@ -22,6 +22,7 @@ vtkStandardNewMacro(vtkMRGIIndirectLight);
 vtkMRGIIndirectLight::vtkMRGIIndirectLight()
   : ISMRelativeBias(MRGI_ISM_DEFAULT_RELATIVE_BIAS)
   , ISMTexelBias(MRGI_ISM_DEFAULT_TEXEL_BIAS)
+  , ISMMaxTexelAngle(MRGI_ISM_DEFAULT_MAX_TEXEL_ANGLE)
   , ViewSamples(new vtkMRGIViewSamples)
 {
   this->VPLSelection = vtkMRGIVPLSelection::New();
@@ -129,6 +130,7 @@ bool vtkMRGIIndirectLight::BuildVisibility(
     visibility.ISMLookup.relative_bias = static_cast<float>(this->ISMRelativeBias);
     visibility.ISMLookup.texel_bias = static_cast<float>(this->ISMTexelBias);
     visibility.ISMLookup.pcf = this->ISMFiltering ? 1 : 0;
+    visibility.ISMLookup.max_texel_angle = static_cast<float>(this->ISMMaxTexelAngle);
   }
   else if (this->Visibility == VisibilityVoxels)
   {
@@ -219,6 +221,7 @@ void vtkMRGIIndirectLight::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Visibility: " << names[this->Visibility] << "\n";
   os << indent << "ISMRelativeBias: " << this->ISMRelativeBias << "\n";
   os << indent << "ISMTexelBias: " << this->ISMTexelBias << "\n";
+  os << indent << "ISMMaxTexelAngle: " << this->ISMMaxTexelAngle << "\n";
   os << indent << "ISMFiltering: " << (this->ISMFiltering ? "On" : "Off") << "\n";
   os << indent << "LastVPLCount: " << this->LastVPLCount << "\n";
   os << indent << "Refinement: " << (this->Refinement ? "Illumination" : "Geometry") << "\n";

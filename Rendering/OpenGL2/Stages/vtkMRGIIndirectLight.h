@@ -119,6 +119,19 @@ public:
   vtkBooleanMacro(ISMFiltering, bool);
   ///@}
 
+  ///@{
+  /**
+   * The widest ISM texel (radians) the shadow test trusts
+   * (mrgi_ism_visibility.h step 2b; default
+   * MRGI_ISM_DEFAULT_MAX_TEXEL_ANGLE = 0.16): receivers in directions
+   * where a tile texel spans more than this, near the VPL's horizon, are
+   * not shadowed, since the surfaces around the VPL fill those wide texels
+   * and shadow them falsely. 0 tests every direction.
+   */
+  vtkSetClampMacro(ISMMaxTexelAngle, double, 0.0, 4.0);
+  vtkGetMacro(ISMMaxTexelAngle, double);
+  ///@}
+
   /** The owned stages (their settings: points per VPL, tile size, ...). */
   vtkMRGIVPLSelection* GetVPLSelection() { return this->VPLSelection; }
   vtkMRGIGather* GetGather() { return this->Gather; }
@@ -189,6 +202,7 @@ protected:
   int Visibility = VisibilityOff;
   double ISMRelativeBias;
   double ISMTexelBias;
+  double ISMMaxTexelAngle;
   bool ISMFiltering = true;
   int LastVPLCount = 0;
   int Refinement = RefinementGeometry;

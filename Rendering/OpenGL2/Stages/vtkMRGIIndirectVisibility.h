@@ -46,7 +46,8 @@ struct vtkMRGIIndirectVisibility
   /** ISM: the R32F atlas texture (mrgi_ism_atlas.h layout), its layout, the lookup parameters. */
   vtkTextureObject* ISMAtlas = nullptr;
   mrgi_ism_atlas_layout ISMLayout = { 0, 0, 0, 0, 0, 0 };
-  mrgi_ism_lookup_params ISMLookup = { MRGI_ISM_DEFAULT_RELATIVE_BIAS, MRGI_ISM_DEFAULT_TEXEL_BIAS, 1 };
+  mrgi_ism_lookup_params ISMLookup = { MRGI_ISM_DEFAULT_RELATIVE_BIAS, MRGI_ISM_DEFAULT_TEXEL_BIAS, 1,
+    MRGI_ISM_DEFAULT_MAX_TEXEL_ANGLE };
   ///@}
 
   /** Voxels: voxelized this frame (the receivers' eye space). */

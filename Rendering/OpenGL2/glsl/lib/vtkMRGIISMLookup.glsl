@@ -11,6 +11,7 @@ uniform int mrgiISMTilesPerRow;    // C
 uniform float mrgiISMRelativeBias; // mrgi_ism_lookup_params
 uniform float mrgiISMTexelBias;
 uniform int mrgiISMPCF;            // 0: one texel; 1: 2x2 bilinear PCF
+uniform float mrgiISMMaxTexelAngle; // step 2b; 0: off
 
 // Step 5's compare at tile texel `texel` (clamped to the tile) of VPL `vpl`.
 float mrgiISMTexelVisible(int vpl, ivec2 texel, float biased)
@@ -34,8 +35,10 @@ float mrgiISMVisibility(int vpl, vec3 v, vec3 n, vec3 P)
   vec3 d = w / dist;
   float c = dot(d, nn);
   if (!(c > 0.0)) { return 1.0; }
-  // 3. Cos-sphere tile coordinates (ritschel-et-al-2011 6.1).
   float tile = float(mrgiISMTileSize);
+  // 2b. Grazing: the texel is wider than the test trusts.
+  if (mrgiISMMaxTexelAngle > 0.0 && 2.0 / (tile * c) > mrgiISMMaxTexelAngle) { return 1.0; }
+  // 3. Cos-sphere tile coordinates (ritschel-et-al-2011 6.1).
   vec2 uv = mrgiISMTileCoordinates(nn, d, tile);
   // 4. Bias (ritschel-et-al-2008 3.3): relative plus texel footprints.
   float bias = dist * (mrgiISMRelativeBias +
