@@ -451,6 +451,8 @@ int main(int argc, char* argv[])
   mrgi->GetIndirectLightStage()->SetISMFiltering(o.ISMFiltering);
   if (!std::isnan(o.ISMTexelBias))
     mrgi->GetIndirectLightStage()->SetISMTexelBias(o.ISMTexelBias);
+  if (!std::isnan(o.ISMMaxTexelAngle))
+    mrgi->GetIndirectLightStage()->SetISMMaxTexelAngle(o.ISMMaxTexelAngle);
   mrgi->GetIndirectLightStage()->GetImperfectShadowMaps()->SetPushPullLevels(
     static_cast<int>(o.ISMPushPullLevels));
   mrgi->SetIndirectStrength(o.IndirectStrength);

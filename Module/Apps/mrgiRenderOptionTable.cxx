@@ -620,6 +620,13 @@ const std::vector<OptionSection>& OptionTable()
           Number(
             &Options::ISMTexelBias, [](double b) { return b >= 0 && b <= MRGI_ISM_MAX_BIAS; },
             "expected a number in [0, 16]") },
+        { { "--ism-max-texel-angle" }, "A",
+          "ism: no shadow test in directions whose map texel spans more than A radians,\n"
+          "near each VPL's horizon, 0..4 (default 0.16; 0: test every direction)",
+          Number(
+            &Options::ISMMaxTexelAngle,
+            [](double a) { return a >= 0 && a <= MRGI_ISM_MAX_TEXEL_ANGLE_LIMIT; },
+            "expected a number in [0, 4] (radians)") },
         { { "--ism-push-pull" }, "LEVELS",
           "ism: push-pull hole filling over LEVELS mip levels of each tile, 0..16 (default 1: "
           "holes filled from their 2x2 block; 0: off)",

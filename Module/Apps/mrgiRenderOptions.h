@@ -119,6 +119,7 @@ struct Options
   double ISMBias = std::nan(""); // not given: MRGI_ISM_DEFAULT_RELATIVE_BIAS
   bool ISMFiltering = true;
   double ISMTexelBias = std::nan(""); // not given: MRGI_ISM_DEFAULT_TEXEL_BIAS
+  double ISMMaxTexelAngle = std::nan(""); // not given: MRGI_ISM_DEFAULT_MAX_TEXEL_ANGLE
   long long ISMPushPullLevels = MRGI_ISM_DEFAULT_PUSH_PULL_LEVELS;
   double IndirectStrength = 1.0;
   bool IndirectOnly = false;

@@ -55,6 +55,9 @@ def bad_options():
                        (["--ism-bias", "-1"], "--ism-bias"),
                        (["--ism-bias", "nan"], "--ism-bias"),
                        (["--ism-lazy-frames", "0"], "--ism-lazy-frames"),
+                       (["--ism-max-texel-angle", "-0.1"], "--ism-max-texel-angle"),
+                       (["--ism-max-texel-angle", "nan"], "--ism-max-texel-angle"),
+                       (["--ism-max-texel-angle", "5"], "--ism-max-texel-angle"),
                        (["--ism-point-mode", "random"], "--ism-point-mode")):
         if os.path.exists(target):
             os.remove(target)
@@ -86,6 +89,7 @@ def main():
     off = render("off")
     ism = render("ism", "--indirect-visibility", "ism")
     unbiased = render("ism_nobias", "--indirect-visibility", "ism", "--ism-bias", "16")
+    every = render("ism_every_direction", "--indirect-visibility", "ism", "--ism-max-texel-angle", "0")
     voxel = render("voxel", "--indirect-visibility", "voxel")
     lit = off.sum(axis=1) > 0
     check(lit.mean() > 0.5, "the indirect light reaches most pixels")
@@ -97,6 +101,12 @@ def main():
         print("%s removes %.1f%% of the indirect light" % (name, 100 * removed))
         # The two blocks of cornell-spot hide part of the walls from each other.
         check(removed > 0.01, name + " casts indirect shadows (removed %.4f)" % removed)
+    # The grazing rule (mrgi_ism_visibility.h step 2b) only skips shadow tests:
+    # testing every direction can only remove more light, and here it does.
+    check(np.all(every <= ism + tolerance), "--ism-max-texel-angle 0 never adds light")
+    restored = ism.sum() / every.sum() - 1.0
+    print("the grazing rule keeps %.2f%% more of the indirect light" % (100 * restored))
+    check(restored > 0.0, "the default grazing rule skips some shadow tests (%.5f)" % restored)
     # A bias of 16 distances: every receiver is nearer than its depth minus
     # the bias, so every VPL is visible and the image is the unshadowed one.
     check(np.abs(unbiased - off).max() <= tolerance,
