@@ -6,8 +6,8 @@
 // 3. Fixed patterns: moving the camera away and back (the same view, but
 //    every cache invalidated) recomputes the selection; the pdf's moving
 //    average remembers the detour, and ResetBRSMHistory() alone selects
-//    again: the VPLs are the first frame's bit for bit, with inter-texel VPLs (C path) and
-//    texel VPLs (GPU inversion). A frame-dependent jitter or seed (the old
+//    again: the VPLs are the first frame's bit for bit, with inter-texel
+//    VPLs (C path) and texel VPLs (GPU inversion). A frame-dependent jitter or seed (the old
 //    flicker) fails.
 #include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"

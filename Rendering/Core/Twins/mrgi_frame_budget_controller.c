@@ -109,6 +109,13 @@ static void controller_switch(mrgi_frame_budget_controller* ctl, const mrgi_fram
   ctl->switches++;
 }
 
+/* 1 when a running controller can be asked about its current candidate. */
+static int is_running(const mrgi_frame_budget_controller* ctl,
+  const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* candidates, int32_t count)
+{
+  return ctl && cal && candidates && ctl->current >= 0 && ctl->current < count;
+}
+
 /* The arguments update and retarget share; clears `*changed` (may be NULL). */
 static mrgi_status check_running(const mrgi_frame_budget_controller* ctl,
   const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* candidates, int32_t count,
@@ -118,7 +125,7 @@ static mrgi_status check_running(const mrgi_frame_budget_controller* ctl,
   {
     *changed = 0;
   }
-  if (!ctl || !cal || !candidates || ctl->current < 0 || ctl->current >= count)
+  if (!is_running(ctl, cal, candidates, count))
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
       "frame budget controller: NULL argument or current candidate outside the list");
@@ -290,7 +297,7 @@ double mrgi_frame_budget_controller_expected(const mrgi_frame_budget_controller*
   const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* candidates, int32_t count,
   int64_t pixels)
 {
-  if (!ctl || !cal || !candidates || ctl->current < 0 || ctl->current >= count)
+  if (!is_running(ctl, cal, candidates, count))
   {
     return -1.0;
   }

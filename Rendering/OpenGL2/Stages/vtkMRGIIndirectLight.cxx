@@ -16,6 +16,10 @@
 
 #include "mrgi_ism_visibility.h"
 
+// The public header's clamp ranges (it does not include the C core).
+static_assert(MRGI_ISM_MAX_BIAS == 16.0f, "ISMRelativeBias / ISMTexelBias clamp range");
+static_assert(MRGI_ISM_MAX_TEXEL_ANGLE_LIMIT == 4.0f, "ISMMaxTexelAngle clamp range");
+
 vtkStandardNewMacro(vtkMRGIIndirectLight);
 
 //------------------------------------------------------------------------------
