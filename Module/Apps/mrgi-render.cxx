@@ -387,7 +387,10 @@ int main(int argc, char* argv[])
       }
     }
   }
-  mrgi->GetVoxelization()->SetVoxelSide(static_cast<int>(o.VoxelSize));
+  if (o.VoxelSize > 0)
+  {
+    mrgi->GetVoxelization()->SetVoxelSide(static_cast<int>(o.VoxelSize));
+  }
   if (o.AreaLightsOn)
   {
     for (int l = 0; l < builder->GetNumberOfAreaLights(); ++l)

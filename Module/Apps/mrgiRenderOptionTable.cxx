@@ -386,7 +386,7 @@ const std::vector<OptionSection>& OptionTable()
           Choice<int>(&Options::AreaLightVisibility,
             { { "off", vtkMRGIPass::VisibilityOff }, { "naive", vtkMRGIPass::VisibilityNaive },
               { "incremental", vtkMRGIPass::VisibilityIncremental } }) },
-        { { "--voxel-size" }, "N", "voxel buffer side for the visibility, 1..4096 (default 128)",
+        { { "--voxel-size" }, "N", "voxel buffer side for the visibility, 1..4096 (default: automatic, voxels about as wide as deep, 128..512)",
           Integer(&Options::VoxelSize, 1, MaxVoxelSize) },
         { { "--visibility-interleave" }, "on|off",
           "incremental visibility: 2x2 interleaved light samples (default off)",

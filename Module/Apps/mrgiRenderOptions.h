@@ -90,7 +90,7 @@ struct Options
   bool AreaLightTwoSided = false;
   long long AreaLightSamples = 256;
   int AreaLightVisibility = vtkMRGIPass::VisibilityIncremental;
-  long long VoxelSize = 128;
+  long long VoxelSize = 0; // 0: automatic (vtkMRGIVoxelization::AutomaticVoxelSize)
   bool AreaLightSpecular = true;
   int AreaLightSpecularResolution = vtkMRGIPass::SpecularFullResolution;
   bool VisibilityInterleave = false;

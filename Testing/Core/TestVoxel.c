@@ -1980,6 +1980,73 @@ static void test_fit_depth_range(void)
  * depths of the triangle clipped to the pixel square, for parallel (depth
  * linear in screen space) and perspective (1 / depth linear) triangles; a
  * pixel cut by an edge keeps only the triangle's side; outside: none. */
+/* Eye-space width of one voxel pixel at depth d, measured through
+ * mrgi_voxel_project() (section 4), not through the formula under test. */
+static double measured_pixel_width(const mrgi_voxel_projection* p, int32_t vw, int32_t vh,
+  double near_depth, double far_depth, double d)
+{
+  mrgi_voxel_grid grid;
+  MRGI_CHECK(mrgi_voxel_grid_init(&grid, vw, vh, near_depth, far_depth, NULL) == MRGI_OK);
+  const float a[3] = { 0.0f, 0.0f, (float)-d };
+  const float b[3] = { 1.0f, 0.0f, (float)-d };
+  float ua[3], ub[3];
+  MRGI_CHECK(mrgi_voxel_project(&grid, p, a, ua) == 1 && mrgi_voxel_project(&grid, p, b, ub) == 1);
+  return 1.0 / (double)(ub[0] - ua[0]);
+}
+
+static void test_isotropic_size(void)
+{
+  mrgi_error err;
+  int32_t size[2];
+  /* A Cornell box seen from the front (cornell-area's camera and fitted
+   * range) and the same at twice the width: voxel pixels as wide as a slice
+   * is deep at the middle depth, up to the rounding to the step. */
+  const mrgi_multires_projection cam = { 0, 39.3, 0.0 };
+  const double aspects[2] = { 1.0, 2.0 };
+  for (int k = 0; k < 2; ++k)
+  {
+    mrgi_voxel_projection p;
+    MRGI_CHECK(mrgi_voxel_projection_from_camera(&p, &cam, aspects[k], NULL) == MRGI_OK);
+    const double near_depth = 794.0, far_depth = 1365.0;
+    MRGI_CHECK(mrgi_voxel_isotropic_size(&p, near_depth, far_depth, size, &err) == MRGI_OK);
+    MRGI_CHECK(size[0] % MRGI_VOXEL_AUTO_STEP == 0 && size[1] % MRGI_VOXEL_AUTO_STEP == 0);
+    MRGI_CHECK(size[1] > MRGI_VOXEL_AUTO_MIN_SIZE && size[0] < MRGI_VOXEL_AUTO_MAX_SIZE);
+    const double slice = (far_depth - near_depth) / MRGI_VOXEL_SLICES;
+    const double width =
+      measured_pixel_width(&p, size[0], size[1], near_depth, far_depth, 0.5 * (near_depth + far_depth));
+    /* Rounding to the step moves the side by at most half a step. */
+    MRGI_CHECK(fabs(width / slice - 1.0) <= 0.5 * MRGI_VOXEL_AUTO_STEP / size[0] + 1e-4);
+    MRGI_CHECK(abs(size[0] - (int32_t)lround(aspects[k] * size[1])) <= MRGI_VOXEL_AUTO_STEP);
+  }
+  /* A room seen from inside (thick slices): the least side; a thin slab
+   * seen from far away (thin slices): the largest. */
+  const mrgi_multires_projection wide = { 0, 55.0, 0.0 };
+  mrgi_voxel_projection p;
+  MRGI_CHECK(mrgi_voxel_projection_from_camera(&p, &wide, 1.0, NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, 0.01, 5.6, size, &err) == MRGI_OK);
+  MRGI_CHECK(size[0] == MRGI_VOXEL_AUTO_MIN_SIZE && size[1] == MRGI_VOXEL_AUTO_MIN_SIZE);
+  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, 1000.0, 1000.5, size, &err) == MRGI_OK);
+  MRGI_CHECK(size[0] == MRGI_VOXEL_AUTO_MAX_SIZE && size[1] == MRGI_VOXEL_AUTO_MAX_SIZE);
+  /* Parallel: the pixel is the same width at every depth. */
+  const mrgi_multires_projection ortho = { 1, 0.0, 100.0 };
+  MRGI_CHECK(mrgi_voxel_projection_from_camera(&p, &ortho, 1.0, NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, -50.0, 78.0, size, &err) == MRGI_OK);
+  MRGI_CHECK(size[0] > MRGI_VOXEL_AUTO_MIN_SIZE && size[0] < MRGI_VOXEL_AUTO_MAX_SIZE);
+  const double slice = 128.0 / MRGI_VOXEL_SLICES;
+  const double width = measured_pixel_width(&p, size[0], size[1], -50.0, 78.0, 10.0);
+  MRGI_CHECK(fabs(width / slice - 1.0) <= 0.5 * MRGI_VOXEL_AUTO_STEP / size[0] + 1e-4);
+  /* Errors name the problem and leave the output alone. */
+  size[0] = size[1] = -7;
+  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, 5.0, 5.0, size, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(strstr(err.message, "depth range") != NULL && size[0] == -7);
+  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, NAN, 5.0, size, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_voxel_isotropic_size(NULL, 1.0, 5.0, size, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, 1.0, 5.0, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_voxel_projection_from_camera(&p, &wide, 1.0, NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, -10.0, 4.0, size, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(strstr(err.message, "in front of the eye") != NULL && size[0] == -7);
+}
+
 static void test_triangle_pixel_range(void)
 {
   const float u[3] = { 0.0f, 10.0f, 0.0f };
@@ -2016,6 +2083,7 @@ int main(int argc, char** argv)
     MRGI_TEST_CASE(test_samples_per_batch),
     MRGI_TEST_CASE(test_layout),
     MRGI_TEST_CASE(test_fit_depth_range),
+    MRGI_TEST_CASE(test_isotropic_size),
     MRGI_TEST_CASE(test_triangle_pixel_range),
     MRGI_TEST_CASE(test_grid_errors),
     MRGI_TEST_CASE(test_voxelize),

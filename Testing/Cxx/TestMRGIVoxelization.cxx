@@ -431,6 +431,59 @@ void CornellBox(bool parallel)
   vox->ReleaseGraphicsResources(window);
 }
 
+// The automatic (isotropic) size is the default, is what ComputeVoxelSize()
+// says and the core computes for the camera and range, and is what the GPU
+// voxelizes with; a fixed size turns it off, AutomaticVoxelSizeOn() back on.
+void AutomaticSize(bool parallel)
+{
+  mrgitest::SceneWindow scene(WindowW, WindowH, "cornell");
+  vtkRenderWindow* window = scene.Window;
+  vtkRenderer* renderer = scene.Renderer;
+  if (parallel)
+  {
+    renderer->GetActiveCamera()->ParallelProjectionOn();
+    renderer->ResetCamera();
+  }
+  window->Render();
+  vtkNew<vtkMRGIVoxelization> vox;
+  MRGI_TEST_CHECK(vox->GetAutomaticVoxelSize());
+  double range[2];
+  MRGI_TEST_CHECK(vtkMRGIVoxelization::ComputeDepthRange(renderer, range));
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const mrgi_multires_projection cam = { camera->GetParallelProjection(), camera->GetViewAngle(),
+    camera->GetParallelScale() };
+  mrgi_voxel_projection proj;
+  MRGI_TEST_CHECK(mrgi_voxel_projection_from_camera(
+                    &proj, &cam, static_cast<double>(WindowW) / WindowH, nullptr) == MRGI_OK);
+  int32_t expected[2];
+  MRGI_TEST_CHECK(mrgi_voxel_isotropic_size(&proj, range[0], range[1], expected, nullptr) == MRGI_OK);
+  int computed[2], last[2];
+  MRGI_TEST_CHECK(vox->ComputeVoxelSize(renderer, range[0], range[1], computed));
+  MRGI_TEST_CHECK(computed[0] == expected[0] && computed[1] == expected[1]);
+  MRGI_TEST_CHECK(vox->Voxelize(renderer, range[0], range[1]));
+  vox->GetLastVoxelSize(last);
+  std::printf("cornell %s, depth range [%.1f, %.1f]: automatic voxel size %d x %d\n",
+    parallel ? "parallel" : "perspective", range[0], range[1], last[0], last[1]);
+  MRGI_TEST_CHECK(last[0] == expected[0] && last[1] == expected[1]);
+  // The box is shallow seen from the front: finer than the fixed default.
+  MRGI_TEST_CHECK(last[1] > MRGI_VOXEL_DEFAULT_SIZE);
+  // Wider than tall, as the window.
+  MRGI_TEST_CHECK(last[0] > last[1]);
+  vox->SetVoxelSide(100);
+  MRGI_TEST_CHECK(!vox->GetAutomaticVoxelSize());
+  MRGI_TEST_CHECK(vox->Voxelize(renderer, range[0], range[1]));
+  vox->GetLastVoxelSize(last);
+  MRGI_TEST_CHECK(last[0] == 100 && last[1] == 100);
+  vox->AutomaticVoxelSizeOn();
+  MRGI_TEST_CHECK(vox->Voxelize(renderer, range[0], range[1]));
+  vox->GetLastVoxelSize(last);
+  MRGI_TEST_CHECK(last[0] == expected[0] && last[1] == expected[1]);
+  // Without a renderer the automatic size cannot be computed: VoxelSize.
+  MRGI_TEST_CHECK(!vox->ComputeVoxelSize(nullptr, range[0], range[1], computed));
+  MRGI_TEST_CHECK(computed[0] == 100 && computed[1] == 100);
+  vox->ReleaseGraphicsResources(window);
+}
+
 void RandomBoxes()
 {
   vtkSmartPointer<vtkRenderWindow> window = mrgitest::HeadlessWindow(WindowW, WindowH);
@@ -806,7 +859,9 @@ int main(int argc, char* argv[])
 {
   return mrgitest::RunCases(argc, argv,
     { { "CornellBox", [] { CornellBox(false); } },
-      { "CornellBoxParallel", [] { CornellBox(true); } }, MRGI_TEST_CASE(RandomBoxes),
+      { "CornellBoxParallel", [] { CornellBox(true); } },
+      { "AutomaticSize", [] { AutomaticSize(false); } },
+      { "AutomaticSizeParallel", [] { AutomaticSize(true); } }, MRGI_TEST_CASE(RandomBoxes),
       { "Grazing",
         [] {
           // One voxelization for both projections' windows.

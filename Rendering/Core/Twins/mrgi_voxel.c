@@ -197,6 +197,54 @@ mrgi_status mrgi_voxel_projection_check(const mrgi_voxel_projection* projection,
   return MRGI_OK;
 }
 
+/* One side of mrgi_voxel_isotropic_size(): span / thickness rounded to the
+ * step and clamped (span: the eye-space extent of the whole buffer along the
+ * axis at the reference depth). */
+static int32_t isotropic_side(double span, double thickness)
+{
+  const double ideal = span / thickness;
+  if (!(ideal < (double)MRGI_VOXEL_AUTO_MAX_SIZE)) /* also NaN and infinity */
+  {
+    return isnan(ideal) ? MRGI_VOXEL_AUTO_MIN_SIZE : MRGI_VOXEL_AUTO_MAX_SIZE;
+  }
+  const int32_t rounded =
+    (int32_t)floor(ideal / MRGI_VOXEL_AUTO_STEP + 0.5) * MRGI_VOXEL_AUTO_STEP;
+  return rounded < MRGI_VOXEL_AUTO_MIN_SIZE ? MRGI_VOXEL_AUTO_MIN_SIZE
+    : rounded > MRGI_VOXEL_AUTO_MAX_SIZE    ? MRGI_VOXEL_AUTO_MAX_SIZE
+                                            : rounded;
+}
+
+mrgi_status mrgi_voxel_isotropic_size(const mrgi_voxel_projection* projection, double near_depth,
+                                      double far_depth, int32_t size[2], mrgi_error* err)
+{
+  if (!size)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "voxel isotropic size: NULL output");
+  }
+  const mrgi_status checked = mrgi_voxel_projection_check(projection, err);
+  if (checked != MRGI_OK)
+  {
+    return checked;
+  }
+  if (!isfinite(near_depth) || !isfinite(far_depth) || !(near_depth < far_depth))
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "voxel isotropic size: depth range [%g, %g] is not finite and increasing",
+                          near_depth, far_depth);
+  }
+  const double middle = projection->parallel ? 1.0 : 0.5 * (near_depth + far_depth);
+  if (!(middle > 0.0))
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "voxel isotropic size: the middle of [%g, %g] is not in front of the eye",
+                          near_depth, far_depth);
+  }
+  const double thickness = (far_depth - near_depth) / MRGI_VOXEL_SLICES;
+  size[0] = isotropic_side(2.0 * middle / (double)projection->scale_x, thickness);
+  size[1] = isotropic_side(2.0 * middle / (double)projection->scale_y, thickness);
+  return MRGI_OK;
+}
+
 mrgi_status mrgi_voxel_projection_from_camera(mrgi_voxel_projection* projection,
                                               const mrgi_multires_projection* camera,
                                               double aspect, mrgi_error* err)

@@ -321,6 +321,47 @@ mrgi_status mrgi_voxel_projection_from_matrix(mrgi_voxel_projection* projection,
 mrgi_status mrgi_voxel_projection_check(const mrgi_voxel_projection* projection,
                                         mrgi_error* err);
 
+/** Automatic voxel buffer side (mrgi_voxel_isotropic_size()): least, largest, and the step it is rounded to. */
+#define MRGI_VOXEL_AUTO_MIN_SIZE MRGI_VOXEL_DEFAULT_SIZE
+#define MRGI_VOXEL_AUTO_MAX_SIZE 512
+#define MRGI_VOXEL_AUTO_STEP 16
+
+/**
+ * @brief The voxel buffer size whose voxels are about as wide as they are
+ *        deep: at the middle depth of [near, far], a voxel pixel's eye-space
+ *        width (height) equals the slice thickness (far - near) / 128.
+ *
+ * Why (beyond NPW10, whose 128^2 default is one fixed size for every
+ * scene): the march's bias and its conservative intervals work in voxel
+ * sizes, the larger of the pixel's eye-space size and the slice thickness
+ * (mrgi_voxel_march.h, step 3), so a shadow is only as sharp as the
+ * coarser of the two dimensions. Finer pixels than slices buy little, and
+ * coarser pixels than slices waste the 128 bits: in `cornell-area`
+ * (slices 4.5 mm, 128^2 voxel pixels 5.7 mm wide at mid depth) the error on
+ * 4x4 boxes falls from 128^2 to the isotropic side and then stays
+ * (Documentation/AreaLights.md). A deep scene (a room seen from inside,
+ * thick slices) gets the least side.
+ *
+ * Perspective: VW = 2 d / (scale_x t), VH = 2 d / (scale_y t), d = (near +
+ * far) / 2, t = (far - near) / MRGI_VOXEL_SLICES (the pixel width at depth
+ * d is 2 d / (scale_x VW), section 4). Parallel: the same with d = 1. Each
+ * side is rounded to the nearest multiple of MRGI_VOXEL_AUTO_STEP (so that
+ * a moving camera changes the buffer's size only now and then) and clamped
+ * to [MRGI_VOXEL_AUTO_MIN_SIZE, MRGI_VOXEL_AUTO_MAX_SIZE] (the march's
+ * cost grows with the side; 128 is NPW10 4.2's default).
+ *
+ * @param projection A valid projection (mrgi_voxel_projection_check()).
+ * @param near_depth,far_depth The slicing range (as for
+ *               mrgi_voxel_grid_init()): finite, near < far, and near + far
+ *               > 0 for perspective.
+ * @param size   Receives (VW, VH); untouched on failure.
+ * @return ::MRGI_ERR_INVALID_ARGUMENT naming a NULL argument, an invalid
+ *         projection, a non-finite or empty range, or a perspective range
+ *         whose middle is not in front of the eye.
+ */
+mrgi_status mrgi_voxel_isotropic_size(const mrgi_voxel_projection* projection, double near_depth,
+                                      double far_depth, int32_t size[2], mrgi_error* err);
+
 /**
  * @brief Project an eye-space point: uvd = (u, v, d), continuous voxel
  *        coordinates and linear depth (section 4).

@@ -309,6 +309,7 @@ bool vtkMRGIPass::Calibrate(vtkRenderWindow* window)
   const int rsm = this->GetRSMResolution();
   int voxelSize[2];
   this->GetVoxelization()->GetVoxelSize(voxelSize);
+  const bool automaticVoxelSize = this->GetVoxelization()->GetAutomaticVoxelSize();
   const bool ok = this->FrameBudgetTuner->Calibrate(window, this->FrameBudgetKnobs());
   mr->SetDepthThreshold(depth);
   mr->SetNormalThreshold(normal);
@@ -316,5 +317,6 @@ bool vtkMRGIPass::Calibrate(vtkRenderWindow* window)
   this->SetNumberOfVPLs(vpls);
   this->SetRSMResolution(rsm);
   this->GetVoxelization()->SetVoxelSize(voxelSize);
+  this->GetVoxelization()->SetAutomaticVoxelSize(automaticVoxelSize);
   return ok;
 }

@@ -333,7 +333,8 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
       // Every process's geometry in every process's voxels (same camera,
       // clipping range and voxel size: the same grid). A process that
       // could not voxelize still takes part, with no bits.
-      const int* size = this->Voxelization->GetVoxelSize();
+      int size[2];
+      this->Voxelization->ComputeVoxelSize(renderer, range[0], range[1], size);
       vtkNew<vtkTypeUInt32Array> bits;
       if (!voxels || !this->Voxelization->ReadVoxels(renWin, bits))
       {

@@ -38,6 +38,50 @@ vtkStandardNewMacro(vtkMRGIVoxelization);
 
 namespace
 {
+// The voxel projection of `ren`'s active camera over its viewport (section
+// 4: the window's own aspect, so the voxel buffer covers exactly the
+// renderer's frustum), as VTK's camera builds it. False, with `message`
+// naming why, for a viewport of zero size or a projection the voxel
+// projection (a scale and an offset per axis) cannot express.
+bool CameraVoxelProjection(vtkRenderer* ren, mrgi_voxel_projection& projection, std::string& message)
+{
+  int viewW = 0, viewH = 0, viewX = 0, viewY = 0;
+  ren->GetTiledSizeAndOrigin(&viewW, &viewH, &viewX, &viewY);
+  if (viewW < 1 || viewH < 1)
+  {
+    message = "the renderer's viewport has zero size (" + std::to_string(viewW) + " x " +
+      std::to_string(viewH) + " pixels)";
+    return false;
+  }
+  const double aspect = static_cast<double>(viewW) / static_cast<double>(viewH);
+  vtkMatrix4x4* P = ren->GetActiveCamera()->GetProjectionTransformMatrix(aspect, -1, 1);
+  double columnMajor[16];
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      columnMajor[4 * c + r] = P->GetElement(r, c);
+    }
+  }
+  mrgi_error err;
+  if (mrgi_voxel_projection_from_matrix(&projection, columnMajor, &err) != MRGI_OK)
+  {
+    message = std::string("the camera's projection cannot be voxelized: ") + err.message;
+    return false;
+  }
+  // Terms the voxel projection (a scale and an offset per axis) cannot hold.
+  const bool parallel = projection.parallel != 0;
+  if (P->GetElement(0, 1) != 0.0 || P->GetElement(1, 0) != 0.0 ||
+    (parallel ? (P->GetElement(0, 2) != 0.0 || P->GetElement(1, 2) != 0.0)
+              : (P->GetElement(0, 3) != 0.0 || P->GetElement(1, 3) != 0.0)))
+  {
+    message = "the camera's projection is sheared or off-axis, which the voxel projection "
+              "(scale and offset per axis, mrgi_voxel.h section 4) cannot express";
+    return false;
+  }
+  return true;
+}
+
 // Errors left by earlier GL calls are not ours (vtkOpenGLClearErrorMacro is
 // compiled out in release builds of VTK).
 void ClearGLErrors()
@@ -175,12 +219,36 @@ void vtkMRGIVoxelization::SetVoxelSize(int width, int height)
   // Clamped like vtkSetClampMacro: the core's limits (mrgi_voxel.h section 3).
   width = std::min(std::max(width, 1), MRGI_VOXEL_MAX_SIZE);
   height = std::min(std::max(height, 1), MRGI_VOXEL_MAX_SIZE);
-  if (this->VoxelSize[0] != width || this->VoxelSize[1] != height)
+  if (this->VoxelSize[0] != width || this->VoxelSize[1] != height || this->AutomaticVoxelSize)
   {
     this->VoxelSize[0] = width;
     this->VoxelSize[1] = height;
+    this->AutomaticVoxelSize = false;
     this->Modified();
   }
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIVoxelization::ComputeVoxelSize(
+  vtkRenderer* ren, double nearDepth, double farDepth, int size[2]) const
+{
+  size[0] = this->VoxelSize[0];
+  size[1] = this->VoxelSize[1];
+  if (!this->AutomaticVoxelSize)
+  {
+    return true;
+  }
+  mrgi_voxel_projection projection;
+  std::string message;
+  int32_t automatic[2];
+  if (!ren || !ren->IsActiveCameraCreated() || !CameraVoxelProjection(ren, projection, message) ||
+    mrgi_voxel_isotropic_size(&projection, nearDepth, farDepth, automatic, nullptr) != MRGI_OK)
+  {
+    return false;
+  }
+  size[0] = automatic[0];
+  size[1] = automatic[1];
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -453,51 +521,23 @@ bool vtkMRGIVoxelization::Voxelize(
                                           << farDepth);
     return false;
   }
-  int viewW = 0, viewH = 0, viewX = 0, viewY = 0;
-  ren->GetTiledSizeAndOrigin(&viewW, &viewH, &viewX, &viewY);
-  if (viewW < 1 || viewH < 1)
+  mrgi_voxel_projection projection;
+  std::string problem;
+  if (!CameraVoxelProjection(ren, projection, problem))
   {
-    vtkErrorMacro("Voxelize: the renderer's viewport has zero size (" << viewW << " x " << viewH
-                                                                      << " pixels)");
+    vtkErrorMacro("Voxelize: " << problem);
     return false;
   }
+  const bool parallel = projection.parallel != 0;
   // Slicing (mrgi_voxel.h section 2): the core rounds near/far and the scale to
   // float exactly as the shader's uniforms, and rejects ranges too small for floats.
+  int size[2];
+  this->ComputeVoxelSize(ren, nearDepth, farDepth, size);
   mrgi_voxel_grid grid;
   mrgi_error err;
-  if (mrgi_voxel_grid_init(&grid, this->VoxelSize[0], this->VoxelSize[1], nearDepth, farDepth,
-        &err) != MRGI_OK)
+  if (mrgi_voxel_grid_init(&grid, size[0], size[1], nearDepth, farDepth, &err) != MRGI_OK)
   {
     vtkErrorMacro("Voxelize: " << err.message);
-    return false;
-  }
-  // Projection (section 4): the window's own (same aspect, so the voxel
-  // buffer covers exactly the renderer's frustum), as VTK's camera builds it.
-  vtkCamera* camera = ren->GetActiveCamera();
-  const double aspect = static_cast<double>(viewW) / static_cast<double>(viewH);
-  vtkMatrix4x4* P = camera->GetProjectionTransformMatrix(aspect, -1, 1);
-  double columnMajor[16];
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      columnMajor[4 * c + r] = P->GetElement(r, c);
-    }
-  }
-  mrgi_voxel_projection projection;
-  if (mrgi_voxel_projection_from_matrix(&projection, columnMajor, &err) != MRGI_OK)
-  {
-    vtkErrorMacro("Voxelize: the camera's projection cannot be voxelized: " << err.message);
-    return false;
-  }
-  // Terms the voxel projection (a scale and an offset per axis) cannot hold.
-  const bool parallel = projection.parallel != 0;
-  if (P->GetElement(0, 1) != 0.0 || P->GetElement(1, 0) != 0.0 ||
-    (parallel ? (P->GetElement(0, 2) != 0.0 || P->GetElement(1, 2) != 0.0)
-              : (P->GetElement(0, 3) != 0.0 || P->GetElement(1, 3) != 0.0)))
-  {
-    vtkErrorMacro("Voxelize: the camera's projection is sheared or off-axis, which the voxel "
-                  "projection (scale and offset per axis, mrgi_voxel.h section 4) cannot express");
     return false;
   }
   if (!parallel && !(grid.near_depth > 0.0f))
@@ -522,7 +562,7 @@ bool vtkMRGIVoxelization::Voxelize(
 
   // ---- what to draw ----
   // Matrices in double; one model-view per item (view x actor x centre shift).
-  vtkMatrix4x4* view = camera->GetModelViewTransformMatrix();
+  vtkMatrix4x4* view = ren->GetActiveCamera()->GetModelViewTransformMatrix();
   double worldToView[16];
   std::copy(view->GetData(), view->GetData() + 16, worldToView);
   window->MakeCurrent();
@@ -771,6 +811,7 @@ void vtkMRGIVoxelization::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   const Internals& in = *this->Internal;
   os << indent << "VoxelSize: " << this->VoxelSize[0] << " x " << this->VoxelSize[1] << "\n";
+  os << indent << "AutomaticVoxelSize: " << (this->AutomaticVoxelSize ? "on" : "off") << "\n";
   os << indent << "MaxSteps: " << this->MaxSteps << "\n";
   os << indent << "NormalOffset: " << this->NormalOffset << "\n";
   os << indent << "SkipRadius: " << this->SkipRadius << "\n";

@@ -8,7 +8,9 @@
  * are the contract of the C core (mrgi_voxel.h sections 1-5), whose C twin is
  * mrgi_voxel_voxelize(); this class is the GPU side of that contract:
  *
- * - the buffer is VoxelSize (VW x VH, independent of the window) and covers
+ * - the buffer is VW x VH, independent of the window: by default as many
+ *   voxel pixels as make the voxels about as wide as deep
+ *   (AutomaticVoxelSize), else VoxelSize; it covers
  *   the same view frustum as the renderer (same camera, same aspect: the
  *   renderer's viewport), so window pixel (x, y) maps to voxel pixel
  *   (floor((x + 0.5) VW / W), floor((y + 0.5) VH / H));
@@ -87,15 +89,41 @@ public:
   ///@{
   /**
    * Voxel buffer size VW x VH, each side clamped to 1..MRGI_VOXEL_MAX_SIZE
-   * (16384). Default MRGI_VOXEL_DEFAULT_SIZE (128) per side: the paper finds
-   * 128^2 x 128 "almost indistinguishable" from 1024^2 x 128 (section 4.2).
-   * SetVoxelSide(n) sets n x n. Takes effect at the next Voxelize().
+   * (16384): used when AutomaticVoxelSize is off. Setting it turns
+   * AutomaticVoxelSize off. Default MRGI_VOXEL_DEFAULT_SIZE (128) per side,
+   * NPW10 4.2's size. SetVoxelSide(n) sets n x n. Takes effect at the next
+   * Voxelize().
    */
   virtual void SetVoxelSize(int width, int height);
   void SetVoxelSize(const int size[2]) { this->SetVoxelSize(size[0], size[1]); }
   void SetVoxelSide(int side) { this->SetVoxelSize(side, side); }
   vtkGetVector2Macro(VoxelSize, int);
   ///@}
+
+  ///@{
+  /**
+   * When on (the default), each Voxelize() sizes the buffer so that its
+   * voxels are about as wide as they are deep: at the middle of the depth
+   * range, a voxel pixel spans one slice's thickness
+   * (mrgi_voxel_isotropic_size(): 128..512 per side, in steps of 16). A
+   * shallow scene seen up close (a Cornell box) gets finer voxel pixels
+   * than 128^2, a deep one (a room seen from inside) keeps 128^2. Off:
+   * VoxelSize. Documentation/AreaLights.md measures the difference.
+   */
+  vtkSetMacro(AutomaticVoxelSize, bool);
+  vtkGetMacro(AutomaticVoxelSize, bool);
+  vtkBooleanMacro(AutomaticVoxelSize, bool);
+  ///@}
+
+  /**
+   * The buffer size Voxelize(ren, nearDepth, farDepth) would use: VoxelSize,
+   * or with AutomaticVoxelSize the isotropic size for ren's active camera
+   * and viewport. False, with VoxelSize in `size`, when the automatic size
+   * cannot be computed (no renderer, camera or viewport, an invalid range
+   * or projection: Voxelize() refuses those too). Every process of a
+   * distributed render gets the same size from the same camera and range.
+   */
+  bool ComputeVoxelSize(vtkRenderer* ren, double nearDepth, double farDepth, int size[2]) const;
 
   /**
    * Voxelize the renderer's opaque polygonal props with its active camera
@@ -252,6 +280,7 @@ protected:
   ~vtkMRGIVoxelization() override;
 
   int VoxelSize[2];
+  bool AutomaticVoxelSize = true;
   int MaxSteps;
   double NormalOffset;
   int SkipRadius;
