@@ -109,7 +109,7 @@ def main():
     args = parser.parse_args()
     if args.page_only:
         with open(os.path.join(args.doc, "data", "area-lights.csv"), newline="") as f:
-            rows = [{k: (v if k in ("scene", "visibility", "preset", "levels") else float(v)) for k, v in r.items()}
+            rows = [{k: (v if k in ("scene", "visibility", "preset", "levels", "auto") else float(v)) for k, v in r.items()}
                     for r in csv.DictReader(f)]
         for r in rows:
             r["voxels"] = int(r["voxels"])
@@ -146,19 +146,19 @@ def main():
         settings = []
         for visibility, value in visibility_modes(scene.gi):
             for preset, index in list(presets.items()) + [("full", None)]:
-                settings.append((visibility, value, preset, index, 128, True, None))
+                # side None: the default, automatic voxel size (vtkMRGIVoxelization::AutomaticVoxelSize)
+                settings.append((visibility, value, preset, index, None, True, None))
             if visibility in ("naive", "incremental"):
                 # NPW10 figure 11's sweep, for both queries: the voxel side is the visibility's
-                # resolution (the default stays NPW10 4.2's 128^2).
+                # resolution, fixed (NPW10 4.2's 128^2 among them).
                 for side in [int(v) for v in args.voxel_sizes.split(",") if v]:
-                    if side != 128:
-                        settings.append((visibility, value, "balanced", presets["balanced"], side, True, None))
+                    settings.append((visibility, value, "balanced", presets["balanced"], side, True, None))
             if visibility == "incremental" and hasattr(scene.area, "SetIncrementalStencil"):
                 # NPW10 3.4 off: the gather keeps the geometric selection.
-                settings.append(("incremental-geometric", value, "balanced", presets["balanced"], 128, False, None))
+                settings.append(("incremental-geometric", value, "balanced", presets["balanced"], None, False, None))
                 if hasattr(scene.area.GetIncrementalStencilStage(), "SetIrradianceTolerance"):
                     # The stencil's visibility term alone (mrgi_irradiance_stencil.h off).
-                    settings.append(("incremental-visibility-stencil", value, "balanced", presets["balanced"], 128,
+                    settings.append(("incremental-visibility-stencil", value, "balanced", presets["balanced"], None,
                                      True, 0.0))
         stencil_stage = scene.area.GetIncrementalStencilStage() if hasattr(scene.area, "GetIncrementalStencilStage") \
             else None
@@ -171,7 +171,10 @@ def main():
                 stencil_stage.SetIrradianceTolerance(default_tolerance if tolerance is None else tolerance)
             if value is not None:
                 scene.gi.SetAreaLightVisibility(value)
-                scene.gi.GetVoxelization().SetVoxelSide(side)
+                if side is None:
+                    scene.gi.GetVoxelization().AutomaticVoxelSizeOn()
+                else:
+                    scene.gi.GetVoxelization().SetVoxelSide(side)
             if True:
                 if index is None:
                     scene.mr.SetDepthThreshold(0.0)
@@ -201,19 +204,21 @@ def main():
                 if pyramid is not None:
                     pyramid.SetCollectStatistics(False)
                 image = scene.color()
-                path = os.path.join(scratch, "%s-%s-%s-%d.exr" % (name, visibility, preset, side))
+                used = [0, 0]
+                scene.gi.GetVoxelization().GetLastVoxelSize(used)
+                path = os.path.join(scratch, "%s-%s-%s-%s.exr" % (name, visibility, preset, side or "auto"))
                 mb.write(image, path)
                 vs_truth = mb.compare(compare_tool, path, truth_path)
                 vs_unshadowed = mb.compare(compare_tool, path, unshadowed_path)
                 # The issue's metric: relative RMS of the 4x4 box means.
                 vs_truth_boxes = mb.box_error(compare_tool, image, truth, scratch, "%s-boxes" % name)
                 tag = "%s-%s-%s" % (name, visibility, preset)
-                if preset in ("balanced", "full") and side == 128:
+                if preset in ("balanced", "full") and side is None:
                     mb.write_display(image, os.path.join(images, "area-%s.png" % tag), scale)
                     mb.compare(compare_tool, path, truth_path, os.path.join(images, "area-%s-diff.png" % tag),
                                diff_scale=4.0 * scale)
                 row = dict(scene=name, visibility=visibility, preset=preset,
-                           voxels=side if visibility != "off" else 0, area_ms=t.get("area", 0.0),
+                           voxels=used[0] if visibility != "off" else 0, auto=side is None, area_ms=t.get("area", 0.0),
                            visibility_ms=t.get("visibility.pyramid", 0.0), gather_ms=t.get("gather.samples", 0.0),
                            rays=rays,
                            # fraction of the valid pixels gathered at each level, finest first (NPW10: 10-15%
@@ -277,6 +282,11 @@ def read_speed(args):
         return [{k: (v if k == "scene" else float(v)) for k, v in r.items()} for r in csv.DictReader(f)]
 
 
+def is_default(row):
+    """A row rendered at the default voxel size (automatic), or without voxels."""
+    return row.get("auto", False) in (True, "True") or not row["voxels"]
+
+
 def plot_tradeoff(rows, path):
     """Error against GPU time of every setting, per scene, with the Pareto frontier (as the multiresolution
     page's plot)."""
@@ -295,7 +305,7 @@ def plot_tradeoff(rows, path):
                 ax.scatter([r["area_ms"] for r in sel], [100 * r["rel_rms_truth"] for r in sel],
                            marker=markers[visibility], s=30, label="visibility %s" % visibility)
                 for r in sel:
-                    label = r["preset"] + ("" if r["voxels"] in (0, 128) else " %d^2" % r["voxels"])
+                    label = r["preset"] + ("" if is_default(r) else " %d^2" % r["voxels"])
                     ax.annotate(label, (r["area_ms"], 100 * r["rel_rms_truth"]), textcoords="offset points",
                                 xytext=(4, 3), fontsize=7)
         front = sorted(mine, key=lambda r: r["area_ms"])
@@ -327,10 +337,15 @@ def plot(rows, path):
     for name in sorted({r["scene"] for r in rows}):
         for visibility, style in (("naive", "o-"), ("incremental", "^--")):
             sweep = sorted((r for r in rows if r["scene"] == name and r["visibility"] == visibility
-                            and r["preset"] == "balanced"), key=lambda r: r["voxels"])
+                            and r["preset"] == "balanced" and not is_default(r)), key=lambda r: r["voxels"])
             if sweep:
-                ax.plot([r["voxels"] for r in sweep], [100 * r["rel_rms_truth"] for r in sweep], style,
-                        label="%s, %s visibility" % (name, visibility))
+                line = ax.plot([r["voxels"] for r in sweep], [100 * r["rel_rms_truth"] for r in sweep], style,
+                               label="%s, %s visibility" % (name, visibility))
+                for r in rows:
+                    if (r["scene"] == name and r["visibility"] == visibility and r["preset"] == "balanced"
+                            and is_default(r)):
+                        ax.plot([r["voxels"]], [100 * r["rel_rms_truth"]], "*", ms=11, color=line[0].get_color(),
+                                label="%s, %s, automatic size" % (name, visibility))
         off = [r for r in rows if r["scene"] == name and r["visibility"] == "off" and r["preset"] == "balanced"]
         for r in off:
             ax.axhline(100 * r["rel_rms_truth"], ls=":", lw=1, color="grey")
@@ -375,7 +390,10 @@ def write_page(args, rows, notes, path, speed=()):
              "exact early-outs (behind a one-sided light; facing away from every corner), then upsampled like the "
              "indirect light.",
              "- **Visibility** (3.3): the visible scene is voxelized once per frame into a buffer of 128 depth "
-             "slices per pixel (RGBA32UI, logic-op OR; `vtkMRGIVoxelization`), and a ray from a texel to a sample "
+             "slices per pixel (RGBA32UI, logic-op OR; `vtkMRGIVoxelization`), by default with as many voxel "
+             "pixels as make a voxel about as wide as a slice is deep at the middle of the scene's depth range "
+             "(`AutomaticVoxelSize`, 128^2 to 512^2; NPW10 4.2 uses a fixed 128^2, which the sweep below "
+             "includes), and a ray from a texel to a sample "
              "is marched through it with a bias of 1.5 voxel sizes. *Naive*: one march per texel and sample. "
              "*Incremental* (default): one visibility bit per sample and texel, computed coarse to fine over the "
              "levels; a bit is reused where the 3x3 coarser neighbours on the same surface agree, texels are "
@@ -429,7 +447,8 @@ def write_page(args, rows, notes, path, speed=()):
               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lines.append("| %s | %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.3f | %.3f | %s | %.4f | %.4f | %.4f |" % (
-            r["scene"], r["visibility"], "%d^2" % r["voxels"] if r["voxels"] else "-", r["preset"], r["area_ms"],
+            r["scene"], r["visibility"], ("%d^2" % r["voxels"] + (" (auto)" if is_default(r) else ""))
+            if r["voxels"] else "-", r["preset"], r["area_ms"],
             r["visibility_ms"], r["gather_ms"], r["select_ms"], r["work"], r.get("level0", float("nan")),
             "{:,}".format(int(r["rays"])) if r["rays"] else "-", r["rel_rms_truth"],
             r.get("rel_rms_truth_boxes", float("nan")), r["rel_rms_unshadowed"]))
@@ -439,13 +458,13 @@ def write_page(args, rows, notes, path, speed=()):
               "## Targets", ""]
     for name in notes:
         pick = {v: next((r for r in rows if r["scene"] == name and r["visibility"] == v and r["preset"] == "balanced"
-                         and r["voxels"] in (0, 128)), None) for v in ("off", "naive", "incremental")}
+                         and is_default(r)), None) for v in ("off", "naive", "incremental")}
         n, i = pick["naive"], pick["incremental"]
         if n and i:
-            lines.append("- `%s`, balanced, 128^2 voxels: incremental visibility marches %.1f%% of the naive rays "
-                         "(%s vs %s) and takes %.0f ms against %.0f ms (**%.2fx**; target 3x at equal error), with "
-                         "relative RMS %.4f vs %.4f against the ground truth. %s"
-                         % (name, 100.0 * i["rays"] / max(n["rays"], 1), "{:,}".format(int(i["rays"])),
+            lines.append("- `%s`, balanced, %d^2 voxels (automatic): incremental visibility marches %.1f%% of the "
+                         "naive rays (%s vs %s) and takes %.0f ms against %.0f ms (**%.2fx**; target 3x at equal "
+                         "error), with relative RMS %.4f vs %.4f against the ground truth. %s"
+                         % (name, i["voxels"], 100.0 * i["rays"] / max(n["rays"], 1), "{:,}".format(int(i["rays"])),
                             "{:,}".format(int(n["rays"])), i["area_ms"], n["area_ms"],
                             n["area_ms"] / max(i["area_ms"], 1e-9), i["rel_rms_truth"], n["rel_rms_truth"],
                             ("Met." if n["area_ms"] >= 3 * i["area_ms"] else
@@ -478,11 +497,19 @@ def write_page(args, rows, notes, path, speed=()):
                             v["rel_rms_truth"], 100 * i["work"], 100 * v["work"], 100 * i.get("level0", 0.0),
                             100 * v.get("level0", 0.0), i["area_ms"], v["area_ms"]))
         sweep = sorted((r for r in rows if r["scene"] == name and r["visibility"] == "incremental"
-                        and r["preset"] == "balanced"), key=lambda r: r["voxels"])
+                        and r["preset"] == "balanced" and not is_default(r)), key=lambda r: r["voxels"])
+        fixed = next((r for r in sweep if r["voxels"] == 128), None)
+        if i and fixed:
+            lines.append("- `%s`, the automatic voxel size (%d^2; `mrgi_voxel_isotropic_size`: voxels about as "
+                         "wide as deep, 128^2 at least) against NPW10's fixed 128^2 (incremental, balanced): "
+                         "relative RMS on 4x4 boxes %.4f against %.4f, per pixel %.4f against %.4f, %.0f ms "
+                         "against %.0f ms."
+                         % (name, i["voxels"], i["rel_rms_truth_boxes"], fixed["rel_rms_truth_boxes"],
+                            i["rel_rms_truth"], fixed["rel_rms_truth"], i["area_ms"], fixed["area_ms"]))
         if len(sweep) > 1:
             finer = min(r["rel_rms_truth_boxes"] for r in sweep[1:]) < 0.9 * sweep[0]["rel_rms_truth_boxes"]
-            lines.append("- `%s`, the voxel side's trade (incremental, balanced; the default is NPW10 4.2's "
-                         "128^2): relative RMS on 4x4 boxes %s. %s"
+            lines.append("- `%s`, the voxel side's trade (incremental, balanced, fixed sides): relative RMS on "
+                         "4x4 boxes %s. %s"
                          % (name, ", ".join("%.4f at %d^2 (%.0f ms)" % (r["rel_rms_truth_boxes"], r["voxels"],
                                                                        r["area_ms"]) for r in sweep),
                             "Here much of the error left at 128^2 is the voxels' own: a surface fills the depth "

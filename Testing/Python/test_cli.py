@@ -198,6 +198,17 @@ def main():
                              "--area-light-samples", "16", "--area-light-visibility", visibility,
                              "--voxel-size", "64", "--timings")
         check(code == 0 and "area" in out, "cornell-area, visibility %s: %s" % (visibility, err))
+        check(("voxels: 64x64 (fixed)" in out) == (visibility == "naive"),
+              "--timings reports the fixed voxel size only where voxels were used: %s" % out[-400:])
+    # Without --voxel-size the voxel buffer is sized automatically: the Cornell
+    # box is shallow, so its voxel pixels are finer than NPW10's 128^2.
+    code, out, err = run("cornell-area", "-o", fresh("cli_area_auto.exr"), "--size", "48x48", "-q",
+                         "--area-light-samples", "16", "--area-light-visibility", "naive", "--timings")
+    auto = [line for line in out.splitlines() if line.startswith("voxels: ")]
+    check(code == 0 and len(auto) == 1 and "(automatic)" in auto[0], "automatic voxel size reported: %s" % err)
+    if auto:
+        side = int(auto[0].split()[1].split("x")[0])
+        check(128 < side <= 512, "cornell-area's automatic voxel side %d is finer than 128" % side)
     # Incremental visibility with and without the incremental stencil
     # (NPW10 3.4): it gathers the penumbrae at finer levels, so the images differ.
     for stencil in ("on", "off"):

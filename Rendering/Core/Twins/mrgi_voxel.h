@@ -63,7 +63,8 @@
  * The buffer is VW x VH voxel pixels, 1..MRGI_VOXEL_MAX_SIZE per side,
  * independent of the W x H window (NPW10 4.2: 128^2 .. 1024^2;
  * MRGI_VOXEL_DEFAULT_SIZE = 128; "up to full resolution" is the useful range,
- * larger is allowed). It covers the same view frustum as the window (same
+ * larger is allowed). vtkMRGIVoxelization chooses it by default with
+ * mrgi_voxel_isotropic_size() (voxels about as wide as deep). It covers the same view frustum as the window (same
  * projection, the viewport is VW x VH), so window pixel (x, y) maps to the
  * voxel pixel whose area contains the window pixel's centre:
  *
