@@ -143,10 +143,42 @@ def remembers_load():
     window.Finalize()
 
 
+def voxel_knob():
+    """With voxel VPL visibility the tuner's voxel side reaches the indirect
+    light's voxelization (it reached the area lights' before session 17),
+    and leaves the area lights' automatic size alone."""
+    from vtkmodules.vtkRenderingCore import vtkRenderer
+    from vtkmodules.vtkRenderingOpenGL2 import vtkRenderStepsPass
+    window = mrgi.vtkMRGIRenderWindowFactory.CreateHeadlessRenderWindow()
+    window.SetSize(32, 32)
+    renderer = vtkRenderer()
+    window.AddRenderer(renderer)
+    builder = mrgi.vtkMRGISceneBuilder()
+    builder.SetScene("cornell-spot")
+    check(builder.Build(renderer), "scene: " + builder.GetLastErrorMessage())
+    p = mrgi.vtkMRGIPass()
+    p.SetDelegatePass(vtkRenderStepsPass())
+    p.SetIndirectVisibility(mrgi.vtkMRGIIndirectLight.VisibilityVoxels)
+    renderer.SetPass(p)
+    tuner = p.GetFrameBudgetTuner()
+    tuner.SetCacheDirectory(os.path.join(TMP, "frame_budget_voxels"))
+    p.SetFrameBudget(1000.0)
+    window.Render()
+    side = tuner.GetVoxelSide()
+    indirect = p.GetIndirectLightStage().GetVoxelization().GetVoxelSize()
+    check(side > 0 and tuple(indirect) == (side, side),
+          "the tuner's voxel side %d is the indirect light's voxel size %s" % (side, indirect))
+    check(p.GetVoxelization().GetAutomaticVoxelSize(), "the area lights' voxel size stays automatic")
+    p.SetFrameBudget(0.0)
+    p.ReleaseGraphicsResources(window)
+    window.Finalize()
+
+
 def main():
     bad_options()
     python_api()
     remembers_load()
+    voxel_knob()
     cli()
 
 

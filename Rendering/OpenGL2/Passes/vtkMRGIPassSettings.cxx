@@ -293,7 +293,9 @@ vtkMRGIFrameBudget::Knobs vtkMRGIPass::FrameBudgetKnobs()
     this->SetRSMResolution(s.rsm_size);
     if (s.voxel_side > 0)
     {
-      this->GetVoxelization()->SetVoxelSide(s.voxel_side);
+      // The knob exists when the indirect light uses voxels (knobs.Voxels):
+      // its own voxelization, not the area lights' (GetVoxelization()).
+      this->IndirectLight->GetVoxelization()->SetVoxelSide(s.voxel_side);
     }
   };
   return knobs;
@@ -307,16 +309,17 @@ bool vtkMRGIPass::Calibrate(vtkRenderWindow* window)
   const double depth = mr->GetDepthThreshold(), normal = mr->GetNormalThreshold();
   const int finest = mr->GetFinestLevel(), vpls = this->GetNumberOfVPLs();
   const int rsm = this->GetRSMResolution();
+  vtkMRGIVoxelization* voxels = this->IndirectLight->GetVoxelization();
   int voxelSize[2];
-  this->GetVoxelization()->GetVoxelSize(voxelSize);
-  const bool automaticVoxelSize = this->GetVoxelization()->GetAutomaticVoxelSize();
+  voxels->GetVoxelSize(voxelSize);
+  const bool automaticVoxelSize = voxels->GetAutomaticVoxelSize();
   const bool ok = this->FrameBudgetTuner->Calibrate(window, this->FrameBudgetKnobs());
   mr->SetDepthThreshold(depth);
   mr->SetNormalThreshold(normal);
   mr->SetFinestLevel(finest);
   this->SetNumberOfVPLs(vpls);
   this->SetRSMResolution(rsm);
-  this->GetVoxelization()->SetVoxelSize(voxelSize);
-  this->GetVoxelization()->SetAutomaticVoxelSize(automaticVoxelSize);
+  voxels->SetVoxelSize(voxelSize);
+  voxels->SetAutomaticVoxelSize(automaticVoxelSize);
   return ok;
 }
