@@ -375,17 +375,24 @@ struct Size
 };
 const Size Sizes[] = { { 128, 128 }, { WindowW, WindowH }, { 97, 61 }, { 300, 7 }, { 1, 1 } };
 
-void CornellBox(bool parallel)
+// The Cornell box in a WindowW x WindowH window, rendered once, seen in
+// perspective or in parallel projection.
+void ShowCornell(vtkRenderer* renderer, vtkRenderWindow* window, bool parallel)
 {
-  mrgitest::SceneWindow scene(WindowW, WindowH, "cornell");
-  vtkRenderWindow* window = scene.Window;
-  vtkRenderer* renderer = scene.Renderer;
   if (parallel)
   {
     renderer->GetActiveCamera()->ParallelProjectionOn();
     renderer->ResetCamera();
   }
   window->Render();
+}
+
+void CornellBox(bool parallel)
+{
+  mrgitest::SceneWindow scene(WindowW, WindowH, "cornell");
+  vtkRenderWindow* window = scene.Window;
+  vtkRenderer* renderer = scene.Renderer;
+  ShowCornell(renderer, window, parallel);
   vtkNew<vtkMRGIVoxelization> vox;
   double range[2];
   DepthRange(SceneTriangles(renderer), range);
@@ -439,12 +446,7 @@ void AutomaticSize(bool parallel)
   mrgitest::SceneWindow scene(WindowW, WindowH, "cornell");
   vtkRenderWindow* window = scene.Window;
   vtkRenderer* renderer = scene.Renderer;
-  if (parallel)
-  {
-    renderer->GetActiveCamera()->ParallelProjectionOn();
-    renderer->ResetCamera();
-  }
-  window->Render();
+  ShowCornell(renderer, window, parallel);
   vtkNew<vtkMRGIVoxelization> vox;
   MRGI_TEST_CHECK(vox->GetAutomaticVoxelSize());
   double range[2];

@@ -108,7 +108,8 @@ def python_api():
     check("FrameBudgetTuner" in str(p), "PrintSelf shows the tuner")
 
 
-def remembers_load():
+def cornell_spot_pass(indirect_visibility=None):
+    """A 32x32 headless window showing cornell-spot through a vtkMRGIPass."""
     from vtkmodules.vtkRenderingCore import vtkRenderer
     from vtkmodules.vtkRenderingOpenGL2 import vtkRenderStepsPass
     window = mrgi.vtkMRGIRenderWindowFactory.CreateHeadlessRenderWindow()
@@ -121,7 +122,14 @@ def remembers_load():
     check(builder.Build(renderer), "scene: " + builder.GetLastErrorMessage())
     p = mrgi.vtkMRGIPass()
     p.SetDelegatePass(vtkRenderStepsPass())
+    if indirect_visibility is not None:
+        p.SetIndirectVisibility(indirect_visibility)
     renderer.SetPass(p)
+    return window, p
+
+
+def remembers_load():
+    window, p = cornell_spot_pass()
     tuner = p.GetFrameBudgetTuner()
     tuner.SetCacheDirectory(os.path.join(TMP, "frame_budget_remember"))
     p.SetFrameBudget(1000.0)
@@ -147,19 +155,7 @@ def voxel_knob():
     """With voxel VPL visibility the tuner's voxel side reaches the indirect
     light's voxelization (it reached the area lights' before session 17),
     and leaves the area lights' automatic size alone."""
-    from vtkmodules.vtkRenderingCore import vtkRenderer
-    from vtkmodules.vtkRenderingOpenGL2 import vtkRenderStepsPass
-    window = mrgi.vtkMRGIRenderWindowFactory.CreateHeadlessRenderWindow()
-    window.SetSize(32, 32)
-    renderer = vtkRenderer()
-    window.AddRenderer(renderer)
-    builder = mrgi.vtkMRGISceneBuilder()
-    builder.SetScene("cornell-spot")
-    check(builder.Build(renderer), "scene: " + builder.GetLastErrorMessage())
-    p = mrgi.vtkMRGIPass()
-    p.SetDelegatePass(vtkRenderStepsPass())
-    p.SetIndirectVisibility(mrgi.vtkMRGIIndirectLight.VisibilityVoxels)
-    renderer.SetPass(p)
+    window, p = cornell_spot_pass(mrgi.vtkMRGIIndirectLight.VisibilityVoxels)
     tuner = p.GetFrameBudgetTuner()
     tuner.SetCacheDirectory(os.path.join(TMP, "frame_budget_voxels"))
     p.SetFrameBudget(1000.0)
