@@ -691,17 +691,22 @@ int main(int argc, char* argv[])
       std::printf("VPLs per pixel (tree): mean %.2f, max %.0f\n",
         mrgi->GetGather()->GetMeanVPLsPerPixel(), mrgi->GetGather()->GetMaxVPLsPerPixel());
     }
-    int voxels[2] = { 0, 0 };
-    mrgi->GetVoxelization()->GetLastVoxelSize(voxels);
-    if (voxels[0] > 0)
-    {
-      // The area lights' (or the VPLs') voxel buffer, last frame.
-      double range[2];
-      mrgi->GetVoxelization()->GetLastDepthRange(range);
-      std::printf("voxels: %dx%d (%s) x %d slices over depth [%g, %g]\n", voxels[0], voxels[1],
-        mrgi->GetVoxelization()->GetAutomaticVoxelSize() ? "automatic" : "fixed", MRGI_VOXEL_SLICES,
-        range[0], range[1]);
-    }
+    // The voxel buffers used last frame: the area lights' ("voxels:") and the
+    // VPLs' (--indirect-visibility voxel), each sized on its own.
+    const auto printVoxels = [](const char* label, vtkMRGIVoxelization* voxelization) {
+      int voxels[2] = { 0, 0 };
+      voxelization->GetLastVoxelSize(voxels);
+      if (voxels[0] > 0)
+      {
+        double range[2];
+        voxelization->GetLastDepthRange(range);
+        std::printf("%s %dx%d (%s) x %d slices over depth [%g, %g]\n", label, voxels[0], voxels[1],
+          voxelization->GetAutomaticVoxelSize() ? "automatic" : "fixed", MRGI_VOXEL_SLICES, range[0],
+          range[1]);
+      }
+    };
+    printVoxels("voxels:", mrgi->GetVoxelization());
+    printVoxels("voxels (VPLs):", mrgi->GetIndirectLightStage()->GetVoxelization());
     std::printf("%-24s %12.3f\n", "frame (wall)", Median(frameTimes));
     if (mrgi->GetFrameBudgetTuner()->IsActive())
     {

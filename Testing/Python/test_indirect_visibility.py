@@ -91,6 +91,14 @@ def main():
     unbiased = render("ism_nobias", "--indirect-visibility", "ism", "--ism-bias", "16")
     every = render("ism_every_direction", "--indirect-visibility", "ism", "--ism-max-texel-angle", "0")
     voxel = render("voxel", "--indirect-visibility", "voxel")
+    # --timings names the voxel buffer each light's visibility used: here the
+    # VPLs' alone (cornell-spot has no area lights).
+    code, out, err = run("cornell-spot", "-o", os.path.join(TMP, "visibility_timings.exr"), "--size", SIZE,
+                         "-q", "--gi", "full", "--rsm-size", "64", "--indirect-only",
+                         "--indirect-visibility", "voxel", "--timings")
+    lines = [line for line in out.splitlines() if line.startswith(("voxels:", "voxels ("))]
+    check(code == 0 and len(lines) == 1 and lines[0].startswith("voxels (VPLs): "),
+          "--timings reports the VPLs' voxels only: %r %s" % (lines, err))
     lit = off.sum(axis=1) > 0
     check(lit.mean() > 0.5, "the indirect light reaches most pixels")
     tolerance = 1e-4 * off.max()

@@ -240,11 +240,24 @@ bool vtkMRGIVoxelization::ComputeVoxelSize(
   }
   mrgi_voxel_projection projection;
   std::string message;
-  int32_t automatic[2];
-  if (!ren || !ren->IsActiveCameraCreated() || !CameraVoxelProjection(ren, projection, message) ||
-    mrgi_voxel_isotropic_size(&projection, nearDepth, farDepth, automatic, nullptr) != MRGI_OK)
+  if (!ren || !ren->IsActiveCameraCreated() || !CameraVoxelProjection(ren, projection, message))
   {
     return false;
+  }
+  return this->VoxelSizeFor(projection, nearDepth, farDepth, size);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIVoxelization::VoxelSizeFor(
+  const mrgi_voxel_projection& projection, double nearDepth, double farDepth, int size[2]) const
+{
+  size[0] = this->VoxelSize[0];
+  size[1] = this->VoxelSize[1];
+  int32_t automatic[2];
+  if (!this->AutomaticVoxelSize ||
+    mrgi_voxel_isotropic_size(&projection, nearDepth, farDepth, automatic, nullptr) != MRGI_OK)
+  {
+    return !this->AutomaticVoxelSize;
   }
   size[0] = automatic[0];
   size[1] = automatic[1];
@@ -532,7 +545,7 @@ bool vtkMRGIVoxelization::Voxelize(
   // Slicing (mrgi_voxel.h section 2): the core rounds near/far and the scale to
   // float exactly as the shader's uniforms, and rejects ranges too small for floats.
   int size[2];
-  this->ComputeVoxelSize(ren, nearDepth, farDepth, size);
+  this->VoxelSizeFor(projection, nearDepth, farDepth, size);
   mrgi_voxel_grid grid;
   mrgi_error err;
   if (mrgi_voxel_grid_init(&grid, size[0], size[1], nearDepth, farDepth, &err) != MRGI_OK)

@@ -289,6 +289,11 @@ protected:
   std::unique_ptr<Internals> Internal;
 
 private:
+  // ComputeVoxelSize() for a camera projection already built (Voxelize()
+  // builds it once for both).
+  bool VoxelSizeFor(const mrgi_voxel_projection& projection, double nearDepth, double farDepth,
+    int size[2]) const;
+
   vtkMRGIVoxelization(const vtkMRGIVoxelization&) = delete;
   void operator=(const vtkMRGIVoxelization&) = delete;
 };
