@@ -1194,7 +1194,7 @@ static uint32_t* naive_masks(const pyramid_setup* ps, const mrgi_voxel_view* vie
     {
       const float* n = ps->normal + 4 * t;
       mrgi_voxel_visibility(view, samples, ps->position + 4 * t,
-                            (n[0] != 0.0f || n[1] != 0.0f || n[2] != 0.0f) ? n : NULL, NULL,
+                            (n[0] != 0.0f || n[1] != 0.0f || n[2] != 0.0f) ? n : NULL, NULL, 1,
                             MRGI_VOXEL_ALL_PHASES, m + t * (size_t)words);
     }
   }
@@ -1306,13 +1306,20 @@ static void test_incremental(void)
         }
         if (fractions[f] > 0.0f)
         {
-          MRGI_CHECK(stats.rays_total == stats.rays[L]);
+          /* Level 0 inherits everything. Between it and the coarsest level
+           * only texels at the floor's edges on screen are computed (the
+           * surround rule, section 3, from MRGI_VOXEL_SURROUND_MIN_LEVEL):
+           * they reuse the agreed visible bits, and march the agreed hidden
+           * ones again. */
           MRGI_CHECK(stats.computed[0] == 0 && stats.inherited[0] > 0);
+          MRGI_CHECK(k == 0 ? stats.rays_total == stats.rays[L] : stats.rays_total > stats.rays[L]);
+          MRGI_CHECK(stats.rays[0] == 0 && stats.rays[1] == 0);
         }
         else
         {
-          /* computed everywhere, all reused below the coarsest level */
-          MRGI_CHECK(stats.rays_total == stats.rays[L]);
+          /* computed everywhere, all reused below the coarsest level but the
+           * agreed hidden bits at the floor's edges (the surround rule) */
+          MRGI_CHECK(k == 0 ? stats.rays_total == stats.rays[L] : stats.rays_total > stats.rays[L]);
           MRGI_CHECK(stats.computed[0] > 1000 && stats.inherited[0] == 0);
         }
       }
@@ -1355,6 +1362,7 @@ static void test_incremental(void)
         }
         uint32_t all[2] = { 0xFFFFFFFFu, 0xFFFFFFFFu }, any[2] = { 0, 0 };
         int kept = 0;
+        int sides[2] = { 0, 0 }; /* the surround rule: bit 0 before, bit 1 after */
         for (int32_t dy = -1; dy <= 1; ++dy)
         {
           for (int32_t dx = -1; dx <= 1; ++dx)
@@ -1366,8 +1374,15 @@ static void test_incremental(void)
             if (ps.position[4 * c + 3] > MRGI_GBUFFER_VALID_THRESHOLD)
             {
               /* the same-surface guard: reuse needs a neighbour on q's surface */
-              kept += mrgi_voxel_same_surface(ps.position + 4 * q, ps.normal + 4 * q,
-                                              ps.position + 4 * c, ps.normal + 4 * c);
+              const int same = mrgi_voxel_same_surface(ps.position + 4 * q, ps.normal + 4 * q,
+                                                       ps.position + 4 * c, ps.normal + 4 * c);
+              kept += same;
+              for (int a = 0; same && a < 2; ++a)
+              {
+                const int side = mrgi_voxel_screen_side(ps.position + 4 * q, ps.position + 4 * c,
+                                                        t.view.projection.parallel, a);
+                sides[a] |= (side <= 0 ? 1 : 0) | (side >= 0 ? 2 : 0);
+              }
               for (int w = 0; w < 2; ++w)
               {
                 all[w] &= masks[2 * c + (size_t)w];
@@ -1378,8 +1393,11 @@ static void test_incremental(void)
         }
         for (int w = 0; w < 2; ++w)
         {
-          /* without a neighbour on its surface every bit is re-marched */
-          const uint32_t disagree = kept ? all[w] ^ any[w] : 0xFFFFFFFFu;
+          /* without a neighbour on its surface every bit is re-marched; not
+           * surrounded by them, also the bits they agree are hidden */
+          const int surrounded = (sides[0] == 3 && sides[1] == 3) || i < MRGI_VOXEL_SURROUND_MIN_LEVEL;
+          const uint32_t disagree =
+            kept ? (all[w] ^ any[w]) | (surrounded ? 0u : ~all[w]) : 0xFFFFFFFFu;
           /* disagreeing bits were re-marched: equal to the naive bits */
           MRGI_CHECK(((masks[2 * q + (size_t)w] ^ naive[2 * q + (size_t)w]) & disagree) == 0u);
           /* agreeing bits are the neighbours' common value */

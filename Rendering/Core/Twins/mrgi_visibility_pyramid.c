@@ -60,7 +60,8 @@ static uint32_t mrgi_voxel_valid_bits(int32_t count, int32_t w)
 
 int64_t mrgi_voxel_visibility(const mrgi_voxel_view* view, const mrgi_voxel_samples* samples,
                               const float receiver[3], const float* normal,
-                              const uint32_t* const* coarse, uint32_t phase_set, uint32_t* mask)
+                              const uint32_t* const* coarse, int reuse_hidden, uint32_t phase_set,
+                              uint32_t* mask)
 {
   const int32_t words = mrgi_voxel_mask_words(samples->count);
   const uint32_t phase_bits = mrgi_voxel_phase_word_mask(phase_set);
@@ -83,7 +84,9 @@ int64_t mrgi_voxel_visibility(const mrgi_voxel_view* view, const mrgi_voxel_samp
         }
       }
     }
-    const uint32_t agree = have ? wanted & ~(all ^ any) : 0u;
+    /* Agreed bits are reused; without reuse_hidden only the agreed visible
+     * ones (section 3, the surround rule). */
+    const uint32_t agree = !have ? 0u : reuse_hidden ? wanted & ~(all ^ any) : wanted & all;
     uint32_t result = all & agree;
     const uint32_t todo = wanted & ~agree;
     for (int32_t b = 0; b < 32; ++b)
@@ -252,19 +255,36 @@ int mrgi_voxel_same_surface(const float p[3], const float n[3], const float q[3]
   return nd * nd <= s2 * dd * nn && md * md <= s2 * dd * mm;
 }
 
+int mrgi_voxel_screen_side(const float p[3], const float q[3], int parallel, int axis)
+{
+  if (q[0] == p[0] && q[1] == p[1] && q[2] == p[2])
+  {
+    return 0;
+  }
+  /* Perspective: sign of q_a / -q_z - p_a / -p_z, both depths in front
+   * (z < 0), without a division: p_a q_z - q_a p_z. */
+  const float d = parallel ? q[axis] - p[axis] : p[axis] * q[2] - q[axis] * p[2];
+  return d > 0.0f ? 1 : d < 0.0f ? -1 : 0;
+}
+
 /* The coarse neighbourhood of a level-(level - 1) texel with receiver (p, n)
  * (section 3): the 3x3 level-`level` texels around its parent (cx, cy),
  * clamped; non-receivers NULL. The same-surface guard: *kept counts the
  * receivers on the texel's surface (mrgi_voxel_same_surface(p, n, q, m));
- * returns 1 when the parent itself (the centre) is one of them. */
+ * returns 1 when the parent itself (the centre) is one of them.
+ * *surrounded: the kept receivers surround p on screen (section 3's
+ * surround rule; 0 without any kept). */
 static int mrgi_voxel_gather_neighbours(const mrgi_multires_layout* layout, int32_t level,
                                         int32_t cx, int32_t cy, const float* position,
                                         const float* normal, const float* p, const float* n,
-                                        const uint32_t* masks, int32_t words,
-                                        const uint32_t* out[MRGI_VOXEL_NEIGHBOURS], int* kept)
+                                        int parallel, const uint32_t* masks, int32_t words,
+                                        const uint32_t* out[MRGI_VOXEL_NEIGHBOURS], int* kept,
+                                        int* surrounded)
 {
   int k = 0;
   int parent_kept = 0;
+  /* Per axis, bit 0: a kept receiver at or before p, bit 1: at or after. */
+  int sides[2] = { 0, 0 };
   *kept = 0;
   for (int32_t dy = -1; dy <= 1; ++dy)
   {
@@ -276,10 +296,16 @@ static int mrgi_voxel_gather_neighbours(const mrgi_multires_layout* layout, int3
       const int receiver = mrgi_voxel_receiver(position, normal, t, &q, &m);
       const int same = receiver && mrgi_voxel_same_surface(p, n, q, m);
       *kept += same;
+      for (int axis = 0; same && axis < 2; ++axis)
+      {
+        const int side = mrgi_voxel_screen_side(p, q, parallel, axis);
+        sides[axis] |= (side <= 0 ? 1 : 0) | (side >= 0 ? 2 : 0);
+      }
       parent_kept = k == MRGI_VOXEL_NEIGHBOURS / 2 ? same : parent_kept;
       out[k++] = receiver ? masks + t * (size_t)words : NULL;
     }
   }
+  *surrounded = sides[0] == 3 && sides[1] == 3;
   return parent_kept;
 }
 
@@ -365,6 +391,7 @@ mrgi_status mrgi_voxel_visibility_pyramid(
   memset(&s, 0, sizeof(s));
   memset(masks, 0, texels * (size_t)words * sizeof(uint32_t));
   const int32_t coarsest = layout->level_count - 1;
+  const int parallel = view->projection.parallel != 0;
 
   for (int32_t i = coarsest; i >= 0; --i)
   {
@@ -385,17 +412,21 @@ mrgi_status mrgi_voxel_visibility_pyramid(
         uint32_t* mask = masks + t * (size_t)words;
         const uint32_t* neighbours[MRGI_VOXEL_NEIGHBOURS];
         int kept = 0;
+        int surrounded = 1;
         int compute = i == coarsest;
+        const int surround_rule = i >= MRGI_VOXEL_SURROUND_MIN_LEVEL;
         if (!compute)
         {
           /* Same-surface guard (section 3): t inherits only from a parent on
-           * its surface, and reuses only with a neighbour on its surface. */
-          const int parent_kept =
-            mrgi_voxel_gather_neighbours(layout, i + 1, x / 2, y / 2, receiver_position,
-                                         receiver_normal, P, N, masks, words, neighbours, &kept);
+           * its surface, and reuses only with a neighbour on its surface;
+           * the surround rule: it inherits only between kept receivers. */
+          const int parent_kept = mrgi_voxel_gather_neighbours(
+            layout, i + 1, x / 2, y / 2, receiver_position, receiver_normal, P, N, parallel, masks,
+            words, neighbours, &kept, &surrounded);
+          surrounded = surrounded || !surround_rule;
           mrgi_voxel_metric metric;
           mrgi_voxel_neighbourhood_metric(neighbours, words, &metric);
-          compute = (refine && refine[t]) || !parent_kept ||
+          compute = (refine && refine[t]) || !parent_kept || !surrounded ||
                     mrgi_voxel_needs_refinement(&metric, knobs.metric, threshold);
         }
         if (!compute)
@@ -412,8 +443,8 @@ mrgi_status mrgi_voxel_visibility_pyramid(
           knobs.interleave ? 1u << (uint32_t)mrgi_voxel_interleave_phase(x, y)
                            : (uint32_t)MRGI_VOXEL_ALL_PHASES;
         s.rays[i] += mrgi_voxel_visibility(view, samples, P, N,
-                                           i == coarsest || kept == 0 ? NULL : neighbours, phases,
-                                           mask);
+                                           i == coarsest || kept == 0 ? NULL : neighbours,
+                                           surrounded, phases, mask);
       }
     }
     if (!knobs.interleave)
@@ -435,10 +466,13 @@ mrgi_status mrgi_voxel_visibility_pyramid(
         mrgi_voxel_receiver(receiver_position, receiver_normal, t, &P, &N);
         const uint32_t* neighbours[MRGI_VOXEL_NEIGHBOURS];
         int kept = 0;
+        int surrounded = 1;
         if (i != coarsest)
         {
           mrgi_voxel_gather_neighbours(layout, i + 1, x / 2, y / 2, receiver_position,
-                                       receiver_normal, P, N, masks, words, neighbours, &kept);
+                                       receiver_normal, P, N, parallel, masks, words, neighbours,
+                                       &kept, &surrounded);
+          surrounded = surrounded || i < MRGI_VOXEL_SURROUND_MIN_LEVEL;
         }
         uint32_t* out = combined + ((size_t)y * (size_t)lw + (size_t)x) * (size_t)words;
         memset(out, 0, (size_t)words * sizeof(uint32_t));
@@ -466,7 +500,7 @@ mrgi_status mrgi_voxel_visibility_pyramid(
             uint32_t own[MRGI_VOXEL_MAX_MASK_WORDS];
             s.rays[i] += mrgi_voxel_visibility(view, samples, P, N,
                                                i == coarsest || kept == 0 ? NULL : neighbours,
-                                               1u << (uint32_t)q, own);
+                                               surrounded, 1u << (uint32_t)q, own);
             for (int32_t w = 0; w < words; ++w)
             {
               out[w] |= own[w];

@@ -447,6 +447,7 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
         naive ? lh : layout.level_height[i + 1] };
       p->SetUniform2i("mrgiVisReceiverOffset", receiverOffset);
       p->SetUniformi("mrgiVisGBuffer", i == 0 ? 1 : 0);
+      p->SetUniformi("mrgiVisLevel", i);
       p->SetUniform2i("mrgiVisLevelSize", levelSize);
       p->SetUniform2i("mrgiVisParentOffset", parentOffset);
       p->SetUniform2i("mrgiVisParentSize", parentSize);

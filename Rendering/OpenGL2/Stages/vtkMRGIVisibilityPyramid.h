@@ -12,9 +12,11 @@
  * level, refinement metric of its parent's 3x3 at or above the threshold, or
  * forced by the selection, or its parent not on its surface) with the
  * incremental rule (agree = wanted & ~(AND ^ OR) reused, the rest marched;
- * nothing reused without a neighbour on its surface), else INHERITED (the
- * parent's mask); the same-surface guard is the C twin's section 3 and
- * reads the parent level's receiver normals too;
+ * nothing reused without a neighbour on its surface; the agreed hidden
+ * bits marched again where the kept neighbours do not surround the texel on
+ * screen), else INHERITED (the parent's mask; only between kept
+ * neighbours); the same-surface guard and the surround rule are the C
+ * twin's section 3 and read the parent level's receiver normals too;
  * with 2x2 interleaving each texel marches the samples of its phase and the
  * block's quarters are combined between texels on the same surface. One ray
  * is the GLSL march of vtkMRGIVoxelMarch.glsl (C twin mrgi_voxel_march()).

@@ -54,6 +54,7 @@ uniform sampler2D mrgiVisNormal;
 uniform ivec2 mrgiVisReceiverOffset;
 uniform int mrgiVisGBuffer;
 uniform ivec2 mrgiVisLevelSize;
+uniform int mrgiVisLevel; // i
 // Level i+1 (unused on the naive levels): receivers (the same-surface guard
 // reads both) and final masks.
 uniform sampler2D mrgiVisParentPosition;
@@ -194,6 +195,26 @@ bool mrgiVisSameSurface(vec3 p, vec3 n, vec3 q, vec3 m)
   return nd * nd <= s2 * dd * nn && md * md <= s2 * dd * mm;
 }
 
+// mrgi_voxel_screen_side(): where q lies on screen from p along `axis`
+// (1 after, -1 before, 0 same place), in the C's expression order.
+int mrgiVisScreenSide(vec3 p, vec3 q, int axis)
+{
+  if (q == p)
+  {
+    return 0;
+  }
+  float d = mrgiVoxelParallel != 0 ? q[axis] - p[axis] : p[axis] * q.z - q[axis] * p.z;
+  return d > 0.0 ? 1 : (d < 0.0 ? -1 : 0);
+}
+
+// Per axis, bit 0: a kept receiver q at or before p on screen, bit 1: at or after.
+ivec2 mrgiVisSides(vec3 p, vec3 q)
+{
+  int sx = mrgiVisScreenSide(p, q, 0);
+  int sy = mrgiVisScreenSide(p, q, 1);
+  return ivec2((sx <= 0 ? 1 : 0) | (sx >= 0 ? 2 : 0), (sy <= 0 ? 1 : 0) | (sy >= 0 ? 2 : 0));
+}
+
 // mrgi_voxel_receiver() at level-(i+1) texel s (never the G-buffer); M = 0
 // without a usable normal.
 bool mrgiVisParentReceiver(ivec2 s, out vec3 Q, out vec3 M)
@@ -291,11 +312,14 @@ void mrgiVisWriteTodo(uint m[MRGI_VIS_WORDS])
 // refinement decision they make (mrgi_voxel_neighbourhood_metric() +
 // mrgi_voxel_needs_refinement()). The same-surface guard (mrgi_voxel_
 // incremental.h section 3): have = at least one neighbour is on t's surface
-// (else nothing is reused), parentKept = the parent (the centre) is. On
-// naive levels: no neighbours, every receiver refines.
+// (else nothing is reused), parentKept = the parent (the centre) is,
+// surrounded = the kept neighbours surround P on screen (the surround rule,
+// mrgi_visibility_pyramid.h section 3). On naive levels: no neighbours,
+// every receiver refines.
 bool mrgiVisNeighbours(ivec2 t, vec3 P, vec3 N, out uint all[MRGI_VIS_WORDS],
-  out uint any_[MRGI_VIS_WORDS], out bool have, out bool parentKept)
+  out uint any_[MRGI_VIS_WORDS], out bool have, out bool parentKept, out bool surrounded)
 {
+  surrounded = true;
   for (int w = 0; w < MRGI_VIS_WORDS; ++w)
   {
     all[w] = 0xFFFFFFFFu;
@@ -312,6 +336,7 @@ bool mrgiVisNeighbours(ivec2 t, vec3 P, vec3 N, out uint all[MRGI_VIS_WORDS],
   int countMax = 0;
   bool any_receiver = false;
   bool kept = false;
+  ivec2 sides = ivec2(0);
   for (int k = 0; k < MRGI_VOXEL_NEIGHBOURS; ++k)
   {
     ivec2 s = clamp(c + ivec2(k % 3 - 1, k / 3 - 1), ivec2(0), mrgiVisParentSize - 1);
@@ -323,6 +348,10 @@ bool mrgiVisNeighbours(ivec2 t, vec3 P, vec3 N, out uint all[MRGI_VIS_WORDS],
     }
     bool same = mrgiVisSameSurface(P, N, Q, M);
     kept = kept || same;
+    if (same)
+    {
+      sides |= mrgiVisSides(P, Q);
+    }
     if (k == MRGI_VOXEL_NEIGHBOURS / 2)
     {
       parentKept = same;
@@ -351,6 +380,7 @@ bool mrgiVisNeighbours(ivec2 t, vec3 P, vec3 N, out uint all[MRGI_VIS_WORDS],
   }
   // No neighbour on t's surface: nothing is reused (every wanted bit marched).
   have = kept;
+  surrounded = sides == ivec2(3) || mrgiVisLevel < MRGI_VOXEL_SURROUND_MIN_LEVEL;
   int value = mrgiVisMetric == MRGI_VOXEL_METRIC_COUNT_SPREAD ? countMax - countMin : disagree;
   return value >= mrgiVisThreshold;
 }
@@ -361,13 +391,27 @@ bool mrgiVisRefined(ivec2 t)
     texelFetch(mrgiVisSelection, ivec2(t.x + mrgiVisLevelOffset, t.y), 0).r > 0.5;
 }
 
-// Whether level-i texel t's parent is on t's surface (P, N): the guard's
-// INHERIT condition, as mrgiVisNeighbours() finds it for the centre.
-bool mrgiVisParentKept(ivec2 t, vec3 P, vec3 N)
+// Whether level-i texel t (receiver P, N) inherits when the metric does not
+// fire: its parent is on its surface (the guard) and its kept coarse
+// neighbours surround it (the surround rule), as mrgiVisNeighbours() finds them.
+bool mrgiVisMayInherit(ivec2 t, vec3 P, vec3 N)
 {
   vec3 Q;
   vec3 M;
-  return mrgiVisParentReceiver(t / 2, Q, M) && mrgiVisSameSurface(P, N, Q, M);
+  if (!mrgiVisParentReceiver(t / 2, Q, M) || !mrgiVisSameSurface(P, N, Q, M))
+  {
+    return false;
+  }
+  ivec2 sides = ivec2(0);
+  for (int k = 0; k < MRGI_VOXEL_NEIGHBOURS; ++k)
+  {
+    ivec2 s = clamp(t / 2 + ivec2(k % 3 - 1, k / 3 - 1), ivec2(0), mrgiVisParentSize - 1);
+    if (mrgiVisParentReceiver(s, Q, M) && mrgiVisSameSurface(P, N, Q, M))
+    {
+      sides |= mrgiVisSides(P, Q);
+    }
+  }
+  return sides == ivec2(3) || mrgiVisLevel < MRGI_VOXEL_SURROUND_MIN_LEVEL;
 }
 
 // Whether light sample j is visible from receiver (P, N): the area-light
@@ -413,10 +457,12 @@ uint mrgiVisMarchBits(int w, uint todo, vec3 P, vec3 N, int phase)
   return result;
 }
 
-uint mrgiVisWord(int w, uint wanted, uint all, uint any_, bool have, vec3 P, vec3 N, int phase,
-  out uint marched)
+// reuseHidden: mrgi_voxel_visibility()'s reuse_hidden (false: only the bits
+// all neighbours agree are visible are reused).
+uint mrgiVisWord(int w, uint wanted, uint all, uint any_, bool have, bool reuseHidden, vec3 P,
+  vec3 N, int phase, out uint marched)
 {
-  uint agree = have ? wanted & ~(all ^ any_) : 0u;
+  uint agree = !have ? 0u : (reuseHidden ? wanted & ~(all ^ any_) : wanted & all);
   uint result = all & agree;
   uint todo = wanted & ~agree;
   marched = todo;
@@ -498,10 +544,13 @@ void main()
   uint any_[MRGI_VIS_WORDS];
   bool have = false;
   bool parentKept = false;
-  bool fires = receiver && mrgiVisNeighbours(t, P, N, all, any_, have, parentKept);
+  bool surrounded = true;
+  bool fires = receiver && mrgiVisNeighbours(t, P, N, all, any_, have, parentKept, surrounded);
   // COMPUTED (mrgi_voxel_visibility_pyramid pass 1): naive level, the metric
-  // fires, the parent is not on t's surface (the guard), or forced.
-  bool computed = receiver && (fires || mrgiVisNaive != 0 || !parentKept || mrgiVisRefined(t));
+  // fires, the parent is not on t's surface (the guard), the kept
+  // neighbours do not surround t (the surround rule), or forced.
+  bool computed = receiver &&
+    (fires || mrgiVisNaive != 0 || !parentKept || !surrounded || mrgiVisRefined(t));
   uint rays = 0u;
   if (receiver && !computed)
   {
@@ -518,7 +567,8 @@ void main()
     for (int w = 0; w < MRGI_VIS_WORDS; ++w)
     {
       uint marched;
-      mask[w] = mrgiVisWord(w, phaseBits & mrgiVisValidBits(w), all[w], any_[w], have, P, N, own, marched);
+      mask[w] = mrgiVisWord(w, phaseBits & mrgiVisValidBits(w), all[w], any_[w], have, surrounded,
+        P, N, own, marched);
       todo[w] = marched;
       rays += mrgiVisPopcount(marched);
     }
@@ -551,7 +601,7 @@ void main()
             // u shares t's parent: the same neighbourhood, the same metric;
             // whether its parent is on its surface is u's own (the guard).
             take = mrgiVisReceiver(u, Q, M) && mrgiVisSameSurface(P, N, Q, M) &&
-              (fires || mrgiVisNaive != 0 || mrgiVisRefined(u) || !mrgiVisParentKept(u, Q, M));
+              (fires || mrgiVisNaive != 0 || mrgiVisRefined(u) || !mrgiVisMayInherit(u, Q, M));
           }
         }
         uint phaseBits = mrgiVisPhaseBits(1 << q);
@@ -575,7 +625,8 @@ void main()
         for (int w = 0; w < MRGI_VIS_WORDS; ++w)
         {
           uint marched;
-          uint bits = mrgiVisWord(w, phaseBits & mrgiVisValidBits(w), all[w], any_[w], have, P, N, q, marched);
+          uint bits = mrgiVisWord(w, phaseBits & mrgiVisValidBits(w), all[w], any_[w], have,
+            surrounded, P, N, q, marched);
 #if MRGI_VIS_STAGE == 1
           mask[w] |= bits;
 #endif
