@@ -398,7 +398,10 @@ def write_page(args, rows, notes, path, speed=()):
              "*Incremental* (default): one visibility bit per sample and texel, computed coarse to fine over the "
              "levels; a bit is reused where the 3x3 coarser neighbours on the same surface agree, texels are "
              "refined where at least half the samples disagree (`vtkMRGIVisibilityPyramid`; 2x2 interleaving "
-             "is available, off by default). Per level one pass decides what each texel reuses or inherits, a "
+             "is available, off by default). From level 2 up, a texel whose coarse neighbours on its surface do "
+             "not surround it on screen (at the surface's edge) reuses only the bits they agree are visible and "
+             "marches the agreed hidden ones again, so that a coarse shadow is not extrapolated across a lit "
+             "edge (the surround rule, `mrgi_visibility_pyramid.h` section 3; not in NPW10). Per level one pass decides what each texel reuses or inherits, a "
              "stencil marks the texels with bits left, and the marches run under it (early stencil culling).",
              "- **Incremental stencil** (3.4, `vtkMRGIAreaLightStage::SetIncrementalStencil`, default on): the "
              "gather also renders a texel below the geometric selection where its parent's 3x3 visibility masks "
