@@ -1548,6 +1548,29 @@ static void test_incremental(void)
  * hidden (naive at the coarsest level) and agree on it; without the guard
  * every fine texel under them inherited "hidden" (or reused it). Left
  * half: coarse receivers on the top itself (visible, reused). */
+/* The surround rule's screen test (mrgi_visibility_pyramid.h section 3). */
+static void test_screen_side(void)
+{
+  const float p[3] = { 1.0f, -2.0f, -10.0f };
+  /* perspective: q to the right on screen (x / -z larger), at any depth */
+  const float right[3] = { 3.0f, -2.0f, -20.0f };   /* x/-z 0.15 > 0.1 */
+  const float behind[3] = { 1.5f, -2.0f, -20.0f };  /* x/-z 0.075 < 0.1: left, though x is larger */
+  const float above[3] = { 1.0f, -1.0f, -10.0f };
+  const float same_ray[3] = { 2.0f, -4.0f, -20.0f }; /* on the eye ray through p */
+  MRGI_CHECK(mrgi_voxel_screen_side(p, right, 0, 0) == 1);
+  MRGI_CHECK(mrgi_voxel_screen_side(p, behind, 0, 0) == -1);
+  MRGI_CHECK(mrgi_voxel_screen_side(p, above, 0, 1) == 1);
+  MRGI_CHECK(mrgi_voxel_screen_side(p, above, 0, 0) == 0);
+  MRGI_CHECK(mrgi_voxel_screen_side(p, same_ray, 0, 0) == 0 &&
+             mrgi_voxel_screen_side(p, same_ray, 0, 1) == 0);
+  MRGI_CHECK(mrgi_voxel_screen_side(p, p, 0, 0) == 0 && mrgi_voxel_screen_side(p, p, 1, 1) == 0);
+  /* parallel: plain coordinates, depth ignored */
+  MRGI_CHECK(mrgi_voxel_screen_side(p, behind, 1, 0) == 1);
+  MRGI_CHECK(mrgi_voxel_screen_side(p, same_ray, 1, 1) == -1);
+  /* antisymmetric */
+  MRGI_CHECK(mrgi_voxel_screen_side(right, p, 0, 0) == -1 && mrgi_voxel_screen_side(behind, p, 1, 0) == -1);
+}
+
 static void test_incremental_guard(void)
 {
   mrgi_error err;
@@ -2112,6 +2135,7 @@ int main(int argc, char** argv)
     MRGI_TEST_CASE(test_march_symmetry),
     MRGI_TEST_CASE(test_masks_and_metric),
     MRGI_TEST_CASE(test_incremental),
+    MRGI_TEST_CASE(test_screen_side),
     MRGI_TEST_CASE(test_incremental_guard),
     MRGI_TEST_CASE(test_vsm),
     MRGI_TEST_CASE(test_vsm_specular_moments),

@@ -185,7 +185,7 @@ double Seconds(std::chrono::steady_clock::time_point t0)
 size_t failureChecks = 0;
 
 void RunScene(const char* scene, int W, int H, const std::vector<int>& sampleCounts,
-  const std::vector<Mode>& modes, bool proveFailure)
+  const std::vector<Mode>& modes, bool proveFailure, bool parallel = false)
 {
   mrgitest::PassScene built(W, H, scene);
   vtkRenderWindow* window = built.Window;
@@ -193,8 +193,16 @@ void RunScene(const char* scene, int W, int H, const std::vector<int>& sampleCou
   vtkRenderer* renderer = built.Renderer;
   vtkMRGIPass* pass = built.Pass;
   pass->SetNumberOfVPLs(16);
-  window->Render();
   vtkCamera* camera = renderer->GetActiveCamera();
+  if (parallel)
+  {
+    // Parallel projection: screen sides are compared without the division
+    // by depth (mrgi_voxel_screen_side(), the surround rule).
+    camera->ParallelProjectionOn();
+    camera->SetParallelScale(0.5 * renderer->ComputeVisiblePropBounds()[3]);
+    std::printf("parallel projection\n");
+  }
+  window->Render();
   const int* vp = pass->GetViewport();
   MRGI_TEST_CHECK(vp[2] == W && vp[3] == H);
 
@@ -398,6 +406,7 @@ int main()
   // Levels 0 and 1 at least 128 wide march in batches, one draw per sample
   // range; the smaller ones as copies side by side (one draw): both ways.
   RunScene("cornell-area", 260, 132, { 64 }, { naive, incremental }, false);
+  RunScene("cornell-area", 97, 61, { 64 }, { incremental, incrementalInterleaved }, false, true);
   MRGI_TEST_CHECK(failureChecks >= 2);
   return 0;
 }
