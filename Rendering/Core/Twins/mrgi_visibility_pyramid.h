@@ -94,20 +94,18 @@
  * it. At levels i >= MRGI_VOXEL_SURROUND_MIN_LEVEL, a texel that is not
  * surrounded does not inherit (it is COMPUTED), and reuses only the bits
  * its coarse neighbours agree are VISIBLE: the agreed hidden bits are
- * marched again. Finer texels keep the plain rule: their coarse neighbours
- * are 2-4 pixels away and now right, and marching there again only added
- * the voxels' aliasing (on `cornell-area` the error was the same or a
- * little higher with the rule at every level, for 1.34x the rays). Why: beyond the last coarse receiver of a
- * surface (towards its edge on screen) the coarse masks extrapolate instead
- * of interpolating. On `cornell-area` the strip of floor between the short
+ * marched again. Why: beyond the last coarse receiver of a surface
+ * (towards its edge on screen) the coarse masks extrapolate instead of
+ * interpolating. On `cornell-area` the strip of floor between the short
  * block's base and the floor's front edge (background below) got no light:
  * its level-4 receiver, the mean of 160 floor pixels, lies at the block's
  * base in full shadow, its 3x3 agreed, and every finer level inherited or
- * reused those zeros, while the truth brightens towards the camera. Only
- * the hidden bits are distrusted: re-marching every agreed bit of such
- * texels (tried) fixed the strip as well but marched 1.73x the rays on
- * `cornell-area` (this rule at every level: 1.34x; from level 2: 1.03x), and
- * its error was higher (Documentation/AreaLights.md has the numbers).
+ * reused those zeros, while the truth brightens towards the camera.
+ * Finer levels keep the plain rule: there the coarse neighbours lie a
+ * pixel or two away, and marching again only added the voxels' aliasing.
+ * Only the hidden bits are distrusted: re-marching every agreed bit of
+ * such texels fixed the strip as well, for more rays and a higher error
+ * (both variants measured in Documentation/Status.md, session 18).
  *
  * Non-receiver texels and texels outside the levels get all-zero masks.
  * Threshold 0 computes every texel ("incremental everywhere"). With the
@@ -119,13 +117,15 @@
  *
  * Exactness: at a computed texel, every bit on which its coarse neighbours
  * disagree equals the naive bit (it is re-marched), and so does every bit
- * when no neighbour is on t's surface. Bits on which they agree are reused
+ * when no neighbour is on t's surface, and every agreed hidden bit where
+ * the surround rule applies. Bits on which they agree are reused
  * (only with a kept neighbour among them) and differ from the naive bit
  * only where the visibility of that sample changes between coarse samples
  * without any of the 9 seeing it (an occluder smaller than the coarse
  * spacing): the approximation NPW10 accept ("our incremental approach can
  * converge to a correct solution, this is rarely necessary"). Inherited
- * masks come from a parent on t's surface only (the guard above).
+ * masks come from a parent on t's surface only (the guard above), and
+ * from level MRGI_VOXEL_SURROUND_MIN_LEVEL up only between kept receivers.
  *
  * ## 4. 2x2 interleaved sampling (NPW10 3.3.2, [KH01])
  *
