@@ -1956,6 +1956,69 @@ static void test_random_scenes(void)
 
 /* Batches of marched samples stay within the loop budget of one shader
  * invocation, at every step cap, and never drop to 0. */
+/* mrgi_voxel_step_bound(): capping the march there changes no result (the
+ * batches sized with it hold), capping it at half of it does. */
+static void test_step_bound(void)
+{
+  const mrgi_voxel_grid wide = { 128, 64, 1.0f, 2.0f, 128.0f };
+  MRGI_CHECK(mrgi_voxel_step_bound(&wide, 256) == 130);
+  MRGI_CHECK(mrgi_voxel_step_bound(&wide, 100) == 100);
+  MRGI_CHECK(mrgi_voxel_step_bound(NULL, 256) == 256);
+  MRGI_CHECK(mrgi_voxel_step_bound(&wide, 0) == 1);
+  MRGI_CHECK(mrgi_voxel_samples_per_batch(mrgi_voxel_step_bound(&wide, 256)) >
+             mrgi_voxel_samples_per_batch(256));
+  const mrgi_voxel_projection p = perspective_projection(50.0, 1.0);
+  float lp[3 * 64], ln[3 * 64];
+  light_samples(8, lp, ln);
+  const int32_t sides[2] = { 16, 64 };
+  for (int r = 0; r < 2; ++r)
+  {
+    int64_t rays = 0, differ_at_bound = 0, differ_at_half = 0;
+    rng_state = 4242;
+    for (int sc = 0; sc < 3; ++sc)
+    {
+      scene s;
+      random_scene(&s, 12);
+      test_view t = scene_view(&s, sides[r]);
+      const int32_t bound = mrgi_voxel_step_bound(&t.view.grid, MRGI_VOXEL_MAX_STEPS);
+      MRGI_CHECK(bound == sides[r] + 2);
+      for (int k = 0; k < 400; ++k)
+      {
+        const int32_t x = (int32_t)(rng_u32() % 256), y = (int32_t)(rng_u32() % 256);
+        float P[3], N[3];
+        if (!scene_hit(&s, &p, (2.0 * x + 1.0) / 256 - 1.0, (2.0 * y + 1.0) / 256 - 1.0, P, N))
+        {
+          continue;
+        }
+        for (int j = 0; j < 64 + 8; ++j)
+        {
+          /* the light's samples, and far points in every direction (clipped by the frustum) */
+          float far[3];
+          for (int c = 0; c < 3; ++c)
+          {
+            far[c] = P[c] + 1000.0f * ((float)(rng_u32() % 2001) / 1000.0f - 1.0f);
+          }
+          const float* L = j < 64 ? lp + 3 * j : far;
+          const float* NL = j < 64 ? ln + 3 * j : NULL;
+          t.view.params.max_steps = MRGI_VOXEL_MAX_STEPS;
+          const int free_march = mrgi_voxel_march(&t.view, P, N, L, NL);
+          t.view.params.max_steps = bound;
+          differ_at_bound += mrgi_voxel_march(&t.view, P, N, L, NL) != free_march;
+          t.view.params.max_steps = bound / 2;
+          differ_at_half += mrgi_voxel_march(&t.view, P, N, L, NL) != free_march;
+          ++rays;
+        }
+      }
+      free(t.voxels);
+    }
+    printf("step bound %d^2: %lld rays, %lld differ capped at the bound, %lld at half of it\n",
+           sides[r], (long long)rays, (long long)differ_at_bound, (long long)differ_at_half);
+    MRGI_CHECK(rays > 10000);
+    MRGI_CHECK(differ_at_bound == 0);
+    MRGI_CHECK(differ_at_half > 0);
+  }
+}
+
 static void test_samples_per_batch(void)
 {
   for (int32_t steps = -1; steps <= MRGI_VOXEL_MAX_STEPS; steps += (steps < 64 ? 1 : 61))
@@ -2122,6 +2185,7 @@ int main(int argc, char** argv)
 {
   static const mrgi_test_case cases[] = {
     MRGI_TEST_CASE(test_samples_per_batch),
+    MRGI_TEST_CASE(test_step_bound),
     MRGI_TEST_CASE(test_layout),
     MRGI_TEST_CASE(test_fit_depth_range),
     MRGI_TEST_CASE(test_isotropic_size),

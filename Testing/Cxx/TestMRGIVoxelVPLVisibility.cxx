@@ -322,13 +322,24 @@ void CheckErrors(Fixture& f, vtkMRGIGather* gather, vtkTextureObject* cache,
   MRGI_TEST_CHECK(
     !gather->GatherFull(f.Frame, cache, VPLs, 1.0, irradiance, indirect, Voxels(never)));
   MRGI_TEST_CHECK(errors->Caught("no voxels"));
-  // 3 levels (21 nodes a root) at 4096 steps: 1 march a draw.
+  // 3 levels (21 nodes a root). A march takes at most the voxel buffer's
+  // side + 2 steps (mrgi_voxel_step_bound()): at 4096 steps the 128^2
+  // buffer still allows 57 marches a draw, a 1024^2 one 7.
   f.Voxelization->SetMaxSteps(MRGI_VOXEL_MAX_STEPS);
-  MRGI_TEST_CHECK(mrgi_voxel_samples_per_batch(MRGI_VOXEL_MAX_STEPS) < 21);
+  MRGI_TEST_CHECK(mrgi_voxel_samples_per_batch(f.Voxelization->GetMarchStepBound()) >= 21);
+  MRGI_TEST_CHECK(gather->GatherFullTree(
+    f.Frame, term, 1.0, irradiance, indirect, Voxels(f.Voxelization)));
+  double range[2];
+  mrgitest::DepthRange(mrgitest::SceneTriangles(f.Scene.Renderer), range); // as the fixture
+  f.Voxelization->SetVoxelSide(1024);
+  MRGI_TEST_CHECK(f.Voxelization->Voxelize(f.Scene.Renderer, range[0], range[1]));
+  MRGI_TEST_CHECK(mrgi_voxel_samples_per_batch(f.Voxelization->GetMarchStepBound()) < 21);
   MRGI_TEST_CHECK(!gather->GatherFullTree(
     f.Frame, term, 1.0, irradiance, indirect, Voxels(f.Voxelization)));
   MRGI_TEST_CHECK(errors->Caught("subtree of 21 nodes"));
   f.Voxelization->SetMaxSteps(MRGI_VOXEL_DEFAULT_MAX_STEPS);
+  f.Voxelization->SetVoxelSide(MRGI_VOXEL_DEFAULT_SIZE);
+  MRGI_TEST_CHECK(f.Voxelization->Voxelize(f.Scene.Renderer, range[0], range[1]));
   gather->RemoveObserver(errors);
   irradiance->ReleaseGraphicsResources(f.Scene.Window);
   indirect->ReleaseGraphicsResources(f.Scene.Window);

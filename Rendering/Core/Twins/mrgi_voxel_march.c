@@ -334,6 +334,17 @@ float mrgi_voxel_march_occluder_fraction(const mrgi_voxel_view* view, const floa
   return outcome == MRGI_VOXEL_HIT ? fraction : 1.0f;
 }
 
+int32_t mrgi_voxel_step_bound(const mrgi_voxel_grid* grid, int32_t max_steps)
+{
+  const int32_t cap = max_steps > 0 ? max_steps : 1;
+  if (!grid || grid->width < 1 || grid->height < 1)
+  {
+    return cap;
+  }
+  const int64_t side = (int64_t)(grid->width > grid->height ? grid->width : grid->height) + 2;
+  return side < cap ? (int32_t)side : cap;
+}
+
 int32_t mrgi_voxel_samples_per_batch(int32_t max_steps)
 {
   const int64_t steps = max_steps > 0 ? max_steps : 1;

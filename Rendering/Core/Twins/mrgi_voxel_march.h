@@ -194,6 +194,17 @@ void mrgi_voxel_march_params_default(mrgi_voxel_march_params* params);
  */
 int32_t mrgi_voxel_samples_per_batch(int32_t max_steps);
 
+/**
+ * @brief Most steps one march through `grid` takes at step cap `max_steps`:
+ *        min(max_steps, max(width, height) + 2), at least 1. A march steps
+ *        once per voxel pixel along the major axis of its segment clipped to
+ *        the view frustum (step 6), which spans at most the grid's larger
+ *        side (+ 2 for rounding at the frustum's faces). Pass it to
+ *        mrgi_voxel_samples_per_batch(): a 128^2 buffer marches twice the
+ *        samples per batch that the default cap of 256 steps allows.
+ */
+int32_t mrgi_voxel_step_bound(const mrgi_voxel_grid* grid, int32_t max_steps);
+
 /** @brief Check the knobs' ranges. ::MRGI_ERR_INVALID_ARGUMENT naming the bad field. */
 mrgi_status mrgi_voxel_march_params_validate(const mrgi_voxel_march_params* params,
                                              mrgi_error* err);

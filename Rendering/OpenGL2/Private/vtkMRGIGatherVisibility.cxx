@@ -158,7 +158,7 @@ int VPLsPerDraw(const vtkMRGIIndirectVisibility& visibility, int vplCount)
 {
   const int all = std::max(vplCount, 1);
   return visibility.Mode == vtkMRGIIndirectVisibility::VoxelVisibility
-    ? std::min(all, mrgi_voxel_samples_per_batch(visibility.Voxels->GetMaxSteps()))
+    ? std::min(all, mrgi_voxel_samples_per_batch(visibility.Voxels->GetMarchStepBound()))
     : all;
 }
 
@@ -194,13 +194,13 @@ int RootsPerDraw(const vtkMRGIIndirectVisibility& visibility, const mrgi_vpl_tre
   // section 4): its subtree, or itself alone when tau >= 1 refines nothing.
   const int levels = tree->layout.level_count;
   const long long nodes = threshold >= 1.0 ? 1 : ((1LL << (2 * levels)) - 1) / 3;
-  const int marches = mrgi_voxel_samples_per_batch(visibility.Voxels->GetMaxSteps());
+  const int marches = mrgi_voxel_samples_per_batch(visibility.Voxels->GetMarchStepBound());
   if (nodes > marches)
   {
     std::ostringstream os;
     os << "voxel visibility: a root's subtree of " << nodes << " nodes (" << levels
        << " tree levels) may need " << nodes << " marches, more than the " << marches
-       << " one draw allows at " << visibility.Voxels->GetMaxSteps()
+       << " one draw allows at " << visibility.Voxels->GetMarchStepBound()
        << " march steps (llvmpipe's loop budget); use fewer tree levels, fewer steps or "
           "tau >= 1";
     error = os.str();

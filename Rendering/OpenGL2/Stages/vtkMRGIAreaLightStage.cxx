@@ -626,7 +626,7 @@ bool vtkMRGIAreaLightStage::RenderSpecular(const vtkMRGIFrameContext& frame,
     // llvmpipe gives one invocation (mrgi_voxel_march.h): batches of
     // samples, one draw each, added to the first.
     RenderSampleBatches(ostate, program, quad, sampleCount,
-      mrgi_voxel_samples_per_batch(voxels->GetMaxSteps()));
+      mrgi_voxel_samples_per_batch(voxels->GetMarchStepBound()));
   }
   else
   {
@@ -706,7 +706,7 @@ bool vtkMRGIAreaLightStage::RenderSpecularMultiresolution(const vtkMRGIFrameCont
   }
   program->SetUniformMatrix4x4("mrgiVCToWC", viewToWorld);
   program->SetUniformi("mrgiParallel", frame.Parallel ? 1 : 0);
-  const int batch = marched ? mrgi_voxel_samples_per_batch(voxels->GetMaxSteps()) : sampleCount;
+  const int batch = marched ? mrgi_voxel_samples_per_batch(voxels->GetMarchStepBound()) : sampleCount;
   auto draw = [&](int level) -> bool {
     std::vector<vtkTextureObject*> levelMasks;
     if (masked)

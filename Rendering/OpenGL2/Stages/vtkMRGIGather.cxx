@@ -435,7 +435,7 @@ bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultir
   // budget, each batch one draw added to the previous ones (RGB summed,
   // alpha kept at 1). The sums change order only by batch.
   // The VPLs with voxel visibility likewise (vtkMRGIGatherVisibility::VPLsPerDraw()).
-  const int batch = visibility ? mrgi_voxel_samples_per_batch(term->Voxels->GetMaxSteps())
+  const int batch = visibility ? mrgi_voxel_samples_per_batch(term->Voxels->GetMarchStepBound())
     : vis                      ? vtkMRGIGatherVisibility::VPLsPerDraw(*vis, vplCount)
                                : std::max(vplCount, 1);
   const char* firstName = area ? "mrgiAreaSampleFirst" : "mrgiVPLFirst";

@@ -336,7 +336,7 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
   // visits only the own phase, in lockstep over the 2x2 phases: ranges of
   // 4 perBatch. Stage 1 visits each phase q for every fragment (those that
   // take q from a block texel skip its marches): perBatch.
-  const int perBatch = mrgi_voxel_samples_per_batch(voxels->GetMaxSteps());
+  const int perBatch = mrgi_voxel_samples_per_batch(voxels->GetMarchStepBound());
   const int range0 = interleave ? 4 * perBatch : perBatch;
   const int range1 = perBatch;
 

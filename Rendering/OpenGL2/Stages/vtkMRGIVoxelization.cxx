@@ -270,6 +270,12 @@ vtkTextureObject* vtkMRGIVoxelization::GetVoxelTexture() const
   return this->Internal->HasGrid ? this->Internal->Voxels : nullptr;
 }
 
+int vtkMRGIVoxelization::GetMarchStepBound() const
+{
+  const Internals& in = *this->Internal;
+  return in.HasGrid ? mrgi_voxel_step_bound(&in.Grid, this->MaxSteps) : this->MaxSteps;
+}
+
 void vtkMRGIVoxelization::GetLastVoxelSize(int size[2]) const
 {
   const Internals& in = *this->Internal;

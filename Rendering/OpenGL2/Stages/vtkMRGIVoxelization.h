@@ -235,6 +235,13 @@ public:
   vtkGetMacro(SkipRadius, int);
   ///@}
 
+  /**
+   * Most steps one march through the last voxelization takes: MaxSteps, or
+   * the buffer's larger side + 2 when that is less (mrgi_voxel_step_bound()).
+   * Stages size their sample batches with it (mrgi_voxel_samples_per_batch()).
+   */
+  int GetMarchStepBound() const;
+
 #ifndef __VTK_WRAP__
   /** MaxSteps, NormalOffset (as float) and SkipRadius as the core's struct. */
   void GetMarchParams(mrgi_voxel_march_params* params) const;
