@@ -113,7 +113,8 @@ def main():
                              "from the stored tables")
     args = parser.parse_args()
     if args.shares_only:
-        write_shares(args, measure_shares(args, mrgi.vtkMRGIMultiresolution.PresetBalanced))
+        write_table(args, "area-lights-shares.csv",
+                    measure_shares(args, mrgi.vtkMRGIMultiresolution.PresetBalanced))
         args.page_only = True
     if args.page_only:
         with open(os.path.join(args.doc, "data", "area-lights.csv"), newline="") as f:
@@ -124,10 +125,10 @@ def main():
         notes = {r["scene"]: "ground truth: %d passes x %d stratified shadow rays per pixel"
                  % (args.truth_passes, args.truth_samples) for r in rows}
         images = os.path.join(args.doc, "images")
-        speed = read_speed(args)
+        speed = read_table(args, "area-lights-speed.csv")
         plot(rows, os.path.join(images, "area-voxel-sweep.png"))
         plot_tradeoff(rows, os.path.join(images, "area-tradeoff.png"))
-        write_page(args, rows, notes, os.path.join(args.doc, "AreaLights.md"), speed, read_shares(args))
+        write_page(args, rows, notes, os.path.join(args.doc, "AreaLights.md"), speed, read_table(args, "area-lights-shares.csv"))
         return
     compare_tool = os.path.join(args.build, "bin", "mrgi-compare")
     scratch = os.path.join(args.build, "Testing", "Temporary", "area")
@@ -271,13 +272,9 @@ def main():
         writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         writer.writeheader()
         writer.writerows(rows)
-    if speed:
-        with open(os.path.join(data, "area-lights-speed.csv"), "w", newline="") as f:
-            writer = csv.DictWriter(f, fieldnames=list(speed[0].keys()))
-            writer.writeheader()
-            writer.writerows(speed)
+    write_table(args, "area-lights-speed.csv", speed)
     shares = measure_shares(args, presets["balanced"])
-    write_shares(args, shares)
+    write_table(args, "area-lights-shares.csv", shares)
     plot(rows, os.path.join(images, "area-voxel-sweep.png"))
     plot_tradeoff(rows, os.path.join(images, "area-tradeoff.png"))
     write_page(args, rows, notes, os.path.join(args.doc, "AreaLights.md"), speed, shares)
@@ -308,26 +305,18 @@ def measure_shares(args, balanced):
     return shares
 
 
-def write_shares(args, shares):
-    if shares:
-        with open(os.path.join(args.doc, "data", "area-lights-shares.csv"), "w", newline="") as f:
-            writer = csv.DictWriter(f, fieldnames=list(shares[0].keys()))
+def write_table(args, name, rows):
+    """Documentation/data/NAME (per-scene numbers: the larger-window timings, the level-0 shares)."""
+    if rows:
+        with open(os.path.join(args.doc, "data", name), "w", newline="") as f:
+            writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
             writer.writeheader()
-            writer.writerows(shares)
+            writer.writerows(rows)
 
 
-def read_shares(args):
-    """The level-0 shares by window size of the last run (area-lights-shares.csv), if any."""
-    path = os.path.join(args.doc, "data", "area-lights-shares.csv")
-    if not os.path.exists(path):
-        return []
-    with open(path, newline="") as f:
-        return [{k: (v if k == "scene" else float(v)) for k, v in r.items()} for r in csv.DictReader(f)]
-
-
-def read_speed(args):
-    """The larger-window timings of the last run (area-lights-speed.csv), if any."""
-    path = os.path.join(args.doc, "data", "area-lights-speed.csv")
+def read_table(args, name):
+    """What write_table() stored as NAME in the last run, scene names kept, numbers as floats; [] if none."""
+    path = os.path.join(args.doc, "data", name)
     if not os.path.exists(path):
         return []
     with open(path, newline="") as f:
