@@ -587,6 +587,7 @@ int main(int argc, char* argv[])
     reference->SetHeight(o.Height);
     reference->SetSecondaryVisibility(o.ReferenceVisibility);
     reference->SetShadows(o.ReferenceShadows);
+    reference->SetPixelFilter(o.ReferencePixel);
     reference->SetTargetRelativeError(o.ReferenceError);
     reference->SetTargetPercentile(o.ReferencePercentile);
     reference->SetSeed(static_cast<vtkTypeUInt64>(o.Seed));

@@ -763,6 +763,12 @@ const std::vector<OptionSection>& OptionTable()
         { { "--reference-shadows" }, "on|off",
           "shadows in the direct part (default on; VTK's direct light has none)",
           OnOff(&Options::ReferenceShadows) },
+        { { "--reference-pixel" }, "box|center",
+          "box: each pixel the mean over its area (default); center: primary rays\n"
+          "through the pixel's centre, the truth of an image sampled as the GPU samples it",
+          Choice<int>(&Options::ReferencePixel,
+            { { "box", vtkMRGIReferenceRenderer::PixelBox },
+              { "center", vtkMRGIReferenceRenderer::PixelCenter } }) },
         { { "--reference-error" }, "E",
           "stop when the per-pixel relative standard error of the indirect part (each pixel's\n"
           "over max(its value, the image's mean)) is at most E at --reference-percentile;\n"

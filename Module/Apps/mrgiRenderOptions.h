@@ -140,6 +140,7 @@ struct Options
   bool Reference = false;
   bool ReferenceVisibility = true;
   bool ReferenceShadows = true;
+  int ReferencePixel = 0; // vtkMRGIReferenceRenderer::PixelFilterType
   double ReferenceError = MRGI_REFERENCE_DEFAULT_TARGET;
   double ReferencePercentile = MRGI_REFERENCE_DEFAULT_PERCENTILE;
   long long ReferencePasses = MRGI_REFERENCE_DEFAULT_MAX_PASSES;

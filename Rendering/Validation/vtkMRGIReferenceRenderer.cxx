@@ -31,6 +31,10 @@
 
 #include <algorithm>
 #include <cmath>
+
+static_assert(vtkMRGIReferenceRenderer::PixelBox == MRGI_REFERENCE_PIXEL_BOX &&
+    vtkMRGIReferenceRenderer::PixelCenter == MRGI_REFERENCE_PIXEL_CENTER,
+  "the pixel filters are the core's");
 #include <cstring>
 #include <vector>
 
@@ -318,6 +322,7 @@ bool vtkMRGIReferenceRenderer::Render(vtkRenderer* renderer)
   options.max_passes = this->MaxPasses;
   options.secondary_visibility = this->SecondaryVisibility ? 1 : 0;
   options.shadows = this->Shadows ? 1 : 0;
+  options.pixel_filter = this->PixelFilter;
   options.area_light_samples = this->AreaLightSamples;
   options.seed = this->Seed;
   options.threads = this->Threads;
@@ -414,6 +419,7 @@ void vtkMRGIReferenceRenderer::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxPasses: " << this->MaxPasses << "\n";
   os << indent << "SecondaryVisibility: " << (this->SecondaryVisibility ? "On" : "Off") << "\n";
   os << indent << "Shadows: " << (this->Shadows ? "On" : "Off") << "\n";
+  os << indent << "PixelFilter: " << (this->PixelFilter == PixelCenter ? "Center" : "Box") << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "AreaLights: " << this->AreaLights.size() << "\n";
   os << indent << "AreaLightSamples: " << this->AreaLightSamples << "\n";

@@ -101,6 +101,26 @@ public:
   vtkBooleanMacro(Shadows, bool);
   ///@}
 
+  /** Where a pixel's primary rays cross it (mrgi_reference.h, MRGI_REFERENCE_PIXEL_*). */
+  enum PixelFilterType
+  {
+    PixelBox = 0,   ///< jittered over the pixel square: the pixel's mean (default)
+    PixelCenter = 1 ///< through the pixel's centre, as a rasterizer samples it
+  };
+
+  ///@{
+  /**
+   * PixelBox (default) averages each pixel over its area; PixelCenter
+   * samples its centre, the truth of a GPU image without multisampling:
+   * against it, silhouettes and shadow edges differ only where the light is
+   * wrong, not because a box-filtered edge pixel is partly covered.
+   */
+  vtkSetClampMacro(PixelFilter, int, PixelBox, PixelCenter);
+  vtkGetMacro(PixelFilter, int);
+  void SetPixelFilterToBox() { this->SetPixelFilter(PixelBox); }
+  void SetPixelFilterToCenter() { this->SetPixelFilter(PixelCenter); }
+  ///@}
+
   ///@{
   /** Random seed (default 1) and worker threads (0 = all CPUs). */
   vtkSetMacro(Seed, vtkTypeUInt64);
@@ -195,6 +215,7 @@ protected:
   int MaxPasses;
   bool SecondaryVisibility = true;
   bool Shadows = true;
+  int PixelFilter = PixelBox;
   vtkTypeUInt64 Seed = 1;
   int Threads = 0;
 

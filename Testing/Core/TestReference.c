@@ -305,6 +305,123 @@ static void test_shadows(void)
   mrgi_scene_destroy(&scene);
 }
 
+/* Centre-sampled pixels (pixel_filter MRGI_REFERENCE_PIXEL_CENTER): every
+ * pixel is the exact value at its centre's ground point, whatever the seed;
+ * the box filter averages the occluder's and the shadow's edges. */
+static void test_pixel_center(void)
+{
+  mrgi_scene scene;
+  MRGI_CHECK(mrgi_scene_create(&scene, 2, NULL) == MRGI_OK);
+  make_square(&scene.meshes[0], "floor", 0, 0, 0, 10, 1, 0.5f);
+  make_square(&scene.meshes[1], "occluder", 0, 2, 0, 1, 1, 0.5f);
+  camera_down(&scene, 10, 60);
+  scene.light_count = 1;
+  directional(&scene.lights[0], -1, -1, 0, 2.0); /* shadow: x in [-3, -1], z in [-1, 1] */
+  const double lit = 0.5 * 2.0 * cos(pi / 4);
+  const double half_h = 10.0 * tan(pi / 6);
+  const int32_t n = 61; /* odd: no pixel centre on x = 0 or z = 0 */
+  int32_t partial[2] = { 0, 0 };
+  mrgi_reference_result first;
+  for (int filter = MRGI_REFERENCE_PIXEL_BOX; filter <= MRGI_REFERENCE_PIXEL_CENTER; ++filter)
+  {
+    for (uint64_t seed = 1; seed <= 2; ++seed)
+    {
+      mrgi_reference_options o = base_options(n, n);
+      o.pixel_filter = filter;
+      o.pixel_samples = 4;
+      o.seed = seed;
+      mrgi_reference_result r;
+      render(&scene, &o, &r);
+      int32_t checked = 0, shadowed = 0, edges = 0;
+      for (int32_t y = 0; y < n; ++y)
+      {
+        for (int32_t x = 0; x < n; ++x)
+        {
+          const double v = mrgi_image_at(&r.direct, x, y)[0];
+          if (v > 1e-6 && v < lit - 1e-6)
+          {
+            ++edges;
+          }
+          if (filter != MRGI_REFERENCE_PIXEL_CENTER)
+          {
+            continue;
+          }
+          double gx, gz;
+          ground_point(x + 0.5, y + 0.5, n, n, half_h, &gx, &gz);
+          /* the centre ray meets the occluder (height 2 of 10) at 0.8 x the ground point */
+          const int on_occluder = fabs(0.8 * gx) < 1.0 && fabs(0.8 * gz) < 1.0;
+          const int in_shadow = !on_occluder && gx > -3.0 && gx < -1.0 && fabs(gz) < 1.0;
+          MRGI_CHECK_NEAR(v, in_shadow ? 0.0 : lit, 1e-6);
+          shadowed += in_shadow;
+          ++checked;
+        }
+      }
+      partial[filter] += edges;
+      if (filter == MRGI_REFERENCE_PIXEL_CENTER)
+      {
+        MRGI_CHECK(checked == n * n && shadowed > 20);
+        if (seed == 1)
+        {
+          first = r;
+          continue;
+        }
+        /* another seed draws other jitter, which the centre mode ignores */
+        MRGI_CHECK(memcmp(first.direct.pixels, r.direct.pixels,
+                          mrgi_image_value_count(&r.direct) * sizeof(float)) == 0);
+        mrgi_reference_result_destroy(&first);
+      }
+      mrgi_reference_result_destroy(&r);
+    }
+  }
+  /* the box filter's edge pixels are partly lit; the centre's never are */
+  MRGI_CHECK(partial[MRGI_REFERENCE_PIXEL_BOX] > 20 && partial[MRGI_REFERENCE_PIXEL_CENTER] == 0);
+
+  /* A spot light 5 above the floor (X = 2 (5/d)^3 inside its 30-degree
+   * cone, as in test_direct) varies across every pixel: each centre-sampled
+   * pixel is its centre's value, not a value of somewhere else in the pixel. */
+  mrgi_light* spot = &scene.lights[0];
+  memset(spot, 0, sizeof(*spot));
+  spot->type = MRGI_LIGHT_SPOT;
+  spot->position[1] = 5.0;
+  spot->color[0] = spot->color[1] = spot->color[2] = 1.0;
+  spot->intensity = 2.0;
+  spot->cone_angle_deg = 30.0;
+  spot->exponent = 2.0;
+  {
+    mrgi_reference_options o = base_options(n, n);
+    o.pixel_filter = MRGI_REFERENCE_PIXEL_CENTER;
+    mrgi_reference_result r;
+    render(&scene, &o, &r);
+    int32_t ring = 0;
+    for (int32_t y = 0; y < n; ++y)
+    {
+      for (int32_t x = 0; x < n; ++x)
+      {
+        double gx, gz;
+        ground_point(x + 0.5, y + 0.5, n, n, half_h, &gx, &gz);
+        const double radius = sqrt(gx * gx + gz * gz);
+        /* outside the occluder's shadow (|x|, |z| < 5/3) and inside the cone (2.89) */
+        if (fmax(fabs(gx), fabs(gz)) > 1.8 && radius < 2.8)
+        {
+          const double expected = 0.5 * 2.0 * pow(5.0 / sqrt(25.0 + radius * radius), 3.0);
+          MRGI_CHECK_NEAR(mrgi_image_at(&r.direct, x, y)[0], expected, 1e-5);
+          ++ring;
+        }
+      }
+    }
+    MRGI_CHECK(ring > 100);
+    mrgi_reference_result_destroy(&r);
+  }
+
+  mrgi_reference_options o = base_options(n, n);
+  o.pixel_filter = 2;
+  mrgi_reference_result r;
+  mrgi_error err;
+  MRGI_CHECK(mrgi_reference_render(&scene, &o, &r, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(message_has(&err, "pixel_filter"));
+  mrgi_scene_destroy(&scene);
+}
+
 /* ---- 3 and 4. one bounce from a parallel rectangle ---- */
 
 /* View factor from a differential area to a parallel rectangle at distance h
@@ -1580,6 +1697,7 @@ int main(int argc, char** argv)
     MRGI_TEST_CASE(test_direct),
     MRGI_TEST_CASE(test_area_bounce),
     MRGI_TEST_CASE(test_shadows),
+    MRGI_TEST_CASE(test_pixel_center),
     MRGI_TEST_CASE(test_bounce),
     MRGI_TEST_CASE(test_cornell),
     MRGI_TEST_CASE(test_determinism_and_convergence),

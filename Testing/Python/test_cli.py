@@ -273,6 +273,13 @@ def main():
     check(code == 0 and os.path.getsize(ref_exr) > 0, "--reference: " + err)
     check(re.search(r"ground truth: 2 passes, per-pixel error [0-9.]+ at the 0.95 quantile", err),
           "--reference reports passes and the per-pixel error: " + err)
+    code, _, err = run("cornell-spot", "-o", ref_exr, "--size", "32x32", "--reference",
+                       "--reference-passes", "1", "--reference-pixel", "center", "-q")
+    check(code == 0 and os.path.getsize(ref_exr) > 0, "--reference-pixel center: " + err)
+    code, _, err = run("cornell-spot", "-o", ref_exr, "--size", "32x32", "--reference",
+                       "--reference-pixel", "middle", "-q")
+    check(code != 0 and "--reference-pixel" in err and "box or center" in err,
+          "--reference-pixel refuses other values by name: " + err)
     # stderr is a pipe here, no terminal: no per-pass lines unless --progress
     check("ground truth: pass" not in err, "no progress lines into a pipe without --progress: " + err)
     code, _, err = run("cornell-spot", "-o", ref_exr, "--size", "32x32", "--reference",

@@ -63,6 +63,27 @@ def main():
         check(float(truth[ceiling].mean()) > 0.0, "the ceiling is lit indirectly")
         check(float(gpu[ceiling].mean()) > 0.0, "the GPU lights the ceiling indirectly too")
 
+    # Centre-sampled pixels: point lights' direct light is then exact, the
+    # same for every seed; box-filtered pixels differ at edges with the seed.
+    direct = {}
+    for pixel in (mrgi.vtkMRGIReferenceRenderer.PixelBox, mrgi.vtkMRGIReferenceRenderer.PixelCenter):
+        for seed in (1, 2):
+            reference = mrgi.vtkMRGIReferenceRenderer()
+            reference.SetIndirectSamples(0)
+            reference.SetMaxPasses(1)
+            reference.SetPixelFilter(pixel)
+            reference.SetSeed(seed)
+            check(reference.Render(renderer), "ground truth: " + reference.GetLastErrorMessage())
+            direct[pixel, seed] = as_array(reference.GetDirectImage()).copy()
+    check(reference.GetPixelFilter() == mrgi.vtkMRGIReferenceRenderer.PixelCenter
+          and "PixelFilter: Center" in str(reference), "the pixel filter is kept and printed")
+    box = mrgi.vtkMRGIReferenceRenderer.PixelBox
+    center = mrgi.vtkMRGIReferenceRenderer.PixelCenter
+    check(np.array_equal(direct[center, 1], direct[center, 2]), "centre samples do not depend on the seed")
+    edges = int((direct[box, 1] != direct[box, 2]).any(axis=2).sum())
+    check(edges > 0, "box-filtered pixels (jittered rays) depend on the seed")
+    print("pixels whose box-filtered direct light changes with the seed: %d" % edges)
+
     gpu_mean = float(gpu.mean())
     print("mean indirect: GPU %.5f, ground truth %.5f (visibility) %.5f (no secondary visibility)"
           % (gpu_mean, means[True], means[False]))

@@ -31,6 +31,7 @@ void mrgi_reference_options_default(mrgi_reference_options* options)
   options->width = 256;
   options->height = 256;
   options->pixel_samples = 1;
+  options->pixel_filter = MRGI_REFERENCE_PIXEL_BOX;
   options->indirect_samples = 16;
   options->target_relative_error = MRGI_REFERENCE_DEFAULT_TARGET;
   options->target_percentile = MRGI_REFERENCE_DEFAULT_PERCENTILE;
@@ -69,6 +70,9 @@ mrgi_status mrgi_reference_options_validate(const mrgi_reference_options* o, mrg
     s = ref_check_int("height", o->height, 1, MRGI_REFERENCE_MAX_DIMENSION, err);
   if (!s)
     s = ref_check_int("pixel_samples", o->pixel_samples, 1, MRGI_REFERENCE_MAX_PIXEL_SAMPLES, err);
+  if (!s)
+    s = ref_check_int("pixel_filter", o->pixel_filter, MRGI_REFERENCE_PIXEL_BOX,
+                      MRGI_REFERENCE_PIXEL_CENTER, err);
   if (!s)
     s = ref_check_int("indirect_samples", o->indirect_samples, 0,
                       MRGI_REFERENCE_MAX_INDIRECT_SAMPLES, err);

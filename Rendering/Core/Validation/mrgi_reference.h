@@ -56,7 +56,16 @@
  *   adding area lights.
  *
  * Images (all width x height, row 0 = TOP, box filter over the jittered
- * primary rays of all passes; a primary ray that misses contributes 0):
+ * primary rays of all passes; a primary ray that misses contributes 0).
+ * ::mrgi_reference_options::pixel_filter MRGI_REFERENCE_PIXEL_CENTER instead
+ * shoots every primary ray through the pixel's centre, as a rasterizer
+ * samples a pixel: the truth of a GPU image whose pixels are centre samples
+ * (no multisampling). Against the box-filtered truth such an image differs
+ * at every silhouette and shadow edge (each pixel there is one sample of a
+ * step the truth averages); against the centre-sampled truth only where its
+ * light is wrong. The random streams are the same in both modes (the
+ * jitter is drawn and ignored), so the two truths differ only by where the
+ * primary rays go.
  * - direct: L_direct = albedo * sum over lights of X (and of X_area of the
  *   area lights), with exact shadows (an occlusion ray to each
  *   positional/spot light, to infinity against a directional light's travel
@@ -177,6 +186,11 @@ extern "C" {
  */
 #define MRGI_REFERENCE_MAX_RAY_HITS 256
 
+/** ::mrgi_reference_options::pixel_filter: jittered primary rays over the pixel square (a box filter). */
+#define MRGI_REFERENCE_PIXEL_BOX 0
+/** ::mrgi_reference_options::pixel_filter: every primary ray through the pixel's centre. */
+#define MRGI_REFERENCE_PIXEL_CENTER 1
+
 /** Where a render stands, handed to ::mrgi_reference_progress_fn after each pass. */
 typedef struct mrgi_reference_progress
 {
@@ -220,6 +234,7 @@ typedef struct mrgi_reference_options
   int32_t width;                /**< Pixels per row, 1..MRGI_REFERENCE_MAX_DIMENSION. Default 256. */
   int32_t height;               /**< Rows, 1..MRGI_REFERENCE_MAX_DIMENSION. Default 256. */
   int32_t pixel_samples;        /**< Jittered primary rays per pixel per pass, 1..MRGI_REFERENCE_MAX_PIXEL_SAMPLES. Default 1. */
+  int32_t pixel_filter;         /**< MRGI_REFERENCE_PIXEL_BOX (default) or MRGI_REFERENCE_PIXEL_CENTER: where the primary rays cross the pixel. */
   int32_t indirect_samples;     /**< Bounce rays per primary hit per pass, 0..MRGI_REFERENCE_MAX_INDIRECT_SAMPLES; 0 = no indirect. Default 16. */
   double target_relative_error; /**< Stop once pixel_error and direct_pixel_error are <= this (finite, >= 0); 0 = run max_passes. Default MRGI_REFERENCE_DEFAULT_TARGET. */
   double target_percentile;     /**< The quantile of the per-pixel relative standard error that pixel_error reports, in (0, 1]. Default MRGI_REFERENCE_DEFAULT_PERCENTILE (0.95). */

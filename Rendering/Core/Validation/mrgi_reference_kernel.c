@@ -470,7 +470,12 @@ static void ref_render_pixel(ref_worker* w, int32_t x, int32_t y)
   double direct_estimate = 0.0;
   for (int32_t sample = 0; sample < o->pixel_samples; ++sample)
   {
-    const double jx = ref_rng_unit(&rng), jy = ref_rng_unit(&rng);
+    /* Drawn in both modes: the later draws of `rng` stay the same. */
+    double jx = ref_rng_unit(&rng), jy = ref_rng_unit(&rng);
+    if (o->pixel_filter == MRGI_REFERENCE_PIXEL_CENTER)
+    {
+      jx = jy = 0.5;
+    }
     const double sx = 2.0 * ((double)x + jx) / (double)o->width - 1.0;
     const double sy = 1.0 - 2.0 * ((double)y + jy) / (double)o->height;
     double org[3], dir[3];
