@@ -387,6 +387,7 @@ int main(int argc, char* argv[])
       }
     }
   }
+  mrgi->GetVoxelization()->SetOffsetAlongRay(o.VoxelOffset);
   if (o.VoxelSize > 0)
   {
     mrgi->GetVoxelization()->SetVoxelSide(static_cast<int>(o.VoxelSize));

@@ -388,6 +388,13 @@ const std::vector<OptionSection>& OptionTable()
               { "incremental", vtkMRGIPass::VisibilityIncremental } }) },
         { { "--voxel-size" }, "N", "voxel buffer side for the visibility, 1..4096 (default: automatic, voxels about as wide as deep, 128..512)",
           Integer(&Options::VoxelSize, 1, MaxVoxelSize) },
+        { { "--voxel-offset" }, "normals|receiver|both",
+          "direction of the march's bias at the ends: along their normals (default),\n"
+          "along the ray at the receiver, or at both ends (keeps penumbrae past edges)",
+          Choice<int>(&Options::VoxelOffset,
+            { { "normals", vtkMRGIVoxelization::OffsetNormals },
+              { "receiver", vtkMRGIVoxelization::OffsetRayAtReceiver },
+              { "both", vtkMRGIVoxelization::OffsetRayAtBoth } }) },
         { { "--visibility-interleave" }, "on|off",
           "incremental visibility: 2x2 interleaved light samples (default off)",
           OnOff(&Options::VisibilityInterleave) },

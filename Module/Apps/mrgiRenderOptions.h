@@ -91,6 +91,7 @@ struct Options
   long long AreaLightSamples = 256;
   int AreaLightVisibility = vtkMRGIPass::VisibilityIncremental;
   long long VoxelSize = 0; // 0: automatic (vtkMRGIVoxelization::AutomaticVoxelSize)
+  int VoxelOffset = 0;     // vtkMRGIVoxelization::OffsetAlongRayMode
   bool AreaLightSpecular = true;
   int AreaLightSpecularResolution = vtkMRGIPass::SpecularFullResolution;
   bool VisibilityInterleave = false;

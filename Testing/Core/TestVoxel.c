@@ -674,6 +674,61 @@ static test_view scene_view(const scene* s, int32_t res)
   return t;
 }
 
+/* The offset's direction (mrgi_voxel_march_params::offset_along_ray): a
+ * receiver on a wall facing the camera (normal +z) under a slab standing in
+ * front of the wall, lights above and in front. Rays from the wall climb
+ * past the slab's back edge; an offset along the normal moves them forward,
+ * into the slab's voxels (cornell-area's corner behind the tall block), an
+ * offset along the ray does not move them. */
+static void test_march_offset_direction(void)
+{
+  mrgi_error err;
+  scene s = { 0 };
+  scene_add(&s, -6, -3, -12.3, 6, 3, -12);       /* the wall, front face z = -12 */
+  scene_add(&s, -3, -0.6, -10.8, 3, -0.4, -8.5); /* the slab, back edge 1.2 in front of it */
+  test_view t = scene_view(&s, 64);
+  const float wall_n[3] = { 0, 0, 1 };
+  const float down[3] = { 0, -1, 0 };
+  int32_t false_hidden[3] = { 0, 0, 0 }, false_visible[3] = { 0, 0, 0 }, visible = 0, rays = 0;
+  for (int32_t mode = MRGI_VOXEL_OFFSET_NORMALS; mode <= MRGI_VOXEL_OFFSET_RAY_AT_BOTH; ++mode)
+  {
+    t.view.params.offset_along_ray = mode;
+    MRGI_CHECK(mrgi_voxel_view_check(&t.view, &err) == MRGI_OK);
+    for (int32_t i = 0; i < 24 * 24; ++i)
+    {
+      const float P[3] = { -2.0f + 4.0f * (float)(i % 24) / 23.0f,
+                           -2.8f + 2.0f * (float)(i / 24) / 23.0f, -12.0f };
+      for (int32_t j = 0; j < 8 * 8; ++j)
+      {
+        const float L[3] = { -1.0f + 2.0f * (float)(j % 8) / 7.0f, 2.5f,
+                             -11.8f + 3.8f * (float)(j / 8) / 7.0f };
+        const int exact = exact_visible(&s, P, wall_n, L);
+        const int marched = mrgi_voxel_march(&t.view, P, wall_n, L, down);
+        false_hidden[mode] += exact && !marched;
+        false_visible[mode] += !exact && marched;
+        if (mode == 0)
+        {
+          visible += exact;
+          ++rays;
+        }
+      }
+    }
+    printf("offset direction %d (0 normals, 1 ray at the receiver, 2 ray at both ends): of %d rays "
+           "(%d visible) %d falsely hidden, %d falsely visible\n",
+           (int)mode, (int)rays, (int)visible, (int)false_hidden[mode], (int)false_visible[mode]);
+  }
+  MRGI_CHECK(visible > rays / 10 && visible < rays - rays / 10);
+  /* the normal offset hides penumbra rays that the ray offset keeps */
+  MRGI_CHECK(false_hidden[0] > 100);
+  MRGI_CHECK(2 * false_hidden[1] < false_hidden[0] && 2 * false_hidden[2] < false_hidden[0]);
+  MRGI_CHECK(false_visible[1] <= false_visible[0] + rays / 100 &&
+             false_visible[2] <= false_visible[0] + rays / 100);
+  t.view.params.offset_along_ray = 3;
+  MRGI_CHECK(mrgi_voxel_view_check(&t.view, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(strstr(err.message, "offset_along_ray") != NULL);
+  free(t.voxels);
+}
+
 static void test_march_walls(void)
 {
   mrgi_error err;
@@ -2195,6 +2250,7 @@ int main(int argc, char** argv)
     MRGI_TEST_CASE(test_march_walls),
     MRGI_TEST_CASE(test_march_thin_wall),
     MRGI_TEST_CASE(test_march_grazing),
+    MRGI_TEST_CASE(test_march_offset_direction),
     MRGI_TEST_CASE(test_march_extremes),
     MRGI_TEST_CASE(test_march_symmetry),
     MRGI_TEST_CASE(test_masks_and_metric),

@@ -710,6 +710,7 @@ Comparison RunCase(const std::string& name, vtkRenderWindow* window, vtkRenderer
 mrgi_voxel_march_params Params(int steps, float offset, int radius)
 {
   mrgi_voxel_march_params p;
+  mrgi_voxel_march_params_default(&p);
   p.max_steps = steps;
   p.normal_offset = offset;
   p.skip_radius = radius;
@@ -768,6 +769,20 @@ void CornellBox(bool parallel)
     seed + 6);
   RunCase(name + ", large bias", window, renderer, vox, gpu, 97, 61, range,
     Params(MRGI_VOXEL_MAX_STEPS, 4.0f, 3), seed + 7);
+  // The offset along the ray, at one end and at both; a twin offsetting
+  // along the normals must fail (the mode reaches the GPU).
+  for (int mode : { MRGI_VOXEL_OFFSET_RAY_AT_RECEIVER, MRGI_VOXEL_OFFSET_RAY_AT_BOTH })
+  {
+    mrgi_voxel_march_params along = defaults;
+    along.offset_along_ray = mode;
+    const Comparison alongRight = RunCase(name + (mode == MRGI_VOXEL_OFFSET_RAY_AT_BOTH ?
+      ", offset along the ray at both ends" : ", offset along the ray at the receiver"),
+      window, renderer, vox, gpu, 128, 128, range, along, seed + 8 + mode, &defaults, &wrong);
+    std::printf("  twin offsetting along the normals (GPU along the ray, mode %d): %zu differ = %.3f%% "
+                "of marched (must exceed 10x the parity's %zu)\n",
+      mode, wrong.Mismatch, 100.0 * wrong.Rate(), alongRight.Mismatch);
+    MRGI_TEST_CHECK(wrong.Mismatch > 10 * (alongRight.Mismatch + 10));
+  }
   vox->ReleaseGraphicsResources(window);
 }
 
@@ -859,6 +874,14 @@ void Api()
   MRGI_TEST_CHECK(vox->GetSkipRadius() == 0);
   vox->SetSkipRadius(100);
   MRGI_TEST_CHECK(vox->GetSkipRadius() == MRGI_VOXEL_MAX_SKIP_RADIUS);
+  MRGI_TEST_CHECK(vox->GetOffsetAlongRay() == vtkMRGIVoxelization::OffsetNormals &&
+    got.offset_along_ray == MRGI_VOXEL_OFFSET_NORMALS);
+  vox->SetOffsetAlongRay(7);
+  MRGI_TEST_CHECK(vox->GetOffsetAlongRay() == vtkMRGIVoxelization::OffsetRayAtBoth);
+  vox->SetOffsetAlongRay(-1);
+  MRGI_TEST_CHECK(vox->GetOffsetAlongRay() == vtkMRGIVoxelization::OffsetNormals);
+  vox->SetOffsetAlongRayToReceiver();
+  MRGI_TEST_CHECK(vox->GetOffsetAlongRay() == vtkMRGIVoxelization::OffsetRayAtReceiver);
   vox->GetMarchParams(&got);
   mrgi_error err;
   MRGI_TEST_CHECK(mrgi_voxel_march_params_validate(&got, &err) == MRGI_OK);

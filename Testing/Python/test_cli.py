@@ -280,6 +280,11 @@ def main():
                        "--reference-pixel", "middle", "-q")
     check(code != 0 and "--reference-pixel" in err and "box or center" in err,
           "--reference-pixel refuses other values by name: " + err)
+    code, _, err = run("cornell-area", "-o", ref_exr, "--size", "24x24", "--voxel-offset", "both", "-q")
+    check(code == 0 and os.path.getsize(ref_exr) > 0, "--voxel-offset both: " + err)
+    code, _, err = run("cornell-area", "-o", ref_exr, "--size", "24x24", "--voxel-offset", "sideways", "-q")
+    check(code != 0 and "--voxel-offset" in err and "normals, receiver or both" in err,
+          "--voxel-offset refuses other values by name: " + err)
     # stderr is a pipe here, no terminal: no per-pass lines unless --progress
     check("ground truth: pass" not in err, "no progress lines into a pipe without --progress: " + err)
     code, _, err = run("cornell-spot", "-o", ref_exr, "--size", "32x32", "--reference",

@@ -13,6 +13,7 @@ void mrgi_voxel_march_params_default(mrgi_voxel_march_params* params)
   params->max_steps = MRGI_VOXEL_DEFAULT_MAX_STEPS;
   params->normal_offset = MRGI_VOXEL_DEFAULT_NORMAL_OFFSET;
   params->skip_radius = MRGI_VOXEL_DEFAULT_SKIP_RADIUS;
+  params->offset_along_ray = MRGI_VOXEL_OFFSET_NORMALS;
 }
 
 mrgi_status mrgi_voxel_march_params_validate(const mrgi_voxel_march_params* params,
@@ -39,7 +40,15 @@ mrgi_status mrgi_voxel_march_params_validate(const mrgi_voxel_march_params* para
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
                           "voxel march skip_radius %d is outside 0..%d voxels",
                           params->skip_radius, MRGI_VOXEL_MAX_SKIP_RADIUS);
+  }  if (params->offset_along_ray < MRGI_VOXEL_OFFSET_NORMALS ||
+      params->offset_along_ray > MRGI_VOXEL_OFFSET_RAY_AT_BOTH)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+                          "voxel march offset_along_ray %d is outside %d..%d",
+                          (int)params->offset_along_ray, MRGI_VOXEL_OFFSET_NORMALS,
+                          MRGI_VOXEL_OFFSET_RAY_AT_BOTH);
   }
+
   return MRGI_OK;
 }
 
@@ -173,6 +182,33 @@ typedef enum mrgi_voxel_outcome
   MRGI_VOXEL_HIT       /* a step hit; *hit_fraction set (from_light only) */
 } mrgi_voxel_outcome;
 
+/* Step 3 at one end X (in place): the offset of height h above X's plane,
+ * along the ray where the ray leaves at cosine c >= FULL_COS to the normal n,
+ * along n below MIN_COS, blended between; the part along the ray at most
+ * MAX_SHARE of the segment (then the rest of the height along n).
+ * toward: the segment from X to the other end, of length `length` > 0;
+ * n2 = |n|^2 > 0 and dot(n, toward) > 0 (the horizon test passed). */
+static void mrgi_voxel_offset_end(float X[3], const float* n, float n2, const float toward[3],
+                                  float length, float h, int along_ray)
+{
+  const float inv_n = 1.0f / sqrtf(n2);
+  const float u[3] = { toward[0] / length, toward[1] / length, toward[2] / length };
+  const float unit_n[3] = { n[0] * inv_n, n[1] * inv_n, n[2] * inv_n };
+  const float c = mrgi_dot3(unit_n, u);
+  const float w = along_ray ? fminf(fmaxf((c - MRGI_VOXEL_ALONG_RAY_MIN_COS) /
+                                            (MRGI_VOXEL_ALONG_RAY_FULL_COS -
+                                             MRGI_VOXEL_ALONG_RAY_MIN_COS),
+                                          0.0f),
+                                    1.0f)
+                            : 0.0f;
+  const float along = fminf(w * h / c, MRGI_VOXEL_ALONG_RAY_MAX_SHARE * length);
+  const float up = fmaxf(h - along * c, 0.0f);
+  for (int k = 0; k < 3; ++k)
+  {
+    X[k] += along * u[k] + up * unit_n[k];
+  }
+}
+
 /* Steps 1-9. from_light: walk k = n-1..0 and compute the hit's fraction. */
 static mrgi_voxel_outcome mrgi_voxel_march_core(const mrgi_voxel_view* view, const float P[3],
                                                 const float* Np, const float L[3],
@@ -200,21 +236,20 @@ static mrgi_voxel_outcome mrgi_voxel_march_core(const mrgi_voxel_view* view, con
   /* 3. */
   float O[3] = { P[0], P[1], P[2] };
   float E[3] = { L[0], L[1], L[2] };
+  const float length = sqrtf(length2);
   if (np2 > 0.0f)
   {
-    const float s = view->params.normal_offset * mrgi_voxel_size_at(view, -P[2]) / sqrtf(np2);
-    for (int c = 0; c < 3; ++c)
-    {
-      O[c] += s * Np[c];
-    }
+    const float toward[3] = { D[0], D[1], D[2] };
+    mrgi_voxel_offset_end(O, Np, np2, toward, length,
+                          view->params.normal_offset * mrgi_voxel_size_at(view, -P[2]),
+                          view->params.offset_along_ray != MRGI_VOXEL_OFFSET_NORMALS);
   }
   if (nl2 > 0.0f)
   {
-    const float s = view->params.normal_offset * mrgi_voxel_size_at(view, -L[2]) / sqrtf(nl2);
-    for (int c = 0; c < 3; ++c)
-    {
-      E[c] += s * Nl[c];
-    }
+    const float toward[3] = { -D[0], -D[1], -D[2] };
+    mrgi_voxel_offset_end(E, Nl, nl2, toward, length,
+                          view->params.normal_offset * mrgi_voxel_size_at(view, -L[2]),
+                          view->params.offset_along_ray == MRGI_VOXEL_OFFSET_RAY_AT_BOTH);
   }
   /* 4. */
   float fO[6], fE[6];

@@ -33,7 +33,18 @@
  *     pixel's eye-space width and height at X's depth and the slice
  *     thickness. The segment marched runs from O = P + normal_offset vs(P) n_p
  *     to E = L + normal_offset vs(L) n_l (n = unit normal; no offset without
- *     a normal). normal_offset is in voxel sizes.
+ *     a normal). normal_offset is in voxel sizes. That is the default
+ *     direction (offset_along_ray MRGI_VOXEL_OFFSET_NORMALS). Along the ray
+ *     instead (MRGI_VOXEL_OFFSET_RAY_AT_RECEIVER: at P; _RAY_AT_BOTH: at
+ *     both ends), an end X with height h = normal_offset vs(X), unit normal
+ *     n and unit direction u to the other end, c = dot(n, u) > 0, moves
+ *       X + a u + (h - a c) n,   a = min(w h / c, MAX_SHARE |D|),
+ *       w = clamp((c - MIN_COS) / (FULL_COS - MIN_COS), 0, 1)
+ *     (MRGI_VOXEL_ALONG_RAY_*: 0.25, 0.5, 0.25): the same height h above
+ *     X's plane, reached along the ray where it leaves steeply (w = 1),
+ *     along the normal where it grazes (w = 0; a grazing ray would travel
+ *     far along it), blended between, at most a quarter of the segment
+ *     along it (the ends never cross) (mrgi_voxel_offset_end()).
  *  4. Clip O -> E against the view frustum (Liang-Barsky, t in [0, 1]),
  *     six half-spaces f(X) >= 0 with w = d or 1:
  *       d - near, far - d, scale_x x + (1 + offset_x) w,
@@ -102,6 +113,18 @@
  * reach it at a grazing angle (TestVoxel: 56% of reversed
  * surface-to-surface rays change their answer).
  *
+ * Why along the ray: an offset along a normal moves the whole ray sideways
+ * (by h at the end, shrinking towards the other end), towards whatever lies
+ * on the normal's side. Rays that pass an occluder's edge closely, the
+ * penumbra, then meet its voxels (cornell-area's back wall behind the tall
+ * block, whose receivers face the block, is too dark there). Along the ray
+ * the segment is the exact one, shortened. The cost: occluders within the
+ * skipped part (at most 2 h along the ray) are missed, and an emitter set
+ * into geometry (the living room's TV) meets its surroundings' voxels along
+ * rays the normal offset lifted clear of them. Which is better depends on
+ * the scene; measured in Documentation/Status.md and by TestVoxel
+ * (test_march_offset_direction, random boxes), so the default stays NPW10's.
+ *
  * ## Symmetry
  *
  * Swapping the ends (receiver <-> light, with their normals) marches the
@@ -110,8 +133,9 @@
  * the answer is the same except (a) where float rounding moves a step's
  * midpoint or a depth across a pixel or slice boundary (the clip parameters
  * and interpolations are computed from the other end), (b) when only one
- * end has a normal (the offset and horizon test then apply to one end), and
- * (c) when the step cap binds (steps longer than a pixel read other pixels
+ * end has a normal (the offset and horizon test then apply to one end),
+ * (c) with MRGI_VOXEL_OFFSET_RAY_AT_RECEIVER (the ends are offset
+ * differently), and (d) when the step cap binds (steps longer than a pixel read other pixels
  * when walked from the other end only through (a)). TestVoxel measures it.
  *
  * ## Precision
@@ -156,6 +180,18 @@ extern "C" {
 #define MRGI_VOXEL_DEFAULT_NORMAL_OFFSET 1.5f
 /** Largest accepted normal offset, in voxel sizes. */
 #define MRGI_VOXEL_MAX_NORMAL_OFFSET 16.0f
+/** mrgi_voxel_march_params::offset_along_ray: both ends offset along their normals (NPW10 4.3; default). */
+#define MRGI_VOXEL_OFFSET_NORMALS 0
+/** ... the receiver's end along the ray (blended, see "The bias"), the light's along its normal. */
+#define MRGI_VOXEL_OFFSET_RAY_AT_RECEIVER 1
+/** ... both ends along the ray (blended). */
+#define MRGI_VOXEL_OFFSET_RAY_AT_BOTH 2
+/** Offset direction at an end whose cosine c to the other end is below this: along the normal. */
+#define MRGI_VOXEL_ALONG_RAY_MIN_COS 0.25f
+/** ... at or above this: along the ray (to the same height); a linear blend between (see "The bias"). */
+#define MRGI_VOXEL_ALONG_RAY_FULL_COS 0.5f
+/** Most of the segment one end's offset moves along the ray (the ends never cross). */
+#define MRGI_VOXEL_ALONG_RAY_MAX_SHARE 0.25f
 /** Default skip box radius, in voxels. */
 #define MRGI_VOXEL_DEFAULT_SKIP_RADIUS 1
 /** Largest accepted skip box radius, in voxels. */
@@ -181,6 +217,7 @@ typedef struct mrgi_voxel_march_params
   int32_t max_steps;   /**< Step cap, 1..MRGI_VOXEL_MAX_STEPS. */
   float normal_offset; /**< Bias along the normals in voxel sizes, [0, MRGI_VOXEL_MAX_NORMAL_OFFSET]. */
   int32_t skip_radius; /**< Skip box radius in voxels, 0..MRGI_VOXEL_MAX_SKIP_RADIUS. */
+  int32_t offset_along_ray; /**< MRGI_VOXEL_OFFSET_NORMALS (default), _RAY_AT_RECEIVER or _RAY_AT_BOTH. */
 } mrgi_voxel_march_params;
 
 /** @brief Defaults: the MRGI_VOXEL_DEFAULT_* values. NULL-safe. */

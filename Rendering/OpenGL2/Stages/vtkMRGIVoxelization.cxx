@@ -34,6 +34,11 @@
 #include <string>
 #include <vector>
 
+static_assert(vtkMRGIVoxelization::OffsetNormals == MRGI_VOXEL_OFFSET_NORMALS &&
+    vtkMRGIVoxelization::OffsetRayAtReceiver == MRGI_VOXEL_OFFSET_RAY_AT_RECEIVER &&
+    vtkMRGIVoxelization::OffsetRayAtBoth == MRGI_VOXEL_OFFSET_RAY_AT_BOTH,
+  "the offset modes are the core's");
+
 vtkStandardNewMacro(vtkMRGIVoxelization);
 
 namespace
@@ -164,6 +169,7 @@ vtkMRGIVoxelization::vtkMRGIVoxelization()
   mrgi_voxel_march_params_default(&params);
   this->MaxSteps = params.max_steps;
   this->NormalOffset = params.normal_offset;
+  this->OffsetAlongRay = params.offset_along_ray;
   this->SkipRadius = params.skip_radius;
 }
 
@@ -366,6 +372,17 @@ void vtkMRGIVoxelization::SetNormalOffset(double offset)
 }
 
 //------------------------------------------------------------------------------
+void vtkMRGIVoxelization::SetOffsetAlongRay(int mode)
+{
+  mode = std::min(std::max(mode, static_cast<int>(OffsetNormals)), static_cast<int>(OffsetRayAtBoth));
+  if (mode != this->OffsetAlongRay)
+  {
+    this->OffsetAlongRay = mode;
+    this->Modified();
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkMRGIVoxelization::SetSkipRadius(int radius)
 {
   radius = std::min(std::max(radius, 0), MRGI_VOXEL_MAX_SKIP_RADIUS);
@@ -384,6 +401,7 @@ void vtkMRGIVoxelization::GetMarchParams(mrgi_voxel_march_params* params) const
     params->max_steps = this->MaxSteps;
     params->normal_offset = static_cast<float>(this->NormalOffset);
     params->skip_radius = this->SkipRadius;
+    params->offset_along_ray = this->OffsetAlongRay;
   }
 }
 
@@ -477,6 +495,10 @@ bool vtkMRGIVoxelization::SetMarchUniforms(
   if (used("mrgiVoxelSkipRadius"))
   {
     program->SetUniformi("mrgiVoxelSkipRadius", params.skip_radius);
+  }
+  if (used("mrgiVoxelOffsetAlongRay"))
+  {
+    program->SetUniformi("mrgiVoxelOffsetAlongRay", params.offset_along_ray);
   }
   return true;
 }
@@ -833,6 +855,10 @@ void vtkMRGIVoxelization::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AutomaticVoxelSize: " << (this->AutomaticVoxelSize ? "on" : "off") << "\n";
   os << indent << "MaxSteps: " << this->MaxSteps << "\n";
   os << indent << "NormalOffset: " << this->NormalOffset << "\n";
+  os << indent << "OffsetAlongRay: "
+     << (this->OffsetAlongRay == OffsetRayAtBoth ? "both ends"
+         : this->OffsetAlongRay == OffsetRayAtReceiver ? "receiver end" : "off (normals)")
+     << "\n";
   os << indent << "SkipRadius: " << this->SkipRadius << "\n";
   os << indent << "Voxelized: " << (in.HasGrid ? "yes" : "no") << "\n";
   if (in.HasGrid)

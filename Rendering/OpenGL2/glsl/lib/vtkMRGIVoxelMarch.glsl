@@ -40,6 +40,7 @@ uniform int mrgiVoxelParallel; // 0 perspective, 1 parallel
 // mrgi_voxel_march_params.
 uniform int mrgiVoxelMaxSteps;       // 1..MRGI_VOXEL_MAX_STEPS
 uniform float mrgiVoxelNormalOffset; // bias along the normals, in voxel sizes
+uniform int mrgiVoxelOffsetAlongRay; // MRGI_VOXEL_OFFSET_* (mrgi_voxel_march_params::offset_along_ray)
 uniform int mrgiVoxelSkipRadius;     // skip box radius, in voxels
 
 // Outcomes of mrgiVoxelMarchCore(): the C twin's private mrgi_voxel_outcome
@@ -149,6 +150,25 @@ uvec4 mrgiVoxelApplyBox(ivec4 box, int radius, int px, int py, uvec4 mask)
 // Steps 1-9 of mrgi_voxel_march.h (mrgi_voxel_march_core). fromLight walks
 // the steps k = n-1 down to 0 and sets hitFraction (the occluder distance of
 // the variance shadow query, NPW10 3.3.3) on a hit; otherwise hitFraction is 1.
+// Step 3 at one end X: the offset of height h above X's plane, along the
+// ray where it leaves at cosine >= MRGI_VOXEL_ALONG_RAY_FULL_COS to the
+// normal, along the normal below MRGI_VOXEL_ALONG_RAY_MIN_COS, blended
+// between; at most MRGI_VOXEL_ALONG_RAY_MAX_SHARE of the segment along the
+// ray (mrgi_voxel_offset_end, same order of operations).
+vec3 mrgiVoxelOffsetEnd(vec3 X, vec3 n, float n2, vec3 toward, float segmentLength, float h, bool alongRay)
+{
+  float invN = 1.0 / sqrt(n2);
+  vec3 u = vec3(toward.x / segmentLength, toward.y / segmentLength, toward.z / segmentLength);
+  vec3 unitN = vec3(n.x * invN, n.y * invN, n.z * invN);
+  float c = mrgiVoxelDot(unitN, u);
+  float w = alongRay ? min(max((c - MRGI_VOXEL_ALONG_RAY_MIN_COS) /
+                      (MRGI_VOXEL_ALONG_RAY_FULL_COS - MRGI_VOXEL_ALONG_RAY_MIN_COS), 0.0), 1.0) : 0.0;
+  float along = min(w * h / c, MRGI_VOXEL_ALONG_RAY_MAX_SHARE * segmentLength);
+  float up = max(h - along * c, 0.0);
+  return vec3(X.x + (along * u.x + up * unitN.x), X.y + (along * u.y + up * unitN.y),
+    X.z + (along * u.z + up * unitN.z));
+}
+
 int mrgiVoxelMarchCore(usampler2D voxels, vec3 P, vec3 Np, vec3 L, vec3 Nl, bool fromLight,
   out float hitFraction)
 {
@@ -176,15 +196,16 @@ int mrgiVoxelMarchCore(usampler2D voxels, vec3 P, vec3 Np, vec3 L, vec3 Nl, bool
   // normal_offset voxel sizes (NPW10 4.3: "a bias to push the ray origin away").
   vec3 O = P;
   vec3 E = L;
+  float segmentLength = sqrt(length2);
   if (np2 > 0.0)
   {
-    float s = mrgiVoxelNormalOffset * mrgiVoxelSizeAt(-P.z) / sqrt(np2);
-    O += s * Np;
+    O = mrgiVoxelOffsetEnd(P, Np, np2, D, segmentLength, mrgiVoxelNormalOffset * mrgiVoxelSizeAt(-P.z),
+      mrgiVoxelOffsetAlongRay != MRGI_VOXEL_OFFSET_NORMALS);
   }
   if (nl2 > 0.0)
   {
-    float s = mrgiVoxelNormalOffset * mrgiVoxelSizeAt(-L.z) / sqrt(nl2);
-    E += s * Nl;
+    E = mrgiVoxelOffsetEnd(L, Nl, nl2, -D, segmentLength, mrgiVoxelNormalOffset * mrgiVoxelSizeAt(-L.z),
+      mrgiVoxelOffsetAlongRay == MRGI_VOXEL_OFFSET_RAY_AT_BOTH);
   }
   // 4. Liang-Barsky clip of O -> E to the view frustum: a screen-space
   // method knows no occluders outside it (and the near plane cuts off what
