@@ -40,7 +40,8 @@ mrgi_status mrgi_voxel_march_params_validate(const mrgi_voxel_march_params* para
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
                           "voxel march skip_radius %d is outside 0..%d voxels",
                           params->skip_radius, MRGI_VOXEL_MAX_SKIP_RADIUS);
-  }  if (params->offset_along_ray < MRGI_VOXEL_OFFSET_NORMALS ||
+  }
+  if (params->offset_along_ray < MRGI_VOXEL_OFFSET_NORMALS ||
       params->offset_along_ray > MRGI_VOXEL_OFFSET_RAY_AT_BOTH)
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
@@ -48,7 +49,6 @@ mrgi_status mrgi_voxel_march_params_validate(const mrgi_voxel_march_params* para
                           (int)params->offset_along_ray, MRGI_VOXEL_OFFSET_NORMALS,
                           MRGI_VOXEL_OFFSET_RAY_AT_BOTH);
   }
-
   return MRGI_OK;
 }
 
@@ -192,15 +192,21 @@ static void mrgi_voxel_offset_end(float X[3], const float* n, float n2, const fl
                                   float length, float h, int along_ray)
 {
   const float inv_n = 1.0f / sqrtf(n2);
-  const float u[3] = { toward[0] / length, toward[1] / length, toward[2] / length };
   const float unit_n[3] = { n[0] * inv_n, n[1] * inv_n, n[2] * inv_n };
+  if (!along_ray)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      X[k] += h * unit_n[k];
+    }
+    return;
+  }
+  const float u[3] = { toward[0] / length, toward[1] / length, toward[2] / length };
   const float c = mrgi_dot3(unit_n, u);
-  const float w = along_ray ? fminf(fmaxf((c - MRGI_VOXEL_ALONG_RAY_MIN_COS) /
-                                            (MRGI_VOXEL_ALONG_RAY_FULL_COS -
-                                             MRGI_VOXEL_ALONG_RAY_MIN_COS),
-                                          0.0f),
-                                    1.0f)
-                            : 0.0f;
+  const float w = fminf(fmaxf((c - MRGI_VOXEL_ALONG_RAY_MIN_COS) /
+                                (MRGI_VOXEL_ALONG_RAY_FULL_COS - MRGI_VOXEL_ALONG_RAY_MIN_COS),
+                              0.0f),
+                        1.0f);
   const float along = fminf(w * h / c, MRGI_VOXEL_ALONG_RAY_MAX_SHARE * length);
   const float up = fmaxf(h - along * c, 0.0f);
   for (int k = 0; k < 3; ++k)
@@ -239,15 +245,14 @@ static mrgi_voxel_outcome mrgi_voxel_march_core(const mrgi_voxel_view* view, con
   const float length = sqrtf(length2);
   if (np2 > 0.0f)
   {
-    const float toward[3] = { D[0], D[1], D[2] };
-    mrgi_voxel_offset_end(O, Np, np2, toward, length,
+    mrgi_voxel_offset_end(O, Np, np2, D, length,
                           view->params.normal_offset * mrgi_voxel_size_at(view, -P[2]),
                           view->params.offset_along_ray != MRGI_VOXEL_OFFSET_NORMALS);
   }
   if (nl2 > 0.0f)
   {
-    const float toward[3] = { -D[0], -D[1], -D[2] };
-    mrgi_voxel_offset_end(E, Nl, nl2, toward, length,
+    const float back[3] = { -D[0], -D[1], -D[2] };
+    mrgi_voxel_offset_end(E, Nl, nl2, back, length,
                           view->params.normal_offset * mrgi_voxel_size_at(view, -L[2]),
                           view->params.offset_along_ray == MRGI_VOXEL_OFFSET_RAY_AT_BOTH);
   }

@@ -158,11 +158,15 @@ uvec4 mrgiVoxelApplyBox(ivec4 box, int radius, int px, int py, uvec4 mask)
 vec3 mrgiVoxelOffsetEnd(vec3 X, vec3 n, float n2, vec3 toward, float segmentLength, float h, bool alongRay)
 {
   float invN = 1.0 / sqrt(n2);
-  vec3 u = vec3(toward.x / segmentLength, toward.y / segmentLength, toward.z / segmentLength);
   vec3 unitN = vec3(n.x * invN, n.y * invN, n.z * invN);
+  if (!alongRay)
+  {
+    return vec3(X.x + h * unitN.x, X.y + h * unitN.y, X.z + h * unitN.z);
+  }
+  vec3 u = vec3(toward.x / segmentLength, toward.y / segmentLength, toward.z / segmentLength);
   float c = mrgiVoxelDot(unitN, u);
-  float w = alongRay ? min(max((c - MRGI_VOXEL_ALONG_RAY_MIN_COS) /
-                      (MRGI_VOXEL_ALONG_RAY_FULL_COS - MRGI_VOXEL_ALONG_RAY_MIN_COS), 0.0), 1.0) : 0.0;
+  float w = min(max((c - MRGI_VOXEL_ALONG_RAY_MIN_COS) /
+                      (MRGI_VOXEL_ALONG_RAY_FULL_COS - MRGI_VOXEL_ALONG_RAY_MIN_COS), 0.0), 1.0);
   float along = min(w * h / c, MRGI_VOXEL_ALONG_RAY_MAX_SHARE * segmentLength);
   float up = max(h - along * c, 0.0);
   return vec3(X.x + (along * u.x + up * unitN.x), X.y + (along * u.y + up * unitN.y),
