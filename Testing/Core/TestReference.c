@@ -72,6 +72,19 @@ static void directional(mrgi_light* light, double dx, double dy, double dz, doub
   light->cone_angle_deg = 90.0;
 }
 
+/* A spot light 5 above the origin aiming straight down, cone 30 degrees,
+ * exponent 2, intensity 2: X = 2 (5/d)^3 on the floor inside r < 5 tan 30. */
+static void spot_down(mrgi_light* spot)
+{
+  memset(spot, 0, sizeof(*spot));
+  spot->type = MRGI_LIGHT_SPOT;
+  spot->position[1] = 5.0;
+  spot->color[0] = spot->color[1] = spot->color[2] = 1.0;
+  spot->intensity = 2.0;
+  spot->cone_angle_deg = 30.0;
+  spot->exponent = 2.0;
+}
+
 /* Ground (y = 0) point under continuous image coordinates (px, py) of the
  * straight-down camera: vertical field of view, aspect = width / height. */
 static void ground_point(double px, double py, int32_t width, int32_t height, double half_height,
@@ -194,14 +207,7 @@ static void test_direct(void)
   /* spot light 5 above the floor, cone 30 deg, exponent 2, intensity 2:
    * X = 2 * (5/d) * (5/d)^2 inside r < 5 tan 30, 0 outside. A 2:1 image
    * checks that the view angle is the vertical one. */
-  mrgi_light* spot = &scene.lights[0];
-  memset(spot, 0, sizeof(*spot));
-  spot->type = MRGI_LIGHT_SPOT;
-  spot->position[1] = 5.0;
-  spot->color[0] = spot->color[1] = spot->color[2] = 1.0;
-  spot->intensity = 2.0;
-  spot->cone_angle_deg = 30.0;
-  spot->exponent = 2.0;
+  spot_down(&scene.lights[0]);
   o = base_options(96, 48);
   o.pixel_samples = 4;
   render(&scene, &o, &r);
@@ -241,17 +247,23 @@ static void test_direct(void)
 
 /* ---- 2. shadows ---- */
 
+/* A floor under a 2x2 occluder at height 2, seen from 10 above, lit by a
+ * directional light travelling down and towards -x at 45 degrees: the
+ * occluder's shadow is x in [-3, -1], z in [-1, 1]. */
+static void make_shadow_scene(mrgi_scene* scene)
+{
+  MRGI_CHECK(mrgi_scene_create(scene, 2, NULL) == MRGI_OK);
+  make_square(&scene->meshes[0], "floor", 0, 0, 0, 10, 1, 0.5f);
+  make_square(&scene->meshes[1], "occluder", 0, 2, 0, 1, 1, 0.5f);
+  camera_down(scene, 10, 60);
+  scene->light_count = 1;
+  directional(&scene->lights[0], -1, -1, 0, 2.0);
+}
+
 static void test_shadows(void)
 {
   mrgi_scene scene;
-  MRGI_CHECK(mrgi_scene_create(&scene, 2, NULL) == MRGI_OK);
-  make_square(&scene.meshes[0], "floor", 0, 0, 0, 10, 1, 0.5f);
-  make_square(&scene.meshes[1], "occluder", 0, 2, 0, 1, 1, 0.5f);
-  camera_down(&scene, 10, 60);
-  scene.light_count = 1;
-  /* travels down and towards -x at 45 degrees: the occluder's shadow is
-   * x in [-3, -1], z in [-1, 1] */
-  directional(&scene.lights[0], -1, -1, 0, 2.0);
+  make_shadow_scene(&scene);
   const double lit = 0.5 * 2.0 * cos(pi / 4);
   const double half_h = 10.0 * tan(pi / 6);
   for (int shadows = 0; shadows < 2; ++shadows)
@@ -311,12 +323,7 @@ static void test_shadows(void)
 static void test_pixel_center(void)
 {
   mrgi_scene scene;
-  MRGI_CHECK(mrgi_scene_create(&scene, 2, NULL) == MRGI_OK);
-  make_square(&scene.meshes[0], "floor", 0, 0, 0, 10, 1, 0.5f);
-  make_square(&scene.meshes[1], "occluder", 0, 2, 0, 1, 1, 0.5f);
-  camera_down(&scene, 10, 60);
-  scene.light_count = 1;
-  directional(&scene.lights[0], -1, -1, 0, 2.0); /* shadow: x in [-3, -1], z in [-1, 1] */
+  make_shadow_scene(&scene);
   const double lit = 0.5 * 2.0 * cos(pi / 4);
   const double half_h = 10.0 * tan(pi / 6);
   const int32_t n = 61; /* odd: no pixel centre on x = 0 or z = 0 */
@@ -379,14 +386,7 @@ static void test_pixel_center(void)
   /* A spot light 5 above the floor (X = 2 (5/d)^3 inside its 30-degree
    * cone, as in test_direct) varies across every pixel: each centre-sampled
    * pixel is its centre's value, not a value of somewhere else in the pixel. */
-  mrgi_light* spot = &scene.lights[0];
-  memset(spot, 0, sizeof(*spot));
-  spot->type = MRGI_LIGHT_SPOT;
-  spot->position[1] = 5.0;
-  spot->color[0] = spot->color[1] = spot->color[2] = 1.0;
-  spot->intensity = 2.0;
-  spot->cone_angle_deg = 30.0;
-  spot->exponent = 2.0;
+  spot_down(&scene.lights[0]);
   {
     mrgi_reference_options o = base_options(n, n);
     o.pixel_filter = MRGI_REFERENCE_PIXEL_CENTER;
