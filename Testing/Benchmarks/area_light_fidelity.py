@@ -260,32 +260,22 @@ def main():
         scene.gi.ReleaseGraphicsResources(scene.window)
 
     speed = []
-    for side in [int(v) for v in args.speed_sizes.split(",") if v]:
-        for name in args.scenes.split(","):
-            scene = Scene(name, side)
-            if not scene.ok:
-                continue
-            scene.mr.SetPreset(presets["balanced"])
-            times = {}
-            # Interleaved, twice each: the machine's drift hits both alike.
-            for visibility in ("naive", "incremental", "naive", "incremental"):
-                scene.gi.SetAreaLightVisibility(getattr(mrgi.vtkMRGIPass, "Visibility" + visibility.capitalize()))
-                scene.frames(1)
-                times.setdefault(visibility, []).append(scene.frames(args.repeats).get("area", 0.0))
-            row = dict(scene=name, size=side, naive_ms=float(np.median(times["naive"])),
-                       incremental_ms=float(np.median(times["incremental"])))
-            speed.append(row)
-            print("speed at %d^2, %s: naive %.0f ms, incremental %.0f ms" % (side, name, row["naive_ms"],
-                                                                           row["incremental_ms"]))
-            scene.renderer.SetPass(None)
-            scene.gi.ReleaseGraphicsResources(scene.window)
+    for side, name, scene in each_scene(args, args.speed_sizes):
+        scene.mr.SetPreset(presets["balanced"])
+        times = {}
+        # Interleaved, twice each: the machine's drift hits both alike.
+        for visibility in ("naive", "incremental", "naive", "incremental"):
+            scene.gi.SetAreaLightVisibility(getattr(mrgi.vtkMRGIPass, "Visibility" + visibility.capitalize()))
+            scene.frames(1)
+            times.setdefault(visibility, []).append(scene.frames(args.repeats).get("area", 0.0))
+        row = dict(scene=name, size=side, naive_ms=float(np.median(times["naive"])),
+                   incremental_ms=float(np.median(times["incremental"])))
+        speed.append(row)
+        print("speed at %d^2, %s: naive %.0f ms, incremental %.0f ms" % (side, name, row["naive_ms"],
+                                                                       row["incremental_ms"]))
 
-    data = os.path.join(args.doc, "data")
-    os.makedirs(data, exist_ok=True)
-    with open(os.path.join(data, "area-lights.csv"), "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        writer.writeheader()
-        writer.writerows(rows)
+    os.makedirs(os.path.join(args.doc, "data"), exist_ok=True)
+    write_table(args, "area-lights.csv", rows)
     write_table(args, "area-lights-speed.csv", speed)
     write_table(args, "area-lights-truth.csv", truths)
     shares = measure_shares(args, presets["balanced"])
@@ -300,24 +290,31 @@ def measure_shares(args, balanced):
     at level 0, and its work (texels at all levels over valid pixels), one frame at defaults. Edges are a
     smaller part of a larger image, so both fall with the size (NPW10 report 10-15%)."""
     shares = []
-    for side in [int(v) for v in args.share_sizes.split(",") if v]:
+    for side, name, scene in each_scene(args, args.share_sizes):
+        scene.mr.SetPreset(balanced)
+        scene.gi.SetAreaLightReuse(False)
+        gather = scene.area.GetGather()
+        gather.SetCollectStatistics(True)
+        scene.frames(1)
+        valid = max(gather.GetNumberOfValidPixels(), 1)
+        row = dict(scene=name, size=side, level0=gather.GetNumberOfGatheredTexels(0) / valid,
+                   work=gather.GetGatherWorkFraction())
+        shares.append(row)
+        print("level-0 share at %d^2, %s: %.3f (work %.3f)" % (side, name, row["level0"], row["work"]))
+    return shares
+
+
+def each_scene(args, sizes):
+    """(side, name, scene) for every window side in the comma list `sizes` and every --scenes scene that
+    builds; the scene's graphics resources are released when the caller moves on."""
+    for side in [int(v) for v in sizes.split(",") if v]:
         for name in args.scenes.split(","):
             scene = Scene(name, side)
             if not scene.ok:
                 continue
-            scene.mr.SetPreset(balanced)
-            scene.gi.SetAreaLightReuse(False)
-            gather = scene.area.GetGather()
-            gather.SetCollectStatistics(True)
-            scene.frames(1)
-            valid = max(gather.GetNumberOfValidPixels(), 1)
-            row = dict(scene=name, size=side, level0=gather.GetNumberOfGatheredTexels(0) / valid,
-                       work=gather.GetGatherWorkFraction())
-            shares.append(row)
-            print("level-0 share at %d^2, %s: %.3f (work %.3f)" % (side, name, row["level0"], row["work"]))
+            yield side, name, scene
             scene.renderer.SetPass(None)
             scene.gi.ReleaseGraphicsResources(scene.window)
-    return shares
 
 
 def truth_note(args, truth):
