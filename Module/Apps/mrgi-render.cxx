@@ -388,6 +388,7 @@ int main(int argc, char* argv[])
     }
   }
   mrgi->GetVoxelization()->SetOffsetAlongRay(o.VoxelOffset);
+  mrgi->GetVoxelization()->SetNumberOfSlices(o.VoxelSlices);
   if (o.VoxelSize > 0)
   {
     mrgi->GetVoxelization()->SetVoxelSide(static_cast<int>(o.VoxelSize));
@@ -703,8 +704,8 @@ int main(int argc, char* argv[])
         double range[2];
         voxelization->GetLastDepthRange(range);
         std::printf("%s %dx%d (%s) x %d slices over depth [%g, %g]\n", label, voxels[0], voxels[1],
-          voxelization->GetAutomaticVoxelSize() ? "automatic" : "fixed", MRGI_VOXEL_SLICES, range[0],
-          range[1]);
+          voxelization->GetAutomaticVoxelSize() ? "automatic" : "fixed",
+          voxelization->GetLastNumberOfSlices(), range[0], range[1]);
       }
     };
     printVoxels("voxels:", mrgi->GetVoxelization());

@@ -372,7 +372,8 @@ const std::vector<OptionSection>& OptionTable()
           } },
         { { "--area-light-two-sided" }, nullptr, "emit on both sides (every area light)",
           Set(&Options::AreaLightTwoSided) },
-        { { "--area-light-samples" }, "N", "light samples per area light, 1..4096 (default 256; above 512,\n"
+        { { "--area-light-samples" }, "N",
+          "light samples per area light, 1..4096 (default 256; above 512,\n"
           "incremental visibility falls back to naive, with a warning)",
           Integer(
             &Options::AreaLightSamples, MRGI_AREA_LIGHT_MIN_SAMPLES, MRGI_AREA_LIGHT_MAX_SAMPLES) },
@@ -386,8 +387,15 @@ const std::vector<OptionSection>& OptionTable()
           Choice<int>(&Options::AreaLightVisibility,
             { { "off", vtkMRGIPass::VisibilityOff }, { "naive", vtkMRGIPass::VisibilityNaive },
               { "incremental", vtkMRGIPass::VisibilityIncremental } }) },
-        { { "--voxel-size" }, "N", "voxel buffer side for the visibility, 1..4096 (default: automatic, voxels about as wide as deep, 128..512)",
+        { { "--voxel-size" }, "N",
+          "voxel buffer side for the visibility, 1..4096 (default: automatic, voxels about as wide "
+          "as deep, 128..512)",
           Integer(&Options::VoxelSize, 1, MaxVoxelSize) },
+        { { "--voxel-slices" }, "128|256|384|512",
+          "depth slices per voxel pixel for the visibility (default 128; each 128\n"
+          "more is one more render target: thinner voxels, finer penumbrae past edges)",
+          Choice<int>(&Options::VoxelSlices,
+            { { "128", 128 }, { "256", 256 }, { "384", 384 }, { "512", 512 } }) },
         { { "--voxel-offset" }, "normals|receiver|both",
           "direction of the march's bias at the ends: along their normals (default),\n"
           "along the ray at the receiver, or at both ends (keeps penumbrae past edges)",
@@ -439,7 +447,8 @@ const std::vector<OptionSection>& OptionTable()
           Integer(&Options::Triangles, 12, 20000000) },
         { { "--objects" }, "N", "number of objects, 1..4096 (default 64)",
           Integer(&Options::Objects, 1, 4096) },
-        { { "--seed" }, "N", "random seed of the generated scenes and of --reference, >= 0 (default 1)",
+        { { "--seed" }, "N",
+          "random seed of the generated scenes and of --reference, >= 0 (default 1)",
           Integer(&Options::Seed, 0, INT64_MAX) },
       } },
     { "Staging of data files (Documentation/Staging.md; built-in scenes bring\n"
@@ -550,8 +559,7 @@ const std::vector<OptionSection>& OptionTable()
         { { "--illumination-metric" }, "difference|curvature",
           "multires, illumination: neighbours differ (NPW10's test), or the centre\n"
           "leaves the line through opposite neighbours (linear changes do not refine)",
-          Choice<int>(&Options::IlluminationMetric,
-            { { "difference", 0 }, { "curvature", 1 } }) },
+          Choice<int>(&Options::IlluminationMetric, { { "difference", 0 }, { "curvature", 1 } }) },
         { { "--upsample" }, "tent|mask",
           "multires: tent (default) or mask-weighted (Besenthal) upsampling",
           Choice<bool>(&Options::MaskUpsampling, { { "tent", false }, { "mask", true } }) },
@@ -576,8 +584,7 @@ const std::vector<OptionSection>& OptionTable()
           Choice<int>(&Options::VPLSelection,
             { { "grid", vtkMRGIVPLSelection::Grid },
               { "importance", vtkMRGIVPLSelection::FluxImportance },
-              { "clusters", vtkMRGIVPLSelection::Clusters },
-              { "tree", vtkMRGIVPLSelection::Tree },
+              { "clusters", vtkMRGIVPLSelection::Clusters }, { "tree", vtkMRGIVPLSelection::Tree },
               { "brsm", vtkMRGIVPLSelection::BRSM } }) },
         { { "--cluster-depth-threshold" }, "D",
           "clusters: light-space depth change per texel width that splits a patch,\n"
@@ -689,8 +696,8 @@ const std::vector<OptionSection>& OptionTable()
           "replaces the VPL gather (the two are exclusive)",
           OnOff(&Options::SSGI) },
         { { "--ssgi-samples" }, "N", "SSGI hemisphere samples, 1..512 (default 64)",
-          Given(Integer(&Options::SSGISamples, 1, MRGI_SSGI_MAX_SAMPLES),
-            &Options::HasSSGISamples) },
+          Given(
+            Integer(&Options::SSGISamples, 1, MRGI_SSGI_MAX_SAMPLES), &Options::HasSSGISamples) },
         { { "--ssgi-radius" }, "R",
           "SSGI sample radius in world units, > 0 (default 10% of the scene's\n"
           "bounding-box diagonal; depth bias radius / 50)",

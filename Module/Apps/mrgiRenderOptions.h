@@ -92,6 +92,7 @@ struct Options
   int AreaLightVisibility = vtkMRGIPass::VisibilityIncremental;
   long long VoxelSize = 0; // 0: automatic (vtkMRGIVoxelization::AutomaticVoxelSize)
   int VoxelOffset = 0;     // vtkMRGIVoxelization::OffsetAlongRayMode
+  int VoxelSlices = 128;   // vtkMRGIVoxelization::NumberOfSlices
   bool AreaLightSpecular = true;
   int AreaLightSpecularResolution = vtkMRGIPass::SpecularFullResolution;
   bool VisibilityInterleave = false;

@@ -517,7 +517,8 @@ static void test_gathers(void)
    * shadows all but contact rays. */
   mrgi_voxel_view view;
   memset(&view, 0, sizeof(view));
-  MRGI_CHECK(mrgi_voxel_grid_init(&view.grid, 24, 16, 0.5, 20.0, NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_voxel_grid_init(&view.grid, 24, 16, MRGI_VOXEL_DEFAULT_SLICES, 0.5, 20.0, NULL) ==
+    MRGI_OK);
   mrgi_multires_projection cam;
   memset(&cam, 0, sizeof(cam));
   cam.parallel = 0;

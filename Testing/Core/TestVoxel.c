@@ -274,8 +274,8 @@ static test_view make_view(int32_t width, int32_t height, double near_depth, dou
   test_view t;
   mrgi_error err;
   memset(&t, 0, sizeof(t));
-  MRGI_CHECK(mrgi_voxel_grid_init(&t.view.grid, width, height, near_depth, far_depth, &err) ==
-             MRGI_OK);
+  MRGI_CHECK(mrgi_voxel_grid_init(&t.view.grid, width, height, MRGI_VOXEL_DEFAULT_SLICES,
+               near_depth, far_depth, &err) == MRGI_OK);
   t.view.projection = *projection;
   mrgi_voxel_march_params_default(&t.view.params);
   t.view.voxel_words = mrgi_voxel_buffer_words(&t.view.grid);
@@ -301,7 +301,8 @@ static void test_layout(void)
   for (int r = 0; r < 3; ++r)
   {
     mrgi_voxel_grid g;
-    MRGI_CHECK(mrgi_voxel_grid_init(&g, 128, 64, ranges[r][0], ranges[r][1], &err) == MRGI_OK);
+    MRGI_CHECK(mrgi_voxel_grid_init(&g, 128, 64, MRGI_VOXEL_DEFAULT_SLICES, ranges[r][0],
+                 ranges[r][1], &err) == MRGI_OK);
     MRGI_CHECK(mrgi_voxel_grid_check(&g, &err) == MRGI_OK);
     MRGI_CHECK(mrgi_voxel_buffer_words(&g) == 128 * 64 * 4);
     MRGI_CHECK(mrgi_voxel_slice(&g, g.near_depth) == 0);
@@ -311,7 +312,7 @@ static void test_layout(void)
     MRGI_CHECK(mrgi_voxel_slice(&g, -INFINITY) == 0 && mrgi_voxel_slice(&g, INFINITY) == 127);
     MRGI_CHECK(mrgi_voxel_slice(&g, NAN) == 0);
     const double thickness = 1.0 / g.slice_scale;
-    for (int32_t s = 0; s < MRGI_VOXEL_SLICES; ++s)
+    for (int32_t s = 0; s < MRGI_VOXEL_LAYER_SLICES; ++s)
     {
       /* round trip slice -> depth -> slice, and slice -> (channel, bit) -> slice */
       MRGI_CHECK(mrgi_voxel_slice(&g, (float)mrgi_voxel_slice_center(&g, s)) == s);
@@ -404,7 +405,8 @@ static void test_layout(void)
     mrgi_voxel_projection p;
     MRGI_CHECK(mrgi_voxel_projection_from_camera(&p, cams + c, (double)W / H, &err) == MRGI_OK);
     mrgi_voxel_grid g;
-    MRGI_CHECK(mrgi_voxel_grid_init(&g, VW, VH, 1.0, 50.0, &err) == MRGI_OK);
+    MRGI_CHECK(
+      mrgi_voxel_grid_init(&g, VW, VH, MRGI_VOXEL_DEFAULT_SLICES, 1.0, 50.0, &err) == MRGI_OK);
     int mismatches = 0;
     for (int32_t y = 0; y < H; y += 7)
     {
@@ -462,7 +464,8 @@ static void test_layout(void)
   {
     mrgi_voxel_view v;
     memset(&v, 0, sizeof(v));
-    MRGI_CHECK(mrgi_voxel_grid_init(&v.grid, 100, 50, 2.0, 66.0, &err) == MRGI_OK); /* slice 0.5 */
+    MRGI_CHECK(mrgi_voxel_grid_init(&v.grid, 100, 50, MRGI_VOXEL_DEFAULT_SLICES, 2.0, 66.0, &err) ==
+      MRGI_OK);                                                                  /* slice 0.5 */
     v.projection = perspective_projection(90.0, 2.0);                            /* sx 0.5, sy 1 */
     MRGI_CHECK_NEAR(mrgi_voxel_size_at(&v, 10.0f), 0.5, 1e-6);  /* pixel 0.4 x 0.4 < slice */
     MRGI_CHECK_NEAR(mrgi_voxel_size_at(&v, 40.0f), 1.6, 1e-5);  /* 2 * 40 / (0.5 * 100) */
@@ -473,7 +476,8 @@ static void test_layout(void)
   /* behind the eye */
   {
     mrgi_voxel_grid g;
-    MRGI_CHECK(mrgi_voxel_grid_init(&g, 8, 8, 1.0, 2.0, &err) == MRGI_OK);
+    MRGI_CHECK(
+      mrgi_voxel_grid_init(&g, 8, 8, MRGI_VOXEL_DEFAULT_SLICES, 1.0, 2.0, &err) == MRGI_OK);
     const mrgi_voxel_projection p = perspective_projection(60.0, 1.0);
     const float behind[3] = { 0.0f, 0.0f, 1.0f };
     float uvd[3];
@@ -485,29 +489,38 @@ static void test_grid_errors(void)
 {
   mrgi_error err;
   mrgi_voxel_grid g;
-  MRGI_CHECK(mrgi_voxel_grid_init(NULL, 8, 8, 1.0, 2.0, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_voxel_grid_init(NULL, 8, 8, MRGI_VOXEL_DEFAULT_SLICES, 1.0, 2.0, &err) ==
+    MRGI_ERR_INVALID_ARGUMENT);
   const int32_t sizes[4][2] = { { 0, 8 }, { 8, 0 }, { -1, 8 }, { MRGI_VOXEL_MAX_SIZE + 1, 8 } };
   for (int k = 0; k < 4; ++k)
   {
-    MRGI_CHECK(mrgi_voxel_grid_init(&g, sizes[k][0], sizes[k][1], 1.0, 2.0, &err) ==
-               MRGI_ERR_INVALID_ARGUMENT);
+    MRGI_CHECK(mrgi_voxel_grid_init(&g, sizes[k][0], sizes[k][1], MRGI_VOXEL_DEFAULT_SLICES, 1.0,
+                 2.0, &err) == MRGI_ERR_INVALID_ARGUMENT);
     MRGI_CHECK(strstr(err.message, "outside") != NULL);
     MRGI_CHECK(g.width == 0); /* zeroed on failure */
   }
-  MRGI_CHECK(mrgi_voxel_grid_init(&g, 8, 8, 3.0, 3.0, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_voxel_grid_init(&g, 8, 8, MRGI_VOXEL_DEFAULT_SLICES, 3.0, 3.0, &err) ==
+    MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "empty") != NULL);
-  MRGI_CHECK(mrgi_voxel_grid_init(&g, 8, 8, 1e30, 1e30 + 1.0, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_voxel_grid_init(&g, 8, 8, MRGI_VOXEL_DEFAULT_SLICES, 1e30, 1e30 + 1.0, &err) ==
+    MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "empty") != NULL); /* equal as floats */
-  MRGI_CHECK(mrgi_voxel_grid_init(&g, 8, 8, 5.0, 2.0, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_voxel_grid_init(&g, 8, 8, MRGI_VOXEL_DEFAULT_SLICES, 5.0, 2.0, &err) ==
+    MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "reversed") != NULL);
-  MRGI_CHECK(mrgi_voxel_grid_init(&g, 8, 8, NAN, 2.0, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_voxel_grid_init(&g, 8, 8, MRGI_VOXEL_DEFAULT_SLICES, NAN, 2.0, &err) ==
+    MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "not finite") != NULL);
-  MRGI_CHECK(mrgi_voxel_grid_init(&g, 8, 8, 1.0, INFINITY, &err) == MRGI_ERR_INVALID_ARGUMENT);
-  MRGI_CHECK(mrgi_voxel_grid_init(&g, 8, 8, 1.0, 1e39, &err) == MRGI_ERR_INVALID_ARGUMENT);
-  MRGI_CHECK(mrgi_voxel_grid_init(&g, 8, 8, 0.0, 1e-40, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_voxel_grid_init(&g, 8, 8, MRGI_VOXEL_DEFAULT_SLICES, 1.0, INFINITY, &err) ==
+    MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_voxel_grid_init(&g, 8, 8, MRGI_VOXEL_DEFAULT_SLICES, 1.0, 1e39, &err) ==
+    MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_voxel_grid_init(&g, 8, 8, MRGI_VOXEL_DEFAULT_SLICES, 0.0, 1e-40, &err) ==
+    MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "slice scale") != NULL);
-  MRGI_CHECK(mrgi_voxel_grid_init(&g, 8, 8, -3e38, 3e38, &err) == MRGI_OK); /* wide but fine */
-  MRGI_CHECK(mrgi_voxel_grid_init(&g, 1, 1, 1.0, 2.0, &err) == MRGI_OK);
+  MRGI_CHECK(mrgi_voxel_grid_init(&g, 8, 8, MRGI_VOXEL_DEFAULT_SLICES, -3e38, 3e38, &err) ==
+    MRGI_OK); /* wide but fine */
+  MRGI_CHECK(mrgi_voxel_grid_init(&g, 1, 1, MRGI_VOXEL_DEFAULT_SLICES, 1.0, 2.0, &err) == MRGI_OK);
   g.slice_scale *= 2.0f;
   MRGI_CHECK(mrgi_voxel_grid_check(&g, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "modified") != NULL);
@@ -539,7 +552,8 @@ static void test_voxelize(void)
   mrgi_error err;
   mrgi_voxel_grid g;
   /* 4 x 2 voxels, depth 0..128: slice = floor(d) */
-  MRGI_CHECK(mrgi_voxel_grid_init(&g, 4, 2, 0.0, 128.0, &err) == MRGI_OK);
+  MRGI_CHECK(
+    mrgi_voxel_grid_init(&g, 4, 2, MRGI_VOXEL_DEFAULT_SLICES, 0.0, 128.0, &err) == MRGI_OK);
   MRGI_CHECK(g.slice_scale == 1.0f);
   uint32_t v[32];
   memset(v, 0xAB, sizeof(v));
@@ -1030,7 +1044,8 @@ static void test_march_extremes(void)
   MRGI_CHECK(mrgi_voxel_view_check(&bad, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "skip_radius") != NULL);
   bad = t.view;
-  MRGI_CHECK(mrgi_voxel_grid_init(&bad.grid, 128, 128, -1.0, 31.0, &err) == MRGI_OK);
+  MRGI_CHECK(mrgi_voxel_grid_init(
+               &bad.grid, 128, 128, MRGI_VOXEL_DEFAULT_SLICES, -1.0, 31.0, &err) == MRGI_OK);
   bad.voxel_words = mrgi_voxel_buffer_words(&bad.grid);
   MRGI_CHECK(mrgi_voxel_view_check(&bad, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "near > 0") != NULL);
@@ -2015,7 +2030,7 @@ static void test_random_scenes(void)
  * batches sized with it hold), capping it at half of it does. */
 static void test_step_bound(void)
 {
-  const mrgi_voxel_grid wide = { 128, 64, 1.0f, 2.0f, 128.0f };
+  const mrgi_voxel_grid wide = { 128, 64, MRGI_VOXEL_DEFAULT_SLICES, 1.0f, 2.0f, 128.0f };
   MRGI_CHECK(mrgi_voxel_step_bound(&wide, 256) == 130);
   MRGI_CHECK(mrgi_voxel_step_bound(&wide, 100) == 100);
   MRGI_CHECK(mrgi_voxel_step_bound(NULL, 256) == 256);
@@ -2145,7 +2160,8 @@ static double measured_pixel_width(const mrgi_voxel_projection* p, int32_t vw, i
   double near_depth, double far_depth, double d)
 {
   mrgi_voxel_grid grid;
-  MRGI_CHECK(mrgi_voxel_grid_init(&grid, vw, vh, near_depth, far_depth, NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_voxel_grid_init(
+               &grid, vw, vh, MRGI_VOXEL_DEFAULT_SLICES, near_depth, far_depth, NULL) == MRGI_OK);
   const float a[3] = { 0.0f, 0.0f, (float)-d };
   const float b[3] = { 1.0f, 0.0f, (float)-d };
   float ua[3], ub[3];
@@ -2167,10 +2183,11 @@ static void test_isotropic_size(void)
     mrgi_voxel_projection p;
     MRGI_CHECK(mrgi_voxel_projection_from_camera(&p, &cam, aspects[k], NULL) == MRGI_OK);
     const double near_depth = 794.0, far_depth = 1365.0;
-    MRGI_CHECK(mrgi_voxel_isotropic_size(&p, near_depth, far_depth, size, &err) == MRGI_OK);
+    MRGI_CHECK(mrgi_voxel_isotropic_size(
+                 &p, MRGI_VOXEL_DEFAULT_SLICES, near_depth, far_depth, size, &err) == MRGI_OK);
     MRGI_CHECK(size[0] % MRGI_VOXEL_AUTO_STEP == 0 && size[1] % MRGI_VOXEL_AUTO_STEP == 0);
     MRGI_CHECK(size[1] > MRGI_VOXEL_AUTO_MIN_SIZE && size[0] < MRGI_VOXEL_AUTO_MAX_SIZE);
-    const double slice = (far_depth - near_depth) / MRGI_VOXEL_SLICES;
+    const double slice = (far_depth - near_depth) / MRGI_VOXEL_DEFAULT_SLICES;
     const double width =
       measured_pixel_width(&p, size[0], size[1], near_depth, far_depth, 0.5 * (near_depth + far_depth));
     /* Rounding to the step moves the side by at most half a step. */
@@ -2182,27 +2199,35 @@ static void test_isotropic_size(void)
   const mrgi_multires_projection wide = { 0, 55.0, 0.0 };
   mrgi_voxel_projection p;
   MRGI_CHECK(mrgi_voxel_projection_from_camera(&p, &wide, 1.0, NULL) == MRGI_OK);
-  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, 0.01, 5.6, size, &err) == MRGI_OK);
+  MRGI_CHECK(
+    mrgi_voxel_isotropic_size(&p, MRGI_VOXEL_DEFAULT_SLICES, 0.01, 5.6, size, &err) == MRGI_OK);
   MRGI_CHECK(size[0] == MRGI_VOXEL_AUTO_MIN_SIZE && size[1] == MRGI_VOXEL_AUTO_MIN_SIZE);
-  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, 1000.0, 1000.5, size, &err) == MRGI_OK);
+  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, MRGI_VOXEL_DEFAULT_SLICES, 1000.0, 1000.5, size, &err) ==
+    MRGI_OK);
   MRGI_CHECK(size[0] == MRGI_VOXEL_AUTO_MAX_SIZE && size[1] == MRGI_VOXEL_AUTO_MAX_SIZE);
   /* Parallel: the pixel is the same width at every depth. */
   const mrgi_multires_projection ortho = { 1, 0.0, 100.0 };
   MRGI_CHECK(mrgi_voxel_projection_from_camera(&p, &ortho, 1.0, NULL) == MRGI_OK);
-  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, -50.0, 78.0, size, &err) == MRGI_OK);
+  MRGI_CHECK(
+    mrgi_voxel_isotropic_size(&p, MRGI_VOXEL_DEFAULT_SLICES, -50.0, 78.0, size, &err) == MRGI_OK);
   MRGI_CHECK(size[0] > MRGI_VOXEL_AUTO_MIN_SIZE && size[0] < MRGI_VOXEL_AUTO_MAX_SIZE);
-  const double slice = 128.0 / MRGI_VOXEL_SLICES;
+  const double slice = 128.0 / MRGI_VOXEL_DEFAULT_SLICES;
   const double width = measured_pixel_width(&p, size[0], size[1], -50.0, 78.0, 10.0);
   MRGI_CHECK(fabs(width / slice - 1.0) <= 0.5 * MRGI_VOXEL_AUTO_STEP / size[0] + 1e-4);
   /* Errors name the problem and leave the output alone. */
   size[0] = size[1] = -7;
-  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, 5.0, 5.0, size, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, MRGI_VOXEL_DEFAULT_SLICES, 5.0, 5.0, size, &err) ==
+    MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "depth range") != NULL && size[0] == -7);
-  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, NAN, 5.0, size, &err) == MRGI_ERR_INVALID_ARGUMENT);
-  MRGI_CHECK(mrgi_voxel_isotropic_size(NULL, 1.0, 5.0, size, &err) == MRGI_ERR_INVALID_ARGUMENT);
-  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, 1.0, 5.0, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, MRGI_VOXEL_DEFAULT_SLICES, NAN, 5.0, size, &err) ==
+    MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_voxel_isotropic_size(NULL, MRGI_VOXEL_DEFAULT_SLICES, 1.0, 5.0, size, &err) ==
+    MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, MRGI_VOXEL_DEFAULT_SLICES, 1.0, 5.0, NULL, &err) ==
+    MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(mrgi_voxel_projection_from_camera(&p, &wide, 1.0, NULL) == MRGI_OK);
-  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, -10.0, 4.0, size, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_voxel_isotropic_size(&p, MRGI_VOXEL_DEFAULT_SLICES, -10.0, 4.0, size, &err) ==
+    MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "in front of the eye") != NULL && size[0] == -7);
 }
 

@@ -26,6 +26,8 @@
 // bounded: an edge-on face whose line passes through pixel centres (the
 // parallel Cornell box at 300x7: the floor) lights a whole row or not. A
 // deliberately wrong near depth given to the twin must fail this comparison.
+#include "vtk_glew.h"
+
 #include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"
 #include "mrgiVoxelTestUtilities.h"
@@ -220,11 +222,11 @@ void RunTwin(const std::vector<Triangle>& tris, const mrgi_voxel_grid& grid,
         if (edgeTie || depthTie)
         {
           // Either way is right: its mask (depth brought into the range) is tolerated.
-          uint32_t mask[MRGI_VOXEL_CHANNELS];
+          uint32_t mask[MRGI_VOXEL_MAX_WORDS];
           const float clamped = std::min(std::max(f.depth, grid.near_depth), grid.far_depth);
           mrgi_voxel_fragment_mask(&grid, clamped, f.half_span, range[0], range[1], mask);
           uint32_t* texel = twin.Tolerance.data() + mrgi_voxel_index(&grid, x, y);
-          for (int c = 0; c < MRGI_VOXEL_CHANNELS; ++c)
+          for (int c = 0; c < mrgi_voxel_pixel_words(&grid); ++c)
           {
             texel[c] |= mask[c];
           }
@@ -240,9 +242,9 @@ void RunTwin(const std::vector<Triangle>& tris, const mrgi_voxel_grid& grid,
   twin.Fragments = fragments.size();
 }
 
-inline bool Bit(const uint32_t* texel, int s)
+inline bool Bit(const uint32_t* texel, int s, int slices)
 {
-  return s >= 0 && s < MRGI_VOXEL_SLICES &&
+  return s >= 0 && s < slices &&
     ((texel[mrgi_voxel_slice_channel(s)] >> mrgi_voxel_slice_bit(s)) & 1u) != 0;
 }
 
@@ -271,13 +273,15 @@ Comparison Compare(const mrgi_voxel_grid& grid, const uint32_t* gpu, const Twin&
   c.Pixels = static_cast<size_t>(grid.width) * static_cast<size_t>(grid.height);
   for (size_t p = 0; p < c.Pixels; ++p)
   {
-    const uint32_t* g = gpu + 4 * p;
-    const uint32_t* t = twin.Voxels.data() + 4 * p;
-    const uint32_t* tol = twin.Tolerance.data() + 4 * p;
+    const size_t words = static_cast<size_t>(mrgi_voxel_pixel_words(&grid));
+    const uint32_t* g = gpu + words * p;
+    const uint32_t* t = twin.Voxels.data() + words * p;
+    const uint32_t* tol = twin.Tolerance.data() + words * p;
+    const int S = grid.slices;
     bool differs = false, sliceOnly = false;
-    for (int s = 0; s < MRGI_VOXEL_SLICES; ++s)
+    for (int s = 0; s < S; ++s)
     {
-      const bool a = Bit(g, s), b = Bit(t, s);
+      const bool a = Bit(g, s, S), b = Bit(t, s, S);
       c.GPUBits += a;
       c.TwinBits += b;
       if (a == b)
@@ -287,8 +291,8 @@ Comparison Compare(const mrgi_voxel_grid& grid, const uint32_t* gpu, const Twin&
       differs = true;
       ++c.MismatchBits;
       const uint32_t* other = a ? t : g;
-      const bool tie = Bit(tol, s - 1) || Bit(tol, s) || Bit(tol, s + 1);
-      const bool sliceRounding = Bit(other, s - 1) || Bit(other, s + 1);
+      const bool tie = Bit(tol, s - 1, S) || Bit(tol, s, S) || Bit(tol, s + 1, S);
+      const bool sliceRounding = Bit(other, s - 1, S) || Bit(other, s + 1, S);
       if (!tie)
       {
         sliceOnly = true;
@@ -306,16 +310,22 @@ Comparison Compare(const mrgi_voxel_grid& grid, const uint32_t* gpu, const Twin&
 }
 
 // Voxelize on the GPU and compare with the twin; returns the comparison.
+// More than 128 slices draw into one render target per 128 (mrgi_voxel.h
+// section 1): their bits must be the twin's too.
 Comparison RunCase(const char* name, vtkRenderWindow* window, vtkRenderer* ren,
-  vtkMRGIVoxelization* vox, int vw, int vh, double nearDepth, double farDepth)
+  vtkMRGIVoxelization* vox, int vw, int vh, double nearDepth, double farDepth,
+  int slices = MRGI_VOXEL_DEFAULT_SLICES)
 {
   vox->SetVoxelSize(vw, vh);
+  vox->SetNumberOfSlices(slices);
   MRGI_TEST_CHECK(vox->Voxelize(ren, nearDepth, farDepth));
+  MRGI_TEST_CHECK(vox->GetLastNumberOfSlices() == slices);
   mrgi_voxel_grid grid, expectedGrid;
   mrgi_voxel_projection proj, cameraProj;
   MRGI_TEST_CHECK(vox->GetGrid(&grid, &proj));
   mrgi_error err;
-  MRGI_TEST_CHECK(mrgi_voxel_grid_init(&expectedGrid, vw, vh, nearDepth, farDepth, &err) == MRGI_OK);
+  MRGI_TEST_CHECK(
+    mrgi_voxel_grid_init(&expectedGrid, vw, vh, slices, nearDepth, farDepth, &err) == MRGI_OK);
   MRGI_TEST_CHECK(std::memcmp(&grid, &expectedGrid, sizeof(grid)) == 0);
   // The projection is the window's: the camera's, at the renderer's aspect.
   vtkCamera* camera = ren->GetActiveCamera();
@@ -342,12 +352,11 @@ Comparison RunCase(const char* name, vtkRenderWindow* window, vtkRenderer* ren,
   vox->GetLastVoxelSize(last);
   MRGI_TEST_CHECK(last[0] == vw && last[1] == vh);
   vtkTextureObject* texture = vox->GetVoxelTexture();
-  MRGI_TEST_CHECK(texture && static_cast<int>(texture->GetWidth()) == vw &&
-    static_cast<int>(texture->GetHeight()) == vh);
+  MRGI_TEST_CHECK(texture && texture->GetTarget() == GL_TEXTURE_3D);
 
   vtkNew<vtkTypeUInt32Array> gpu;
   MRGI_TEST_CHECK(vox->ReadVoxels(window, gpu));
-  MRGI_TEST_CHECK(gpu->GetNumberOfComponents() == 4);
+  MRGI_TEST_CHECK(gpu->GetNumberOfComponents() == slices / 32);
   MRGI_TEST_CHECK(gpu->GetNumberOfTuples() == static_cast<vtkIdType>(vw) * vh);
 
   const std::vector<Triangle> tris = SceneTriangles(ren);
@@ -355,12 +364,12 @@ Comparison RunCase(const char* name, vtkRenderWindow* window, vtkRenderer* ren,
   Twin twin;
   RunTwin(tris, grid, proj, twin);
   const Comparison c = Compare(grid, gpu->GetPointer(0), twin);
-  std::printf("%-34s %4dx%-4d [%9.4g, %9.4g] %6zu tris %8zu frags (%5zu edge/depth ties): "
+  std::printf("%-34s %4dx%-4dx%-3d [%9.4g, %9.4g] %6zu tris %8zu frags (%5zu edge/depth ties): "
               "bits gpu %8zu twin %8zu; differing: %zu bits in %zu of %zu pixels (%.4f%%; "
               "ties %zu, slice rounding %zu = %.4f%%), unexplained bits %zu\n",
-    name, vw, vh, nearDepth, farDepth, tris.size(), twin.Fragments, twin.Uncertain, c.GPUBits,
-    c.TwinBits, c.MismatchBits, c.MismatchPixels, c.Pixels, 100.0 * c.Fraction(), c.TiePixels,
-    c.SlicePixels, 100.0 * c.SliceFraction(), c.Unexplained);
+    name, vw, vh, slices, nearDepth, farDepth, tris.size(), twin.Fragments, twin.Uncertain,
+    c.GPUBits, c.TwinBits, c.MismatchBits, c.MismatchPixels, c.Pixels, 100.0 * c.Fraction(),
+    c.TiePixels, c.SlicePixels, 100.0 * c.SliceFraction(), c.Unexplained);
   MRGI_TEST_CHECK(c.TwinBits > 0 || (vw * vh <= 1));
   MRGI_TEST_CHECK(c.Passes());
   return c;
@@ -407,6 +416,13 @@ void CornellBox(bool parallel)
   const double f = range[0] + 0.8 * (range[1] - range[0]);
   RunCase((name + ", cut").c_str(), window, renderer, vox, 128, 128, n, f);
   RunCase((name + ", cut").c_str(), window, renderer, vox, 97, 61, n, f);
+  // Thinner slices: two to four render targets in one draw.
+  for (int slices : { 256, 384, 512 })
+  {
+    RunCase(name.c_str(), window, renderer, vox, 128, 128, range[0] - pad, range[1] + pad, slices);
+    RunCase((name + ", cut").c_str(), window, renderer, vox, 97, 61, n, f, slices);
+  }
+  vox->SetNumberOfSlices(MRGI_VOXEL_DEFAULT_SLICES);
 
   if (!parallel)
   {
@@ -418,13 +434,14 @@ void CornellBox(bool parallel)
     mrgi_voxel_grid grid;
     mrgi_voxel_projection proj;
     MRGI_TEST_CHECK(vox->GetGrid(&grid, &proj));
-    const double thickness = (grid.far_depth - grid.near_depth) / MRGI_VOXEL_SLICES;
+    const double thickness = (grid.far_depth - grid.near_depth) / grid.slices;
     for (double shift : { 0.5, 3.0 })
     {
       mrgi_voxel_grid wrong;
       mrgi_error err;
-      MRGI_TEST_CHECK(mrgi_voxel_grid_init(&wrong, grid.width, grid.height,
-                        grid.near_depth + shift * thickness, grid.far_depth, &err) == MRGI_OK);
+      MRGI_TEST_CHECK(
+        mrgi_voxel_grid_init(&wrong, grid.width, grid.height, MRGI_VOXEL_DEFAULT_SLICES,
+          grid.near_depth + shift * thickness, grid.far_depth, &err) == MRGI_OK);
       Twin twin;
       RunTwin(SceneTriangles(renderer), wrong, proj, twin);
       const Comparison c = Compare(wrong, gpu->GetPointer(0), twin);
@@ -458,7 +475,8 @@ void AutomaticSize(bool parallel)
   MRGI_TEST_CHECK(mrgi_voxel_projection_from_camera(
                     &proj, &cam, static_cast<double>(WindowW) / WindowH, nullptr) == MRGI_OK);
   int32_t expected[2];
-  MRGI_TEST_CHECK(mrgi_voxel_isotropic_size(&proj, range[0], range[1], expected, nullptr) == MRGI_OK);
+  MRGI_TEST_CHECK(mrgi_voxel_isotropic_size(&proj, MRGI_VOXEL_DEFAULT_SLICES, range[0], range[1],
+                    expected, nullptr) == MRGI_OK);
   int computed[2], last[2];
   MRGI_TEST_CHECK(vox->ComputeVoxelSize(renderer, range[0], range[1], computed));
   MRGI_TEST_CHECK(computed[0] == expected[0] && computed[1] == expected[1]);

@@ -7,7 +7,7 @@
 #include <string.h>
 
 mrgi_status mrgi_voxel_grid_init(mrgi_voxel_grid* grid, int32_t width, int32_t height,
-                                 double near_depth, double far_depth, mrgi_error* err)
+  int32_t slices, double near_depth, double far_depth, mrgi_error* err)
 {
   if (!grid)
   {
@@ -19,6 +19,12 @@ mrgi_status mrgi_voxel_grid_init(mrgi_voxel_grid* grid, int32_t width, int32_t h
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
                           "voxel buffer size %d x %d is outside 1..%d per side", width, height,
                           MRGI_VOXEL_MAX_SIZE);
+  }
+  if (slices < MRGI_VOXEL_LAYER_SLICES || slices > MRGI_VOXEL_MAX_SLICES ||
+    slices % MRGI_VOXEL_LAYER_SLICES != 0)
+  {
+    return mrgi_error_set(
+      err, MRGI_ERR_INVALID_ARGUMENT, "voxel slice count %d is not 128, 256, 384 or 512", slices);
   }
   const float near_f = (float)near_depth;
   const float far_f = (float)far_depth;
@@ -40,7 +46,7 @@ mrgi_status mrgi_voxel_grid_init(mrgi_voxel_grid* grid, int32_t width, int32_t h
                           "voxel depth range is reversed: far %g < near %g", far_depth,
                           near_depth);
   }
-  const double scale = (double)MRGI_VOXEL_SLICES / ((double)far_f - (double)near_f);
+  const double scale = (double)slices / ((double)far_f - (double)near_f);
   const float scale_f = (float)scale;
   if (!isfinite(scale_f) || !(scale_f > 0.0f))
   {
@@ -51,6 +57,7 @@ mrgi_status mrgi_voxel_grid_init(mrgi_voxel_grid* grid, int32_t width, int32_t h
   }
   grid->width = width;
   grid->height = height;
+  grid->slices = slices;
   grid->near_depth = near_f;
   grid->far_depth = far_f;
   grid->slice_scale = scale_f;
@@ -64,9 +71,9 @@ mrgi_status mrgi_voxel_grid_check(const mrgi_voxel_grid* grid, mrgi_error* err)
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "voxel grid is NULL");
   }
   mrgi_voxel_grid expected;
-  if (mrgi_voxel_grid_init(&expected, grid->width, grid->height, grid->near_depth,
-                           grid->far_depth, NULL) != MRGI_OK ||
-      memcmp(&expected, grid, sizeof(expected)) != 0)
+  if (mrgi_voxel_grid_init(&expected, grid->width, grid->height, grid->slices, grid->near_depth,
+        grid->far_depth, NULL) != MRGI_OK ||
+    memcmp(&expected, grid, sizeof(expected)) != 0)
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
                           "voxel grid was not made by mrgi_voxel_grid_init() (or was modified)");
@@ -136,18 +143,18 @@ mrgi_status mrgi_voxel_fit_depth_range(const double world_to_eye[16], const doub
 
 size_t mrgi_voxel_buffer_words(const mrgi_voxel_grid* grid)
 {
-  if (!grid || grid->width < 1 || grid->height < 1)
+  if (!grid || grid->width < 1 || grid->height < 1 || grid->slices < MRGI_VOXEL_LAYER_SLICES)
   {
     return 0;
   }
-  return (size_t)grid->width * (size_t)grid->height * MRGI_VOXEL_CHANNELS;
+  return (size_t)grid->width * (size_t)grid->height * (size_t)mrgi_voxel_pixel_words(grid);
 }
 
 int32_t mrgi_voxel_slice(const mrgi_voxel_grid* grid, float depth)
 {
-  /* GLSL: int(clamp((d - near) * scale, 0.0, 127.0)) */
+  /* GLSL: int(clamp((d - near) * scale, 0.0, float(S - 1))) */
   const float x = (depth - grid->near_depth) * grid->slice_scale;
-  return (int32_t)fminf(fmaxf(x, 0.0f), (float)(MRGI_VOXEL_SLICES - 1));
+  return (int32_t)fminf(fmaxf(x, 0.0f), (float)(grid->slices - 1));
 }
 
 double mrgi_voxel_slice_center(const mrgi_voxel_grid* grid, int32_t slice)
@@ -158,7 +165,7 @@ double mrgi_voxel_slice_center(const mrgi_voxel_grid* grid, int32_t slice)
 void mrgi_voxel_range_mask(int32_t lo, int32_t hi, uint32_t mask[MRGI_VOXEL_CHANNELS])
 {
   lo = lo > 0 ? lo : 0;
-  hi = hi < MRGI_VOXEL_SLICES - 1 ? hi : MRGI_VOXEL_SLICES - 1;
+  hi = hi < MRGI_VOXEL_LAYER_SLICES - 1 ? hi : MRGI_VOXEL_LAYER_SLICES - 1;
   for (int32_t c = 0; c < MRGI_VOXEL_CHANNELS; ++c)
   {
     const int32_t a = lo - MRGI_VOXEL_CHANNEL_BITS * c > 0 ? lo - MRGI_VOXEL_CHANNEL_BITS * c : 0;
@@ -214,8 +221,8 @@ static int32_t isotropic_side(double span, double thickness)
                                             : rounded;
 }
 
-mrgi_status mrgi_voxel_isotropic_size(const mrgi_voxel_projection* projection, double near_depth,
-                                      double far_depth, int32_t size[2], mrgi_error* err)
+mrgi_status mrgi_voxel_isotropic_size(const mrgi_voxel_projection* projection, int32_t slices,
+  double near_depth, double far_depth, int32_t size[2], mrgi_error* err)
 {
   if (!size)
   {
@@ -239,7 +246,13 @@ mrgi_status mrgi_voxel_isotropic_size(const mrgi_voxel_projection* projection, d
                           "voxel isotropic size: the middle of [%g, %g] is not in front of the eye",
                           near_depth, far_depth);
   }
-  const double thickness = (far_depth - near_depth) / MRGI_VOXEL_SLICES;
+  if (slices < MRGI_VOXEL_LAYER_SLICES || slices > MRGI_VOXEL_MAX_SLICES ||
+    slices % MRGI_VOXEL_LAYER_SLICES != 0)
+  {
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
+      "voxel isotropic size: slice count %d is not 128, 256, 384 or 512", slices);
+  }
+  const double thickness = (far_depth - near_depth) / slices;
   size[0] = isotropic_side(2.0 * middle / (double)projection->scale_x, thickness);
   size[1] = isotropic_side(2.0 * middle / (double)projection->scale_y, thickness);
   return MRGI_OK;
@@ -360,19 +373,26 @@ int mrgi_voxel_project(const mrgi_voxel_grid* grid, const mrgi_voxel_projection*
 }
 
 void mrgi_voxel_fragment_mask(const mrgi_voxel_grid* grid, float depth, float half_span,
-                              float depth_min, float depth_max,
-                              uint32_t mask[MRGI_VOXEL_CHANNELS])
+  float depth_min, float depth_max, uint32_t mask[MRGI_VOXEL_MAX_WORDS])
 {
+  const int32_t layers = mrgi_voxel_layers(grid);
   /* GLSL: if (!(d >= near && d <= far)) discard;  (clipped by the near/far planes) */
   if (!(depth >= grid->near_depth && depth <= grid->far_depth))
   {
-    mask[0] = mask[1] = mask[2] = mask[3] = 0u;
+    memset(mask, 0, (size_t)layers * MRGI_VOXEL_CHANNELS * sizeof(uint32_t));
     return;
   }
   const float h = half_span > 0.0f ? half_span : 0.0f; /* NaN -> 0 */
   const float lo = fminf(fmaxf(depth - h, depth_min), depth);
   const float hi = fmaxf(fminf(depth + h, depth_max), depth);
-  mrgi_voxel_range_mask(mrgi_voxel_slice(grid, lo), mrgi_voxel_slice(grid, hi), mask);
+  const int32_t slice_lo = mrgi_voxel_slice(grid, lo);
+  const int32_t slice_hi = mrgi_voxel_slice(grid, hi);
+  /* One render target per layer (section 1): each gets its own 128 slices. */
+  for (int32_t l = 0; l < layers; ++l)
+  {
+    mrgi_voxel_range_mask(slice_lo - MRGI_VOXEL_LAYER_SLICES * l,
+      slice_hi - MRGI_VOXEL_LAYER_SLICES * l, mask + MRGI_VOXEL_CHANNELS * l);
+  }
 }
 
 /* One Sutherland-Hodgman pass: keep the side where sign * (coord - edge) >= 0.
@@ -484,14 +504,20 @@ mrgi_status mrgi_voxel_clear(const mrgi_voxel_grid* grid, uint32_t* voxels, size
 static int mrgi_voxel_splat(const mrgi_voxel_grid* grid, uint32_t* voxels, int32_t x, int32_t y,
                             float depth, float half_span, float depth_min, float depth_max)
 {
-  uint32_t mask[MRGI_VOXEL_CHANNELS];
+  uint32_t mask[MRGI_VOXEL_MAX_WORDS];
   mrgi_voxel_fragment_mask(grid, depth, half_span, depth_min, depth_max, mask);
-  if ((mask[0] | mask[1] | mask[2] | mask[3]) == 0u)
+  const int32_t words = mrgi_voxel_pixel_words(grid);
+  uint32_t any = 0u;
+  for (int32_t c = 0; c < words; ++c)
+  {
+    any |= mask[c];
+  }
+  if (any == 0u)
   {
     return 0;
   }
   uint32_t* texel = voxels + mrgi_voxel_index(grid, x, y);
-  for (int c = 0; c < MRGI_VOXEL_CHANNELS; ++c)
+  for (int32_t c = 0; c < words; ++c)
   {
     texel[c] |= mask[c];
   }

@@ -1,6 +1,6 @@
 /**
  * @file mrgi_voxel.h
- * @brief Screen-space voxels: the 128-bit-per-pixel bit layout, the depth
+ * @brief Screen-space voxels: the bit layout (128 to 512 slices), the depth
  *        slicing, the voxel buffer's resolution and its mapping from window
  *        pixels, the camera projection the march uses, and the C twin of the
  *        voxelization pass (rasterized fragments OR-ed into the buffer).
@@ -18,14 +18,26 @@
  *
  * ## 1. Bit layout (defined once)
  *
- * A voxel pixel holds MRGI_VOXEL_SLICES = 128 one-bit voxels, one per depth
- * slice, in MRGI_VOXEL_CHANNELS = 4 unsigned 32-bit channels (R, G, B, A of
- * an RGBA32UI texel). Slice s, 0 <= s < 128, is
+ * A voxel pixel holds S one-bit voxels, one per depth slice, S = 128 L for
+ * L = 1..MRGI_VOXEL_MAX_LAYERS layers (S = 128, 256, 384 or 512;
+ * mrgi_voxel_grid::slices, default MRGI_VOXEL_DEFAULT_SLICES = 128). A layer
+ * is MRGI_VOXEL_LAYER_SLICES = 128 slices in MRGI_VOXEL_CHANNELS = 4
+ * unsigned 32-bit channels (R, G, B, A of an RGBA32UI texel); on the GPU
+ * layer l is layer l of a 2D array texture, written as the l-th render
+ * target of one draw (NPW10 3.3: "more bits may be obtained using multiple
+ * render targets"). Slice s, 0 <= s < S, is
  *
- *     channel c = s >> 5 (s / 32),   bit b = s & 31,   s = 32 c + b,
+ *     layer l = s >> 7,   channel c = (s >> 5) & 3,   bit b = s & 31,
  *
- * so slice 0 (nearest) is bit 0 of R and slice 127 (farthest) is bit 31 of A.
+ * i.e. word s >> 5 of the pixel's 4 L words: slice 0 (nearest) is bit 0 of
+ * layer 0's R, slice S - 1 (farthest) bit 31 of layer L - 1's A.
  * A bit is 1 when some surface passes through that voxel.
+ *
+ * Why more than 128 (beyond NPW10 4.2's "128 bits of depth"): a voxel is
+ * as fat as its slice, and the march's bias and its thickened rays
+ * (mrgi_voxel_march.h) scale with the voxel. In a deep view 128 slices are
+ * several centimetres each, and rays passing an object's edge at less than
+ * a slice are hidden (Documentation/AreaLights.md measures the slices).
  *
  * ## 2. Depth slicing: uniform in linear eye depth over [near, far]
  *
@@ -34,13 +46,13 @@
  * the depth range of the visible scene (e.g. the G-buffer's min and max, the
  * coarsest multires texel's (dmin, dmax)) widened to include the area
  * light's corners, within the camera's clipping range. With
- * scale = MRGI_VOXEL_SLICES / (far - near), rounded to float (the shader's
- * uniform), the slice of depth d is
+ * scale = S / (far - near), rounded to float (the shader's uniform), the
+ * slice of depth d is
  *
- *     slice(d) = int(clamp((d - near) * scale, 0.0, 127.0))      (float math)
+ *     slice(d) = int(clamp((d - near) * scale, 0.0, float(S - 1)))   (float math)
  *
- * i.e. floor((d - near) / thickness) clamped to 0..127, thickness
- * (far - near) / 128; slice(near) = 0, slice(far) = 127 (the top end is
+ * i.e. floor((d - near) / thickness) clamped to 0..S-1, thickness
+ * (far - near) / S; slice(near) = 0, slice(far) = S - 1 (the top end is
  * closed). NaN maps to 0 in the C twin (fmaxf returns the non-NaN operand);
  * callers never pass NaN (the functions below drop such fragments first).
  *
@@ -51,7 +63,7 @@
  * intervals, mrgi_voxel_march.h), (b) the voxel depth thickness the same
  * everywhere, so a self-occlusion bias in voxel units is one eye-space
  * distance for the whole frame (NPW10 4.3), (c) with [near, far] fitted to
- * the scene (not the clipping planes) little of the 128 bits is wasted; a
+ * the scene (not the clipping planes) few of the S bits are wasted; a
  * 1/d slicing would spend most bits just in front of the camera.
  *
  * Fragments outside [near, far] are dropped (on the GPU the voxelization
@@ -64,9 +76,9 @@
  * independent of the W x H window (NPW10 4.2: 128^2 .. 1024^2;
  * MRGI_VOXEL_DEFAULT_SIZE = 128; "up to full resolution" is the useful range,
  * larger is allowed). vtkMRGIVoxelization chooses it by default with
- * mrgi_voxel_isotropic_size() (voxels about as wide as deep). It covers the same view frustum as the window (same
- * projection, the viewport is VW x VH), so window pixel (x, y) maps to the
- * voxel pixel whose area contains the window pixel's centre:
+ * mrgi_voxel_isotropic_size() (voxels about as wide as deep). It covers the same view frustum as
+ * the window (same projection, the viewport is VW x VH), so window pixel (x, y) maps to the voxel
+ * pixel whose area contains the window pixel's centre:
  *
  *     vx = ((2 x + 1) VW) / (2 W),   vy = ((2 y + 1) VH) / (2 H)   (integer division)
  *
@@ -74,9 +86,11 @@
  * MRGI_VOXEL_MAX_SIZE. Every voxel pixel receives floor(W/VW) or
  * ceil(W/VW) window columns when VW <= W.
  *
- * Storage: uint32 words, row-major, row 0 = BOTTOM (OpenGL order), texel
- * (x, y) at word index 4 (y VW + x) + c for channel c. 4 VW VH words in all
- * (mrgi_voxel_buffer_words()); 256 KiB at 128^2, 4 MiB at 512^2.
+ * Storage: uint32 words, row-major, row 0 = BOTTOM (OpenGL order), the
+ * 4 L words of texel (x, y) together: word 4 L (y VW + x) + (s >> 5) holds
+ * slice s (layer l's channel c at 4 L (y VW + x) + 4 l + c). 4 L VW VH
+ * words in all (mrgi_voxel_buffer_words()); 256 KiB per layer at 128^2,
+ * 4 MiB per layer at 512^2.
  *
  * ## 4. Projection (eye space -> voxel pixel coordinates)
  *
@@ -126,11 +140,11 @@
  *   (float rounding at an edge) or a vertex is at or behind the eye, the
  *   whole triangle's range is used.
  *
- * A fragment at d in [near, far] writes
+ * A fragment at d in [near, far] writes, to each layer l < L,
  *
  *     h'   = h > 0 ? h : 0                                   (NaN -> 0)
  *     lo   = min(max(d - h', dmin), d),  hi = max(min(d + h', dmax), d)
- *     mask = range_mask(slice(lo), slice(hi))
+ *     mask_l = range_mask(slice(lo) - 128 l, slice(hi) - 128 l)
  *
  * (the centre depth is always kept, even when rounding puts it just
  * outside [dmin, dmax]; the interval is clipped to the range by slice()'s
@@ -149,8 +163,9 @@
  * back faces only, and a ray crossing it at mid depth passes (TestVoxel
  * prints this case).
  *
- * range_mask(lo, hi) (mrgi_voxel_range_mask()): slices lo..hi inclusive,
- * clamped to 0..127, empty when lo > hi; per channel c with
+ * range_mask(lo, hi) (mrgi_voxel_range_mask()): the slices lo..hi of one
+ * layer (numbered 0..127 within it), inclusive, clamped to 0..127, empty
+ * when lo > hi; per channel c with
  * a = max(lo - 32c, 0), b = min(hi - 32c, 31):
  * (0xFFFFFFFF >> (31 - b)) & (0xFFFFFFFF << a) when a <= b, else 0 (no shift
  * by 32, which GLSL and C leave undefined).
@@ -168,10 +183,18 @@
 extern "C" {
 #endif
 
-/** Depth slices (bits) per voxel pixel (NPW10 4.2: 128). */
-#define MRGI_VOXEL_SLICES 128
-/** Unsigned 32-bit channels per voxel pixel (RGBA32UI). */
+/** Depth slices (bits) per layer, one RGBA32UI texel (NPW10 4.2: 128). */
+#define MRGI_VOXEL_LAYER_SLICES 128
+/** Most layers (render targets) per voxel pixel: up to 512 slices (section 1). */
+#define MRGI_VOXEL_MAX_LAYERS 4
+/** Most slices per voxel pixel. */
+#define MRGI_VOXEL_MAX_SLICES (MRGI_VOXEL_LAYER_SLICES * MRGI_VOXEL_MAX_LAYERS)
+/** Default slices per voxel pixel (NPW10 4.2: 128, one layer). */
+#define MRGI_VOXEL_DEFAULT_SLICES 128
+/** Unsigned 32-bit channels per layer (RGBA32UI). */
 #define MRGI_VOXEL_CHANNELS 4
+/** Most words per voxel pixel. */
+#define MRGI_VOXEL_MAX_WORDS (MRGI_VOXEL_CHANNELS * MRGI_VOXEL_MAX_LAYERS)
 /** Bits per channel; slice s is in channel s / 32, bit s % 32. */
 #define MRGI_VOXEL_CHANNEL_BITS 32
 /** Largest voxel buffer side (keeps (2x+1) VW within 32-bit ints; GL's usual texture limit). */
@@ -186,26 +209,30 @@ typedef struct mrgi_voxel_grid
 {
   int32_t width;    /**< VW, 1..MRGI_VOXEL_MAX_SIZE. */
   int32_t height;   /**< VH, 1..MRGI_VOXEL_MAX_SIZE. */
+  int32_t slices;   /**< S: 128 L, L = 1..MRGI_VOXEL_MAX_LAYERS (section 1). */
   float near_depth; /**< Linear eye depth of the front of slice 0 (float, finite). */
-  float far_depth;  /**< Linear eye depth of the back of slice 127 (float, finite, > near). */
-  float slice_scale; /**< MRGI_VOXEL_SLICES / (far - near) as float, finite > 0 (the shader's uniform). */
+  float far_depth;  /**< Linear eye depth of the back of slice S - 1 (float, finite, > near). */
+  float slice_scale; /**< S / (far - near) as float, finite > 0 (the shader's uniform). */
 } mrgi_voxel_grid;
 
 /**
- * @brief Set up a VW x VH grid slicing [near, far] (sections 2-3).
+ * @brief Set up a VW x VH grid of S slices over [near, far] (sections 1-3).
  * @param grid   Receives the grid; zeroed on failure.
  * @param width  VW, 1..MRGI_VOXEL_MAX_SIZE.
  * @param height VH, 1..MRGI_VOXEL_MAX_SIZE.
+ * @param slices S: 128, 256, 384 or 512 (a multiple of MRGI_VOXEL_LAYER_SLICES
+ *               up to MRGI_VOXEL_MAX_SLICES).
  * @param near_depth,far_depth Linear eye depths; finite as floats, near < far
- *               after rounding to float, and 128 / (far - near) finite and > 0
+ *               after rounding to float, and S / (far - near) finite and > 0
  *               as a float. Negative depths are allowed (parallel projection);
  *               the march requires near > 0 for perspective (mrgi_voxel_march.h).
  * @return ::MRGI_ERR_INVALID_ARGUMENT for NULL `grid`, a zero, negative or too
- *         large size, NaN/infinite depths, near == far ("empty depth range"),
+ *         large size, a slice count that is not a multiple of 128 in
+ *         128..512, NaN/infinite depths, near == far ("empty depth range"),
  *         far < near ("reversed"), or a range too small or too large for float.
  */
 mrgi_status mrgi_voxel_grid_init(mrgi_voxel_grid* grid, int32_t width, int32_t height,
-                                 double near_depth, double far_depth, mrgi_error* err);
+  int32_t slices, double near_depth, double far_depth, mrgi_error* err);
 
 /**
  * @brief Check that `grid` is what mrgi_voxel_grid_init() makes for its own
@@ -246,19 +273,32 @@ mrgi_status mrgi_voxel_grid_check(const mrgi_voxel_grid* grid, mrgi_error* err);
 mrgi_status mrgi_voxel_fit_depth_range(const double world_to_eye[16], const double bounds[6],
                                        const double clip[2], double range[2], mrgi_error* err);
 
-/** @brief Words of the voxel buffer: 4 VW VH; 0 for NULL. */
+/** @brief Words of the voxel buffer: 4 L VW VH; 0 for NULL. */
 size_t mrgi_voxel_buffer_words(const mrgi_voxel_grid* grid);
 
-/** @brief Word index of channel 0 of voxel pixel (x, y). No checks (hot loops). */
-static inline size_t mrgi_voxel_index(const mrgi_voxel_grid* grid, int32_t x, int32_t y)
+/** @brief Layers L = S / 128 of a valid grid (section 1). */
+static inline int32_t mrgi_voxel_layers(const mrgi_voxel_grid* grid)
 {
-  return ((size_t)y * (size_t)grid->width + (size_t)x) * MRGI_VOXEL_CHANNELS;
+  return grid->slices / MRGI_VOXEL_LAYER_SLICES;
 }
 
-/** @brief Slice of linear depth d (section 2): int(clamp((d - near) scale, 0, 127)). */
+/** @brief Words per voxel pixel, 4 L. */
+static inline int32_t mrgi_voxel_pixel_words(const mrgi_voxel_grid* grid)
+{
+  return mrgi_voxel_layers(grid) * MRGI_VOXEL_CHANNELS;
+}
+
+/** @brief Word index of layer 0's channel 0 of voxel pixel (x, y). No checks (hot loops). */
+static inline size_t mrgi_voxel_index(const mrgi_voxel_grid* grid, int32_t x, int32_t y)
+{
+  return ((size_t)y * (size_t)grid->width + (size_t)x) * (size_t)mrgi_voxel_pixel_words(grid);
+}
+
+/** @brief Slice of linear depth d (section 2): int(clamp((d - near) scale, 0, S - 1)). */
 int32_t mrgi_voxel_slice(const mrgi_voxel_grid* grid, float depth);
 
-/** @brief Channel of slice s (s >> 5). */
+/** @brief Word of slice s within its pixel's 4 L words (s >> 5; layer s >> 7, channel (s >> 5) &
+ * 3). */
 static inline int32_t mrgi_voxel_slice_channel(int32_t slice)
 {
   return slice >> 5;
@@ -273,7 +313,12 @@ static inline int32_t mrgi_voxel_slice_bit(int32_t slice)
 /** @brief Linear depth at the middle of slice s: near + (s + 0.5) / scale (double). */
 double mrgi_voxel_slice_center(const mrgi_voxel_grid* grid, int32_t slice);
 
-/** @brief Mask of slices lo..hi inclusive, clamped to 0..127; all zero when lo > hi (section 5). */
+/**
+ * @brief One layer's mask of its slices lo..hi (numbered 0..127 within the
+ *        layer) inclusive, clamped to 0..127; all zero when lo > hi (section
+ *        5). Layer l of a range [a, b] of the whole pixel is
+ *        range_mask(a - 128 l, b - 128 l).
+ */
 void mrgi_voxel_range_mask(int32_t lo, int32_t hi, uint32_t mask[MRGI_VOXEL_CHANNELS]);
 
 /**
@@ -330,21 +375,21 @@ mrgi_status mrgi_voxel_projection_check(const mrgi_voxel_projection* projection,
 /**
  * @brief The voxel buffer size whose voxels are about as wide as they are
  *        deep: at the middle depth of [near, far], a voxel pixel's eye-space
- *        width (height) equals the slice thickness (far - near) / 128.
+ *        width (height) equals the slice thickness (far - near) / S.
  *
  * Why (beyond NPW10, whose 128^2 default is one fixed size for every
  * scene): the march's bias and its conservative intervals work in voxel
  * sizes, the larger of the pixel's eye-space size and the slice thickness
  * (mrgi_voxel_march.h, step 3), so a shadow is only as sharp as the
  * coarser of the two dimensions. Finer pixels than slices buy little, and
- * coarser pixels than slices waste the 128 bits: in `cornell-area`
+ * coarser pixels than slices waste the bits: in `cornell-area`
  * (slices 4.5 mm, 128^2 voxel pixels 5.7 mm wide at mid depth) the error on
  * 4x4 boxes falls from 128^2 to the isotropic side and then stays
  * (Documentation/AreaLights.md). A deep scene (a room seen from inside,
  * thick slices) gets the least side.
  *
  * Perspective: VW = 2 d / (scale_x t), VH = 2 d / (scale_y t), d = (near +
- * far) / 2, t = (far - near) / MRGI_VOXEL_SLICES (the pixel width at depth
+ * far) / 2, t = (far - near) / S (the pixel width at depth
  * d is 2 d / (scale_x VW), section 4). Parallel: the same with d = 1. Each
  * side is rounded to the nearest multiple of MRGI_VOXEL_AUTO_STEP (so that
  * a moving camera changes the buffer's size only now and then) and clamped
@@ -352,16 +397,18 @@ mrgi_status mrgi_voxel_projection_check(const mrgi_voxel_projection* projection,
  * cost grows with the side; 128 is NPW10 4.2's default).
  *
  * @param projection A valid projection (mrgi_voxel_projection_check()).
+ * @param slices S, as for mrgi_voxel_grid_init().
  * @param near_depth,far_depth The slicing range (as for
  *               mrgi_voxel_grid_init()): finite, near < far, and near + far
  *               > 0 for perspective.
  * @param size   Receives (VW, VH); untouched on failure.
  * @return ::MRGI_ERR_INVALID_ARGUMENT naming a NULL argument, an invalid
- *         projection, a non-finite or empty range, or a perspective range
- *         whose middle is not in front of the eye.
+ *         projection, a slice count mrgi_voxel_grid_init() refuses, a
+ *         non-finite or empty range, or a perspective range whose middle is
+ *         not in front of the eye.
  */
-mrgi_status mrgi_voxel_isotropic_size(const mrgi_voxel_projection* projection, double near_depth,
-                                      double far_depth, int32_t size[2], mrgi_error* err);
+mrgi_status mrgi_voxel_isotropic_size(const mrgi_voxel_projection* projection, int32_t slices,
+  double near_depth, double far_depth, int32_t size[2], mrgi_error* err);
 
 /**
  * @brief Project an eye-space point: uvd = (u, v, d), continuous voxel
@@ -391,13 +438,13 @@ typedef struct mrgi_voxel_info
 } mrgi_voxel_info;
 
 /**
- * @brief The fragment shader's output for one fragment (section 5): the
+ * @brief The fragment shader's outputs for one fragment (section 5): the
  *        slices of [d - h, d + h] clamped to [dmin, dmax] (centre kept), or
- *        all zero when d is outside [near, far] or NaN.
+ *        all zero when d is outside [near, far] or NaN; 4 L words (layer l's
+ *        render target in words 4 l .. 4 l + 3).
  */
 void mrgi_voxel_fragment_mask(const mrgi_voxel_grid* grid, float depth, float half_span,
-                              float depth_min, float depth_max,
-                              uint32_t mask[MRGI_VOXEL_CHANNELS]);
+  float depth_min, float depth_max, uint32_t mask[MRGI_VOXEL_MAX_WORDS]);
 
 /**
  * @brief Depth range of a triangle clipped to voxel pixel (x, y)'s square

@@ -160,13 +160,16 @@ static mrgi_voxel_box mrgi_voxel_skip_box(const mrgi_voxel_view* view, const flo
   return box;
 }
 
-static void mrgi_voxel_apply_box(const mrgi_voxel_box* box, int32_t radius, int32_t px,
-                                 int32_t py, uint32_t mask[MRGI_VOXEL_CHANNELS])
+/* The box's slices are removed from layer `layer`'s mask (its slices
+ * 128 layer .. 128 layer + 127, mrgi_voxel.h section 1). */
+static void mrgi_voxel_apply_box(const mrgi_voxel_box* box, int32_t radius, int32_t px, int32_t py,
+  int32_t layer, uint32_t mask[MRGI_VOXEL_CHANNELS])
 {
   if (box->active && abs(px - box->x) <= radius && abs(py - box->y) <= radius)
   {
     uint32_t skip[MRGI_VOXEL_CHANNELS];
-    mrgi_voxel_range_mask(box->slice - radius, box->slice + radius, skip);
+    const int32_t base = MRGI_VOXEL_LAYER_SLICES * layer;
+    mrgi_voxel_range_mask(box->slice - radius - base, box->slice + radius - base, skip);
     for (int c = 0; c < MRGI_VOXEL_CHANNELS; ++c)
     {
       mask[c] &= ~skip[c];
@@ -324,14 +327,25 @@ static mrgi_voxel_outcome mrgi_voxel_march_core(const mrgi_voxel_view* view, con
       d0 = a[2] + (b[2] - a[2]) * s0;
       d1 = a[2] + (b[2] - a[2]) * s1;
     }
-    uint32_t mask[MRGI_VOXEL_CHANNELS];
-    mrgi_voxel_range_mask(mrgi_voxel_slice(&view->grid, fminf(d0, d1)),
-                          mrgi_voxel_slice(&view->grid, fmaxf(d0, d1)), mask);
-    mrgi_voxel_apply_box(&box_p, radius, px, py, mask);
-    mrgi_voxel_apply_box(&box_l, radius, px, py, mask);
-    const uint32_t* texel = view->voxels + mrgi_voxel_index(&view->grid, px, py);
-    if (((texel[0] & mask[0]) | (texel[1] & mask[1]) | (texel[2] & mask[2]) |
-         (texel[3] & mask[3])) != 0u)
+    const int32_t lo = mrgi_voxel_slice(&view->grid, fminf(d0, d1));
+    const int32_t hi = mrgi_voxel_slice(&view->grid, fmaxf(d0, d1));
+    const uint32_t* pixel = view->voxels + mrgi_voxel_index(&view->grid, px, py);
+    /* Only the layers the interval reaches are read (one texel fetch each
+     * on the GPU; almost always one). */
+    uint32_t overlap = 0u;
+    for (int32_t layer = lo / MRGI_VOXEL_LAYER_SLICES; layer <= hi / MRGI_VOXEL_LAYER_SLICES;
+         ++layer)
+    {
+      const int32_t base = MRGI_VOXEL_LAYER_SLICES * layer;
+      uint32_t mask[MRGI_VOXEL_CHANNELS];
+      mrgi_voxel_range_mask(lo - base, hi - base, mask);
+      mrgi_voxel_apply_box(&box_p, radius, px, py, layer, mask);
+      mrgi_voxel_apply_box(&box_l, radius, px, py, layer, mask);
+      const uint32_t* texel = pixel + MRGI_VOXEL_CHANNELS * layer;
+      overlap |=
+        (texel[0] & mask[0]) | (texel[1] & mask[1]) | (texel[2] & mask[2]) | (texel[3] & mask[3]);
+    }
+    if (overlap != 0u)
     {
       if (from_light)
       {

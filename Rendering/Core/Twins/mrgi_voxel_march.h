@@ -73,9 +73,12 @@
  *                sm = (k + 0.5) / n;
  *       depth(s) = 1 / (1/dA + (1/dB - 1/dA) s)   (perspective: 1/d is linear
  *                  in screen space) or dA + (dB - dA) s (parallel);
- *       mask   = range_mask(slice(min(depth(s0), depth(s1))), slice(max(...)))
- *                minus the skip boxes;
- *       OCCLUDED when (texel(pixel) & mask) != 0.
+ *       [lo, hi] = [slice(min(depth(s0), depth(s1))), slice(max(...))];
+ *       for each layer l from lo >> 7 to hi >> 7 (mrgi_voxel.h section 1;
+ *       one layer unless the step crosses a multiple of 128 slices):
+ *         mask_l = range_mask(lo - 128 l, hi - 128 l) minus the skip boxes
+ *                  (their slices shifted by -128 l the same way);
+ *       OCCLUDED when (texel(pixel, l) & mask_l) != 0 for some l.
  *     The depth along the segment is monotone, so [depth(s0), depth(s1)] is
  *     every depth the step's piece of segment passes: all the slices it
  *     crosses are tested, not only the one at the sample point, and a wall

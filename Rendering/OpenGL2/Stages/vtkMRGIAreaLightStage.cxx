@@ -338,7 +338,8 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
       vtkNew<vtkTypeUInt32Array> bits;
       if (!voxels || !this->Voxelization->ReadVoxels(renWin, bits))
       {
-        bits->SetNumberOfComponents(4);
+        bits->SetNumberOfComponents(
+          this->Voxelization->GetNumberOfSlices() / MRGI_VOXEL_CHANNEL_BITS);
         bits->SetNumberOfTuples(static_cast<vtkIdType>(size[0]) * size[1]);
         bits->Fill(0);
       }

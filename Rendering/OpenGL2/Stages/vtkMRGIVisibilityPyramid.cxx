@@ -104,6 +104,10 @@ struct vtkMRGIVisibilityPyramid::Internals
   // Small levels' copies: masks and stencil (CopyWidth x CopyHeight).
   std::array<vtkTextureObject*, MaxTargets> CopyMasks{};
   vtkTextureObject* CopyStencil = nullptr;
+  // 1 x 1 RGBA32UI for the integer samplers a stage does not read (every
+  // sampler on a unit holding a texture of its type; the voxels are a 3D
+  // texture, and a stage's own targets must not be bound).
+  vtkTextureObject* Spare = nullptr;
   int CopyWidth = 0, CopyHeight = 0, CopyTargets = 0;
   mrgi_multires_layout Layout{};
   int Levels = 0, Samples = 0, Words = 0, Targets = 0, Threshold = 0, Draws = 0;
@@ -132,6 +136,7 @@ struct vtkMRGIVisibilityPyramid::Internals
       vtkMRGIShaderUtilities::ReleaseTexture(t, w);
     }
     vtkMRGIShaderUtilities::ReleaseTexture(this->DepthStencil, w);
+    vtkMRGIShaderUtilities::ReleaseTexture(this->Spare, w);
     this->ReleaseCopies(w);
     this->Valid = false;
   }
@@ -262,6 +267,11 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
     {
       in.DepthStencil = vtkMRGIShaderUtilities::NewDepthStencil(window, layout.width, layout.height);
       ok = in.DepthStencil != nullptr;
+    }
+    if (ok)
+    {
+      in.Spare = MakeUIntTexture(window, 1, 1);
+      ok = in.Spare != nullptr;
     }
     if (!ok)
     {
@@ -431,9 +441,9 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
       bind("mrgiVisParentNormal", parentNormal);
       bind("mrgiVisSamples", samples);
       bind("mrgiVisSelection", selection ? selection : samples);
-      // Unused integer samplers read the voxels (never a texture attached
-      // now: no feedback loop).
-      vtkTextureObject* spare = voxels->GetVoxelTexture();
+      // Unused integer samplers read the spare texel (never a texture
+      // attached now: no feedback loop).
+      vtkTextureObject* spare = in.Spare;
       for (int k = 0; k < MaxTargets; ++k)
       {
         const size_t kk = static_cast<size_t>(std::min(k, targets - 1));

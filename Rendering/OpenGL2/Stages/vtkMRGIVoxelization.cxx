@@ -140,7 +140,11 @@ struct vtkMRGIVoxelization::Internals
   // The window whose context holds the resources below (weak: a window that
   // goes away takes its context, and the GL objects, with it).
   vtkWeakPointer<vtkOpenGLRenderWindow> Window;
+  // The voxels: a GL_TEXTURE_3D of RGBA32UI, one depth layer per 128 slices
+  // (mrgi_voxel.h section 1). Not a 2D array texture: vtkTextureObject
+  // allocates none, and ParaView's VTK asserts on such a target.
   vtkTextureObject* Voxels = nullptr;
+  int TextureSize[3] = { 0, 0, 0 }; // VW, VH, layers
   vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
   // What is drawn: vertex buffers per polydata, the vertex array.
   vtkMRGIVoxelGeometry Geometry;
@@ -165,6 +169,7 @@ vtkMRGIVoxelization::vtkMRGIVoxelization()
 {
   this->VoxelSize[0] = MRGI_VOXEL_DEFAULT_SIZE;
   this->VoxelSize[1] = MRGI_VOXEL_DEFAULT_SIZE;
+  this->NumberOfSlices = MRGI_VOXEL_DEFAULT_SLICES;
   mrgi_voxel_march_params params;
   mrgi_voxel_march_params_default(&params);
   this->MaxSteps = params.max_steps;
@@ -197,15 +202,7 @@ void vtkMRGIVoxelization::ReleaseGraphicsResources(vtkWindow* w)
 {
   Internals& in = *this->Internal;
   in.Geometry.Release(w != nullptr);
-  if (in.Voxels)
-  {
-    if (w)
-    {
-      in.Voxels->ReleaseGraphicsResources(w);
-    }
-    in.Voxels->Delete();
-    in.Voxels = nullptr;
-  }
+  this->ReleaseVoxelTexture(w);
   if (in.FrameBuffer)
   {
     if (w)
@@ -217,6 +214,87 @@ void vtkMRGIVoxelization::ReleaseGraphicsResources(vtkWindow* w)
   }
   in.HasGrid = false;
   in.Window = nullptr;
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIVoxelization::ReleaseVoxelTexture(vtkWindow* w)
+{
+  Internals& in = *this->Internal;
+  if (in.Voxels)
+  {
+    if (w)
+    {
+      in.Voxels->ReleaseGraphicsResources(w);
+    }
+    in.Voxels->Delete();
+    in.Voxels = nullptr;
+  }
+  in.TextureSize[0] = in.TextureSize[1] = in.TextureSize[2] = 0;
+  in.HasGrid = false;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIVoxelization::AllocateVoxelTexture(
+  vtkOpenGLRenderWindow* window, int width, int height, int layers, std::string& problem)
+{
+  Internals& in = *this->Internal;
+  GLint maxBuffers = 0, maxAttachments = 0, maxSize = 0;
+  glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxBuffers);
+  glGetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &maxAttachments);
+  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
+  if (layers > std::min(maxBuffers, maxAttachments))
+  {
+    problem = std::to_string(MRGI_VOXEL_LAYER_SLICES * layers) + " slices need " +
+      std::to_string(layers) + " render targets, and this OpenGL draws into at most " +
+      std::to_string(std::min(maxBuffers, maxAttachments)) +
+      "; use fewer slices (SetNumberOfSlices)";
+    return false;
+  }
+  if (width > maxSize || height > maxSize)
+  {
+    problem = "the " + std::to_string(width) + " x " + std::to_string(height) +
+      " voxel buffer exceeds this OpenGL's largest 3D texture (" + std::to_string(maxSize) +
+      " per side); use a smaller voxel size";
+    return false;
+  }
+  in.Voxels = vtkTextureObject::New();
+  in.Voxels->SetContext(window);
+  in.Voxels->SetInternalFormat(GL_RGBA32UI);
+  in.Voxels->SetFormat(GL_RGBA_INTEGER);
+  in.Voxels->SetDataType(GL_UNSIGNED_INT);
+  in.Voxels->SetMinificationFilter(vtkTextureObject::Nearest);
+  in.Voxels->SetMagnificationFilter(vtkTextureObject::Nearest);
+  in.Voxels->SetWrapS(vtkTextureObject::ClampToEdge);
+  in.Voxels->SetWrapT(vtkTextureObject::ClampToEdge);
+  in.Voxels->SetWrapR(vtkTextureObject::ClampToEdge);
+  if (!in.Voxels->Allocate3D(static_cast<unsigned int>(width), static_cast<unsigned int>(height),
+        static_cast<unsigned int>(layers), 4, VTK_UNSIGNED_INT))
+  {
+    problem = "could not allocate the " + std::to_string(width) + " x " + std::to_string(height) +
+      " x " + std::to_string(layers) + " RGBA32UI voxel texture";
+    in.Voxels->Delete();
+    in.Voxels = nullptr;
+    return false;
+  }
+  in.TextureSize[0] = width;
+  in.TextureSize[1] = height;
+  in.TextureSize[2] = layers;
+  vtkMRGIResourceStatistics::RecordTextureAllocation(width, height, 16 * layers);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkMRGIVoxelization::SetNumberOfSlices(int slices)
+{
+  // Up to the next layer of 128, clamped (mrgi_voxel.h section 1).
+  slices = std::min(std::max(slices, MRGI_VOXEL_LAYER_SLICES), MRGI_VOXEL_MAX_SLICES);
+  slices =
+    (slices + MRGI_VOXEL_LAYER_SLICES - 1) / MRGI_VOXEL_LAYER_SLICES * MRGI_VOXEL_LAYER_SLICES;
+  if (slices != this->NumberOfSlices)
+  {
+    this->NumberOfSlices = slices;
+    this->Modified();
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -261,7 +339,8 @@ bool vtkMRGIVoxelization::VoxelSizeFor(
   size[1] = this->VoxelSize[1];
   int32_t automatic[2];
   if (!this->AutomaticVoxelSize ||
-    mrgi_voxel_isotropic_size(&projection, nearDepth, farDepth, automatic, nullptr) != MRGI_OK)
+    mrgi_voxel_isotropic_size(
+      &projection, this->NumberOfSlices, nearDepth, farDepth, automatic, nullptr) != MRGI_OK)
   {
     return !this->AutomaticVoxelSize;
   }
@@ -287,6 +366,12 @@ void vtkMRGIVoxelization::GetLastVoxelSize(int size[2]) const
   const Internals& in = *this->Internal;
   size[0] = in.HasGrid ? in.Grid.width : 0;
   size[1] = in.HasGrid ? in.Grid.height : 0;
+}
+
+int vtkMRGIVoxelization::GetLastNumberOfSlices() const
+{
+  const Internals& in = *this->Internal;
+  return in.HasGrid ? in.Grid.slices : 0;
 }
 
 void vtkMRGIVoxelization::GetLastDepthRange(double range[2]) const
@@ -460,6 +545,10 @@ bool vtkMRGIVoxelization::SetMarchUniforms(
   {
     program->SetUniform2i("mrgiVoxelGridSize", size);
   }
+  if (used("mrgiVoxelSlices"))
+  {
+    program->SetUniformi("mrgiVoxelSlices", g.slices);
+  }
   if (used("mrgiVoxelNear"))
   {
     program->SetUniformf("mrgiVoxelNear", g.near_depth);
@@ -576,7 +665,8 @@ bool vtkMRGIVoxelization::Voxelize(
   this->VoxelSizeFor(projection, nearDepth, farDepth, size);
   mrgi_voxel_grid grid;
   mrgi_error err;
-  if (mrgi_voxel_grid_init(&grid, size[0], size[1], nearDepth, farDepth, &err) != MRGI_OK)
+  if (mrgi_voxel_grid_init(
+        &grid, size[0], size[1], this->NumberOfSlices, nearDepth, farDepth, &err) != MRGI_OK)
   {
     vtkErrorMacro("Voxelize: " << err.message);
     return false;
@@ -611,36 +701,16 @@ bool vtkMRGIVoxelization::Voxelize(
   in.Geometry.Collect(ren);
 
   // ---- resources ----
-  if (!in.Voxels || static_cast<int>(in.Voxels->GetWidth()) != grid.width ||
-    static_cast<int>(in.Voxels->GetHeight()) != grid.height)
+  const int layers = mrgi_voxel_layers(&grid);
+  if (!in.Voxels || in.TextureSize[0] != grid.width || in.TextureSize[1] != grid.height ||
+    in.TextureSize[2] != layers)
   {
-    if (in.Voxels)
+    this->ReleaseVoxelTexture(window); // also forgets the last grid
+    if (!this->AllocateVoxelTexture(window, grid.width, grid.height, layers, problem))
     {
-      in.Voxels->ReleaseGraphicsResources(window);
-      in.Voxels->Delete();
-    }
-    // RGBA32UI: 128 one-bit voxels per pixel (NPW10 4.2, mrgi_voxel.h section 1).
-    in.Voxels = vtkTextureObject::New();
-    in.Voxels->SetContext(window);
-    in.Voxels->SetInternalFormat(GL_RGBA32UI);
-    in.Voxels->SetFormat(GL_RGBA_INTEGER);
-    in.Voxels->SetDataType(GL_UNSIGNED_INT);
-    in.Voxels->SetMinificationFilter(vtkTextureObject::Nearest);
-    in.Voxels->SetMagnificationFilter(vtkTextureObject::Nearest);
-    in.Voxels->SetWrapS(vtkTextureObject::ClampToEdge);
-    in.Voxels->SetWrapT(vtkTextureObject::ClampToEdge);
-    if (!in.Voxels->Allocate2D(static_cast<unsigned int>(grid.width),
-          static_cast<unsigned int>(grid.height), 4, VTK_UNSIGNED_INT))
-    {
-      vtkErrorMacro("Voxelize: could not allocate the " << grid.width << " x " << grid.height
-                                                        << " RGBA32UI voxel texture");
-      in.Voxels->Delete();
-      in.Voxels = nullptr;
-      in.HasGrid = false;
+      vtkErrorMacro("Voxelize: " << problem);
       return false;
     }
-    vtkMRGIResourceStatistics::RecordTextureAllocation(grid.width, grid.height, 16);
-    in.HasGrid = false;
   }
   if (!in.FrameBuffer)
   {
@@ -690,11 +760,19 @@ bool vtkMRGIVoxelization::Voxelize(
     vtkOpenGLFramebufferObject* fbo = in.FrameBuffer;
     fbo->SaveCurrentBindingsAndBuffers();
     fbo->Bind();
-    fbo->AddColorAttachment(0, in.Voxels);
-    vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, 1);
-    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    // One render target per layer of 128 slices, all written by one draw
+    // (NPW10 3.3: "more bits may be obtained using multiple render targets").
+    // Attached directly: vtkOpenGLFramebufferObject attaches no array layers.
+    for (int l = 0; l < layers; ++l)
     {
-      vtkErrorMacro("Voxelize: the RGBA32UI voxel framebuffer is incomplete");
+      glFramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + l),
+        in.Voxels->GetHandle(), 0, l);
+    }
+    vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, static_cast<unsigned int>(layers));
+    if (glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    {
+      vtkErrorMacro(
+        "Voxelize: the RGBA32UI voxel framebuffer (" << layers << " layers) is incomplete");
       ok = false;
     }
     if (ok)
@@ -702,7 +780,10 @@ bool vtkMRGIVoxelization::Voxelize(
       // Explicit viewport: the voxel buffer, whatever the window's size.
       ostate->vtkglViewport(0, 0, grid.width, grid.height);
       const GLuint zero[4] = { 0u, 0u, 0u, 0u };
-      glClearBufferuiv(GL_COLOR, 0, zero);
+      for (int l = 0; l < layers; ++l)
+      {
+        glClearBufferuiv(GL_COLOR, l, zero);
+      }
       glEnable(GL_COLOR_LOGIC_OP);
       glLogicOp(GL_OR);
 
@@ -730,6 +811,7 @@ bool vtkMRGIVoxelization::Voxelize(
         clip[14] = static_cast<float>(-2.0 * f * n / (f - n));
       }
       program->SetUniformMatrix4x4("mrgiProjection", clip);
+      program->SetUniformi("mrgiVoxelSlices", grid.slices);
       program->SetUniformf("mrgiVoxelNear", grid.near_depth);
       program->SetUniformf("mrgiVoxelFar", grid.far_depth);
       program->SetUniformf("mrgiVoxelSliceScale", grid.slice_scale);
@@ -739,7 +821,11 @@ bool vtkMRGIVoxelization::Voxelize(
 
       in.Triangles = in.Geometry.Draw(program, worldToView);
     }
-    fbo->RemoveColorAttachments(1);
+    for (int l = 0; l < layers; ++l)
+    {
+      glFramebufferTextureLayer(
+        GL_DRAW_FRAMEBUFFER, static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + l), 0, 0, 0);
+    }
     fbo->UnBind();
     fbo->RestorePreviousBindingsAndBuffers();
   }
@@ -779,19 +865,34 @@ bool vtkMRGIVoxelization::WriteVoxels(vtkRenderWindow* window, vtkTypeUInt32Arra
     return false;
   }
   const int w = in.Grid.width, h = in.Grid.height;
-  if (voxels->GetNumberOfComponents() != MRGI_VOXEL_CHANNELS ||
+  const int words = mrgi_voxel_pixel_words(&in.Grid);
+  if (voxels->GetNumberOfComponents() != words ||
     voxels->GetNumberOfTuples() != static_cast<vtkIdType>(w) * h)
   {
-    vtkErrorMacro("WriteVoxels: the array is not " << w << " x " << h << " x "
-                                                   << MRGI_VOXEL_CHANNELS << " words");
+    vtkErrorMacro(
+      "WriteVoxels: the array is not " << w << " x " << h << " x " << words << " words");
     return false;
+  }
+  // mrgi_voxel.h's storage (a pixel's layers together) -> one image per layer.
+  const int layers = mrgi_voxel_layers(&in.Grid);
+  const size_t pixels = static_cast<size_t>(w) * static_cast<size_t>(h);
+  std::vector<GLuint> texels(pixels * static_cast<size_t>(words));
+  const vtkTypeUInt32* source = voxels->GetPointer(0);
+  for (size_t p = 0; p < pixels; ++p)
+  {
+    for (int l = 0; l < layers; ++l)
+    {
+      std::copy(source + p * words + MRGI_VOXEL_CHANNELS * l,
+        source + p * words + MRGI_VOXEL_CHANNELS * (l + 1),
+        texels.data() + (static_cast<size_t>(l) * pixels + p) * MRGI_VOXEL_CHANNELS);
+    }
   }
   renWin->MakeCurrent();
   ClearGLErrors();
-  in.Voxels->Bind();
+  in.Voxels->Activate();
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  glTexSubImage2D(
-    GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_INT, voxels->GetPointer(0));
+  glTexSubImage3D(
+    GL_TEXTURE_3D, 0, 0, 0, 0, w, h, layers, GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels.data());
   in.Voxels->Deactivate();
   const GLenum error = glGetError();
   if (error != GL_NO_ERROR)
@@ -822,27 +923,35 @@ bool vtkMRGIVoxelization::ReadVoxels(vtkRenderWindow* window, vtkTypeUInt32Array
     return false;
   }
   const int w = in.Grid.width, h = in.Grid.height;
-  std::vector<GLuint> words(mrgi_voxel_buffer_words(&in.Grid));
+  const int layers = mrgi_voxel_layers(&in.Grid);
+  const int words = mrgi_voxel_pixel_words(&in.Grid);
+  const size_t pixels = static_cast<size_t>(w) * static_cast<size_t>(h);
+  std::vector<GLuint> texels(mrgi_voxel_buffer_words(&in.Grid));
   renWin->MakeCurrent();
   ClearGLErrors();
-  vtkOpenGLState* ostate = renWin->GetState();
-  ostate->PushReadFramebufferBinding();
-  in.FrameBuffer->Bind(GL_READ_FRAMEBUFFER);
-  in.FrameBuffer->AddColorAttachment(0, in.Voxels);
-  in.FrameBuffer->ActivateReadBuffer(0);
+  // Every layer at once (layer-major).
+  in.Voxels->Activate();
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadPixels(0, 0, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_INT, words.data());
-  in.FrameBuffer->RemoveColorAttachments(1);
-  ostate->PopReadFramebufferBinding();
+  glGetTexImage(GL_TEXTURE_3D, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels.data());
+  in.Voxels->Deactivate();
   const GLenum error = glGetError();
   if (error != GL_NO_ERROR)
   {
     vtkErrorMacro("ReadVoxels: OpenGL error 0x" << std::hex << error << std::dec);
     return false;
   }
-  voxels->SetNumberOfComponents(MRGI_VOXEL_CHANNELS);
-  voxels->SetNumberOfTuples(static_cast<vtkIdType>(w) * h);
-  std::copy(words.begin(), words.end(), voxels->GetPointer(0));
+  voxels->SetNumberOfComponents(words);
+  voxels->SetNumberOfTuples(static_cast<vtkIdType>(pixels));
+  vtkTypeUInt32* target = voxels->GetPointer(0);
+  for (size_t p = 0; p < pixels; ++p)
+  {
+    for (int l = 0; l < layers; ++l)
+    {
+      const GLuint* texel =
+        texels.data() + (static_cast<size_t>(l) * pixels + p) * MRGI_VOXEL_CHANNELS;
+      std::copy(texel, texel + MRGI_VOXEL_CHANNELS, target + p * words + MRGI_VOXEL_CHANNELS * l);
+    }
+  }
   return true;
 }
 
@@ -852,6 +961,7 @@ void vtkMRGIVoxelization::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   const Internals& in = *this->Internal;
   os << indent << "VoxelSize: " << this->VoxelSize[0] << " x " << this->VoxelSize[1] << "\n";
+  os << indent << "NumberOfSlices: " << this->NumberOfSlices << "\n";
   os << indent << "AutomaticVoxelSize: " << (this->AutomaticVoxelSize ? "on" : "off") << "\n";
   os << indent << "MaxSteps: " << this->MaxSteps << "\n";
   os << indent << "NormalOffset: " << this->NormalOffset << "\n";
@@ -863,8 +973,8 @@ void vtkMRGIVoxelization::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Voxelized: " << (in.HasGrid ? "yes" : "no") << "\n";
   if (in.HasGrid)
   {
-    os << indent << "LastGrid: " << in.Grid.width << " x " << in.Grid.height << " over ["
-       << in.Grid.near_depth << ", " << in.Grid.far_depth << "]\n";
+    os << indent << "LastGrid: " << in.Grid.width << " x " << in.Grid.height << " x "
+       << in.Grid.slices << " over [" << in.Grid.near_depth << ", " << in.Grid.far_depth << "]\n";
     os << indent << "LastProjection: " << (in.Projection.parallel ? "parallel" : "perspective")
        << "\n";
   }

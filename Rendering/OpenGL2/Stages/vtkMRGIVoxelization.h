@@ -2,7 +2,8 @@
  * @class   vtkMRGIVoxelization
  * @brief   Screen-space voxelization on the GPU (nichols-penmatsa-wyman-2010
  *          section 3.3): every opaque surface of a renderer rasterized into a
- *          VW x VH RGBA32UI texture of 128 one-bit depth slices per pixel.
+ *          VW x VH RGBA32UI texture of 128 to 512 one-bit depth slices
+ *          per pixel (NumberOfSlices; 128 per layer, one render target each).
  *
  * The bit layout, the depth slicing, the projection and the per-fragment rule
  * are the contract of the C core (mrgi_voxel.h sections 1-5), whose C twin is
@@ -46,8 +47,8 @@
  *
  * Use: call Voxelize() with the renderer's window current and rendered at
  * least once (e.g. from a render pass, or after Render()); then
- * GetVoxelTexture() for the ray march (usampler2D, texelFetch; slice s in
- * channel s >> 5, bit s & 31) and, from C++, GetGrid() for the slicing and
+ * GetVoxelTexture() for the ray march (usampler3D, texelFetch; slice s
+ * in layer s >> 7, channel (s >> 5) & 3, bit s & 31) and, from C++, GetGrid() for the slicing and
  * projection the march needs. ReadVoxels() reads the buffer back in the
  * layout of mrgi_voxel.h.
  *
@@ -65,7 +66,9 @@
 #include "vtkObject.h"
 
 #include <memory> // For std::unique_ptr
+#include <string> // For std::string
 
+class vtkOpenGLRenderWindow;
 class vtkRenderTimerLog;
 class vtkRenderWindow;
 class vtkRenderer;
@@ -102,10 +105,29 @@ public:
 
   ///@{
   /**
+   * Depth slices per voxel pixel: 128 (the default, NPW10 4.2's 128 bits),
+   * 256, 384 or 512; other values are rounded up to a multiple of 128 and
+   * clamped to 128..512. Each 128 slices are one more RGBA32UI render target
+   * in the same draw (NPW10 3.3) and one more layer of the voxel texture.
+   * Thinner slices make thinner voxels: rays that pass an occluder's edge
+   * within a slice's depth are no longer hidden, and the march's bias
+   * (in voxel sizes) shrinks with them. With AutomaticVoxelSize the voxel
+   * pixels shrink in step (the buffer's side doubles with the slices, up
+   * to 512). The march reads one layer per step (two where a step crosses
+   * a layer's edge). Documentation/AreaLights.md measures the error and
+   * the cost. Takes effect at the next Voxelize().
+   */
+  virtual void SetNumberOfSlices(int slices);
+  vtkGetMacro(NumberOfSlices, int);
+  ///@}
+
+  ///@{
+  /**
    * When on (the default), each Voxelize() sizes the buffer so that its
    * voxels are about as wide as they are deep: at the middle of the depth
    * range, a voxel pixel spans one slice's thickness
-   * (mrgi_voxel_isotropic_size(): 128..512 per side, in steps of 16). A
+   * (mrgi_voxel_isotropic_size() for NumberOfSlices: 128..512 per side, in
+   * steps of 16). A
    * shallow scene seen up close (a Cornell box) gets finer voxel pixels
    * than 128^2, a deep one (a room seen from inside) keeps 128^2. Off:
    * VoxelSize. Documentation/AreaLights.md measures the difference.
@@ -149,12 +171,12 @@ public:
   static bool ComputeDepthRange(vtkRenderer* ren, double range[2]);
 
   /**
-   * Read the last voxel buffer back: 4 unsigned 32-bit words per voxel pixel
-   * (channels R, G, B, A = slices 0-31, 32-63, 64-95, 96-127), rows bottom
-   * up, texel (x, y) at tuple y VW + x: the storage of mrgi_voxel.h. The
-   * array gets 4 components and VW VH tuples. False (array untouched) before
-   * a successful Voxelize(), without a window, or with a window other than
-   * the one voxelized in.
+   * Read the last voxel buffer back: S / 32 unsigned 32-bit words per voxel
+   * pixel (S slices; word w holds slices 32 w .. 32 w + 31: layer w / 4's
+   * channel w % 4), rows bottom up, texel (x, y) at tuple y VW + x: the
+   * storage of mrgi_voxel.h. The array gets S / 32 components and VW VH tuples. False (array
+   * untouched) before a successful Voxelize(), without a window, or with a window other than the
+   * one voxelized in.
    */
   bool ReadVoxels(vtkRenderWindow* window, vtkTypeUInt32Array* voxels);
 
@@ -167,14 +189,17 @@ public:
   bool WriteVoxels(vtkRenderWindow* window, vtkTypeUInt32Array* voxels);
 
   /**
-   * The voxel buffer (GL_RGBA32UI, nearest filtering) of the last
-   * successful Voxelize(), for later passes (usampler2D + texelFetch);
-   * nullptr before. Owned by this object.
+   * The voxel buffer (GL_TEXTURE_3D of GL_RGBA32UI, one depth layer per 128
+   * slices, nearest filtering) of the last successful Voxelize(), for later
+   * passes (usampler3D + texelFetch); nullptr before. Owned by this object.
    */
   vtkTextureObject* GetVoxelTexture() const;
 
   /** Size of the last voxel buffer (0 x 0 before a successful Voxelize()). */
   void GetLastVoxelSize(int size[2]) const;
+
+  /** Depth slices of the last voxel buffer (0 before a successful Voxelize()). */
+  int GetLastNumberOfSlices() const;
 
   /** Depth range [near, far] of the last voxel buffer, as the floats the shader used. */
   void GetLastDepthRange(double range[2]) const;
@@ -274,7 +299,7 @@ public:
 
   /**
    * Set every uniform of the march library (GetMarchShaderSource()) in
-   * `program` for the last Voxelize() and `params`: the grid (mrgiVoxelGridSize,
+   * `program` for the last Voxelize() and `params`: the grid (mrgiVoxelGridSize, mrgiVoxelSlices,
    * mrgiVoxelNear, mrgiVoxelFar, mrgiVoxelSliceScale), the projection
    * (mrgiVoxelProjectionScale, mrgiVoxelProjectionOffset, mrgiVoxelParallel),
    * the knobs (mrgiVoxelMaxSteps, mrgiVoxelNormalOffset, mrgiVoxelSkipRadius),
@@ -313,6 +338,7 @@ protected:
   ~vtkMRGIVoxelization() override;
 
   int VoxelSize[2];
+  int NumberOfSlices;
   bool AutomaticVoxelSize = true;
   int MaxSteps;
   double NormalOffset;
@@ -323,6 +349,13 @@ protected:
   std::unique_ptr<Internals> Internal;
 
 private:
+  // The voxel texture (Internals::Voxels): VW x VH x layers RGBA32UI, in
+  // `window`'s current context. False, with `problem` naming the limit or the GL error.
+  bool AllocateVoxelTexture(
+    vtkOpenGLRenderWindow* window, int width, int height, int layers, std::string& problem);
+  // Free the voxel texture in `w`'s context (forget it without a window).
+  void ReleaseVoxelTexture(vtkWindow* w);
+
   // ComputeVoxelSize() for a camera projection already built (Voxelize()
   // builds it once for both).
   bool VoxelSizeFor(const mrgi_voxel_projection& projection, double nearDepth, double farDepth,

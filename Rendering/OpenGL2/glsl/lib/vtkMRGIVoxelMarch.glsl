@@ -4,7 +4,7 @@
 // essentially thickens the ray." A function library (no main, no #version):
 // put it after VTK's system declarations and the constants block
 // (vtkMRGIShaderUtilities::Defines(), i.e. mrgi_glsl_defines()), which
-// supplies MRGI_VOXEL_SLICES, _CHANNELS, _CHANNEL_BITS and _MAX_STEPS.
+// supplies MRGI_VOXEL_LAYER_SLICES, _CHANNELS, _CHANNEL_BITS and _MAX_STEPS.
 //
 // This is the GLSL twin of mrgi_voxel_march() and
 // mrgi_voxel_march_occluder_fraction() (Rendering/Core/Twins/mrgi_voxel_march.c);
@@ -27,9 +27,10 @@
 // last Voxelize() and the march parameters, and binds the voxel texture to
 // mrgiVoxelTexture.
 
-// The voxel buffer (GL_RGBA32UI, texelFetch only): slice s in channel s >> 5, bit s & 31.
-uniform usampler2D mrgiVoxelTexture;
-// mrgi_voxel_grid: VW x VH, [near, far] and MRGI_VOXEL_SLICES / (far - near), all as the core's floats.
+// The voxel buffer (GL_RGBA32UI 3D texture, texelFetch only): slice s in
+// layer s >> 7, channel (s >> 5) & 3, bit s & 31.
+uniform usampler3D mrgiVoxelTexture;
+// mrgi_voxel_grid: VW x VH, S slices, [near, far] and S / (far - near), as the core's ints and floats.
 uniform ivec2 mrgiVoxelGridSize;
 // mrgiVoxelNear, mrgiVoxelFar, mrgiVoxelSliceScale: vtkMRGIVoxelBits.glsl,
 // which comes first with mrgiVoxelSlice() and mrgiVoxelRangeMask().
@@ -137,12 +138,13 @@ ivec4 mrgiVoxelSkipBox(vec3 X)
 }
 
 // Remove a skip box's slices from a step's mask when the step's pixel is
-// within the radius of the box's pixel (mrgi_voxel_apply_box).
-uvec4 mrgiVoxelApplyBox(ivec4 box, int radius, int px, int py, uvec4 mask)
+// within the radius of the box's pixel (mrgi_voxel_apply_box); `base` is
+// the first slice of the mask's layer (128 l).
+uvec4 mrgiVoxelApplyBox(ivec4 box, int radius, int px, int py, int base, uvec4 mask)
 {
   if (box.x != 0 && abs(px - box.y) <= radius && abs(py - box.z) <= radius)
   {
-    mask &= ~mrgiVoxelRangeMask(box.w - radius, box.w + radius);
+    mask &= ~mrgiVoxelRangeMask(box.w - radius - base, box.w + radius - base);
   }
   return mask;
 }
@@ -173,7 +175,7 @@ vec3 mrgiVoxelOffsetEnd(vec3 X, vec3 n, float n2, vec3 toward, float segmentLeng
     X.z + (along * u.z + up * unitN.z));
 }
 
-int mrgiVoxelMarchCore(usampler2D voxels, vec3 P, vec3 Np, vec3 L, vec3 Nl, bool fromLight,
+int mrgiVoxelMarchCore(usampler3D voxels, vec3 P, vec3 Np, vec3 L, vec3 Nl, bool fromLight,
   out float hitFraction)
 {
   hitFraction = 1.0;
@@ -288,11 +290,21 @@ int mrgiVoxelMarchCore(usampler2D voxels, vec3 P, vec3 Np, vec3 L, vec3 Nl, bool
       d0 = a.z + (b.z - a.z) * s0;
       d1 = a.z + (b.z - a.z) * s1;
     }
-    uvec4 mask = mrgiVoxelRangeMask(mrgiVoxelSlice(min(d0, d1)), mrgiVoxelSlice(max(d0, d1)));
-    mask = mrgiVoxelApplyBox(boxP, radius, px, py, mask);
-    mask = mrgiVoxelApplyBox(boxL, radius, px, py, mask);
-    uvec4 texel = texelFetch(voxels, ivec2(px, py), 0);
-    if (((texel.x & mask.x) | (texel.y & mask.y) | (texel.z & mask.z) | (texel.w & mask.w)) != 0u)
+    int lo = mrgiVoxelSlice(min(d0, d1));
+    int hi = mrgiVoxelSlice(max(d0, d1));
+    // Only the layers the interval reaches (mrgi_voxel.h section 1; almost
+    // always one texel fetch).
+    uint overlap = 0u;
+    for (int layer = lo / MRGI_VOXEL_LAYER_SLICES; layer <= hi / MRGI_VOXEL_LAYER_SLICES; ++layer)
+    {
+      int base = MRGI_VOXEL_LAYER_SLICES * layer;
+      uvec4 mask = mrgiVoxelRangeMask(lo - base, hi - base);
+      mask = mrgiVoxelApplyBox(boxP, radius, px, py, base, mask);
+      mask = mrgiVoxelApplyBox(boxL, radius, px, py, base, mask);
+      uvec4 texel = texelFetch(voxels, ivec3(px, py, layer), 0);
+      overlap |= (texel.x & mask.x) | (texel.y & mask.y) | (texel.z & mask.z) | (texel.w & mask.w);
+    }
+    if (overlap != 0u)
     {
       if (fromLight)
       {
@@ -313,7 +325,7 @@ int mrgiVoxelMarchCore(usampler2D voxels, vec3 P, vec3 Np, vec3 L, vec3 Nl, bool
 
 // Whether light sample L is visible from receiver P through the voxel buffer
 // `voxels` (mrgi_voxel_march()): true visible, false occluded.
-bool mrgiVoxelVisible(usampler2D voxels, vec3 P, vec3 Np, vec3 L, vec3 Nl)
+bool mrgiVoxelVisible(usampler3D voxels, vec3 P, vec3 Np, vec3 L, vec3 Nl)
 {
   float unused;
   return mrgiVoxelMarchCore(voxels, P, Np, L, Nl, false, unused) == mrgiVoxelMarchClear;
@@ -329,7 +341,7 @@ bool mrgiVoxelVisible(vec3 P, vec3 Np, vec3 L, vec3 Nl)
 // |L - P| in [0, 1], 1 for none, 0 below a horizon
 // (mrgi_voxel_march_occluder_fraction(); NPW10 3.3.3's variance shadow query
 // stores it and its square).
-float mrgiVoxelOccluderFraction(usampler2D voxels, vec3 P, vec3 Np, vec3 L, vec3 Nl)
+float mrgiVoxelOccluderFraction(usampler3D voxels, vec3 P, vec3 Np, vec3 L, vec3 Nl)
 {
   float fraction;
   int outcome = mrgiVoxelMarchCore(voxels, P, Np, L, Nl, true, fraction);

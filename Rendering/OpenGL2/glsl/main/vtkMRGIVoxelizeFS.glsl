@@ -1,7 +1,7 @@
 // Screen-space voxelization (nichols-penmatsa-wyman-2010 section 3.3, after
 // Dong et al. 2004 and Eisemann and Decoret 2006), fragment stage: the mask of
 // the depth slices the surface spans over this voxel pixel, OR-ed into the
-// RGBA32UI target by glLogicOp(GL_OR). The rule, the bit layout and the
+// RGBA32UI targets (one per layer of 128 slices) by glLogicOp(GL_OR). The rule, the bit layout and the
 // slicing are mrgi_voxel.h's (sections 1, 2, 5); its C twin is
 // mrgi_voxel_fragment_mask(), and the two must agree bit for bit except where
 // lo or hi lies within float rounding of a slice boundary.
@@ -93,7 +93,19 @@ bool mrgiVoxelTrianglePixelRange(ivec2 pixel, out vec2 range)
 }
 
 // Slicing and masks: vtkMRGIVoxelBits.glsl (prepended).
-out uvec4 mrgiVoxels;
+// One output per layer of 128 slices (mrgi_voxel.h section 1): layer l is
+// draw buffer l, a depth layer of the voxel 3D texture; outputs beyond the
+// grid's layers go to no buffer. VTK binds output fragOutputK to draw buffer
+// K for each gl_FragData[K] a fragment shader names
+// (vtkOpenGLShaderCache::ReplaceShaderValues, vtkShaderProgram::Link), and
+// declares them as vec4 at its Output::Dec tag, which this shader has not:
+// the next line names them, turned into the fragOutputK below by that
+// substitution, so that the integer outputs are declared here.
+// gl_FragData[0] gl_FragData[1] gl_FragData[2] gl_FragData[3]
+out uvec4 fragOutput0;
+out uvec4 fragOutput1;
+out uvec4 fragOutput2;
+out uvec4 fragOutput3;
 
 void main()
 {
@@ -121,5 +133,10 @@ void main()
   }
   float lo = min(max(d - h, range.x), d);
   float hi = max(min(d + h, range.y), d);
-  mrgiVoxels = mrgiVoxelRangeMask(mrgiVoxelSlice(lo), mrgiVoxelSlice(hi));
+  int sliceLo = mrgiVoxelSlice(lo);
+  int sliceHi = mrgiVoxelSlice(hi);
+  fragOutput0 = mrgiVoxelRangeMask(sliceLo, sliceHi);
+  fragOutput1 = mrgiVoxelRangeMask(sliceLo - MRGI_VOXEL_LAYER_SLICES, sliceHi - MRGI_VOXEL_LAYER_SLICES);
+  fragOutput2 = mrgiVoxelRangeMask(sliceLo - 2 * MRGI_VOXEL_LAYER_SLICES, sliceHi - 2 * MRGI_VOXEL_LAYER_SLICES);
+  fragOutput3 = mrgiVoxelRangeMask(sliceLo - 3 * MRGI_VOXEL_LAYER_SLICES, sliceHi - 3 * MRGI_VOXEL_LAYER_SLICES);
 }
