@@ -115,12 +115,18 @@ def main():
     parser.add_argument("--shares-only", action="store_true",
                         help="count the level-0 shares by window size (--share-sizes), then rewrite the page "
                              "from the stored tables")
+    parser.add_argument("--slices-only", action="store_true",
+                        help="measure the depth slices (vtkMRGIVoxelization::SetNumberOfSlices) against both "
+                             "truths, with the area stage's time, then rewrite the page from the stored tables")
     parser.add_argument("--offsets-only", action="store_true",
                         help="measure the march bias's directions (vtkMRGIVoxelization::SetOffsetAlongRay) "
                              "against both truths, then rewrite the page from the stored tables")
     args = parser.parse_args()
     if args.offsets_only:
         write_table(args, "area-lights-offsets.csv", measure_offsets(args))
+        args.page_only = True
+    if args.slices_only:
+        write_table(args, "area-lights-slices.csv", measure_slices(args))
         args.page_only = True
     if args.shares_only:
         write_table(args, "area-lights-shares.csv",
@@ -139,7 +145,8 @@ def main():
         plot(rows, os.path.join(images, "area-voxel-sweep.png"))
         plot_tradeoff(rows, os.path.join(images, "area-tradeoff.png"))
         write_page(args, rows, notes, os.path.join(args.doc, "AreaLights.md"), speed,
-                   read_table(args, "area-lights-shares.csv"), read_table(args, "area-lights-offsets.csv"))
+                   read_table(args, "area-lights-shares.csv"), read_table(args, "area-lights-offsets.csv"),
+                   read_table(args, "area-lights-slices.csv"))
         return
     compare_tool = os.path.join(args.build, "bin", "mrgi-compare")
     scratch = os.path.join(args.build, "Testing", "Temporary", "area")
@@ -289,9 +296,11 @@ def main():
     write_table(args, "area-lights-shares.csv", shares)
     offsets = measure_offsets(args)
     write_table(args, "area-lights-offsets.csv", offsets)
+    slices = measure_slices(args)
+    write_table(args, "area-lights-slices.csv", slices)
     plot(rows, os.path.join(images, "area-voxel-sweep.png"))
     plot_tradeoff(rows, os.path.join(images, "area-tradeoff.png"))
-    write_page(args, rows, notes, os.path.join(args.doc, "AreaLights.md"), speed, shares, offsets)
+    write_page(args, rows, notes, os.path.join(args.doc, "AreaLights.md"), speed, shares, offsets, slices)
 
 
 def measure_shares(args, balanced):
@@ -314,12 +323,27 @@ def measure_shares(args, balanced):
 
 
 OFFSETS = (("normals", "OffsetNormals"), ("receiver", "OffsetRayAtReceiver"), ("both", "OffsetRayAtBoth"))
+SLICES = (128, 256, 512)
 
 
 def measure_offsets(args):
-    """Per scene at --size: the direct image's error against the box-filtered and the centre-sampled truths
-    for each direction of the march's bias (vtkMRGIVoxelization::SetOffsetAlongRay), with incremental
-    visibility at the balanced preset (the defaults) and naive visibility at full resolution."""
+    """The error for each direction of the march's bias (vtkMRGIVoxelization::SetOffsetAlongRay)."""
+    return measure_setting(args, "offset", [(label, getattr(mrgi.vtkMRGIVoxelization, mode)) for label, mode in OFFSETS],
+                           lambda voxels, mode: voxels.SetOffsetAlongRay(mode))
+
+
+def measure_slices(args):
+    """The error and the area stage's GPU time for each number of depth slices
+    (vtkMRGIVoxelization::SetNumberOfSlices; the automatic voxel side follows them)."""
+    return measure_setting(args, "slices", [(str(n), n) for n in SLICES],
+                           lambda voxels, n: voxels.SetNumberOfSlices(n), timed=True)
+
+
+def measure_setting(args, column, settings, configure, timed=False):
+    """Per scene at --size, for each (label, value) of `settings` applied by configure(voxelization, value):
+    the direct image's error against the box-filtered and the centre-sampled truths, with incremental
+    visibility at the balanced preset (the defaults) and naive visibility at full resolution; `timed`: also
+    the voxel side used and the area stage's GPU time (median of --repeats frames)."""
     compare_tool = os.path.join(args.build, "bin", "mrgi-compare")
     scratch = os.path.join(args.build, "Testing", "Temporary", "area")
     os.makedirs(scratch, exist_ok=True)
@@ -328,10 +352,10 @@ def measure_offsets(args):
         truths = {}
         for kind in ("box", "center"):
             image, _ = scene.truth(True, args.truth_samples, args.truth_passes, center=kind == "center")
-            truths[kind] = (image, os.path.join(scratch, "%s-offsets-truth-%s.exr" % (name, kind)))
+            truths[kind] = (image, os.path.join(scratch, "%s-%s-truth-%s.exr" % (name, column, kind)))
             mb.write(image, truths[kind][1])
-        for offset, mode in OFFSETS:
-            scene.gi.GetVoxelization().SetOffsetAlongRay(getattr(mrgi.vtkMRGIVoxelization, mode))
+        for label, value in settings:
+            configure(scene.gi.GetVoxelization(), value)
             for visibility, preset in (("incremental", "balanced"), ("naive", "full")):
                 scene.gi.SetAreaLightVisibility(getattr(mrgi.vtkMRGIPass, "Visibility" + visibility.capitalize()))
                 if preset == "full":
@@ -340,20 +364,26 @@ def measure_offsets(args):
                     scene.mr.SetFinestLevel(0)
                 else:
                     scene.mr.SetPreset(mrgi.vtkMRGIMultiresolution.PresetBalanced)
-                scene.frames(1)
+                times = scene.frames(args.repeats if timed else 1)
                 image = scene.color()
-                path = os.path.join(scratch, "%s-offset-%s-%s.exr" % (name, offset, visibility))
+                path = os.path.join(scratch, "%s-%s-%s-%s.exr" % (name, column, label, visibility))
                 mb.write(image, path)
-                row = dict(scene=name, offset=offset, visibility=visibility, preset=preset)
+                row = {"scene": name, column: label, "visibility": visibility, "preset": preset}
+                if timed:
+                    side = [0, 0]
+                    scene.gi.GetVoxelization().GetLastVoxelSize(side)
+                    row["voxels"] = side[0]
+                    row["area_ms"] = times.get("area", 0.0)
                 for kind, (truth, truth_path) in truths.items():
                     suffix = "" if kind == "box" else "_center"
                     row["rel_rms" + suffix] = mb.compare(compare_tool, path, truth_path)["relative_rms"]
                     row["rel_rms_boxes" + suffix] = mb.box_error(compare_tool, image, truth, scratch,
-                                                                 "%s-offset-boxes" % name)
+                                                                 "%s-%s-boxes" % (name, column))
                 rows.append(row)
-                print("%s, offset %s, %s %s: rel. RMS %.4f (boxes %.4f), vs centre-sampled truth %.4f (boxes %.4f)"
-                      % (name, offset, visibility, preset, row["rel_rms"], row["rel_rms_boxes"],
-                         row["rel_rms_center"], row["rel_rms_boxes_center"]))
+                print("%s, %s %s, %s %s: rel. RMS %.4f (boxes %.4f), vs centre-sampled truth %.4f (boxes %.4f)%s"
+                      % (name, column, label, visibility, preset, row["rel_rms"], row["rel_rms_boxes"],
+                         row["rel_rms_center"], row["rel_rms_boxes_center"],
+                         ", %d^2 voxels, area %.0f ms" % (row["voxels"], row["area_ms"]) if timed else ""))
     return rows
 
 
@@ -485,7 +515,7 @@ def plot(rows, path):
     print("wrote %s" % path)
 
 
-def write_page(args, rows, notes, path, speed=(), shares=(), offsets=()):
+def write_page(args, rows, notes, path, speed=(), shares=(), offsets=(), slices=()):
     lines = ["# Area lights", "",
              "Generated by `Testing/Benchmarks/area_light_fidelity.py` (%dx%d, medians of %d frames, Mesa llvmpipe "
              "on this project's 2-core machines). Do not edit the tables by hand: rerun the script." %
@@ -513,7 +543,9 @@ def write_page(args, rows, notes, path, speed=(), shares=(), offsets=()):
              "exact early-outs (behind a one-sided light; facing away from every corner), then upsampled like the "
              "indirect light.",
              "- **Visibility** (3.3): the visible scene is voxelized once per frame into a buffer of 128 depth "
-             "slices per pixel (RGBA32UI, logic-op OR; `vtkMRGIVoxelization`), by default with as many voxel "
+             "slices per pixel (RGBA32UI, logic-op OR; `vtkMRGIVoxelization`; 256, 384 or 512 slices through "
+             "one more render target per 128, `SetNumberOfSlices` / `--voxel-slices`, measured under \"Depth "
+             "slices\" below), by default with as many voxel "
              "pixels as make a voxel about as wide as a slice is deep at the middle of the scene's depth range "
              "(`AutomaticVoxelSize`, 128^2 to 512^2; NPW10 4.2 uses a fixed 128^2, which the sweep below "
              "includes), and a ray from a texel to a sample "
@@ -621,6 +653,22 @@ def write_page(args, rows, notes, path, speed=(), shares=(), offsets=()):
             lines.append("| %s | %s | %s | %s | %.4f | %.4f | %.4f | %.4f |" % (
                 r["scene"], r["offset"], r["visibility"], r["preset"], r["rel_rms"], r["rel_rms_boxes"],
                 r["rel_rms_center"], r["rel_rms_boxes_center"]))
+        lines.append("")
+    if slices:
+        lines += ["### Depth slices", "",
+                  "A voxel is one slice deep, and the march's bias and its thickened rays scale with the voxel. "
+                  "`vtkMRGIVoxelization::SetNumberOfSlices` (`--voxel-slices 128|256|384|512`) draws 128 more "
+                  "slices into each further RGBA32UI render target of the one voxelization draw (NPW10 3.3); the "
+                  "automatic voxel side follows the slices (voxels about as wide as deep, at most 512^2). "
+                  "Relative RMS of the direct image and the area stage's GPU time (median of %d frames; "
+                  "`--slices-only` remeasures this table):" % args.repeats, "",
+                  "| scene | slices | voxel side | visibility | preset | area stage (ms) | per pixel vs truth | "
+                  "4x4 boxes vs truth | per pixel vs centre-sampled truth | 4x4 boxes vs centre-sampled truth |",
+                  "|---|---|---|---|---|---|---|---|---|---|"]
+        for r in slices:
+            lines.append("| %s | %d | %d | %s | %s | %.0f | %.4f | %.4f | %.4f | %.4f |" % (
+                r["scene"], int(r["slices"]), int(r["voxels"]), r["visibility"], r["preset"], r["area_ms"],
+                r["rel_rms"], r["rel_rms_boxes"], r["rel_rms_center"], r["rel_rms_boxes_center"]))
         lines.append("")
     lines += ["## Targets", ""]
     for name in notes:

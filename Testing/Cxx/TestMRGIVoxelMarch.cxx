@@ -632,9 +632,10 @@ Comparison RunCase(const std::string& name, vtkRenderWindow* window, vtkRenderer
   vtkMRGIVoxelization* vox, GPUMarch& gpuMarch, int vw, int vh, const double range[2],
   const mrgi_voxel_march_params& params, unsigned seed,
   const mrgi_voxel_march_params* wrongParams = nullptr, Comparison* wrong = nullptr,
-  bool objectKnobs = false)
+  bool objectKnobs = false, int slices = MRGI_VOXEL_DEFAULT_SLICES)
 {
   vox->SetVoxelSize(vw, vh);
+  vox->SetNumberOfSlices(slices);
   MRGI_TEST_CHECK(vox->Voxelize(ren, range[0], range[1]));
   mrgi_voxel_grid grid;
   mrgi_voxel_projection proj;
@@ -671,11 +672,11 @@ Comparison RunCase(const std::string& name, vtkRenderWindow* window, vtkRenderer
   mrgi_error err;
   MRGI_TEST_CHECK(mrgi_voxel_view_check(&view, &err) == MRGI_OK);
   const Comparison c = Compare(view, rays, gpu, true);
-  std::printf("%-40s %4dx%-4d %s steps %4d offset %4.2f skip %d | %zu voxel bits | %zu rays, "
+  std::printf("%-40s %4dx%-4dx%-3d %s steps %4d offset %4.2f skip %d | %zu voxel bits | %zu rays, "
               "%zu marched (%zu occluded) | binary: %zu differ = %.4f%% of marched (%zu "
               "boundary, %zu other) | fraction: %zu differ > %g = %.4f%%, max agreeing error "
               "%.2g\n",
-    name.c_str(), vw, vh, proj.parallel ? "par " : "persp", params.max_steps,
+    name.c_str(), vw, vh, grid.slices, proj.parallel ? "par " : "persp", params.max_steps,
     static_cast<double>(params.normal_offset), params.skip_radius, bits, c.Rays, c.Marched,
     c.Occluded, c.Mismatch, 100.0 * c.Rate(), c.Boundary, c.Mismatch - c.Boundary,
     c.FractionMismatch, static_cast<double>(FractionTolerance), 100.0 * c.FractionRate(),
@@ -703,6 +704,25 @@ Comparison RunCase(const std::string& name, vtkRenderWindow* window, vtkRenderer
     mrgi_voxel_view wrongView = view;
     wrongView.params = *wrongParams;
     *wrong = Compare(wrongView, rays, gpu, false);
+  }
+  if (slices > MRGI_VOXEL_LAYER_SLICES)
+  {
+    // A twin that sees only the first layer (what a march reading one
+    // render target would answer) must disagree: the GPU reads them all.
+    std::vector<uint32_t> firstLayer(
+      voxels->GetPointer(0), voxels->GetPointer(0) + view.voxel_words);
+    const size_t words = static_cast<size_t>(mrgi_voxel_pixel_words(&grid));
+    for (size_t k = 0; k < firstLayer.size(); ++k)
+    {
+      firstLayer[k] = k % words < MRGI_VOXEL_CHANNELS ? firstLayer[k] : 0u;
+    }
+    mrgi_voxel_view oneLayer = view;
+    oneLayer.voxels = firstLayer.data();
+    const Comparison blind = Compare(oneLayer, rays, gpu, false);
+    std::printf("  twin seeing only the first of %d layers: %zu differ = %.3f%% of marched "
+                "(must exceed 10x the parity's %zu)\n",
+      slices / MRGI_VOXEL_LAYER_SLICES, blind.Mismatch, 100.0 * blind.Rate(), c.Mismatch);
+    MRGI_TEST_CHECK(blind.Mismatch > 10 * (c.Mismatch + 10));
   }
   return c;
 }
@@ -783,6 +803,15 @@ void CornellBox(bool parallel)
       mode, wrong.Mismatch, 100.0 * wrong.Rate(), alongRight.Mismatch);
     MRGI_TEST_CHECK(wrong.Mismatch > 10 * (alongRight.Mismatch + 10));
   }
+  // Thinner slices: 2 to 4 layers, one render target each (mrgi_voxel.h
+  // section 1); steps crossing a layer's edge read two.
+  for (int slices : { 256, 384, 512 })
+  {
+    RunCase(name + ", " + std::to_string(slices) + " slices", window, renderer, vox, gpu,
+      slices == 384 ? 97 : 128, slices == 384 ? 61 : 128, range, defaults, seed + 11 + slices,
+      nullptr, nullptr, false, slices);
+  }
+  vox->SetNumberOfSlices(MRGI_VOXEL_DEFAULT_SLICES);
   vox->ReleaseGraphicsResources(window);
 }
 
@@ -878,6 +907,14 @@ void Api()
     got.offset_along_ray == MRGI_VOXEL_OFFSET_NORMALS);
   vox->SetOffsetAlongRay(7);
   MRGI_TEST_CHECK(vox->GetOffsetAlongRay() == vtkMRGIVoxelization::OffsetRayAtBoth);
+  // Slices: up to a whole layer of 128, clamped to 128..512.
+  MRGI_TEST_CHECK(vox->GetNumberOfSlices() == MRGI_VOXEL_DEFAULT_SLICES);
+  const int slicesAsked[][2] = { { 200, 256 }, { 384, 384 }, { 4096, 512 }, { 0, 128 }, { -5, 128 } };
+  for (const auto& pair : slicesAsked)
+  {
+    vox->SetNumberOfSlices(pair[0]);
+    MRGI_TEST_CHECK(vox->GetNumberOfSlices() == pair[1]);
+  }
   vox->SetOffsetAlongRay(-1);
   MRGI_TEST_CHECK(vox->GetOffsetAlongRay() == vtkMRGIVoxelization::OffsetNormals);
   vox->SetOffsetAlongRayToReceiver();

@@ -285,6 +285,11 @@ def main():
     code, _, err = run("cornell-area", "-o", ref_exr, "--size", "24x24", "--voxel-offset", "sideways", "-q")
     check(code != 0 and "--voxel-offset" in err and "normals, receiver or both" in err,
           "--voxel-offset refuses other values by name: " + err)
+    code, out, err = run("cornell-area", "-o", ref_exr, "--size", "24x24", "--voxel-slices", "256", "--timings")
+    check(code == 0 and "x 256 slices" in out, "--voxel-slices 256 reaches the voxels: " + out + err)
+    code, _, err = run("cornell-area", "-o", ref_exr, "--size", "24x24", "--voxel-slices", "200", "-q")
+    check(code != 0 and "--voxel-slices" in err and "128, 256, 384 or 512" in err,
+          "--voxel-slices refuses other counts by name: " + err)
     # stderr is a pipe here, no terminal: no per-pass lines unless --progress
     check("ground truth: pass" not in err, "no progress lines into a pipe without --progress: " + err)
     code, _, err = run("cornell-spot", "-o", ref_exr, "--size", "32x32", "--reference",
