@@ -323,24 +323,37 @@ def measure_shares(args, balanced):
 
 
 OFFSETS = (("normals", "OffsetNormals"), ("receiver", "OffsetRayAtReceiver"), ("both", "OffsetRayAtBoth"))
-SLICES = (128, 256, 512)
+# (label, slices, side factor): the automatic side (a pixel as wide as 128 slices are deep), or that side
+# times the factor (voxels as wide as deep at these slices, at most 512).
+SLICES = (("128", 128, 1), ("256", 256, 1), ("512", 512, 1), ("256, side x2", 256, 2), ("512, side x4", 512, 4))
 
 
 def measure_offsets(args):
     """The error for each direction of the march's bias (vtkMRGIVoxelization::SetOffsetAlongRay)."""
     return measure_setting(args, "offset", [(label, getattr(mrgi.vtkMRGIVoxelization, mode)) for label, mode in OFFSETS],
-                           lambda voxels, mode: voxels.SetOffsetAlongRay(mode))
+                           lambda scene, mode: scene.gi.GetVoxelization().SetOffsetAlongRay(mode))
 
 
 def measure_slices(args):
     """The error and the area stage's GPU time for each number of depth slices
-    (vtkMRGIVoxelization::SetNumberOfSlices; the automatic voxel side follows them)."""
-    return measure_setting(args, "slices", [(str(n), n) for n in SLICES],
-                           lambda voxels, n: voxels.SetNumberOfSlices(n), timed=True)
+    (vtkMRGIVoxelization::SetNumberOfSlices), at the automatic voxel side and at larger sides."""
+
+    def configure(scene, setting):
+        slices, factor = setting
+        voxels = scene.gi.GetVoxelization()
+        voxels.SetNumberOfSlices(slices)
+        voxels.AutomaticVoxelSizeOn()
+        if factor > 1:
+            scene.frames(1)
+            side = [0, 0]
+            voxels.GetLastVoxelSize(side)
+            voxels.SetVoxelSide(min(512, side[0] * factor))
+
+    return measure_setting(args, "slices", [(label, (n, f)) for label, n, f in SLICES], configure, timed=True)
 
 
 def measure_setting(args, column, settings, configure, timed=False):
-    """Per scene at --size, for each (label, value) of `settings` applied by configure(voxelization, value):
+    """Per scene at --size, for each (label, value) of `settings` applied by configure(scene, value):
     the direct image's error against the box-filtered and the centre-sampled truths, with incremental
     visibility at the balanced preset (the defaults) and naive visibility at full resolution; `timed`: also
     the voxel side used and the area stage's GPU time (median of --repeats frames)."""
@@ -355,7 +368,7 @@ def measure_setting(args, column, settings, configure, timed=False):
             truths[kind] = (image, os.path.join(scratch, "%s-%s-truth-%s.exr" % (name, column, kind)))
             mb.write(image, truths[kind][1])
         for label, value in settings:
-            configure(scene.gi.GetVoxelization(), value)
+            configure(scene, value)
             for visibility, preset in (("incremental", "balanced"), ("naive", "full")):
                 scene.gi.SetAreaLightVisibility(getattr(mrgi.vtkMRGIPass, "Visibility" + visibility.capitalize()))
                 if preset == "full":
@@ -656,18 +669,20 @@ def write_page(args, rows, notes, path, speed=(), shares=(), offsets=(), slices=
         lines.append("")
     if slices:
         lines += ["### Depth slices", "",
-                  "A voxel is one slice deep, and the march's bias and its thickened rays scale with the voxel. "
-                  "`vtkMRGIVoxelization::SetNumberOfSlices` (`--voxel-slices 128|256|384|512`) draws 128 more "
-                  "slices into each further RGBA32UI render target of the one voxelization draw (NPW10 3.3); the "
-                  "automatic voxel side follows the slices (voxels about as wide as deep, at most 512^2). "
-                  "Relative RMS of the direct image and the area stage's GPU time (median of %d frames; "
-                  "`--slices-only` remeasures this table):" % args.repeats, "",
+                  "A voxel is one slice deep, and a surface fills its slice's depth in front of and behind "
+                  "itself. `vtkMRGIVoxelization::SetNumberOfSlices` (`--voxel-slices 128|256|384|512`) draws 128 "
+                  "more slices into each further RGBA32UI render target of the one voxelization draw (NPW10 3.3). "
+                  "The automatic voxel side stays a pixel as wide as 128 slices are deep, since a march takes one "
+                  "step per voxel pixel; the rows \"side x2\" and \"side x4\" also make the pixels as narrow as the "
+                  "slices are thin (at most 512^2). Relative RMS of the direct image and the area stage's GPU time "
+                  "(median of %d frames; `--slices-only` remeasures this table):" % args.repeats, "",
                   "| scene | slices | voxel side | visibility | preset | area stage (ms) | per pixel vs truth | "
                   "4x4 boxes vs truth | per pixel vs centre-sampled truth | 4x4 boxes vs centre-sampled truth |",
                   "|---|---|---|---|---|---|---|---|---|---|"]
         for r in slices:
-            lines.append("| %s | %d | %d | %s | %s | %.0f | %.4f | %.4f | %.4f | %.4f |" % (
-                r["scene"], int(r["slices"]), int(r["voxels"]), r["visibility"], r["preset"], r["area_ms"],
+            label = str(r["slices"])
+            lines.append("| %s | %s | %d | %s | %s | %.0f | %.4f | %.4f | %.4f | %.4f |" % (
+                r["scene"], label[:-2] if label.endswith(".0") else label, int(r["voxels"]), r["visibility"], r["preset"], r["area_ms"],
                 r["rel_rms"], r["rel_rms_boxes"], r["rel_rms_center"], r["rel_rms_boxes_center"]))
         lines.append("")
     lines += ["## Targets", ""]

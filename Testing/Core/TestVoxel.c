@@ -268,14 +268,14 @@ typedef struct test_view
   uint32_t* voxels;
 } test_view;
 
-static test_view make_view(int32_t width, int32_t height, double near_depth, double far_depth,
-                           const mrgi_voxel_projection* projection)
+static test_view make_sliced_view(int32_t width, int32_t height, int32_t slices, double near_depth,
+  double far_depth, const mrgi_voxel_projection* projection)
 {
   test_view t;
   mrgi_error err;
   memset(&t, 0, sizeof(t));
-  MRGI_CHECK(mrgi_voxel_grid_init(&t.view.grid, width, height, MRGI_VOXEL_DEFAULT_SLICES,
-               near_depth, far_depth, &err) == MRGI_OK);
+  MRGI_CHECK(mrgi_voxel_grid_init(
+               &t.view.grid, width, height, slices, near_depth, far_depth, &err) == MRGI_OK);
   t.view.projection = *projection;
   mrgi_voxel_march_params_default(&t.view.params);
   t.view.voxel_words = mrgi_voxel_buffer_words(&t.view.grid);
@@ -283,6 +283,13 @@ static test_view make_view(int32_t width, int32_t height, double near_depth, dou
   MRGI_CHECK(t.voxels != NULL);
   t.view.voxels = t.voxels;
   return t;
+}
+
+static test_view make_view(int32_t width, int32_t height, double near_depth, double far_depth,
+  const mrgi_voxel_projection* projection)
+{
+  return make_sliced_view(
+    width, height, MRGI_VOXEL_DEFAULT_SLICES, near_depth, far_depth, projection);
 }
 
 static mrgi_voxel_projection perspective_projection(double angle_deg, double aspect)
@@ -680,12 +687,17 @@ static void test_voxelize(void)
 
 /* A standard perspective setup: 50 degree camera, square window, voxel
  * buffer `res`^2 over depths [3, 31]. */
-static test_view scene_view(const scene* s, int32_t res)
+static test_view sliced_scene_view(const scene* s, int32_t res, int32_t slices)
 {
   const mrgi_voxel_projection p = perspective_projection(50.0, 1.0);
-  test_view t = make_view(res, res, 3.0, 31.0, &p);
+  test_view t = make_sliced_view(res, res, slices, 3.0, 31.0, &p);
   voxelize_scene(s, &t.view.grid, &p, t.voxels, t.view.voxel_words);
   return t;
+}
+
+static test_view scene_view(const scene* s, int32_t res)
+{
+  return sliced_scene_view(s, res, MRGI_VOXEL_DEFAULT_SLICES);
 }
 
 /* The offset's direction (mrgi_voxel_march_params::offset_along_ray): a
@@ -1963,11 +1975,13 @@ static void test_random_scenes(void)
   enum { SCENES = 4, RECEIVERS = 600, SIDE = 8 };
   float lp[3 * SIDE * SIDE], ln[3 * SIDE * SIDE];
   light_samples(SIDE, lp, ln);
-  const int32_t res[3] = { 128, 256, 512 };
-  double fraction[3][2];
+  /* Voxel sides at 128 slices (both step caps), then 256 and 512 slices at 512^2. */
+  const int32_t res[5] = { 128, 256, 512, 512, 512 };
+  const int32_t slices[5] = { 128, 128, 128, 256, 512 };
+  double fraction[5][2];
   for (int cap = 0; cap < 2; ++cap)
   {
-    for (int r = 0; r < 3; ++r)
+    for (int r = 0; r < (cap ? 3 : 5); ++r)
     {
       int64_t rays = 0, false_occluded = 0, false_visible = 0, occluded = 0;
       rng_state = 777;
@@ -1975,7 +1989,7 @@ static void test_random_scenes(void)
       {
         scene s;
         random_scene(&s, 12);
-        test_view t = scene_view(&s, res[r]);
+        test_view t = sliced_scene_view(&s, res[r], slices[r]);
         if (cap)
         {
           t.view.params.max_steps = 1024; /* never binds: one step per voxel pixel */
@@ -2008,12 +2022,12 @@ static void test_random_scenes(void)
         free(t.voxels);
       }
       fraction[r][cap] = (double)(false_occluded + false_visible) / (double)rays;
-      printf("random boxes, voxels %3d^2 x 128, step cap %4d: %lld rays (%.1f%% occluded), "
+      printf("random boxes, voxels %3d^2 x %3d, step cap %4d: %lld rays (%.1f%% occluded), "
              "disagreeing %.2f%% (false occlusion %.2f%%, false visibility %.2f%%)\n",
-             res[r], cap ? 1024 : MRGI_VOXEL_DEFAULT_MAX_STEPS, (long long)rays,
-             100.0 * (double)occluded / (double)rays, 100.0 * fraction[r][cap],
-             100.0 * (double)false_occluded / (double)rays,
-             100.0 * (double)false_visible / (double)rays);
+        res[r], slices[r], cap ? 1024 : MRGI_VOXEL_DEFAULT_MAX_STEPS, (long long)rays,
+        100.0 * (double)occluded / (double)rays, 100.0 * fraction[r][cap],
+        100.0 * (double)false_occluded / (double)rays,
+        100.0 * (double)false_visible / (double)rays);
       MRGI_CHECK(rays > 50000);
       MRGI_CHECK(occluded > rays / 20); /* the scenes do cast shadows */
       MRGI_CHECK(fraction[r][cap] < 0.05);
@@ -2021,7 +2035,11 @@ static void test_random_scenes(void)
   }
   /* With 128 slices over [3, 31] (0.22 units), depth quantization and the
    * bias (both in slice units here) dominate, so the lateral resolution
-   * changes little; each resolution stays within 5%. */
+   * changes little; each resolution stays within 5%. Thinner slices are
+   * what narrows the voxels (mrgi_voxel.h section 1): at 512^2, 256 and 512
+   * slices must each disagree clearly less than the slices before them. */
+  MRGI_CHECK(fraction[3][0] < 0.85 * fraction[2][0]);
+  MRGI_CHECK(fraction[4][0] < 0.85 * fraction[3][0]);
 }
 
 /* Batches of marched samples stay within the loop budget of one shader

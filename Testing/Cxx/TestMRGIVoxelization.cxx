@@ -498,6 +498,13 @@ void AutomaticSize(bool parallel)
   MRGI_TEST_CHECK(vox->Voxelize(renderer, range[0], range[1]));
   vox->GetLastVoxelSize(last);
   MRGI_TEST_CHECK(last[0] == expected[0] && last[1] == expected[1]);
+  // More slices refine the depth only: the automatic side stays 128 slices'.
+  vox->SetNumberOfSlices(512);
+  MRGI_TEST_CHECK(vox->Voxelize(renderer, range[0], range[1]));
+  vox->GetLastVoxelSize(last);
+  MRGI_TEST_CHECK(last[0] == expected[0] && last[1] == expected[1]);
+  MRGI_TEST_CHECK(vox->GetLastNumberOfSlices() == 512);
+  vox->SetNumberOfSlices(MRGI_VOXEL_DEFAULT_SLICES);
   // Without a renderer the automatic size cannot be computed: VoxelSize.
   MRGI_TEST_CHECK(!vox->ComputeVoxelSize(nullptr, range[0], range[1], computed));
   MRGI_TEST_CHECK(computed[0] == 100 && computed[1] == 100);

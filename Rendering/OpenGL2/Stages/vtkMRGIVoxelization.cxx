@@ -337,10 +337,13 @@ bool vtkMRGIVoxelization::VoxelSizeFor(
 {
   size[0] = this->VoxelSize[0];
   size[1] = this->VoxelSize[1];
+  // Pixels as wide as 128 slices are deep, whatever NumberOfSlices: a
+  // march's steps follow the pixels, so more slices refine the depth at
+  // little cost, and the side stays the caller's choice (header).
   int32_t automatic[2];
   if (!this->AutomaticVoxelSize ||
     mrgi_voxel_isotropic_size(
-      &projection, this->NumberOfSlices, nearDepth, farDepth, automatic, nullptr) != MRGI_OK)
+      &projection, MRGI_VOXEL_LAYER_SLICES, nearDepth, farDepth, automatic, nullptr) != MRGI_OK)
   {
     return !this->AutomaticVoxelSize;
   }

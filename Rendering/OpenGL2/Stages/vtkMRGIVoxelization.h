@@ -109,13 +109,15 @@ public:
    * 256, 384 or 512; other values are rounded up to a multiple of 128 and
    * clamped to 128..512. Each 128 slices are one more RGBA32UI render target
    * in the same draw (NPW10 3.3) and one more layer of the voxel texture.
-   * Thinner slices make thinner voxels: rays that pass an occluder's edge
-   * within a slice's depth are no longer hidden, and the march's bias
-   * (in voxel sizes) shrinks with them. With AutomaticVoxelSize the voxel
-   * pixels shrink in step (the buffer's side doubles with the slices, up
-   * to 512). The march reads one layer per step (two where a step crosses
-   * a layer's edge). Documentation/AreaLights.md measures the error and
-   * the cost. Takes effect at the next Voxelize().
+   * Thinner slices make voxels thinner in depth: a surface no longer
+   * fills a slice's depth in front of and behind itself, and rays that
+   * pass an occluder's edge closer than a 128th of the depth range are
+   * no longer hidden. The voxel side does not follow (see
+   * AutomaticVoxelSize): a march takes one step per voxel pixel, so the
+   * slices cost little (the march reads one layer per step, two where a
+   * step crosses a layer's edge), while a larger side costs steps.
+   * Documentation/AreaLights.md measures both. Takes effect at the next
+   * Voxelize().
    */
   virtual void SetNumberOfSlices(int slices);
   vtkGetMacro(NumberOfSlices, int);
@@ -123,12 +125,12 @@ public:
 
   ///@{
   /**
-   * When on (the default), each Voxelize() sizes the buffer so that its
-   * voxels are about as wide as they are deep: at the middle of the depth
-   * range, a voxel pixel spans one slice's thickness
-   * (mrgi_voxel_isotropic_size() for NumberOfSlices: 128..512 per side, in
-   * steps of 16). A
-   * shallow scene seen up close (a Cornell box) gets finer voxel pixels
+   * When on (the default), each Voxelize() sizes the buffer so that a
+   * voxel pixel is about as wide as 128 slices are deep: at the middle of
+   * the depth range, a pixel spans (far - near) / 128
+   * (mrgi_voxel_isotropic_size() at 128 slices: 128..512 per side, in steps
+   * of 16), whatever NumberOfSlices is: more slices refine the depth only.
+   * A shallow scene seen up close (a Cornell box) gets finer voxel pixels
    * than 128^2, a deep one (a room seen from inside) keeps 128^2. Off:
    * VoxelSize. Documentation/AreaLights.md measures the difference.
    */
