@@ -7,6 +7,7 @@
 #include "vtkMRGIResourceStatistics.h"
 #include "vtkMRGIShaderUtilities.h"
 #include "vtkMRGIVoxelGeometry.h"
+#include "vtkMRGIVoxelTexture.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLError.h"
@@ -140,11 +141,8 @@ struct vtkMRGIVoxelization::Internals
   // The window whose context holds the resources below (weak: a window that
   // goes away takes its context, and the GL objects, with it).
   vtkWeakPointer<vtkOpenGLRenderWindow> Window;
-  // The voxels: a GL_TEXTURE_3D of RGBA32UI, one depth layer per 128 slices
-  // (mrgi_voxel.h section 1). Not a 2D array texture: vtkTextureObject
-  // allocates none, and ParaView's VTK asserts on such a target.
-  vtkTextureObject* Voxels = nullptr;
-  int TextureSize[3] = { 0, 0, 0 }; // VW, VH, layers
+  // The voxels: one depth layer of a 3D texture per 128 slices.
+  vtkMRGIVoxelTexture Voxels;
   vtkOpenGLFramebufferObject* FrameBuffer = nullptr;
   // What is drawn: vertex buffers per polydata, the vertex array.
   vtkMRGIVoxelGeometry Geometry;
@@ -159,7 +157,7 @@ struct vtkMRGIVoxelization::Internals
 
   bool HasResources() const
   {
-    return this->Voxels || this->FrameBuffer || this->Geometry.HoldsResources();
+    return this->Voxels.GetTexture() || this->FrameBuffer || this->Geometry.HoldsResources();
   }
 };
 
@@ -187,10 +185,7 @@ vtkMRGIVoxelization::~vtkMRGIVoxelization()
     vtkErrorMacro("GL resources should have been freed in ReleaseGraphicsResources().");
   }
   in.Geometry.Release(false);
-  if (in.Voxels)
-  {
-    in.Voxels->Delete();
-  }
+  in.Voxels.Release(nullptr);
   if (in.FrameBuffer)
   {
     in.FrameBuffer->Delete();
@@ -202,7 +197,7 @@ void vtkMRGIVoxelization::ReleaseGraphicsResources(vtkWindow* w)
 {
   Internals& in = *this->Internal;
   in.Geometry.Release(w != nullptr);
-  this->ReleaseVoxelTexture(w);
+  in.Voxels.Release(w);
   if (in.FrameBuffer)
   {
     if (w)
@@ -214,73 +209,6 @@ void vtkMRGIVoxelization::ReleaseGraphicsResources(vtkWindow* w)
   }
   in.HasGrid = false;
   in.Window = nullptr;
-}
-
-//------------------------------------------------------------------------------
-void vtkMRGIVoxelization::ReleaseVoxelTexture(vtkWindow* w)
-{
-  Internals& in = *this->Internal;
-  if (in.Voxels)
-  {
-    if (w)
-    {
-      in.Voxels->ReleaseGraphicsResources(w);
-    }
-    in.Voxels->Delete();
-    in.Voxels = nullptr;
-  }
-  in.TextureSize[0] = in.TextureSize[1] = in.TextureSize[2] = 0;
-  in.HasGrid = false;
-}
-
-//------------------------------------------------------------------------------
-bool vtkMRGIVoxelization::AllocateVoxelTexture(
-  vtkOpenGLRenderWindow* window, int width, int height, int layers, std::string& problem)
-{
-  Internals& in = *this->Internal;
-  GLint maxBuffers = 0, maxAttachments = 0, maxSize = 0;
-  glGetIntegerv(GL_MAX_DRAW_BUFFERS, &maxBuffers);
-  glGetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &maxAttachments);
-  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
-  if (layers > std::min(maxBuffers, maxAttachments))
-  {
-    problem = std::to_string(MRGI_VOXEL_LAYER_SLICES * layers) + " slices need " +
-      std::to_string(layers) + " render targets, and this OpenGL draws into at most " +
-      std::to_string(std::min(maxBuffers, maxAttachments)) +
-      "; use fewer slices (SetNumberOfSlices)";
-    return false;
-  }
-  if (width > maxSize || height > maxSize)
-  {
-    problem = "the " + std::to_string(width) + " x " + std::to_string(height) +
-      " voxel buffer exceeds this OpenGL's largest 3D texture (" + std::to_string(maxSize) +
-      " per side); use a smaller voxel size";
-    return false;
-  }
-  in.Voxels = vtkTextureObject::New();
-  in.Voxels->SetContext(window);
-  in.Voxels->SetInternalFormat(GL_RGBA32UI);
-  in.Voxels->SetFormat(GL_RGBA_INTEGER);
-  in.Voxels->SetDataType(GL_UNSIGNED_INT);
-  in.Voxels->SetMinificationFilter(vtkTextureObject::Nearest);
-  in.Voxels->SetMagnificationFilter(vtkTextureObject::Nearest);
-  in.Voxels->SetWrapS(vtkTextureObject::ClampToEdge);
-  in.Voxels->SetWrapT(vtkTextureObject::ClampToEdge);
-  in.Voxels->SetWrapR(vtkTextureObject::ClampToEdge);
-  if (!in.Voxels->Allocate3D(static_cast<unsigned int>(width), static_cast<unsigned int>(height),
-        static_cast<unsigned int>(layers), 4, VTK_UNSIGNED_INT))
-  {
-    problem = "could not allocate the " + std::to_string(width) + " x " + std::to_string(height) +
-      " x " + std::to_string(layers) + " RGBA32UI voxel texture";
-    in.Voxels->Delete();
-    in.Voxels = nullptr;
-    return false;
-  }
-  in.TextureSize[0] = width;
-  in.TextureSize[1] = height;
-  in.TextureSize[2] = layers;
-  vtkMRGIResourceStatistics::RecordTextureAllocation(width, height, 16 * layers);
-  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -355,7 +283,7 @@ bool vtkMRGIVoxelization::VoxelSizeFor(
 //------------------------------------------------------------------------------
 vtkTextureObject* vtkMRGIVoxelization::GetVoxelTexture() const
 {
-  return this->Internal->HasGrid ? this->Internal->Voxels : nullptr;
+  return this->Internal->HasGrid ? this->Internal->Voxels.GetTexture() : nullptr;
 }
 
 int vtkMRGIVoxelization::GetMarchStepBound() const
@@ -519,7 +447,7 @@ bool vtkMRGIVoxelization::SetMarchUniforms(
     vtkErrorMacro("SetMarchUniforms: no shader program");
     return false;
   }
-  if (!in.HasGrid || !in.Voxels)
+  if (!in.HasGrid || !in.Voxels.GetTexture())
   {
     vtkErrorMacro("SetMarchUniforms: nothing voxelized yet (no successful Voxelize())");
     return false;
@@ -541,8 +469,8 @@ bool vtkMRGIVoxelization::SetMarchUniforms(
   auto used = [program](const char* name) { return program->IsUniformUsed(name); };
   if (used("mrgiVoxelTexture"))
   {
-    in.Voxels->Activate();
-    program->SetUniformi("mrgiVoxelTexture", in.Voxels->GetTextureUnit());
+    in.Voxels.GetTexture()->Activate();
+    program->SetUniformi("mrgiVoxelTexture", in.Voxels.GetTexture()->GetTextureUnit());
   }
   if (used("mrgiVoxelGridSize"))
   {
@@ -705,15 +633,11 @@ bool vtkMRGIVoxelization::Voxelize(
 
   // ---- resources ----
   const int layers = mrgi_voxel_layers(&grid);
-  if (!in.Voxels || in.TextureSize[0] != grid.width || in.TextureSize[1] != grid.height ||
-    in.TextureSize[2] != layers)
+  if (!in.Voxels.Ensure(window, grid.width, grid.height, layers, problem))
   {
-    this->ReleaseVoxelTexture(window); // also forgets the last grid
-    if (!this->AllocateVoxelTexture(window, grid.width, grid.height, layers, problem))
-    {
-      vtkErrorMacro("Voxelize: " << problem);
-      return false;
-    }
+    vtkErrorMacro("Voxelize: " << problem);
+    in.HasGrid = false;
+    return false;
   }
   if (!in.FrameBuffer)
   {
@@ -765,12 +689,7 @@ bool vtkMRGIVoxelization::Voxelize(
     fbo->Bind();
     // One render target per layer of 128 slices, all written by one draw
     // (NPW10 3.3: "more bits may be obtained using multiple render targets").
-    // Attached directly: vtkOpenGLFramebufferObject attaches no array layers.
-    for (int l = 0; l < layers; ++l)
-    {
-      glFramebufferTextureLayer(GL_DRAW_FRAMEBUFFER, static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + l),
-        in.Voxels->GetHandle(), 0, l);
-    }
+    in.Voxels.AttachLayers();
     vtkMRGIShaderUtilities::SelectDrawBuffers(fbo, static_cast<unsigned int>(layers));
     if (glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     {
@@ -824,11 +743,7 @@ bool vtkMRGIVoxelization::Voxelize(
 
       in.Triangles = in.Geometry.Draw(program, worldToView);
     }
-    for (int l = 0; l < layers; ++l)
-    {
-      glFramebufferTextureLayer(
-        GL_DRAW_FRAMEBUFFER, static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + l), 0, 0, 0);
-    }
+    in.Voxels.DetachLayers();
     fbo->UnBind();
     fbo->RestorePreviousBindingsAndBuffers();
   }
@@ -862,7 +777,7 @@ bool vtkMRGIVoxelization::WriteVoxels(vtkRenderWindow* window, vtkTypeUInt32Arra
 {
   Internals& in = *this->Internal;
   vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(window);
-  if (!renWin || !voxels || !in.HasGrid || !in.Voxels || renWin != in.Window)
+  if (!renWin || !voxels || !in.HasGrid || !in.Voxels.GetTexture() || renWin != in.Window)
   {
     vtkErrorMacro("WriteVoxels: needs the window of a successful Voxelize() and an array");
     return false;
@@ -876,31 +791,12 @@ bool vtkMRGIVoxelization::WriteVoxels(vtkRenderWindow* window, vtkTypeUInt32Arra
       "WriteVoxels: the array is not " << w << " x " << h << " x " << words << " words");
     return false;
   }
-  // mrgi_voxel.h's storage (a pixel's layers together) -> one image per layer.
-  const int layers = mrgi_voxel_layers(&in.Grid);
-  const size_t pixels = static_cast<size_t>(w) * static_cast<size_t>(h);
-  std::vector<GLuint> texels(pixels * static_cast<size_t>(words));
-  const vtkTypeUInt32* source = voxels->GetPointer(0);
-  for (size_t p = 0; p < pixels; ++p)
-  {
-    for (int l = 0; l < layers; ++l)
-    {
-      std::copy(source + p * words + MRGI_VOXEL_CHANNELS * l,
-        source + p * words + MRGI_VOXEL_CHANNELS * (l + 1),
-        texels.data() + (static_cast<size_t>(l) * pixels + p) * MRGI_VOXEL_CHANNELS);
-    }
-  }
   renWin->MakeCurrent();
   ClearGLErrors();
-  in.Voxels->Activate();
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  glTexSubImage3D(
-    GL_TEXTURE_3D, 0, 0, 0, 0, w, h, layers, GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels.data());
-  in.Voxels->Deactivate();
-  const GLenum error = glGetError();
-  if (error != GL_NO_ERROR)
+  std::string problem;
+  if (!in.Voxels.Write(in.Grid, voxels, problem))
   {
-    vtkErrorMacro("WriteVoxels: OpenGL error 0x" << std::hex << error << std::dec);
+    vtkErrorMacro("WriteVoxels: " << problem);
     return false;
   }
   return true;
@@ -915,7 +811,7 @@ bool vtkMRGIVoxelization::ReadVoxels(vtkRenderWindow* window, vtkTypeUInt32Array
     vtkErrorMacro("ReadVoxels: needs an OpenGL render window and an array");
     return false;
   }
-  if (!in.HasGrid || !in.Voxels)
+  if (!in.HasGrid || !in.Voxels.GetTexture())
   {
     vtkErrorMacro("ReadVoxels: nothing voxelized yet (no successful Voxelize())");
     return false;
@@ -925,35 +821,13 @@ bool vtkMRGIVoxelization::ReadVoxels(vtkRenderWindow* window, vtkTypeUInt32Array
     vtkErrorMacro("ReadVoxels: the voxels were made in another window");
     return false;
   }
-  const int w = in.Grid.width, h = in.Grid.height;
-  const int layers = mrgi_voxel_layers(&in.Grid);
-  const int words = mrgi_voxel_pixel_words(&in.Grid);
-  const size_t pixels = static_cast<size_t>(w) * static_cast<size_t>(h);
-  std::vector<GLuint> texels(mrgi_voxel_buffer_words(&in.Grid));
   renWin->MakeCurrent();
   ClearGLErrors();
-  // Every layer at once (layer-major).
-  in.Voxels->Activate();
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glGetTexImage(GL_TEXTURE_3D, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels.data());
-  in.Voxels->Deactivate();
-  const GLenum error = glGetError();
-  if (error != GL_NO_ERROR)
+  std::string problem;
+  if (!in.Voxels.Read(in.Grid, voxels, problem))
   {
-    vtkErrorMacro("ReadVoxels: OpenGL error 0x" << std::hex << error << std::dec);
+    vtkErrorMacro("ReadVoxels: " << problem);
     return false;
-  }
-  voxels->SetNumberOfComponents(words);
-  voxels->SetNumberOfTuples(static_cast<vtkIdType>(pixels));
-  vtkTypeUInt32* target = voxels->GetPointer(0);
-  for (size_t p = 0; p < pixels; ++p)
-  {
-    for (int l = 0; l < layers; ++l)
-    {
-      const GLuint* texel =
-        texels.data() + (static_cast<size_t>(l) * pixels + p) * MRGI_VOXEL_CHANNELS;
-      std::copy(texel, texel + MRGI_VOXEL_CHANNELS, target + p * words + MRGI_VOXEL_CHANNELS * l);
-    }
   }
   return true;
 }

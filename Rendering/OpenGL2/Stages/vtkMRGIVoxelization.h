@@ -66,9 +66,7 @@
 #include "vtkObject.h"
 
 #include <memory> // For std::unique_ptr
-#include <string> // For std::string
 
-class vtkOpenGLRenderWindow;
 class vtkRenderTimerLog;
 class vtkRenderWindow;
 class vtkRenderer;
@@ -105,8 +103,8 @@ public:
 
   ///@{
   /**
-   * Depth slices per voxel pixel: 128 (the default, NPW10 4.2's 128 bits),
-   * 256, 384 or 512; other values are rounded up to a multiple of 128 and
+   * Depth slices per voxel pixel: 128 (the default, NPW10 4.2's 128 bits;
+   * vtkMRGIPass's area lights use 256), 256, 384 or 512; other values are rounded up to a multiple of 128 and
    * clamped to 128..512. Each 128 slices are one more RGBA32UI render target
    * in the same draw (NPW10 3.3) and one more layer of the voxel texture.
    * Thinner slices make voxels thinner in depth: a surface no longer
@@ -351,13 +349,6 @@ protected:
   std::unique_ptr<Internals> Internal;
 
 private:
-  // The voxel texture (Internals::Voxels): VW x VH x layers RGBA32UI, in
-  // `window`'s current context. False, with `problem` naming the limit or the GL error.
-  bool AllocateVoxelTexture(
-    vtkOpenGLRenderWindow* window, int width, int height, int layers, std::string& problem);
-  // Free the voxel texture in `w`'s context (forget it without a window).
-  void ReleaseVoxelTexture(vtkWindow* w);
-
   // ComputeVoxelSize() for a camera projection already built (Voxelize()
   // builds it once for both).
   bool VoxelSizeFor(const mrgi_voxel_projection& projection, double nearDepth, double farDepth,
