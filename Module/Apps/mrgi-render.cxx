@@ -388,7 +388,10 @@ int main(int argc, char* argv[])
     }
   }
   mrgi->GetVoxelization()->SetOffsetAlongRay(o.VoxelOffset);
-  mrgi->GetVoxelization()->SetNumberOfSlices(o.VoxelSlices);
+  if (o.VoxelSlices > 0)
+  {
+    mrgi->GetVoxelization()->SetNumberOfSlices(o.VoxelSlices);
+  }
   if (o.VoxelSize > 0)
   {
     mrgi->GetVoxelization()->SetVoxelSide(static_cast<int>(o.VoxelSize));

@@ -392,8 +392,8 @@ const std::vector<OptionSection>& OptionTable()
           "as deep, 128..512)",
           Integer(&Options::VoxelSize, 1, MaxVoxelSize) },
         { { "--voxel-slices" }, "128|256|384|512",
-          "depth slices per voxel pixel for the visibility (default 128; each 128\n"
-          "more is one more render target: thinner voxels, finer penumbrae past edges)",
+          "depth slices per voxel pixel for the visibility (default 256; each 128 is\n"
+          "one render target: thinner voxels, finer penumbrae past edges)",
           Choice<int>(&Options::VoxelSlices,
             { { "128", 128 }, { "256", 256 }, { "384", 384 }, { "512", 512 } }) },
         { { "--voxel-offset" }, "normals|receiver|both",

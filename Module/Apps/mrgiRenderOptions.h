@@ -92,7 +92,7 @@ struct Options
   int AreaLightVisibility = vtkMRGIPass::VisibilityIncremental;
   long long VoxelSize = 0; // 0: automatic (vtkMRGIVoxelization::AutomaticVoxelSize)
   int VoxelOffset = 0;     // vtkMRGIVoxelization::OffsetAlongRayMode
-  int VoxelSlices = 128;   // vtkMRGIVoxelization::NumberOfSlices
+  int VoxelSlices = 0;     // vtkMRGIVoxelization::NumberOfSlices; 0: the pass's (256)
   bool AreaLightSpecular = true;
   int AreaLightSpecularResolution = vtkMRGIPass::SpecularFullResolution;
   bool VisibilityInterleave = false;

@@ -191,6 +191,12 @@ extern "C" {
 #define MRGI_VOXEL_MAX_SLICES (MRGI_VOXEL_LAYER_SLICES * MRGI_VOXEL_MAX_LAYERS)
 /** Default slices per voxel pixel (NPW10 4.2: 128, one layer). */
 #define MRGI_VOXEL_DEFAULT_SLICES 128
+/**
+ * Slices of the area lights' voxels in vtkMRGIPass (two layers): at the
+ * same voxel side they cost the march little and thin the voxels that
+ * hide penumbrae (Documentation/AreaLights.md, "Depth slices").
+ */
+#define MRGI_VOXEL_AREA_LIGHT_SLICES 256
 /** Unsigned 32-bit channels per layer (RGBA32UI). */
 #define MRGI_VOXEL_CHANNELS 4
 /** Most words per voxel pixel. */

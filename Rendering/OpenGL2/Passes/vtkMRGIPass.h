@@ -486,8 +486,9 @@ public:
   ///@{
   /**
    * Shadows of the area lights (nichols-penmatsa-wyman-2010 3.3): none;
-   * naive (the visible scene is voxelized into 128 depth slices per pixel
-   * of a voxel buffer, GetVoxelization() holds its size and march knobs,
+   * naive (the visible scene is voxelized into 256 depth slices per pixel
+   * of a voxel buffer, GetVoxelization() holds its size, slices and march
+   * knobs,
    * and each light sample is marched from each gathering texel); or
    * incremental (default: one visibility bit per sample and texel, computed
    * coarse to fine over the multiresolution levels, a coarse bit reused
