@@ -555,11 +555,11 @@ def write_page(args, rows, notes, path, speed=(), shares=(), offsets=(), slices=
              "(one selection per frame), the disk-to-point form factor of every sample, with the paper's two "
              "exact early-outs (behind a one-sided light; facing away from every corner), then upsampled like the "
              "indirect light.",
-             "- **Visibility** (3.3): the visible scene is voxelized once per frame into a buffer of 128 depth "
-             "slices per pixel (RGBA32UI, logic-op OR; `vtkMRGIVoxelization`; 256, 384 or 512 slices through "
-             "one more render target per 128, `SetNumberOfSlices` / `--voxel-slices`, measured under \"Depth "
-             "slices\" below), by default with as many voxel "
-             "pixels as make a voxel about as wide as a slice is deep at the middle of the scene's depth range "
+             "- **Visibility** (3.3): the visible scene is voxelized once per frame into a buffer of 256 depth "
+             "slices per pixel (two RGBA32UI render targets of 128 in one draw, logic-op OR; "
+             "`vtkMRGIVoxelization`; NPW10 used 128; 128 to 512 through `SetNumberOfSlices` / "
+             "`--voxel-slices`, measured under \"Depth slices\" below), by default with as many voxel "
+             "pixels as make a pixel about as wide as 128 slices are deep at the middle of the scene's depth range "
              "(`AutomaticVoxelSize`, 128^2 to 512^2; NPW10 4.2 uses a fixed 128^2, which the sweep below "
              "includes), and a ray from a texel to a sample "
              "is marched through it with a bias of 1.5 voxel sizes, along the surfaces' normals (NPW10 4.3; "
@@ -730,8 +730,8 @@ def write_page(args, rows, notes, path, speed=(), shares=(), offsets=(), slices=
                         and r["preset"] == "balanced" and not is_default(r)), key=lambda r: r["voxels"])
         fixed = next((r for r in sweep if r["voxels"] == 128), None)
         if i and fixed:
-            lines.append("- `%s`, the automatic voxel size (%d^2; `mrgi_voxel_isotropic_size`: voxels about as "
-                         "wide as deep, 128^2 at least) against NPW10's fixed 128^2 (incremental, balanced): "
+            lines.append("- `%s`, the automatic voxel size (%d^2; `mrgi_voxel_isotropic_size` at 128 slices: pixels about as "
+                         "wide as 128 slices are deep, 128^2 at least) against NPW10's fixed 128^2 (incremental, balanced): "
                          "relative RMS on 4x4 boxes %.4f against %.4f, per pixel %.4f against %.4f, %.0f ms "
                          "against %.0f ms."
                          % (name, i["voxels"], i["rel_rms_truth_boxes"], fixed["rel_rms_truth_boxes"],
