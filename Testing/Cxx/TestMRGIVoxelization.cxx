@@ -356,7 +356,7 @@ Comparison RunCase(const char* name, vtkRenderWindow* window, vtkRenderer* ren,
 
   vtkNew<vtkTypeUInt32Array> gpu;
   MRGI_TEST_CHECK(vox->ReadVoxels(window, gpu));
-  MRGI_TEST_CHECK(gpu->GetNumberOfComponents() == slices / 32);
+  MRGI_TEST_CHECK(gpu->GetNumberOfComponents() == slices / MRGI_VOXEL_CHANNEL_BITS);
   MRGI_TEST_CHECK(gpu->GetNumberOfTuples() == static_cast<vtkIdType>(vw) * vh);
 
   const std::vector<Triangle> tris = SceneTriangles(ren);

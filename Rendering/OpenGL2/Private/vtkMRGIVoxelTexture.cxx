@@ -3,6 +3,7 @@
 #include "vtkMRGIVoxelTexture.h"
 
 #include "vtkMRGIResourceStatistics.h"
+#include "vtkMRGIShaderUtilities.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkTextureObject.h"
 #include "vtkTypeUInt32Array.h"
@@ -26,10 +27,7 @@ std::string GLErrorText(GLenum error)
 //------------------------------------------------------------------------------
 vtkMRGIVoxelTexture::~vtkMRGIVoxelTexture()
 {
-  if (this->Texture)
-  {
-    this->Texture->Delete();
-  }
+  vtkMRGIShaderUtilities::ReleaseTexture(this->Texture, nullptr);
 }
 
 //------------------------------------------------------------------------------
@@ -90,15 +88,7 @@ bool vtkMRGIVoxelTexture::Ensure(
 //------------------------------------------------------------------------------
 void vtkMRGIVoxelTexture::Release(vtkWindow* w)
 {
-  if (this->Texture)
-  {
-    if (w)
-    {
-      this->Texture->ReleaseGraphicsResources(w);
-    }
-    this->Texture->Delete();
-    this->Texture = nullptr;
-  }
+  vtkMRGIShaderUtilities::ReleaseTexture(this->Texture, w);
   this->Size[0] = this->Size[1] = this->Size[2] = 0;
 }
 
