@@ -44,30 +44,40 @@ rms="$(field relative_rms "$work/area.png" "$work/mrgi-render-cornell-area.png")
 echo "check-paraview-area-lights: MRGI Area Light vs mrgi-render cornell-area ${size}x${size}: relative RMS $rms"
 at_most "$rms" 0.01 || fail "relative RMS $rms > 0.01"
 
-# 2. Moved (the display's Position): the light moves with its rectangle.
+# 2. The view's Area Lights properties: a coarser voxel buffer moves the
+#    shadows a little, no shadows move them much more.
+coarse="$(field relative_rms "$work/voxels.png" "$work/area.png")"
+unshadowed="$(field relative_rms "$work/unshadowed.png" "$work/area.png")"
+echo "check-paraview-area-lights: voxel side 64 / no shadows vs defaults: relative RMS $coarse / $unshadowed"
+at_least "$coarse" 0.002 || fail "AreaLightVoxelSide 64 did not change the shadows ($coarse)"
+at_least "$unshadowed" 0.05 || fail "AreaLightVisibility off left the shadows ($unshadowed)"
+awk -v c="$coarse" -v u="$unshadowed" 'BEGIN { exit !(u > 2 * c) }' ||
+  fail "no shadows ($unshadowed) differ less than twice a coarser voxel buffer ($coarse)"
+
+# 3. Moved (the display's Position): the light moves with its rectangle.
 moved="$(field relative_rms "$work/moved.png" "$work/area.png")"
 echo "check-paraview-area-lights: display moved 150 down vs in place: relative RMS $moved"
 at_least "$moved" 0.05 || fail "moving the light's display did not move the light ($moved)"
 
-# 3. Hidden: no light at all (the scene has no other light), so the image
+# 4. Hidden: no light at all (the scene has no other light), so the image
 #    is (nearly) black and far from the lit one.
 off="$(field relative_rms "$work/hidden.png" "$work/area.png")"
 echo "check-paraview-area-lights: light hidden vs shown: relative RMS $off"
 at_least "$off" 0.9 || fail "hiding the light left the image lit ($off)"
 
-# 4. Textured by the Wavelet: another image, not black.
+# 5. Textured by the Wavelet: another image, not black.
 tex="$(field relative_rms "$work/textured.png" "$work/area.png")"
 lit="$(field rms "$work/textured.png" "$work/hidden.png")"
 echo "check-paraview-area-lights: textured vs untextured: relative RMS $tex; textured vs dark: RMS $lit"
 at_least "$tex" 0.05 || fail "the textured light looks like the untextured one ($tex)"
 at_least "$lit" 0.02 || fail "the textured light leaves the scene dark (RMS $lit from black)"
 
-# 5. Deleted and shown again: the same image as the first.
+# 6. Deleted and shown again: the same image as the first.
 again="$(field relative_rms "$work/reloaded.png" "$work/area.png")"
 echo "check-paraview-area-lights: shown again vs first: relative RMS $again"
 at_most "$again" 0.001 || fail "the light shown again renders differently ($again)"
 
-# 6. The output's layout (corners, colours, mark, pictures), then invalid
+# 7. The output's layout (corners, colours, mark, pictures), then invalid
 #    lights: an error naming the problem, no light, no crash.
 pvbatch_headless "$tests/pvbatch_area_lights.py" "$plugin" "$work" 64 --checks
 grep -q "layout: quad corners" "$log" || { cat "$log" >&2; fail "the layout checks did not run"; }

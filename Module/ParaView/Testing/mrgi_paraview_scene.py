@@ -133,6 +133,12 @@ def view_area_light_count(view):
     return int(_info(view, "NumberOfAreaLights")[0])
 
 
+def view_information(view, name):
+    """One integer information property of the view (after a render)."""
+    view.UpdatePropertyInformation()
+    return int(_info(view, name)[0])
+
+
 def view_area_light_updates(view):
     """The view's NumberOfAreaLightUpdates information property."""
     view.UpdatePropertyInformation()

@@ -10,6 +10,9 @@ Writes to OUT_DIR (PNG, SIZE x SIZE, default 256):
   source's AreaLightParameters), to compare with
   `mrgi-render cornell-area --exposure 0 --aa off`; the scene's emitter
   mesh is hidden: the light's rectangle, shown self-luminous, stands for it;
+- voxels.png: the view's AreaLightVoxelSlices 512 and AreaLightVoxelSide
+  64 (a coarser voxel buffer than the automatic one);
+- unshadowed.png: the same with AreaLightVisibility off (no shadows);
 - moved.png: the light's display moved 150 down (Position): the light
   moves with its rectangle;
 - hidden.png: the same with the light hidden (no area light: dark);
@@ -28,6 +31,7 @@ picture has negative values, and asserts that the view uses no light for
 either (the errors are expected in the log; the caller checks them).
 """
 import os
+import re
 import sys
 
 from paraview import simple
@@ -38,7 +42,7 @@ simple.LoadPlugin(plugin, remote=False)  # into paraview.simple
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from mrgi_paraview_scene import (  # noqa: E402
     scene_area_lights, show_area_light, show_mrgi_scene, view_area_light_count,
-    view_area_light_updates)
+    view_area_light_updates, view_information)
 
 
 def check_count(view, expected, when):
@@ -159,6 +163,46 @@ if view_area_light_updates(view) != updates + 1:
                      % (view_area_light_updates(view) - updates))
 light.Intensity = params["Intensity"]
 print("pvbatch_area_lights: light updates: none for an unchanged light, one after a change")
+
+# The Area Lights properties reach the pass: the defaults are the pass's
+# (the depth slices' default is MRGI_VOXEL_AREA_LIGHT_SLICES, typed again
+# in MRGIRenderView.xml), and the voxel knobs and shadows change what is
+# drawn.
+header = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
+                      "Rendering", "Core", "Twins", "mrgi_voxel.h")
+with open(header) as f:
+    core_default = int(re.search(r"#define MRGI_VOXEL_AREA_LIGHT_SLICES (\d+)", f.read()).group(1))
+view_slices = int(view.SMProxy.GetProperty("AreaLightVoxelSlices").GetElement(0))
+last_slices = view_information(view, "LastAreaLightVoxelSlices")
+if view_slices != core_default or last_slices != core_default:
+    raise SystemExit("pvbatch_area_lights: the view's depth slices %d (last frame %d) are not "
+                     "the pass's default %d" % (view_slices, last_slices, core_default))
+
+
+def last_voxel_size():
+    return (view_information(view, "LastAreaLightVoxelWidth"),
+            view_information(view, "LastAreaLightVoxelHeight"))
+
+
+automatic = last_voxel_size()
+if min(automatic) < 16 or view.AreaLightVoxelSide != 0:
+    raise SystemExit("pvbatch_area_lights: automatic voxel size %s" % (automatic,))
+view.AreaLightVoxelSlices = "512"
+view.AreaLightVoxelSide = 64
+save(view, "voxels.png")
+used = (view_information(view, "LastAreaLightVoxelSlices"),) + last_voxel_size()
+if used != (512, 64, 64):
+    raise SystemExit("pvbatch_area_lights: 512 slices, side 64 gave %s" % (used,))
+view.AreaLightVisibility = "Off"
+save(view, "unshadowed.png")
+view.AreaLightVisibility = "Incremental"
+view.AreaLightVoxelSlices = str(core_default)
+view.AreaLightVoxelSide = 0
+simple.Render(view)
+if last_voxel_size() != automatic:
+    raise SystemExit("pvbatch_area_lights: side 0 did not return to the automatic size")
+print("pvbatch_area_lights: area-light properties: default %d slices, automatic side %s; "
+      "512 slices and side 64 used" % (core_default, automatic))
 
 # The display's transform moves the light with its rectangle (read once).
 updates = view_area_light_updates(view)

@@ -5,6 +5,7 @@
 #include "vtkMRGIControllerRSMCompositor.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIPass.h"
+#include "vtkMRGIVoxelization.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -215,6 +216,66 @@ void vtkPVMRGIRenderView::SetAutoExposure(bool automatic)
 void vtkPVMRGIRenderView::SetToneMapping(bool enabled)
 {
   this->MRGIPass->SetToneMapping(enabled);
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetAreaLightVisibility(int mode)
+{
+  this->MRGIPass->SetAreaLightVisibility(mode);
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetAreaLightSpecular(bool specular)
+{
+  this->MRGIPass->SetAreaLightSpecular(specular);
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetAreaLightIndirect(bool indirect)
+{
+  this->MRGIPass->SetAreaLightIndirect(indirect);
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetAreaLightVoxelSlices(int slices)
+{
+  this->MRGIPass->GetVoxelization()->SetNumberOfSlices(slices);
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetAreaLightVoxelSide(int side)
+{
+  vtkMRGIVoxelization* voxelization = this->MRGIPass->GetVoxelization();
+  if (side <= 0)
+  {
+    voxelization->AutomaticVoxelSizeOn();
+  }
+  else
+  {
+    voxelization->SetVoxelSide(side);
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkPVMRGIRenderView::GetLastAreaLightVoxelSlices()
+{
+  return this->MRGIPass->GetVoxelization()->GetLastNumberOfSlices();
+}
+
+//------------------------------------------------------------------------------
+int vtkPVMRGIRenderView::GetLastAreaLightVoxelWidth()
+{
+  int size[2];
+  this->MRGIPass->GetVoxelization()->GetLastVoxelSize(size);
+  return size[0];
+}
+
+//------------------------------------------------------------------------------
+int vtkPVMRGIRenderView::GetLastAreaLightVoxelHeight()
+{
+  int size[2];
+  this->MRGIPass->GetVoxelization()->GetLastVoxelSize(size);
+  return size[1];
 }
 
 //------------------------------------------------------------------------------

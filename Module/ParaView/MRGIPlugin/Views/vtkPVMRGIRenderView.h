@@ -96,6 +96,43 @@ public:
    */
   int GetNumberOfAreaLightUpdates();
 
+  ///@{
+  /**
+   * The area lights' shadows and bounce, forwarded to vtkMRGIPass:
+   * AreaLightVisibility (vtkMRGIPass::AreaLightVisibilityModes: 0 off,
+   * 1 naive, 2 incremental, the default), AreaLightSpecular (Phong
+   * highlights, default on) and AreaLightIndirect (the lights bounce,
+   * default on).
+   */
+  void SetAreaLightVisibility(int mode);
+  void SetAreaLightSpecular(bool specular);
+  void SetAreaLightIndirect(bool indirect);
+  ///@}
+
+  ///@{
+  /**
+   * The area lights' voxel buffer (vtkMRGIPass::GetVoxelization(),
+   * nichols-penmatsa-wyman-2010 3.3): depth slices per voxel pixel (128,
+   * 256, 384 or 512; others are rounded up and clamped, as
+   * vtkMRGIVoxelization::SetNumberOfSlices does) and the buffer's side in
+   * voxel pixels, where 0 (the default) chooses it from the camera
+   * (vtkMRGIVoxelization::AutomaticVoxelSize).
+   */
+  void SetAreaLightVoxelSlices(int slices);
+  void SetAreaLightVoxelSide(int side);
+  ///@}
+
+  ///@{
+  /**
+   * What the last area-light frame used: its depth slices and voxel buffer
+   * size (0 before any frame with area-light shadows). With an automatic
+   * side these show what the camera chose.
+   */
+  int GetLastAreaLightVoxelSlices();
+  int GetLastAreaLightVoxelWidth();
+  int GetLastAreaLightVoxelHeight();
+  ///@}
+
   /** The pass, for scripts that set what the view's properties do not cover. */
   vtkMRGIPass* GetMRGIPass() { return this->MRGIPass; }
 
