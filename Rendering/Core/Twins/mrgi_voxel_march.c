@@ -399,6 +399,10 @@ int32_t mrgi_voxel_step_bound(const mrgi_voxel_grid* grid, int32_t max_steps)
   return side < cap ? (int32_t)side : cap;
 }
 
+/* A step's loop iterations in the GLSL march: the step and one per layer. */
+_Static_assert(1 + MRGI_VOXEL_MAX_LAYERS <= MRGI_VOXEL_ITERATIONS_PER_STEP,
+               "MRGI_VOXEL_ITERATIONS_PER_STEP must cover the step and its layer loop");
+
 int32_t mrgi_voxel_samples_per_batch(int32_t max_steps)
 {
   const int64_t steps = max_steps > 0 ? max_steps : 1;

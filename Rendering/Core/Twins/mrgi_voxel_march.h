@@ -209,7 +209,12 @@ extern "C" {
  * mrgi_voxel_samples_per_batch().
  */
 #define MRGI_VOXEL_ITERATION_BUDGET 60000
-/** Loop iterations charged per march step: the step and its 4-channel mask loop (about 5 measured on llvmpipe). */
+/**
+ * Loop iterations charged per march step: the step and its layer loop, one
+ * iteration per layer the step's depth interval reaches (1 to
+ * MRGI_VOXEL_MAX_LAYERS; the range mask itself is written without a loop),
+ * so at most 5, with a margin.
+ */
 #define MRGI_VOXEL_ITERATIONS_PER_STEP 8
 /** Loop iterations charged per march besides its steps (clipping planes, the sample loop). */
 #define MRGI_VOXEL_ITERATIONS_PER_MARCH 32
