@@ -4,6 +4,7 @@ light (visibility is a weight in [0, 1]), an ISM bias so large that nothing
 can be nearer than the receiver gives back the unshadowed image, and the
 images stay finite."""
 import os
+import re
 import subprocess
 import sys
 
@@ -99,6 +100,13 @@ def main():
     lines = [line for line in out.splitlines() if line.startswith(("voxels:", "voxels ("))]
     check(code == 0 and len(lines) == 1 and lines[0].startswith("voxels (VPLs): "),
           "--timings reports the VPLs' voxels only: %r %s" % (lines, err))
+    # ... with the indirect stage's own slices (MRGI_VOXEL_INDIRECT_SLICES),
+    # not the area lights' nor the class default.
+    stage_slices = mrgi.vtkMRGIPass().GetIndirectLightStage().GetVoxelization().GetNumberOfSlices()
+    used = re.search(r" x (\d+) slices", lines[0])
+    check(used is not None and int(used.group(1)) == stage_slices and
+          stage_slices > mrgi.vtkMRGIVoxelization().GetNumberOfSlices(),
+          "the VPLs' voxels use the indirect stage's %d slices: %r" % (stage_slices, lines[0]))
     lit = off.sum(axis=1) > 0
     check(lit.mean() > 0.5, "the indirect light reaches most pixels")
     tolerance = 1e-4 * off.max()

@@ -197,6 +197,13 @@ extern "C" {
  * hide penumbrae (Documentation/AreaLights.md, "Depth slices").
  */
 #define MRGI_VOXEL_AREA_LIGHT_SLICES 256
+/**
+ * Slices of the VPL visibility's voxels (vtkMRGIIndirectLight, four
+ * layers): rays from VPLs to receivers run along the view's depth, where
+ * deep slices make surfaces occlude themselves; the fewer slices cost most
+ * in deep scenes (Documentation/IndirectShadows.md, "Session 21").
+ */
+#define MRGI_VOXEL_INDIRECT_SLICES 512
 /** Unsigned 32-bit channels per layer (RGBA32UI). */
 #define MRGI_VOXEL_CHANNELS 4
 /** Most words per voxel pixel. */

@@ -40,6 +40,7 @@ vtkMRGIIndirectLight::vtkMRGIIndirectLight()
   // made its gather dearer; what the camera does not see limits it, not
   // the voxel size (Documentation/IndirectShadows.md, "Session 17").
   this->Voxelization->SetVoxelSide(MRGI_VOXEL_DEFAULT_SIZE);
+  this->Voxelization->SetNumberOfSlices(MRGI_VOXEL_INDIRECT_SLICES);
   this->IlluminationStencil = vtkMRGIIncrementalStencil::New();
 }
 
