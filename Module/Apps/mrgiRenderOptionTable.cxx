@@ -388,12 +388,12 @@ const std::vector<OptionSection>& OptionTable()
             { { "off", vtkMRGIPass::VisibilityOff }, { "naive", vtkMRGIPass::VisibilityNaive },
               { "incremental", vtkMRGIPass::VisibilityIncremental } }) },
         { { "--voxel-size" }, "N",
-          "voxel buffer side for the visibility, 1..4096 (default: automatic, voxels about as wide "
+          "voxel buffer side for the area lights' visibility, 1..4096 (default: automatic, voxels about as wide "
           "as deep, 128..512)",
           Integer(&Options::VoxelSize, 1, MaxVoxelSize) },
         { { "--voxel-slices" }, "128|256|384|512",
-          "depth slices per voxel pixel for the visibility (default 256; each 128 is\n"
-          "one render target: thinner voxels, finer penumbrae past edges)",
+          "depth slices per voxel pixel for the area lights' visibility (default 256;\n"
+          "each 128 is one render target: thinner voxels, finer penumbrae past edges)",
           Choice<int>(&Options::VoxelSlices,
             { { "128", 128 }, { "256", 256 }, { "384", 384 }, { "512", 512 } }) },
         { { "--voxel-offset" }, "normals|receiver|both",
@@ -603,7 +603,8 @@ const std::vector<OptionSection>& OptionTable()
         { { "--indirect-visibility" }, "off|ism|voxel",
           "visibility of the VPLs, i.e. indirect shadows (default off: light bounces\n"
           "through occluders); ism: imperfect shadow maps (ritschel-et-al-2011);\n"
-          "voxel: the screen-space voxels, blind to what the camera does not see",
+          "voxel: screen-space voxels of their own (--timings gives their size),\n"
+          "blind to what the camera does not see",
           Choice<int>(&Options::IndirectVisibility,
             { { "off", vtkMRGIIndirectLight::VisibilityOff },
               { "ism", vtkMRGIIndirectLight::VisibilityISM },
