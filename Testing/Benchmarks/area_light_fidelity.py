@@ -448,6 +448,31 @@ def read_table(args, name):
         return [{k: value(v) for k, v in r.items()} for r in csv.DictReader(f)]
 
 
+def equal_error_line(name, incremental, naive_rows):
+    """The target's "at equal error": incremental balanced against the fastest naive setting of the table
+    (any preset, any voxel side) whose errors per pixel and on 4x4 boxes are both no larger."""
+    i = incremental
+    setting = lambda r: "%s, %d^2 voxels" % (r["preset"], r["voxels"])  # noqa: E731
+    errors = lambda r: "%.4f / %.4f" % (r["rel_rms_truth"], r["rel_rms_truth_boxes"])  # noqa: E731
+    reached = [r for r in naive_rows if r["rel_rms_truth"] <= i["rel_rms_truth"]
+               and r["rel_rms_truth_boxes"] <= i["rel_rms_truth_boxes"]]
+    if reached:
+        n = min(reached, key=lambda r: r["area_ms"])
+        ratio = n["area_ms"] / max(i["area_ms"], 1e-9)
+        return ("- `%s` at equal error: the fastest naive setting at least as accurate as incremental balanced "
+                "(%s per pixel / 4x4 boxes) is %s (%s), %.0f ms against %.0f ms: **%.2fx** (%s)."
+                % (name, errors(i), setting(n), errors(n), n["area_ms"], i["area_ms"], ratio,
+                   "met" if ratio >= 3.0 else "not met"))
+    if not naive_rows:
+        return "- `%s` at equal error: no naive rows." % name
+    n = min(naive_rows, key=lambda r: r["rel_rms_truth"])
+    return ("- `%s` at equal error: no naive setting of the table is as accurate as incremental balanced (%s per "
+            "pixel / 4x4 boxes); the most accurate per pixel, %s (%s), takes %.0f ms against %.0f ms (%.2fx) and is "
+            "still less accurate %s." % (name, errors(i), setting(n), errors(n), n["area_ms"], i["area_ms"],
+                                         n["area_ms"] / max(i["area_ms"], 1e-9),
+                                         "per pixel" if n["rel_rms_truth"] > i["rel_rms_truth"] else "on boxes"))
+
+
 def is_default(row):
     """A row rendered at the default voxel size (automatic), or without voxels."""
     return row.get("auto", False) in (True, "True") or not row["voxels"]
@@ -703,6 +728,9 @@ def write_page(args, rows, notes, path, speed=(), shares=(), offsets=(), slices=
                              "decision, marking and gather passes cost per texel whatever is marched.") +
                             ("" if i["rel_rms_truth"] <= 1.2 * n["rel_rms_truth"] else
                              " **Not at equal error** (more than 1.2x the naive error).")))
+        if i:
+            lines.append(equal_error_line(name, i, [r for r in rows if r["scene"] == name
+                                                    and r["visibility"] == "naive"]))
         for r in speed:
             if r["scene"] == name:
                 ratio = r["naive_ms"] / max(r["incremental_ms"], 1e-9)
