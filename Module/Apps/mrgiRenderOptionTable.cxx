@@ -388,16 +388,13 @@ const std::vector<OptionSection>& OptionTable()
             { { "off", vtkMRGIPass::VisibilityOff }, { "naive", vtkMRGIPass::VisibilityNaive },
               { "incremental", vtkMRGIPass::VisibilityIncremental } }) },
         { { "--voxel-size" }, "N",
-          "voxel buffer side for the area lights' visibility, 1..4096 (default: automatic, voxels "
-          "about as wide "
-          "as deep, 128..512)",
+          "voxel buffer side for the area lights' visibility, 1..4096 (default:\n"
+          "automatic, voxels about as wide as deep, 128..512)",
           Integer(&Options::VoxelSize, 1, MaxVoxelSize) },
         { { "--voxel-slices" }, "128|256|384|512",
-          "depth slices per voxel pixel for the area lights' visibility "
-          "(default " MRGI_OPTIONS_TEXT(
-            MRGI_VOXEL_AREA_LIGHT_SLICES) ";\n"
-                                          "each 128 is one render target: thinner voxels, finer "
-                                          "penumbrae past edges)",
+          "depth slices per voxel pixel for the area lights' visibility; each 128\n"
+          "is one render target: thinner voxels, finer penumbrae past edges\n"
+          "(default " MRGI_OPTIONS_TEXT(MRGI_VOXEL_AREA_LIGHT_SLICES) ")",
           Choice<int>(&Options::VoxelSlices,
             { { "128", 128 }, { "256", 256 }, { "384", 384 }, { "512", 512 } }) },
         { { "--voxel-offset" }, "normals|receiver|both",
