@@ -27,6 +27,11 @@ EXPECTED = {
     # render the same first frame in the fresh process.
     "VPLSelectionMode": 4,
     "IndirectVisibility": 1,
+    # The Area Lights group (cornell has no area light: only their return
+    # is checked, the images do not depend on them).
+    "AreaLightVisibility": 1,
+    "AreaLightVoxelSlices": 512,
+    "AreaLightVoxelSide": 96,
 }
 
 if mode == "save":
