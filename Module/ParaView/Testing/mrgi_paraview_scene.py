@@ -127,19 +127,17 @@ def show_area_light(light, view):
     return display
 
 
-def view_area_light_count(view):
-    """The view's NumberOfAreaLights information property (after a render)."""
-    view.UpdatePropertyInformation()
-    return int(_info(view, "NumberOfAreaLights")[0])
-
-
 def view_information(view, name):
     """One integer information property of the view (after a render)."""
     view.UpdatePropertyInformation()
     return int(_info(view, name)[0])
 
 
+def view_area_light_count(view):
+    """The view's NumberOfAreaLights information property (after a render)."""
+    return view_information(view, "NumberOfAreaLights")
+
+
 def view_area_light_updates(view):
     """The view's NumberOfAreaLightUpdates information property."""
-    view.UpdatePropertyInformation()
-    return int(_info(view, "NumberOfAreaLightUpdates")[0])
+    return view_information(view, "NumberOfAreaLightUpdates")
