@@ -388,8 +388,9 @@ const std::vector<OptionSection>& OptionTable()
             { { "off", vtkMRGIPass::VisibilityOff }, { "naive", vtkMRGIPass::VisibilityNaive },
               { "incremental", vtkMRGIPass::VisibilityIncremental } }) },
         { { "--voxel-size" }, "N",
-          "voxel buffer side for the area lights' visibility, 1..4096 (default:\n"
-          "automatic, voxels about as wide as deep, 128..512)",
+          "voxel buffer side for the area lights' visibility, 1..4096 and at most\n"
+          "the OpenGL's largest 3D texture (GL_MAX_3D_TEXTURE_SIZE; 2048 on\n"
+          "llvmpipe); default: automatic, voxels about as wide as deep, 128..512",
           Integer(&Options::VoxelSize, 1, MaxVoxelSize) },
         { { "--voxel-slices" }, "128|256|384|512",
           "depth slices per voxel pixel for the area lights' visibility; each 128\n"
