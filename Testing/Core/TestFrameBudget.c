@@ -3,7 +3,8 @@
  * choice respects the budget and minimises the predicted error; the error
  * budget takes the cheapest setting within it; the controller does not
  * switch on noisy constant timings and switches once on a real load change;
- * the calibration text round-trips and corrupt files are refused by name. */
+ * the controller takes the gather's measured work share; the calibration
+ * text round-trips and corrupt files are refused by name. */
 #include "mrgi_frame_budget.h"
 
 #include "mrgi_multires.h"
@@ -221,7 +222,8 @@ static int run_controller(mrgi_frame_budget_controller* ctl, const mrgi_frame_bu
     const double spike = f % 40 == 17 ? 1.5 : 1.0;
     const double ms = load * spike * true_ms(&cand[ctl->current], pixels) * (1.0 + amp * noise(rng));
     int changed = 0;
-    MRGI_CHECK(mrgi_frame_budget_controller_update(ctl, cal, cand, n, pixels, ms, &changed, NULL) == MRGI_OK);
+    MRGI_CHECK(mrgi_frame_budget_controller_update(
+                 ctl, cal, cand, n, pixels, ms, 0.0, &changed, NULL) == MRGI_OK);
     if (changed && switches++ == 0 && first_switch)
     {
       *first_switch = f;
@@ -267,7 +269,8 @@ static void test_hysteresis(void)
   MRGI_CHECK(ctl.switches == settled);
 
   mrgi_error err;
-  MRGI_CHECK(mrgi_frame_budget_controller_update(&ctl, &cal, cand, n, pixels, -3.0, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_frame_budget_controller_update(
+               &ctl, &cal, cand, n, pixels, -3.0, 0.0, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "measured time") != NULL);
   MRGI_CHECK(mrgi_frame_budget_controller_init(&ctl, &cal, cand, n, pixels, 60.0, 0.0, 5, &err) == MRGI_ERR_INVALID_ARGUMENT);
   MRGI_CHECK(strstr(err.message, "margin") != NULL);
@@ -326,7 +329,8 @@ static void test_tracks_drift(void)
         counted++;
         within += fabs(ms / budgets[b] - 1.0) <= 0.10;
       }
-      MRGI_CHECK(mrgi_frame_budget_controller_update(&ctl, &cal, cand, n, pixels, ms, NULL, NULL) == MRGI_OK);
+      MRGI_CHECK(mrgi_frame_budget_controller_update(
+                   &ctl, &cal, cand, n, pixels, ms, 0.0, NULL, NULL) == MRGI_OK);
     }
     if (within < 0.9 * counted || ctl.switches > 12)
     {
@@ -354,7 +358,8 @@ static void test_learns_shape(void)
   {
     ctl.budget_ms = (f / 40) % 2 ? 60.0 : 30.0;
     const double ms = mrgi_frame_budget_predict(&real, &cand[ctl.current], pixels);
-    MRGI_CHECK(mrgi_frame_budget_controller_update(&ctl, &cal, cand, n, pixels, ms, NULL, NULL) == MRGI_OK);
+    MRGI_CHECK(mrgi_frame_budget_controller_update(
+                 &ctl, &cal, cand, n, pixels, ms, 0.0, NULL, NULL) == MRGI_OK);
   }
   if (fabs(ctl.shape / 1.5 - 1.0) > 0.03)
   {
@@ -365,6 +370,85 @@ static void test_learns_shape(void)
   MRGI_CHECK(mrgi_frame_budget_controller_expected(NULL, &cal, cand, n, pixels) < 0.0);
 }
 
+/* The share of pixels a preset gathers, by window: the table's values at
+ * 256^2, 512^2 and 1024^2, in between monotone, constant beyond. */
+static void test_work_fraction_by_window(void)
+{
+  for (int32_t p = 0; p < MRGI_MULTIRES_PRESET_COUNT; ++p)
+  {
+    const double w256 = mrgi_frame_budget_work_fraction_at(p, 256 * 256);
+    const double w512 = mrgi_frame_budget_work_fraction_at(p, 512 * 512);
+    const double w1024 = mrgi_frame_budget_work_fraction_at(p, 1024 * 1024);
+    MRGI_CHECK(w256 > w512 && w512 > w1024 && w1024 > 0.0 && w256 < 1.0);
+    MRGI_CHECK(mrgi_frame_budget_work_fraction(p) == w1024);
+    const double w384 = mrgi_frame_budget_work_fraction_at(p, 384 * 384);
+    MRGI_CHECK(w384 < w256 && w384 > w512);
+    MRGI_CHECK(mrgi_frame_budget_work_fraction_at(p, 16 * 16) == w256);
+    MRGI_CHECK(mrgi_frame_budget_work_fraction_at(p, 4096 * 4096) == w1024);
+  }
+  /* Fast gathers a larger share at a small window (coarse levels and edges). */
+  MRGI_CHECK(mrgi_frame_budget_work_fraction_at(MRGI_MULTIRES_PRESET_FAST, 256 * 256) >
+    2.0 * mrgi_frame_budget_work_fraction_at(MRGI_MULTIRES_PRESET_FAST, 1024 * 1024));
+  MRGI_CHECK(mrgi_frame_budget_work_fraction_at(-1, 65536) == 0.0);
+  MRGI_CHECK(mrgi_frame_budget_work_fraction_at(MRGI_MULTIRES_PRESET_COUNT, 65536) == 0.0);
+  MRGI_CHECK(mrgi_frame_budget_work_fraction_at(0, 0) == 0.0);
+  /* A measured share replaces the table's in the gather term; a bad one does not. */
+  const mrgi_frame_setting s = { MRGI_MULTIRES_PRESET_BALANCED, 256, 256, 0 };
+  double table[MRGI_FRAME_BUDGET_TERMS], measured[MRGI_FRAME_BUDGET_TERMS],
+    bad[MRGI_FRAME_BUDGET_TERMS];
+  MRGI_CHECK(mrgi_frame_budget_terms(&s, 65536, table, NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_frame_budget_terms_at(&s, 65536, 0.5, measured, NULL) == MRGI_OK);
+  MRGI_CHECK_NEAR(measured[2], 65536.0 * 0.5 * 256.0 * 1e-9, 1e-12);
+  MRGI_CHECK(mrgi_frame_budget_terms_at(&s, 65536, NAN, bad, NULL) == MRGI_OK);
+  MRGI_CHECK(bad[2] == table[2] && measured[3] == table[3]);
+  MRGI_CHECK(mrgi_frame_budget_terms_at(&s, 65536, 1e9, bad, NULL) == MRGI_OK);
+  MRGI_CHECK_NEAR(bad[2], 65536.0 * MRGI_FRAME_BUDGET_MAX_WORK * 256.0 * 1e-9, 1e-9);
+}
+
+/* The view decides how much the gather works: here every preset gathers
+ * 1.8x the table's share (as fast does at 256^2 against its 1024^2 value),
+ * at the calibration's cost per texel. Fed the gather's measured shares,
+ * the controller must hold each preset's share and expect the real time of
+ * its setting; a share it cannot use (NaN, <= 0) changes nothing. */
+static void test_learns_work_share(void)
+{
+  mrgi_frame_setting cand[MRGI_FRAME_BUDGET_MAX_CANDIDATES];
+  mrgi_frame_budget_calibration cal, real;
+  const int32_t n = misjudged_model(cand, &cal, &real, 2, 2, 1.0);
+  const int64_t pixels = 256 * 256;
+  for (int32_t p = 0; p < MRGI_MULTIRES_PRESET_COUNT; ++p)
+  {
+    real.work_share[p] = 1.8 * mrgi_frame_budget_work_fraction_at(p, pixels);
+  }
+  mrgi_frame_budget_controller ctl;
+  MRGI_CHECK(
+    mrgi_frame_budget_controller_init(&ctl, &cal, cand, n, pixels, 40.0,
+      MRGI_FRAME_BUDGET_DEFAULT_MARGIN, MRGI_FRAME_BUDGET_DEFAULT_PATIENCE, NULL) == MRGI_OK);
+  for (int f = 0; f < 60; ++f)
+  {
+    const mrgi_frame_setting* s = &cand[ctl.current];
+    const double ms = mrgi_frame_budget_predict(&real, s, pixels);
+    MRGI_CHECK(mrgi_frame_budget_controller_update(&ctl, &cal, cand, n, pixels, ms,
+                 real.work_share[s->preset], NULL, NULL) == MRGI_OK);
+  }
+  const int32_t p = cand[ctl.current].preset;
+  MRGI_CHECK_NEAR(ctl.work[p], real.work_share[p], 1e-9);
+  MRGI_CHECK_NEAR(ctl.work_ratio, 1.8, 1e-9);
+  /* The share explains the time: the load stays that of the fixed costs (1). */
+  const double expected = mrgi_frame_budget_controller_expected(&ctl, &cal, cand, n, pixels);
+  const double actual = mrgi_frame_budget_predict(&real, &cand[ctl.current], pixels);
+  if (fabs(expected / actual - 1.0) > 0.02 || fabs(ctl.load - 1.0) > 0.02)
+  {
+    MRGI_FAIL("expected %.2f ms for a real %.2f ms, load %.3f", expected, actual, ctl.load);
+  }
+  const double before = ctl.work[p];
+  MRGI_CHECK(mrgi_frame_budget_controller_update(
+               &ctl, &cal, cand, n, pixels, actual, NAN, NULL, NULL) == MRGI_OK);
+  MRGI_CHECK(mrgi_frame_budget_controller_update(
+               &ctl, &cal, cand, n, pixels, actual, -1.0, NULL, NULL) == MRGI_OK);
+  MRGI_CHECK(ctl.work[p] == before);
+}
+
 /* `frames` frames that take exactly what `real` predicts for the current setting. */
 static void run_at_real_cost(mrgi_frame_budget_controller* ctl, const mrgi_frame_budget_calibration* cal,
   const mrgi_frame_budget_calibration* real, const mrgi_frame_setting* cand, int32_t n, int64_t pixels,
@@ -373,7 +457,8 @@ static void run_at_real_cost(mrgi_frame_budget_controller* ctl, const mrgi_frame
   for (int f = 0; f < frames; ++f)
   {
     const double ms = mrgi_frame_budget_predict(real, &cand[ctl->current], pixels);
-    MRGI_CHECK(mrgi_frame_budget_controller_update(ctl, cal, cand, n, pixels, ms, NULL, NULL) == MRGI_OK);
+    MRGI_CHECK(mrgi_frame_budget_controller_update(
+                 ctl, cal, cand, n, pixels, ms, 0.0, NULL, NULL) == MRGI_OK);
   }
 }
 
@@ -513,6 +598,8 @@ int main(int argc, char** argv)
     MRGI_TEST_CASE(test_hysteresis),
     MRGI_TEST_CASE(test_tracks_drift),
     MRGI_TEST_CASE(test_learns_shape),
+    MRGI_TEST_CASE(test_work_fraction_by_window),
+    MRGI_TEST_CASE(test_learns_work_share),
     MRGI_TEST_CASE(test_retarget),
     MRGI_TEST_CASE(test_text),
     MRGI_TEST_CASE(test_error_proxy),

@@ -30,16 +30,33 @@ void mrgi_frame_budget_default(mrgi_frame_budget_calibration* cal)
   memcpy(cal->coef, default_coef, sizeof(default_coef));
 }
 
+/* Gathered / valid pixels of each preset at windows of 256^2, 512^2 and
+ * 1024^2 (mrgi-render cornell-spot --preset P --timings): coarse levels and
+ * edges are a larger part of a smaller image. */
+static const double work_sides[3] = { 256.0, 512.0, 1024.0 };
+static const double work_table[MRGI_MULTIRES_PRESET_COUNT][3] = {
+  { 0.1003, 0.0633, 0.0332 }, /* fast */
+  { 0.3609, 0.2724, 0.2230 }, /* balanced */
+  { 0.3661, 0.2757, 0.2248 }, /* accurate */
+};
+
+double mrgi_frame_budget_work_fraction_at(int32_t preset, int64_t pixels)
+{
+  if (preset < 0 || preset >= MRGI_MULTIRES_PRESET_COUNT || pixels < 1)
+  {
+    return 0.0;
+  }
+  /* Linear in log(share) over log(side), constant beyond the table. */
+  const double side = fmin(fmax(sqrt((double)pixels), work_sides[0]), work_sides[2]);
+  const int k = side <= work_sides[1] ? 0 : 1;
+  const double t = log(side / work_sides[k]) / log(work_sides[k + 1] / work_sides[k]);
+  const double* w = work_table[preset];
+  return exp(log(w[k]) + t * (log(w[k + 1]) - log(w[k])));
+}
+
 double mrgi_frame_budget_work_fraction(int32_t preset)
 {
-  /* Gathered / valid pixels, cornell-spot 1024x1024 (multires_sweep.py). */
-  switch (preset)
-  {
-    case MRGI_MULTIRES_PRESET_FAST: return 0.033;
-    case MRGI_MULTIRES_PRESET_BALANCED: return 0.223;
-    case MRGI_MULTIRES_PRESET_ACCURATE: return 0.225;
-    default: return 0.0;
-  }
+  return mrgi_frame_budget_work_fraction_at(preset, 1024 * 1024);
 }
 
 mrgi_status mrgi_frame_budget_check_setting(const mrgi_frame_setting* s, mrgi_error* err)
@@ -71,8 +88,8 @@ mrgi_status mrgi_frame_budget_check_setting(const mrgi_frame_setting* s, mrgi_er
   return MRGI_OK;
 }
 
-mrgi_status mrgi_frame_budget_terms(
-  const mrgi_frame_setting* s, int64_t pixels, double terms[MRGI_FRAME_BUDGET_TERMS], mrgi_error* err)
+mrgi_status mrgi_frame_budget_terms_at(const mrgi_frame_setting* s, int64_t pixels,
+  double work_share, double terms[MRGI_FRAME_BUDGET_TERMS], mrgi_error* err)
 {
   const mrgi_status st = mrgi_frame_budget_check_setting(s, err);
   if (st != MRGI_OK)
@@ -85,7 +102,10 @@ mrgi_status mrgi_frame_budget_terms(
       "frame budget: %s", terms ? "pixel count must be >= 1" : "NULL terms");
   }
   const double p = (double)pixels;
-  const double g = p * mrgi_frame_budget_work_fraction(s->preset) * (double)s->vpls;
+  const double w = isfinite(work_share) && work_share > 0.0
+    ? fmin(work_share, MRGI_FRAME_BUDGET_MAX_WORK)
+    : mrgi_frame_budget_work_fraction_at(s->preset, pixels);
+  const double g = p * w * (double)s->vpls;
   terms[0] = 1.0;
   terms[1] = p * 1e-6;
   terms[2] = g * 1e-9;
@@ -94,11 +114,20 @@ mrgi_status mrgi_frame_budget_terms(
   return MRGI_OK;
 }
 
+mrgi_status mrgi_frame_budget_terms(const mrgi_frame_setting* s, int64_t pixels,
+  double terms[MRGI_FRAME_BUDGET_TERMS], mrgi_error* err)
+{
+  return mrgi_frame_budget_terms_at(s, pixels, 0.0, terms, err);
+}
+
 double mrgi_frame_budget_predict(
   const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* s, int64_t pixels)
 {
   double t[MRGI_FRAME_BUDGET_TERMS];
-  if (!cal || mrgi_frame_budget_terms(s, pixels, t, NULL) != MRGI_OK)
+  const double share = cal && s && s->preset >= 0 && s->preset < MRGI_MULTIRES_PRESET_COUNT
+    ? cal->work_share[s->preset]
+    : 0.0;
+  if (!cal || mrgi_frame_budget_terms_at(s, pixels, share, t, NULL) != MRGI_OK)
   {
     return -1.0;
   }

@@ -18,8 +18,9 @@
  *   ms = c0 + c1 * P/1e6 + c2 * G/1e9 + c3 * R/1e6 + c4 * V/1e9
  *
  * with G = P * w(preset) * VPLs the texel-VPL pairs the gather evaluates
- * (w: the share of pixels a preset gathers at some level, measured by
- * multires_sweep.py: nichols-shopf-wyman-2009 table 1 shows that the
+ * (w: the share of pixels a preset gathers at some level, measured by the
+ * gather's occlusion queries where known, else a table by window size,
+ * mrgi_frame_budget_work_fraction_at(): nichols-shopf-wyman-2009 table 1 shows that the
  * selection's cost is fixed per pixel and the gather's follows the texels
  * selected), R = rsm_size^2 the RSM texels (RSM rendering plus VPL selection),
  * and V = G * voxel_side / 128 the voxel march steps of the visibility term
@@ -57,7 +58,10 @@
  * stay within 10%) for `patience` frames in a row (default 3). It then takes
  * the setting of least predicted error whose expected time is within
  * budget / (1 + margin / 2), the band's lower half, so that the load
- * estimate's own noise does not carry it over the upper edge (when the
+ * estimate's own noise does not carry it over the upper edge; going to a
+ * dearer setting, within budget / (1 + margin), the band's lower edge, so
+ * that a load estimate a few percent low does not pick a setting that only
+ * just fits, which the next high estimate sends back (when the
  * grid's next dearer setting does not fit, it may stay below the band: it
  * chooses again, and holds). A reversal (cheaper after dearer, or back)
  * corrects an overshoot; a second reversal in a row within
@@ -74,7 +78,12 @@
  * left setting's last three frames (their median, when they agree within
  * MRGI_FRAME_BUDGET_SHAPE_STEADY) with the new one's first
  * MRGI_FRAME_BUDGET_SHAPE_FRAMES measured frames, assumes the load did not
- * change in between, and solves for k (mrgi_frame_budget.c, learn_shape).
+ * change in between, and solves for k (mrgi_frame_budget_controller.c,
+ * learn_shape). The work share itself is measured: each update takes the
+ * share of pixels the frame's gather worked on (its occlusion queries),
+ * averaged per preset (MRGI_FRAME_BUDGET_WORK_WEIGHT); a preset not run yet
+ * gets the table's share times the last measured preset's ratio to its
+ * table value.
  *
  * **Calibration file** (mrgi_frame_budget_format(), _parse()): text, one key
  * and value per line, in this order:
@@ -90,6 +99,7 @@
 #define MRGI_FRAME_BUDGET_H
 
 #include "mrgi_error.h"
+#include "mrgi_multires.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -112,7 +122,7 @@ extern "C" {
 #define MRGI_FRAME_BUDGET_DEFAULT_MARGIN 0.05
 #define MRGI_FRAME_BUDGET_DEFAULT_PATIENCE 3
 /** Weight of a new frame in the controller's load estimate. */
-#define MRGI_FRAME_BUDGET_AVERAGE_WEIGHT 0.4
+#define MRGI_FRAME_BUDGET_AVERAGE_WEIGHT 0.3
 /** A switch that reverses the previous one, made less than
  *  MRGI_FRAME_BUDGET_REVERSAL_WINDOW measured frames ago, waits this times patience. */
 #define MRGI_FRAME_BUDGET_REVERSAL_FACTOR 3
@@ -127,6 +137,12 @@ extern "C" {
 #define MRGI_FRAME_BUDGET_SHAPE_RATE 0.3
 /** The shape factor stays within [1 / limit, limit]. */
 #define MRGI_FRAME_BUDGET_SHAPE_LIMIT 4.0
+
+/** Largest share of gathered texels over valid pixels the model takes (all
+ *  levels gathering every pixel would be 4/3; anything above is a bad count). */
+#define MRGI_FRAME_BUDGET_MAX_WORK 2.0
+/** Weight of a new frame's measured work share in the controller's estimate. */
+#define MRGI_FRAME_BUDGET_WORK_WEIGHT 0.5
 
 /** Error proxy constants (see the file comment). */
 #define MRGI_FRAME_BUDGET_ERROR_VPL 1.6
@@ -146,6 +162,11 @@ typedef struct mrgi_frame_setting
 typedef struct mrgi_frame_budget_calibration
 {
   double coef[MRGI_FRAME_BUDGET_TERMS];           /**< c0..c4, >= 0, finite. */
+  /** Measured share of pixels each preset gathers where the model is used
+   *  (window size, view), or 0 for mrgi_frame_budget_work_fraction()'s
+   *  table. Not part of the calibration file: the controller measures it
+   *  (see "Control during interaction"). */
+  double work_share[MRGI_MULTIRES_PRESET_COUNT];
   int32_t frames;                                 /**< Frames fitted; 0 for the defaults. */
   char renderer[MRGI_FRAME_BUDGET_RENDERER_SIZE]; /**< GL renderer the fit holds for. */
 } mrgi_frame_budget_calibration;
@@ -153,20 +174,41 @@ typedef struct mrgi_frame_budget_calibration
 /** @brief The llvmpipe defaults (frames = 0, renderer empty). NULL is a no-op. */
 void mrgi_frame_budget_default(mrgi_frame_budget_calibration* cal);
 
-/** @brief Share of pixels a preset gathers (multires_sweep.py); 0 for an unknown preset. */
+/** @brief Share of pixels a preset gathers at 1024 x 1024 (cornell-spot); 0 for an unknown preset.
+ */
 double mrgi_frame_budget_work_fraction(int32_t preset);
+
+/**
+ * @brief Share of pixels a preset gathers at a window of `pixels` pixels:
+ *        cornell-spot's at 256^2, 512^2 and 1024^2, interpolated in log-log
+ *        and constant beyond (coarse levels and edges are a larger part of a
+ *        small image: fast gathers 10% at 256^2, 3.3% at 1024^2). 0 for an
+ *        unknown preset or pixels < 1.
+ */
+double mrgi_frame_budget_work_fraction_at(int32_t preset, int64_t pixels);
 
 /** @brief ::MRGI_ERR_INVALID_ARGUMENT naming the first out-of-range field. */
 mrgi_status mrgi_frame_budget_check_setting(const mrgi_frame_setting* s, mrgi_error* err);
 
 /**
- * @brief The five terms of the cost model for `s` at `pixels` pixels.
+ * @brief The five terms of the cost model for `s` at `pixels` pixels, with
+ *        the preset's share of gathered pixels from the table
+ *        (mrgi_frame_budget_work_fraction()).
  * @return ::MRGI_ERR_INVALID_ARGUMENT for a bad setting, pixels < 1 or NULL.
  */
 mrgi_status mrgi_frame_budget_terms(
   const mrgi_frame_setting* s, int64_t pixels, double terms[MRGI_FRAME_BUDGET_TERMS], mrgi_error* err);
 
-/** @brief Predicted ms of `s` at `pixels`; a negative value for bad input. */
+/**
+ * @brief The same with a measured share of gathered pixels (the pass's
+ *        gathered texels over valid pixels, clamped to MRGI_FRAME_BUDGET_MAX_WORK);
+ *        a share not finite or <= 0 means the table's.
+ */
+mrgi_status mrgi_frame_budget_terms_at(const mrgi_frame_setting* s, int64_t pixels,
+  double work_share, double terms[MRGI_FRAME_BUDGET_TERMS], mrgi_error* err);
+
+/** @brief Predicted ms of `s` at `pixels` (with cal->work_share where set);
+ *         a negative value for bad input. */
 double mrgi_frame_budget_predict(
   const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* s, int64_t pixels);
 
@@ -247,6 +289,8 @@ typedef struct mrgi_frame_budget_controller
   int32_t after;      /**< Frames of the new setting measured since the switch. */
   double after_log;   /**< Sum of their log(measured ms). */
   int32_t switches;  /**< Times the choice changed since init. */
+  double work[MRGI_MULTIRES_PRESET_COUNT]; /**< Measured work share per preset (0: not yet). */
+  double work_ratio; /**< Last measured share over the table's for its preset (0: none yet). */
 } mrgi_frame_budget_controller;
 
 /**
@@ -260,14 +304,18 @@ mrgi_status mrgi_frame_budget_controller_init(mrgi_frame_budget_controller* ctl,
   int64_t pixels, double budget_ms, double margin, int32_t patience, mrgi_error* err);
 
 /**
- * @brief Take one measured frame time of the current candidate; may choose
- *        again. `*changed` (may be NULL) is 1 when ctl->current changed.
+ * @brief Take one measured frame of the current candidate: its time and the
+ *        share of pixels its gather worked on (gathered texels over valid
+ *        pixels, vtkMRGIGather::GetGatherWorkFraction(); not finite or <= 0
+ *        when unknown: the table's, or what earlier frames measured, stays).
+ *        May choose again. `*changed` (may be NULL) is 1 when ctl->current
+ *        changed.
  * @return ::MRGI_ERR_INVALID_ARGUMENT for NULL, a measured time not finite
  *         and > 0, or the errors of mrgi_frame_budget_choose().
  */
 mrgi_status mrgi_frame_budget_controller_update(mrgi_frame_budget_controller* ctl,
   const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* candidates, int32_t count,
-  int64_t pixels, double measured_ms, int* changed, mrgi_error* err);
+  int64_t pixels, double measured_ms, double work_share, int* changed, mrgi_error* err);
 
 /**
  * @brief A new budget for a running controller: choose again for

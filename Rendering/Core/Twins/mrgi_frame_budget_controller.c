@@ -9,13 +9,28 @@
 #include <string.h>
 
 /* The calibration as the controller sees it: the setting-dependent terms
- * (gather, RSM, voxels) scaled by its measured shape factor. */
-static mrgi_frame_budget_calibration shaped(const mrgi_frame_budget_calibration* cal, double shape)
+ * (gather, RSM, voxels) scaled by `shape`, and the presets' work shares: as
+ * measured, or for a preset not run yet the table's times what the last
+ * measured preset had over its table value (the view moves every preset's
+ * share the same way, roughly). */
+static mrgi_frame_budget_calibration shaped(const mrgi_frame_budget_controller* ctl,
+  const mrgi_frame_budget_calibration* cal, int64_t pixels, double shape)
 {
   mrgi_frame_budget_calibration c = *cal;
   for (int i = 2; i < MRGI_FRAME_BUDGET_TERMS; ++i)
   {
     c.coef[i] *= shape;
+  }
+  for (int p = 0; p < MRGI_MULTIRES_PRESET_COUNT; ++p)
+  {
+    if (ctl->work[p] > 0.0)
+    {
+      c.work_share[p] = ctl->work[p];
+    }
+    else if (ctl->work_ratio > 0.0 && !(cal->work_share[p] > 0.0))
+    {
+      c.work_share[p] = ctl->work_ratio * mrgi_frame_budget_work_fraction_at(p, pixels);
+    }
   }
   return c;
 }
@@ -26,7 +41,7 @@ static void predict_parts(const mrgi_frame_budget_calibration* cal, const mrgi_f
   int64_t pixels, double* fixed, double* variable)
 {
   double t[MRGI_FRAME_BUDGET_TERMS] = { 0.0 };
-  mrgi_frame_budget_terms(s, pixels, t, NULL);
+  mrgi_frame_budget_terms_at(s, pixels, cal->work_share[s->preset], t, NULL);
   *fixed = cal->coef[0] * t[0] + cal->coef[1] * t[1];
   *variable = cal->coef[2] * t[2] + cal->coef[3] * t[3] + cal->coef[4] * t[4];
 }
@@ -42,6 +57,9 @@ static void predict_parts(const mrgi_frame_budget_calibration* cal, const mrgi_f
 static void learn_shape(mrgi_frame_budget_controller* ctl, const mrgi_frame_budget_calibration* cal,
   const mrgi_frame_setting* a, const mrgi_frame_setting* b, int64_t pixels, double y_a, double y_b)
 {
+  /* The parts under the measured work shares, without the shape. */
+  const mrgi_frame_budget_calibration base = shaped(ctl, cal, pixels, 1.0);
+  cal = &base;
   double fa, va, fb, vb;
   predict_parts(cal, a, pixels, &fa, &va);
   predict_parts(cal, b, pixels, &fb, &vb);
@@ -168,7 +186,7 @@ mrgi_status mrgi_frame_budget_controller_init(mrgi_frame_budget_controller* ctl,
 
 mrgi_status mrgi_frame_budget_controller_update(mrgi_frame_budget_controller* ctl,
   const mrgi_frame_budget_calibration* cal, const mrgi_frame_setting* candidates, int32_t count,
-  int64_t pixels, double measured_ms, int* changed, mrgi_error* err)
+  int64_t pixels, double measured_ms, double work_share, int* changed, mrgi_error* err)
 {
   const mrgi_status checked = check_running(ctl, cal, candidates, count, changed, err);
   if (checked != MRGI_OK)
@@ -179,6 +197,19 @@ mrgi_status mrgi_frame_budget_controller_update(mrgi_frame_budget_controller* ct
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
       "frame budget controller: measured time %g ms must be finite and > 0", measured_ms);
+  }
+  /* The share of pixels the current preset gathered (the view and the
+   * window decide it; the table's is one view at 1024 x 1024): even the
+   * first frame of a setting tells it. */
+  const int32_t preset = candidates[ctl->current].preset;
+  if (isfinite(work_share) && work_share > 0.0 && preset >= 0 &&
+    preset < MRGI_MULTIRES_PRESET_COUNT)
+  {
+    const double w = fmin(work_share, MRGI_FRAME_BUDGET_MAX_WORK);
+    double* known = &ctl->work[preset];
+    *known = *known > 0.0 ? *known + MRGI_FRAME_BUDGET_WORK_WEIGHT * (w - *known) : w;
+    const double table = mrgi_frame_budget_work_fraction_at(preset, pixels);
+    ctl->work_ratio = table > 0.0 ? *known / table : 0.0;
   }
   if (ctl->skip > 0)
   {
@@ -197,14 +228,14 @@ mrgi_status mrgi_frame_budget_controller_update(mrgi_frame_budget_controller* ct
         ctl->previous_ms, y_b);
       ctl->previous = -1;
       /* The load restarts from this setting's frames, under the new shape. */
-      const mrgi_frame_budget_calibration m = shaped(cal, ctl->shape);
+      const mrgi_frame_budget_calibration m = shaped(ctl, cal, pixels, ctl->shape);
       const double level = log(y_b / mrgi_frame_budget_predict(&m, &candidates[ctl->current], pixels));
       ctl->average = level;
       ctl->recent[0] = ctl->recent[1] = ctl->recent[2] = level;
       ctl->streak = 0;
     }
   }
-  const mrgi_frame_budget_calibration model = shaped(cal, ctl->shape);
+  const mrgi_frame_budget_calibration model = shaped(ctl, cal, pixels, ctl->shape);
   const double predicted = mrgi_frame_budget_predict(&model, &candidates[ctl->current], pixels);
   if (!(predicted > 0.0))
   {
@@ -241,9 +272,15 @@ mrgi_status mrgi_frame_budget_controller_update(mrgi_frame_budget_controller* ct
     return MRGI_OK;
   }
   ctl->streak = 0;
+  /* Going cheaper aims at the band's lower half; going dearer at its lower
+   * edge: a load estimate a few percent low (noise) must not make a setting
+   * that only just fits look cheap enough, or the next high estimate sends
+   * it back (an alternation at constant load). */
+  const double aim =
+    dir > 0 ? controller_target(ctl->budget_ms, ctl->margin) : ctl->budget_ms / (1.0 + ctl->margin);
   int32_t index = ctl->current;
-  const mrgi_status st = mrgi_frame_budget_choose(&model, candidates, count, pixels,
-    controller_target(ctl->budget_ms, ctl->margin), ctl->load, &index, NULL, err);
+  const mrgi_status st =
+    mrgi_frame_budget_choose(&model, candidates, count, pixels, aim, ctl->load, &index, NULL, err);
   if (st != MRGI_OK)
   {
     return st;
@@ -268,7 +305,7 @@ mrgi_status mrgi_frame_budget_controller_retarget(mrgi_frame_budget_controller* 
   {
     return checked;
   }
-  const mrgi_frame_budget_calibration model = shaped(cal, ctl->shape);
+  const mrgi_frame_budget_calibration model = shaped(ctl, cal, pixels, ctl->shape);
   int32_t index = ctl->current;
   const mrgi_status st = mrgi_frame_budget_choose(&model, candidates, count, pixels,
     controller_target(budget_ms, ctl->margin), ctl->load, &index, NULL, err);
@@ -301,7 +338,7 @@ double mrgi_frame_budget_controller_expected(const mrgi_frame_budget_controller*
   {
     return -1.0;
   }
-  const mrgi_frame_budget_calibration model = shaped(cal, ctl->shape);
+  const mrgi_frame_budget_calibration model = shaped(ctl, cal, pixels, ctl->shape);
   const double ms = mrgi_frame_budget_predict(&model, &candidates[ctl->current], pixels);
   return ms > 0.0 ? ctl->load * ms : -1.0;
 }

@@ -5,6 +5,7 @@
 #include "vtkMRGIPass.h"
 
 #include "vtkMRGIAreaLightStage.h"
+#include "vtkMRGIGather.h"
 #include "vtkMRGIImperfectShadowMaps.h"
 #include "vtkMRGIIndirectLight.h"
 #include "vtkMRGIMultiresolution.h"
@@ -298,6 +299,7 @@ vtkMRGIFrameBudget::Knobs vtkMRGIPass::FrameBudgetKnobs()
       this->IndirectLight->GetVoxelization()->SetVoxelSide(s.voxel_side);
     }
   };
+  knobs.WorkShare = [this]() { return this->GetGather()->GetGatherWorkFraction(); };
   return knobs;
 }
 

@@ -266,7 +266,7 @@ void vtkMRGIFrameBudget::BeginFrame(vtkRenderer* renderer, const Knobs& knobs)
 }
 
 //------------------------------------------------------------------------------
-void vtkMRGIFrameBudget::EndFrame()
+void vtkMRGIFrameBudget::EndFrame(const Knobs& knobs)
 {
   Internals& in = *this->Internal;
   if (!in.Timing)
@@ -285,7 +285,8 @@ void vtkMRGIFrameBudget::EndFrame()
   mrgi_error err;
   if (mrgi_frame_budget_controller_update(&in.Controller, &in.Calibration, in.Candidates.data(),
         static_cast<int32_t>(in.Candidates.size()), in.Pixels,
-        std::max(this->LastFrameMilliseconds, 1e-3), &changed, &err) != MRGI_OK)
+        std::max(this->LastFrameMilliseconds, 1e-3), knobs.WorkShare ? knobs.WorkShare() : -1.0,
+        &changed, &err) != MRGI_OK)
   {
     vtkErrorMacro("frame budget: " << err.message);
     return;
@@ -331,8 +332,13 @@ bool vtkMRGIFrameBudget::Calibrate(vtkRenderWindow* window, const Knobs& knobs)
     vtkRenderer* renderer = window->GetRenderers() ? window->GetRenderers()->GetFirstRenderer() : nullptr;
     size = renderer ? renderer->GetSize() : nullptr;
     double t[MRGI_FRAME_BUDGET_TERMS];
+    // The gather's own count of its work (the table's share is one view at
+    // 1024 x 1024; a preset's share grows at smaller windows).
+    const double share = knobs.WorkShare ? knobs.WorkShare() : -1.0;
     if (best <= 0 || !size ||
-      mrgi_frame_budget_terms(&s, static_cast<int64_t>(std::max(1, size[0])) * std::max(1, size[1]), t, nullptr) != MRGI_OK)
+      mrgi_frame_budget_terms_at(&s,
+        static_cast<int64_t>(std::max(1, size[0])) * std::max(1, size[1]), share, t,
+        nullptr) != MRGI_OK)
     {
       ok = false;
       break;

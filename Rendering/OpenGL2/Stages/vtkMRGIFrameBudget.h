@@ -101,6 +101,9 @@ public:
     bool Voxels = false;
     /** Applies a setting: preset, VPL count, RSM size, and the voxel side when > 0. */
     std::function<void(const mrgi_frame_setting&)> Apply;
+    /** The last frame's gathered texels over valid pixels (the share of the
+     *  full gather's work it did); not > 0 when unknown. May be empty. */
+    std::function<double()> WorkShare;
   };
 
   /**
@@ -119,7 +122,7 @@ public:
    * frame and feeds the controller.
    */
   void BeginFrame(vtkRenderer* renderer, const Knobs& knobs);
-  void EndFrame();
+  void EndFrame(const Knobs& knobs);
   ///@}
 #endif
 
@@ -162,15 +165,17 @@ public:
   public:
     FrameScope(vtkMRGIFrameBudget* tuner, vtkRenderer* renderer, const Knobs& knobs)
       : Tuner(tuner)
+      , FrameKnobs(knobs)
     {
-      this->Tuner->BeginFrame(renderer, knobs);
+      this->Tuner->BeginFrame(renderer, this->FrameKnobs);
     }
-    ~FrameScope() { this->Tuner->EndFrame(); }
+    ~FrameScope() { this->Tuner->EndFrame(this->FrameKnobs); }
     FrameScope(const FrameScope&) = delete;
     FrameScope& operator=(const FrameScope&) = delete;
 
   private:
     vtkMRGIFrameBudget* Tuner;
+    Knobs FrameKnobs;
   };
 #endif
 
