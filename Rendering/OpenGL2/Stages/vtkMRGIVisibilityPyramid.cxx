@@ -50,6 +50,28 @@ enum Stage
   StageCopies = 6
 };
 
+// Timer sub-steps of "visibility.pyramid", summed over the levels.
+const char* StageTimerName(int stage)
+{
+  switch (stage)
+  {
+    case StageCompute:
+      return "visibility.compute";
+    case StageCombine:
+      return "visibility.combine";
+    case StageStatistics:
+      return "visibility.statistics";
+    case StageDecide:
+      return "visibility.decide";
+    case StageMarch:
+      return "visibility.march";
+    case StageMark:
+      return "visibility.mark";
+    default:
+      return "visibility.copies";
+  }
+}
+
 // Levels with both sides below this are marched as copies side by side, one
 // copy per sample range (vtkMRGIVisibilityPyramidFS.glsl, stages 4-6).
 constexpr int CopyLevelSide = 128;
@@ -383,6 +405,7 @@ bool vtkMRGIVisibilityPyramid::Update(vtkOpenGLRenderWindow* window,
     const int stride = (lw + CopyAlign - 1) / CopyAlign * CopyAlign;
     auto run = [&](int stage, const std::array<vtkTextureObject*, MaxTargets>& out, int range,
                  int copies = 0) -> bool {
+      ScopedStage kind(timer, StageTimerName(stage));
       vtkOpenGLQuadHelper* quad = ready(stage);
       if (!quad)
       {

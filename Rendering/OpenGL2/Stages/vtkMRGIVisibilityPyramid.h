@@ -152,8 +152,10 @@ public:
    * (texture described in the class notes), coarse to fine, marching
    * through `voxels` (voxelized this frame, its own march knobs).
    * `worldToView` is column-major. Timer step "visibility.pyramid" on
-   * `timer` when given. False, with an error, on bad input or an OpenGL
-   * failure.
+   * `timer` when given, with its passes summed over the levels as
+   * sub-steps "visibility.decide", ".mark", ".march", ".copies" (and
+   * ".compute", ".combine" with interleaving, ".statistics" when
+   * collected). False, with an error, on bad input or an OpenGL failure.
    */
   bool Update(vtkOpenGLRenderWindow* window, vtkMRGIMultiresolution* multires,
     vtkMRGIVoxelization* voxels, vtkTextureObject* samples, int sampleCount, bool twoSided,
