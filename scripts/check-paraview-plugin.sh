@@ -82,7 +82,22 @@ state="$(compare "$work/state-loaded.png" "$work/state-saved.png")"
 echo "check-paraview-plugin: state file reloaded: relative RMS $state"
 awk -v r="$state" 'BEGIN { exit !(r != "" && r <= 0.001) }' || fail "reloaded state renders differently ($state)"
 
-# 5. ParaView's representations in the MRGI view: scalars through a lookup
+# 5. The frame budget: calibration from the view (written under
+# XDG_CACHE_HOME, settings given back), the tuner taking over the view's
+# settings under a budget, and giving them back at 0 (frame and error budget).
+export XDG_CACHE_HOME="$work/cache"
+pvbatch_headless "$tests/pvbatch_frame_budget.py" "$plugin" "$work"
+unset XDG_CACHE_HOME
+for name in calibrated after error-after; do
+  back="$(compare "$work/$name.png" "$work/before.png")"
+  echo "check-paraview-plugin: frame budget, $name vs the view's own settings: relative RMS $back"
+  awk -v r="$back" 'BEGIN { exit !(r != "" && r <= 0.001) }' || fail "$name: the view's settings did not come back ($back)"
+done
+tuned="$(compare "$work/budget.png" "$work/before.png")"
+echo "check-paraview-plugin: frame budget 10 s vs the view's own settings: relative RMS $tuned"
+awk -v r="$tuned" 'BEGIN { exit !(r != "" && r >= 0.001) }' || fail "the tuner's setting renders as the view's own ($tuned)"
+
+# 6. ParaView's representations in the MRGI view: scalars through a lookup
 # table, points as spheres, a volume, a translucent surface, all together.
 # GI off must be ParaView's own image; GI on must cover the same pixels
 # (nothing vanishes) and stay close (only light is added). ParaView's own

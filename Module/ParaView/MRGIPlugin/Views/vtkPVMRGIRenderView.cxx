@@ -3,6 +3,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkMRGIControllerRSMCompositor.h"
+#include "vtkMRGIFrameBudget.h"
 #include "vtkMRGIMultiresolution.h"
 #include "vtkMRGIPass.h"
 #include "vtkMRGIVoxelization.h"
@@ -149,13 +150,16 @@ void vtkPVMRGIRenderView::SetMultiresolutionPreset(int preset)
   {
     vtkErrorMacro("unknown multiresolution preset " << preset
                                                      << " (0 Fast, 1 Balanced, 2 Accurate)");
+    return;
   }
+  this->UserPreset = preset;
 }
 
 //------------------------------------------------------------------------------
 void vtkPVMRGIRenderView::SetNumberOfVPLs(int count)
 {
   this->MRGIPass->SetNumberOfVPLs(count);
+  this->UserVPLs = this->MRGIPass->GetNumberOfVPLs();
 }
 
 //------------------------------------------------------------------------------
@@ -174,6 +178,7 @@ void vtkPVMRGIRenderView::SetIndirectVisibility(int mode)
 void vtkPVMRGIRenderView::SetRSMResolution(int resolution)
 {
   this->MRGIPass->SetRSMResolution(resolution);
+  this->UserRSMResolution = this->MRGIPass->GetRSMResolution();
 }
 
 //------------------------------------------------------------------------------
@@ -276,6 +281,58 @@ int vtkPVMRGIRenderView::GetLastAreaLightVoxelHeight()
   int size[2];
   this->MRGIPass->GetVoxelization()->GetLastVoxelSize(size);
   return size[1];
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::RestoreUserSettings()
+{
+  this->MRGIPass->GetMultiresolution()->SetPreset(this->UserPreset);
+  this->MRGIPass->SetNumberOfVPLs(this->UserVPLs);
+  this->MRGIPass->SetRSMResolution(this->UserRSMResolution);
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetFrameBudget(double ms)
+{
+  vtkMRGIFrameBudget* tuner = this->MRGIPass->GetFrameBudgetTuner();
+  const bool wasActive = tuner->IsActive();
+  this->MRGIPass->SetFrameBudget(ms); // refuses a bad value with an error naming it
+  if (wasActive && !tuner->IsActive())
+  {
+    this->RestoreUserSettings();
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetErrorBudget(double error)
+{
+  vtkMRGIFrameBudget* tuner = this->MRGIPass->GetFrameBudgetTuner();
+  const bool wasActive = tuner->IsActive();
+  this->MRGIPass->SetErrorBudget(error);
+  if (wasActive && !tuner->IsActive())
+  {
+    this->RestoreUserSettings();
+  }
+}
+
+//------------------------------------------------------------------------------
+const char* vtkPVMRGIRenderView::GetFrameBudgetSetting()
+{
+  vtkMRGIFrameBudget* tuner = this->MRGIPass->GetFrameBudgetTuner();
+  this->FrameBudgetSetting = !tuner->IsActive() ? std::string("off")
+    : tuner->GetPreset() < 0 ? std::string("budget set; no frame rendered with it yet")
+                             : tuner->GetSummary();
+  return this->FrameBudgetSetting.c_str();
+}
+
+//------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::CalibrateFrameBudget()
+{
+  vtkRenderWindow* window = this->GetRenderWindow();
+  if (!window || !this->MRGIPass->Calibrate(window))
+  {
+    vtkErrorMacro("frame budget calibration failed (see the error above)");
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -35,6 +35,7 @@
 #include "vtkPVRenderView.h"
 
 #include <memory> // For std::unique_ptr
+#include <string> // For std::string
 
 class vtkMRGIControllerRSMCompositor;
 class vtkMRGIPass;
@@ -133,6 +134,34 @@ public:
   int GetLastAreaLightVoxelHeight();
   ///@}
 
+  ///@{
+  /**
+   * The frame-budget tuner (vtkMRGIPass::SetFrameBudget, SetErrorBudget;
+   * Documentation/FrameBudget.md): with a frame budget in ms (0, the
+   * default, is off) or else an error budget (relative RMS against the
+   * dense reference; 0 off), every frame the tuner chooses the
+   * multiresolution preset, the number of VPLs and the RSM resolution,
+   * overriding the view's own properties for them. Back to 0, the view's
+   * properties hold again.
+   */
+  void SetFrameBudget(double ms);
+  void SetErrorBudget(double error);
+  ///@}
+
+  /**
+   * The tuner's last choice in one line (setting, prediction, load, number
+   * of switches, calibration), or "off" without a budget.
+   */
+  const char* GetFrameBudgetSetting();
+
+  /**
+   * Measure this machine for the tuner: renders the view 24 times (8
+   * settings) and stores the fit in the tuner's cache directory
+   * (vtkMRGIFrameBudget; $XDG_CACHE_HOME/mrgi or ~/.cache/mrgi). The view's
+   * own settings come back afterwards. Errors name what failed.
+   */
+  void CalibrateFrameBudget();
+
   /** The pass, for scripts that set what the view's properties do not cover. */
   vtkMRGIPass* GetMRGIPass() { return this->MRGIPass; }
 
@@ -170,6 +199,14 @@ protected:
   vtkRenderStepsPass* Steps = nullptr;
   std::unique_ptr<vtkPVMRGIAreaLights> AreaLights;
   unsigned long AreaLightObserver = 0;
+  // The view's own preset, VPL count and RSM resolution, put back on the
+  // pass when the frame and error budgets are both off again (the tuner
+  // leaves its last choice on the pass).
+  int UserPreset = 1;
+  int UserVPLs = 256;
+  int UserRSMResolution = 256;
+  std::string FrameBudgetSetting;
+  void RestoreUserSettings();
 
 private:
   vtkPVMRGIRenderView(const vtkPVMRGIRenderView&) = delete;
