@@ -243,7 +243,8 @@ def write_page(args, runs, sweep, rows, default_ms, load_start, load_end, calibr
         "the share of pixels each preset gathers comes from the gather's own occlusion queries as frames "
         "run (before that, a table by window size: fast gathers 10%% of the pixels at 256^2, 3.3%% at "
         "1024^2). "
-        "`SetErrorBudget(e)` / `--error-budget E`: the cheapest setting predicted within E. Model, error "
+        "`SetErrorBudget(e)` / `--error-budget E`: the cheapest setting predicted within E. In ParaView: "
+        "the MRGI Render View's Frame Budget group ([ParaView.md](ParaView.md)). Model, error "
         "proxy and hysteresis: `Rendering/Core/Twins/mrgi_frame_budget.h`." % calibration_s,
         "",
         "Frame time: the tuner's own measure (the pass's wall time up to a glFinish). The first 5 frames "
