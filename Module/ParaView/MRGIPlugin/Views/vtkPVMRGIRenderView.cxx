@@ -292,11 +292,11 @@ void vtkPVMRGIRenderView::RestoreUserSettings()
 }
 
 //------------------------------------------------------------------------------
-void vtkPVMRGIRenderView::SetFrameBudget(double ms)
+void vtkPVMRGIRenderView::SetBudget(void (vtkMRGIFrameBudget::*set)(double), double value)
 {
   vtkMRGIFrameBudget* tuner = this->MRGIPass->GetFrameBudgetTuner();
   const bool wasActive = tuner->IsActive();
-  this->MRGIPass->SetFrameBudget(ms); // refuses a bad value with an error naming it
+  (tuner->*set)(value); // refuses a bad value with an error naming it
   if (wasActive && !tuner->IsActive())
   {
     this->RestoreUserSettings();
@@ -304,15 +304,15 @@ void vtkPVMRGIRenderView::SetFrameBudget(double ms)
 }
 
 //------------------------------------------------------------------------------
+void vtkPVMRGIRenderView::SetFrameBudget(double ms)
+{
+  this->SetBudget(&vtkMRGIFrameBudget::SetFrameBudget, ms);
+}
+
+//------------------------------------------------------------------------------
 void vtkPVMRGIRenderView::SetErrorBudget(double error)
 {
-  vtkMRGIFrameBudget* tuner = this->MRGIPass->GetFrameBudgetTuner();
-  const bool wasActive = tuner->IsActive();
-  this->MRGIPass->SetErrorBudget(error);
-  if (wasActive && !tuner->IsActive())
-  {
-    this->RestoreUserSettings();
-  }
+  this->SetBudget(&vtkMRGIFrameBudget::SetErrorBudget, error);
 }
 
 //------------------------------------------------------------------------------

@@ -38,6 +38,7 @@
 #include <string> // For std::string
 
 class vtkMRGIControllerRSMCompositor;
+class vtkMRGIFrameBudget;
 class vtkMRGIPass;
 class vtkPVMRGIAreaLights;
 class vtkRenderStepsPass;
@@ -207,6 +208,9 @@ protected:
   int UserRSMResolution = 256;
   std::string FrameBudgetSetting;
   void RestoreUserSettings();
+  // Sets the frame or error budget through `set`; restores the view's own
+  // settings when that turns the tuner off.
+  void SetBudget(void (vtkMRGIFrameBudget::*set)(double), double value);
 
 private:
   vtkPVMRGIRenderView(const vtkPVMRGIRenderView&) = delete;
