@@ -418,6 +418,11 @@ int main(int argc, char* argv[])
       mrgi->GetAreaLight(l)->SetTwoSided(mrgi->GetAreaLight(l)->GetTwoSided() || o.AreaLightTwoSided);
     }
   }
+  if (o.Splatting && o.Refinement == vtkMRGIMultiresolution::RefinementIllumination)
+  {
+    return Fail("--gather splat gathers the geometric selection: it has no step between levels "
+                "for --refinement illumination (use --gather stencil)");
+  }
   mrgi->GetGather()->SetGatherMode(
     o.Splatting ? vtkMRGIGather::GatherSplatting : vtkMRGIGather::GatherStenciled);
   mrgi->SetUpsampleMode(

@@ -548,13 +548,14 @@ const std::vector<OptionSection>& OptionTable()
         { { "--refinement" }, "geometry|illumination",
           "multires: refine at depth/normal discontinuities only (geometry), or also\n"
           "where neighbouring coarse results of the indirect light differ\n"
-          "(illumination, gathered coarse to fine; default: the pass's)",
+          "(illumination, gathered coarse to fine; default: the preset's, illumination\n"
+          "for balanced and accurate)",
           Choice<int>(&Options::Refinement,
-            { { "geometry", vtkMRGIIndirectLight::RefinementGeometry },
-              { "illumination", vtkMRGIIndirectLight::RefinementIllumination } }) },
+            { { "geometry", vtkMRGIMultiresolution::RefinementGeometry },
+              { "illumination", vtkMRGIMultiresolution::RefinementIllumination } }) },
         { { "--illumination-threshold" }, "T",
           "multires, illumination: relative difference of neighbouring coarse\n"
-          "results that refines, 0..1e30 (0: all; default 0.1)",
+          "results that refines, 0..1e30 (0: all; default: the preset's)",
           Number(
             &Options::IlluminationThreshold, [](double t) { return t >= 0 && t <= 1e30; },
             "expected a number in [0, 1e30]") },

@@ -196,6 +196,8 @@ def main():
     for index in range(3):
         settings = [0.0, 0.0, 0.0]
         assert mrgi.vtkMRGIMultiresolution.GetPresetSettings(index, settings)
+        # settings[3]: the illumination threshold, -1 for geometry alone
+        settings.append(mrgi.vtkMRGIMultiresolution.GetPresetIlluminationThreshold(index))
         presets[mrgi.vtkMRGIMultiresolution.GetPresetName(index)] = settings
 
     rows = []
@@ -317,7 +319,8 @@ def main():
         p = presets["balanced"]
         results = {}
         for label, mode in (("off", mrgi.vtkMRGIPass.IndirectOff), ("gi", mrgi.vtkMRGIPass.IndirectMultires)):
-            configure(bench, mode, p[0] if p[0] >= 0 else math.inf, p[1] if p[1] >= 0 else math.inf, int(p[2]))
+            configure(bench, mode, p[0] if p[0] >= 0 else math.inf, p[1] if p[1] >= 0 else math.inf, int(p[2]),
+                      illumination=p[3] if p[3] >= 0 else None)
             bench.frames(1)
             static = bench.frames(args.repeats)
             # A light that moves every frame re-renders the RSM each time.
@@ -353,7 +356,8 @@ def main():
                       for r in csv.DictReader(f)]
     if args.previous:
         def key(r):
-            return tuple(str(r[k]) for k in ("scene", "vpls", "mode", "depth", "normal", "finest", "balance"))
+            return tuple(str(r.get(k, "")) for k in ("scene", "vpls", "mode", "depth", "normal", "finest",
+                                                        "balance")) + (illumination_key(r.get("illumination", "")),)
         measured = {key(r) for r in rows}
         with open(args.previous, newline="") as f:
             for r in csv.DictReader(f):
@@ -402,6 +406,7 @@ def splat_compare(bench, scene, vpls, presets, repeats):
     the machine hits both alike."""
     out = []
     stenciled, splatting = mrgi.vtkMRGIGather.GatherStenciled, mrgi.vtkMRGIGather.GatherSplatting
+    # Splatting has no illumination rule: both gather each preset's geometric selection.
     for name, p in presets.items():
         configure(bench, mrgi.vtkMRGIPass.IndirectMultires, p[0] if p[0] >= 0 else math.inf,
                   p[1] if p[1] >= 0 else math.inf, int(p[2]), vpls)
@@ -438,11 +443,20 @@ def splat_compare(bench, scene, vpls, presets, repeats):
     return out
 
 
+def illumination_key(value):
+    """A row's refinement: None (geometry), a threshold, or "cT" (curvature metric)."""
+    if value in ("", None):
+        return None
+    return str(value) if str(value).startswith("c") else float(value)
+
+
 def matches(row, preset, balance=1):
     d = preset[0] if preset[0] >= 0 else math.inf
     n = preset[1] if preset[1] >= 0 else math.inf
+    il = None if len(preset) < 4 or preset[3] < 0 else float(preset[3])
     return (row["mode"] == "multires" and row["depth"] == d and row["normal"] == n
-            and row["finest"] == int(preset[2]) and row["balance"] == balance)
+            and row["finest"] == int(preset[2]) and row["balance"] == balance
+            and illumination_key(row.get("illumination", "")) == il)
 
 
 def plot(rows, presets, path):
@@ -496,18 +510,20 @@ def write_page(args, rows, scaling, splats, presets, notes, path):
              "(depth-derivative metric 3.2), Besenthal et al. (mask-weighted upsampling).", "",
              "Scenes: " + "; ".join("`%s`: %s" % kv for kv in notes.items()), "",
              "![error against time](images/multires-tradeoff.png)", "",
-             "Each point is one setting (depth threshold, normal threshold, finest level); the black line "
+             "Each point is one setting (depth threshold, normal threshold, finest level, refinement: geometry "
+             "alone or the illumination rule at threshold T, IlluminationRefinement.md); the black line "
              "is the Pareto frontier (no other setting is both faster and more accurate); the dashed line "
              "is the full-resolution gather, the dotted line the 3% error target.", ""]
     lines += ["## Presets", "",
-              "| preset | depth threshold | normal threshold | finest level | scene | indirect ms | gather x | "
-              "indirect x | work | rel. RMS vs full | rel. max vs full | rel. RMS vs truth |",
-              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+              "| preset | depth threshold | normal threshold | finest level | refinement | scene | indirect ms | "
+              "gather x | indirect x | work | rel. RMS vs full | rel. max vs full | rel. RMS vs truth |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for name, p in presets.items():
         for r in rows:
             if matches(r, p):
-                lines.append("| %s | %s | %s | %d | %s (%d VPLs) | %.0f | %.1f | %.1f | %.3f | %.4f | %.3f | %s |"
-                             % (name, fmt(r["depth"], "g"), fmt(r["normal"], "g"), r["finest"], r["scene"],
+                lines.append("| %s | %s | %s | %d | %s | %s (%d VPLs) | %.0f | %.1f | %.1f | %.3f | %.4f | %.3f | %s |"
+                             % (name, fmt(r["depth"], "g"), fmt(r["normal"], "g"), r["finest"],
+                                "geometry" if p[3] < 0 else "illumination T %g" % p[3], r["scene"],
                                 r["vpls"], r["indirect"], r["gather_speedup"], r["indirect_speedup"], r["work"],
                                 r["rel_rms_full"], r["rel_max_full"], fmt(r["rel_rms_truth"], ".4f")))
     lines += ["", "Full-resolution gather for comparison:", "",

@@ -8,6 +8,7 @@
 #include "mrgi_test.h"
 
 #include <float.h>
+#include <math.h>
 #include <string.h>
 
 /* ---- small deterministic random numbers ---- */
@@ -1009,6 +1010,42 @@ static void test_bad_input(void)
   gbuffer_free(&g);
 }
 
+/* Presets: every preset has valid geometric settings and an illumination
+ * threshold that is +inf (geometry alone) or in the illumination rule's
+ * range; the more accurate preset never refines less; unknown presets and
+ * NULL outputs are refused without writing. */
+static void test_presets(void)
+{
+  mrgi_multires_layout L;
+  MRGI_CHECK(mrgi_multires_layout_init(&L, 1024, 1024, MRGI_MULTIRES_DEFAULT_COARSEST_SIDE, NULL) ==
+    MRGI_OK);
+  double previous = INFINITY;
+  for (int32_t p = 0; p < MRGI_MULTIRES_PRESET_COUNT; ++p)
+  {
+    mrgi_multires_params params;
+    double t = -1.0;
+    MRGI_CHECK(mrgi_multires_preset_params(p, &params, NULL) == MRGI_OK);
+    MRGI_CHECK(mrgi_multires_params_validate(&params, &L, NULL) == MRGI_OK);
+    MRGI_CHECK(mrgi_multires_preset_illumination_threshold(p, &t, NULL) == MRGI_OK);
+    MRGI_CHECK(isinf(t) || (t >= 0.0 && t <= 1.0));
+    MRGI_CHECK(t <= previous); /* fast, balanced, accurate: ever finer */
+    previous = t;
+    MRGI_CHECK(mrgi_multires_preset_name(p) != NULL);
+  }
+  mrgi_error err;
+  double t = 42.0;
+  MRGI_CHECK(mrgi_multires_preset_illumination_threshold(MRGI_MULTIRES_PRESET_COUNT, &t, &err) ==
+    MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(strstr(err.message, "unknown preset") != NULL && t == 42.0);
+  MRGI_CHECK(
+    mrgi_multires_preset_illumination_threshold(-1, &t, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(
+    mrgi_multires_preset_illumination_threshold(0, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(strstr(err.message, "threshold is NULL") != NULL);
+  MRGI_CHECK(mrgi_multires_preset_params(0, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
+  MRGI_CHECK(mrgi_multires_preset_name(MRGI_MULTIRES_PRESET_COUNT) == NULL);
+}
+
 int main(int argc, char** argv)
 {
   static const mrgi_test_case cases[] = {
@@ -1020,6 +1057,7 @@ int main(int argc, char** argv)
     MRGI_TEST_CASE(test_scale_invariance),
     MRGI_TEST_CASE(test_edge_cases),
     MRGI_TEST_CASE(test_bad_input),
+    MRGI_TEST_CASE(test_presets),
   };
   return MRGI_TEST_MAIN(argc, argv, cases);
 }

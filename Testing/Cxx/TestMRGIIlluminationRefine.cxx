@@ -7,12 +7,16 @@
  *   settings, the texels the GPU gathered equal
  *   mrgi_incremental_stencil_illumination_level() fed, level by level, with
  *   the GPU's own flags, selection, receivers and gathered irradiance, bit
- *   for bit; the gather's per-level statistics count the same texels.
+ *   for bit; the gather's per-level statistics count the same texels. The
+ *   same with the VPL tree as the light term.
  * - The threshold matters: 0 gathers every texel of every level (but the
  *   geometrically refined ones), 1e30 the geometric selection alone, and a
  *   small threshold beats the geometric selection it starts from by far,
  *   close to gathering everything (whose image is the full gather after
  *   the upsampling's tent filter, not the full gather itself).
+ * - The presets carry the refinement: a new pass (Balanced) and Accurate
+ *   gather by illumination at their own thresholds, Fast by geometry; a
+ *   preset applied after SetRefinement() sets it again.
  */
 #include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"
@@ -21,6 +25,7 @@
 #include "vtkMRGIIncrementalStencil.h"
 #include "vtkMRGIIndirectLight.h"
 #include "vtkMRGIMultiresolution.h"
+#include "vtkMRGIVPLSelection.h"
 #include "vtkUnsignedCharArray.h"
 
 #include "mrgi_incremental_stencil.h"
@@ -138,7 +143,7 @@ double RelativeRMS(vtkImageData* a, vtkImageData* reference)
 void TestParity()
 {
   mrgitest::PassScene scene(128, 112, "cornell-spot");
-  const int lit = vtkMRGIIndirectLight::RefinementIllumination;
+  const int lit = vtkMRGIMultiresolution::RefinementIllumination;
   struct Setting
   {
     double Threshold, Depth, Normal;
@@ -162,8 +167,18 @@ void TestParity()
     MRGI_TEST_CHECK(o.Counted == o.Rendered);
     MRGI_TEST_CHECK(o.Rendered > o.Selected); // the rule adds texels: the test can fail
   }
-  // Threshold extremes: everything, or the geometric selection alone.
+  // The VPL tree as the light term: the same rule between its levels.
   stencil->SetIlluminationMetric(MRGI_INCREMENTAL_ILLUMINATION_DIFFERENCE);
+  scene.Pass->SetVPLSelectionMode(vtkMRGIVPLSelection::Tree);
+  Configure(scene.Pass, lit, 0.1, 16.0, 0.5);
+  const Outcome tree = Check(scene);
+  std::printf("VPL tree, T 0.1 depth 16 normal 0.5: %lld selected, %lld gathered (counted %lld), "
+              "%lld differ from the C twin\n",
+    tree.Selected, tree.Rendered, tree.Counted, tree.Differ);
+  MRGI_TEST_CHECK(tree.Differ == 0 && tree.Counted == tree.Rendered);
+  MRGI_TEST_CHECK(tree.Rendered > tree.Selected);
+  scene.Pass->SetVPLSelectionMode(vtkMRGIVPLSelection::Grid);
+  // Threshold extremes: everything, or the geometric selection alone.
   Configure(scene.Pass, lit, 0.0, -1.0, 1.0);
   Outcome all = Check(scene);
   MRGI_TEST_CHECK(all.Differ == 0 && all.Rendered == all.Candidates);
@@ -179,12 +194,12 @@ void TestThresholdMatters()
   mrgitest::PassScene scene(128, 112, "cornell-spot");
   scene.Pass->SetIndirectMode(vtkMRGIPass::IndirectFull);
   vtkSmartPointer<vtkImageData> full = Indirect(scene);
-  const int lit = vtkMRGIIndirectLight::RefinementIllumination;
+  const int lit = vtkMRGIMultiresolution::RefinementIllumination;
   Configure(scene.Pass, lit, 0.0, -1.0, 1.0);
   const double everything = RelativeRMS(Indirect(scene), full);
   Configure(scene.Pass, lit, 0.05, -1.0, 1.0);
   const double refined = RelativeRMS(Indirect(scene), full);
-  Configure(scene.Pass, vtkMRGIIndirectLight::RefinementGeometry, 0.05, -1.0, 1.0);
+  Configure(scene.Pass, vtkMRGIMultiresolution::RefinementGeometry, 0.05, -1.0, 1.0);
   const double geometric = RelativeRMS(Indirect(scene), full);
   std::printf("relative RMS against the full gather: T 0 %.4f, T 0.05 %.4f, geometry alone %.4f\n",
     everything, refined, geometric);
@@ -192,10 +207,42 @@ void TestThresholdMatters()
   MRGI_TEST_CHECK(everything <= refined * 1.05 + 1e-6);
   MRGI_TEST_CHECK(!scene.Pass->GetIndirectLightStage()->GetLastRefinedByIllumination());
 }
+
+void TestPresetsRefine()
+{
+  mrgitest::PassScene scene(64, 56, "cornell-spot");
+  vtkMRGIPass* pass = scene.Pass;
+  vtkMRGIMultiresolution* mr = pass->GetMultiresolution();
+  pass->SetIndirectMode(vtkMRGIPass::IndirectMultires);
+  for (int preset : { vtkMRGIMultiresolution::PresetBalanced, vtkMRGIMultiresolution::PresetFast,
+         vtkMRGIMultiresolution::PresetAccurate })
+  {
+    if (preset != vtkMRGIMultiresolution::PresetBalanced) // a new pass starts Balanced
+    {
+      pass->SetRefinement(vtkMRGIMultiresolution::RefinementGeometry);
+      MRGI_TEST_CHECK(mr->SetPreset(preset));
+    }
+    double threshold = 0.0;
+    MRGI_TEST_CHECK(
+      mrgi_multires_preset_illumination_threshold(preset, &threshold, nullptr) == MRGI_OK);
+    const bool lit = !std::isinf(threshold);
+    MRGI_TEST_CHECK(pass->GetRefinement() ==
+      (lit ? vtkMRGIMultiresolution::RefinementIllumination
+           : vtkMRGIMultiresolution::RefinementGeometry));
+    MRGI_TEST_CHECK(!lit || pass->GetIlluminationThreshold() == threshold);
+    scene.Window->Render();
+    MRGI_TEST_CHECK(pass->GetIndirectLightStage()->GetLastRefinedByIllumination() == lit);
+    // The stage took the buffer's threshold for this frame.
+    MRGI_TEST_CHECK(!lit ||
+      pass->GetIndirectLightStage()->GetIlluminationStencil()->GetIlluminationThreshold() ==
+        threshold);
+  }
+}
 }
 
 int main(int argc, char* argv[])
 {
-  return mrgitest::RunCases(
-    argc, argv, { MRGI_TEST_CASE(TestParity), MRGI_TEST_CASE(TestThresholdMatters) });
+  return mrgitest::RunCases(argc, argv,
+    { MRGI_TEST_CASE(TestParity), MRGI_TEST_CASE(TestThresholdMatters),
+      MRGI_TEST_CASE(TestPresetsRefine) });
 }

@@ -71,6 +71,10 @@ int main()
   pass->SetIndirectMode(vtkMRGIPass::IndirectMultires);
   vtkMRGIMultiresolution* mr = pass->GetMultiresolution();
   vtkMRGIGather* gather = pass->GetGather();
+  // This test is about the geometric selection: the texels the indirect
+  // light gathers are the stencil's (the illumination rule of the default
+  // preset adds its own, TestMRGIIlluminationRefine).
+  mr->SetRefinement(vtkMRGIMultiresolution::RefinementGeometry);
   struct Setting
   {
     double Depth, Normal;

@@ -179,7 +179,7 @@ def main():
     mr_exr = fresh("cli_multires.exr")
     code, out, err = run("cornell-spot", "-o", mr_exr, "--size", "48x48", "-q", "--gi", "multires",
                          "--depth-threshold", "8", "--normal-threshold", "inf", "--upsample", "mask",
-                         "--timings")
+                         "--refinement", "geometry", "--timings")
     check(code == 0 and os.path.getsize(mr_exr) > 0, "--gi multires: " + err)
     check("select" in out and "upsample" in out, "multires stages in the timing table")
     splat_exr = fresh("cli_splat.exr")
@@ -188,7 +188,11 @@ def main():
                          "--gather", "splat", "--timings")
     check(code == 0 and "gather.subsplats" in out, "--gather splat times its subsplat list: " + err)
     check(open(splat_exr, "rb").read() == open(mr_exr, "rb").read(),
-          "--gather splat writes the stenciled gather's image")
+          "--gather splat writes the stenciled gather's image (splatting refines by geometry)")
+    code, out, err = run("cornell-spot", "-o", fresh("cli_splat_lit.exr"), "--size", "48x48", "-q",
+                         "--gather", "splat", "--refinement", "illumination")
+    check(code != 0 and "--gather splat" in err and "illumination" in err,
+          "--gather splat refuses --refinement illumination by name: " + err)
     # Area lights: cornell-area is lit by its emitter alone (with and without
     # voxel shadows), a command-line rectangle lights any scene.
     area = {}

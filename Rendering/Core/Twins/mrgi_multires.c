@@ -806,12 +806,16 @@ mrgi_status mrgi_multires_stats_compute(const mrgi_multires_layout* layout, cons
 
 /* Chosen from the frontier measured by Testing/Benchmarks/multires_sweep.py
  * on the Cornell box (spot) at 1024 x 1024, 256 VPLs, grid depth threshold
- * {4, 16, 64, off} x normal threshold {0.25, 0.5, 1} x finest level {0, 1}
+ * {4, 16, 64, off} x normal threshold {0.25, 0.5, 1} x finest level {0, 1} x
+ * refinement {geometry, illumination T 0.1, 0.15, 0.2}
  * (Documentation/Multiresolution.md). Relative RMS against the full gather
  * and share of its work gathered:
- *   accurate (4, 0.25, 0): 1.90%, 22.5% -- the most accurate setting measured;
- *   balanced (4, 1, 0):    2.27%, 22.3% -- the cheapest within the papers' 3%
- *                          (16, 0.5, 0 gathers 6.4% but misses it: 3.19%);
+ *   accurate (16, 0.5, 0, T 0.1):  ~1.0%, ~12%  -- more accurate than any
+ *                          geometric setting (best 1.90% at 22.5%);
+ *   balanced (16, 0.5, 0, T 0.15): ~1.6%, ~9%   -- the geometric balanced
+ *                          (4, 1, 0) is 2.27% at 22.3%: the depth-derivative
+ *                          test refines every grazing wall, the illumination
+ *                          rule only where the light changes;
  *   fast     (16, 0.5, 1): 4.29%, 3.3% -- the gather ~16x cheaper, for interaction.
  * Errors and work shares do not depend on the machine; times do. */
 static const struct
@@ -820,28 +824,52 @@ static const struct
   double depth_threshold;
   double normal_threshold;
   int32_t finest_level;
+  double illumination_threshold; /* INFINITY: geometry alone */
 } mrgi_multires_presets[MRGI_MULTIRES_PRESET_COUNT] = {
-  { "fast", 16.0, 0.5, 1 },
-  { "balanced", 4.0, 1.0, 0 },
-  { "accurate", 4.0, 0.25, 0 },
+  { "fast", 16.0, 0.5, 1, INFINITY },
+  { "balanced", 16.0, 0.5, 0, 0.15 },
+  { "accurate", 16.0, 0.5, 0, 0.1 },
 };
 
-mrgi_status mrgi_multires_preset_params(int32_t preset, mrgi_multires_params* params, mrgi_error* err)
+static mrgi_status mrgi_multires_preset_check(
+  int32_t preset, const void* out, const char* what, mrgi_error* err)
 {
-  if (!params)
+  if (!out)
   {
-    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "multires preset: params is NULL");
+    return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT, "multires preset: %s is NULL", what);
   }
   if (preset < 0 || preset >= MRGI_MULTIRES_PRESET_COUNT)
   {
     return mrgi_error_set(err, MRGI_ERR_INVALID_ARGUMENT,
                           "multires preset: unknown preset %d (0 fast, 1 balanced, 2 accurate)", (int)preset);
   }
+  return MRGI_OK;
+}
+
+mrgi_status mrgi_multires_preset_params(
+  int32_t preset, mrgi_multires_params* params, mrgi_error* err)
+{
+  const mrgi_status status = mrgi_multires_preset_check(preset, params, "params", err);
+  if (status != MRGI_OK)
+  {
+    return status;
+  }
   mrgi_multires_params_default(params);
   params->depth_threshold = mrgi_multires_presets[preset].depth_threshold;
   params->normal_threshold = mrgi_multires_presets[preset].normal_threshold;
   params->finest_level = mrgi_multires_presets[preset].finest_level;
   return MRGI_OK;
+}
+
+mrgi_status mrgi_multires_preset_illumination_threshold(
+  int32_t preset, double* threshold, mrgi_error* err)
+{
+  const mrgi_status status = mrgi_multires_preset_check(preset, threshold, "threshold", err);
+  if (status == MRGI_OK)
+  {
+    *threshold = mrgi_multires_presets[preset].illumination_threshold;
+  }
+  return status;
 }
 
 const char* mrgi_multires_preset_name(int32_t preset)

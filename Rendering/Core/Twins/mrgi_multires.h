@@ -359,6 +359,20 @@ typedef enum mrgi_multires_preset
  */
 mrgi_status mrgi_multires_preset_params(int32_t preset, mrgi_multires_params* params, mrgi_error* err);
 
+/**
+ * @brief A preset's illumination threshold T: a texel below the geometric
+ *        cut is also gathered where its parent's 3x3 gathered irradiance
+ *        differs by more than T, relative (the illumination rule of
+ *        mrgi_incremental_stencil.h, nichols-penmatsa-wyman-2010 3.4 applied
+ *        to the indirect light). +inf: the preset refines by geometry alone.
+ *        The rule lets a preset relax the depth-derivative test, which
+ *        refines every grazing surface whether its light changes or not.
+ * @return ::MRGI_ERR_INVALID_ARGUMENT for NULL `threshold` or an unknown
+ *         preset (threshold untouched).
+ */
+mrgi_status mrgi_multires_preset_illumination_threshold(
+  int32_t preset, double* threshold, mrgi_error* err);
+
 /** @brief "fast", "balanced", "accurate"; NULL for an unknown preset. */
 const char* mrgi_multires_preset_name(int32_t preset);
 

@@ -230,10 +230,12 @@ public:
   ///@{
   /**
    * Which texels the multiresolution gather refines (issue 17 part 2):
-   * vtkMRGIIndirectLight::RefinementGeometry (default: depth and normal
+   * vtkMRGIMultiresolution::RefinementGeometry (depth and normal
    * discontinuities) or RefinementIllumination (also where neighbouring
-   * coarse results differ by more than IlluminationThreshold, relative;
-   * default 0.1). Forwarded to the indirect-light stage.
+   * coarse results differ by more than IlluminationThreshold, relative).
+   * Defaults: the multiresolution preset's (Balanced and Accurate refine by
+   * illumination). Forwarded to GetMultiresolution(); a preset applied
+   * later sets both again.
    */
   void SetRefinement(int mode);
   int GetRefinement();

@@ -151,19 +151,19 @@ int vtkMRGIPass::GetIndirectVisibility()
 }
 void vtkMRGIPass::SetRefinement(int mode)
 {
-  this->IndirectLight->SetRefinement(mode);
+  this->Multiresolution->SetRefinement(mode);
 }
 int vtkMRGIPass::GetRefinement()
 {
-  return this->IndirectLight->GetRefinement();
+  return this->Multiresolution->GetRefinement();
 }
 void vtkMRGIPass::SetIlluminationThreshold(double threshold)
 {
-  this->IndirectLight->SetIlluminationThreshold(threshold);
+  this->Multiresolution->SetIlluminationThreshold(threshold);
 }
 double vtkMRGIPass::GetIlluminationThreshold()
 {
-  return this->IndirectLight->GetIlluminationThreshold();
+  return this->Multiresolution->GetIlluminationThreshold();
 }
 void vtkMRGIPass::SetISMPointsPerVPL(int points)
 {
@@ -310,7 +310,9 @@ bool vtkMRGIPass::Calibrate(vtkRenderWindow* window)
   vtkMRGIMultiresolution* mr = this->GetMultiresolution();
   const double depth = mr->GetDepthThreshold(), normal = mr->GetNormalThreshold();
   const int finest = mr->GetFinestLevel(), vpls = this->GetNumberOfVPLs();
-  const int rsm = this->GetRSMResolution();
+  const int rsm = this->GetRSMResolution(), refinement = mr->GetRefinement();
+  const double illumination = mr->GetIlluminationThreshold();
+  const bool balance = mr->GetBalance();
   vtkMRGIVoxelization* voxels = this->IndirectLight->GetVoxelization();
   int voxelSize[2];
   voxels->GetVoxelSize(voxelSize);
@@ -319,6 +321,9 @@ bool vtkMRGIPass::Calibrate(vtkRenderWindow* window)
   mr->SetDepthThreshold(depth);
   mr->SetNormalThreshold(normal);
   mr->SetFinestLevel(finest);
+  mr->SetRefinement(refinement);
+  mr->SetIlluminationThreshold(illumination);
+  mr->SetBalance(balance);
   this->SetNumberOfVPLs(vpls);
   this->SetRSMResolution(rsm);
   voxels->SetVoxelSize(voxelSize);

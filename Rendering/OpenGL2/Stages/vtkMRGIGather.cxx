@@ -125,14 +125,6 @@ bool vtkMRGIGather::GatherVPLsIncremental(const vtkMRGIFrameContext& frame,
 }
 
 //------------------------------------------------------------------------------
-bool vtkMRGIGather::GatherVPLTree(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
-  const vtkMRGIVPLTreeTerm& tree, const vtkMRGIIndirectVisibility& visibility)
-{
-  return this->UseVisibility(visibility, mrgi_vpl_tree_root_count(tree.Tree)) && this->Run(frame, buffer, nullptr, 0, nullptr, buffer ? buffer->GetStencilTexture() : nullptr,
-    &tree);
-}
-
-//------------------------------------------------------------------------------
 bool vtkMRGIGather::GatherFull(const vtkMRGIFrameContext& frame, vtkTextureObject* vpls,
   int vplCount, double strength, vtkTextureObject* irradiance, vtkTextureObject* indirect,
   const vtkMRGIIndirectVisibility& visibility)
@@ -145,14 +137,6 @@ bool vtkMRGIGather::GatherFull(const vtkMRGIFrameContext& frame, vtkTextureObjec
   }
   return this->UseVisibility(visibility, vplCount) &&
     this->RunFull(frame, vpls, vplCount, nullptr, strength, irradiance, indirect);
-}
-
-//------------------------------------------------------------------------------
-bool vtkMRGIGather::GatherFullTree(const vtkMRGIFrameContext& frame, const vtkMRGIVPLTreeTerm& tree,
-  double strength, vtkTextureObject* irradiance, vtkTextureObject* indirect,
-  const vtkMRGIIndirectVisibility& visibility)
-{
-  return this->UseVisibility(visibility, mrgi_vpl_tree_root_count(tree.Tree)) && this->RunFull(frame, nullptr, 0, &tree, strength, irradiance, indirect);
 }
 
 //------------------------------------------------------------------------------
@@ -529,131 +513,6 @@ bool vtkMRGIGather::RunStenciled(const vtkMRGIFrameContext& frame, vtkMRGIMultir
     in.ReadQueries(finest, levels);
   }
   return stepped;
-}
-
-//------------------------------------------------------------------------------
-bool vtkMRGIGather::UploadVPLTree(
-  vtkOpenGLRenderWindow* window, const mrgi_vpl_tree* tree, vtkTextureObject* nodes)
-{
-  std::string error;
-  if (!vtkMRGIVPLTreeTexture::Upload(window, tree, nodes, error))
-  {
-    vtkGenericWarningMacro("vtkMRGIGather::UploadVPLTree: " << error);
-    return false;
-  }
-  return true;
-}
-
-//------------------------------------------------------------------------------
-bool vtkMRGIGather::CheckTree(
-  vtkOpenGLRenderWindow* window, const vtkMRGIVPLTreeTerm& tree, int& roots, int& rootsPerBatch)
-{
-  std::string error;
-  if (!window)
-  {
-    error = "the tree gather needs a window";
-  }
-  if (!window ||
-    !vtkMRGIVPLTreeTexture::Check(tree.Tree, tree.Nodes, tree.Threshold, roots, rootsPerBatch, error) ||
-    (this->Internal->Visibility &&
-      (rootsPerBatch = vtkMRGIGatherVisibility::RootsPerDraw(
-         *this->Internal->Visibility, tree.Tree, tree.Threshold, rootsPerBatch, error)) < 1))
-  {
-    vtkErrorMacro(<< error);
-    return false;
-  }
-  return true;
-}
-
-//------------------------------------------------------------------------------
-bool vtkMRGIGather::RunStenciledTree(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
-  const mrgi_multires_layout& layout, const vtkMRGIVPLTreeTerm& tree, vtkTextureObject* stencil)
-{
-  // The stenciled gather (one draw per level, early stencil culling) with
-  // the tree as the light term: per level, one draw per batch of roots.
-  Internals& in = *this->Internal;
-  vtkOpenGLRenderWindow* window = frame.Window;
-  int roots = 0, rootsPerBatch = 0;
-  if (!this->CheckTree(window, tree, roots, rootsPerBatch))
-  {
-    return false;
-  }
-  const bool count = this->CollectStatistics;
-  const int levels = layout.level_count;
-  const int finest = buffer->GetFinestGatherLevel();
-  vtkMRGIShaderUtilities::ScopedStage gatherStep(frame.Timer, "gather.tree");
-  const vtkMRGIIndirectVisibility* vis = in.Visibility;
-  const std::string defines = std::string("#define MRGI_GATHER_IRRADIANCE_ONLY 1\n"
-                                          "#define MRGI_GATHER_TREE 1\n") +
-    (count ? "#define MRGI_GATHER_COUNT_TARGET 1\n" : "") +
-    (vis ? vtkMRGIGatherVisibility::Defines(*vis) : "");
-  vtkOpenGLQuadHelper* quad = in.GL.Programs.Ready(window, "gather.tree", defines, [vis] {
-    return vtkMRGIShaderLibraries::Compose(
-      { vis ? vtkMRGIGatherVisibility::Library(*vis) : "vtkMRGIVPLIrradiance", "vtkMRGIVPLTree",
-        "vtkMRGIGatherFS" });
-  });
-  vtkShaderProgram* gather = quad ? quad->Program : nullptr;
-  if (!gather ||
-    (count &&
-      !vtkMRGIShaderUtilities::EnsureTexture(window, in.TreeCounts, in.TreeCountsSize, GL_RGBA32F,
-        layout.total_width, layout.total_height)))
-  {
-    return false;
-  }
-  if (this->CollectStatistics)
-  {
-    in.AllocateQueries(window, levels);
-  }
-  {
-    vtkMRGIFullScreenStep steps(window, in.GL.FrameBuffer);
-    vtkOpenGLState* ostate = steps.GetState();
-    steps.Target(in.FlatIrradiance, count ? in.TreeCounts : nullptr, 0, 0, layout.total_width,
-      layout.total_height);
-    steps.BeginStencilRead(stencil);
-    tree.Nodes->Activate();
-    gather->SetUniformMatrix4x4("mrgiVCToWC", const_cast<float*>(frame.ViewToWorld));
-    if (vis && !vtkMRGIGatherVisibility::Bind(gather, *vis))
-    {
-      tree.Nodes->Deactivate();
-      steps.EndStencilRead();
-      return false;
-    }
-    for (int i = finest; i < levels; ++i)
-    {
-      const std::array<vtkTextureObject*, 2> receivers = buffer->BindReceivers(gather, i);
-      ostate->vtkglViewport(layout.level_offset[i], 0, layout.level_width[i], layout.level_height[i]);
-      // The first batch's query counts the texels gathered at this level.
-      const auto draw = [&](int batch) {
-        const bool query = this->CollectStatistics && batch == 0;
-        if (query)
-        {
-          glBeginQuery(GL_SAMPLES_PASSED, in.Queries[static_cast<size_t>(i)]);
-        }
-        quad->Render();
-        if (query)
-        {
-          glEndQuery(GL_SAMPLES_PASSED);
-        }
-      };
-      vtkMRGIVPLTreeTexture::DrawBatches(
-        gather, tree.Tree, tree.Nodes, tree.Threshold, roots, rootsPerBatch, ostate, draw);
-      receivers[1]->Deactivate();
-      receivers[0]->Deactivate();
-    }
-    if (vis)
-    {
-      vtkMRGIGatherVisibility::Unbind(*vis);
-    }
-    tree.Nodes->Deactivate();
-    steps.EndStencilRead();
-  }
-  if (this->CollectStatistics)
-  {
-    in.ReadQueries(finest, levels);
-    const int region[4] = { 0, 0, layout.total_width, layout.total_height };
-    vtkMRGIVPLTreeTexture::ReadCounts(window, in.TreeCounts, region, in.MeanVPLs, in.MaxVPLs);
-  }
-  return true;
 }
 
 //------------------------------------------------------------------------------

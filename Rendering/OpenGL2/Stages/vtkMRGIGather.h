@@ -216,6 +216,15 @@ public:
     const vtkMRGIIndirectVisibility& visibility = vtkMRGIIndirectVisibility());
 
   /**
+   * GatherVPLTree() at the texels of `stencil`, coarse to fine with
+   * `beforeLevel(level)` before each level's draws, as
+   * GatherVPLsIncremental() does with the VPL cache.
+   */
+  bool GatherVPLTreeIncremental(const vtkMRGIFrameContext& frame, vtkMRGIMultiresolution* buffer,
+    const vtkMRGIVPLTreeTerm& tree, const vtkMRGIIndirectVisibility& visibility,
+    vtkTextureObject* stencil, const std::function<bool(int level)>& beforeLevel);
+
+  /**
    * The full-resolution gather (as GatherFull()) with the VPL tree as the
    * light term: every pixel of frame.Viewport traverses the tree, writing E
    * into `irradiance` and strength x albedo x E into `indirect`. Batches and

@@ -56,22 +56,6 @@ vtkMRGIIndirectLight::~vtkMRGIIndirectLight()
 }
 
 //------------------------------------------------------------------------------
-void vtkMRGIIndirectLight::SetIlluminationThreshold(double threshold)
-{
-  if (threshold != this->GetIlluminationThreshold())
-  {
-    this->IlluminationStencil->SetIlluminationThreshold(threshold);
-    this->Modified();
-  }
-}
-
-//------------------------------------------------------------------------------
-double vtkMRGIIndirectLight::GetIlluminationThreshold()
-{
-  return this->IlluminationStencil->GetIlluminationThreshold();
-}
-
-//------------------------------------------------------------------------------
 void vtkMRGIIndirectLight::ReleaseGraphicsResources(vtkWindow* w)
 {
   this->VPLSelection->ReleaseGraphicsResources(w);
@@ -189,9 +173,15 @@ bool vtkMRGIIndirectLight::RunGather(const vtkMRGIFrameContext& frame,
   }
   // The illumination rule (class comment): each level's stencil is built
   // from the irradiance the coarser level gathered, between the gathers.
-  const bool illumination = !tree && this->Refinement == RefinementIllumination;
+  // Multiresolution splatting (nichols-wyman-2009) has no step between its
+  // levels: it gathers the geometric selection (LastRefinedByIllumination
+  // says which ran).
+  const bool illumination =
+    buffer->GetRefinement() == vtkMRGIMultiresolution::RefinementIllumination &&
+    (tree || this->Gather->GetGatherMode() == vtkMRGIGather::GatherStenciled);
   this->LastRefinedByIllumination = illumination;
   vtkMRGIIncrementalStencil* lit = this->IlluminationStencil;
+  lit->SetIlluminationThreshold(buffer->GetIlluminationThreshold());
   {
     vtkMRGIShaderUtilities::ScopedStage stage(timer, "gather");
     if (!buffer->BuildReceivers(
@@ -199,17 +189,22 @@ bool vtkMRGIIndirectLight::RunGather(const vtkMRGIFrameContext& frame,
     {
       return false;
     }
-    const bool gathered = tree
-      ? this->Gather->GatherVPLTree(frame, buffer, this->VPLSelection->GetTreeTerm(), visibility)
-      : !illumination
-      ? this->Gather->GatherVPLs(
-          frame, buffer, this->VPLSelection->GetVPLTexture(), vplCount, visibility)
+    const auto buildLevel = [&](int level) {
+      return lit->BuildIlluminationLevel(
+        frame, buffer, this->Gather->GetIrradianceTexture(), level);
+    };
+    const bool gathered = !illumination
+      ? (tree ? this->Gather->GatherVPLTree(
+                  frame, buffer, this->VPLSelection->GetTreeTerm(), visibility)
+              : this->Gather->GatherVPLs(
+                  frame, buffer, this->VPLSelection->GetVPLTexture(), vplCount, visibility))
       : lit->BeginIllumination(frame, buffer) &&
-        this->Gather->GatherVPLsIncremental(frame, buffer, this->VPLSelection->GetVPLTexture(),
-          vplCount, visibility, lit->GetStencilTexture(), [&](int level) {
-            return lit->BuildIlluminationLevel(
-              frame, buffer, this->Gather->GetIrradianceTexture(), level);
-          });
+        (tree
+            ? this->Gather->GatherVPLTreeIncremental(frame, buffer,
+                this->VPLSelection->GetTreeTerm(), visibility, lit->GetStencilTexture(), buildLevel)
+            : this->Gather->GatherVPLsIncremental(frame, buffer,
+                this->VPLSelection->GetVPLTexture(), vplCount, visibility, lit->GetStencilTexture(),
+                buildLevel));
     if (!gathered)
     {
       return false;
@@ -235,7 +230,6 @@ void vtkMRGIIndirectLight::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ISMMaxTexelAngle: " << this->ISMMaxTexelAngle << "\n";
   os << indent << "ISMFiltering: " << (this->ISMFiltering ? "On" : "Off") << "\n";
   os << indent << "LastVPLCount: " << this->LastVPLCount << "\n";
-  os << indent << "Refinement: " << (this->Refinement ? "Illumination" : "Geometry") << "\n";
   os << indent << "LastRefinedByIllumination: " << this->LastRefinedByIllumination << "\n";
   os << indent << "IlluminationStencil:\n";
   this->IlluminationStencil->PrintSelf(os, indent.GetNextIndent());

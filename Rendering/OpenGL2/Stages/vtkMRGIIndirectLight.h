@@ -29,15 +29,20 @@
  *   occluders off screen or hidden behind the visible surfaces.
  *
  * Refinement (issue 17 part 2), for the multiresolution gather of the VPL
- * cache:
+ * cache, as the buffer it is handed says (vtkMRGIMultiresolution::
+ * GetRefinement(), set by its presets):
  * - RefinementGeometry: the buffer's geometric selection (depth and normal
- *   discontinuities, mrgi_multires.h) alone (default).
+ *   discontinuities, mrgi_multires.h) alone.
  * - RefinementIllumination: the levels are gathered coarse to fine and a
  *   texel below the geometric cut is gathered too where its parent's 3x3
- *   gathered irradiance differs by more than IlluminationThreshold
- *   (vtkMRGIIncrementalStencil's illumination rule, nichols-penmatsa-
- *   wyman-2010 3.4 applied to the indirect light); the upsampling reads
- *   the texels gathered. The VPL tree gathers keep the geometric selection.
+ *   gathered irradiance differs by more than the buffer's
+ *   IlluminationThreshold (vtkMRGIIncrementalStencil's illumination rule,
+ *   nichols-penmatsa-wyman-2010 3.4 applied to the indirect light); the
+ *   upsampling reads the texels gathered. With the VPL cache and with the
+ *   VPL tree alike (vtkMRGIGather::GatherVPLsIncremental(),
+ *   GatherVPLTreeIncremental()); multiresolution splatting
+ *   (vtkMRGIGather::GatherSplatting), which has no step between its
+ *   levels, gathers the geometric selection.
  */
 #ifndef vtkMRGIIndirectLight_h
 #define vtkMRGIIndirectLight_h
@@ -74,27 +79,6 @@ public:
     VisibilityISM = 1,   ///< imperfect shadow maps (ritschel-et-al-2011)
     VisibilityVoxels = 2 ///< screen-space voxels (nichols-penmatsa-wyman-2010 3.3)
   };
-
-  enum RefinementModes
-  {
-    RefinementGeometry = 0,    ///< the geometric selection alone (default)
-    RefinementIllumination = 1 ///< plus refinement where the gathered light changes
-  };
-
-  ///@{
-  /** Which texels the multiresolution gather refines (see the class comment). */
-  vtkSetClampMacro(Refinement, int, RefinementGeometry, RefinementIllumination);
-  vtkGetMacro(Refinement, int);
-  ///@}
-
-  ///@{
-  /**
-   * RefinementIllumination's relative threshold (the illumination stencil's
-   * IlluminationThreshold; default 0.1, >= 0).
-   */
-  void SetIlluminationThreshold(double threshold);
-  double GetIlluminationThreshold();
-  ///@}
 
   /** Whether the last multiresolution gather used the illumination stencil. */
   vtkGetMacro(LastRefinedByIllumination, bool);
@@ -205,7 +189,6 @@ protected:
   double ISMMaxTexelAngle;
   bool ISMFiltering = true;
   int LastVPLCount = 0;
-  int Refinement = RefinementGeometry;
   bool LastRefinedByIllumination = false;
   vtkMRGIIncrementalStencil* IlluminationStencil;
 

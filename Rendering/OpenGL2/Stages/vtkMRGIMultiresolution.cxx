@@ -142,6 +142,16 @@ bool vtkMRGIMultiresolution::GetPresetSettings(int preset, double settings[3])
 }
 
 //------------------------------------------------------------------------------
+double vtkMRGIMultiresolution::GetPresetIlluminationThreshold(int preset)
+{
+  double threshold = INFINITY;
+  return mrgi_multires_preset_illumination_threshold(preset, &threshold, nullptr) == MRGI_OK &&
+      !std::isinf(threshold)
+    ? threshold
+    : -1.0;
+}
+
+//------------------------------------------------------------------------------
 const char* vtkMRGIMultiresolution::GetPresetName(int preset)
 {
   return mrgi_multires_preset_name(preset);
@@ -156,10 +166,16 @@ bool vtkMRGIMultiresolution::SetPreset(int preset)
     vtkErrorMacro("unknown multiresolution preset " << preset << " (0 fast, 1 balanced, 2 accurate)");
     return false;
   }
+  const double illumination = GetPresetIlluminationThreshold(preset);
   this->SetDepthThreshold(settings[0]);
   this->SetNormalThreshold(settings[1]);
   this->SetFinestLevel(static_cast<int>(settings[2]));
   this->SetBalance(true);
+  this->SetRefinement(illumination < 0 ? RefinementGeometry : RefinementIllumination);
+  if (illumination >= 0)
+  {
+    this->SetIlluminationThreshold(illumination);
+  }
   return true;
 }
 
@@ -695,6 +711,10 @@ void vtkMRGIMultiresolution::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NormalThreshold: " << this->NormalThreshold << "\n";
   os << indent << "FinestLevel: " << this->FinestLevel << "\n";
   os << indent << "Balance: " << (this->Balance ? "On" : "Off") << "\n";
+  os << indent
+     << "Refinement: " << (this->Refinement == RefinementIllumination ? "Illumination" : "Geometry")
+     << "\n";
+  os << indent << "IlluminationThreshold: " << this->IlluminationThreshold << "\n";
   os << indent << "CoarsestSide: " << this->CoarsestSide << "\n";
   os << indent << "Levels: " << this->GetNumberOfLevels() << "\n";
 }

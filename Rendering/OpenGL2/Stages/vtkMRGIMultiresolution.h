@@ -56,16 +56,24 @@ public:
 
   enum Presets
   {
-    PresetFast = 0,     ///< finest level 1: ~4% from the full gather, gather ~16x cheaper
-    PresetBalanced = 1, ///< the cheapest measured within 3% of the full gather (default)
-    PresetAccurate = 2  ///< the most accurate measured (~2%)
+    PresetFast = 0, ///< finest level 1: ~4% from the full gather, gather ~16x cheaper
+    PresetBalanced =
+      1, ///< refined where the light changes: well within 3% of the full gather (default)
+    PresetAccurate = 2 ///< the most accurate measured (~1%)
+  };
+
+  enum RefinementModes
+  {
+    RefinementGeometry = 0,    ///< the geometric selection alone
+    RefinementIllumination = 1 ///< plus refinement where the gathered light changes
   };
 
   /**
-   * Apply a preset (mrgi_multires_preset_params: thresholds and finest level
-   * chosen from the measured frontier, Documentation/Multiresolution.md;
-   * balance on). A new object starts with Balanced. False (nothing changed)
-   * for an unknown preset.
+   * Apply a preset (mrgi_multires_preset_params and
+   * mrgi_multires_preset_illumination_threshold: thresholds, finest level
+   * and refinement chosen from the measured frontier,
+   * Documentation/Multiresolution.md; balance on). A new object starts with
+   * Balanced. False (nothing changed) for an unknown preset.
    */
   bool SetPreset(int preset);
 
@@ -74,6 +82,12 @@ public:
    * threshold (-1: off) and finest level. False for an unknown preset.
    */
   static bool GetPresetSettings(int preset, double settings[3]);
+
+  /**
+   * A preset's illumination threshold (RefinementIllumination), or -1 when
+   * it refines by geometry alone or is unknown.
+   */
+  static double GetPresetIlluminationThreshold(int preset);
 
   /** "fast", "balanced", "accurate"; nullptr for an unknown preset. */
   static const char* GetPresetName(int preset);
@@ -101,6 +115,25 @@ public:
   vtkSetMacro(Balance, bool);
   vtkGetMacro(Balance, bool);
   vtkBooleanMacro(Balance, bool);
+  ///@}
+
+  ///@{
+  /**
+   * How the indirect light's gather refines below the geometric cut
+   * (vtkMRGIIndirectLight reads both with the buffer it is handed each
+   * frame): RefinementGeometry, the thresholds above alone; or
+   * RefinementIllumination, the levels gathered coarse to fine and a texel
+   * gathered too where its parent's 3x3 gathered irradiance differs by more
+   * than IlluminationThreshold, relative (vtkMRGIIncrementalStencil,
+   * nichols-penmatsa-wyman-2010 3.4 applied to the indirect light). The
+   * other readers of the buffer (area lights, the specular stencil) keep the
+   * geometric selection and refine by their own rules. Defaults: the
+   * Balanced preset's.
+   */
+  vtkSetClampMacro(Refinement, int, RefinementGeometry, RefinementIllumination);
+  vtkGetMacro(Refinement, int);
+  vtkSetClampMacro(IlluminationThreshold, double, 0.0, 1.0e30);
+  vtkGetMacro(IlluminationThreshold, double);
   ///@}
 
   ///@{
@@ -221,6 +254,8 @@ protected:
   double NormalThreshold = 0.25;
   int FinestLevel = 0;
   bool Balance = true;
+  int Refinement = RefinementGeometry;
+  double IlluminationThreshold = 0.1;
   int CoarsestSide = 16;
 
   struct Internals;
