@@ -324,10 +324,18 @@ int main(int argc, char* argv[])
       o.ShadowMultires ? vtkMRGIPass::ResolutionMultiresolution : vtkMRGIPass::ResolutionFull);
   // The preset first, then every knob given explicitly.
   mrgi->GetMultiresolution()->SetPreset(static_cast<int>(o.Preset));
+  // A threshold given on the command line selects for the indirect light
+  // and the area lights alike.
   if (!std::isnan(o.DepthThreshold))
+  {
     mrgi->GetMultiresolution()->SetDepthThreshold(o.DepthThreshold);
+    mrgi->GetMultiresolution()->SetAreaLightDepthThreshold(o.DepthThreshold);
+  }
   if (!std::isnan(o.NormalThreshold))
+  {
     mrgi->GetMultiresolution()->SetNormalThreshold(o.NormalThreshold);
+    mrgi->GetMultiresolution()->SetAreaLightNormalThreshold(o.NormalThreshold);
+  }
   if (o.FinestLevel >= 0)
     mrgi->GetMultiresolution()->SetFinestLevel(static_cast<int>(o.FinestLevel));
   mrgi->SetSurfaceDetail(o.SurfaceDetail);

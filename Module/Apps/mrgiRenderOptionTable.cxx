@@ -537,7 +537,8 @@ const std::vector<OptionSection>& OptionTable()
           "below override single knobs",
           Choice<long long>(&Options::Preset, PresetChoices()) },
         { { "--depth-threshold" }, "T",
-          "multires: depth change per pixel width that refines, 0..1e30 (inf: never)",
+          "multires: depth change per pixel width that refines, 0..1e30 (inf: never;\n"
+          "the indirect light and the area lights alike)",
           Threshold(&Options::DepthThreshold) },
         { { "--normal-threshold" }, "T",
           "multires: normal-component spread that refines, 0..1e30 (inf: never)",

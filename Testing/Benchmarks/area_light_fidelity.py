@@ -209,6 +209,8 @@ def main():
                 if index is None:
                     scene.mr.SetDepthThreshold(0.0)
                     scene.mr.SetNormalThreshold(0.0)
+                    scene.mr.SetAreaLightDepthThreshold(0.0)
+                    scene.mr.SetAreaLightNormalThreshold(0.0)
                     scene.mr.SetFinestLevel(0)
                 else:
                     scene.mr.SetPreset(index)
@@ -374,6 +376,8 @@ def measure_setting(args, column, settings, configure, timed=False):
                 if preset == "full":
                     scene.mr.SetDepthThreshold(0.0)
                     scene.mr.SetNormalThreshold(0.0)
+                    scene.mr.SetAreaLightDepthThreshold(0.0)
+                    scene.mr.SetAreaLightNormalThreshold(0.0)
                     scene.mr.SetFinestLevel(0)
                 else:
                     scene.mr.SetPreset(mrgi.vtkMRGIMultiresolution.PresetBalanced)

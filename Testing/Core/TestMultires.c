@@ -1019,6 +1019,7 @@ static void test_presets(void)
   mrgi_multires_layout L;
   MRGI_CHECK(mrgi_multires_layout_init(&L, 1024, 1024, MRGI_MULTIRES_DEFAULT_COARSEST_SIDE, NULL) ==
     MRGI_OK);
+  mrgi_error err;
   double previous = INFINITY;
   for (int32_t p = 0; p < MRGI_MULTIRES_PRESET_COUNT; ++p)
   {
@@ -1031,8 +1032,16 @@ static void test_presets(void)
     MRGI_CHECK(t <= previous); /* fast, balanced, accurate: ever finer */
     previous = t;
     MRGI_CHECK(mrgi_multires_preset_name(p) != NULL);
+    /* The area lights' settings: same finest level and balance, their own thresholds. */
+    mrgi_multires_params area;
+    MRGI_CHECK(mrgi_multires_preset_area_light_params(p, &area, NULL) == MRGI_OK);
+    MRGI_CHECK(mrgi_multires_params_validate(&area, &L, NULL) == MRGI_OK);
+    MRGI_CHECK(area.finest_level == params.finest_level && area.balance == params.balance);
+    /* Where the light refines the indirect gather, the area lights keep a
+     * depth test at least as strict as the indirect gather's. */
+    MRGI_CHECK(isinf(t) || area.depth_threshold <= params.depth_threshold);
   }
-  mrgi_error err;
+  MRGI_CHECK(mrgi_multires_preset_area_light_params(-1, NULL, &err) == MRGI_ERR_INVALID_ARGUMENT);
   double t = 42.0;
   MRGI_CHECK(mrgi_multires_preset_illumination_threshold(MRGI_MULTIRES_PRESET_COUNT, &t, &err) ==
     MRGI_ERR_INVALID_ARGUMENT);

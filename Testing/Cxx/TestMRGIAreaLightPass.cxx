@@ -121,6 +121,8 @@ int main()
   vtkMRGIMultiresolution* mr = pass->GetMultiresolution();
   mr->SetDepthThreshold(0.0);
   mr->SetNormalThreshold(0.0);
+  mr->SetAreaLightDepthThreshold(0.0);
+  mr->SetAreaLightNormalThreshold(0.0);
   MRGI_TEST_CHECK(pass->GetAreaLightVisibility() == vtkMRGIPass::VisibilityIncremental); // the default
   pass->SetAreaLightVisibility(vtkMRGIPass::VisibilityOff);
   window->Render();
@@ -388,6 +390,8 @@ int main()
   area->IncrementalStencilOn();
   mr->SetDepthThreshold(0.0);
   mr->SetNormalThreshold(0.0);
+  mr->SetAreaLightDepthThreshold(0.0);
+  mr->SetAreaLightNormalThreshold(0.0);
   mr->SetFinestLevel(0);
   pass->SetAreaLightVisibility(vtkMRGIPass::VisibilityOff);
 

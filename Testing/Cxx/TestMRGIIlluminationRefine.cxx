@@ -16,11 +16,14 @@
  *   the upsampling's tent filter, not the full gather itself).
  * - The presets carry the refinement: a new pass (Balanced) and Accurate
  *   gather by illumination at their own thresholds, Fast by geometry; a
- *   preset applied after SetRefinement() sets it again.
+ *   preset applied after SetRefinement() sets it again. The area lights
+ *   select with their own thresholds.
  */
 #include "mrgiPassSceneFixture.h"
 #include "mrgiTestUtilities.h"
 
+#include "vtkMRGIAreaLight.h"
+#include "vtkMRGIAreaLightStage.h"
 #include "vtkMRGIGather.h"
 #include "vtkMRGIIncrementalStencil.h"
 #include "vtkMRGIIndirectLight.h"
@@ -240,9 +243,44 @@ void TestPresetsRefine()
 }
 }
 
+// The area lights select with their own thresholds (their shadows change at
+// depth edges): with the indirect light's selection held, the area gather's
+// work follows the area thresholds alone.
+void TestAreaLightsSelectApart()
+{
+  mrgitest::PassScene scene(96, 80, "cornell-area");
+  vtkMRGIPass* pass = scene.Pass;
+  for (int i = 0; i < scene.Builder->GetNumberOfAreaLights(); ++i)
+  {
+    pass->AddAreaLight(scene.Builder->GetAreaLight(i));
+  }
+  MRGI_TEST_CHECK(pass->GetNumberOfAreaLights() > 0);
+  vtkMRGIMultiresolution* mr = pass->GetMultiresolution();
+  MRGI_TEST_CHECK(!mr->AreaLightsShareSelection()); // Balanced
+  // Without the area stage's own stencil its gather works on the geometric
+  // selection alone.
+  pass->GetAreaLightStage()->SetIncrementalStencil(false);
+  vtkMRGIGather* areaGather = pass->GetAreaLightStage()->GetGather();
+  const auto areaWork = [&](double threshold) {
+    mr->SetAreaLightDepthThreshold(threshold);
+    mr->SetAreaLightNormalThreshold(threshold);
+    areaGather->SetCollectStatistics(true);
+    scene.Window->Render();
+    areaGather->SetCollectStatistics(false);
+    return areaGather->GetGatherWorkFraction();
+  };
+  mr->SetDepthThreshold(-1.0); // the indirect light's: never refine
+  mr->SetNormalThreshold(-1.0);
+  const double everything = areaWork(0.0), edges = areaWork(-1.0);
+  std::printf("area gather work: area thresholds 0 %.4f, off %.4f\n", everything, edges);
+  MRGI_TEST_CHECK(everything > 0.99 && edges < 0.9 * everything);
+  mr->SetPreset(vtkMRGIMultiresolution::PresetFast);
+  MRGI_TEST_CHECK(mr->AreaLightsShareSelection());
+}
+
 int main(int argc, char* argv[])
 {
   return mrgitest::RunCases(argc, argv,
     { MRGI_TEST_CASE(TestParity), MRGI_TEST_CASE(TestThresholdMatters),
-      MRGI_TEST_CASE(TestPresetsRefine) });
+      MRGI_TEST_CASE(TestPresetsRefine), MRGI_TEST_CASE(TestAreaLightsSelectApart) });
 }

@@ -373,6 +373,19 @@ mrgi_status mrgi_multires_preset_params(int32_t preset, mrgi_multires_params* pa
 mrgi_status mrgi_multires_preset_illumination_threshold(
   int32_t preset, double* threshold, mrgi_error* err);
 
+/**
+ * @brief The settings of a preset for the area lights' gather: the finest
+ *        level and balance of mrgi_multires_preset_params(), with the
+ *        thresholds the area lights measured best. Their light is direct
+ *        and shadowed, and shadows change at depth discontinuities, where
+ *        the depth-derivative test refines; the indirect light, smooth
+ *        across such edges, relaxes that test where the illumination rule
+ *        runs (Documentation/IlluminationRefinement.md).
+ * @return ::MRGI_ERR_INVALID_ARGUMENT as mrgi_multires_preset_params().
+ */
+mrgi_status mrgi_multires_preset_area_light_params(int32_t preset, mrgi_multires_params* params,
+                                                   mrgi_error* err);
+
 /** @brief "fast", "balanced", "accurate"; NULL for an unknown preset. */
 const char* mrgi_multires_preset_name(int32_t preset);
 

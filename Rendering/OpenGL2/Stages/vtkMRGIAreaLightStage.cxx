@@ -249,11 +249,14 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
     return this->Add(frame, this->SumTexture, color);
   }
   this->Signature.clear();
-  if (!selected)
+  // The indirect light's selection serves when it selects as the area
+  // lights do; else they select with their own thresholds.
+  if (!selected || !buffer->AreaLightsShareSelection())
   {
     ScopedStage stage(timer, "select");
     if (!buffer->Update(renWin, frame.Position, frame.Normal, frame.Viewport[0], frame.Viewport[1],
-          frame.Viewport[2], frame.Viewport[3], frame.PixelSize[0], frame.PixelSize[1], timer))
+          frame.Viewport[2], frame.Viewport[3], frame.PixelSize[0], frame.PixelSize[1], timer,
+          true))
     {
       return false;
     }

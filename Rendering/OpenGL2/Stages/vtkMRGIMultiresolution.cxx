@@ -142,6 +142,18 @@ bool vtkMRGIMultiresolution::GetPresetSettings(int preset, double settings[3])
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::AreaLightsShareSelection() const
+{
+  // Off is any negative value or +inf.
+  const auto same = [](double a, double b) {
+    const bool offA = a < 0 || std::isinf(a), offB = b < 0 || std::isinf(b);
+    return offA == offB && (offA || a == b);
+  };
+  return same(this->AreaLightDepthThreshold, this->DepthThreshold) &&
+    same(this->AreaLightNormalThreshold, this->NormalThreshold);
+}
+
+//------------------------------------------------------------------------------
 double vtkMRGIMultiresolution::GetPresetIlluminationThreshold(int preset)
 {
   double threshold = INFINITY;
@@ -167,6 +179,11 @@ bool vtkMRGIMultiresolution::SetPreset(int preset)
     return false;
   }
   const double illumination = GetPresetIlluminationThreshold(preset);
+  mrgi_multires_params area;
+  mrgi_multires_preset_area_light_params(preset, &area, nullptr);
+  this->SetAreaLightDepthThreshold(std::isinf(area.depth_threshold) ? -1.0 : area.depth_threshold);
+  this->SetAreaLightNormalThreshold(
+    std::isinf(area.normal_threshold) ? -1.0 : area.normal_threshold);
   this->SetDepthThreshold(settings[0]);
   this->SetNormalThreshold(settings[1]);
   this->SetFinestLevel(static_cast<int>(settings[2]));
@@ -227,7 +244,7 @@ vtkTextureObject* vtkMRGIMultiresolution::GetStencilTexture() const
 //------------------------------------------------------------------------------
 bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
   vtkTextureObject* position, vtkTextureObject* normal, int x0, int y0, int width, int height,
-  double a, double b, vtkRenderTimerLog* timer)
+  double a, double b, vtkRenderTimerLog* timer, bool forAreaLights)
 {
   if (!window || !position || !normal)
   {
@@ -386,10 +403,11 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     }
   }
   // 3. Flags, fine to coarse (refinement and balance read the finer level).
-  const float depthThreshold = mrgi_multires_threshold_uniform(
-    this->DepthThreshold < 0 ? INFINITY : this->DepthThreshold);
-  const float normalThreshold = mrgi_multires_threshold_uniform(
-    this->NormalThreshold < 0 ? INFINITY : this->NormalThreshold);
+  const double depth = forAreaLights ? this->AreaLightDepthThreshold : this->DepthThreshold;
+  const double normalSpread = forAreaLights ? this->AreaLightNormalThreshold : this->NormalThreshold;
+  const float depthThreshold = mrgi_multires_threshold_uniform(depth < 0 ? INFINITY : depth);
+  const float normalThreshold =
+    mrgi_multires_threshold_uniform(normalSpread < 0 ? INFINITY : normalSpread);
   for (int i = 0; i < levels; ++i)
   {
     ScopedStage step(timer, i == 0 ? "select.flags0" : "select.flags");
@@ -715,6 +733,8 @@ void vtkMRGIMultiresolution::PrintSelf(ostream& os, vtkIndent indent)
      << "Refinement: " << (this->Refinement == RefinementIllumination ? "Illumination" : "Geometry")
      << "\n";
   os << indent << "IlluminationThreshold: " << this->IlluminationThreshold << "\n";
+  os << indent << "AreaLightDepthThreshold: " << this->AreaLightDepthThreshold << "\n";
+  os << indent << "AreaLightNormalThreshold: " << this->AreaLightNormalThreshold << "\n";
   os << indent << "CoarsestSide: " << this->CoarsestSide << "\n";
   os << indent << "Levels: " << this->GetNumberOfLevels() << "\n";
 }

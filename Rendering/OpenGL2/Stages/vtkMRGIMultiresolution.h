@@ -69,9 +69,11 @@ public:
   };
 
   /**
-   * Apply a preset (mrgi_multires_preset_params and
-   * mrgi_multires_preset_illumination_threshold: thresholds, finest level
-   * and refinement chosen from the measured frontier,
+   * Apply a preset (mrgi_multires_preset_params,
+   * mrgi_multires_preset_illumination_threshold and
+   * mrgi_multires_preset_area_light_params: thresholds, finest level,
+   * refinement and the area lights' thresholds chosen from the measured
+   * frontier,
    * Documentation/Multiresolution.md; balance on). A new object starts with
    * Balanced. False (nothing changed) for an unknown preset.
    */
@@ -103,6 +105,25 @@ public:
   vtkSetMacro(NormalThreshold, double);
   vtkGetMacro(NormalThreshold, double);
   ///@}
+
+  ///@{
+  /**
+   * The area lights' thresholds (same meaning; vtkMRGIAreaLightStage
+   * selects with these, mrgi_multires_preset_area_light_params()): their
+   * shadows change at depth edges, which the indirect light's illumination
+   * rule lets its own selection skip. Defaults: the Balanced preset's.
+   */
+  vtkSetMacro(AreaLightDepthThreshold, double);
+  vtkGetMacro(AreaLightDepthThreshold, double);
+  vtkSetMacro(AreaLightNormalThreshold, double);
+  vtkGetMacro(AreaLightNormalThreshold, double);
+  ///@}
+
+  /**
+   * Whether the area lights select as the indirect light does (equal
+   * thresholds), so that one Update() serves both in a frame.
+   */
+  bool AreaLightsShareSelection() const;
 
   ///@{
   /** Finest level that gathers (0 = full resolution). Clamped to the levels there are. */
@@ -147,11 +168,12 @@ public:
    * vtkMRGIPass captures them) whose pixel (0, 0) is texel (x0, y0); the
    * image is width x height. Pixel size at depth d is max(a |d| + b, tiny)
    * (mrgi_multires_pixel_size_coefficients). Timer steps "select.*" on
-   * `timer` when given. False on error.
+   * `timer` when given. `forAreaLights`: select with the area lights'
+   * thresholds instead of the indirect light's. False on error.
    */
   bool Update(vtkOpenGLRenderWindow* window, vtkTextureObject* position,
     vtkTextureObject* normal, int x0, int y0, int width, int height, double a, double b,
-    vtkRenderTimerLog* timer = nullptr);
+    vtkRenderTimerLog* timer = nullptr, bool forAreaLights = false);
 
   /** Flattened layout size of the last Update(). */
   int GetFlattenedWidth() const;
@@ -256,6 +278,8 @@ protected:
   bool Balance = true;
   int Refinement = RefinementGeometry;
   double IlluminationThreshold = 0.1;
+  double AreaLightDepthThreshold = 4.0;
+  double AreaLightNormalThreshold = 1.0;
   int CoarsestSide = 16;
 
   struct Internals;
