@@ -36,7 +36,7 @@
  * combined in quadrature from three independent sources:
  *  - the multiresolution error of the preset against the full gather with the
  *    same VPLs (Documentation/Multiresolution.md, cornell-spot, 256 VPLs:
- *    fast 0.043, balanced 0.023, accurate 0.019);
+ *    fast 0.043, balanced 0.016, accurate 0.010);
  *  - the VPL sampling error k_v / sqrt(VPLs) (the grid's stratified estimate);
  *  - the RSM resolution error k_r * 256 / rsm_size and, with voxels, the
  *    voxel error k_x * 128 / voxel_side.
