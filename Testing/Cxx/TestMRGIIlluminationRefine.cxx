@@ -225,6 +225,16 @@ void TestPresetsRefine()
       pass->SetRefinement(vtkMRGIMultiresolution::RefinementGeometry);
       MRGI_TEST_CHECK(mr->SetPreset(preset));
     }
+    // 64 x 56 is under the presets' minimum view: they select as the area
+    // lights do, without the rule.
+    MRGI_TEST_CHECK(mr->GetIlluminationMinimumPixels() ==
+      (mr->GetRefinement() == vtkMRGIMultiresolution::RefinementIllumination
+          ? MRGI_MULTIRES_ILLUMINATION_MIN_PIXELS
+          : 0));
+    scene.Window->Render();
+    MRGI_TEST_CHECK(!pass->GetIndirectLightStage()->GetLastRefinedByIllumination());
+    MRGI_TEST_CHECK(mr->SelectionServesAreaLights());
+    mr->SetIlluminationMinimumPixels(0);
     double threshold = 0.0;
     MRGI_TEST_CHECK(
       mrgi_multires_preset_illumination_threshold(preset, &threshold, nullptr) == MRGI_OK);
@@ -235,6 +245,7 @@ void TestPresetsRefine()
     MRGI_TEST_CHECK(!lit || pass->GetIlluminationThreshold() == threshold);
     scene.Window->Render();
     MRGI_TEST_CHECK(pass->GetIndirectLightStage()->GetLastRefinedByIllumination() == lit);
+    MRGI_TEST_CHECK(mr->SelectionServesAreaLights() == !lit);
     // The stage took the buffer's threshold for this frame.
     MRGI_TEST_CHECK(!lit ||
       pass->GetIndirectLightStage()->GetIlluminationStencil()->GetIlluminationThreshold() ==

@@ -33,13 +33,14 @@ void mrgi_frame_budget_default(mrgi_frame_budget_calibration* cal)
 /* Gathered / valid pixels of each preset at windows of 256^2, 512^2 and
  * 1024^2 (mrgi-render cornell-spot --preset P --timings): coarse levels and
  * edges are a larger part of a smaller image. Balanced and accurate refine
- * by illumination (mrgi_multires_preset_illumination_threshold): every
- * level they gather counts. */
+ * by illumination (mrgi_multires_preset_illumination_threshold) from
+ * MRGI_MULTIRES_ILLUMINATION_MIN_PIXELS up (512^2, 1024^2: every level
+ * they gather counts), geometrically below (256^2). */
 static const double work_sides[3] = { 256.0, 512.0, 1024.0 };
 static const double work_table[MRGI_MULTIRES_PRESET_COUNT][3] = {
   { 0.1003, 0.0633, 0.0332 }, /* fast */
-  { 0.3152, 0.1763, 0.0874 }, /* balanced */
-  { 0.4270, 0.2479, 0.1188 }, /* accurate */
+  { 0.3609, 0.1763, 0.0874 }, /* balanced */
+  { 0.3661, 0.2479, 0.1188 }, /* accurate */
 };
 
 double mrgi_frame_budget_work_fraction_at(int32_t preset, int64_t pixels)

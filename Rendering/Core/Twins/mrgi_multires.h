@@ -374,6 +374,15 @@ mrgi_status mrgi_multires_preset_illumination_threshold(
   int32_t preset, double* threshold, mrgi_error* err);
 
 /**
+ * Smallest view (pixels) where the presets' illumination rule runs: from
+ * 384^2 up it measured at least as fast as the geometric setting and more
+ * accurate (cornell-spot, 256 VPLs: 384^2, 512^2, 1024^2); at 256^2 it was
+ * slower and less accurate (Documentation/IlluminationRefinement.md). A
+ * smaller view selects with the preset's area-light (geometric) settings.
+ */
+#define MRGI_MULTIRES_ILLUMINATION_MIN_PIXELS (384 * 384)
+
+/**
  * @brief The settings of a preset for the area lights' gather: the finest
  *        level and balance of mrgi_multires_preset_params(), with the
  *        thresholds the area lights measured best. Their light is direct

@@ -234,8 +234,10 @@ public:
    * discontinuities) or RefinementIllumination (also where neighbouring
    * coarse results differ by more than IlluminationThreshold, relative).
    * Defaults: the multiresolution preset's (Balanced and Accurate refine by
-   * illumination). Forwarded to GetMultiresolution(); a preset applied
-   * later sets both again.
+   * illumination from views of 384^2 pixels up,
+   * vtkMRGIMultiresolution::IlluminationMinimumPixels). Forwarded to
+   * GetMultiresolution(); SetRefinement() applies at any view size (sets
+   * IlluminationMinimumPixels to 0); a preset applied later sets all again.
    */
   void SetRefinement(int mode);
   int GetRefinement();

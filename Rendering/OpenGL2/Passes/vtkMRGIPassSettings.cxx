@@ -151,7 +151,9 @@ int vtkMRGIPass::GetIndirectVisibility()
 }
 void vtkMRGIPass::SetRefinement(int mode)
 {
+  // Asked for by hand: at any view size (the presets' minimum is theirs).
   this->Multiresolution->SetRefinement(mode);
+  this->Multiresolution->SetIlluminationMinimumPixels(0);
 }
 int vtkMRGIPass::GetRefinement()
 {

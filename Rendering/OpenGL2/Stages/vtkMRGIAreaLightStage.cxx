@@ -251,7 +251,7 @@ bool vtkMRGIAreaLightStage::Render(const vtkMRGIFrameContext& frame,
   this->Signature.clear();
   // The indirect light's selection serves when it selects as the area
   // lights do; else they select with their own thresholds.
-  if (!selected || !buffer->AreaLightsShareSelection())
+  if (!selected || !buffer->SelectionServesAreaLights())
   {
     ScopedStage stage(timer, "select");
     if (!buffer->Update(renWin, frame.Position, frame.Normal, frame.Viewport[0], frame.Viewport[1],

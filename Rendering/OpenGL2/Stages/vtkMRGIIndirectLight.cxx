@@ -162,23 +162,26 @@ bool vtkMRGIIndirectLight::RunGather(const vtkMRGIFrameContext& frame,
                     settings.Strength, irradiance, indirect, visibility);
   }
   vtkRenderTimerLog* timer = frame.Timer;
+  // The illumination rule (class comment): each level's stencil is built
+  // from the irradiance the coarser level gathered, between the gathers.
+  // Where it does not run though asked for (a view under the buffer's
+  // IlluminationMinimumPixels; multiresolution splatting, nichols-wyman-
+  // 2009, which has no step between its levels), the gather selects with
+  // the area lights' geometric thresholds, the presets' setting without the
+  // rule. LastRefinedByIllumination says which ran.
+  const bool illumination = buffer->RefinesByIllumination(frame.Viewport[2], frame.Viewport[3],
+    tree || this->Gather->GetGatherMode() == vtkMRGIGather::GatherStenciled);
+  const bool geometricFallback =
+    !illumination && buffer->GetRefinement() == vtkMRGIMultiresolution::RefinementIllumination;
   {
     vtkMRGIShaderUtilities::ScopedStage stage(timer, "select");
     if (!buffer->Update(frame.Window, frame.Position, frame.Normal, frame.Viewport[0],
           frame.Viewport[1], frame.Viewport[2], frame.Viewport[3], frame.PixelSize[0],
-          frame.PixelSize[1], timer))
+          frame.PixelSize[1], timer, geometricFallback))
     {
       return false;
     }
   }
-  // The illumination rule (class comment): each level's stencil is built
-  // from the irradiance the coarser level gathered, between the gathers.
-  // Multiresolution splatting (nichols-wyman-2009) has no step between its
-  // levels: it gathers the geometric selection (LastRefinedByIllumination
-  // says which ran).
-  const bool illumination =
-    buffer->GetRefinement() == vtkMRGIMultiresolution::RefinementIllumination &&
-    (tree || this->Gather->GetGatherMode() == vtkMRGIGather::GatherStenciled);
   this->LastRefinedByIllumination = illumination;
   vtkMRGIIncrementalStencil* lit = this->IlluminationStencil;
   lit->SetIlluminationThreshold(buffer->GetIlluminationThreshold());

@@ -74,6 +74,7 @@ struct vtkMRGIMultiresolution::Internals
   int LastOffset[2] = { 0, 0 };
   // Receivers built for the current selection (Update() clears it).
   bool ReceiversValid = false;
+  bool SelectedForAreaLights = false; // the last Update() used the area lights' thresholds
   vtkTextureObject* FlatSelection = nullptr;
   vtkTextureObject* DepthStencil = nullptr;
   // Pixel size coefficients of the last Update().
@@ -154,6 +155,19 @@ bool vtkMRGIMultiresolution::AreaLightsShareSelection() const
 }
 
 //------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::RefinesByIllumination(int width, int height, bool stenciled) const
+{
+  return this->Refinement == RefinementIllumination && stenciled &&
+    static_cast<vtkIdType>(width) * height >= this->IlluminationMinimumPixels;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMRGIMultiresolution::SelectionServesAreaLights() const
+{
+  return this->Internal->HasLayout && this->Internal->SelectedForAreaLights;
+}
+
+//------------------------------------------------------------------------------
 double vtkMRGIMultiresolution::GetPresetIlluminationThreshold(int preset)
 {
   double threshold = INFINITY;
@@ -193,6 +207,7 @@ bool vtkMRGIMultiresolution::SetPreset(int preset)
   {
     this->SetIlluminationThreshold(illumination);
   }
+  this->SetIlluminationMinimumPixels(illumination >= 0 ? MRGI_MULTIRES_ILLUMINATION_MIN_PIXELS : 0);
   return true;
 }
 
@@ -252,6 +267,7 @@ bool vtkMRGIMultiresolution::Update(vtkOpenGLRenderWindow* window,
     return false;
   }
   this->Internal->ReceiversValid = false; // a new selection: BuildReceivers() makes its receivers
+  this->Internal->SelectedForAreaLights = forAreaLights || this->AreaLightsShareSelection();
   this->Internal->PixelSize[0] = a;
   this->Internal->PixelSize[1] = b;
   mrgi_multires_layout layout;
@@ -733,6 +749,7 @@ void vtkMRGIMultiresolution::PrintSelf(ostream& os, vtkIndent indent)
      << "Refinement: " << (this->Refinement == RefinementIllumination ? "Illumination" : "Geometry")
      << "\n";
   os << indent << "IlluminationThreshold: " << this->IlluminationThreshold << "\n";
+  os << indent << "IlluminationMinimumPixels: " << this->IlluminationMinimumPixels << "\n";
   os << indent << "AreaLightDepthThreshold: " << this->AreaLightDepthThreshold << "\n";
   os << indent << "AreaLightNormalThreshold: " << this->AreaLightNormalThreshold << "\n";
   os << indent << "CoarsestSide: " << this->CoarsestSide << "\n";

@@ -158,6 +158,31 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Smallest view, in pixels, where RefinementIllumination runs; a smaller
+   * view (and multiresolution splatting, which has no step between levels)
+   * selects with the area lights' thresholds and geometry alone. The
+   * presets that refine by illumination set
+   * MRGI_MULTIRES_ILLUMINATION_MIN_PIXELS (384^2: below it the rule
+   * measured slower and less accurate than the geometric preset); 0 (the
+   * default) runs it at any size.
+   */
+  vtkSetClampMacro(IlluminationMinimumPixels, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(IlluminationMinimumPixels, vtkIdType);
+  ///@}
+
+  /**
+   * Whether the indirect light's gather over a width x height view with
+   * `stenciled` gathering (false: splatting) refines by illumination
+   * (Refinement, IlluminationMinimumPixels). When it does not and
+   * Refinement asks for it, it selects with the area lights' thresholds.
+   */
+  bool RefinesByIllumination(int width, int height, bool stenciled) const;
+
+  /** Whether the last Update() selected as the area lights do. */
+  bool SelectionServesAreaLights() const;
+
+  ///@{
   /** Side of the coarsest level: levels stop when both sides are <= this (default 16). */
   vtkSetClampMacro(CoarsestSide, int, 1, 4096);
   vtkGetMacro(CoarsestSide, int);
@@ -278,6 +303,7 @@ protected:
   bool Balance = true;
   int Refinement = RefinementGeometry;
   double IlluminationThreshold = 0.1;
+  vtkIdType IlluminationMinimumPixels = 0;
   double AreaLightDepthThreshold = 4.0;
   double AreaLightNormalThreshold = 1.0;
   int CoarsestSide = 16;
