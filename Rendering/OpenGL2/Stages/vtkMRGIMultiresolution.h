@@ -56,10 +56,9 @@ public:
 
   enum Presets
   {
-    PresetFast = 0, ///< finest level 1: ~4% from the full gather, gather ~16x cheaper
-    PresetBalanced =
-      1, ///< refined where the light changes: well within 3% of the full gather (default)
-    PresetAccurate = 2 ///< the most accurate measured (~1%)
+    PresetFast = 0,     ///< finest level 1: ~4% from the full gather, gather ~16x cheaper
+    PresetBalanced = 1, ///< refined where the light changes, within 3% (default)
+    PresetAccurate = 2  ///< the most accurate measured (~1%)
   };
 
   enum RefinementModes
@@ -73,9 +72,8 @@ public:
    * mrgi_multires_preset_illumination_threshold and
    * mrgi_multires_preset_area_light_params: thresholds, finest level,
    * refinement and the area lights' thresholds chosen from the measured
-   * frontier,
-   * Documentation/Multiresolution.md; balance on). A new object starts with
-   * Balanced. False (nothing changed) for an unknown preset.
+   * frontier, Documentation/Multiresolution.md; balance on). A new object
+   * starts with Balanced. False (nothing changed) for an unknown preset.
    */
   bool SetPreset(int preset);
 
@@ -164,8 +162,8 @@ public:
    * selects with the area lights' thresholds and geometry alone. The
    * presets that refine by illumination set
    * MRGI_MULTIRES_ILLUMINATION_MIN_PIXELS (384^2: below it the rule
-   * measured slower and less accurate than the geometric preset); 0 (the
-   * default) runs it at any size.
+   * measured slower and less accurate than the geometric preset); 0 runs
+   * it at any size (vtkMRGIPass::SetRefinement() sets 0).
    */
   vtkSetClampMacro(IlluminationMinimumPixels, vtkIdType, 0, VTK_ID_MAX);
   vtkGetMacro(IlluminationMinimumPixels, vtkIdType);
