@@ -314,6 +314,9 @@ bool vtkMRGIPass::Calibrate(vtkRenderWindow* window)
   const int finest = mr->GetFinestLevel(), vpls = this->GetNumberOfVPLs();
   const int rsm = this->GetRSMResolution(), refinement = mr->GetRefinement();
   const double illumination = mr->GetIlluminationThreshold();
+  const vtkIdType minimumPixels = mr->GetIlluminationMinimumPixels();
+  const double areaDepth = mr->GetAreaLightDepthThreshold();
+  const double areaNormal = mr->GetAreaLightNormalThreshold();
   const bool balance = mr->GetBalance();
   vtkMRGIVoxelization* voxels = this->IndirectLight->GetVoxelization();
   int voxelSize[2];
@@ -325,6 +328,9 @@ bool vtkMRGIPass::Calibrate(vtkRenderWindow* window)
   mr->SetFinestLevel(finest);
   mr->SetRefinement(refinement);
   mr->SetIlluminationThreshold(illumination);
+  mr->SetIlluminationMinimumPixels(minimumPixels);
+  mr->SetAreaLightDepthThreshold(areaDepth);
+  mr->SetAreaLightNormalThreshold(areaNormal);
   mr->SetBalance(balance);
   this->SetNumberOfVPLs(vpls);
   this->SetRSMResolution(rsm);
